@@ -1,0 +1,41 @@
+//! The virtual image of the straw in the course's convention (SPEC §4).
+
+use crate::geometry::Ray;
+use crate::scene::Scene;
+use crate::trace::Outcome;
+use crate::Vec3;
+
+/// A point of the straw's virtual image: where the observer believes a straw point is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImagePoint {
+    /// The image point `P = O + L·u0` (m).
+    pub position: Vec3,
+    /// Colour code of the straw section the light came from, 1..=5.
+    pub color: u8,
+    /// Unit initial direction `u0` of the ray from the observer.
+    pub direction: Vec3,
+    /// Length `L` of the broken path from the observer to the straw (m).
+    pub path_length: f64,
+    /// The straw point the ray really reached.
+    pub straw_point: Vec3,
+    /// Events (refractions and total reflections) on the way.
+    pub events: u32,
+}
+
+impl Scene {
+    /// The image point seen from `observer` along unit direction `u0`, if that ray reaches the straw.
+    #[inline]
+    pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
+        match self.trace(Ray { origin: observer, direction: u0 }) {
+            Outcome::Straw { color, point, path_length, events, .. } => Some(ImagePoint {
+                position: observer + path_length * u0,
+                color,
+                direction: u0,
+                path_length,
+                straw_point: point,
+                events,
+            }),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,19 @@
+//! The physics of bentstraw: a five-colour straw standing in a glass of water, seen through refraction.
+//!
+//! Data flows one way: a [`scene::Scene`] and an observer give rays ([`geometry::Ray`]), the tracer
+//! ([`trace`]) follows them through the water's faces ([`interface`]) to the straw, and each ray that
+//! arrives becomes an [`image::ImagePoint`]; [`sampling`] chooses the rays so that the straw's image is
+//! covered evenly. The crate does no I/O and prints nothing.
+//!
+//! The conventions are those of the project's specification (`shared/SPEC.md`): SI units (metres),
+//! origin at the centre of the glass's base, `z` up.
+
+pub mod camera;
+pub mod geometry;
+pub mod image;
+pub mod interface;
+pub mod sampling;
+pub mod scene;
+pub mod trace;
+
+pub use glam::DVec3 as Vec3;

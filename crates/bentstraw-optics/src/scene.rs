@@ -1,0 +1,280 @@
+//! The glass, the water and the straw (SPEC §1), and the rules a valid simulation obeys (SPEC §2).
+
+use std::fmt;
+
+use crate::geometry::{CylinderSide, Disk};
+use crate::Vec3;
+
+/// Radius of the glass `Rv` (m).
+pub const GLASS_RADIUS: f64 = 0.04;
+/// Height of the glass `Hv` (m).
+pub const GLASS_HEIGHT: f64 = 0.20;
+/// Radius of the straw `Rp` (m).
+pub const STRAW_RADIUS: f64 = 0.005;
+/// Height of the straw `Hp` (m).
+pub const STRAW_HEIGHT: f64 = 0.25;
+/// Number of coloured sections of the straw.
+pub const SECTION_COUNT: usize = 5;
+/// Height of one coloured section (m).
+pub const SECTION_HEIGHT: f64 = STRAW_HEIGHT / SECTION_COUNT as f64;
+/// Default refractive index of water.
+pub const WATER_INDEX: f64 = 1.333;
+/// Default limit on events (refractions and reflections) per ray.
+pub const DEFAULT_MAX_EVENTS: u32 = 10;
+/// Largest event limit accepted.
+pub const MAX_EVENTS_LIMIT: u32 = 1000;
+/// Display colours of the sections, codes 1..=5 (index 0 is code 1), RGB in 0..1 (SPEC §1).
+pub const SECTION_RGB: [[f64; 3]; SECTION_COUNT] = [
+    [1.0, 0.0, 0.0],
+    [0.929, 0.694, 0.125],
+    [1.0, 0.0, 1.0],
+    [0.0, 0.8, 0.0],
+    [0.0, 0.0, 1.0],
+];
+/// Names of the sections' colours, codes 1..=5.
+pub const SECTION_NAMES: [&str; SECTION_COUNT] = ["red", "orange", "magenta", "green", "blue"];
+
+/// The colour code (1 = red at the bottom … 5 = blue at the top) of the straw at height `z`.
+#[inline]
+pub fn section_at(z: f64) -> u8 {
+    let k = (z / SECTION_HEIGHT).floor();
+    (k.clamp(0.0, (SECTION_COUNT - 1) as f64) as u8) + 1
+}
+
+/// Why the inputs of a simulation are not valid.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SceneError {
+    /// A number is NaN or infinite.
+    NotFinite {
+        /// Which input.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// The water height is outside `[0, Hv]`.
+    WaterHeight(f64),
+    /// The straw does not fit in the glass.
+    StrawOutsideGlass {
+        /// Axis `x`.
+        xp: f64,
+        /// Axis `y`.
+        yp: f64,
+    },
+    /// The observer is inside or on the glass.
+    ObserverInGlass(Vec3),
+    /// The observer is inside the part of the straw above the glass.
+    ObserverInStraw(Vec3),
+    /// The refractive index of water is below 1.
+    WaterIndex(f64),
+    /// The event limit is 0 or larger than [`MAX_EVENTS_LIMIT`].
+    MaxEvents(u32),
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SceneError::NotFinite { name, value } => write!(f, "{name} = {value} is not a finite number"),
+            SceneError::WaterHeight(h) => write!(
+                f,
+                "water height {h} m is outside the glass: it must satisfy 0 <= he <= {GLASS_HEIGHT}"
+            ),
+            SceneError::StrawOutsideGlass { xp, yp } => write!(
+                f,
+                "straw axis ({xp}, {yp}) does not fit in the glass: need sqrt(xp² + yp²) + {STRAW_RADIUS} <= {GLASS_RADIUS} (it is {:.6})",
+                (xp * xp + yp * yp).sqrt() + STRAW_RADIUS
+            ),
+            SceneError::ObserverInGlass(o) => write!(
+                f,
+                "observer ({}, {}, {}) is inside or on the glass: it must not satisfy 0 <= z <= {GLASS_HEIGHT} and x² + y² <= {GLASS_RADIUS}²",
+                o.x, o.y, o.z
+            ),
+            SceneError::ObserverInStraw(o) => write!(
+                f,
+                "observer ({}, {}, {}) is inside the straw where it sticks out of the glass",
+                o.x, o.y, o.z
+            ),
+            SceneError::WaterIndex(n) => {
+                write!(f, "water index {n} is not allowed: it must be a finite number >= 1")
+            }
+            SceneError::MaxEvents(m) => write!(
+                f,
+                "event limit {m} is not allowed: it must be between 1 and {MAX_EVENTS_LIMIT}"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// Checks that `value` is finite.
+pub fn require_finite(name: &'static str, value: f64) -> Result<f64, SceneError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(SceneError::NotFinite { name, value })
+    }
+}
+
+/// The glass of water with the straw in it: everything a ray can meet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scene {
+    /// Axis of the straw, `x` (m).
+    pub straw_x: f64,
+    /// Axis of the straw, `y` (m).
+    pub straw_y: f64,
+    /// Height of the water surface `he` (m).
+    pub water_height: f64,
+    /// Refractive index of the water.
+    pub n_water: f64,
+    /// Most events (refractions and total reflections) a ray may undergo.
+    pub max_events: u32,
+}
+
+impl Scene {
+    /// A validated scene (SPEC §2): straw axis `(xp, yp)`, water height `he`, index `n_water`,
+    /// event limit `max_events`.
+    pub fn new(xp: f64, yp: f64, he: f64, n_water: f64, max_events: u32) -> Result<Self, SceneError> {
+        require_finite("straw x", xp)?;
+        require_finite("straw y", yp)?;
+        require_finite("water height", he)?;
+        if !n_water.is_finite() || n_water < 1.0 {
+            return Err(SceneError::WaterIndex(n_water));
+        }
+        if !(0.0..=GLASS_HEIGHT).contains(&he) {
+            return Err(SceneError::WaterHeight(he));
+        }
+        if (xp * xp + yp * yp).sqrt() + STRAW_RADIUS > GLASS_RADIUS {
+            return Err(SceneError::StrawOutsideGlass { xp, yp });
+        }
+        if max_events == 0 || max_events > MAX_EVENTS_LIMIT {
+            return Err(SceneError::MaxEvents(max_events));
+        }
+        Ok(Scene { straw_x: xp, straw_y: yp, water_height: he, n_water, max_events })
+    }
+
+    /// A scene with the default index (1.333) and event limit (10).
+    pub fn with_defaults(xp: f64, yp: f64, he: f64) -> Result<Self, SceneError> {
+        Scene::new(xp, yp, he, WATER_INDEX, DEFAULT_MAX_EVENTS)
+    }
+
+    /// The same scene with another water index (validated).
+    pub fn with_n_water(&self, n_water: f64) -> Result<Self, SceneError> {
+        Scene::new(self.straw_x, self.straw_y, self.water_height, n_water, self.max_events)
+    }
+
+    /// Checks that `observer` is a place an observer may stand (SPEC §2).
+    pub fn validate_observer(&self, observer: Vec3) -> Result<(), SceneError> {
+        require_finite("observer x", observer.x)?;
+        require_finite("observer y", observer.y)?;
+        require_finite("observer z", observer.z)?;
+        let r2 = observer.x * observer.x + observer.y * observer.y;
+        if (0.0..=GLASS_HEIGHT).contains(&observer.z) && r2 <= GLASS_RADIUS * GLASS_RADIUS {
+            return Err(SceneError::ObserverInGlass(observer));
+        }
+        let (sx, sy) = (observer.x - self.straw_x, observer.y - self.straw_y);
+        if observer.z > GLASS_HEIGHT
+            && observer.z <= STRAW_HEIGHT
+            && sx * sx + sy * sy <= STRAW_RADIUS * STRAW_RADIUS
+        {
+            return Err(SceneError::ObserverInStraw(observer));
+        }
+        Ok(())
+    }
+
+    /// Whether there is any water (a zero height leaves none).
+    #[inline]
+    pub fn has_water(&self) -> bool {
+        self.water_height > 0.0
+    }
+
+    /// The water's side wall.
+    #[inline]
+    pub fn water_side(&self) -> CylinderSide {
+        CylinderSide { cx: 0.0, cy: 0.0, radius: GLASS_RADIUS, z_min: 0.0, z_max: self.water_height }
+    }
+
+    /// The water's free surface, the disk `z = he`.
+    #[inline]
+    pub fn water_top(&self) -> Disk {
+        Disk { cx: 0.0, cy: 0.0, z: self.water_height, radius: GLASS_RADIUS }
+    }
+
+    /// The water's bottom face, the disk `z = 0`.
+    #[inline]
+    pub fn water_bottom(&self) -> Disk {
+        Disk { cx: 0.0, cy: 0.0, z: 0.0, radius: GLASS_RADIUS }
+    }
+
+    /// The straw's side.
+    #[inline]
+    pub fn straw_side(&self) -> CylinderSide {
+        CylinderSide {
+            cx: self.straw_x,
+            cy: self.straw_y,
+            radius: STRAW_RADIUS,
+            z_min: 0.0,
+            z_max: STRAW_HEIGHT,
+        }
+    }
+
+    /// The straw's top cap.
+    #[inline]
+    pub fn straw_top(&self) -> Disk {
+        Disk { cx: self.straw_x, cy: self.straw_y, z: STRAW_HEIGHT, radius: STRAW_RADIUS }
+    }
+
+    /// The straw's bottom cap, on the glass's bottom.
+    #[inline]
+    pub fn straw_bottom(&self) -> Disk {
+        Disk { cx: self.straw_x, cy: self.straw_y, z: 0.0, radius: STRAW_RADIUS }
+    }
+
+    /// Distance from `p` to the straw's surface (side, top cap or bottom cap), in metres.
+    pub fn distance_to_straw_surface(&self, p: Vec3) -> f64 {
+        let r = ((p.x - self.straw_x).powi(2) + (p.y - self.straw_y).powi(2)).sqrt();
+        let dr = r - STRAW_RADIUS; // > 0 outside the side
+        let dz_low = -p.z; // > 0 below the bottom
+        let dz_high = p.z - STRAW_HEIGHT; // > 0 above the top
+        let dz = dz_low.max(dz_high);
+        if dr <= 0.0 && dz <= 0.0 {
+            // Inside the solid: distance to the nearest face.
+            (-dr).min(-dz)
+        } else {
+            let a = dr.max(0.0);
+            let b = dz.max(0.0);
+            (a * a + b * b).sqrt()
+        }
+    }
+}
+
+/// The centre of the box enclosing the glass and the straw, `(0, 0, 0.125)`: the default target.
+pub const SCENE_CENTRE: Vec3 = Vec3::new(0.0, 0.0, STRAW_HEIGHT / 2.0);
+
+/// One of the four reference simulations of SPEC §5.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reference {
+    /// Number, 1..=4.
+    pub number: u32,
+    /// Observer position.
+    pub observer: Vec3,
+    /// Straw axis `(xp, yp)`.
+    pub straw: (f64, f64),
+    /// Water height.
+    pub water_height: f64,
+}
+
+/// The four reference simulations of SPEC §5.
+pub const REFERENCES: [Reference; 4] = [
+    Reference { number: 1, observer: Vec3::new(0.0, 0.1, 0.1), straw: (0.02, 0.01), water_height: 0.15 },
+    Reference { number: 2, observer: Vec3::new(0.1, 0.0, 0.1), straw: (0.02, 0.01), water_height: 0.15 },
+    Reference { number: 3, observer: Vec3::new(0.1, 0.0, 0.3), straw: (0.02, 0.01), water_height: 0.20 },
+    Reference { number: 4, observer: Vec3::new(0.1, 0.0, -0.1), straw: (0.0, 0.0), water_height: 0.20 },
+];
+
+impl Reference {
+    /// The scene of this reference with index `n_water` and the default event limit.
+    pub fn scene(&self, n_water: f64) -> Scene {
+        Scene::new(self.straw.0, self.straw.1, self.water_height, n_water, DEFAULT_MAX_EVENTS)
+            .expect("reference scenes are valid")
+    }
+}

@@ -1,0 +1,284 @@
+//! Following one ray through the water to the straw (SPEC §3): nearest face, refraction or total
+//! reflection at each water face, at most `max_events` events, the opaque straw stops the ray.
+//!
+//! Also the Fresnel tracer of SPEC §6, which splits a ray at each water face into a reflected and a
+//! refracted branch.
+
+use crate::geometry::Ray;
+use crate::interface::{fresnel_reflectance, reflect, refract};
+use crate::scene::{section_at, Scene, SECTION_COUNT, GLASS_RADIUS};
+use crate::Vec3;
+
+/// A face of the scene a ray can meet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Face {
+    /// The water's side wall (the glass's wall, optically invisible, holds it).
+    WaterSide,
+    /// The water's free surface `z = he`.
+    WaterTop,
+    /// The water's bottom face `z = 0`.
+    WaterBottom,
+    /// The straw's side.
+    StrawSide,
+    /// The straw's top cap.
+    StrawTop,
+    /// The straw's bottom cap.
+    StrawBottom,
+}
+
+impl Face {
+    /// Whether this face belongs to the opaque straw.
+    #[inline]
+    pub fn is_straw(self) -> bool {
+        matches!(self, Face::StrawSide | Face::StrawTop | Face::StrawBottom)
+    }
+}
+
+/// The nearest face a ray meets and the distance to it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Intersection {
+    /// Distance along the ray (m).
+    pub distance: f64,
+    /// The face met.
+    pub face: Face,
+}
+
+/// What happened at one water face.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Event {
+    /// Where it happened.
+    pub point: Vec3,
+    /// Which water face.
+    pub face: Face,
+    /// Unit normal of the face, pointing out of the water.
+    pub normal: Vec3,
+    /// Direction before the event.
+    pub incoming: Vec3,
+    /// Direction after the event.
+    pub outgoing: Vec3,
+    /// Index on the incoming side.
+    pub n1: f64,
+    /// Index on the other side.
+    pub n2: f64,
+    /// Whether the ray was totally reflected (otherwise refracted).
+    pub totally_reflected: bool,
+}
+
+/// How a traced ray ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Outcome {
+    /// The ray reached the straw.
+    Straw {
+        /// Colour code of the section hit, 1..=5.
+        color: u8,
+        /// The point of the straw hit.
+        point: Vec3,
+        /// Length of the broken path from the start to the straw (m).
+        path_length: f64,
+        /// Events undergone on the way.
+        events: u32,
+        /// The straw face hit.
+        face: Face,
+    },
+    /// The ray left the scene without reaching the straw.
+    Escaped {
+        /// Events undergone before leaving.
+        events: u32,
+    },
+    /// The ray would have needed more than `max_events` events.
+    Dropped,
+}
+
+impl Outcome {
+    /// Colour code of the straw section reached, or 0 if none.
+    #[inline]
+    pub fn color(&self) -> u8 {
+        match self {
+            Outcome::Straw { color, .. } => *color,
+            _ => 0,
+        }
+    }
+}
+
+impl Scene {
+    /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties (SPEC §3).
+    #[inline]
+    pub fn nearest_intersection(&self, ray: &Ray) -> Option<Intersection> {
+        let mut water = f64::INFINITY;
+        let mut water_face = Face::WaterSide;
+        if self.has_water() {
+            for (t, face) in [
+                (self.water_side().intersect(ray), Face::WaterSide),
+                (self.water_top().intersect(ray), Face::WaterTop),
+                (self.water_bottom().intersect(ray), Face::WaterBottom),
+            ] {
+                if let Some(t) = t {
+                    if t < water {
+                        water = t;
+                        water_face = face;
+                    }
+                }
+            }
+        }
+        let mut straw = f64::INFINITY;
+        let mut straw_face = Face::StrawSide;
+        for (t, face) in [
+            (self.straw_side().intersect(ray), Face::StrawSide),
+            (self.straw_top().intersect(ray), Face::StrawTop),
+            (self.straw_bottom().intersect(ray), Face::StrawBottom),
+        ] {
+            if let Some(t) = t {
+                if t < straw {
+                    straw = t;
+                    straw_face = face;
+                }
+            }
+        }
+        if straw.is_finite() && straw <= water {
+            Some(Intersection { distance: straw, face: straw_face })
+        } else if water.is_finite() {
+            Some(Intersection { distance: water, face: water_face })
+        } else {
+            None
+        }
+    }
+
+    /// Outward (out of the water) unit normal of water face `face` at point `p`.
+    #[inline]
+    pub fn water_normal(&self, face: Face, p: Vec3) -> Vec3 {
+        match face {
+            Face::WaterTop => Vec3::Z,
+            Face::WaterBottom => Vec3::NEG_Z,
+            _ => Vec3::new(p.x / GLASS_RADIUS, p.y / GLASS_RADIUS, 0.0).normalize(),
+        }
+    }
+
+    /// Colour code of the straw at point `p` of face `face`.
+    #[inline]
+    pub fn straw_color(&self, face: Face, p: Vec3) -> u8 {
+        match face {
+            Face::StrawBottom => 1,
+            Face::StrawTop => SECTION_COUNT as u8,
+            _ => section_at(p.z),
+        }
+    }
+
+    /// Traces `ray`, which starts in air, by the course's law (SPEC §3).
+    #[inline]
+    pub fn trace(&self, ray: Ray) -> Outcome {
+        self.trace_with(ray, |_| {})
+    }
+
+    /// Traces `ray`, which starts in air, calling `on_event` at every water event, in order.
+    #[inline]
+    pub fn trace_with(&self, ray: Ray, mut on_event: impl FnMut(&Event)) -> Outcome {
+        let mut ray = ray;
+        let mut in_water = false;
+        let mut events = 0u32;
+        let mut length = 0.0;
+        loop {
+            let Some(hit) = self.nearest_intersection(&ray) else {
+                return Outcome::Escaped { events };
+            };
+            let point = ray.at(hit.distance);
+            length += hit.distance;
+            if hit.face.is_straw() {
+                return Outcome::Straw {
+                    color: self.straw_color(hit.face, point),
+                    point,
+                    path_length: length,
+                    events,
+                    face: hit.face,
+                };
+            }
+            if events == self.max_events {
+                return Outcome::Dropped;
+            }
+            events += 1;
+            let normal = self.water_normal(hit.face, point);
+            let (n1, n2) = if in_water { (self.n_water, 1.0) } else { (1.0, self.n_water) };
+            let (outgoing, totally_reflected) = match refract(ray.direction, normal, n1, n2) {
+                Some(t) => (t.normalize(), false),
+                None => (reflect(ray.direction, normal), true),
+            };
+            on_event(&Event {
+                point,
+                face: hit.face,
+                normal,
+                incoming: ray.direction,
+                outgoing,
+                n1,
+                n2,
+                totally_reflected,
+            });
+            if !totally_reflected {
+                in_water = !in_water;
+            }
+            ray = Ray { origin: point, direction: outgoing };
+        }
+    }
+
+    /// Fresnel tracing (SPEC §6): the weight of `ray` that ends on each section (index 0 = code 1).
+    ///
+    /// At each water face the ray splits into a reflected branch of weight `R` (unpolarised Fresnel
+    /// reflectance, 1 under total reflection) and a refracted branch of weight `1 − R`; each branch
+    /// keeps its own event count and is dropped past `max_events`. Branches lighter than
+    /// `prune_below` are abandoned (their weight is lost, never misattributed). No allocation.
+    pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
+        // Depth-first: each split pushes one branch, so the stack never holds more than one entry
+        // per event level plus the current one.
+        const STACK: usize = 64;
+        #[derive(Clone, Copy)]
+        struct Branch {
+            ray: Ray,
+            in_water: bool,
+            events: u32,
+            weight: f64,
+        }
+        let mut weights = [0.0; SECTION_COUNT];
+        let mut stack = [Branch { ray, in_water: false, events: 0, weight: 1.0 }; STACK];
+        let mut top = 1usize;
+        while top > 0 {
+            top -= 1;
+            let mut b = stack[top];
+            loop {
+                let Some(hit) = self.nearest_intersection(&b.ray) else { break };
+                let point = b.ray.at(hit.distance);
+                if hit.face.is_straw() {
+                    weights[self.straw_color(hit.face, point) as usize - 1] += b.weight;
+                    break;
+                }
+                if b.events == self.max_events {
+                    break;
+                }
+                b.events += 1;
+                let normal = self.water_normal(hit.face, point);
+                let (n1, n2) = if b.in_water { (self.n_water, 1.0) } else { (1.0, self.n_water) };
+                let reflected = reflect(b.ray.direction, normal);
+                match refract(b.ray.direction, normal, n1, n2) {
+                    None => {
+                        b.ray = Ray { origin: point, direction: reflected };
+                    }
+                    Some(t) => {
+                        let r = fresnel_reflectance(n1, n2, b.ray.direction.dot(normal));
+                        let wr = b.weight * r;
+                        let wt = b.weight * (1.0 - r);
+                        // Follow the heavier branch now, keep the other for later if it matters.
+                        let refl = Branch { ray: Ray { origin: point, direction: reflected }, in_water: b.in_water, events: b.events, weight: wr };
+                        let refr = Branch { ray: Ray { origin: point, direction: t.normalize() }, in_water: !b.in_water, events: b.events, weight: wt };
+                        let (now, later) = if wt >= wr { (refr, refl) } else { (refl, refr) };
+                        if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
+                            stack[top] = later;
+                            top += 1;
+                        }
+                        if now.weight < prune_below || now.weight == 0.0 {
+                            break;
+                        }
+                        b = now;
+                    }
+                }
+            }
+        }
+        weights
+    }
+}
