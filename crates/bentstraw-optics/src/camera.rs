@@ -29,9 +29,21 @@ impl Camera {
     pub fn new(eye: Vec3, target: Vec3, width: u32, height: u32, fov_y: f64) -> Camera {
         let forward = (target - eye).normalize();
         let c = forward.cross(Vec3::Z);
-        let right = if c.length() < 1e-9 { Vec3::X } else { c.normalize() };
+        let right = if c.length() < 1e-9 {
+            Vec3::X
+        } else {
+            c.normalize()
+        };
         let up = right.cross(forward);
-        Camera { eye, forward, right, up, width, height, tan_half_fov: (fov_y / 2.0).tan() }
+        Camera {
+            eye,
+            forward,
+            right,
+            up,
+            width,
+            height,
+            tan_half_fov: (fov_y / 2.0).tan(),
+        }
     }
 
     /// The (unnormalised) direction through the image point `(row, col)`, both continuous

@@ -20,7 +20,10 @@ pub struct Ray {
 impl Ray {
     /// A ray from `origin` along `direction` (normalised here).
     pub fn new(origin: Vec3, direction: Vec3) -> Self {
-        Ray { origin, direction: direction.normalize() }
+        Ray {
+            origin,
+            direction: direction.normalize(),
+        }
     }
 
     /// The point at distance `t` along the ray.
@@ -66,7 +69,11 @@ impl CylinderSide {
         }
         let sq = disc.sqrt();
         // Roots in a cancellation-free form: q = -(half_b + sign(half_b)·sq), t = q/a and c/q.
-        let q = if half_b >= 0.0 { -(half_b + sq) } else { -half_b + sq };
+        let q = if half_b >= 0.0 {
+            -(half_b + sq)
+        } else {
+            -half_b + sq
+        };
         let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
         if t0 > t1 {
             std::mem::swap(&mut t0, &mut t1);

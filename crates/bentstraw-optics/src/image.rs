@@ -26,8 +26,17 @@ impl Scene {
     /// The image point seen from `observer` along unit direction `u0`, if that ray reaches the straw.
     #[inline]
     pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
-        match self.trace(Ray { origin: observer, direction: u0 }) {
-            Outcome::Straw { color, point, path_length, events, .. } => Some(ImagePoint {
+        match self.trace(Ray {
+            origin: observer,
+            direction: u0,
+        }) {
+            Outcome::Straw {
+                color,
+                point,
+                path_length,
+                events,
+                ..
+            } => Some(ImagePoint {
                 position: observer + path_length * u0,
                 color,
                 direction: u0,

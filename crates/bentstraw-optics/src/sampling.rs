@@ -49,9 +49,21 @@ impl Frame {
     pub fn looking(forward: Vec3) -> Frame {
         let f = forward.normalize();
         let c = f.cross(Vec3::Z);
-        let right = if c.length() < 1e-9 { Vec3::X } else { c.normalize() };
+        let right = if c.length() < 1e-9 {
+            Vec3::X
+        } else {
+            c.normalize()
+        };
         let up = right.cross(f);
-        Frame { forward: f, right, up, a_min: -1.0, b_min: -1.0, width: 2.0, height: 2.0 }
+        Frame {
+            forward: f,
+            right,
+            up,
+            a_min: -1.0,
+            b_min: -1.0,
+            width: 2.0,
+            height: 2.0,
+        }
     }
 }
 
@@ -96,17 +108,32 @@ pub fn frames_for(observer: Vec3) -> Vec<Frame> {
     }
     // Too close for one frame: the six faces of a cube around the observer, each cropped to the
     // part where the glass or straw can appear (found by projecting points spread over the box).
-    let mut faces: Vec<(Frame, [f64; 4])> = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z]
-        .into_iter()
-        .map(|f| {
-            // Make the six faces' right/up well defined even when forward is ±z.
-            let up_hint = if f.z.abs() > 0.5 { Vec3::Y } else { Vec3::Z };
-            let right = f.cross(up_hint).normalize();
-            let up = right.cross(f);
-            let frame = Frame { forward: f, right, up, a_min: -1.0, b_min: -1.0, width: 2.0, height: 2.0 };
-            (frame, [f64::MAX, f64::MIN, f64::MAX, f64::MIN])
-        })
-        .collect();
+    let mut faces: Vec<(Frame, [f64; 4])> = [
+        Vec3::X,
+        Vec3::NEG_X,
+        Vec3::Y,
+        Vec3::NEG_Y,
+        Vec3::Z,
+        Vec3::NEG_Z,
+    ]
+    .into_iter()
+    .map(|f| {
+        // Make the six faces' right/up well defined even when forward is ±z.
+        let up_hint = if f.z.abs() > 0.5 { Vec3::Y } else { Vec3::Z };
+        let right = f.cross(up_hint).normalize();
+        let up = right.cross(f);
+        let frame = Frame {
+            forward: f,
+            right,
+            up,
+            a_min: -1.0,
+            b_min: -1.0,
+            width: 2.0,
+            height: 2.0,
+        };
+        (frame, [f64::MAX, f64::MIN, f64::MAX, f64::MIN])
+    })
+    .collect();
     const N: usize = 48;
     let lo = Vec3::new(-r, -r, 0.0);
     let size = Vec3::new(2.0 * r, 2.0 * r, STRAW_HEIGHT);
@@ -200,7 +227,10 @@ pub fn sample_image(
     progress: &(dyn Fn(u64) + Sync),
 ) -> ImageCloud {
     let frames = frames_for(observer);
-    let longest = frames.iter().map(|f| f.width.max(f.height)).fold(0.0, f64::max);
+    let longest = frames
+        .iter()
+        .map(|f| f.width.max(f.height))
+        .fold(0.0, f64::max);
     let mut spacing = longest / COARSE_CELLS;
     let mut rays = 0u64;
 
@@ -231,11 +261,19 @@ pub fn sample_image(
         let results = trace_cells(&cells, spacing);
         rays += cells.len() as u64;
         progress(rays);
-        let hits: Vec<Cell> =
-            cells.iter().zip(&results).filter(|(_, r)| r.is_some()).map(|(c, _)| *c).collect();
+        let hits: Vec<Cell> = cells
+            .iter()
+            .zip(&results)
+            .filter(|(_, r)| r.is_some())
+            .map(|(c, _)| *c)
+            .collect();
         if hits.is_empty() {
             if blind == BLIND_LEVELS {
-                return ImageCloud { points: Vec::new(), rays_traced: rays, spacing };
+                return ImageCloud {
+                    points: Vec::new(),
+                    rays_traced: rays,
+                    spacing,
+                };
             }
             blind += 1;
             cells = split(&cells);
@@ -256,7 +294,11 @@ pub fn sample_image(
             let points = final_level(scene, observer, &frames, &active, spacing, h, &mut rays);
             progress(rays);
             if points.len() >= min_points || h < 1e-7 * longest {
-                return ImageCloud { points, rays_traced: rays, spacing: h };
+                return ImageCloud {
+                    points,
+                    rays_traced: rays,
+                    spacing: h,
+                };
             }
             h /= (min_points as f64 / points.len().max(1) as f64).sqrt() * 1.02;
         }
@@ -265,7 +307,10 @@ pub fn sample_image(
 
 /// Cells of a frame's grid at `spacing`: `(nx, ny)`.
 fn grid_size(f: &Frame, spacing: f64) -> (u32, u32) {
-    ((f.width / spacing).ceil().max(1.0) as u32, (f.height / spacing).ceil().max(1.0) as u32)
+    (
+        (f.width / spacing).ceil().max(1.0) as u32,
+        (f.height / spacing).ceil().max(1.0) as u32,
+    )
 }
 
 /// The four children of every cell.

@@ -133,7 +133,13 @@ pub struct Scene {
 impl Scene {
     /// A validated scene (SPEC §2): straw axis `(xp, yp)`, water height `he`, index `n_water`,
     /// event limit `max_events`.
-    pub fn new(xp: f64, yp: f64, he: f64, n_water: f64, max_events: u32) -> Result<Self, SceneError> {
+    pub fn new(
+        xp: f64,
+        yp: f64,
+        he: f64,
+        n_water: f64,
+        max_events: u32,
+    ) -> Result<Self, SceneError> {
         require_finite("straw x", xp)?;
         require_finite("straw y", yp)?;
         require_finite("water height", he)?;
@@ -149,7 +155,13 @@ impl Scene {
         if max_events == 0 || max_events > MAX_EVENTS_LIMIT {
             return Err(SceneError::MaxEvents(max_events));
         }
-        Ok(Scene { straw_x: xp, straw_y: yp, water_height: he, n_water, max_events })
+        Ok(Scene {
+            straw_x: xp,
+            straw_y: yp,
+            water_height: he,
+            n_water,
+            max_events,
+        })
     }
 
     /// A scene with the default index (1.333) and event limit (10).
@@ -159,7 +171,13 @@ impl Scene {
 
     /// The same scene with another water index (validated).
     pub fn with_n_water(&self, n_water: f64) -> Result<Self, SceneError> {
-        Scene::new(self.straw_x, self.straw_y, self.water_height, n_water, self.max_events)
+        Scene::new(
+            self.straw_x,
+            self.straw_y,
+            self.water_height,
+            n_water,
+            self.max_events,
+        )
     }
 
     /// Checks that `observer` is a place an observer may stand (SPEC §2).
@@ -190,19 +208,35 @@ impl Scene {
     /// The water's side wall.
     #[inline]
     pub fn water_side(&self) -> CylinderSide {
-        CylinderSide { cx: 0.0, cy: 0.0, radius: GLASS_RADIUS, z_min: 0.0, z_max: self.water_height }
+        CylinderSide {
+            cx: 0.0,
+            cy: 0.0,
+            radius: GLASS_RADIUS,
+            z_min: 0.0,
+            z_max: self.water_height,
+        }
     }
 
     /// The water's free surface, the disk `z = he`.
     #[inline]
     pub fn water_top(&self) -> Disk {
-        Disk { cx: 0.0, cy: 0.0, z: self.water_height, radius: GLASS_RADIUS }
+        Disk {
+            cx: 0.0,
+            cy: 0.0,
+            z: self.water_height,
+            radius: GLASS_RADIUS,
+        }
     }
 
     /// The water's bottom face, the disk `z = 0`.
     #[inline]
     pub fn water_bottom(&self) -> Disk {
-        Disk { cx: 0.0, cy: 0.0, z: 0.0, radius: GLASS_RADIUS }
+        Disk {
+            cx: 0.0,
+            cy: 0.0,
+            z: 0.0,
+            radius: GLASS_RADIUS,
+        }
     }
 
     /// The straw's side.
@@ -220,13 +254,23 @@ impl Scene {
     /// The straw's top cap.
     #[inline]
     pub fn straw_top(&self) -> Disk {
-        Disk { cx: self.straw_x, cy: self.straw_y, z: STRAW_HEIGHT, radius: STRAW_RADIUS }
+        Disk {
+            cx: self.straw_x,
+            cy: self.straw_y,
+            z: STRAW_HEIGHT,
+            radius: STRAW_RADIUS,
+        }
     }
 
     /// The straw's bottom cap, on the glass's bottom.
     #[inline]
     pub fn straw_bottom(&self) -> Disk {
-        Disk { cx: self.straw_x, cy: self.straw_y, z: 0.0, radius: STRAW_RADIUS }
+        Disk {
+            cx: self.straw_x,
+            cy: self.straw_y,
+            z: 0.0,
+            radius: STRAW_RADIUS,
+        }
     }
 
     /// Distance from `p` to the straw's surface (side, top cap or bottom cap), in metres.
@@ -265,16 +309,42 @@ pub struct Reference {
 
 /// The four reference simulations of SPEC §5.
 pub const REFERENCES: [Reference; 4] = [
-    Reference { number: 1, observer: Vec3::new(0.0, 0.1, 0.1), straw: (0.02, 0.01), water_height: 0.15 },
-    Reference { number: 2, observer: Vec3::new(0.1, 0.0, 0.1), straw: (0.02, 0.01), water_height: 0.15 },
-    Reference { number: 3, observer: Vec3::new(0.1, 0.0, 0.3), straw: (0.02, 0.01), water_height: 0.20 },
-    Reference { number: 4, observer: Vec3::new(0.1, 0.0, -0.1), straw: (0.0, 0.0), water_height: 0.20 },
+    Reference {
+        number: 1,
+        observer: Vec3::new(0.0, 0.1, 0.1),
+        straw: (0.02, 0.01),
+        water_height: 0.15,
+    },
+    Reference {
+        number: 2,
+        observer: Vec3::new(0.1, 0.0, 0.1),
+        straw: (0.02, 0.01),
+        water_height: 0.15,
+    },
+    Reference {
+        number: 3,
+        observer: Vec3::new(0.1, 0.0, 0.3),
+        straw: (0.02, 0.01),
+        water_height: 0.20,
+    },
+    Reference {
+        number: 4,
+        observer: Vec3::new(0.1, 0.0, -0.1),
+        straw: (0.0, 0.0),
+        water_height: 0.20,
+    },
 ];
 
 impl Reference {
     /// The scene of this reference with index `n_water` and the default event limit.
     pub fn scene(&self, n_water: f64) -> Scene {
-        Scene::new(self.straw.0, self.straw.1, self.water_height, n_water, DEFAULT_MAX_EVENTS)
-            .expect("reference scenes are valid")
+        Scene::new(
+            self.straw.0,
+            self.straw.1,
+            self.water_height,
+            n_water,
+            DEFAULT_MAX_EVENTS,
+        )
+        .expect("reference scenes are valid")
     }
 }

@@ -6,7 +6,7 @@
 
 use crate::geometry::Ray;
 use crate::interface::{fresnel_reflectance, reflect, refract};
-use crate::scene::{section_at, Scene, SECTION_COUNT, GLASS_RADIUS};
+use crate::scene::{section_at, Scene, GLASS_RADIUS, SECTION_COUNT};
 use crate::Vec3;
 
 /// A face of the scene a ray can meet.
@@ -135,9 +135,15 @@ impl Scene {
             }
         }
         if straw.is_finite() && straw <= water {
-            Some(Intersection { distance: straw, face: straw_face })
+            Some(Intersection {
+                distance: straw,
+                face: straw_face,
+            })
         } else if water.is_finite() {
-            Some(Intersection { distance: water, face: water_face })
+            Some(Intersection {
+                distance: water,
+                face: water_face,
+            })
         } else {
             None
         }
@@ -196,7 +202,11 @@ impl Scene {
             }
             events += 1;
             let normal = self.water_normal(hit.face, point);
-            let (n1, n2) = if in_water { (self.n_water, 1.0) } else { (1.0, self.n_water) };
+            let (n1, n2) = if in_water {
+                (self.n_water, 1.0)
+            } else {
+                (1.0, self.n_water)
+            };
             let (outgoing, totally_reflected) = match refract(ray.direction, normal, n1, n2) {
                 Some(t) => (t.normalize(), false),
                 None => (reflect(ray.direction, normal), true),
@@ -214,7 +224,10 @@ impl Scene {
             if !totally_reflected {
                 in_water = !in_water;
             }
-            ray = Ray { origin: point, direction: outgoing };
+            ray = Ray {
+                origin: point,
+                direction: outgoing,
+            };
         }
     }
 
@@ -236,13 +249,20 @@ impl Scene {
             weight: f64,
         }
         let mut weights = [0.0; SECTION_COUNT];
-        let mut stack = [Branch { ray, in_water: false, events: 0, weight: 1.0 }; STACK];
+        let mut stack = [Branch {
+            ray,
+            in_water: false,
+            events: 0,
+            weight: 1.0,
+        }; STACK];
         let mut top = 1usize;
         while top > 0 {
             top -= 1;
             let mut b = stack[top];
             loop {
-                let Some(hit) = self.nearest_intersection(&b.ray) else { break };
+                let Some(hit) = self.nearest_intersection(&b.ray) else {
+                    break;
+                };
                 let point = b.ray.at(hit.distance);
                 if hit.face.is_straw() {
                     weights[self.straw_color(hit.face, point) as usize - 1] += b.weight;
@@ -253,19 +273,42 @@ impl Scene {
                 }
                 b.events += 1;
                 let normal = self.water_normal(hit.face, point);
-                let (n1, n2) = if b.in_water { (self.n_water, 1.0) } else { (1.0, self.n_water) };
+                let (n1, n2) = if b.in_water {
+                    (self.n_water, 1.0)
+                } else {
+                    (1.0, self.n_water)
+                };
                 let reflected = reflect(b.ray.direction, normal);
                 match refract(b.ray.direction, normal, n1, n2) {
                     None => {
-                        b.ray = Ray { origin: point, direction: reflected };
+                        b.ray = Ray {
+                            origin: point,
+                            direction: reflected,
+                        };
                     }
                     Some(t) => {
                         let r = fresnel_reflectance(n1, n2, b.ray.direction.dot(normal));
                         let wr = b.weight * r;
                         let wt = b.weight * (1.0 - r);
                         // Follow the heavier branch now, keep the other for later if it matters.
-                        let refl = Branch { ray: Ray { origin: point, direction: reflected }, in_water: b.in_water, events: b.events, weight: wr };
-                        let refr = Branch { ray: Ray { origin: point, direction: t.normalize() }, in_water: !b.in_water, events: b.events, weight: wt };
+                        let refl = Branch {
+                            ray: Ray {
+                                origin: point,
+                                direction: reflected,
+                            },
+                            in_water: b.in_water,
+                            events: b.events,
+                            weight: wr,
+                        };
+                        let refr = Branch {
+                            ray: Ray {
+                                origin: point,
+                                direction: t.normalize(),
+                            },
+                            in_water: !b.in_water,
+                            events: b.events,
+                            weight: wt,
+                        };
                         let (now, later) = if wt >= wr { (refr, refl) } else { (refl, refr) };
                         if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
                             stack[top] = later;

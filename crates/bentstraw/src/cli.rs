@@ -1,0 +1,262 @@
+//! Command-line arguments (clap), and parsers for the value forms they use (`X,Y,Z`, `WxH`).
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+/// bentstraw: what refraction does to a straw in a glass of water.
+///
+/// With no command, runs `table`: the four reference simulations and their checks, into out/.
+#[derive(Parser, Debug)]
+#[command(name = "bentstraw", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do (default: table).
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The commands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Trace rays from an observer and write the straw's virtual image points.
+    #[command(
+        after_help = "Example:\n  bentstraw simulate --observer 0,0.1,0.1 --straw 0.02,0.01 --water-height 0.15 \\\n      --output sim1.csv --plot sim1.png --html sim1.html"
+    )]
+    Simulate(SimulateArgs),
+    /// Run the four reference simulations and their checks, and write a report (index.html).
+    #[command(after_help = "Example:\n  bentstraw table --out out/\n  open out/index.html")]
+    Table(TableArgs),
+    /// Render the picture the observer's eye sees (pinhole camera).
+    #[command(
+        after_help = "Example:\n  bentstraw render --observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15 \\\n      --mode fresnel --output view.png --raw view.csv"
+    )]
+    Render(RenderArgs),
+    /// Measure the tracer's speed in rays per second.
+    #[command(
+        after_help = "Example:\n  bentstraw bench            # the four reference views, both modes\n  bentstraw bench --json --threads 2"
+    )]
+    Bench(BenchArgs),
+}
+
+/// The scene and observer: the inputs of one simulation (SPEC §2).
+#[derive(Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// Observer position X,Y,Z in metres, e.g. 0,0.1,0.1
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub observer: [f64; 3],
+    /// Straw axis XP,YP in metres, e.g. 0.02,0.01
+    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true)]
+    pub straw: [f64; 2],
+    /// Water height in metres, 0 <= H <= 0.2
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    pub water_height: f64,
+    /// Refractive index of the water (>= 1)
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1.333,
+        allow_hyphen_values = true
+    )]
+    pub n_water: f64,
+    /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    pub max_events: u32,
+}
+
+/// How an image point's position is judged.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ImageModelArg {
+    /// The course's convention: full path length along the first ray (SPEC §4).
+    #[default]
+    Course,
+    /// A small pupil: the astigmatic foci of the bundle reaching the eye.
+    Eye,
+    /// Two eyes 65 mm apart: triangulated lines of sight.
+    Stereo,
+}
+
+/// Arguments of `simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// The scene and the observer.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// At least this many image points
+    #[arg(long, value_name = "N", default_value_t = 20000)]
+    pub points: usize,
+    /// Where to write the points: .csv, .json or .ply (by extension)
+    #[arg(long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// Also draw the classic figure (three views) into this PNG
+    #[arg(long, value_name = "FILE.png")]
+    pub plot: Option<PathBuf>,
+    /// Also write a self-contained, rotatable 3D view into this HTML file
+    #[arg(long, value_name = "FILE.html")]
+    pub html: Option<PathBuf>,
+    /// How the apparent position is judged
+    #[arg(long, value_enum, default_value_t = ImageModelArg::Course)]
+    pub image_model: ImageModelArg,
+}
+
+/// Arguments of `table`.
+#[derive(Args, Debug, Default)]
+pub struct TableArgs {
+    /// Folder to write into
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// At least this many image points per simulation
+    #[arg(long, value_name = "N", default_value_t = 20000)]
+    pub points: usize,
+}
+
+/// The observer's picture mode (SPEC §6).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ModeArg {
+    /// One ray per sample, the colour code it hits.
+    Course,
+    /// Fresnel reflection and refraction, weights per section.
+    #[default]
+    Fresnel,
+}
+
+/// What lies behind the glass in a rendered picture.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum BackdropArg {
+    /// A plain light background.
+    None,
+    /// A checkerboard wall and floor.
+    #[default]
+    Checker,
+}
+
+/// Camera options shared by `render` and `bench`.
+#[derive(Args, Debug, Clone)]
+pub struct CameraArgs {
+    /// Point the camera looks at (default 0,0,0.125)
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub target: Option<[f64; 3]>,
+    /// Vertical field of view in degrees, 0 < FOV < 180 (default: frames the glass and straw)
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub fov: Option<f64>,
+    /// Picture size in pixels
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+}
+
+/// Arguments of `render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// The scene and the observer.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The camera.
+    #[command(flatten)]
+    pub camera: CameraArgs,
+    /// Course (colour codes) or fresnel (weights)
+    #[arg(long, value_enum, default_value_t = ModeArg::Fresnel)]
+    pub mode: ModeArg,
+    /// Backdrop behind the glass
+    #[arg(long, value_enum, default_value_t = BackdropArg::Checker)]
+    pub backdrop: BackdropArg,
+    /// Fresnel branches lighter than this are abandoned
+    #[arg(long, value_name = "W", default_value_t = 1e-4)]
+    pub prune: f64,
+    /// Samples per pixel side for anti-aliasing (N×N per pixel)
+    #[arg(long, value_name = "N", default_value_t = 3)]
+    pub samples: u32,
+    /// The picture (PNG)
+    #[arg(long, value_name = "FILE.png")]
+    pub output: PathBuf,
+    /// Also write one ray per pixel centre as CSV
+    #[arg(long, value_name = "FILE.csv")]
+    pub raw: Option<PathBuf>,
+}
+
+/// Arguments of `bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Threads for the multi-threaded runs (default: all cores)
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Timed repeats per case (the median is reported)
+    #[arg(long, value_name = "N", default_value_t = 20)]
+    pub repeat: usize,
+    /// One JSON object per line instead of a table
+    #[arg(long)]
+    pub json: bool,
+    /// Observer of a single view to time (with --straw and --water-height)
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub observer: Option<[f64; 3]>,
+    /// Straw axis of a single view
+    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true)]
+    pub straw: Option<[f64; 2]>,
+    /// Water height of a single view
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    pub water_height: Option<f64>,
+    /// Refractive index of the water
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1.333,
+        allow_hyphen_values = true
+    )]
+    pub n_water: f64,
+    /// Event limit
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    pub max_events: u32,
+    /// The camera of a single view.
+    #[command(flatten)]
+    pub camera: CameraArgs,
+    /// Mode of a single view (default: both)
+    #[arg(long, value_enum)]
+    pub mode: Option<ModeArg>,
+}
+
+/// Parses `X,Y,Z` (three finite or non-finite numbers; finiteness is checked with the scene).
+pub fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
+    let v = parse_list(s, 3, "X,Y,Z")?;
+    Ok([v[0], v[1], v[2]])
+}
+
+/// Parses `X,Y`.
+pub fn parse_vec2(s: &str) -> Result<[f64; 2], String> {
+    let v = parse_list(s, 2, "XP,YP")?;
+    Ok([v[0], v[1]])
+}
+
+fn parse_list(s: &str, n: usize, form: &str) -> Result<Vec<f64>, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != n {
+        return Err(format!(
+            "'{s}' has {} number(s); expected {n}, as {form}",
+            parts.len()
+        ));
+    }
+    parts
+        .iter()
+        .map(|p| {
+            p.parse::<f64>()
+                .map_err(|_| format!("'{p}' in '{s}' is not a number (expected {form})"))
+        })
+        .collect()
+}
+
+/// Parses `WxH` pixel sizes (both at least 1, at most 16384).
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not a size: expected WxH, e.g. 800x600"))?;
+    let parse = |t: &str| -> Result<u32, String> {
+        let v: i64 = t
+            .trim()
+            .parse()
+            .map_err(|_| format!("'{t}' in '{s}' is not a whole number of pixels"))?;
+        if !(1..=16384).contains(&v) {
+            return Err(format!(
+                "size '{s}': each side must be between 1 and 16384 pixels, got {v}"
+            ));
+        }
+        Ok(v as u32)
+    };
+    Ok((parse(w)?, parse(h)?))
+}

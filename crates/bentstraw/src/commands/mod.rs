@@ -1,0 +1,44 @@
+//! One module per command.
+
+pub mod bench;
+pub mod render;
+pub mod simulate;
+pub mod table;
+
+use crate::cli::{Cli, Command, TableArgs};
+use crate::error::CliResult;
+
+/// Runs the command the user asked for (`table` when none).
+pub fn run(cli: Cli) -> CliResult {
+    match cli.command {
+        None => table::run(&TableArgs {
+            out: "out".into(),
+            points: 20000,
+        }),
+        Some(Command::Simulate(a)) => simulate::run(&a),
+        Some(Command::Table(a)) => table::run(&a),
+        Some(Command::Render(a)) => render::run(&a),
+        Some(Command::Bench(a)) => bench::run(&a),
+    }
+}
+
+use bentstraw_optics::scene::Scene;
+use bentstraw_optics::Vec3;
+
+use crate::cli::SceneArgs;
+
+impl SceneArgs {
+    /// The validated scene and observer (SPEC §2).
+    pub fn scene_and_observer(&self) -> CliResult<(Scene, Vec3)> {
+        let scene = Scene::new(
+            self.straw[0],
+            self.straw[1],
+            self.water_height,
+            self.n_water,
+            self.max_events,
+        )?;
+        let observer = Vec3::from_array(self.observer);
+        scene.validate_observer(observer)?;
+        Ok((scene, observer))
+    }
+}
