@@ -6,6 +6,8 @@ mod cli;
 mod commands;
 mod error;
 mod files;
+mod html;
+mod plot;
 
 use clap::Parser;
 
