@@ -2,33 +2,17 @@
 
 use std::collections::HashSet;
 
-use bentstraw_optics::sampling::{frames_for, sample_image, ImageCloud};
+use bentstraw_optics::sampling::{frame_for, sample_image, Frame, ImageCloud};
 use bentstraw_optics::scene::REFERENCES;
 use bentstraw_optics::Vec3;
 
-/// The final-grid cell `(frame, i, j)` a point's direction falls in.
-fn cell_of(frames: &[bentstraw_optics::sampling::Frame], d: Vec3, h: f64) -> (usize, i64, i64) {
-    // The frame the direction belongs to is the one it projects into (largest forward component
-    // among the frames whose rectangle contains it).
-    for (k, f) in frames.iter().enumerate() {
-        let w = d.dot(f.forward);
-        if w <= 0.0 {
-            continue;
-        }
-        let (a, b) = (d.dot(f.right) / w, d.dot(f.up) / w);
-        if frames.len() > 1 && (a.abs() > 1.0 || b.abs() > 1.0) {
-            continue; // cube faces: each direction lies in exactly one face
-        }
-        if a < f.a_min || b < f.b_min || a > f.a_min + f.width || b > f.b_min + f.height {
-            continue;
-        }
-        return (
-            k,
-            ((a - f.a_min) / h).floor() as i64,
-            ((b - f.b_min) / h).floor() as i64,
-        );
-    }
-    panic!("direction {d} is in no frame");
+/// The final-grid cell `(i, j)` a point's direction falls in.
+fn cell_of(frame: &Frame, d: Vec3, h: f64) -> (i64, i64) {
+    let (a, b) = frame.coordinates(d);
+    (
+        ((a - frame.a_min) / h).floor() as i64,
+        ((b - frame.b_min) / h).floor() as i64,
+    )
 }
 
 fn cloud(i: usize, n: f64, points: usize) -> (bentstraw_optics::scene::Scene, Vec3, ImageCloud) {
@@ -88,13 +72,13 @@ fn same_inputs_give_identical_points_in_the_same_order() {
 fn points_cover_the_straw_image_evenly_without_holes() {
     for i in 0..4 {
         let (scene, observer, c) = cloud(i, 1.333, 20_000);
-        let frames = frames_for(observer);
+        let frame = frame_for(observer);
         let h = c.spacing;
-        // No clumps: one point per cell of a uniform grid.
+        // No clumps: one point per cell of a uniform grid of equal solid angles.
         let cells: HashSet<_> = c
             .points
             .iter()
-            .map(|p| cell_of(&frames, p.direction, h))
+            .map(|p| cell_of(&frame, p.direction, h))
             .collect();
         assert_eq!(
             cells.len(),
@@ -106,21 +90,19 @@ fn points_cover_the_straw_image_evenly_without_holes() {
         // straw, found by brute force, is among the points.
         let mut missed = 0;
         let mut total = 0;
-        for (k, f) in frames.iter().enumerate() {
-            let nx = (f.width / h).ceil() as i64;
-            let ny = (f.height / h).ceil() as i64;
-            for j in 0..ny {
-                for ii in 0..nx {
-                    let a = f.a_min + (ii as f64 + 0.5) * h;
-                    let b = f.b_min + (j as f64 + 0.5) * h;
-                    if a > f.a_min + f.width || b > f.b_min + f.height {
-                        continue;
-                    }
-                    if scene.image_point(observer, f.direction(a, b)).is_some() {
-                        total += 1;
-                        if !cells.contains(&(k, ii, j)) {
-                            missed += 1;
-                        }
+        let nx = (frame.width / h).ceil() as i64;
+        let ny = (frame.height / h).ceil() as i64;
+        for j in 0..ny {
+            for ii in 0..nx {
+                let a = frame.a_min + (ii as f64 + 0.5) * h;
+                let b = frame.b_min + (j as f64 + 0.5) * h;
+                if a > frame.a_min + frame.width || b > frame.b_min + frame.height {
+                    continue;
+                }
+                if scene.image_point(observer, frame.direction(a, b)).is_some() {
+                    total += 1;
+                    if !cells.contains(&(ii, j)) {
+                        missed += 1;
                     }
                 }
             }
@@ -132,6 +114,25 @@ fn points_cover_the_straw_image_evenly_without_holes() {
             "reference {}: {missed} of {total} straw cells missed",
             i + 1
         );
+    }
+}
+
+#[test]
+fn the_map_has_equal_areas_and_inverts() {
+    let frame = Frame::looking(Vec3::new(-1.0, 0.3, -0.2));
+    for (a, b) in [(0.0, 0.0), (0.4, -0.3), (-2.5, 0.9), (3.0, -0.99)] {
+        let d = frame.direction(a, b);
+        assert!((d.length() - 1.0).abs() < 1e-14);
+        let (a2, b2) = frame.coordinates(d);
+        assert!(
+            (a - a2).abs() < 1e-12 && (b - b2).abs() < 1e-12,
+            "({a}, {b}) -> ({a2}, {b2})"
+        );
+        // The solid angle of a small cell da × db is |∂d/∂a × ∂d/∂b| da db: it must be 1.
+        let e = 1e-6;
+        let da = (frame.direction(a + e, b) - frame.direction(a - e, b)) / (2.0 * e);
+        let db = (frame.direction(a, b + e) - frame.direction(a, b - e)) / (2.0 * e);
+        assert!((da.cross(db).length() - 1.0).abs() < 1e-6, "({a}, {b})");
     }
 }
 
