@@ -8,13 +8,52 @@ mod error;
 mod files;
 mod html;
 mod plot;
+mod progress;
+mod report;
+mod writers;
 
+use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::Parser;
 
 fn main() {
-    let cli = cli::Cli::parse();
+    let cli = match cli::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => match e.kind() {
+            // Help and version are not errors: clap prints them as it always does.
+            ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
+            _ => {
+                eprintln!("{}", one_line(&e));
+                std::process::exit(2);
+            }
+        },
+    };
     if let Err(e) = commands::run(cli) {
         eprintln!("error: {e}");
         std::process::exit(2);
     }
+}
+
+/// A clap error as one line: its first line, with the missing arguments or clap's tip folded in.
+fn one_line(e: &clap::Error) -> String {
+    if e.kind() == ErrorKind::MissingRequiredArgument {
+        if let Some(ContextValue::Strings(args)) = e.get(ContextKind::InvalidArg) {
+            return format!(
+                "error: missing required argument(s): {} (see --help)",
+                args.join(", ")
+            );
+        }
+    }
+    let text = e.render().to_string();
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let mut line = lines
+        .next()
+        .unwrap_or("error: invalid arguments")
+        .to_string();
+    // clap's suggestions ("tip: a similar argument exists: '--observer'") are worth keeping.
+    for tip in lines.filter(|l| l.starts_with("tip:")) {
+        line.push_str(&format!(" ({tip})"));
+    }
+    line
 }
