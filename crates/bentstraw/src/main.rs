@@ -40,8 +40,9 @@ fn one_line(e: &clap::Error) -> String {
     if e.kind() == ErrorKind::MissingRequiredArgument {
         if let Some(ContextValue::Strings(args)) = e.get(ContextKind::InvalidArg) {
             return format!(
-                "error: missing required argument(s): {} (see --help)",
-                args.join(", ")
+                "error: missing required argument(s): {} (see '{} --help')",
+                args.join(", "),
+                command_of(&e.render().to_string())
             );
         }
     }
@@ -56,4 +57,17 @@ fn one_line(e: &clap::Error) -> String {
         line.push_str(&format!(" ({tip})"));
     }
     line
+}
+
+/// The command named in a rendered clap error's usage line, e.g. `bentstraw simulate`.
+fn command_of(rendered: &str) -> String {
+    let usage = rendered
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("Usage: "))
+        .unwrap_or("bentstraw");
+    usage
+        .split_whitespace()
+        .take_while(|w| !w.starts_with(['[', '<', '-']))
+        .collect::<Vec<_>>()
+        .join(" ")
 }

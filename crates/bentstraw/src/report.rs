@@ -83,6 +83,8 @@ pub struct Check {
     pub passed: bool,
     /// One line saying what was checked, the measured value and the verdict.
     pub text: String,
+    /// A few words for tables, e.g. "on the straw (max 3e-16 m): pass".
+    pub short: String,
 }
 
 /// A titled group of figures within a simulation.
@@ -292,9 +294,12 @@ fn render_overview(h: &mut String, report: &Report) {
         }
         let total: Duration = s.timings.iter().map(|t| t.duration).sum();
         let verdict = match &s.check {
-            Some(c) if c.passed => "<span class=\"badge pass\">on the straw: pass</span>",
-            Some(_) => "<span class=\"badge fail\">on the straw: FAIL</span>",
-            None => "",
+            Some(c) => format!(
+                "<span class=\"badge {}\">{}</span>",
+                if c.passed { "pass" } else { "fail" },
+                escape(&c.short)
+            ),
+            None => String::new(),
         };
         let _ = writeln!(
             h,
@@ -444,6 +449,7 @@ mod tests {
                     Some(Check {
                         passed: true,
                         text: "on the straw, at most 1e-17 m".into(),
+                        short: "max 1e-17 m: pass".into(),
                     }),
                     None,
                 ),
@@ -453,6 +459,7 @@ mod tests {
                     Some(Check {
                         passed: false,
                         text: "off".into(),
+                        short: "max 1 m: FAIL".into(),
                     }),
                     Some("disk full".into()),
                 ),
@@ -471,6 +478,7 @@ mod tests {
         assert!(!html.contains("<img src=\"sim2.png\""));
         assert!(html.contains("on the straw, at most 1e-17 m"));
         assert!(html.contains("class=\"check fail\">off"));
+        assert!(html.contains("max 1e-17 m: pass") && html.contains("max 1 m: FAIL"));
         assert!(html.contains("<td>1224</td>") && html.contains("30.9 %"));
         assert!(html.contains("id=\"reference1\"") && html.contains("id=\"reference2\""));
         // One group per reference, not per simulation.

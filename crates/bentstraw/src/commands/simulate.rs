@@ -37,14 +37,6 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         .chain(&args.plot)
         .chain(&args.html)
         .collect();
-    for (k, a) in outputs.iter().enumerate() {
-        if outputs[..k].iter().any(|b| paths_clash(a, b)) {
-            return fail(format!(
-                "{} is given as two different outputs: each output needs its own file",
-                a.display()
-            ));
-        }
-    }
     for p in &outputs {
         check_writable(p)?;
     }
@@ -130,18 +122,6 @@ fn require_extension(path: &Path, flag: &str, allowed: &[&str]) -> CliResult {
         "{flag} {}: the file name must end in {expected}",
         path.display()
     )))
-}
-
-/// Whether two output paths name the same file (compared as given, and by folder and name).
-fn paths_clash(a: &Path, b: &Path) -> bool {
-    if a == b {
-        return true;
-    }
-    let dir = |p: &Path| {
-        let d = p.parent().filter(|d| !d.as_os_str().is_empty());
-        d.unwrap_or(Path::new(".")).canonicalize().ok()
-    };
-    a.file_name() == b.file_name() && dir(a).is_some() && dir(a) == dir(b)
 }
 
 /// A short title naming the inputs, for figures.

@@ -15,7 +15,7 @@ use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliError, CliResult};
 use crate::files::check_writable;
-use crate::report::{self, Check, Figure, Report, Section, SimulationEntry, Timing};
+use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
 use crate::writers::{write_points, PointFormat, PointSet};
 use crate::{html, plot, progress};
 
@@ -24,6 +24,10 @@ pub const ON_STRAW_TOLERANCE: f64 = 1e-9;
 
 /// The water indices of each reference: the real one, then the two checks, with file suffixes.
 const VARIANTS: [(f64, &str); 3] = [(WATER_INDEX, ""), (1.0, "_n1"), (1.05, "_n1.05")];
+
+/// What the classic figure shows.
+const CLOUD_CAPTION: &str = "The image points in their section colours, the water as a wireframe \
+                             and the observer (black circle), seen from three sides.";
 
 /// One simulation of the table.
 struct Job {
@@ -93,19 +97,24 @@ pub fn run(args: &TableArgs) -> CliResult {
     eprint!("{}", summary(&report, out));
 
     // Failures are reported after the report is written, so that it shows what went wrong.
-    let failed: Vec<&Figure> = report
+    let failed: Vec<(&str, &str)> = report
         .simulations
         .iter()
         .flat_map(|s| &s.sections)
         .flat_map(|s| &s.figures)
-        .filter(|f| f.error.is_some())
+        .flat_map(|f| {
+            let own = f.error.as_deref().map(|e| (f.file.as_str(), e));
+            let links = f
+                .links
+                .iter()
+                .filter_map(|l| l.error.as_deref().map(|e| (l.file.as_str(), e)));
+            own.into_iter().chain(links)
+        })
         .collect();
-    if let Some(first) = failed.first() {
+    if let Some((file, error)) = failed.first() {
         return fail(format!(
-            "{} figure(s) could not be written (first: {}: {}); see {}",
+            "{} file(s) could not be written (first: {file}: {error}); see {}",
             failed.len(),
-            first.file,
-            first.error.as_deref().unwrap_or_default(),
             out.join("index.html").display()
         ));
     }
@@ -158,25 +167,12 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         html::write_cloud_viewer(&out.join(&page), scene, observer, &cloud.points, &title).err();
     let written = t1.elapsed();
 
-    let mut figure = Figure::image(&png, "The image points in their section colours, the water as a wireframe and the observer (black circle), seen from three sides.");
+    let mut figure = Figure::image(&png, CLOUD_CAPTION);
     figure.error = plot_error.map(|e| e.0);
-    let mut links = vec![report::Link::new(
-        &page,
-        "rotatable 3D view",
-        page_error.map(|e| e.0),
-    )];
-    links.push(report::Link::new(
-        &csv,
-        "points (CSV)",
-        data_error.map(|e| e.0),
-    ));
-    figure.links = links;
-    // A missing CSV is as serious as a missing picture: make the table fail for it too.
-    if figure.error.is_none() {
-        if let Some(e) = figure.links.iter().find_map(|l| l.error.clone()) {
-            figure.error = Some(e);
-        }
-    }
+    figure.links = vec![
+        Link::new(&page, "rotatable 3D view", page_error.map(|e| e.0)),
+        Link::new(&csv, "points (CSV)", data_error.map(|e| e.0)),
+    ];
 
     SimulationEntry {
         id: job.stem.clone(),
@@ -242,7 +238,15 @@ fn check(scene: &Scene, cloud: &ImageCloud) -> Option<Check> {
             if passed { "pass" } else { "FAIL" }
         )
     };
-    Some(Check { passed, text })
+    let short = format!(
+        "on the straw, max {max:.1e} m: {}",
+        if passed { "pass" } else { "FAIL" }
+    );
+    Some(Check {
+        passed,
+        text,
+        short,
+    })
 }
 
 /// Largest distance (m) of an image point from the straw's surface.
@@ -287,11 +291,7 @@ fn summary(report: &Report, out: &Path) -> String {
             let _ = write!(t, " {c:>7}");
         }
         let secs: Duration = s.timings.iter().map(|t| t.duration).sum();
-        let check = match &s.check {
-            Some(c) if c.passed => "on the straw: pass",
-            Some(_) => "on the straw: FAIL",
-            None => "",
-        };
+        let check = s.check.as_ref().map(|c| c.short.as_str()).unwrap_or("");
         let _ = writeln!(t, " {:>8.2}  {check}", secs.as_secs_f64());
     }
     let _ = writeln!(t, "  report: {}", out.join("index.html").display());
