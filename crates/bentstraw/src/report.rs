@@ -262,7 +262,8 @@ pub fn render(report: &Report) -> String {
          takes the colour. Its image point is P = O + L·u0, with L the length of its broken path: \
          where the observer believes the straw point is. With n_water = 1 every image point lies on \
          the straw, which the checks measure.</p>\n\
-         <p>Written by bentstraw {} in {}.</p>\n</footer>\n</body>\n</html>\n",
+         <p>Written by bentstraw {} in {} (wall clock). The simulations run side by side, \
+         so each one's times are wall-clock times shared with the others.</p>\n</footer>\n</body>\n</html>\n",
         (0..SECTION_COUNT)
             .map(|k| format!("{}{} {}", swatch(k + 1), k + 1, SECTION_NAMES[k]))
             .collect::<Vec<_>>()

@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX};
 use bentstraw_optics::Vec3;
+use rayon::prelude::*;
 
 use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
@@ -69,11 +70,11 @@ pub fn run(args: &TableArgs) -> CliResult {
     let started = Instant::now();
     let entries: Vec<SimulationEntry> = progress::with_progress(
         Some(jobs.len() as u64),
-        "{bar:30} {pos}/{len} simulations  {msg}  [{elapsed}]",
+        "simulating {bar:30} {pos}/{len}  [{elapsed}]",
         |bar| {
-            jobs.iter()
+            // In parallel: the figures are drawn on one thread each, so this is where cores help.
+            jobs.par_iter()
                 .map(|job| {
-                    bar.set_message(job.stem.clone());
                     let entry = run_job(job, out, args.points);
                     bar.inc(1);
                     entry
