@@ -749,3 +749,15 @@ fn help_and_version_still_print_in_full() {
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("bentstraw "));
 }
+
+#[test]
+fn no_arguments_runs_the_table_into_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = bentstraw(dir.path(), &[]);
+    let folder = dir.path().join("out");
+    assert!(folder.join("index.html").is_file(), "{}", stderr(&out));
+    for k in 1..=4 {
+        assert!(read_csv(&folder.join(format!("sim{k}.csv"))).len() >= 20000);
+    }
+    assert!(out.status.success() || stderr(&out).contains("not implemented yet"));
+}
