@@ -374,12 +374,20 @@ fn render_figure(h: &mut String, f: &Figure) {
     h.push_str("<figure>\n");
     match &f.error {
         None => {
-            let _ = writeln!(
-                h,
+            let img = format!(
                 "<img src=\"{}\" alt=\"{}\" loading=\"lazy\">",
                 escape(&f.file),
                 escape(&f.caption)
             );
+            // Clicking the picture opens its first companion (the rotatable 3D view).
+            match f.links.iter().find(|l| l.error.is_none()) {
+                Some(l) => {
+                    let _ = writeln!(h, "<a href=\"{}\">{img}</a>", escape(&l.file));
+                }
+                None => {
+                    let _ = writeln!(h, "{img}");
+                }
+            }
         }
         Some(e) => {
             let _ = writeln!(
@@ -472,7 +480,7 @@ mod tests {
     #[test]
     fn every_figure_check_and_number_is_shown() {
         let html = render(&report());
-        assert!(html.contains("<img src=\"sim1.png\""));
+        assert!(html.contains("<a href=\"sim1.html\"><img src=\"sim1.png\""));
         assert!(html.contains("<img src=\"sim1_n1.png\""));
         assert!(html.contains("<a href=\"sim1_n1.html\">3D view</a>"));
         assert!(html.contains("sim2.png could not be written: disk full"));

@@ -193,7 +193,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         sections: vec![Section {
             title: "Virtual image points (course convention, P = O + L·u0)".into(),
             figures: vec![figure],
-            notes: Vec::new(),
+            notes: vec![distance_note(scene, &cloud)],
         }],
     }
 }
@@ -248,6 +248,19 @@ fn check(scene: &Scene, cloud: &ImageCloud) -> Option<Check> {
         text,
         short,
     })
+}
+
+/// How far the image lies from the real straw: zero for `n_water = 1`, growing with the index.
+fn distance_note(scene: &Scene, cloud: &ImageCloud) -> String {
+    if cloud.points.is_empty() {
+        return "No image point: the straw is not seen from here.".into();
+    }
+    format!(
+        "The image points lie up to {:.3} mm from the straw's surface (n_water = {}; with \
+         n_water = 1 they would lie on it).",
+        1e3 * max_distance_to_straw(scene, cloud),
+        scene.n_water
+    )
 }
 
 /// Largest distance (m) of an image point from the straw's surface.
