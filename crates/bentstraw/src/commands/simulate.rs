@@ -4,7 +4,7 @@
 //! so a mistake costs nothing and leaves no file behind.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::{Duration, Instant};
 
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
@@ -33,12 +33,11 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     if let Some(h) = &args.html {
         require_extension(h, "--html", &["html", "htm"])?;
     }
-    let outputs: Vec<&PathBuf> = std::iter::once(&args.output)
+    for path in std::iter::once(&args.output)
         .chain(&args.plot)
         .chain(&args.html)
-        .collect();
-    for p in &outputs {
-        check_writable(p)?;
+    {
+        check_writable(path)?;
     }
 
     // 2. Trace.
@@ -65,8 +64,18 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     }
     let total = started.elapsed();
 
-    let written: Vec<String> = outputs.iter().map(|p| p.display().to_string()).collect();
-    eprint!("{}", summary(&set, traced, total, &written, format.name()));
+    let mut written = vec![format!(
+        "{} ({} points)",
+        args.output.display(),
+        format.name()
+    )];
+    if let Some(p) = &args.plot {
+        written.push(format!("{} (figure, three views)", p.display()));
+    }
+    if let Some(h) = &args.html {
+        written.push(format!("{} (rotatable 3D view)", h.display()));
+    }
+    eprint!("{}", summary(&set, traced, total, &written));
     Ok(())
 }
 
@@ -138,14 +147,8 @@ pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
     )
 }
 
-/// The one-screen summary printed on stderr.
-pub fn summary(
-    set: &PointSet,
-    traced: Duration,
-    total: Duration,
-    written: &[String],
-    format: &str,
-) -> String {
+/// The one-screen summary printed on stderr; `written` names the files written, one a line.
+pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[String]) -> String {
     let (s, o, cloud) = (set.scene, set.observer, set.cloud);
     let mut t = String::new();
     let _ = writeln!(
@@ -183,7 +186,7 @@ pub fn summary(
         total.as_secs_f64()
     );
     if let Some((first, rest)) = written.split_first() {
-        let _ = writeln!(t, "  wrote           {first} ({format})");
+        let _ = writeln!(t, "  wrote           {first}");
         for w in rest {
             let _ = writeln!(t, "                  {w}");
         }
