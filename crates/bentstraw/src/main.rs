@@ -52,9 +52,14 @@ fn one_line(e: &clap::Error) -> String {
         .next()
         .unwrap_or("error: invalid arguments")
         .to_string();
-    // clap's suggestions ("tip: a similar argument exists: '--observer'") are worth keeping.
-    for tip in lines.filter(|l| l.starts_with("tip:")) {
-        line.push_str(&format!(" ({tip})"));
+    // clap's suggestions ("tip: a similar argument exists: '--observer'") and lists of possible
+    // values are worth keeping; the usage lines that follow them are not.
+    for extra in lines {
+        if extra.starts_with("tip:") {
+            line.push_str(&format!(" ({extra})"));
+        } else if extra.starts_with("[possible values:") {
+            line.push_str(&format!(" {extra}"));
+        }
     }
     line
 }
