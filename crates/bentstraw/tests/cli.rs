@@ -617,6 +617,10 @@ fn missing_arguments_are_rejected() {
         &["simulate", "--observr", "0,0.1,0.1"],
         &["'--observr'", "'--observer'"],
     );
+    assert_rejected(
+        &simulate_args("0,0.1,0.1", "0.02,0.01", "0.15", &["--image-model", "foo"]),
+        &["'foo'", "--image-model", "course, eye, stereo"],
+    );
 }
 
 #[test]
