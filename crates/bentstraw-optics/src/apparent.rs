@@ -69,6 +69,8 @@ pub const INFINITY_VERGENCE: f64 = 1e-3;
 const CONTINUATION_STEPS: u32 = 8;
 /// Newton stops once the last segment passes this close to the straw point (m).
 const NEWTON_TOLERANCE: f64 = 1e-15;
+/// Newton's method has found the ray when its last segment passes this close to the point (m).
+const CONVERGED: f64 = 1e-12;
 /// Most Newton iterations per re-aiming.
 const NEWTON_ITERATIONS: usize = 40;
 /// Step of the forward differences of the Newton Jacobian (gnomonic units, ≈ radians).
@@ -396,9 +398,21 @@ impl<'a> Aim<'a> {
         }
     }
 
-    /// Newton's method from `x0` for the ray from `eye` through the straw point; `jacobian` is
-    /// reused if given (a chord step) and holds the last one computed on return.
+    /// [`Aim::converge`], then a check with the tracer that the ray really reaches the straw point.
     fn solve(&self, eye: Vec3, x0: [f64; 2], jacobian: &mut Option<Jacobian>) -> Option<[f64; 2]> {
+        let x = self.converge(eye, x0, jacobian)?;
+        self.reaches(eye, x).then_some(x)
+    }
+
+    /// Newton's method from `x0` for the ray from `eye` along the path whose last segment passes
+    /// through the straw point (within [`CONVERGED`]); `jacobian` is reused if given (a chord
+    /// step) and holds the last one computed on return. Does not check that nothing is in the way.
+    fn converge(
+        &self,
+        eye: Vec3,
+        x0: [f64; 2],
+        jacobian: &mut Option<Jacobian>,
+    ) -> Option<[f64; 2]> {
         let norm = |r: [f64; 2]| r[0].hypot(r[1]);
         let mut x = x0;
         let mut r = self.residual(eye, x)?;
@@ -449,7 +463,7 @@ impl<'a> Aim<'a> {
             }
         }
         *jacobian = Some(j);
-        self.reaches(eye, x).then_some(x)
+        (norm(r) <= CONVERGED).then_some(x)
     }
 
     /// Vergence (1/m) of the light from the straw point at the eye `eye` for pupil direction `e`
@@ -480,19 +494,37 @@ impl<'a> Aim<'a> {
     }
 
     /// The direction from `to` that reaches the straw point along the path, following the
-    /// solution from `from` (where `x = 0` solves) in [`CONTINUATION_STEPS`] steps.
+    /// solution from `from` (where `x = 0` solves) as the eye moves along the segment, in steps of
+    /// at most `1/CONTINUATION_STEPS` of it, halved where Newton's method loses the solution.
+    /// Only the end eye must see the point: on the way, the path just has to keep its events.
     fn continue_to(&self, from: Vec3, to: Vec3) -> Option<Vec3> {
         let mut jacobian = None;
-        let (mut previous, mut x) = ([0.0; 2], [0.0; 2]);
-        for k in 1..=CONTINUATION_STEPS {
-            let eye = from + (to - from) * (k as f64 / CONTINUATION_STEPS as f64);
-            // Linear prediction from the last two solutions.
-            let guess = [2.0 * x[0] - previous[0], 2.0 * x[1] - previous[1]];
-            let next = self.solve(eye, guess, &mut jacobian)?;
-            previous = x;
-            x = next;
+        let longest = 1.0 / CONTINUATION_STEPS as f64;
+        let (mut t, mut h) = (0.0, longest);
+        let (mut x, mut slope) = ([0.0; 2], [0.0; 2]);
+        while t < 1.0 {
+            let next = (t + h).min(1.0);
+            let dt = next - t;
+            let eye = from + (to - from) * next;
+            // Linear prediction along the last slope.
+            let guess = [x[0] + slope[0] * dt, x[1] + slope[1] * dt];
+            match self.converge(eye, guess, &mut jacobian) {
+                Some(xn) => {
+                    slope = [(xn[0] - x[0]) / dt, (xn[1] - x[1]) / dt];
+                    x = xn;
+                    t = next;
+                    h = (2.0 * h).min(longest);
+                }
+                None => {
+                    h *= 0.5;
+                    jacobian = None;
+                    if h < longest / 256.0 {
+                        return None; // the path changes its events on the way
+                    }
+                }
+            }
         }
-        Some(self.direction(x))
+        self.reaches(to, x).then(|| self.direction(x))
     }
 }
 
@@ -649,6 +681,24 @@ pub fn stereo_points(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> St
     StereoImage {
         points: all.into_iter().flatten().collect(),
         skipped,
+    }
+}
+
+/// Both models' images of the same course image points.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ApparentImages {
+    /// The eye model's points, one per input point, in the input's order.
+    pub eye: Vec<ApparentPoint>,
+    /// The stereo model's points (those seen by both eyes), in the input's order.
+    pub stereo: StereoImage,
+}
+
+/// The eye model's and the stereo model's points for `points` (image points seen from
+/// `observer`, e.g. [`crate::sampling::sample_image`]'s), in parallel, deterministic.
+pub fn apparent_images(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> ApparentImages {
+    ApparentImages {
+        eye: eye_model_points(scene, observer, points),
+        stereo: stereo_points(scene, observer, points),
     }
 }
 
@@ -868,6 +918,26 @@ mod tests {
                 assert!(st.miss_distance < 1e-9 && st.disparity.abs() < 1e-9);
             }
         }
+    }
+
+    /// The eyes: 65 mm apart, centred on the observer, level, across the horizontal direction to
+    /// the scene's centre, the left one on the left; `x̂` straight above the centre.
+    #[test]
+    fn stereo_eyes_straddle_the_observer_across_the_view() {
+        for r in REFERENCES {
+            let o = r.observer;
+            let eyes = StereoEyes::around(o);
+            let baseline = eyes.right - eyes.left;
+            assert!((baseline.length() - EYE_SEPARATION).abs() < 1e-15);
+            assert!((0.5 * (eyes.left + eyes.right)).distance(o) < 1e-15);
+            assert!(baseline.z.abs() < 1e-15);
+            let view = SCENE_CENTRE - o;
+            assert!(baseline.dot(Vec3::new(view.x, view.y, 0.0)).abs() < 1e-15);
+            // Facing the centre with z up, the right eye is on the side of view × ẑ.
+            assert!(baseline.dot(view.cross(Vec3::Z)) > 0.0);
+        }
+        let above = StereoEyes::around(Vec3::new(0.0, 0.0, 0.5));
+        assert!((above.right - above.left).normalize().distance(Vec3::X) < 1e-15);
     }
 
     /// Foci from vergences: the four kinds, no numbers for what has none.
@@ -1104,9 +1174,18 @@ mod tests {
         for (ap, im) in a.iter().zip(&cloud.points) {
             assert_eq!(ap.image, *im);
         }
-        assert_eq!(
-            stereo_points(&scene, eye, &cloud.points),
-            stereo_points(&scene, eye, &cloud.points)
-        );
+        let both = apparent_images(&scene, eye, &cloud.points);
+        assert_eq!(both.eye, a);
+        assert_eq!(both.stereo, stereo_points(&scene, eye, &cloud.points));
+        let mut order = both
+            .stereo
+            .points
+            .iter()
+            .map(|st| cloud.points.iter().position(|im| *im == st.image).unwrap());
+        let mut last = order.next().unwrap();
+        for k in order {
+            assert!(k > last);
+            last = k;
+        }
     }
 }
