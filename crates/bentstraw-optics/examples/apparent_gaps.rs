@@ -26,7 +26,7 @@ fn median(values: &mut [f64]) -> f64 {
 fn main() {
     println!(
         "ref  points  eye: max gap (m)  median gap (m)  undefined  [unresolved behind_eye at_infinity foci]  \
-         stereo: max gap (m)  median gap (m)  skipped  max miss (m)  time (s)"
+         stereo: max gap (m)  median gap (m)  skipped  no crossing  max miss (m)  time (s)"
     );
     for r in REFERENCES {
         let scene = r.scene(WATER_INDEX);
@@ -54,13 +54,18 @@ fn main() {
             .collect();
         let max_stereo = stereo_gaps.iter().copied().fold(0.0, f64::max);
         let median_stereo = median(&mut stereo_gaps);
+        let no_crossing = stereo
+            .points
+            .iter()
+            .filter(|p| p.position.is_none())
+            .count();
         let max_miss = stereo
             .points
             .iter()
             .map(|p| p.miss_distance)
             .fold(0.0, f64::max);
         println!(
-            "{:>3}  {:>6}  {:>16.6}  {:>14.6}  {:>8.4}%  [{} {} {}]  {:>19.6}  {:>14.6}  {:>7}  {:>12.6}  {:>8.2}",
+            "{:>3}  {:>6}  {:>16.6}  {:>14.6}  {:>8.4}%  [{} {} {}]  {:>19.6}  {:>14.6}  {:>7}  {:>11}  {:>12.6}  {:>8.2}",
             r.number,
             eye.len(),
             max_gap,
@@ -72,6 +77,7 @@ fn main() {
             max_stereo,
             median_stereo,
             stereo.skipped,
+            no_crossing,
             max_miss,
             seconds
         );

@@ -1080,6 +1080,45 @@ mod tests {
         assert!(checked >= 30 && twisted >= 5, "{checked} {twisted}");
     }
 
+    /// Euler's theorem for the wavefront: the vergences along any two perpendicular pupil
+    /// directions add up to the same total (twice the mean curvature) as 1/s_h + 1/s_v, and the
+    /// principal vergences (eigenvalues) bound every normal vergence.
+    #[test]
+    fn vergences_obey_eulers_theorem() {
+        let r = REFERENCES[3];
+        let (scene, eye) = (r.scene(N), r.observer);
+        let cloud = sample_image(&scene, eye, 1000, &|_| {});
+        let mut checked = 0;
+        for im in cloud.points.iter().step_by(20) {
+            let ap = scene.apparent_point(eye, im);
+            let (Some(vh), Some(vv)) = (ap.s_h.vergence(), ap.s_v.vergence()) else {
+                continue;
+            };
+            if ap.s_h == Focus::AtInfinity || ap.s_v == Focus::AtInfinity {
+                continue;
+            }
+            let path = scene.light_path(eye, im.direction).unwrap();
+            let (e_h, e_v) = pupil_axes(im.direction);
+            let aim = Aim::new(&scene, path, im.direction, e_h, e_v);
+            let alpha: f64 = 0.6;
+            let e1 = alpha.cos() * e_h + alpha.sin() * e_v;
+            let e2 = -alpha.sin() * e_h + alpha.cos() * e_v;
+            let (Some(v1), Some(v2)) = (
+                aim.vergence(eye, e1, PUPIL_STEP, &mut None),
+                aim.vergence(eye, e2, PUPIL_STEP, &mut None),
+            ) else {
+                continue;
+            };
+            let scale = vh.abs().max(vv.abs());
+            assert!(
+                (v1 + v2 - vh - vv).abs() < 1e-6 * scale,
+                "{v1}+{v2} vs {vh}+{vv}"
+            );
+            checked += 1;
+        }
+        assert!(checked >= 30, "{checked}");
+    }
+
     /// The foci do not depend on the pupil step (the limit is reached).
     #[test]
     fn foci_converge_in_the_pupil_step() {
