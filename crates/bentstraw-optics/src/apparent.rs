@@ -744,13 +744,53 @@ mod tests {
     //   Q all meet that vertical (symmetry); the central one meets it after ℓ_s = x / sin θ =
     //   d tan θ' / (n sin θ') = d / (n cos θ').
     // Both are d/n at normal incidence (the textbook apparent depth); as depths below the surface,
-    // ℓ cos θ, they are the known d cos³θ/(n cos³θ') and d cos θ/(n cos θ') (e.g. Kingslake,
-    // Lens Design Fundamentals, ch. on astigmatism of a plane surface; Hecht, Optics, §5.2).
+    // ℓ cos θ, they are the known d cos³θ/(n cos³θ') and d cos θ/(n cos θ'). They are also
+    // Coddington's equations (see `coddington_image`) for a surface of zero curvature, with the
+    // object at distance d / cos θ' along the ray: checked below.
     fn plane_foci(d: f64, theta_w: f64) -> (f64, f64, f64) {
         let theta = (N * theta_w.sin()).asin();
         let sagittal = d / (N * theta_w.cos());
         let tangential = d * theta.cos().powi(2) / (N * theta_w.cos().powi(3));
         (theta, sagittal, tangential)
+    }
+
+    /// Coddington's equations (H. Coddington, 1829; exact for a thin pencil around a principal
+    /// ray, in any text on oblique pencils, e.g. Kingslake, Lens Design Fundamentals), for light
+    /// from index `n` at angle `theta` to index `n2` at angle `theta2`, in a principal section of
+    /// curvature `curvature` (1/R, Cartesian signs: positive when the centre of curvature lies
+    /// after the surface), object at distance `t` before the surface (real object, t > 0):
+    /// - tangential (section in the plane of incidence):
+    ///   n2 cos²θ2 / t' − n cos²θ / t_c = (n2 cos θ2 − n cos θ)·curvature;
+    /// - sagittal (section across it): n2 / t' − n / t_c = (n2 cos θ2 − n cos θ)·curvature;
+    ///
+    /// with t_c = −t, and t' the image distance after the surface (negative: a virtual image
+    /// before it). Returns (tangential t', sagittal t').
+    fn coddington_image(
+        n: f64,
+        n2: f64,
+        theta: f64,
+        theta2: f64,
+        t: f64,
+        tangential_curvature: f64,
+        sagittal_curvature: f64,
+    ) -> (f64, f64) {
+        let power = n2 * theta2.cos() - n * theta.cos();
+        let t_c = -t;
+        let tangential = n2 * theta2.cos().powi(2)
+            / (power * tangential_curvature + n * theta.cos().powi(2) / t_c);
+        let sagittal = n2 / (power * sagittal_curvature + n / t_c);
+        (tangential, sagittal)
+    }
+
+    #[test]
+    fn plane_foci_are_coddington_foci_of_a_flat_surface() {
+        let d = 0.04;
+        for theta_w in [0.05, 0.3, 0.6] {
+            let (theta, sagittal, tangential) = plane_foci(d, theta_w);
+            let (t, s) = coddington_image(N, 1.0, theta_w, theta, d / theta_w.cos(), 0.0, 0.0);
+            // Virtual images before the surface: t', s' < 0, at distances ℓ_t, ℓ_s.
+            assert!((t + tangential).abs() < 1e-15 && (s + sagittal).abs() < 1e-15);
+        }
     }
 
     /// The closed forms above against brute force: two neighbouring rays from Q refracted by the
@@ -872,6 +912,42 @@ mod tests {
         assert!(st.miss_distance < 1e-12 && st.vertical_disparity.abs() < 1e-12);
         assert!(p.y.abs() < 1e-12 && (p.z - z).abs() < 1e-12);
         assert!(p.x > STRAW_RADIUS && st.disparity > 0.0);
+    }
+
+    /// A straw on the glass's axis seen by horizontal rays with impact parameter b: the wall is
+    /// met at incidence θ (sin θ = b/Rv), the plane of incidence is horizontal and is a principal
+    /// section of the wall (curvature 1/Rv; the vertical section is straight). Coddington's
+    /// equations, light from the water (n, θ') into air (1, θ), centre of curvature before the
+    /// surface (curvature −1/Rv), object at the distance t from the straw point to the wall:
+    /// the horizontal focus is the tangential image, the vertical one the sagittal image.
+    #[test]
+    fn eye_model_through_the_wall_obliquely_gives_coddington_foci() {
+        let scene = Scene::with_defaults(0.0, 0.0, 0.15).unwrap();
+        let (dist, z) = (0.25, 0.07);
+        for b in [0.0005, 0.002, 0.004, 0.006] {
+            assert!(b < N * STRAW_RADIUS);
+            let eye = Vec3::new(dist, b, z);
+            let im = image(&scene, eye, Vec3::NEG_X);
+            let wall_x = (GLASS_RADIUS * GLASS_RADIUS - b * b).sqrt();
+            let air = dist - wall_x;
+            let t = im.path_length - air;
+            let theta = (b / GLASS_RADIUS).asin();
+            let theta_w = (theta.sin() / N).asin();
+            let (tan_img, sag_img) =
+                coddington_image(N, 1.0, theta_w, theta, t, -1.0 / GLASS_RADIUS, 0.0);
+            // Virtual images (negative t'): behind the wall as seen from the eye.
+            let (expected_h, expected_v) = (air - tan_img, air - sag_img);
+            let ap = scene.apparent_point(eye, &im);
+            let (sh, sv) = (ap.s_h.distance().unwrap(), ap.s_v.distance().unwrap());
+            assert!(
+                (sh - expected_h).abs() < 1e-9,
+                "b={b}: s_h {sh} vs {expected_h}"
+            );
+            assert!(
+                (sv - expected_v).abs() < 1e-9,
+                "b={b}: s_v {sv} vs {expected_v}"
+            );
+        }
     }
 
     /// Without refraction (n = 1) every model puts every point on the straw's surface.
