@@ -914,6 +914,62 @@ mod tests {
         assert!(p.x > STRAW_RADIUS && st.disparity > 0.0);
     }
 
+    /// Fermat's principle, independently of the tracer: the point S of the plane z = `he` where
+    /// light from `q` (in the water, index n) to `e` (in the air) crosses the surface minimises
+    /// |S − E| + n|S − Q|, a convex function of (S.x, S.y): Newton's method on its gradient.
+    fn fermat_crossing(e: Vec3, q: Vec3, he: f64) -> Vec3 {
+        let mut s = Vec3::new(0.5 * (e.x + q.x), 0.5 * (e.y + q.y), he);
+        for _ in 0..50 {
+            let (mut g, mut h) = ([0.0; 2], [[0.0; 2]; 2]);
+            for (p, w) in [(e, 1.0), (q, N)] {
+                let v = s - p;
+                let l = v.length();
+                let a = [v.x / l, v.y / l];
+                for i in 0..2 {
+                    g[i] += w * a[i];
+                    for j in 0..2 {
+                        h[i][j] += w * ((i == j) as u8 as f64 - a[i] * a[j]) / l;
+                    }
+                }
+            }
+            let det = h[0][0] * h[1][1] - h[0][1] * h[1][0];
+            s.x -= (h[1][1] * g[0] - h[0][1] * g[1]) / det;
+            s.y -= (h[0][0] * g[1] - h[1][0] * g[0]) / det;
+        }
+        s
+    }
+
+    /// Two eyes 65 mm apart looking down through the flat surface at a straw point under it:
+    /// the stereo point is where the two lines of sight through the crossings given by Fermat's
+    /// principle meet; by the mirror symmetry about the plane of incidence they do meet.
+    #[test]
+    fn stereo_through_flat_surface_matches_fermat() {
+        let scene = Scene::with_defaults(0.0, 0.0, 0.15).unwrap();
+        let he = scene.water_height;
+        for (theta_w, d) in [(0.2, 0.05), (0.45, 0.04)] {
+            let theta = (N * f64::sin(theta_w)).asin();
+            let q = Vec3::new(STRAW_RADIUS, 0.0, he - d);
+            let s = Vec3::new(STRAW_RADIUS + d * f64::tan(theta_w), 0.0, he);
+            let observer = s + 0.2 * Vec3::new(theta.sin(), 0.0, theta.cos());
+            let im = image(&scene, observer, s - observer);
+            let eyes = StereoEyes::around(observer);
+            let st = scene.stereo_point(&eyes, observer, &im).unwrap();
+            let line = |e: Vec3| (e, (fermat_crossing(e, q, he) - e).normalize());
+            let ((el, ul), (er, ur)) = (line(eyes.left), line(eyes.right));
+            assert!(
+                ul.distance(st.left_direction) < 1e-12 && ur.distance(st.right_direction) < 1e-12
+            );
+            // Mirror images in y = 0: they meet there, where the left line crosses y = 0.
+            let meet = el + (-el.y / ul.y) * ul;
+            assert!((meet - er).cross(ur).length() < 1e-12);
+            let p = st.position.unwrap();
+            assert!(p.distance(meet) < 1e-9, "{p:?} vs {meet:?}");
+            assert!(st.miss_distance < 1e-12 && st.vertical_disparity.abs() < 1e-12);
+            // The image is lifted towards the eyes: nearer than the straw point.
+            assert!(st.disparity > 0.0 && p.z > q.z);
+        }
+    }
+
     /// A straw on the glass's axis seen by horizontal rays with impact parameter b: the wall is
     /// met at incidence θ (sin θ = b/Rv), the plane of incidence is horizontal and is a principal
     /// section of the wall (curvature 1/Rv; the vertical section is straight). Coddington's
