@@ -47,6 +47,24 @@ fn main() {
         let infinity = count(|f| matches!(f, Focus::AtInfinity));
         let max_gap = gaps.iter().copied().fold(0.0, f64::max);
         let median_gap = median(&mut gaps);
+        // `median` sorted the gaps: upper quantiles, and the worst point's story.
+        let quantile = |q: f64| gaps[((q * gaps.len() as f64) as usize).min(gaps.len() - 1)];
+        let worst = eye
+            .iter()
+            .filter(|p| p.gap_to_course() == Some(max_gap))
+            .map(|p| {
+                format!(
+                    "{} events, colour {}, path {:.4} m, s_h {:?}, s_v {:?}",
+                    p.image.events, p.image.color, p.image.path_length, p.s_h, p.s_v
+                )
+            })
+            .next()
+            .unwrap_or_default();
+        let notes = format!(
+            "     eye gap quantiles: 90% {:.6} m, 99% {:.6} m; largest gap: {worst}",
+            quantile(0.9),
+            quantile(0.99)
+        );
         let mut stereo_gaps: Vec<f64> = stereo
             .points
             .iter()
@@ -81,5 +99,6 @@ fn main() {
             max_miss,
             seconds
         );
+        println!("{notes}");
     }
 }
