@@ -44,6 +44,28 @@
 //! several images, one per light path; the brain fuses corresponding ones). The apparent position
 //! is the midpoint of the closest approach of the two lines of sight. Points that one eye does not
 //! see along that path are skipped and counted.
+//!
+//! # Example
+//! ```
+//! use bentstraw_optics::apparent::{eye_model_points, stereo_points, Focus};
+//! use bentstraw_optics::sampling::sample_image;
+//! use bentstraw_optics::scene::{REFERENCES, WATER_INDEX};
+//!
+//! let r = REFERENCES[0];
+//! let scene = r.scene(WATER_INDEX);
+//! let cloud = sample_image(&scene, r.observer, 200, &|_| {});
+//! let eye = eye_model_points(&scene, r.observer, &cloud.points);
+//! assert_eq!(eye.len(), cloud.points.len());
+//! for p in &eye {
+//!     // Both foci in front of the eye: the apparent point is defined, between them.
+//!     if let (Focus::InFront(h), Focus::InFront(v)) = (p.s_h, p.s_v) {
+//!         let s = p.position.unwrap().distance(r.observer);
+//!         assert!(s >= h.min(v) - 1e-12 && s <= h.max(v) + 1e-12);
+//!     }
+//! }
+//! let stereo = stereo_points(&scene, r.observer, &cloud.points);
+//! assert_eq!(stereo.points.len() + stereo.skipped, cloud.points.len());
+//! ```
 
 use rayon::prelude::*;
 
