@@ -8,6 +8,7 @@
 //! The conventions are those of the project's specification (`shared/SPEC.md`): SI units (metres),
 //! origin at the centre of the glass's base, `z` up.
 
+pub mod apparent;
 pub mod camera;
 pub mod geometry;
 pub mod image;
