@@ -28,6 +28,7 @@
 use std::io::{self, Write};
 use std::path::Path;
 
+use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::sampling::ImageCloud;
 use bentstraw_optics::scene::{Scene, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
@@ -88,16 +89,173 @@ pub struct PointSet<'a> {
     pub observer: Vec3,
     /// The number of points asked for.
     pub min_points: usize,
-    /// The apparent-position model's name (`course`).
-    pub image_model: &'a str,
+    /// The apparent-position model's points (the course's are the cloud's own).
+    pub model: ModelPoints<'a>,
     /// The traced points and ray count.
     pub cloud: &'a ImageCloud,
+}
+
+/// The points of one apparent-position model, as written.
+#[derive(Clone, Copy, Debug)]
+pub enum ModelPoints<'a> {
+    /// The course's convention (SPEC §4): the cloud's image points.
+    Course,
+    /// The eye model: one apparent point per image point, with its two foci.
+    Eye(&'a [ApparentPoint]),
+    /// The stereo model: the points both eyes see.
+    Stereo(&'a StereoImage),
+}
+
+impl ModelPoints<'_> {
+    /// The model's name as on the command line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ModelPoints::Course => "course",
+            ModelPoints::Eye(_) => "eye",
+            ModelPoints::Stereo(_) => "stereo",
+        }
+    }
+
+    /// Names of the columns of one point, in the order the CSV and JSON write them.
+    pub fn fields(&self) -> &'static [&'static str] {
+        match self {
+            ModelPoints::Course => &["x", "y", "z", "color"],
+            ModelPoints::Eye(_) => &[
+                "x", "y", "z", "color", "s_h", "s_v", "s_h_kind", "s_v_kind", "gap",
+            ],
+            ModelPoints::Stereo(_) => &[
+                "x",
+                "y",
+                "z",
+                "color",
+                "disparity",
+                "vertical_disparity",
+                "miss_distance",
+                "gap",
+            ],
+        }
+    }
+}
+
+impl PointSet<'_> {
+    /// The model's name.
+    pub fn image_model(&self) -> &'static str {
+        self.model.name()
+    }
+
+    /// The points that have a position in this model, as image points at that position (for the
+    /// figures), in order.
+    pub fn placed_points(&self) -> Vec<ImagePoint> {
+        let moved = |image: &ImagePoint, position: Option<Vec3>| {
+            position.map(|position| ImagePoint { position, ..*image })
+        };
+        match self.model {
+            ModelPoints::Course => self.cloud.points.clone(),
+            ModelPoints::Eye(points) => points
+                .iter()
+                .filter_map(|p| moved(&p.image, p.position))
+                .collect(),
+            ModelPoints::Stereo(s) => s
+                .points
+                .iter()
+                .filter_map(|p| moved(&p.image, p.position))
+                .collect(),
+        }
+    }
+
+    /// One row of values per point: each a number, a word, or missing (`None`).
+    fn rows(&self) -> Vec<Vec<Value>> {
+        let xyz = |p: Option<Vec3>| match p {
+            Some(q) => [Value::Num(q.x), Value::Num(q.y), Value::Num(q.z)],
+            None => [Value::Missing, Value::Missing, Value::Missing],
+        };
+        let num = |v: Option<f64>| v.map_or(Value::Missing, Value::Num);
+        match self.model {
+            ModelPoints::Course => self
+                .cloud
+                .points
+                .iter()
+                .map(|p| {
+                    let mut r = xyz(Some(p.position)).to_vec();
+                    r.push(Value::Code(p.color));
+                    r
+                })
+                .collect(),
+            ModelPoints::Eye(points) => points
+                .iter()
+                .map(|p| {
+                    let mut r = xyz(p.position).to_vec();
+                    r.extend([
+                        Value::Code(p.image.color),
+                        num(p.s_h.signed_distance()),
+                        num(p.s_v.signed_distance()),
+                        Value::Word(p.s_h.kind()),
+                        Value::Word(p.s_v.kind()),
+                        num(p.gap_to_course()),
+                    ]);
+                    r
+                })
+                .collect(),
+            ModelPoints::Stereo(s) => s
+                .points
+                .iter()
+                .map(|p| {
+                    let mut r = xyz(p.position).to_vec();
+                    r.extend([
+                        Value::Code(p.image.color),
+                        Value::Num(p.disparity),
+                        Value::Num(p.vertical_disparity),
+                        Value::Num(p.miss_distance),
+                        num(p.gap_to_course()),
+                    ]);
+                    r
+                })
+                .collect(),
+        }
+    }
+}
+
+/// One value of a written point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Value {
+    /// A number, written in its shortest exact form (`inf` for an infinite focus).
+    Num(f64),
+    /// A colour code.
+    Code(u8),
+    /// A word (the kind of a focus).
+    Word(&'static str),
+    /// Not defined for this point: empty in CSV, `null` in JSON.
+    Missing,
+}
+
+impl Value {
+    fn csv(&self) -> String {
+        match *self {
+            Value::Num(v) => format!("{v}"),
+            Value::Code(c) => c.to_string(),
+            Value::Word(w) => w.to_string(),
+            Value::Missing => String::new(),
+        }
+    }
+
+    fn json(&self) -> String {
+        match *self {
+            Value::Num(v) if v.is_finite() => json(&v),
+            Value::Num(v) => json(if v > 0.0 { "inf" } else { "-inf" }),
+            Value::Code(c) => c.to_string(),
+            Value::Word(w) => json(w),
+            Value::Missing => "null".to_string(),
+        }
+    }
 }
 
 /// Writes `set` to `path` in `format`, all-or-nothing.
 pub fn write_points(path: &Path, format: PointFormat, set: &PointSet) -> CliResult {
     write_atomically(path, |w| match format {
-        PointFormat::Csv => write_csv(w, &set.cloud.points),
+        PointFormat::Csv if matches!(set.model, ModelPoints::Course) => {
+            write_csv(w, &set.cloud.points)
+        }
+        PointFormat::Csv => write_model_csv(w, set),
         PointFormat::Json => write_json(w, set),
         PointFormat::Ply => write_ply(w, set),
     })
@@ -110,6 +268,16 @@ pub fn write_csv(w: &mut dyn Write, points: &[ImagePoint]) -> io::Result<()> {
         // `{}` on f64 prints the shortest digits that parse back to the same value.
         let q = p.position;
         writeln!(w, "{},{},{},{}", q.x, q.y, q.z, p.color)?;
+    }
+    Ok(())
+}
+
+/// CSV of a model's points: header from [`ModelPoints::fields`], missing values left empty.
+pub fn write_model_csv(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
+    writeln!(w, "{}", set.model.fields().join(","))?;
+    for row in set.rows() {
+        let cells: Vec<String> = row.iter().map(Value::csv).collect();
+        writeln!(w, "{}", cells.join(","))?;
     }
     Ok(())
 }
@@ -184,24 +352,18 @@ pub fn write_json(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
     writeln!(w, "{{")?;
     writeln!(w, "  \"schema\": \"bentstraw-image-points/1\",")?;
     writeln!(w, "  \"units\": \"m\",")?;
-    writeln!(w, "  \"image_model\": {},", json(set.image_model))?;
+    writeln!(w, "  \"image_model\": {},", json(set.image_model()))?;
     writeln!(w, "  \"inputs\": {},", json(&inputs))?;
     writeln!(w, "  \"stats\": {},", json(&stats))?;
     writeln!(w, "  \"colors\": {},", json(&colors))?;
-    writeln!(w, "  \"point_fields\": [\"x\", \"y\", \"z\", \"color\"],")?;
+    writeln!(w, "  \"point_fields\": {},", json(set.model.fields()))?;
     writeln!(w, "  \"points\": [")?;
-    let n = set.cloud.points.len();
-    for (i, p) in set.cloud.points.iter().enumerate() {
-        let q = p.position;
+    let rows = set.rows();
+    let n = rows.len();
+    for (i, row) in rows.iter().enumerate() {
         let sep = if i + 1 < n { "," } else { "" };
-        writeln!(
-            w,
-            "    [{},{},{},{}]{sep}",
-            json(&q.x),
-            json(&q.y),
-            json(&q.z),
-            p.color
-        )?;
+        let cells: Vec<String> = row.iter().map(Value::json).collect();
+        writeln!(w, "    [{}]{sep}", cells.join(","))?;
     }
     writeln!(w, "  ]")?;
     writeln!(w, "}}")
@@ -227,7 +389,7 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
     writeln!(
         w,
         "comment bentstraw: virtual image points of the straw ({} model), metres",
-        set.image_model
+        set.image_model()
     )?;
     writeln!(w, "comment observer {} {} {}", o.x, o.y, o.z)?;
     writeln!(
@@ -244,7 +406,8 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
         w,
         "comment color: section code 1 red, 2 orange, 3 magenta, 4 green, 5 blue"
     )?;
-    writeln!(w, "element vertex {}", set.cloud.points.len())?;
+    let points = set.placed_points();
+    writeln!(w, "element vertex {}", points.len())?;
     for axis in ["x", "y", "z"] {
         writeln!(w, "property double {axis}")?;
     }
@@ -253,7 +416,7 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
     }
     writeln!(w, "end_header")?;
     let mut record = [0u8; 28];
-    for p in &set.cloud.points {
+    for p in &points {
         let q = p.position;
         record[0..8].copy_from_slice(&q.x.to_le_bytes());
         record[8..16].copy_from_slice(&q.y.to_le_bytes());
@@ -299,7 +462,7 @@ mod tests {
             scene,
             observer: Vec3::new(0.0, 0.1, 0.1),
             min_points: 3,
-            image_model: "course",
+            model: ModelPoints::Course,
             cloud,
         }
     }

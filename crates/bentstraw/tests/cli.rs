@@ -663,11 +663,70 @@ fn unknown_output_extensions_are_rejected() {
 }
 
 #[test]
-fn unimplemented_image_models_are_refused_before_tracing() {
-    for m in ["eye", "stereo"] {
-        assert_rejected(
-            &simulate_args("0,0.1,0.1", "0.02,0.01", "0.15", &["--image-model", m]),
-            &[m, "not implemented yet"],
+fn eye_and_stereo_models_write_their_columns_and_points_near_the_course_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = simulate(dir.path(), 2, 500, &["--output", "course.csv"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let course = read_csv(&dir.path().join("course.csv"));
+    for (model, header) in [
+        ("eye", "x,y,z,color,s_h,s_v,s_h_kind,s_v_kind,gap"),
+        (
+            "stereo",
+            "x,y,z,color,disparity,vertical_disparity,miss_distance,gap",
+        ),
+    ] {
+        let file = format!("{model}.csv");
+        let out = simulate(
+            dir.path(),
+            2,
+            500,
+            &["--image-model", model, "--output", &file],
+        );
+        assert!(out.status.success(), "{}", stderr(&out));
+        assert!(stderr(&out).contains(&format!("{model} model")));
+        let text = fs::read_to_string(dir.path().join(&file)).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some(header));
+        let mut placed = 0;
+        for line in lines {
+            let f: Vec<&str> = line.split(',').collect();
+            assert_eq!(f.len(), header.split(',').count(), "{line}");
+            let color: u8 = f[3].parse().unwrap();
+            assert!((1..=5).contains(&color));
+            if f[0].is_empty() {
+                continue; // no position: the row says why
+            }
+            placed += 1;
+            let p = Vec3::new(
+                f[0].parse().unwrap(),
+                f[1].parse().unwrap(),
+                f[2].parse().unwrap(),
+            );
+            let gap: f64 = f[f.len() - 1].parse().unwrap();
+            // The apparent point is within centimetres of some course point of its colour.
+            let nearest = course
+                .iter()
+                .filter(|(_, c)| *c == color)
+                .map(|(q, _)| q.distance(p))
+                .fold(f64::MAX, f64::min);
+            assert!(
+                nearest < 0.02,
+                "{model}: {p} is {nearest} m from the course cloud"
+            );
+            assert!(
+                gap.is_finite() && gap >= 0.0 && gap < 0.05,
+                "{model}: gap {gap}"
+            );
+            if model == "eye" {
+                let (sh, sv): (f64, f64) = (f[4].parse().unwrap(), f[5].parse().unwrap());
+                assert!(sh > 0.0 && sv > 0.0 && f[6] == "in_front" && f[7] == "in_front");
+                let observer = REFERENCES[1].observer;
+                assert!(((p - observer).length() - 0.5 * (sh + sv)).abs() < 1e-9);
+            }
+        }
+        assert!(
+            placed as f64 > 0.8 * course.len() as f64,
+            "{model}: {placed} placed"
         );
     }
 }

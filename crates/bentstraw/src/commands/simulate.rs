@@ -7,15 +7,15 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Scene, SECTION_NAMES};
 use bentstraw_optics::Vec3;
-use clap::ValueEnum;
 
 use crate::cli::{ImageModelArg, SimulateArgs};
 use crate::error::{fail, CliError, CliResult};
 use crate::files::check_writable;
-use crate::writers::{write_points, PointFormat, PointSet};
+use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use crate::{html, plot, progress};
 
 /// Runs `simulate`.
@@ -25,7 +25,6 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     if args.points == 0 {
         return fail("--points 0 is not allowed: ask for at least 1 image point");
     }
-    check_image_model(args.image_model)?;
     let format = PointFormat::from_path(&args.output)?;
     if let Some(p) = &args.plot {
         require_extension(p, "--plot", &["png"])?;
@@ -45,22 +44,49 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     let cloud = trace_with_spinner(&scene, observer, args.points);
     let traced = started.elapsed();
 
-    // 3. Write.
-    let model = model_name(args.image_model);
+    // 3. The apparent-position model, if not the course's.
+    let modelled = Instant::now();
+    let eye;
+    let stereo;
+    let model = match args.image_model {
+        ImageModelArg::Course => ModelPoints::Course,
+        ImageModelArg::Eye => {
+            eye = with_spinner("eye model", || {
+                eye_model_points(&scene, observer, &cloud.points)
+            });
+            ModelPoints::Eye(&eye)
+        }
+        ImageModelArg::Stereo => {
+            stereo = with_spinner("stereo model", || {
+                stereo_points(&scene, observer, &cloud.points)
+            });
+            ModelPoints::Stereo(&stereo)
+        }
+    };
+    let modelled = modelled.elapsed();
+
+    // 4. Write.
     let set = PointSet {
         scene: &scene,
         observer,
         min_points: args.points,
-        image_model: &model,
+        model,
         cloud: &cloud,
     };
     write_points(&args.output, format, &set)?;
-    let title = simulation_title(&scene, observer);
-    if let Some(p) = &args.plot {
-        plot::write_cloud_figure(p, &scene, observer, &cloud.points, &title)?;
-    }
-    if let Some(h) = &args.html {
-        html::write_cloud_viewer(h, &scene, observer, &cloud.points, &title)?;
+    let title = format!(
+        "{} ({} model)",
+        simulation_title(&scene, observer),
+        model.name()
+    );
+    if args.plot.is_some() || args.html.is_some() {
+        let placed = set.placed_points();
+        if let Some(p) = &args.plot {
+            plot::write_cloud_figure(p, &scene, observer, &placed, &title)?;
+        }
+        if let Some(h) = &args.html {
+            html::write_cloud_viewer(h, &scene, observer, &placed, &title)?;
+        }
     }
     let total = started.elapsed();
 
@@ -76,34 +102,18 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         written.push(format!("{} (rotatable 3D view)", h.display()));
     }
     eprint!("{}", summary(&set, traced, total, &written));
+    if !matches!(model, ModelPoints::Course) {
+        eprint!("{}", model_summary(&set, modelled));
+    }
     Ok(())
 }
 
-// ---- Apparent-position models ---------------------------------------------------------------
-// The course's convention (SPEC §4, P = O + L·u0) is what `sample_image` returns. The other models
-// (`eye`, `stereo`) are being built separately: they plug in here, as a function turning the traced
-// rays into their own points, and `check_image_model` then lets them through.
-
-/// Refuses, before tracing, the image models that do not exist yet.
-fn check_image_model(model: ImageModelArg) -> CliResult {
-    match model {
-        ImageModelArg::Course => Ok(()),
-        ImageModelArg::Eye | ImageModelArg::Stereo => fail(format!(
-            "--image-model {} is not implemented yet: use --image-model course (the default)",
-            model_name(model)
-        )),
-    }
+/// Runs `work` with a spinner on stderr if it takes a while.
+fn with_spinner<T>(what: &str, work: impl FnOnce() -> T) -> T {
+    progress::with_progress(None, &format!("{{spinner}} {what}  [{{elapsed}}]"), |_| {
+        work()
+    })
 }
-
-/// The model's name as typed on the command line.
-fn model_name(model: ImageModelArg) -> String {
-    model
-        .to_possible_value()
-        .map(|v| v.get_name().to_string())
-        .unwrap_or_else(|| format!("{model:?}").to_lowercase())
-}
-
-// ---------------------------------------------------------------------------------------------
 
 /// Samples the straw's image, with a spinner counting rays when it takes a while.
 pub fn trace_with_spinner(scene: &Scene, observer: Vec3, min_points: usize) -> ImageCloud {
@@ -154,7 +164,7 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
     let _ = writeln!(
         t,
         "bentstraw simulate: the straw's virtual image ({} model)",
-        set.image_model
+        set.image_model()
     );
     let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
     let _ = writeln!(t, "  straw axis      ({}, {}) m", s.straw_x, s.straw_y);
@@ -197,5 +207,58 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
             "  note            fewer points than asked: the straw is all but invisible from here"
         );
     }
+    t
+}
+
+/// The lines of the summary about the eye or stereo model: points placed, and why others are not.
+pub fn model_summary(set: &PointSet, time: Duration) -> String {
+    let mut t = String::new();
+    match set.model {
+        ModelPoints::Course => {}
+        ModelPoints::Eye(points) => {
+            let placed = points.iter().filter(|p| p.position.is_some()).count();
+            let _ = writeln!(
+                t,
+                "  eye model       {placed} of {} points placed at (s_h + s_v)/2",
+                points.len()
+            );
+            let mut kinds: Vec<(&str, usize)> = Vec::new();
+            for p in points.iter().filter(|p| p.position.is_none()) {
+                let k = if p.s_h.kind() != "in_front" {
+                    p.s_h.kind()
+                } else {
+                    p.s_v.kind()
+                };
+                match kinds.iter_mut().find(|(name, _)| *name == k) {
+                    Some((_, n)) => *n += 1,
+                    None => kinds.push((k, 1)),
+                }
+            }
+            for (k, n) in kinds {
+                let _ = writeln!(
+                    t,
+                    "    no position   {n} with a focus {}",
+                    k.replace('_', " ")
+                );
+            }
+            let gaps: Vec<f64> = points.iter().filter_map(|p| p.gap_to_course()).collect();
+            if let Some(max) = gaps.iter().copied().reduce(f64::max) {
+                let _ = writeln!(t, "  gap to course   up to {:.2} mm", 1e3 * max);
+            }
+        }
+        ModelPoints::Stereo(s) => {
+            let placed = s.points.iter().filter(|p| p.position.is_some()).count();
+            let _ = writeln!(
+                t,
+                "  stereo model    {placed} points seen by both eyes and triangulated, {} seen by one eye only",
+                s.skipped
+            );
+            let gaps: Vec<f64> = s.points.iter().filter_map(|p| p.gap_to_course()).collect();
+            if let Some(max) = gaps.iter().copied().reduce(f64::max) {
+                let _ = writeln!(t, "  gap to course   up to {:.2} mm", 1e3 * max);
+            }
+        }
+    }
+    let _ = writeln!(t, "  model time      {:.3} s", time.as_secs_f64());
     t
 }

@@ -17,7 +17,7 @@ use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliError, CliResult};
 use crate::files::check_writable;
 use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
-use crate::writers::{write_points, PointFormat, PointSet};
+use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use crate::{html, plot, progress};
 
 /// Largest distance (m) from the straw's surface an `n_water = 1` image point may have.
@@ -150,7 +150,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         scene,
         observer,
         min_points: points,
-        image_model: "course",
+        model: ModelPoints::Course,
         cloud: &cloud,
     };
     let title = format!(
