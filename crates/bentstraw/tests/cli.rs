@@ -713,10 +713,7 @@ fn eye_and_stereo_models_write_their_columns_and_points_near_the_course_ones() {
                 nearest < 0.02,
                 "{model}: {p} is {nearest} m from the course cloud"
             );
-            assert!(
-                gap.is_finite() && gap >= 0.0 && gap < 0.05,
-                "{model}: gap {gap}"
-            );
+            assert!((0.0..0.05).contains(&gap), "{model}: gap {gap}");
             if model == "eye" {
                 let (sh, sv): (f64, f64) = (f[4].parse().unwrap(), f[5].parse().unwrap());
                 assert!(sh > 0.0 && sv > 0.0 && f[6] == "in_front" && f[7] == "in_front");
