@@ -86,7 +86,7 @@ function startViewer(data) {
   const show = { water: true, straw: true, axes: true, sections: [true, true, true, true, true, true] };
   let width = 0, height = 0, dpr = 1;
   let image = null, pixels = null, depth = null;
-  let interacting = false, idleTimer = 0, frameQueued = false;
+  let interacting = false, idleTimer = 0, frameQueued = false, benchNote = "";
 
   // Colours per section, shaded by depth in 16 steps (far points a little darker) for a sense of depth.
   const SHADES = 16;
@@ -132,8 +132,8 @@ function startViewer(data) {
 
   function camera() {
     const ax = viewAxes(state.az, state.el);
-    const scale = state.zoom * Math.min(width, height) / (2.15 * radius);
-    const cx = width / 2 + state.panX * dpr, cy = height / 2 + state.panY * dpr;
+    const scale = state.zoom * Math.min(width - panelRoom(), height) / (2.15 * radius);
+    const cx = (width + panelRoom()) / 2 + state.panX * dpr, cy = height / 2 + state.panY * dpr;
     // Pixel of an absolute point, and its nearness to the viewer (m).
     const px = (p) => {
       const x = p[0] - O[0], y = p[1] - O[1], z = p[2] - O[2];
@@ -144,7 +144,15 @@ function startViewer(data) {
     return { ax, scale, cx, cy, px };
   }
 
+  // Device pixels on the left taken by the panel, when the window is wide enough to keep them free.
+  function panelRoom() {
+    const r = document.getElementById("panel").getBoundingClientRect();
+    const room = (r.right + 10) * dpr;
+    return width - room > 0.6 * width ? room : 0;
+  }
+
   function draw() {
+    const started = performance.now();
     const cam = camera();
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.fillStyle = "#fff";
@@ -158,7 +166,8 @@ function startViewer(data) {
     drawObserver(cam);
     document.getElementById("status").textContent =
       "azimuth " + Math.round(normAngle(state.az)) + "°, elevation " + Math.round(state.el) +
-      "°, zoom ×" + state.zoom.toFixed(2) + (interacting && n > MAX_MOVING ? " (thinned while moving)" : "");
+      "°, zoom ×" + state.zoom.toFixed(2) + (interacting && n > MAX_MOVING ? " (thinned while moving)" : "") +
+      " · drawn in " + Math.round(performance.now() - started) + " ms" + benchNote;
   }
 
   function normAngle(a) {
@@ -166,7 +175,7 @@ function startViewer(data) {
     return a > 180 ? a - 360 : a;
   }
 
-  const MAX_MOVING = 250000;
+  const MAX_MOVING = 150000;
 
   function drawPoints(cam) {
     const { ax, scale, cx, cy } = cam;
@@ -456,7 +465,7 @@ function startViewer(data) {
     const z = Math.max(0.2, Math.min(60, state.zoom * factor));
     const f = z / state.zoom;
     const rect = canvas.getBoundingClientRect();
-    const mx = clientX - rect.left - rect.width / 2, my = clientY - rect.top - rect.height / 2;
+    const mx = clientX - rect.left - (rect.width + panelRoom() / dpr) / 2, my = clientY - rect.top - rect.height / 2;
     state.panX = mx - (mx - state.panX) * f;
     state.panY = my - (my - state.panY) * f;
     state.zoom = z;
@@ -474,7 +483,7 @@ function startViewer(data) {
   }
   const reset = document.createElement("button");
   reset.textContent = "reset view";
-  reset.title = "back to the first view, zoom 1 (or double-click the picture)";
+  reset.title = "back to the opening view, zoom 1 (or double-click the picture)";
   reset.addEventListener("click", () => setView(data.views[0]));
   buttons.appendChild(reset);
   const save = document.createElement("button");
@@ -505,5 +514,23 @@ function startViewer(data) {
   window.addEventListener("resize", resize);
   state.az = data.views[0].az;
   state.el = data.views[0].el;
+  // A view can be given in the address: #az=30&el=20&zoom=1.5 (degrees), or #view=2 for a preset.
+  const asked = new URLSearchParams(location.hash.slice(1));
+  const preset = data.views[Number(asked.get("view"))];
+  if (preset) { state.az = preset.az; state.el = preset.el; }
+  for (const key of ["az", "el", "zoom"]) {
+    const v = Number(asked.get(key));
+    if (asked.has(key) && Number.isFinite(v)) state[key] = v;
+  }
+  state.el = Math.max(-90, Math.min(90, state.el));
+  state.zoom = Math.max(0.2, Math.min(60, state.zoom));
   resize();
+  // #bench=N: draw N frames while turning, and report the mean time per frame (for checking speed).
+  const frames = Number(asked.get("bench"));
+  if (frames > 0) {
+    const t0 = performance.now();
+    for (let i = 0; i < frames; i++) { state.az += 1; draw(); }
+    benchNote = " · bench: " + ((performance.now() - t0) / frames).toFixed(1) + " ms per frame";
+    redraw();
+  }
 }

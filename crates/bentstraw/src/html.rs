@@ -152,22 +152,34 @@ fn viewer_data(
             })
         })
         .collect();
-    let views: Vec<_> = figure_views(observer)
-        .iter()
-        .zip(["observer", "side", "top"])
-        .map(|((v, caption), name)| {
-            let name = if name == "top" && v.elevation.abs() < 1.0 {
-                "level"
-            } else {
-                name
-            };
-            json!({
-                "name": format!("{name} view"),
-                "caption": caption,
-                "az": v.azimuth.to_degrees(),
-                "el": v.elevation.to_degrees(),
-            })
-        })
+    let figure = figure_views(observer);
+    // First, and shown on opening: a three-quarter view that makes the page look 3D at once.
+    let o = figure[0].0;
+    let three_quarter = json!({
+        "name": "3D view",
+        "caption": "three-quarter view: 35° round from the observer's azimuth, 20° from above",
+        "az": o.azimuth.to_degrees() - 35.0,
+        "el": 20.0,
+    });
+    let views: Vec<_> = std::iter::once(three_quarter)
+        .chain(
+            figure
+                .iter()
+                .zip(["observer", "side", "top"])
+                .map(|((v, caption), name)| {
+                    let name = if name == "top" && v.elevation.abs() < 1.0 {
+                        "level"
+                    } else {
+                        name
+                    };
+                    json!({
+                        "name": format!("{name} view"),
+                        "caption": caption,
+                        "az": v.azimuth.to_degrees(),
+                        "el": v.elevation.to_degrees(),
+                    })
+                }),
+        )
         .collect();
     let v3 = |v: Vec3| [v.x, v.y, v.z];
     json!({
@@ -465,6 +477,79 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
                     "{key}"
                 );
             }
+        }
+    }
+
+    /// Whether `p` is section colour `c` shaded by depth as the viewer does (factor 0.72 to 1).
+    fn is_shade_of(p: [u8; 3], c: [u8; 3]) -> bool {
+        let k = (0..3).max_by_key(|&i| c[i]).unwrap();
+        let f = p[k] as f64 / c[k] as f64;
+        (0.70..=1.01).contains(&f) && (0..3).all(|i| (p[i] as f64 - f * c[i] as f64).abs() <= 3.0)
+    }
+
+    /// Opens the page in headless Chromium and checks that the script ran to the end and drew every
+    /// colour present. Skipped where Chromium is not installed (it is not needed otherwise).
+    #[test]
+    fn chromium_draws_the_page() {
+        let chromium = Path::new("/usr/bin/chromium");
+        if !chromium.exists() {
+            eprintln!(
+                "{} not found: skipping the browser smoke test",
+                chromium.display()
+            );
+            return;
+        }
+        let (points, page) = reference_page("Smoke test");
+        let dir = tempfile::tempdir().unwrap();
+        let html = dir.path().join("page.html");
+        std::fs::write(&html, &page).unwrap();
+        let shot = dir.path().join("shot.png");
+        let mut child = std::process::Command::new(chromium)
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--hide-scrollbars",
+                "--window-size=1200,800",
+                "--virtual-time-budget=5000",
+            ])
+            .arg(format!(
+                "--user-data-dir={}",
+                dir.path().join("profile").display()
+            ))
+            .arg(format!("--screenshot={}", shot.display()))
+            .arg("--dump-dom")
+            .arg(format!("file://{}", html.display()))
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        // A browser that hangs must not hang the test suite.
+        let started = std::time::Instant::now();
+        while child.try_wait().unwrap().is_none() {
+            if started.elapsed() > std::time::Duration::from_secs(90) {
+                let _ = child.kill();
+                panic!("chromium did not finish in 90 s");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(100));
+        }
+        let mut dom = String::new();
+        std::io::Read::read_to_string(&mut child.stdout.take().unwrap(), &mut dom).unwrap();
+        // The status line is written at the end of each frame: the script ran without an error.
+        assert!(dom.contains("drawn in"), "the viewer did not draw a frame");
+        let img = image::open(&shot).expect("a screenshot").to_rgb8();
+        let n = counts(&points);
+        for code in 1..=5u8 {
+            if n[(code - 1) as usize] == 0 {
+                continue;
+            }
+            let c = section_rgb8(code);
+            // Pixels right of the panel only (the legend has swatches in every colour).
+            let hits = img
+                .enumerate_pixels()
+                .filter(|(x, _, p)| *x > 400 && is_shade_of(p.0, c))
+                .count();
+            assert!(hits >= 20, "colour {code}: {hits} pixels");
         }
     }
 }
