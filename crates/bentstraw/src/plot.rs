@@ -414,11 +414,51 @@ struct Panel {
     height: i32,
 }
 
-const TITLE_BAND: i32 = 62;
-const LEGEND_BAND: i32 = 44;
+const TITLE_BAND: i32 = 58;
+const LEGEND_BAND: i32 = 40;
 const CAPTION_BAND: i32 = 24;
-/// Room kept around each panel's box for tick labels and axis names.
-const PANEL_PAD: f64 = 58.0;
+/// Room kept left and right of each panel's box for tick labels and axis names.
+const PAD_SIDE: f64 = 58.0;
+/// Room kept below each panel's box for tick labels and axis names (labels never go on top).
+const PAD_BOTTOM: f64 = 50.0;
+/// Room kept above each panel's box, under the caption; more when a note about a far observer goes there.
+const PAD_TOP: f64 = 14.0;
+const PAD_TOP_NOTE: f64 = 30.0;
+
+/// The three panels side by side, each fitting the whole box.
+fn layout(bx: &AxisBox, views: &[(ViewDirection, String)]) -> Vec<Panel> {
+    let panel_w = FIGURE_WIDTH as i32 / views.len() as i32;
+    let panel_h = FIGURE_HEIGHT as i32 - TITLE_BAND - LEGEND_BAND;
+    let pad_top = if bx.observer_inside {
+        PAD_TOP
+    } else {
+        PAD_TOP_NOTE
+    };
+    let fit_w = panel_w as f64 - 2.0 * PAD_SIDE;
+    let fit_h = (panel_h - CAPTION_BAND) as f64 - pad_top - PAD_BOTTOM;
+    views
+        .iter()
+        .enumerate()
+        .map(|(i, (v, caption))| {
+            let left = i as i32 * panel_w;
+            let top = TITLE_BAND;
+            let origin = (
+                left as f64 + panel_w as f64 / 2.0,
+                (top + CAPTION_BAND) as f64 + pad_top + fit_h / 2.0,
+            );
+            Panel {
+                // Each panel has its own scale (a top view fits far more than a side view), but within
+                // a panel one metre has the same length along every axis.
+                proj: Projection::new(*v, bx.centre(), origin, fit_scale(bx, *v, fit_w, fit_h)),
+                caption: caption.clone(),
+                left,
+                top,
+                width: panel_w,
+                height: panel_h,
+            }
+        })
+        .collect()
+}
 
 /// Draws the classic three-view figure of `points` seen from `observer` into the PNG at `path`.
 pub fn write_cloud_figure(
@@ -443,33 +483,7 @@ fn render_cloud_figure(
     let (w, h) = (FIGURE_WIDTH, FIGURE_HEIGHT);
     let mut buf = vec![255u8; (w * h * 3) as usize];
     let bx = axis_box(scene, observer, points);
-    let views = figure_views(observer);
-    let panel_w = w as i32 / 3;
-    let panel_h = h as i32 - TITLE_BAND - LEGEND_BAND;
-    let fit_w = panel_w as f64 - 2.0 * PANEL_PAD;
-    let fit_h = (panel_h - CAPTION_BAND) as f64 - 2.0 * PANEL_PAD + 16.0;
-    let panels: Vec<Panel> = views
-        .iter()
-        .enumerate()
-        .map(|(i, (v, caption))| {
-            let left = i as i32 * panel_w;
-            let top = TITLE_BAND;
-            let origin = (
-                left as f64 + panel_w as f64 / 2.0,
-                top as f64 + CAPTION_BAND as f64 + (panel_h - CAPTION_BAND) as f64 / 2.0 - 8.0,
-            );
-            Panel {
-                // Each panel has its own scale (a top view fits far more than a side view), but within
-                // a panel one metre has the same length along every axis.
-                proj: Projection::new(*v, bx.centre(), origin, fit_scale(&bx, *v, fit_w, fit_h)),
-                caption: caption.clone(),
-                left,
-                top,
-                width: panel_w,
-                height: panel_h,
-            }
-        })
-        .collect();
+    let panels = layout(&bx, &figure_views(observer));
 
     // Back layer: titles, axis panes, the far half of the water, the straw's outline.
     {
@@ -1137,26 +1151,29 @@ mod tests {
     }
 
     #[test]
-    fn every_panel_holds_its_whole_box() {
-        for r in REFERENCES {
-            let scene = r.scene(1.333);
-            let bx = axis_box(&scene, r.observer, &[]);
-            let (w, h) = (
-                FIGURE_WIDTH as f64 / 3.0,
-                (FIGURE_HEIGHT as i32 - TITLE_BAND - LEGEND_BAND) as f64,
-            );
-            for (v, _) in figure_views(r.observer) {
-                let s = fit_scale(
-                    &bx,
-                    v,
-                    w - 2.0 * PANEL_PAD,
-                    h - CAPTION_BAND as f64 - 2.0 * PANEL_PAD,
-                );
-                let proj = Projection::new(v, bx.centre(), (w / 2.0, h / 2.0), s);
+    fn every_panel_holds_its_whole_box_with_room_for_labels() {
+        let far = Vec3::new(3.0, -1.0, 0.4);
+        for (scene, observer) in REFERENCES
+            .iter()
+            .map(|r| (r.scene(1.333), r.observer))
+            .chain([(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), far)])
+        {
+            let bx = axis_box(&scene, observer, &[]);
+            let panels = layout(&bx, &figure_views(observer));
+            assert_eq!(panels.len(), 3);
+            for p in &panels {
                 for k in bx.corners() {
-                    let (x, y) = proj.pixel(k);
-                    assert!(x >= PANEL_PAD - 1e-6 && x <= w - PANEL_PAD + 1e-6, "{x}");
-                    assert!(y >= 0.0 && y <= h, "{y}");
+                    let (x, y) = p.proj.pixel(k);
+                    let (l, r) = (
+                        p.left as f64 + PAD_SIDE,
+                        (p.left + p.width) as f64 - PAD_SIDE,
+                    );
+                    let (t, b) = (
+                        (p.top + CAPTION_BAND) as f64 + PAD_TOP - 1e-6,
+                        (p.top + p.height) as f64 - PAD_BOTTOM + 1e-6,
+                    );
+                    assert!(x >= l - 1e-6 && x <= r + 1e-6, "x {x} outside {l}..{r}");
+                    assert!(y >= t && y <= b, "y {y} outside {t}..{b}");
                 }
             }
         }
