@@ -451,6 +451,20 @@ function startViewer(data) {
     interact();
   }, { passive: false });
   canvas.addEventListener("dblclick", () => setView(data.views[0]));
+  window.addEventListener("keydown", (e) => {
+    if (e.target instanceof HTMLInputElement || e.ctrlKey || e.metaKey || e.altKey) return;
+    const k = e.key;
+    if (k === "ArrowLeft") state.az += 5;
+    else if (k === "ArrowRight") state.az -= 5;
+    else if (k === "ArrowUp") state.el = Math.min(90, state.el + 5);
+    else if (k === "ArrowDown") state.el = Math.max(-90, state.el - 5);
+    else if (k === "+" || k === "=") state.zoom = Math.min(60, state.zoom * 1.2);
+    else if (k === "-" || k === "_") state.zoom = Math.max(0.2, state.zoom / 1.2);
+    else if (k === "r" || k === "R") { setView(data.views[0]); return; }
+    else return;
+    e.preventDefault();
+    interact();
+  });
 
   function gesture() {
     const pts = [...pointers.values()];

@@ -80,6 +80,7 @@ fn viewer_page(
 </head>
 <body>
 <canvas id="view" aria-label="3D view of the straw's image points"></canvas>
+<noscript><p style="position:absolute;right:20px;top:20px">This page draws its 3D view with JavaScript: please allow scripts for this file.</p></noscript>
 <div id="panel">
 <h1>{title_html}</h1>
 <div class="facts">
@@ -99,7 +100,7 @@ fn viewer_page(
 <label><input type="checkbox" id="show-axes" checked> axes</label>
 </div>
 <div id="status"></div>
-<div class="hint">drag: rotate · wheel or pinch: zoom · shift-drag, right-drag or two fingers: pan · double-click: reset · click a colour to hide it · lengths in metres, one scale on every axis</div>
+<div class="hint">drag or arrow keys: rotate · wheel, pinch or +/−: zoom · shift-drag, right-drag or two fingers: pan · double-click or R: reset · click a colour to hide it · lengths in metres, one scale on every axis</div>
 </div>
 <script id="bentstraw-data" type="application/json">{data}</script>
 <script>

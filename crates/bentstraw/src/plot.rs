@@ -508,7 +508,7 @@ fn render_cloud_figure(
             draw_axis_labels(&root, p, &bx).map_err(|e| e.to_string())?;
             draw_observer(&root, p, &bx, observer).map_err(|e| e.to_string())?;
         }
-        draw_legend(&root, points).map_err(|e| e.to_string())?;
+        draw_legend(&root, points, bx.observer_inside).map_err(|e| e.to_string())?;
         root.present().map_err(|e| e.to_string())?;
     }
     let mut png = Vec::new();
@@ -911,7 +911,7 @@ fn draw_observer(root: &Area, panel: &Panel, bx: &AxisBox, observer: Vec3) -> Dr
 }
 
 /// The colour codes with their heights and point counts, the observer, the wireframes.
-fn draw_legend(root: &Area, points: &[ImagePoint]) -> DrawResult {
+fn draw_legend(root: &Area, points: &[ImagePoint], observer_inside: bool) -> DrawResult {
     let n = counts(points);
     let y = FIGURE_HEIGHT as i32 - LEGEND_BAND / 2;
     let mut x = 24;
@@ -934,8 +934,13 @@ fn draw_legend(root: &Area, points: &[ImagePoint]) -> DrawResult {
         x += 20 + text_width(&s, 14.0) + 22;
     }
     root.draw(&Circle::new((x + 6, y), 5, BLACK.filled()))?;
-    root.draw(&Text::new("observer", (x + 16, y), style.clone()))?;
-    x += 16 + text_width("observer", 14.0) + 22;
+    let who = if observer_inside {
+        "observer"
+    } else {
+        "observer (far: arrow)"
+    };
+    root.draw(&Text::new(who, (x + 16, y), style.clone()))?;
+    x += 16 + text_width(who, 14.0) + 22;
     root.draw(&PathElement::new(
         vec![(x, y), (x + 24, y)],
         rgb(WATER_RGB).stroke_width(2),
@@ -1044,6 +1049,14 @@ mod tests {
         }
         // Nothing else is left in the folder (the write is atomic).
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn empty_glass_and_no_points_still_draw() {
+        let scene = Scene::with_defaults(0.01, 0.0, 0.0).unwrap();
+        let png = render_cloud_figure(&scene, Vec3::new(0.0, -0.2, 0.3), &[], "empty").unwrap();
+        assert_eq!(decode(&png).dimensions(), (FIGURE_WIDTH, FIGURE_HEIGHT));
+        assert_eq!(water_segments(&scene).len(), 2 * CIRCLE_SEGMENTS);
     }
 
     #[test]
