@@ -838,9 +838,6 @@ fn draw_axis_labels(root: &Area, panel: &Panel, bx: &AxisBox) -> DrawResult {
 /// The observer as a black dot, or, when too far away to draw to scale, an arrow pointing to it.
 fn draw_observer(root: &Area, panel: &Panel, bx: &AxisBox, observer: Vec3) -> DrawResult {
     let proj = &panel.proj;
-    let label = |s: String, at: (i32, i32), h: HPos| {
-        Text::new(s, at, font(13.0).pos(Pos::new(h, VPos::Center)))
-    };
     if bx.observer_inside {
         let (x, y) = proj.at(observer);
         root.draw(&Circle::new((x, y), 5, BLACK.filled()))?;
@@ -850,7 +847,11 @@ fn draw_observer(root: &Area, panel: &Panel, bx: &AxisBox, observer: Vec3) -> Dr
             [(x + 7, y - 9), (x + 11 + tw, y + 9)],
             WHITE.mix(0.75).filled(),
         ))?;
-        root.draw(&label("observer".into(), (x + 9, y), HPos::Left))?;
+        root.draw(&Text::new(
+            "observer",
+            (x + 9, y),
+            font(13.0).pos(Pos::new(HPos::Left, VPos::Center)),
+        ))?;
         return Ok(());
     }
     let Some((tail, tip)) = bx.observer_arrow else {
@@ -870,7 +871,7 @@ fn draw_observer(root: &Area, panel: &Panel, bx: &AxisBox, observer: Vec3) -> Dr
             if proj.nearness(observer) > 0.0 {
                 "towards you"
             } else {
-                "behind the scene"
+                "away from you, behind the glass"
             }
         );
         return root.draw(&Text::new(s, note_at, note_style));
