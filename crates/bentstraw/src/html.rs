@@ -387,6 +387,20 @@ mod tests {
     }
 
     #[test]
+    fn preset_views_are_the_figure_views() {
+        let observer = Vec3::new(0.1, -0.05, 0.3);
+        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        let data = embedded_data(&viewer_page(&scene, observer, &[], "v", "x"));
+        let views = data["views"].as_array().unwrap();
+        assert_eq!(views.len(), 4);
+        for ((v, _), page) in figure_views(observer).iter().zip(&views[1..]) {
+            assert!((page["az"].as_f64().unwrap() - v.azimuth.to_degrees()).abs() < 1e-9);
+            assert!((page["el"].as_f64().unwrap() - v.elevation.to_degrees()).abs() < 1e-9);
+        }
+        assert_eq!(views[1]["name"], "observer view");
+    }
+
+    #[test]
     fn far_observer_page_carries_the_arrow() {
         let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
         let page = viewer_page(&scene, Vec3::new(3.0, 1.0, 0.5), &[], "far", "x");

@@ -1053,6 +1053,25 @@ mod tests {
     }
 
     #[test]
+    fn observer_is_a_black_dot_where_each_view_projects_it() {
+        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+        let observer = Vec3::new(-0.07, 0.06, 0.17);
+        let png = render_cloud_figure(&scene, observer, &[], "observer").unwrap();
+        let img = decode(&png);
+        let bx = axis_box(&scene, observer, &[]);
+        assert!(bx.observer_inside);
+        for p in layout(&bx, &figure_views(observer)) {
+            let (x, y) = p.proj.pixel(observer);
+            let (x, y) = (x.round() as u32, y.round() as u32);
+            // The whole centre of the dot is black.
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (2, 2), (-2i32, -2i32)] {
+                let px = img.get_pixel((x as i32 + dx) as u32, (y as i32 + dy) as u32);
+                assert_eq!(px.0, [0, 0, 0], "no black dot at ({x}, {y})");
+            }
+        }
+    }
+
+    #[test]
     fn empty_glass_and_no_points_still_draw() {
         let scene = Scene::with_defaults(0.01, 0.0, 0.0).unwrap();
         let png = render_cloud_figure(&scene, Vec3::new(0.0, -0.2, 0.3), &[], "empty").unwrap();
