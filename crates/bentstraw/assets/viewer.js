@@ -539,6 +539,8 @@ function startViewer(data) {
   state.el = Math.max(-90, Math.min(90, state.el));
   state.zoom = Math.max(0.2, Math.min(60, state.zoom));
   resize();
+  // The first frame at once, not at the next animation frame: the page is complete when it has loaded.
+  draw();
   // #bench=N: draw N frames while turning, and report the mean time per frame (for checking speed).
   const frames = Number(asked.get("bench"));
   if (frames > 0) {

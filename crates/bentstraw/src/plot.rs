@@ -203,21 +203,31 @@ pub(crate) fn figure_views(observer: Vec3) -> [(ViewDirection, String); 3] {
         (
             o,
             format!(
-                "from the observer's direction (azimuth {:.0}°, elevation {:.0}°)",
-                degrees(o.azimuth),
-                o.elevation.to_degrees()
+                "from the observer's direction (azimuth {}°, elevation {}°)",
+                whole(degrees(o.azimuth)),
+                whole(o.elevation.to_degrees())
             ),
         ),
         (
             side,
             format!(
-                "from the side (azimuth {:.0}°, elevation {:.0}°)",
-                degrees(side.azimuth),
-                side.elevation.to_degrees()
+                "from the side (azimuth {}°, elevation {}°)",
+                whole(degrees(side.azimuth)),
+                whole(side.elevation.to_degrees())
             ),
         ),
         third,
     ]
+}
+
+/// A number rounded to a whole, never written "-0".
+fn whole(v: f64) -> String {
+    let r = v.round();
+    if r == 0.0 {
+        "0".to_string()
+    } else {
+        format!("{r:.0}")
+    }
 }
 
 /// An angle in degrees in (−180, 180].
@@ -1181,6 +1191,9 @@ mod tests {
             let to_observer = (observer - SCENE_CENTRE).normalize();
             assert!((views[0].0.toward_viewer() - to_observer).length() < 1e-12);
         }
+        // Level views say "elevation 0°", not "-0°".
+        let (_, caption) = &figure_views(Vec3::new(1.0, 0.0, SCENE_CENTRE.z - 1e-12))[0];
+        assert!(caption.contains("elevation 0°"), "{caption}");
     }
 
     #[test]
