@@ -313,7 +313,6 @@ function startViewer(data) {
     const centre = cam.px(O);
     ctx.lineWidth = dpr;
     for (let a = 0; a < 3; a++) {
-      const dir = [0, 0, 0]; dir[a] = 1;
       const ex = ax.right[a], ey = -ax.up[a];
       const onScreen = Math.hypot(ex, ey);
       if (onScreen < 0.3) continue;
