@@ -850,7 +850,16 @@ fn draw_observer(root: &Area, panel: &Panel, bx: &AxisBox, observer: Vec3) -> Dr
     let proj = &panel.proj;
     if bx.observer_inside {
         let (x, y) = proj.at(observer);
-        root.draw(&Circle::new((x, y), 5, BLACK.filled()))?;
+        // Seen from the observer's own direction the marker sits on the image: a ring hides less.
+        let head_on = proj
+            .toward
+            .dot((observer - SCENE_CENTRE).normalize_or_zero())
+            > 0.999;
+        if head_on {
+            root.draw(&Circle::new((x, y), 5, BLACK.stroke_width(2)))?;
+        } else {
+            root.draw(&Circle::new((x, y), 5, BLACK.filled()))?;
+        }
         // A pale backing keeps the label readable over the points.
         let tw = text_width("observer", 13.0);
         root.draw(&Rectangle::new(
@@ -1072,12 +1081,23 @@ mod tests {
         assert!(bx.observer_inside);
         for p in layout(&bx, &figure_views(observer)) {
             let (x, y) = p.proj.pixel(observer);
-            let (x, y) = (x.round() as u32, y.round() as u32);
-            // The whole centre of the dot is black.
-            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (2, 2), (-2i32, -2i32)] {
-                let px = img.get_pixel((x as i32 + dx) as u32, (y as i32 + dy) as u32);
-                assert_eq!(px.0, [0, 0, 0], "no black dot at ({x}, {y})");
-            }
+            let (x, y) = (x.round() as i32, y.round() as i32);
+            // A dot, or a ring in the view from the observer's own direction: either way black
+            // pixels all round within 6 px, left and right, above and below.
+            let black = |dx: std::ops::RangeInclusive<i32>, dy: std::ops::RangeInclusive<i32>| {
+                dx.clone().any(|i| {
+                    dy.clone()
+                        .any(|j| img.get_pixel((x + i) as u32, (y + j) as u32).0 == [0, 0, 0])
+                })
+            };
+            assert!(
+                black(-6..=-3, -1..=1) && black(3..=6, -1..=1),
+                "no marker at ({x}, {y})"
+            );
+            assert!(
+                black(-1..=1, -6..=-3) && black(-1..=1, 3..=6),
+                "no marker at ({x}, {y})"
+            );
         }
     }
 
