@@ -373,8 +373,17 @@ function startViewer(data) {
       const p = cam.px(data.observer);
       ctx.beginPath();
       ctx.arc(p[0], p[1], 5 * dpr, 0, 2 * Math.PI);
-      ctx.fillStyle = "#000";
-      ctx.fill();
+      // Seen from its own direction the marker sits on the image: a ring hides less.
+      const d = [0, 1, 2].map((a) => data.observer[a] - data.sceneCentre[a]);
+      const t = cam.ax.toward;
+      if (d[0] * t[0] + d[1] * t[1] + d[2] * t[2] > 0.999 * Math.hypot(d[0], d[1], d[2])) {
+        ctx.strokeStyle = "#000";
+        ctx.lineWidth = 2 * dpr;
+        ctx.stroke();
+      } else {
+        ctx.fillStyle = "#000";
+        ctx.fill();
+      }
       const w = ctx.measureText("observer").width;
       ctx.fillStyle = "rgba(255,255,255,0.75)";
       ctx.fillRect(p[0] + 7 * dpr, p[1] - 9 * dpr, w + 4 * dpr, 18 * dpr);

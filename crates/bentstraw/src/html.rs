@@ -8,7 +8,8 @@ use std::path::Path;
 
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{
-    Scene, GLASS_RADIUS, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES, STRAW_HEIGHT, STRAW_RADIUS,
+    Scene, GLASS_RADIUS, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES, STRAW_HEIGHT,
+    STRAW_RADIUS,
 };
 use bentstraw_optics::Vec3;
 use serde_json::json;
@@ -192,6 +193,7 @@ fn viewer_data(
         "xyz": base64(&xyz),
         "color": base64(&colors),
         "observer": v3(observer),
+        "sceneCentre": v3(SCENE_CENTRE),
         "observerInside": bx.observer_inside,
         "arrow": bx.observer_arrow.map(|(a, b)| [v3(a), v3(b)]),
         "water": {
