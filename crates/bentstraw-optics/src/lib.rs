@@ -15,6 +15,7 @@ pub mod interface;
 pub mod picture;
 pub mod sampling;
 pub mod scene;
+pub mod shading;
 pub mod trace;
 
 pub use glam::DVec3 as Vec3;
