@@ -542,3 +542,131 @@ pub fn splat_radius(camera: &Camera, points: &[ImagePoint]) -> f64 {
     nearest.sort_by(f64::total_cmp);
     (0.6 * nearest[nearest.len() / 2]).clamp(0.8, 4.0)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::picture::course_picture;
+    use crate::scene::{REFERENCES, SCENE_CENTRE, WATER_INDEX};
+
+    fn options(mode: ShadingMode, samples: u32) -> ShadingOptions {
+        ShadingOptions {
+            mode,
+            backdrop: Backdrop::Checker,
+            samples,
+            outline: false,
+        }
+    }
+
+    /// Whether byte colour `c` is a (shaded) multiple of section `code`'s colour.
+    fn has_section_hue(c: [u8; 3], code: u8) -> bool {
+        let [r, g, b] = c;
+        match code {
+            1 => r > 100 && g == 0 && b == 0,
+            2 => r > g && (b as u32) * 2 < g as u32 && r > 100,
+            3 => r > 100 && g == 0 && r.abs_diff(b) <= 1,
+            4 => r == 0 && g > 100 && b == 0,
+            5 => r == 0 && g == 0 && b > 100,
+            _ => false,
+        }
+    }
+
+    #[test]
+    fn straw_pixels_show_their_section_colour_and_others_do_not() {
+        let (w, h) = (80, 60);
+        for r in REFERENCES {
+            let scene = r.scene(WATER_INDEX);
+            let cam = Camera::new(r.observer, SCENE_CENTRE, w, h, 1.6);
+            let codes = course_picture(&scene, &cam);
+            for mode in [
+                ShadingMode::Course,
+                ShadingMode::Fresnel { prune_below: 1e-4 },
+            ] {
+                let pic = shaded_picture(&scene, &cam, &options(mode, 1));
+                assert_eq!(pic.pixels.len(), (w * h * 3) as usize);
+                let mut straw = 0;
+                for i in 0..h {
+                    for j in 0..w {
+                        let code = codes[(i * w + j) as usize];
+                        let c = pic.pixel(i, j);
+                        if code != 0 && mode == ShadingMode::Course {
+                            straw += 1;
+                            assert!(has_section_hue(c, code), "{c:?} for code {code}");
+                        }
+                        if code == 0 {
+                            // The surroundings are light and greyish, never a pure section hue.
+                            assert!((1..=5).all(|k| !has_section_hue(c, k)), "{c:?}");
+                        }
+                    }
+                }
+                assert!(mode != ShadingMode::Course || straw > 20);
+            }
+        }
+    }
+
+    #[test]
+    fn antialiasing_averages_and_is_deterministic() {
+        let r = REFERENCES[1];
+        let scene = r.scene(WATER_INDEX);
+        let cam = Camera::new(r.observer, SCENE_CENTRE, 60, 45, 1.6);
+        let opts = options(ShadingMode::Fresnel { prune_below: 1e-4 }, 3);
+        let a = shaded_picture(&scene, &cam, &opts);
+        let b = shaded_picture(&scene, &cam, &opts);
+        assert_eq!(a, b);
+        // Edges get in-between colours: more distinct colours than with one sample per pixel.
+        let distinct = |p: &RgbPicture| {
+            let mut v: Vec<[u8; 3]> = p.pixels.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+            v.sort();
+            v.dedup();
+            v.len()
+        };
+        let one = shaded_picture(&scene, &cam, &options(opts.mode, 1));
+        assert!(distinct(&a) > distinct(&one));
+    }
+
+    #[test]
+    fn checkerboard_wall_and_floor_are_where_they_were_put() {
+        let s = Surroundings::new(Backdrop::Checker, Vec3::new(0.1, 0.0, 0.1));
+        assert!(s.has_floor());
+        assert!((s.wall_normal() - Vec3::X).length() < 1e-12);
+        // Horizontal rays along −x meet the wall at x = −WALL_DISTANCE; squares alternate every
+        // CHECKER_SIDE in height (light at z in [0.04, 0.06), dark in [0.06, 0.08)).
+        let at = |z: f64| s.radiance(&Ray::new(Vec3::new(0.0, 0.001, z), Vec3::NEG_X));
+        let (light, dark) = (at(0.05), at(0.07));
+        assert!(light[0] > dark[0] + 0.1);
+        assert_eq!(at(0.05), at(0.045));
+        // Above the wall's top: sky, neither square.
+        let sky = at(WALL_TOP + 0.01);
+        assert!(sky != light && sky != dark);
+        // Straight down from above: the floor, whose squares alternate in x.
+        let down = |x: f64| s.radiance(&Ray::new(Vec3::new(x, 0.001, 0.3), Vec3::NEG_Z));
+        assert!((down(0.05)[0] - down(0.07)[0]).abs() > 0.1);
+        // Seen from below z = 0 there is no floor (a glass table).
+        assert!(!Surroundings::new(Backdrop::Checker, Vec3::new(0.1, 0.0, -0.1)).has_floor());
+        // The plain backdrop has no squares.
+        let p = Surroundings::new(Backdrop::Plain, Vec3::new(0.1, 0.0, 0.1));
+        let flat = |z: f64| p.radiance(&Ray::new(Vec3::new(0.0, 0.001, z), Vec3::NEG_X));
+        assert_eq!(flat(0.05), flat(0.07));
+    }
+
+    #[test]
+    fn srgb_round_trip() {
+        for k in 0..=255 {
+            let c = k as f64 / 255.0;
+            assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn cloud_points_land_where_the_camera_sees_them() {
+        let r = REFERENCES[1];
+        let scene = r.scene(WATER_INDEX);
+        let cam = Camera::new(r.observer, SCENE_CENTRE, 80, 60, 1.6);
+        let p = scene
+            .image_point(r.observer, cam.pixel_ray(20, 45).direction)
+            .unwrap();
+        let pic = cloud_picture(&cam, &[p], 1.0);
+        assert!(has_section_hue(pic.pixel(20, 45), p.color));
+        assert_eq!(pic.pixel(5, 5), [247, 247, 247]);
+    }
+}
