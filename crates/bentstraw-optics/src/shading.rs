@@ -301,40 +301,67 @@ fn jitter(key: u64) -> f64 {
     (z >> 11) as f64 / (1u64 << 53) as f64
 }
 
+/// Largest difference (sRGB, 0..1, any channel) between a pixel's centre and a neighbour's below
+/// which the pixel is taken as smooth and not supersampled.
+pub const SMOOTH_CONTRAST: f64 = 2.0 / 255.0;
+
 /// The picture of `scene` through `camera` for people (see the module's documentation).
 ///
-/// Each pixel averages `samples²` rays, one per cell of a `samples × samples` grid over the pixel,
-/// jittered inside its cell (deterministically); with `samples = 1` the pixel centre.
+/// Every pixel centre is traced first. Where a pixel differs from a neighbour by more than
+/// [`SMOOTH_CONTRAST`] (an edge), it is replaced by the average of `samples²` rays, one per cell of
+/// a `samples × samples` grid over the pixel, jittered inside its cell (deterministically). Smooth
+/// pixels keep their centre: the picture is then the same as a full supersampling to within a
+/// few grey levels, several times faster.
 pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) -> RgbPicture {
     let (w, h) = (camera.width as usize, camera.height as usize);
     let surroundings = Surroundings::new(options.backdrop, camera.eye);
     let light = light_direction(&surroundings);
-    let n = options.samples.max(1);
-    let mut display = vec![[0.0f64; 3]; w * h];
-    display.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
+    let n = options.samples.max(1) as usize;
+    let trace = |r: f64, c: f64| {
+        let ray = Ray::new(camera.eye, camera.direction_at(r, c));
+        sample(scene, &surroundings, light, options.mode, ray)
+    };
+    let mut centre = vec![[0.0f64; 3]; w * h];
+    centre.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         for (j, px) in row.iter_mut().enumerate() {
-            let mut acc = [0.0; 3];
-            for a in 0..n {
-                for b in 0..n {
-                    let (du, dv) = if n == 1 {
-                        (0.5, 0.5)
-                    } else {
-                        let key = (((i * w + j) as u64) << 16) ^ ((a * n + b) as u64) << 1;
-                        (jitter(key), jitter(key | 1))
-                    };
-                    let r = i as f64 + (a as f64 + du) / n as f64;
-                    let c = j as f64 + (b as f64 + dv) / n as f64;
-                    let ray = Ray::new(camera.eye, camera.direction_at(r, c));
-                    let s = sample(scene, &surroundings, light, options.mode, ray);
-                    for k in 0..3 {
-                        acc[k] += s[k];
-                    }
-                }
-            }
-            let inv = 1.0 / (n * n) as f64;
-            *px = acc.map(|c| linear_to_srgb(c * inv));
+            *px = trace(i as f64 + 0.5, j as f64 + 0.5).map(linear_to_srgb);
         }
     });
+    let mut display = centre.clone();
+    if n > 1 {
+        let edge = |i: usize, j: usize| {
+            let c = centre[i * w + j];
+            let (i0, i1) = (i.saturating_sub(1), (i + 1).min(h - 1));
+            let (j0, j1) = (j.saturating_sub(1), (j + 1).min(w - 1));
+            (i0..=i1).any(|a| {
+                (j0..=j1).any(|b| {
+                    let d = centre[a * w + b];
+                    (0..3).any(|k| (d[k] - c[k]).abs() > SMOOTH_CONTRAST)
+                })
+            })
+        };
+        display.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
+            for (j, px) in row.iter_mut().enumerate() {
+                if !edge(i, j) {
+                    continue;
+                }
+                let mut acc = [0.0; 3];
+                for a in 0..n {
+                    for b in 0..n {
+                        let key = (((i * w + j) as u64) << 16) ^ (((a * n + b) as u64) << 1);
+                        let r = i as f64 + (a as f64 + jitter(key)) / n as f64;
+                        let c = j as f64 + (b as f64 + jitter(key | 1)) / n as f64;
+                        let s = trace(r, c);
+                        for k in 0..3 {
+                            acc[k] += s[k];
+                        }
+                    }
+                }
+                let inv = 1.0 / (n * n) as f64;
+                *px = acc.map(|c| linear_to_srgb(c * inv));
+            }
+        });
+    }
     if options.outline {
         draw_glass_outline(&mut display, camera);
     }
