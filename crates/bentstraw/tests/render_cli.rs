@@ -131,6 +131,7 @@ fn bad_input_is_refused_with_exit_code_2_and_no_file() {
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (vec!["--size", "0x10"], "between 1 and 16384"),
         (vec!["--size", "10x-3"], "between 1 and 16384"),
+        (vec!["--size", "10000x5000"], "too large"),
         (vec!["--fov", "0"], "fov"),
         (vec!["--fov", "180"], "fov"),
         (vec!["--fov", "-5"], "fov"),

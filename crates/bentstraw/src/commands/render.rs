@@ -19,6 +19,8 @@ use crate::pictures::png_bytes;
 pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
 /// Most samples per pixel side accepted by `--samples`.
 pub const MAX_SAMPLES: u32 = 16;
+/// Most pixels in a picture (the renderer keeps a few dozen bytes per pixel in memory).
+pub const MAX_PIXELS: u64 = 25_000_000;
 
 /// The validated camera of `args` at `observer`: target (default the scene's centre) finite and
 /// away from the observer, field of view in (0°, 180°) (default: framing the glass and straw).
@@ -41,6 +43,11 @@ pub fn camera_from_args(args: &CameraArgs, observer: Vec3) -> CliResult<Camera> 
         ));
     }
     let (width, height) = args.size.unwrap_or(DEFAULT_SIZE);
+    if width as u64 * height as u64 > MAX_PIXELS {
+        return fail(format!(
+            "--size {width}x{height} is too large: a picture may have at most {MAX_PIXELS} pixels (e.g. 6000x4000)"
+        ));
+    }
     let fov = match args.fov {
         Some(deg) => {
             if !deg.is_finite() || deg <= 0.0 || deg >= 180.0 {
