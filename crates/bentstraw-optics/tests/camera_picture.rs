@@ -1,6 +1,6 @@
 //! The observer's camera (SPEC §6) and the per-pixel pictures against the point cloud.
 
-use bentstraw_optics::camera::{framing_fov, Camera, FRAMING_MARGIN};
+use bentstraw_optics::camera::{framing_fov, framing_target, Camera, FRAMING_MARGIN};
 use bentstraw_optics::picture::{course_picture, fresnel_picture};
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::{
@@ -302,5 +302,45 @@ fn fresnel_picture_equals_course_picture_without_refraction() {
                 assert!((wk[k] - want).abs() < 1e-12, "{wk:?} vs code {code}");
             }
         }
+    }
+}
+
+/// Extent of the enclosing cylinder's picture as `(row_min, row_max, col_min, col_max)`.
+fn picture_extent(cam: &Camera) -> (f64, f64, f64, f64) {
+    let mut e = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for k in 0..2000 {
+        let a = k as f64 * std::f64::consts::TAU / 2000.0;
+        for s in 0..=10 {
+            let z = STRAW_HEIGHT * s as f64 / 10.0;
+            let p = Vec3::new(GLASS_RADIUS * a.cos(), GLASS_RADIUS * a.sin(), z);
+            let (row, col) = cam.project(p).unwrap();
+            e = (e.0.min(row), e.1.max(row), e.2.min(col), e.3.max(col));
+        }
+    }
+    e
+}
+
+#[test]
+fn framing_target_centres_the_glass_and_narrows_the_view() {
+    for r in REFERENCES {
+        let target = framing_target(r.observer);
+        let (w, h) = (400u32, 300u32);
+        let fov = framing_fov(r.observer, target, w as f64 / h as f64);
+        let cam = Camera::new(r.observer, target, w, h, fov);
+        let (r0, r1, c0, c1) = picture_extent(&cam);
+        // Centred: equal room on both sides, in both directions.
+        assert!(
+            (r0 - (h as f64 - r1)).abs() < 1.0,
+            "reference {}: rows {r0}..{r1}, target {target}",
+            r.number
+        );
+        assert!((c0 - (w as f64 - c1)).abs() < 1.0, "cols {c0}..{c1}");
+        // Never wider than aiming at the box's centre.
+        assert!(fov <= framing_fov(r.observer, SCENE_CENTRE, w as f64 / h as f64) + 1e-12);
     }
 }

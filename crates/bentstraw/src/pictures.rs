@@ -3,9 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use bentstraw_optics::camera::{framing_fov, Camera};
+use bentstraw_optics::camera::{framing_fov, framing_target, Camera};
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::{Scene, SCENE_CENTRE};
+use bentstraw_optics::scene::Scene;
 use bentstraw_optics::shading::{
     cloud_picture, shaded_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
 };
@@ -35,7 +35,7 @@ pub fn png_bytes(picture: &RgbPicture) -> CliResult<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Writes `<dir>/<stem>_observer.png` (what `observer` sees, Fresnel mode, default camera) and
+/// Writes `<dir>/<stem>_observer.png` (what `observer` sees, Fresnel mode, camera framing the glass) and
 /// `<dir>/<stem>_cloud.png` (the image `points`, seen from `observer` through the same camera);
 /// returns their paths in that order.
 #[allow(dead_code)] // called by `table` (wired separately)
@@ -47,8 +47,11 @@ pub fn write_observer_pictures(
     points: &[ImagePoint],
 ) -> CliResult<(PathBuf, PathBuf)> {
     let (w, h) = REPORT_SIZE;
-    let fov = framing_fov(observer, SCENE_CENTRE, w as f64 / h as f64);
-    let camera = Camera::new(observer, SCENE_CENTRE, w, h, fov);
+    // Centred on the glass (not on its box's centre, which close observers see off-centre), so
+    // that the straw is as large as the frame allows; both pictures share this camera.
+    let target = framing_target(observer);
+    let fov = framing_fov(observer, target, w as f64 / h as f64);
+    let camera = Camera::new(observer, target, w, h, fov);
     let view = dir.join(format!("{stem}_observer.png"));
     let cloud = dir.join(format!("{stem}_cloud.png"));
     files::check_writable(&view)?;
