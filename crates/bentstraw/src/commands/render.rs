@@ -110,7 +110,11 @@ pub fn run(args: &RenderArgs) -> CliResult {
     let png = png_bytes(&picture)?;
     files::write_bytes(&args.output, &png)?;
     if let Some(raw) = &args.raw {
-        write_raw(raw, &scene, &camera, args.mode, args.prune)?;
+        if let Err(e) = write_raw(raw, &scene, &camera, args.mode, args.prune) {
+            // All or nothing: no picture without the raw file that was asked for.
+            let _ = std::fs::remove_file(&args.output);
+            return Err(e);
+        }
     }
     let fov_deg = 2.0 * camera.tan_half_fov.atan().to_degrees();
     eprintln!(
