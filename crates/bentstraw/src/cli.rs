@@ -166,7 +166,7 @@ pub struct RenderArgs {
         allow_hyphen_values = true
     )]
     pub prune: f64,
-    /// Samples per pixel side for anti-aliasing (N×N per pixel)
+    /// Samples per pixel side for anti-aliasing (N×N rays in pixels at an edge), 1..=16
     #[arg(long, value_name = "N", default_value_t = 3)]
     pub samples: u32,
     /// The picture (PNG)
