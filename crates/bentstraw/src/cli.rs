@@ -173,10 +173,15 @@ pub struct RenderArgs {
     /// Backdrop behind the glass
     #[arg(long, value_enum, default_value_t = BackdropArg::Checker)]
     pub backdrop: BackdropArg,
-    /// Fresnel branches lighter than this are abandoned
-    #[arg(long, value_name = "W", default_value_t = 1e-4)]
+    /// Fresnel branches lighter than this are abandoned, 0 <= W < 1
+    #[arg(
+        long,
+        value_name = "W",
+        default_value_t = 1e-4,
+        allow_hyphen_values = true
+    )]
     pub prune: f64,
-    /// Samples per pixel side for anti-aliasing (N×N per pixel)
+    /// Samples per pixel side for anti-aliasing (N×N rays in pixels at an edge), 1..=16
     #[arg(long, value_name = "N", default_value_t = 3)]
     pub samples: u32,
     /// The picture (PNG)
