@@ -7,6 +7,7 @@ mod commands;
 mod error;
 mod files;
 mod html;
+mod model_plots;
 mod pictures;
 mod plot;
 mod progress;
