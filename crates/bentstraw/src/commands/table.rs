@@ -7,6 +7,7 @@ use std::fs;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX};
 use bentstraw_optics::Vec3;
@@ -16,9 +17,10 @@ use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliError, CliResult};
 use crate::files::check_writable;
+use crate::model_plots::{write_gap_plot, write_model_comparison, GapSeries, ModelCloud};
 use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
 use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
-use crate::{html, plot, progress};
+use crate::{html, pictures, plot, progress};
 
 /// Largest distance (m) from the straw's surface an `n_water = 1` image point may have.
 pub const ON_STRAW_TOLERANCE: f64 = 1e-9;
@@ -175,6 +177,26 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         Link::new(&csv, "points (CSV)", data_error.map(|e| e.0)),
     ];
 
+    let mut timings = vec![
+        Timing::new("tracing", traced),
+        Timing::new("writing files", written),
+    ];
+    let mut sections = vec![Section {
+        title: "Virtual image points (course convention, P = O + L·u0)".into(),
+        figures: vec![figure],
+        notes: vec![distance_note(scene, &cloud)],
+    }];
+    // The reference simulations proper (not the index checks) also get the observer's picture and
+    // the apparent-position models.
+    if scene.n_water == WATER_INDEX {
+        let t = Instant::now();
+        sections.push(observer_section(job, out, &cloud));
+        timings.push(Timing::new("observer's picture", t.elapsed()));
+        let t = Instant::now();
+        sections.push(models_section(job, out, &cloud));
+        timings.push(Timing::new("eye and stereo models", t.elapsed()));
+    }
+
     SimulationEntry {
         id: job.stem.clone(),
         reference: job.reference.number,
@@ -185,16 +207,160 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         points: cloud.points.len(),
         counts: cloud.counts_per_color(),
         hit_ratio: cloud.hit_ratio(),
-        timings: vec![
-            Timing::new("tracing", traced),
-            Timing::new("writing files", written),
-        ],
+        timings,
         check: check(scene, &cloud),
-        sections: vec![Section {
-            title: "Virtual image points (course convention, P = O + L·u0)".into(),
-            figures: vec![figure],
-            notes: vec![distance_note(scene, &cloud)],
-        }],
+        sections,
+    }
+}
+
+/// What the observer's eye sees (SPEC §6, fresnel mode) beside the image points through the same camera.
+fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
+    let (scene, observer) = (&job.scene, job.reference.observer);
+    let seen = format!("{}_observer.png", job.stem);
+    let splat = format!("{}_cloud.png", job.stem);
+    let error = pictures::write_observer_pictures(out, &job.stem, scene, observer, &cloud.points)
+        .err()
+        .map(|e| e.0);
+    let mut picture = Figure::image(
+        &seen,
+        "What the observer sees: a pinhole camera at the observer, Fresnel reflection and \
+         refraction at every water face, a checkerboard wall and floor behind the glass.",
+    );
+    picture.error = error.clone();
+    let mut points = Figure::image(
+        &splat,
+        "The course's image points seen through the same camera: each lies on the ray that \
+         shows it, so the two pictures agree on where each colour appears.",
+    );
+    points.error = error;
+    Section {
+        title: "What the observer sees (SPEC §6)".into(),
+        figures: vec![picture, points],
+        notes: vec![],
+    }
+}
+
+/// The course's, the eye's and the stereo image side by side, and how far apart they are.
+fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
+    let (scene, observer) = (&job.scene, job.reference.observer);
+    let eye = eye_model_points(scene, observer, &cloud.points);
+    let stereo = stereo_points(scene, observer, &cloud.points);
+    let mut figures = Vec::new();
+    let mut placed = Vec::new();
+    let mut links = Vec::new();
+    for model in [
+        ModelPoints::Course,
+        ModelPoints::Eye(&eye),
+        ModelPoints::Stereo(&stereo),
+    ] {
+        let set = PointSet {
+            scene,
+            observer,
+            min_points: cloud.points.len(),
+            model,
+            cloud,
+        };
+        let points = set.placed_points();
+        if !matches!(model, ModelPoints::Course) {
+            let csv = format!("{}_{}.csv", job.stem, model.name());
+            let page = format!("{}_{}.html", job.stem, model.name());
+            let title = format!(
+                "{} ({} model)",
+                simulation_title(scene, observer),
+                model.name()
+            );
+            let data_error = write_points(&out.join(&csv), PointFormat::Csv, &set).err();
+            let page_error =
+                html::write_cloud_viewer(&out.join(&page), scene, observer, &points, &title).err();
+            links.push(Link::new(
+                &page,
+                &format!("{} model, 3D view", model.name()),
+                page_error.map(|e| e.0),
+            ));
+            links.push(Link::new(
+                &csv,
+                &format!("{} model, points (CSV)", model.name()),
+                data_error.map(|e| e.0),
+            ));
+        }
+        placed.push(points);
+    }
+    let names = [
+        "course (SPEC §4)",
+        "eye (small pupil)",
+        "stereo (two eyes, 65 mm)",
+    ];
+    let clouds: Vec<ModelCloud> = names
+        .iter()
+        .zip(&placed)
+        .map(|(name, points)| ModelCloud { name, points })
+        .collect();
+    let compare = format!("{}_models.png", job.stem);
+    let title = format!("{}: where the straw appears", simulation_heading(job));
+    let mut figure = Figure::image(
+        &compare,
+        "The same straw points placed by the three models, seen from the same side and scale.",
+    );
+    figure.error = write_model_comparison(&out.join(&compare), scene, observer, &clouds, &title)
+        .err()
+        .map(|e| e.0);
+    figure.links = links;
+    figures.push(figure);
+
+    let eye_gaps: Vec<(f64, f64, u8)> = eye
+        .iter()
+        .filter_map(|p| Some((p.image.straw_point.z, p.gap_to_course()?, p.image.color)))
+        .collect();
+    let stereo_gaps: Vec<(f64, f64, u8)> = stereo
+        .points
+        .iter()
+        .filter_map(|p| Some((p.image.straw_point.z, p.gap_to_course()?, p.image.color)))
+        .collect();
+    let gap = format!("{}_gap.png", job.stem);
+    let series = [
+        GapSeries {
+            name: "eye model",
+            samples: &eye_gaps,
+        },
+        GapSeries {
+            name: "stereo model",
+            samples: &stereo_gaps,
+        },
+    ];
+    let mut figure = Figure::image(
+        &gap,
+        "Distance between the course's image point and the eye model's (and the stereo model's) \
+         point of the same straw point, against the height of that straw point.",
+    );
+    figure.error = write_gap_plot(&out.join(&gap), &series, &title)
+        .err()
+        .map(|e| e.0);
+    figures.push(figure);
+
+    let unplaced = eye.iter().filter(|p| p.position.is_none()).count();
+    let max_gap = eye_gaps.iter().map(|g| g.1).fold(0.0, f64::max);
+    let mut sorted: Vec<f64> = eye_gaps.iter().map(|g| g.1).collect();
+    sorted.sort_by(f64::total_cmp);
+    let median = sorted.get(sorted.len() / 2).copied().unwrap_or(0.0);
+    Section {
+        title: "Where the straw really appears: course, eye and stereo models".into(),
+        figures,
+        notes: vec![
+            format!(
+                "Eye model: {} of {} points placed at (s_h + s_v)/2 along their ray; {unplaced} without a \
+                 position (a focus unresolved, at infinity or behind the eye). Gap to the course's point: \
+                 median {:.2} mm, largest {:.2} mm.",
+                eye.len() - unplaced,
+                eye.len(),
+                1e3 * median,
+                1e3 * max_gap
+            ),
+            format!(
+                "Stereo model: {} points seen by both eyes and triangulated, {} seen by one eye only.",
+                stereo.points.len(),
+                stereo.skipped
+            ),
+        ],
     }
 }
 
