@@ -117,7 +117,8 @@ fn comparison_layout(bx: &AxisBox, observer: Vec3, models: &[ModelCloud]) -> Vec
     } else {
         PAD_TOP_NOTE
     };
-    let fit_w = panel_w as f64 - 2.0 * PAD_SIDE;
+    // Wider side margins than the classic figure's: an oblique box puts the z labels farther out.
+    let fit_w = panel_w as f64 - 2.0 * (PAD_SIDE + 20.0);
     let fit_h = (ROW_HEIGHT - CAPTION_BAND) as f64 - pad_top - PAD_BOTTOM;
     comparison_views(observer)
         .iter()
@@ -360,6 +361,17 @@ fn gap_axis_top(series: &[GapSeries]) -> f64 {
     (1.08 * largest).max(0.1)
 }
 
+/// Decimals of the gap axis's labels (mm): none above 10 mm, else enough for about 5 ticks.
+fn gap_decimals(top_mm: f64) -> usize {
+    if top_mm >= 10.0 {
+        0
+    } else if top_mm >= 1.0 {
+        1
+    } else {
+        2
+    }
+}
+
 /// Plots the gap between the course's image points and each series' model against the height of the
 /// straw point, into the PNG at `path`.
 pub fn write_gap_plot(path: &Path, series: &[GapSeries], title: &str) -> CliResult {
@@ -406,6 +418,7 @@ fn render_gap_plot(series: &[GapSeries], title: &str) -> Result<Vec<u8>, String>
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(200, 200, 200))
             .x_label_formatter(&|v| format!("{v:.2}"))
+            .y_label_formatter(&|v| format!("{v:.*}", gap_decimals(top)))
             .draw()
             .map_err(e)?;
         // In reverse, so that the first series (the eye model) is drawn on top.
@@ -420,32 +433,36 @@ fn render_gap_plot(series: &[GapSeries], title: &str) -> Result<Vec<u8>, String>
                 .map(|&(z, g, _)| (z, g * 1e3))
                 .filter(|&p| seen.insert(chart.backend_coord(&p)))
                 .collect();
+            let style = color.mix(if k == 0 { 0.8 } else { 0.5 });
+            if k % 2 == 0 {
+                chart.draw_series(kept.iter().map(|&p| Circle::new(p, 1, style.filled())))
+            } else {
+                chart.draw_series(
+                    kept.iter()
+                        .map(|&p| Cross::new(p, 2, style.stroke_width(1))),
+                )
+            }
+            .map_err(e)?;
+        }
+        // The legend's entries, in the series' order (plotters lists them in drawing order).
+        for (k, s) in series.iter().enumerate() {
+            let color = rgb(SERIES_RGB[k % SERIES_RGB.len()]);
             let label = if s.samples.is_empty() {
                 format!("{}: no points", s.name)
             } else {
                 format!("{} ({} points)", s.name, s.samples.len())
             };
-            let style = color.mix(if k == 0 { 0.8 } else { 0.5 });
-            let marker = k % 2;
-            let anno = if marker == 0 {
-                chart.draw_series(
-                    kept.iter()
-                        .map(|&p| Circle::new(p, 1, style.filled()).into_dyn()),
-                )
-            } else {
-                chart.draw_series(
-                    kept.iter()
-                        .map(|&p| Cross::new(p, 2, style.stroke_width(1)).into_dyn()),
-                )
-            }
-            .map_err(e)?;
-            anno.label(label).legend(move |(x, y)| {
-                if marker == 0 {
-                    Circle::new((x + 8, y), 4, color.filled()).into_dyn()
-                } else {
-                    Cross::new((x + 8, y), 4, color.stroke_width(2)).into_dyn()
-                }
-            });
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), u32>>())
+                .map_err(e)?
+                .label(label)
+                .legend(move |(x, y)| {
+                    if k % 2 == 0 {
+                        Circle::new((x + 8, y), 4, color.filled()).into_dyn()
+                    } else {
+                        Cross::new((x + 8, y), 4, color.stroke_width(2)).into_dyn()
+                    }
+                });
         }
         if series.is_empty() || series.iter().all(|s| s.samples.is_empty()) {
             let (px, py) = chart.backend_coord(&(STRAW_HEIGHT / 2.0, top / 2.0));
@@ -647,6 +664,28 @@ mod tests {
             points: &together,
         }];
         assert_eq!(shared_box(&scene, observer, &one).0, bx);
+    }
+
+    #[test]
+    fn top_row_looks_level_across_the_observers_line_of_sight() {
+        for observer in [
+            Vec3::new(0.0, 0.1, 0.1),
+            Vec3::new(0.1, 0.0, -0.1),
+            Vec3::new(0.8, 0.3, 0.25),
+        ] {
+            let [(side, ..), (above, ..)] = comparison_views(observer);
+            let t = side.toward_viewer();
+            let horizontal = Vec3::new(
+                observer.x - SCENE_CENTRE.x,
+                observer.y - SCENE_CENTRE.y,
+                0.0,
+            );
+            // Perpendicular to the observer's horizontal direction, and level: depth along the
+            // lines of sight runs across the panel.
+            assert!(t.dot(horizontal.normalize()).abs() < 1e-12, "{observer}");
+            assert!(t.z.abs() < 1e-12);
+            assert!((above.toward_viewer() - Vec3::Z).length() < 1e-12);
+        }
     }
 
     #[test]
