@@ -704,8 +704,8 @@ mod tests {
         }
     }
 
-    /// The plotting area of a gap plot, found in the picture: the black axis lines at its left and
-    /// bottom, the section bands' top.
+    /// The plotting area of a gap plot, found in the picture: the black axis lines along its left
+    /// and bottom edges, which span it whole.
     fn plot_area(img: &image::RgbImage) -> (u32, u32, u32, u32) {
         let (w, h) = img.dimensions();
         let black = |x: u32, y: u32| img.get_pixel(x, y).0.iter().all(|&v| v < 40);
@@ -715,10 +715,8 @@ mod tests {
         let bottom = (h / 2..h)
             .max_by_key(|&y| (0..w).filter(|&x| black(x, y)).count())
             .unwrap();
-        let white = |x: u32, y: u32| img.get_pixel(x, y).0 == [255, 255, 255];
-        let x_band = left + 5;
-        let top = (0..bottom).rev().find(|&y| white(x_band, y)).unwrap() + 1;
-        let right = (left..w).find(|&x| white(x, bottom - 5)).unwrap() - 1;
+        let top = (0..bottom).find(|&y| black(left, y)).unwrap();
+        let right = (left..w).rev().find(|&x| black(x, bottom)).unwrap();
         (left, right, top, bottom)
     }
 
