@@ -42,9 +42,9 @@ pub(crate) const CIRCLE_SEGMENTS: usize = 72;
 pub(crate) const FAR_OBSERVER_FACTOR: f64 = 2.5;
 
 /// Colour of the water's wireframe.
-const WATER_RGB: (u8, u8, u8) = (40, 120, 200);
+pub(crate) const WATER_RGB: (u8, u8, u8) = (40, 120, 200);
 /// Colour of the straw's true outline.
-const STRAW_OUTLINE_RGB: (u8, u8, u8) = (120, 120, 120);
+pub(crate) const STRAW_OUTLINE_RGB: (u8, u8, u8) = (120, 120, 120);
 
 /// The axis ranges of a figure: one box holding the glass, the straw, every image point and (when not
 /// too far) the observer. Drawn with one scale for all axes, so the ranges may differ in length.
@@ -366,7 +366,7 @@ pub(crate) fn water_segments(scene: &Scene) -> Vec<[Vec3; 2]> {
 }
 
 /// Loads the shipped font into plotters, once.
-fn register_font() {
+pub(crate) fn register_font() {
     FONT_ONCE.call_once(|| {
         // The font is compiled in and known good; a failure here is a build defect.
         plotters::style::register_font(FONT_FAMILY, FontStyle::Normal, FONT)
@@ -374,7 +374,8 @@ fn register_font() {
     });
 }
 
-fn rgb(c: (u8, u8, u8)) -> RGBColor {
+/// A plotters colour from 8-bit RGB.
+pub(crate) fn rgb(c: (u8, u8, u8)) -> RGBColor {
     RGBColor(c.0, c.1, c.2)
 }
 
@@ -389,12 +390,12 @@ pub(crate) fn section_rgb8(code: u8) -> [u8; 3] {
 }
 
 /// A number in its shortest exact form, for captions.
-fn num(v: f64) -> String {
+pub(crate) fn num(v: f64) -> String {
     format!("{v}")
 }
 
 /// A point as `(x, y, z)` in the shortest exact form.
-fn triple(p: Vec3) -> String {
+pub(crate) fn triple(p: Vec3) -> String {
     format!("({}, {}, {})", num(p.x), num(p.y), num(p.z))
 }
 
@@ -409,32 +410,43 @@ pub(crate) fn counts(points: &[ImagePoint]) -> [usize; SECTION_COUNT] {
     n
 }
 
-type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+/// A drawing area on a bitmap.
+pub(crate) type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
-fn draw_err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> CliError + '_ {
+/// Turns a drawing error into the message naming the file.
+pub(crate) fn draw_err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> CliError + '_ {
     move |e| CliError(format!("cannot draw {}: {e}", path.display()))
 }
 
 /// One panel: where it is and how it projects.
-struct Panel {
-    proj: Projection,
-    caption: String,
-    left: i32,
-    top: i32,
-    width: i32,
-    height: i32,
+pub(crate) struct Panel {
+    /// How the panel projects the scene.
+    pub proj: Projection,
+    /// The caption above the panel.
+    pub caption: String,
+    /// Left edge (px).
+    pub left: i32,
+    /// Top edge (px).
+    pub top: i32,
+    /// Width (px).
+    pub width: i32,
+    /// Height (px).
+    pub height: i32,
 }
 
-const TITLE_BAND: i32 = 58;
-const LEGEND_BAND: i32 = 40;
-const CAPTION_BAND: i32 = 24;
+/// Height of the band holding the title and subtitle (px).
+pub(crate) const TITLE_BAND: i32 = 58;
+/// Height of the band holding the legend (px).
+pub(crate) const LEGEND_BAND: i32 = 40;
+/// Height of a panel's caption (px).
+pub(crate) const CAPTION_BAND: i32 = 24;
 /// Room kept left and right of each panel's box for tick labels and axis names.
-const PAD_SIDE: f64 = 58.0;
+pub(crate) const PAD_SIDE: f64 = 58.0;
 /// Room kept below each panel's box for tick labels and axis names (labels never go on top).
-const PAD_BOTTOM: f64 = 50.0;
+pub(crate) const PAD_BOTTOM: f64 = 50.0;
 /// Room kept above each panel's box, under the caption; more when a note about a far observer goes there.
-const PAD_TOP: f64 = 14.0;
-const PAD_TOP_NOTE: f64 = 30.0;
+pub(crate) const PAD_TOP: f64 = 14.0;
+pub(crate) const PAD_TOP_NOTE: f64 = 30.0;
 
 /// The three panels side by side, each fitting the whole box.
 fn layout(bx: &AxisBox, views: &[(ViewDirection, String)]) -> Vec<Panel> {
@@ -522,18 +534,25 @@ fn render_cloud_figure(
         draw_legend(&root, points, bx.observer_inside).map_err(|e| e.to_string())?;
         root.present().map_err(|e| e.to_string())?;
     }
+    encode_png(&buf, w, h)
+}
+
+/// An RGB pixel buffer of `w` × `h` as PNG bytes.
+pub(crate) fn encode_png(buf: &[u8], w: u32, h: u32) -> Result<Vec<u8>, String> {
     let mut png = Vec::new();
     image::codecs::png::PngEncoder::new(&mut png)
-        .write_image(&buf, w, h, image::ExtendedColorType::Rgb8)
+        .write_image(buf, w, h, image::ExtendedColorType::Rgb8)
         .map_err(|e| e.to_string())?;
     Ok(png)
 }
 
-fn font(size: f64) -> TextStyle<'static> {
+/// The figures' font at `size` px, black.
+pub(crate) fn font(size: f64) -> TextStyle<'static> {
     (FONT_FAMILY, size).into_font().color(&BLACK)
 }
 
-type DrawResult =
+/// What drawing on a bitmap returns.
+pub(crate) type DrawResult =
     Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;
 
 fn draw_titles(root: &Area, scene: &Scene, observer: Vec3, n: usize, title: &str) -> DrawResult {
@@ -563,7 +582,7 @@ fn draw_titles(root: &Area, scene: &Scene, observer: Vec3, n: usize, title: &str
 }
 
 /// The panes of the box's three far faces, with grid lines at the ticks, and the panel's caption.
-fn draw_panes(root: &Area, panel: &Panel, bx: &AxisBox) -> DrawResult {
+pub(crate) fn draw_panes(root: &Area, panel: &Panel, bx: &AxisBox) -> DrawResult {
     root.draw(&Text::new(
         panel.caption.clone(),
         (
@@ -627,7 +646,7 @@ fn line(root: &Area, proj: &Projection, a: Vec3, b: Vec3, color: RGBColor) -> Dr
 }
 
 /// The water's wireframe segments on the near (`front`) or far side of the glass's axis.
-fn draw_water(root: &Area, proj: &Projection, scene: &Scene, front: bool) -> DrawResult {
+pub(crate) fn draw_water(root: &Area, proj: &Projection, scene: &Scene, front: bool) -> DrawResult {
     let axis_depth = proj.nearness(Vec3::new(0.0, 0.0, scene.water_height / 2.0));
     let color = if front {
         rgb(WATER_RGB).mix(0.75)
@@ -644,7 +663,7 @@ fn draw_water(root: &Area, proj: &Projection, scene: &Scene, front: bool) -> Dra
 }
 
 /// The straw's true outline, dashed: its section boundaries and its two silhouette lines.
-fn draw_straw_outline(root: &Area, proj: &Projection, scene: &Scene) -> DrawResult {
+pub(crate) fn draw_straw_outline(root: &Area, proj: &Projection, scene: &Scene) -> DrawResult {
     let color = rgb(STRAW_OUTLINE_RGB);
     for k in 0..=SECTION_COUNT {
         let c = circle(
@@ -667,7 +686,7 @@ fn draw_straw_outline(root: &Area, proj: &Projection, scene: &Scene) -> DrawResu
 }
 
 /// A dashed polyline through pixel positions: 5 px on, 4 px off.
-fn dashed(root: &Area, px: &[(f64, f64)], color: RGBColor) -> DrawResult {
+pub(crate) fn dashed(root: &Area, px: &[(f64, f64)], color: RGBColor) -> DrawResult {
     const ON: f64 = 5.0;
     const PERIOD: f64 = 9.0;
     let mut phase = 0.0f64;
@@ -701,10 +720,10 @@ fn dashed(root: &Area, px: &[(f64, f64)], color: RGBColor) -> DrawResult {
 }
 
 /// Side of the square dot of one image point, in pixels.
-const DOT: i32 = 3;
+pub(crate) const DOT: i32 = 3;
 
 /// Image points as small squares in their section colours, drawn from far to near.
-fn draw_points(buf: &mut [u8], w: u32, h: u32, panel: &Panel, points: &[ImagePoint]) {
+pub(crate) fn draw_points(buf: &mut [u8], w: u32, h: u32, panel: &Panel, points: &[ImagePoint]) {
     let proj = &panel.proj;
     let mut order: Vec<(f64, usize)> = points
         .iter()
@@ -735,7 +754,7 @@ fn draw_points(buf: &mut [u8], w: u32, h: u32, panel: &Panel, points: &[ImagePoi
 }
 
 /// Tick labels and axis names along three outer edges of the box.
-fn draw_axis_labels(root: &Area, panel: &Panel, bx: &AxisBox) -> DrawResult {
+pub(crate) fn draw_axis_labels(root: &Area, panel: &Panel, bx: &AxisBox) -> DrawResult {
     let proj = &panel.proj;
     let (ox, oy) = proj.pixel(bx.centre());
     let names = ["x (m)", "y (m)", "z (m)"];
@@ -848,7 +867,12 @@ fn draw_axis_labels(root: &Area, panel: &Panel, bx: &AxisBox) -> DrawResult {
 }
 
 /// The observer as a black dot, or, when too far away to draw to scale, an arrow pointing to it.
-fn draw_observer(root: &Area, panel: &Panel, bx: &AxisBox, observer: Vec3) -> DrawResult {
+pub(crate) fn draw_observer(
+    root: &Area,
+    panel: &Panel,
+    bx: &AxisBox,
+    observer: Vec3,
+) -> DrawResult {
     let proj = &panel.proj;
     if bx.observer_inside {
         let (x, y) = proj.at(observer);
@@ -979,7 +1003,7 @@ fn draw_legend(root: &Area, points: &[ImagePoint], observer_inside: bool) -> Dra
 }
 
 /// Width of `s` in pixels at `size`.
-fn text_width(s: &str, size: f64) -> i32 {
+pub(crate) fn text_width(s: &str, size: f64) -> i32 {
     font(size)
         .font
         .layout_box(s)
