@@ -38,7 +38,6 @@ pub fn png_bytes(picture: &RgbPicture) -> CliResult<Vec<u8>> {
 /// Writes `<dir>/<stem>_observer.png` (what `observer` sees, Fresnel mode, camera framing the glass) and
 /// `<dir>/<stem>_cloud.png` (the image `points`, seen from `observer` through the same camera);
 /// returns their paths in that order.
-
 pub fn write_observer_pictures(
     dir: &Path,
     stem: &str,
