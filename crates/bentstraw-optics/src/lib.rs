@@ -16,5 +16,6 @@ pub mod picture;
 pub mod sampling;
 pub mod scene;
 pub mod trace;
+pub mod tracer;
 
 pub use glam::DVec3 as Vec3;

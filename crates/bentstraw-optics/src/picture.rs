@@ -5,14 +5,16 @@ use rayon::prelude::*;
 
 use crate::camera::Camera;
 use crate::scene::{Scene, SECTION_COUNT};
+use crate::tracer::Tracer;
 
 /// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by SPEC §3.
 pub fn course_picture(scene: &Scene, camera: &Camera) -> Vec<u8> {
     let w = camera.width as usize;
+    let tracer = Tracer::new(scene);
     let mut codes = vec![0u8; w * camera.height as usize];
     codes.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         for (j, code) in row.iter_mut().enumerate() {
-            *code = scene.trace(camera.pixel_ray(i as u32, j as u32)).color();
+            *code = tracer.color(camera.pixel_ray(i as u32, j as u32));
         }
     });
     codes
@@ -25,10 +27,11 @@ pub fn fresnel_picture(
     prune_below: f64,
 ) -> Vec<[f64; SECTION_COUNT]> {
     let w = camera.width as usize;
+    let tracer = Tracer::new(scene);
     let mut weights = vec![[0.0; SECTION_COUNT]; w * camera.height as usize];
     weights.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         for (j, px) in row.iter_mut().enumerate() {
-            *px = scene.trace_fresnel(camera.pixel_ray(i as u32, j as u32), prune_below);
+            *px = tracer.trace_fresnel(camera.pixel_ray(i as u32, j as u32), prune_below);
         }
     });
     weights

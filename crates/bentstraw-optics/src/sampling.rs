@@ -17,6 +17,7 @@ use rayon::prelude::*;
 
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_RADIUS, STRAW_HEIGHT};
+use crate::tracer::Tracer;
 use crate::Vec3;
 
 /// The image plane of one viewing frame, and the rectangle of it that is sampled.
@@ -226,6 +227,7 @@ pub fn sample_image(
     min_points: usize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> ImageCloud {
+    let tracer = Tracer::new(scene);
     let frames = frames_for(observer);
     let longest = frames
         .iter()
@@ -251,7 +253,7 @@ pub fn sample_image(
                 let f = &frames[k as usize];
                 let a = f.a_min + (i as f64 + 0.5) * spacing;
                 let b = f.b_min + (j as f64 + 0.5) * spacing;
-                scene.image_point(observer, f.direction(a, b))
+                tracer.image_point(observer, f.direction(a, b))
             })
             .collect()
     };
@@ -291,7 +293,7 @@ pub fn sample_image(
         // Final level: a uniform grid of spacing `h`, traced where the last level saw the straw.
         let mut h = target.min(spacing);
         loop {
-            let points = final_level(scene, observer, &frames, &active, spacing, h, &mut rays);
+            let points = final_level(&tracer, observer, &frames, &active, spacing, h, &mut rays);
             progress(rays);
             if points.len() >= min_points || h < 1e-7 * longest {
                 return ImageCloud {
@@ -346,7 +348,7 @@ fn dilate(hits: &[Cell], frames: &[Frame], spacing: f64) -> Vec<Cell> {
 /// Traces the points of the uniform grid of spacing `h` whose centres lie in `active` cells (of
 /// size `spacing`), and returns the image points, in cell order.
 fn final_level(
-    scene: &Scene,
+    tracer: &Tracer,
     observer: Vec3,
     frames: &[Frame],
     active: &[Cell],
@@ -381,7 +383,7 @@ fn final_level(
                         continue;
                     }
                     n += 1;
-                    if let Some(p) = scene.image_point(observer, f.direction(a, b)) {
+                    if let Some(p) = tracer.image_point(observer, f.direction(a, b)) {
                         pts.push(p);
                     }
                 }
