@@ -12,6 +12,7 @@ pub mod camera;
 pub mod geometry;
 pub mod image;
 pub mod interface;
+pub mod packet;
 pub mod picture;
 pub mod sampling;
 pub mod scene;

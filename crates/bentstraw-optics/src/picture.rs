@@ -4,11 +4,27 @@
 use rayon::prelude::*;
 
 use crate::camera::Camera;
+use crate::packet::PacketTracer;
 use crate::scene::{Scene, SECTION_COUNT};
 use crate::tracer::Tracer;
 
 /// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by SPEC §3.
+///
+/// Traced in single precision, eight rays at a time ([`crate::packet`]): the same pixels as
+/// [`course_picture_exact`] except, rarely, on a colour boundary.
 pub fn course_picture(scene: &Scene, camera: &Camera) -> Vec<u8> {
+    let w = camera.width as usize;
+    let tracer = PacketTracer::new(scene);
+    let mut codes = vec![0u8; w * camera.height as usize];
+    codes.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
+        tracer.course_row(camera, i as u32, row);
+    });
+    codes
+}
+
+/// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by SPEC §3, traced in
+/// double precision: exactly [`Scene::trace`]'s colours.
+pub fn course_picture_exact(scene: &Scene, camera: &Camera) -> Vec<u8> {
     let w = camera.width as usize;
     let tracer = Tracer::new(scene);
     let mut codes = vec![0u8; w * camera.height as usize];

@@ -332,10 +332,7 @@ impl Tracer {
         while top > 0 {
             top -= 1;
             let mut b = stack[top];
-            loop {
-                let Some(hit) = self.nearest_intersection(&b.ray) else {
-                    break;
-                };
+            while let Some(hit) = self.nearest_intersection(&b.ray) {
                 let point = b.ray.at(hit.distance);
                 if hit.face.is_straw() {
                     let code = match hit.face {

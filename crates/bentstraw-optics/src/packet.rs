@@ -1,0 +1,406 @@
+//! The single-precision packet tracer for course-mode pictures: eight rays at a time, structure of
+//! arrays, branch-free, so that the compiler maps each step onto one 8-wide SIMD instruction.
+//!
+//! The physics is SPEC §3 exactly as in [`crate::tracer`]; only the arithmetic differs (f32, and
+//! `MIN_DISTANCE` raised to [`PACKET_MIN_DISTANCE`] because f32 positions are only good to ~1e-8 m
+//! at the scale of the glass). A pixel's colour can therefore differ from the double-precision
+//! tracer's only where the answer changes within a hair of the ray: on the picture's colour
+//! boundaries. The tests bound how many pixels differ and check that they all lie on boundaries.
+//! Image points never use this path; they stay in double precision.
+//!
+//! The same generic code is compiled twice: for AVX2 (chosen at run time with
+//! `is_x86_feature_detected!`) and for the baseline target. Both use the same IEEE operations in the
+//! same order (no fused multiply-add), so both give the same pixels.
+
+use crate::camera::Camera;
+use crate::scene::{
+    Scene, GLASS_RADIUS, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT, STRAW_RADIUS,
+};
+
+/// Rays per packet.
+pub const LANES: usize = 8;
+
+/// Smallest distance (m) at which an intersection counts in single precision: a hundred times the
+/// rounding of an f32 position in the scene (~1e-8 m), far below any length that matters.
+pub const PACKET_MIN_DISTANCE: f32 = 1e-6;
+
+/// Eight `f32`s, one per ray.
+#[derive(Clone, Copy, Debug)]
+struct F8([f32; LANES]);
+
+/// Eight lane masks (all bits set = true).
+#[derive(Clone, Copy, Debug)]
+struct M8([u32; LANES]);
+
+macro_rules! lanewise {
+    ($trait:ident, $method:ident, $op:tt) => {
+        impl std::ops::$trait for F8 {
+            type Output = F8;
+            #[inline(always)]
+            fn $method(self, o: F8) -> F8 {
+                F8(std::array::from_fn(|k| self.0[k] $op o.0[k]))
+            }
+        }
+    };
+}
+lanewise!(Add, add, +);
+lanewise!(Sub, sub, -);
+lanewise!(Mul, mul, *);
+lanewise!(Div, div, /);
+
+impl std::ops::Neg for F8 {
+    type Output = F8;
+    #[inline(always)]
+    fn neg(self) -> F8 {
+        self.map(|x| -x)
+    }
+}
+
+macro_rules! compare {
+    ($name:ident, $op:tt) => {
+        #[inline(always)]
+        fn $name(self, o: F8) -> M8 {
+            M8(std::array::from_fn(|k| if self.0[k] $op o.0[k] { u32::MAX } else { 0 }))
+        }
+    };
+}
+
+impl F8 {
+    #[inline(always)]
+    fn splat(x: f32) -> F8 {
+        F8([x; LANES])
+    }
+    #[inline(always)]
+    fn map(self, f: impl Fn(f32) -> f32) -> F8 {
+        F8(std::array::from_fn(|k| f(self.0[k])))
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F8 {
+        self.map(f32::sqrt)
+    }
+    #[inline(always)]
+    fn max(self, o: F8) -> F8 {
+        F8(std::array::from_fn(|k| {
+            if self.0[k] > o.0[k] {
+                self.0[k]
+            } else {
+                o.0[k]
+            }
+        }))
+    }
+    compare!(lt, <);
+    compare!(le, <=);
+    compare!(gt, >);
+    compare!(ge, >=);
+}
+
+impl M8 {
+    #[inline(always)]
+    fn splat(b: bool) -> M8 {
+        M8([if b { u32::MAX } else { 0 }; LANES])
+    }
+    #[inline(always)]
+    fn and(self, o: M8) -> M8 {
+        M8(std::array::from_fn(|k| self.0[k] & o.0[k]))
+    }
+    #[inline(always)]
+    fn and_not(self, o: M8) -> M8 {
+        M8(std::array::from_fn(|k| self.0[k] & !o.0[k]))
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        self.0.iter().fold(0, |a, &b| a | b) != 0
+    }
+    /// `a` where the mask is set, else `b`.
+    #[inline(always)]
+    fn select(self, a: F8, b: F8) -> F8 {
+        F8(std::array::from_fn(|k| {
+            f32::from_bits((a.0[k].to_bits() & self.0[k]) | (b.0[k].to_bits() & !self.0[k]))
+        }))
+    }
+}
+
+/// The scene in single precision, ready for packets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PacketTracer {
+    straw_x: f32,
+    straw_y: f32,
+    water_height: f32,
+    has_water: bool,
+    /// `n1/n2` from air into water, and from water into air.
+    eta_into_water: f32,
+    eta_into_air: f32,
+    max_events: u32,
+}
+
+impl PacketTracer {
+    /// Prepares `scene` for single-precision packets.
+    pub fn new(scene: &Scene) -> PacketTracer {
+        PacketTracer {
+            straw_x: scene.straw_x as f32,
+            straw_y: scene.straw_y as f32,
+            water_height: scene.water_height as f32,
+            has_water: scene.has_water(),
+            eta_into_water: (1.0 / scene.n_water) as f32,
+            eta_into_air: scene.n_water as f32,
+            max_events: scene.max_events,
+        }
+    }
+
+    /// Colour codes (0 = none) of the rays through the centres of pixel row `row` of `camera`;
+    /// `codes.len()` must be the camera's width.
+    pub fn course_row(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2, checked just above.
+                unsafe { self.course_row_avx2(camera, row, codes) };
+                return;
+            }
+        }
+        self.course_row_generic(camera, row, codes);
+    }
+
+    /// [`Self::course_row`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn course_row_avx2(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        self.course_row_generic(camera, row, codes);
+    }
+
+    /// [`Self::course_row`] for any target (the baseline instruction set).
+    pub fn course_row_portable(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        self.course_row_generic(camera, row, codes);
+    }
+
+    #[inline(always)]
+    fn course_row_generic(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        // SPEC §6's pixel direction f + sx·r + sy·u, with sx affine in the column.
+        let (w, h) = (camera.width as f64, camera.height as f64);
+        let sx_scale = camera.tan_half_fov * (w / h);
+        let sy = ((1.0 - 2.0 * (row as f64 + 0.5) / h) * camera.tan_half_fov) as f32;
+        let sx_step = (2.0 / w * sx_scale) as f32;
+        let sx_start = (sx_scale * (1.0 / w - 1.0)) as f32; // pixel 0's centre
+        let v = |x: crate::Vec3| [x.x as f32, x.y as f32, x.z as f32];
+        let (f, r, u, eye) = (
+            v(camera.forward),
+            v(camera.right),
+            v(camera.up),
+            v(camera.eye),
+        );
+        // The row's part common to all pixels: f + sy·u.
+        let base = [f[0] + sy * u[0], f[1] + sy * u[1], f[2] + sy * u[2]];
+        let lane = F8(std::array::from_fn(|k| k as f32));
+        for (p, chunk) in codes.chunks_mut(LANES).enumerate() {
+            let first = F8::splat((p * LANES) as f32);
+            let sx = F8::splat(sx_start) + (first + lane) * F8::splat(sx_step);
+            let dx = F8::splat(base[0]) + sx * F8::splat(r[0]);
+            let dy = F8::splat(base[1]) + sx * F8::splat(r[1]);
+            let dz = F8::splat(base[2]) + sx * F8::splat(r[2]);
+            let inv = F8::splat(1.0) / (dx * dx + dy * dy + dz * dz).sqrt();
+            let out = self.trace8(eye, [dx * inv, dy * inv, dz * inv]);
+            for (c, o) in chunk.iter_mut().zip(out) {
+                *c = o;
+            }
+        }
+    }
+
+    /// Colour codes of eight rays from `eye` along unit directions `d`.
+    #[inline(always)]
+    fn trace8(&self, eye: [f32; 3], d: [F8; 3]) -> [u8; LANES] {
+        let inf = F8::splat(f32::INFINITY);
+        let zero = F8::splat(0.0);
+        let t_min = F8::splat(PACKET_MIN_DISTANCE);
+        let rv2 = F8::splat((GLASS_RADIUS * GLASS_RADIUS) as f32);
+        let rp2 = F8::splat((STRAW_RADIUS * STRAW_RADIUS) as f32);
+        let inv_rv = F8::splat((1.0 / GLASS_RADIUS) as f32);
+        let he = F8::splat(self.water_height);
+        let hp = F8::splat(STRAW_HEIGHT as f32);
+        let (sx, sy) = (F8::splat(self.straw_x), F8::splat(self.straw_y));
+        let water_on = M8::splat(self.has_water);
+
+        let (mut ox, mut oy, mut oz) = (F8::splat(eye[0]), F8::splat(eye[1]), F8::splat(eye[2]));
+        let [mut dx, mut dy, mut dz] = d;
+        let mut alive = M8::splat(true);
+        let mut in_water = M8::splat(false);
+        // Colour codes as floats, 0 = none.
+        let mut code = zero;
+
+        for event in 0..=self.max_events {
+            if !alive.any() {
+                break;
+            }
+            let a = dx * dx + dy * dy;
+            let inv_a = F8::splat(1.0) / a;
+            let inv_dz = F8::splat(1.0) / dz;
+
+            // Water side wall: the first root beyond t_min with 0 <= z <= he.
+            let b = ox * dx + oy * dy;
+            let c = ox * ox + oy * oy - rv2;
+            let disc = b * b - a * c;
+            if !alive.and(disc.ge(zero)).any() {
+                break; // every live ray's line misses the glass, which holds every face
+            }
+            let sq = disc.max(zero).sqrt();
+            let t0 = (-b - sq) * inv_a;
+            let t1 = (-b + sq) * inv_a;
+            let z0 = oz + t0 * dz;
+            let z1 = oz + t1 * dz;
+            let ok0 = t0.gt(t_min).and(z0.ge(zero)).and(z0.le(he));
+            let ok1 = t1.gt(t_min).and(z1.ge(zero)).and(z1.le(he));
+            let real = disc.ge(zero);
+            let t_side = ok0.select(t0, ok1.select(t1, inf));
+            let t_side = real.select(t_side, inf);
+
+            // The planes z = he and z = 0.
+            let t_top = (he - oz) * inv_dz;
+            let t_bottom = -oz * inv_dz;
+            let (xt, yt) = (ox + t_top * dx, oy + t_top * dy);
+            let (xb, yb) = (ox + t_bottom * dx, oy + t_bottom * dy);
+            let top_ok = t_top.gt(t_min).and((xt * xt + yt * yt).le(rv2));
+            let bottom_ok = t_bottom.gt(t_min).and((xb * xb + yb * yb).le(rv2));
+
+            // Nearest water face: side (0), top (1), bottom (2); ties keep the earlier.
+            let mut t_water = t_side;
+            let mut water_face = zero;
+            let m = top_ok.and(t_top.lt(t_water));
+            t_water = m.select(t_top, t_water);
+            water_face = m.select(F8::splat(1.0), water_face);
+            let m = bottom_ok.and(t_bottom.lt(t_water));
+            t_water = m.select(t_bottom, t_water);
+            water_face = m.select(F8::splat(2.0), water_face);
+            t_water = water_on.select(t_water, inf);
+
+            // Straw side (the ray is always outside it: the near root), top cap, bottom cap.
+            let (px, py) = (ox - sx, oy - sy);
+            let bs = px * dx + py * dy;
+            let cs = px * px + py * py - rp2;
+            let discs = bs * bs - a * cs;
+            let near_straw = alive.and(discs.ge(zero));
+            // No live ray's line passes within the straw's radius: no straw face can be hit
+            // (its caps lie inside that circle); skip the work.
+            let (t_straw, straw_code) = if near_straw.any() {
+                let ts = (-bs - discs.max(zero).sqrt()) * inv_a;
+                let zs = oz + ts * dz;
+                let side_ok = discs
+                    .ge(zero)
+                    .and(ts.gt(t_min))
+                    .and(zs.ge(zero))
+                    .and(zs.le(hp));
+                let mut t_straw = side_ok.select(ts, inf);
+                // Section of the side hit, 1..=5: one plus the section boundaries below the hit.
+                let mut straw_code = F8::splat(1.0);
+                for k in 1..SECTION_COUNT {
+                    let above = zs.ge(F8::splat((k as f64 * SECTION_HEIGHT) as f32));
+                    straw_code = above.select(straw_code + F8::splat(1.0), straw_code);
+                }
+                let t_cap = (hp - oz) * inv_dz;
+                let (xc, yc) = (ox + t_cap * dx - sx, oy + t_cap * dy - sy);
+                let m = t_cap
+                    .gt(t_min)
+                    .and((xc * xc + yc * yc).le(rp2))
+                    .and(t_cap.lt(t_straw));
+                t_straw = m.select(t_cap, t_straw);
+                straw_code = m.select(F8::splat(SECTION_COUNT as f32), straw_code);
+                let (xs, ys) = (xb - sx, yb - sy);
+                let m = bottom_ok_straw(t_bottom, t_min, xs, ys, rp2).and(t_bottom.lt(t_straw));
+                t_straw = m.select(t_bottom, t_straw);
+                straw_code = m.select(F8::splat(1.0), straw_code);
+                (t_straw, straw_code)
+            } else {
+                (inf, zero)
+            };
+
+            // What each live ray does now.
+            let hits_straw = alive.and(t_straw.lt(inf)).and(t_straw.le(t_water));
+            code = hits_straw.select(straw_code, code);
+            let hits_water = alive.and_not(hits_straw).and(t_water.lt(inf));
+            alive = if event == self.max_events {
+                M8::splat(false) // an (event+1)-th event would be needed: dropped
+            } else {
+                hits_water
+            };
+            if !alive.any() {
+                break;
+            }
+
+            // Refraction or total reflection at the water face, for the live rays.
+            let t = t_water;
+            let (qx, qy, qz) = (ox + t * dx, oy + t * dy, oz + t * dz);
+            let is_side = water_face.lt(F8::splat(0.5));
+            let is_top = water_face.lt(F8::splat(1.5)).and_not(is_side);
+            let (nx, ny) = (
+                is_side.select(qx * inv_rv, zero),
+                is_side.select(qy * inv_rv, zero),
+            );
+            let nz = is_side.select(zero, is_top.select(F8::splat(1.0), F8::splat(-1.0)));
+            let inv_n = F8::splat(1.0) / (nx * nx + ny * ny + nz * nz).sqrt();
+            let (nx, ny, nz) = (nx * inv_n, ny * inv_n, nz * inv_n);
+            let cos_raw = -(dx * nx + dy * ny + dz * nz);
+            let facing = cos_raw.ge(zero);
+            let (mx, my, mz) = (
+                facing.select(nx, -nx),
+                facing.select(ny, -ny),
+                facing.select(nz, -nz),
+            );
+            let cos_i = facing.select(cos_raw, -cos_raw);
+            let eta = in_water.select(F8::splat(self.eta_into_air), F8::splat(self.eta_into_water));
+            let sin2_t = eta * eta * (F8::splat(1.0) - cos_i * cos_i);
+            let total = sin2_t.gt(F8::splat(1.0));
+            let cos_t = (F8::splat(1.0) - sin2_t).max(zero).sqrt();
+            let k = eta * cos_i - cos_t;
+            let (rx, ry, rz) = (eta * dx + k * mx, eta * dy + k * my, eta * dz + k * mz);
+            let inv_r = F8::splat(1.0) / (rx * rx + ry * ry + rz * rz).sqrt();
+            // Mirror: d + 2·cos_i·m (m faces the incoming ray).
+            let two_cos = F8::splat(2.0) * cos_i;
+            let (lx, ly, lz) = (dx + two_cos * mx, dy + two_cos * my, dz + two_cos * mz);
+            dx = alive.select(total.select(lx, rx * inv_r), dx);
+            dy = alive.select(total.select(ly, ry * inv_r), dy);
+            dz = alive.select(total.select(lz, rz * inv_r), dz);
+            ox = alive.select(qx, ox);
+            oy = alive.select(qy, oy);
+            oz = alive.select(qz, oz);
+            let crossed = alive.and_not(total);
+            // A ray leaving the water through the side wall moves away from the axis for good, and
+            // one leaving through the bottom moves down for good: neither can meet any face again
+            // (all lie inside the glass's circle, above z = 0). Only a ray out through the top
+            // may still meet the straw.
+            let out_not_top = crossed.and(in_water).and_not(is_top);
+            alive = alive.and_not(out_not_top);
+            in_water = M8(std::array::from_fn(|k| in_water.0[k] ^ crossed.0[k]));
+        }
+        std::array::from_fn(|k| code.0[k] as u8)
+    }
+}
+
+/// Whether the plane `z = 0` is crossed ahead within the straw's footprint (`xs, ys` relative to
+/// its axis).
+#[inline(always)]
+fn bottom_ok_straw(t_bottom: F8, t_min: F8, xs: F8, ys: F8, rp2: F8) -> M8 {
+    t_bottom.gt(t_min).and((xs * xs + ys * ys).le(rp2))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::REFERENCES;
+    use crate::Vec3;
+
+    /// The AVX2 build and the portable build give the same pixels (same IEEE operations).
+    #[test]
+    fn avx2_and_portable_agree() {
+        for r in REFERENCES {
+            let scene = r.scene(1.333);
+            let target = Vec3::new(r.straw.0, r.straw.1, r.water_height);
+            let cam = Camera::new(r.observer, target, 203, 61, 50f64.to_radians());
+            let pt = PacketTracer::new(&scene);
+            for i in 0..cam.height {
+                let mut a = vec![0u8; cam.width as usize];
+                let mut b = vec![0u8; cam.width as usize];
+                pt.course_row(&cam, i, &mut a);
+                pt.course_row_portable(&cam, i, &mut b);
+                assert_eq!(a, b, "row {i}");
+            }
+        }
+    }
+}
