@@ -11,10 +11,9 @@
 //! wasted rays). Deterministic: the same inputs give the same points in the same order, whatever the
 //! number of threads.
 
-use std::collections::HashSet;
-
 use rayon::prelude::*;
 
+use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_RADIUS, STRAW_HEIGHT};
 use crate::tracer::Tracer;
@@ -246,14 +245,19 @@ pub fn sample_image(
             }
         }
     }
-    let trace_cells = |cells: &[Cell], spacing: f64| -> Vec<Option<ImagePoint>> {
+    // Whether the ray through each cell's centre reaches the straw (no image point is built).
+    let trace_cells = |cells: &[Cell], spacing: f64| -> Vec<bool> {
         cells
             .par_iter()
+            .with_min_len(256)
             .map(|&(k, i, j)| {
                 let f = &frames[k as usize];
                 let a = f.a_min + (i as f64 + 0.5) * spacing;
                 let b = f.b_min + (j as f64 + 0.5) * spacing;
-                tracer.image_point(observer, f.direction(a, b))
+                tracer.color(Ray {
+                    origin: observer,
+                    direction: f.direction(a, b),
+                }) > 0
             })
             .collect()
     };
@@ -266,7 +270,7 @@ pub fn sample_image(
         let hits: Vec<Cell> = cells
             .iter()
             .zip(&results)
-            .filter(|(_, r)| r.is_some())
+            .filter(|(_, &r)| r)
             .map(|(c, _)| *c)
             .collect();
         if hits.is_empty() {
@@ -327,21 +331,39 @@ fn split(cells: &[Cell]) -> Vec<Cell> {
 }
 
 /// The cells that are hits or touch one (8-neighbourhood), sorted.
+///
+/// Marks a bitmap of each frame's grid (cheaper than hashing: one bit per cell, and reading the
+/// bits in order gives the cells already sorted as `(frame, i, j)`).
 fn dilate(hits: &[Cell], frames: &[Frame], spacing: f64) -> Vec<Cell> {
-    let mut set: HashSet<Cell> = HashSet::with_capacity(hits.len() * 2);
-    for &(k, i, j) in hits {
-        let (nx, ny) = grid_size(&frames[k as usize], spacing);
-        for dj in -1i64..=1 {
-            for di in -1i64..=1 {
-                let (ii, jj) = (i as i64 + di, j as i64 + dj);
-                if ii >= 0 && jj >= 0 && ii < nx as i64 && jj < ny as i64 {
-                    set.insert((k, ii as u32, jj as u32));
+    let mut cells = Vec::with_capacity(hits.len() * 2);
+    for (k, frame) in frames.iter().enumerate() {
+        let k = k as u32;
+        let (nx, ny) = grid_size(frame, spacing);
+        let (nx, ny) = (nx as usize, ny as usize);
+        let mut bits = vec![0u64; (nx * ny).div_ceil(64)];
+        let mut any = false;
+        for &(_, i, j) in hits.iter().filter(|c| c.0 == k) {
+            any = true;
+            let (i, j) = (i as usize, j as usize);
+            for ii in i.saturating_sub(1)..=(i + 1).min(nx - 1) {
+                for jj in j.saturating_sub(1)..=(j + 1).min(ny - 1) {
+                    let n = ii * ny + jj;
+                    bits[n / 64] |= 1 << (n % 64);
                 }
             }
         }
+        if !any {
+            continue;
+        }
+        for (w, &word) in bits.iter().enumerate() {
+            let mut word = word;
+            while word != 0 {
+                let n = w * 64 + word.trailing_zeros() as usize;
+                word &= word - 1;
+                cells.push((k, (n / ny) as u32, (n % ny) as u32));
+            }
+        }
     }
-    let mut cells: Vec<Cell> = set.into_iter().collect();
-    cells.sort_unstable();
     cells
 }
 
@@ -364,27 +386,30 @@ fn final_level(
         let end = ((hi / h) - 0.5).ceil().max(0.0) as u64;
         (first, end)
     };
+    // Chunks of cells per task: enough work per task, one vector per chunk, order kept.
     let per_cell: Vec<(u64, Vec<ImagePoint>)> = active
-        .par_iter()
-        .map(|&(k, i, j)| {
-            let f = &frames[k as usize];
-            let (i0, i1) = range(i);
-            let (j0, j1) = range(j);
+        .par_chunks(64)
+        .map(|chunk| {
             let mut pts = Vec::new();
             let mut n = 0;
-            for jj in j0..j1 {
-                let b = f.b_min + (jj as f64 + 0.5) * h;
-                if b > f.b_min + f.height {
-                    continue;
-                }
-                for ii in i0..i1 {
-                    let a = f.a_min + (ii as f64 + 0.5) * h;
-                    if a > f.a_min + f.width {
+            for &(k, i, j) in chunk {
+                let f = &frames[k as usize];
+                let (i0, i1) = range(i);
+                let (j0, j1) = range(j);
+                for jj in j0..j1 {
+                    let b = f.b_min + (jj as f64 + 0.5) * h;
+                    if b > f.b_min + f.height {
                         continue;
                     }
-                    n += 1;
-                    if let Some(p) = tracer.image_point(observer, f.direction(a, b)) {
-                        pts.push(p);
+                    for ii in i0..i1 {
+                        let a = f.a_min + (ii as f64 + 0.5) * h;
+                        if a > f.a_min + f.width {
+                            continue;
+                        }
+                        n += 1;
+                        if let Some(p) = tracer.image_point(observer, f.direction(a, b)) {
+                            pts.push(p);
+                        }
                     }
                 }
             }
