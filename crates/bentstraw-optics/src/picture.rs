@@ -47,7 +47,7 @@ pub fn fresnel_picture(
     let mut weights = vec![[0.0; SECTION_COUNT]; w * camera.height as usize];
     weights.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         for (j, px) in row.iter_mut().enumerate() {
-            *px = tracer.trace_fresnel(camera.pixel_ray(i as u32, j as u32), prune_below);
+            *px = tracer.trace_fresnel_escaping(camera.pixel_ray(i as u32, j as u32), prune_below);
         }
     });
     weights

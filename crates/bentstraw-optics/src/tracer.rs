@@ -16,6 +16,8 @@
 //! order, as in [`crate::geometry`], so colours are identical and lengths equal to the last bit;
 //! the skips use a relative margin (1e-9) far above rounding, so they never drop a real hit.
 
+use std::mem::MaybeUninit;
+
 use crate::geometry::{Ray, MIN_DISTANCE};
 use crate::image::ImagePoint;
 use crate::interface::{fresnel_reflectance, reflect};
@@ -312,6 +314,27 @@ impl Tracer {
 
     /// Fresnel tracing: the same weights as [`Scene::trace_fresnel`].
     pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
+        self.fresnel::<false>(ray, prune_below)
+    }
+
+    /// Fresnel tracing for pictures: [`Self::trace_fresnel`], but branches that provably escape
+    /// are not followed.
+    ///
+    /// A branch that leaves the water through its side wall, or is reflected off the wall's
+    /// outside, moves away from the axis for good; one that leaves through the bottom, or is
+    /// reflected off it from below, moves down for good: neither can meet any face again (all lie
+    /// inside the glass's circle, above `z = 0`), so its weight is lost as the full trace would
+    /// lose it. Only the order of the sums changes (weights agree to ~1e-16).
+    pub fn trace_fresnel_escaping(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
+        self.fresnel::<true>(ray, prune_below)
+    }
+
+    #[inline(always)]
+    fn fresnel<const SKIP_ESCAPING: bool>(
+        &self,
+        ray: Ray,
+        prune_below: f64,
+    ) -> [f64; SECTION_COUNT] {
         const STACK: usize = 64;
         #[derive(Clone, Copy)]
         struct Branch {
@@ -322,16 +345,19 @@ impl Tracer {
         }
         let s = &self.scene;
         let mut weights = [0.0; SECTION_COUNT];
-        let mut stack = [Branch {
+        // Left uninitialised: filling 64 branches would cost more than tracing most pixels.
+        let mut stack = [const { MaybeUninit::<Branch>::uninit() }; STACK];
+        stack[0].write(Branch {
             ray,
             in_water: false,
             events: 0,
             weight: 1.0,
-        }; STACK];
+        });
         let mut top = 1usize;
         while top > 0 {
             top -= 1;
-            let mut b = stack[top];
+            // SAFETY: entries below `top` have all been written (push writes, then increments).
+            let mut b = unsafe { stack[top].assume_init() };
             while let Some(hit) = self.nearest_intersection(&b.ray) {
                 let point = b.ray.at(hit.distance);
                 if hit.face.is_straw() {
@@ -363,8 +389,16 @@ impl Tracer {
                     }
                     Some(t) => {
                         let r = fresnel_reflectance(n1, n2, b.ray.direction.dot(normal));
-                        let wr = b.weight * r;
-                        let wt = b.weight * (1.0 - r);
+                        let mut wr = b.weight * r;
+                        let mut wt = b.weight * (1.0 - r);
+                        if SKIP_ESCAPING && hit.face != Face::WaterTop {
+                            // The branch that ends up in air here escapes (see above).
+                            if b.in_water {
+                                wt = 0.0;
+                            } else {
+                                wr = 0.0;
+                            }
+                        }
                         let refl = Branch {
                             ray: Ray {
                                 origin: point,
@@ -385,7 +419,7 @@ impl Tracer {
                         };
                         let (now, later) = if wt >= wr { (refr, refl) } else { (refl, refr) };
                         if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
-                            stack[top] = later;
+                            stack[top].write(later);
                             top += 1;
                         }
                         if now.weight < prune_below || now.weight == 0.0 {

@@ -249,6 +249,26 @@ fn check_ray(s: &Scene, tracer: &Tracer, ray: Ray) {
         }
     }
     assert_eq!(tracer.color(ray), expected.color);
+    // Fresnel: the prepared tracer gives the scene's weights to the bit; the picture variant
+    // (escaping branches not followed) gives the plain recursive reference's to 1e-12.
+    assert_eq!(
+        tracer.trace_fresnel(ray, 1e-4),
+        s.trace_fresnel(ray, 1e-4),
+        "fresnel {ray:?}"
+    );
+    let mut want = [0.0; SECTION_COUNT];
+    reference_fresnel(s, ray, false, 0, 1.0, 1e-4, &mut want);
+    for got in [
+        s.trace_fresnel(ray, 1e-4),
+        tracer.trace_fresnel_escaping(ray, 1e-4),
+    ] {
+        for (g, w) in got.iter().zip(want) {
+            assert!(
+                (g - w).abs() <= 1e-12,
+                "fresnel {ray:?}: {got:?} vs {want:?}"
+            );
+        }
+    }
     let u0 = ray.direction;
     let ip = tracer.image_point(ray.origin, u0);
     assert_eq!(ip.map_or(0, |p| p.color), expected.color);
