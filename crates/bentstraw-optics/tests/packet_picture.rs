@@ -60,7 +60,7 @@ fn packet_picture_matches_exact_on_benchmark_views() {
         } else {
             Vec3::new(r.straw.0, r.straw.1, r.water_height)
         };
-        let camera = Camera::new(r.observer, target, 512, 384, 50f64.to_radians());
+        let camera = Camera::new(r.observer, target, 1024, 768, 50f64.to_radians());
         check(&scene, &camera, &format!("simulation {}", r.number));
         // Wide view of the whole glass, odd size (partial packets at the row ends).
         let camera = Camera::new(r.observer, SCENE_CENTRE, 301, 203, 90f64.to_radians());
