@@ -5,6 +5,10 @@
 //! arrives becomes an [`image::ImagePoint`]; [`sampling`] chooses the rays so that the straw's image is
 //! covered evenly. The crate does no I/O and prints nothing.
 //!
+//! For speed, [`tracer::Tracer`] is the same tracer with per-scene work done once and provably
+//! useless tests skipped (same results to the bit), and [`packet`] traces course-mode pictures eight
+//! rays at a time in single precision (same pixels but for rare ones on colour boundaries).
+//!
 //! The conventions are those of the project's specification (`shared/SPEC.md`): SI units (metres),
 //! origin at the centre of the glass's base, `z` up.
 
