@@ -437,3 +437,28 @@ fn pictures_match_reference_per_pixel() {
         }
     }
 }
+
+#[test]
+fn sampled_image_points_are_the_reference_image_points() {
+    use bentstraw_optics::sampling::sample_image;
+    for r in REFERENCES {
+        let scene = r.scene(1.333);
+        let cloud = sample_image(&scene, r.observer, 3000, &|_| {});
+        assert!(cloud.points.len() >= 3000, "simulation {}", r.number);
+        for p in &cloud.points {
+            // Each point is what the plain reference tracer finds along the point's own direction.
+            let want = reference_trace(
+                &scene,
+                Ray {
+                    origin: r.observer,
+                    direction: p.direction,
+                },
+            );
+            assert_eq!(p.color, want.color, "simulation {}", r.number);
+            let position = r.observer + want.length * p.direction;
+            assert!((p.position - position).length() <= 1e-12);
+            assert!((p.straw_point - want.point).length() <= 1e-12);
+            assert_eq!(p.events, want.events);
+        }
+    }
+}
