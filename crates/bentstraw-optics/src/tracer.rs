@@ -135,6 +135,36 @@ fn refract_eta(d: Vec3, normal: Vec3, eta: f64) -> Option<Vec3> {
     Some(eta * d + (eta * cos_i - cos_t) * nn)
 }
 
+/// [`refract_eta`] and, from the same `cos θi`, `sin² θt` and `cos θt`, the reflectance
+/// [`fresnel_reflectance`]`(n1, n2, d·normal)` would give (the same operations, so the same bits;
+/// it is called itself in the rare cases its clamps would act).
+#[inline(always)]
+fn refract_with_reflectance(
+    d: Vec3,
+    normal: Vec3,
+    eta: f64,
+    n1: f64,
+    n2: f64,
+) -> Option<(Vec3, f64)> {
+    let dn = d.dot(normal);
+    let c = -dn;
+    let (nn, cos_i) = if c >= 0.0 { (normal, c) } else { (-normal, -c) };
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t > 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let refracted = eta * d + (eta * cos_i - cos_t) * nn;
+    let r = if cos_i <= 1.0 && sin2_t < 1.0 {
+        let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+        let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+        0.5 * (rs * rs + rp * rp)
+    } else {
+        fresnel_reflectance(n1, n2, dn)
+    };
+    Some((refracted, r))
+}
+
 impl Tracer {
     /// Prepares `scene` for tracing.
     pub fn new(scene: &Scene) -> Tracer {
@@ -380,15 +410,14 @@ impl Tracer {
                     (1.0, s.n_water, self.eta_into_water)
                 };
                 let reflected = reflect(b.ray.direction, normal);
-                match refract_eta(b.ray.direction, normal, eta) {
+                match refract_with_reflectance(b.ray.direction, normal, eta, n1, n2) {
                     None => {
                         b.ray = Ray {
                             origin: point,
                             direction: reflected,
                         };
                     }
-                    Some(t) => {
-                        let r = fresnel_reflectance(n1, n2, b.ray.direction.dot(normal));
+                    Some((t, r)) => {
                         let mut wr = b.weight * r;
                         let mut wt = b.weight * (1.0 - r);
                         if SKIP_ESCAPING && hit.face != Face::WaterTop {
