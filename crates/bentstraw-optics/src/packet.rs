@@ -175,33 +175,175 @@ impl PacketTracer {
 
     #[inline(always)]
     fn course_row_generic(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
-        // SPEC §6's pixel direction f + sx·r + sy·u, with sx affine in the column.
-        let (w, h) = (camera.width as f64, camera.height as f64);
-        let sx_scale = camera.tan_half_fov * (w / h);
-        let sy = ((1.0 - 2.0 * (row as f64 + 0.5) / h) * camera.tan_half_fov) as f32;
-        let sx_step = (2.0 / w * sx_scale) as f32;
-        let sx_start = (sx_scale * (1.0 / w - 1.0)) as f32; // pixel 0's centre
-        let v = |x: crate::Vec3| [x.x as f32, x.y as f32, x.z as f32];
-        let (f, r, u, eye) = (
-            v(camera.forward),
-            v(camera.right),
-            v(camera.up),
-            v(camera.eye),
-        );
-        // The row's part common to all pixels: f + sy·u.
-        let base = [f[0] + sy * u[0], f[1] + sy * u[1], f[2] + sy * u[2]];
-        let lane = F8(std::array::from_fn(|k| k as f32));
+        let (eye, dirs) = row_rays(camera, row);
         for (p, chunk) in codes.chunks_mut(LANES).enumerate() {
-            let first = F8::splat((p * LANES) as f32);
-            let sx = F8::splat(sx_start) + (first + lane) * F8::splat(sx_step);
-            let dx = F8::splat(base[0]) + sx * F8::splat(r[0]);
-            let dy = F8::splat(base[1]) + sx * F8::splat(r[1]);
-            let dz = F8::splat(base[2]) + sx * F8::splat(r[2]);
-            let inv = F8::splat(1.0) / (dx * dx + dy * dy + dz * dz).sqrt();
-            let out = self.trace8(eye, [dx * inv, dy * inv, dz * inv]);
+            let [dx, dy, dz] = dirs(p);
+            let out = self.trace8(eye, [dx, dy, dz]);
             for (c, o) in chunk.iter_mut().zip(out) {
                 *c = o;
             }
+        }
+    }
+
+    /// Fresnel weights per section (SPEC §6) of the rays through the centres of pixel row `row`;
+    /// `weights.len()` must be the camera's width. `wave` holds reusable buffers.
+    ///
+    /// Traced breadth first: every branch alive after `k` events is in one list, traced eight at a
+    /// time; the list of their children is the next. So lanes stay full whatever the tree's shape.
+    /// Branches lighter than `prune_below` are abandoned, and branches that provably escape (out
+    /// of the water through the side or bottom, or mirrored off their outside) are not followed.
+    pub fn fresnel_row(
+        &self,
+        camera: &Camera,
+        row: u32,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        weights: &mut [[f64; SECTION_COUNT]],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2, checked just above.
+                unsafe { self.fresnel_row_avx2(camera, row, prune_below, wave, weights) };
+                return;
+            }
+        }
+        self.fresnel_row_generic(camera, row, prune_below, wave, weights);
+    }
+
+    /// [`Self::fresnel_row`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn fresnel_row_avx2(
+        &self,
+        camera: &Camera,
+        row: u32,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        weights: &mut [[f64; SECTION_COUNT]],
+    ) {
+        self.fresnel_row_generic(camera, row, prune_below, wave, weights);
+    }
+
+    /// [`Self::fresnel_row`] for any target (the baseline instruction set).
+    pub fn fresnel_row_portable(
+        &self,
+        camera: &Camera,
+        row: u32,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        weights: &mut [[f64; SECTION_COUNT]],
+    ) {
+        self.fresnel_row_generic(camera, row, prune_below, wave, weights);
+    }
+
+    #[inline(always)]
+    fn fresnel_row_generic(
+        &self,
+        camera: &Camera,
+        row: u32,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        weights: &mut [[f64; SECTION_COUNT]],
+    ) {
+        let prune = prune_below as f32;
+        let n_water = self.eta_into_air;
+        for w in weights.iter_mut() {
+            *w = [0.0; SECTION_COUNT];
+        }
+        let (cur, next) = (&mut wave.current, &mut wave.next);
+        cur.clear();
+        let (eye, dirs) = row_rays(camera, row);
+        for (p, chunk_start) in (0..weights.len()).step_by(LANES).enumerate() {
+            let [dx, dy, dz] = dirs(p);
+            for k in 0..LANES.min(weights.len() - chunk_start) {
+                cur.push(
+                    eye,
+                    [dx.0[k], dy.0[k], dz.0[k]],
+                    1.0,
+                    false,
+                    (chunk_start + k) as u32,
+                );
+            }
+        }
+        for event in 0..=self.max_events {
+            if cur.len() == 0 {
+                break;
+            }
+            next.clear();
+            for base in (0..cur.len()).step_by(LANES) {
+                let n = LANES.min(cur.len() - base);
+                let alive = M8(std::array::from_fn(|k| if k < n { u32::MAX } else { 0 }));
+                let o = [cur.load(0, base), cur.load(1, base), cur.load(2, base)];
+                let d = [cur.load(3, base), cur.load(4, base), cur.load(5, base)];
+                let Some(hit) = self.hit8(o, d, alive) else {
+                    continue; // all escape
+                };
+                let inf = F8::splat(f32::INFINITY);
+                let hits_straw = alive
+                    .and(hit.t_straw.lt(inf))
+                    .and(hit.t_straw.le(hit.t_water));
+                let hits_water = alive.and_not(hits_straw).and(hit.t_water.lt(inf));
+                for k in 0..n {
+                    if hits_straw.0[k] != 0 {
+                        let code = hit.straw_code.0[k] as usize;
+                        weights[cur.pixel[base + k] as usize][code - 1] += cur.w[base + k] as f64;
+                    }
+                }
+                if event == self.max_events || !hits_water.any() {
+                    continue;
+                }
+                let in_water = M8(std::array::from_fn(|k| {
+                    if k < n && cur.in_water[base + k] {
+                        u32::MAX
+                    } else {
+                        0
+                    }
+                }));
+                let b = self.bend8(o, d, hit.t_water, hit.water_face, in_water);
+                // Unpolarised Fresnel reflectance from cos θi and cos θt (1 under total reflection).
+                let one = F8::splat(1.0);
+                let nw = F8::splat(n_water);
+                let (n1, n2) = (in_water.select(nw, one), in_water.select(one, nw));
+                let rs = (n1 * b.cos_i - n2 * b.cos_t) / (n1 * b.cos_i + n2 * b.cos_t);
+                let rp = (n2 * b.cos_i - n1 * b.cos_t) / (n2 * b.cos_i + n1 * b.cos_t);
+                let r = b.total.select(one, F8::splat(0.5) * (rs * rs + rp * rp));
+                for k in 0..n {
+                    if hits_water.0[k] == 0 {
+                        continue;
+                    }
+                    let (w, water, pixel) =
+                        (cur.w[base + k], cur.in_water[base + k], cur.pixel[base + k]);
+                    let mut wr = w * r.0[k];
+                    let mut wt = if b.total.0[k] != 0 { 0.0 } else { w - wr };
+                    if b.is_top.0[k] == 0 {
+                        // Out through the side or bottom, or mirrored off their outside: escapes.
+                        if water {
+                            wt = 0.0;
+                        } else {
+                            wr = 0.0;
+                        }
+                    }
+                    let q = [b.q[0].0[k], b.q[1].0[k], b.q[2].0[k]];
+                    if wr >= prune && wr > 0.0 {
+                        let l = [
+                            b.reflected[0].0[k],
+                            b.reflected[1].0[k],
+                            b.reflected[2].0[k],
+                        ];
+                        next.push(q, l, wr, water, pixel);
+                    }
+                    if wt >= prune && wt > 0.0 {
+                        let t = [
+                            b.refracted[0].0[k],
+                            b.refracted[1].0[k],
+                            b.refracted[2].0[k],
+                        ];
+                        next.push(q, t, wt, !water, pixel);
+                    }
+                }
+            }
+            std::mem::swap(cur, next);
         }
     }
 
@@ -210,14 +352,6 @@ impl PacketTracer {
     fn trace8(&self, eye: [f32; 3], d: [F8; 3]) -> [u8; LANES] {
         let inf = F8::splat(f32::INFINITY);
         let zero = F8::splat(0.0);
-        let t_min = F8::splat(PACKET_MIN_DISTANCE);
-        let rv2 = F8::splat((GLASS_RADIUS * GLASS_RADIUS) as f32);
-        let rp2 = F8::splat((STRAW_RADIUS * STRAW_RADIUS) as f32);
-        let inv_rv = F8::splat((1.0 / GLASS_RADIUS) as f32);
-        let he = F8::splat(self.water_height);
-        let hp = F8::splat(STRAW_HEIGHT as f32);
-        let (sx, sy) = (F8::splat(self.straw_x), F8::splat(self.straw_y));
-        let water_on = M8::splat(self.has_water);
 
         let (mut ox, mut oy, mut oz) = (F8::splat(eye[0]), F8::splat(eye[1]), F8::splat(eye[2]));
         let [mut dx, mut dy, mut dz] = d;
@@ -230,86 +364,15 @@ impl PacketTracer {
             if !alive.any() {
                 break;
             }
-            let a = dx * dx + dy * dy;
-            let inv_a = F8::splat(1.0) / a;
-            let inv_dz = F8::splat(1.0) / dz;
-
-            // Water side wall: the first root beyond t_min with 0 <= z <= he.
-            let b = ox * dx + oy * dy;
-            let c = ox * ox + oy * oy - rv2;
-            let disc = b * b - a * c;
-            if !alive.and(disc.ge(zero)).any() {
-                break; // every live ray's line misses the glass, which holds every face
-            }
-            let sq = disc.max(zero).sqrt();
-            let t0 = (-b - sq) * inv_a;
-            let t1 = (-b + sq) * inv_a;
-            let z0 = oz + t0 * dz;
-            let z1 = oz + t1 * dz;
-            let ok0 = t0.gt(t_min).and(z0.ge(zero)).and(z0.le(he));
-            let ok1 = t1.gt(t_min).and(z1.ge(zero)).and(z1.le(he));
-            let real = disc.ge(zero);
-            let t_side = ok0.select(t0, ok1.select(t1, inf));
-            let t_side = real.select(t_side, inf);
-
-            // The planes z = he and z = 0.
-            let t_top = (he - oz) * inv_dz;
-            let t_bottom = -oz * inv_dz;
-            let (xt, yt) = (ox + t_top * dx, oy + t_top * dy);
-            let (xb, yb) = (ox + t_bottom * dx, oy + t_bottom * dy);
-            let top_ok = t_top.gt(t_min).and((xt * xt + yt * yt).le(rv2));
-            let bottom_ok = t_bottom.gt(t_min).and((xb * xb + yb * yb).le(rv2));
-
-            // Nearest water face: side (0), top (1), bottom (2); ties keep the earlier.
-            let mut t_water = t_side;
-            let mut water_face = zero;
-            let m = top_ok.and(t_top.lt(t_water));
-            t_water = m.select(t_top, t_water);
-            water_face = m.select(F8::splat(1.0), water_face);
-            let m = bottom_ok.and(t_bottom.lt(t_water));
-            t_water = m.select(t_bottom, t_water);
-            water_face = m.select(F8::splat(2.0), water_face);
-            t_water = water_on.select(t_water, inf);
-
-            // Straw side (the ray is always outside it: the near root), top cap, bottom cap.
-            let (px, py) = (ox - sx, oy - sy);
-            let bs = px * dx + py * dy;
-            let cs = px * px + py * py - rp2;
-            let discs = bs * bs - a * cs;
-            let near_straw = alive.and(discs.ge(zero));
-            // No live ray's line passes within the straw's radius: no straw face can be hit
-            // (its caps lie inside that circle); skip the work.
-            let (t_straw, straw_code) = if near_straw.any() {
-                let ts = (-bs - discs.max(zero).sqrt()) * inv_a;
-                let zs = oz + ts * dz;
-                let side_ok = discs
-                    .ge(zero)
-                    .and(ts.gt(t_min))
-                    .and(zs.ge(zero))
-                    .and(zs.le(hp));
-                let mut t_straw = side_ok.select(ts, inf);
-                // Section of the side hit, 1..=5: one plus the section boundaries below the hit.
-                let mut straw_code = F8::splat(1.0);
-                for k in 1..SECTION_COUNT {
-                    let above = zs.ge(F8::splat((k as f64 * SECTION_HEIGHT) as f32));
-                    straw_code = above.select(straw_code + F8::splat(1.0), straw_code);
-                }
-                let t_cap = (hp - oz) * inv_dz;
-                let (xc, yc) = (ox + t_cap * dx - sx, oy + t_cap * dy - sy);
-                let m = t_cap
-                    .gt(t_min)
-                    .and((xc * xc + yc * yc).le(rp2))
-                    .and(t_cap.lt(t_straw));
-                t_straw = m.select(t_cap, t_straw);
-                straw_code = m.select(F8::splat(SECTION_COUNT as f32), straw_code);
-                let (xs, ys) = (xb - sx, yb - sy);
-                let m = bottom_ok_straw(t_bottom, t_min, xs, ys, rp2).and(t_bottom.lt(t_straw));
-                t_straw = m.select(t_bottom, t_straw);
-                straw_code = m.select(F8::splat(1.0), straw_code);
-                (t_straw, straw_code)
-            } else {
-                (inf, zero)
+            let Some(hit) = self.hit8([ox, oy, oz], [dx, dy, dz], alive) else {
+                break;
             };
+            let Hit8 {
+                t_water,
+                water_face,
+                t_straw,
+                straw_code,
+            } = hit;
 
             // What each live ray does now.
             let hits_straw = alive.and(t_straw.lt(inf)).and(t_straw.le(t_water));
@@ -325,35 +388,18 @@ impl PacketTracer {
             }
 
             // Refraction or total reflection at the water face, for the live rays.
-            let t = t_water;
-            let (qx, qy, qz) = (ox + t * dx, oy + t * dy, oz + t * dz);
-            let is_side = water_face.lt(F8::splat(0.5));
-            let is_top = water_face.lt(F8::splat(1.5)).and_not(is_side);
-            let (nx, ny) = (
-                is_side.select(qx * inv_rv, zero),
-                is_side.select(qy * inv_rv, zero),
-            );
-            let nz = is_side.select(zero, is_top.select(F8::splat(1.0), F8::splat(-1.0)));
-            // The side's normal q/Rv is unit to rounding (q lies on the wall): not renormalised.
-            let cos_raw = -(dx * nx + dy * ny + dz * nz);
-            let facing = cos_raw.ge(zero);
-            let (mx, my, mz) = (
-                facing.select(nx, -nx),
-                facing.select(ny, -ny),
-                facing.select(nz, -nz),
-            );
-            let cos_i = facing.select(cos_raw, -cos_raw);
-            let eta = in_water.select(F8::splat(self.eta_into_air), F8::splat(self.eta_into_water));
-            let sin2_t = eta * eta * (F8::splat(1.0) - cos_i * cos_i);
-            let total = sin2_t.gt(F8::splat(1.0));
-            let cos_t = (F8::splat(1.0) - sin2_t).max(zero).sqrt();
-            let k = eta * cos_i - cos_t;
-            let (rx, ry, rz) = (eta * dx + k * mx, eta * dy + k * my, eta * dz + k * mz);
-            // Snell's refracted direction is unit when d and the normal are; the rounding drift
-            // over at most a few events (~1e-7) is far below what changes a pixel.
-            // Mirror: d + 2·cos_i·m (m faces the incoming ray).
-            let two_cos = F8::splat(2.0) * cos_i;
-            let (lx, ly, lz) = (dx + two_cos * mx, dy + two_cos * my, dz + two_cos * mz);
+            let bend = self.bend8([ox, oy, oz], [dx, dy, dz], t_water, water_face, in_water);
+            let Bend8 {
+                q,
+                refracted,
+                reflected,
+                total,
+                is_top,
+                ..
+            } = bend;
+            let [qx, qy, qz] = q;
+            let [rx, ry, rz] = refracted;
+            let [lx, ly, lz] = reflected;
             dx = alive.select(total.select(lx, rx), dx);
             dy = alive.select(total.select(ly, ry), dy);
             dz = alive.select(total.select(lz, rz), dz);
@@ -370,6 +416,266 @@ impl PacketTracer {
             in_water = M8(std::array::from_fn(|k| in_water.0[k] ^ crossed.0[k]));
         }
         std::array::from_fn(|k| code.0[k] as u8)
+    }
+
+    /// The nearest water face and straw face ahead of eight rays (infinite distances for none);
+    /// `None` when no live ray's line comes near the glass at all.
+    #[inline(always)]
+    fn hit8(&self, o: [F8; 3], d: [F8; 3], alive: M8) -> Option<Hit8> {
+        let inf = F8::splat(f32::INFINITY);
+        let zero = F8::splat(0.0);
+        let t_min = F8::splat(PACKET_MIN_DISTANCE);
+        let rv2 = F8::splat((GLASS_RADIUS * GLASS_RADIUS) as f32);
+        let rp2 = F8::splat((STRAW_RADIUS * STRAW_RADIUS) as f32);
+        let he = F8::splat(self.water_height);
+        let hp = F8::splat(STRAW_HEIGHT as f32);
+        let (sx, sy) = (F8::splat(self.straw_x), F8::splat(self.straw_y));
+        let water_on = M8::splat(self.has_water);
+        let [ox, oy, oz] = o;
+        let [dx, dy, dz] = d;
+        let a = dx * dx + dy * dy;
+        let inv_a = F8::splat(1.0) / a;
+        let inv_dz = F8::splat(1.0) / dz;
+
+        // Water side wall: the first root beyond t_min with 0 <= z <= he.
+        let b = ox * dx + oy * dy;
+        let c = ox * ox + oy * oy - rv2;
+        let disc = b * b - a * c;
+        if !alive.and(disc.ge(zero)).any() {
+            return None; // every live ray's line misses the glass, which holds every face
+        }
+        let sq = disc.max(zero).sqrt();
+        let t0 = (-b - sq) * inv_a;
+        let t1 = (-b + sq) * inv_a;
+        let z0 = oz + t0 * dz;
+        let z1 = oz + t1 * dz;
+        let ok0 = t0.gt(t_min).and(z0.ge(zero)).and(z0.le(he));
+        let ok1 = t1.gt(t_min).and(z1.ge(zero)).and(z1.le(he));
+        let real = disc.ge(zero);
+        let t_side = ok0.select(t0, ok1.select(t1, inf));
+        let t_side = real.select(t_side, inf);
+
+        // The planes z = he and z = 0.
+        let t_top = (he - oz) * inv_dz;
+        let t_bottom = -oz * inv_dz;
+        let (xt, yt) = (ox + t_top * dx, oy + t_top * dy);
+        let (xb, yb) = (ox + t_bottom * dx, oy + t_bottom * dy);
+        let top_ok = t_top.gt(t_min).and((xt * xt + yt * yt).le(rv2));
+        let bottom_ok = t_bottom.gt(t_min).and((xb * xb + yb * yb).le(rv2));
+
+        // Nearest water face: side (0), top (1), bottom (2); ties keep the earlier.
+        let mut t_water = t_side;
+        let mut water_face = zero;
+        let m = top_ok.and(t_top.lt(t_water));
+        t_water = m.select(t_top, t_water);
+        water_face = m.select(F8::splat(1.0), water_face);
+        let m = bottom_ok.and(t_bottom.lt(t_water));
+        t_water = m.select(t_bottom, t_water);
+        water_face = m.select(F8::splat(2.0), water_face);
+        t_water = water_on.select(t_water, inf);
+
+        // Straw side (the ray is always outside it: the near root), top cap, bottom cap.
+        let (px, py) = (ox - sx, oy - sy);
+        let bs = px * dx + py * dy;
+        let cs = px * px + py * py - rp2;
+        let discs = bs * bs - a * cs;
+        let near_straw = alive.and(discs.ge(zero));
+        // No live ray's line passes within the straw's radius: no straw face can be hit
+        // (its caps lie inside that circle); skip the work.
+        let (t_straw, straw_code) = if near_straw.any() {
+            let ts = (-bs - discs.max(zero).sqrt()) * inv_a;
+            let zs = oz + ts * dz;
+            let side_ok = discs
+                .ge(zero)
+                .and(ts.gt(t_min))
+                .and(zs.ge(zero))
+                .and(zs.le(hp));
+            let mut t_straw = side_ok.select(ts, inf);
+            // Section of the side hit, 1..=5: one plus the section boundaries below the hit.
+            let mut straw_code = F8::splat(1.0);
+            for k in 1..SECTION_COUNT {
+                let above = zs.ge(F8::splat((k as f64 * SECTION_HEIGHT) as f32));
+                straw_code = above.select(straw_code + F8::splat(1.0), straw_code);
+            }
+            let t_cap = (hp - oz) * inv_dz;
+            let (xc, yc) = (ox + t_cap * dx - sx, oy + t_cap * dy - sy);
+            let m = t_cap
+                .gt(t_min)
+                .and((xc * xc + yc * yc).le(rp2))
+                .and(t_cap.lt(t_straw));
+            t_straw = m.select(t_cap, t_straw);
+            straw_code = m.select(F8::splat(SECTION_COUNT as f32), straw_code);
+            let (xs, ys) = (xb - sx, yb - sy);
+            let m = bottom_ok_straw(t_bottom, t_min, xs, ys, rp2).and(t_bottom.lt(t_straw));
+            t_straw = m.select(t_bottom, t_straw);
+            straw_code = m.select(F8::splat(1.0), straw_code);
+            (t_straw, straw_code)
+        } else {
+            (inf, zero)
+        };
+
+        Some(Hit8 {
+            t_water,
+            water_face,
+            t_straw,
+            straw_code,
+        })
+    }
+
+    /// Where eight rays meet the water face at `t_water`, and their refracted and mirrored
+    /// directions there (`total` where Snell's law forbids refraction).
+    #[inline(always)]
+    fn bend8(&self, o: [F8; 3], d: [F8; 3], t_water: F8, water_face: F8, in_water: M8) -> Bend8 {
+        let zero = F8::splat(0.0);
+        let inv_rv = F8::splat((1.0 / GLASS_RADIUS) as f32);
+        let [ox, oy, oz] = o;
+        let [dx, dy, dz] = d;
+        let t = t_water;
+        let (qx, qy, qz) = (ox + t * dx, oy + t * dy, oz + t * dz);
+        let is_side = water_face.lt(F8::splat(0.5));
+        let is_top = water_face.lt(F8::splat(1.5)).and_not(is_side);
+        let (nx, ny) = (
+            is_side.select(qx * inv_rv, zero),
+            is_side.select(qy * inv_rv, zero),
+        );
+        let nz = is_side.select(zero, is_top.select(F8::splat(1.0), F8::splat(-1.0)));
+        // The side's normal q/Rv is unit to rounding (q lies on the wall): not renormalised.
+        let cos_raw = -(dx * nx + dy * ny + dz * nz);
+        let facing = cos_raw.ge(zero);
+        let (mx, my, mz) = (
+            facing.select(nx, -nx),
+            facing.select(ny, -ny),
+            facing.select(nz, -nz),
+        );
+        let cos_i = facing.select(cos_raw, -cos_raw);
+        let eta = in_water.select(F8::splat(self.eta_into_air), F8::splat(self.eta_into_water));
+        let sin2_t = eta * eta * (F8::splat(1.0) - cos_i * cos_i);
+        let total = sin2_t.gt(F8::splat(1.0));
+        let cos_t = (F8::splat(1.0) - sin2_t).max(zero).sqrt();
+        let k = eta * cos_i - cos_t;
+        let (rx, ry, rz) = (eta * dx + k * mx, eta * dy + k * my, eta * dz + k * mz);
+        // Snell's refracted direction is unit when d and the normal are; the rounding drift
+        // over at most a few events (~1e-7) is far below what changes a pixel.
+        // Mirror: d + 2·cos_i·m (m faces the incoming ray).
+        let two_cos = F8::splat(2.0) * cos_i;
+        let (lx, ly, lz) = (dx + two_cos * mx, dy + two_cos * my, dz + two_cos * mz);
+        Bend8 {
+            q: [qx, qy, qz],
+            refracted: [rx, ry, rz],
+            reflected: [lx, ly, lz],
+            total,
+            is_top,
+            cos_i,
+            cos_t,
+        }
+    }
+}
+
+/// The nearest faces ahead of eight rays.
+#[derive(Clone, Copy, Debug)]
+struct Hit8 {
+    /// Distance to the nearest water face (infinite: none).
+    t_water: F8,
+    /// Which: 0 side, 1 top, 2 bottom.
+    water_face: F8,
+    /// Distance to the nearest straw face (infinite: none).
+    t_straw: F8,
+    /// The colour code there.
+    straw_code: F8,
+}
+
+/// Eight rays at a water face.
+#[derive(Clone, Copy, Debug)]
+struct Bend8 {
+    /// The points met.
+    q: [F8; 3],
+    /// Refracted directions (meaningless where `total`).
+    refracted: [F8; 3],
+    /// Mirrored directions.
+    reflected: [F8; 3],
+    /// Total reflection.
+    total: M8,
+    /// The face is the water's top.
+    is_top: M8,
+    /// Cosine of incidence, and of refraction.
+    cos_i: F8,
+    cos_t: F8,
+}
+
+/// The eye, and the unit directions through the centres of pixels `8p .. 8p + 8` of row `row`
+/// (SPEC §6: `f + sx·r + sy·u`, `sx` affine in the column), in single precision.
+#[inline(always)]
+fn row_rays(camera: &Camera, row: u32) -> ([f32; 3], impl Fn(usize) -> [F8; 3]) {
+    let (w, h) = (camera.width as f64, camera.height as f64);
+    let sx_scale = camera.tan_half_fov * (w / h);
+    let sy = ((1.0 - 2.0 * (row as f64 + 0.5) / h) * camera.tan_half_fov) as f32;
+    let sx_step = (2.0 / w * sx_scale) as f32;
+    let sx_start = (sx_scale * (1.0 / w - 1.0)) as f32; // pixel 0's centre
+    let v = |x: crate::Vec3| [x.x as f32, x.y as f32, x.z as f32];
+    let (f, r, u) = (v(camera.forward), v(camera.right), v(camera.up));
+    // The row's part common to all pixels: f + sy·u.
+    let base = [f[0] + sy * u[0], f[1] + sy * u[1], f[2] + sy * u[2]];
+    let lane = F8(std::array::from_fn(|k| k as f32));
+    let dirs = move |p: usize| {
+        let first = F8::splat((p * LANES) as f32);
+        let sx = F8::splat(sx_start) + (first + lane) * F8::splat(sx_step);
+        let dx = F8::splat(base[0]) + sx * F8::splat(r[0]);
+        let dy = F8::splat(base[1]) + sx * F8::splat(r[1]);
+        let dz = F8::splat(base[2]) + sx * F8::splat(r[2]);
+        let inv = F8::splat(1.0) / (dx * dx + dy * dy + dz * dz).sqrt();
+        [dx * inv, dy * inv, dz * inv]
+    };
+    (v(camera.eye), dirs)
+}
+
+/// Reusable buffers for [`PacketTracer::fresnel_row`] (keep one per thread).
+#[derive(Clone, Debug, Default)]
+pub struct FresnelWave {
+    current: Branches,
+    next: Branches,
+}
+
+/// Fresnel branches, structure of arrays: origin and direction components, weight, medium, pixel.
+#[derive(Clone, Debug, Default)]
+struct Branches {
+    /// `ox, oy, oz, dx, dy, dz`.
+    ray: [Vec<f32>; 6],
+    w: Vec<f32>,
+    in_water: Vec<bool>,
+    pixel: Vec<u32>,
+}
+
+impl Branches {
+    fn clear(&mut self) {
+        for v in &mut self.ray {
+            v.clear();
+        }
+        self.w.clear();
+        self.in_water.clear();
+        self.pixel.clear();
+    }
+
+    fn len(&self) -> usize {
+        self.w.len()
+    }
+
+    #[inline(always)]
+    fn push(&mut self, o: [f32; 3], d: [f32; 3], w: f32, in_water: bool, pixel: u32) {
+        for (k, x) in o.into_iter().chain(d).enumerate() {
+            self.ray[k].push(x);
+        }
+        self.w.push(w);
+        self.in_water.push(in_water);
+        self.pixel.push(pixel);
+    }
+
+    /// Component `c` of branches `base .. base + 8` (a harmless 0.5 past the end).
+    #[inline(always)]
+    fn load(&self, c: usize, base: usize) -> F8 {
+        let v = &self.ray[c];
+        F8(std::array::from_fn(|k| {
+            v.get(base + k).copied().unwrap_or(0.5)
+        }))
     }
 }
 
@@ -400,6 +706,12 @@ mod tests {
                 pt.course_row(&cam, i, &mut a);
                 pt.course_row_portable(&cam, i, &mut b);
                 assert_eq!(a, b, "row {i}");
+                let mut wave = FresnelWave::default();
+                let mut fa = vec![[0.0; SECTION_COUNT]; cam.width as usize];
+                let mut fb = fa.clone();
+                pt.fresnel_row(&cam, i, 1e-4, &mut wave, &mut fa);
+                pt.fresnel_row_portable(&cam, i, 1e-4, &mut wave, &mut fb);
+                assert_eq!(fa, fb, "fresnel row {i}");
             }
         }
     }

@@ -9,7 +9,7 @@
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::geometry::{CylinderSide, Disk, Ray};
 use bentstraw_optics::interface::{fresnel_reflectance, reflect, refract};
-use bentstraw_optics::picture::{course_picture_exact, fresnel_picture};
+use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::{
     section_at, Scene, GLASS_HEIGHT, GLASS_RADIUS, REFERENCES, SECTION_COUNT, STRAW_HEIGHT,
     STRAW_RADIUS,
@@ -415,7 +415,7 @@ fn fast_tracer_matches_reference_on_awkward_rays() {
 fn pictures_match_reference_per_pixel() {
     for (scene, camera) in bench_views(96, 72) {
         let codes = course_picture_exact(&scene, &camera);
-        let weights = fresnel_picture(&scene, &camera, 1e-4);
+        let weights = fresnel_picture_exact(&scene, &camera, 1e-4);
         for i in 0..camera.height {
             for j in 0..camera.width {
                 let k = (i * camera.width + j) as usize;

@@ -2,7 +2,9 @@
 //! few on colour boundaries.
 
 use bentstraw_optics::camera::Camera;
-use bentstraw_optics::picture::{course_picture, course_picture_exact};
+use bentstraw_optics::picture::{
+    course_picture, course_picture_exact, fresnel_picture, fresnel_picture_exact,
+};
 use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE};
 use bentstraw_optics::Vec3;
 
@@ -80,5 +82,79 @@ fn packet_picture_matches_exact_on_other_scenes() {
         let scene = Scene::new(xp, yp, he, n, 10).unwrap();
         let camera = Camera::new(observer, SCENE_CENTRE, 320, 240, 60f64.to_radians());
         check(&scene, &camera, &format!("scene {scene:?} from {observer}"));
+    }
+}
+
+/// Fresnel: pixels whose weights differ from the double-precision picture's by more than 1e-3
+/// (largest over the sections); how many differ by more than 0.01 off any boundary of the exact
+/// picture (no 8-neighbour whose weights differ from the pixel's by more than 0.01); the largest
+/// difference off boundaries.
+///
+/// A light secondary branch (weight ~1e-3) that grazes a rim can go either way in single
+/// precision without the pixel being on a visible boundary; a heavy one cannot.
+fn compare_fresnel(scene: &Scene, camera: &Camera) -> (usize, usize, f64) {
+    let fast = fresnel_picture(scene, camera, 1e-4);
+    let exact = fresnel_picture_exact(scene, camera, 1e-4);
+    let (w, h) = (camera.width as i64, camera.height as i64);
+    let at = |i: i64, j: i64| exact[(i * w + j) as usize];
+    let gap = |a: [f64; 5], b: [f64; 5]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    };
+    let (mut differ, mut off, mut largest_inside) = (0, 0, 0.0f64);
+    for i in 0..h {
+        for j in 0..w {
+            let d = gap(fast[(i * w + j) as usize], at(i, j));
+            let mut boundary = false;
+            for di in -1..=1 {
+                for dj in -1..=1 {
+                    let (ii, jj) = (i + di, j + dj);
+                    if ii >= 0 && jj >= 0 && ii < h && jj < w && gap(at(ii, jj), at(i, j)) > 0.01 {
+                        boundary = true;
+                    }
+                }
+            }
+            if !boundary {
+                largest_inside = largest_inside.max(d);
+            }
+            differ += usize::from(d > 1e-3);
+            off += usize::from(d > 0.01 && !boundary);
+        }
+    }
+    (differ, off, largest_inside)
+}
+
+#[test]
+fn packet_fresnel_picture_matches_exact() {
+    for r in REFERENCES {
+        let scene = r.scene(1.333);
+        let target = if r.number == 4 {
+            Vec3::new(0.0, 0.0, 0.05)
+        } else {
+            Vec3::new(r.straw.0, r.straw.1, r.water_height)
+        };
+        for camera in [
+            Camera::new(r.observer, target, 512, 384, 50f64.to_radians()),
+            Camera::new(r.observer, SCENE_CENTRE, 301, 203, 90f64.to_radians()),
+        ] {
+            let (differ, off, largest) = compare_fresnel(&scene, &camera);
+            let total = (camera.width * camera.height) as usize;
+            eprintln!(
+                "fresnel simulation {}: {differ} of {total} pixels differ by > 1e-3, {off} by > 0.01 off boundaries, largest difference off boundaries {largest:.2e}",
+                r.number
+            );
+            assert_eq!(
+                off, 0,
+                "simulation {}: {off} pixels off boundaries",
+                r.number
+            );
+            assert!(
+                differ * 1000 < 5 * total,
+                "simulation {}: {differ} pixels",
+                r.number
+            );
+        }
     }
 }
