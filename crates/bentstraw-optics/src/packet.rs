@@ -253,6 +253,7 @@ impl PacketTracer {
         }
         let (cur, next) = (&mut wave.current, &mut wave.next);
         cur.clear();
+        cur.reserve_total(weights.len());
         let (eye, dirs) = row_rays(camera, row);
         for (p, chunk_start) in (0..weights.len()).step_by(LANES).enumerate() {
             let [dx, dy, dz] = dirs(p);
@@ -271,6 +272,8 @@ impl PacketTracer {
                 break;
             }
             next.clear();
+            // Each branch has at most two children.
+            next.reserve_total(2 * cur.len());
             for base in (0..cur.len()).step_by(LANES) {
                 let n = LANES.min(cur.len() - base);
                 let alive = M8(std::array::from_fn(|k| if k < n { u32::MAX } else { 0 }));
@@ -636,6 +639,9 @@ pub struct FresnelWave {
 }
 
 /// Fresnel branches, structure of arrays: origin and direction components, weight, medium, pixel.
+///
+/// The vectors only grow (to the largest wave seen) and are written by index: `len` counts the
+/// branches in use, so pushing is a plain store.
 #[derive(Clone, Debug, Default)]
 struct Branches {
     /// `ox, oy, oz, dx, dy, dz`.
@@ -643,39 +649,54 @@ struct Branches {
     w: Vec<f32>,
     in_water: Vec<bool>,
     pixel: Vec<u32>,
+    len: usize,
 }
 
 impl Branches {
     fn clear(&mut self) {
-        for v in &mut self.ray {
-            v.clear();
-        }
-        self.w.clear();
-        self.in_water.clear();
-        self.pixel.clear();
+        self.len = 0;
     }
 
     fn len(&self) -> usize {
-        self.w.len()
+        self.len
     }
 
+    /// Makes room for `n` branches in all.
+    fn reserve_total(&mut self, n: usize) {
+        if self.w.len() < n {
+            let n = n.max(2 * self.w.len());
+            for v in &mut self.ray {
+                v.resize(n, 0.0);
+            }
+            self.w.resize(n, 0.0);
+            self.in_water.resize(n, false);
+            self.pixel.resize(n, 0);
+        }
+    }
+
+    /// Appends a branch; room must have been made with [`Self::reserve_total`].
     #[inline(always)]
     fn push(&mut self, o: [f32; 3], d: [f32; 3], w: f32, in_water: bool, pixel: u32) {
+        let n = self.len;
         for (k, x) in o.into_iter().chain(d).enumerate() {
-            self.ray[k].push(x);
+            self.ray[k][n] = x;
         }
-        self.w.push(w);
-        self.in_water.push(in_water);
-        self.pixel.push(pixel);
+        self.w[n] = w;
+        self.in_water[n] = in_water;
+        self.pixel[n] = pixel;
+        self.len = n + 1;
     }
 
     /// Component `c` of branches `base .. base + 8` (a harmless 0.5 past the end).
     #[inline(always)]
     fn load(&self, c: usize, base: usize) -> F8 {
-        let v = &self.ray[c];
-        F8(std::array::from_fn(|k| {
-            v.get(base + k).copied().unwrap_or(0.5)
-        }))
+        let v = &self.ray[c][..self.len];
+        match v.get(base..base + LANES) {
+            Some(full) => F8(std::array::from_fn(|k| full[k])),
+            None => F8(std::array::from_fn(|k| {
+                v.get(base + k).copied().unwrap_or(0.5)
+            })),
+        }
     }
 }
 
