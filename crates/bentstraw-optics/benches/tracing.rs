@@ -4,7 +4,9 @@ use std::hint::black_box;
 
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::geometry::Ray;
-use bentstraw_optics::picture::course_picture;
+use bentstraw_optics::picture::{
+    course_picture, course_picture_exact, fresnel_picture, fresnel_picture_exact,
+};
 use bentstraw_optics::scene::{Scene, REFERENCES};
 use bentstraw_optics::tracer::Tracer;
 use bentstraw_optics::Vec3;
@@ -126,6 +128,17 @@ fn picture_row(c: &mut Criterion) {
             |_| pool.install(|| course_picture(black_box(&scene), black_box(&row_camera))),
             BatchSize::SmallInput,
         )
+    });
+    g.bench_function("course row 1024 px, double precision", |b| {
+        b.iter(|| pool.install(|| course_picture_exact(black_box(&scene), black_box(&row_camera))))
+    });
+    g.bench_function("fresnel row 1024 px", |b| {
+        b.iter(|| pool.install(|| fresnel_picture(black_box(&scene), black_box(&row_camera), 1e-4)))
+    });
+    g.bench_function("fresnel row 1024 px, double precision", |b| {
+        b.iter(|| {
+            pool.install(|| fresnel_picture_exact(black_box(&scene), black_box(&row_camera), 1e-4))
+        })
     });
     g.finish();
 }
