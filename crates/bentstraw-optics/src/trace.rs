@@ -259,7 +259,10 @@ impl Scene {
         while top > 0 {
             top -= 1;
             let mut b = stack[top];
-            while let Some(hit) = self.nearest_intersection(&b.ray) {
+            loop {
+                let Some(hit) = self.nearest_intersection(&b.ray) else {
+                    break;
+                };
                 let point = b.ray.at(hit.distance);
                 if hit.face.is_straw() {
                     weights[self.straw_color(hit.face, point) as usize - 1] += b.weight;
