@@ -1,7 +1,14 @@
 //! The observer's pinhole camera (SPEC §6).
 
 use crate::geometry::Ray;
+use crate::scene::{GLASS_RADIUS, STRAW_HEIGHT};
 use crate::Vec3;
+
+/// Relative margin left around the glass and straw by [`framing_fov`].
+pub const FRAMING_MARGIN: f64 = 0.08;
+/// Widest vertical field of view [`framing_fov`] returns (radians, 150°): used when the eye is
+/// so close that no narrower view holds the whole glass (references 1 and 2 need about 148°).
+pub const MAX_FRAMING_FOV: f64 = 150.0 * std::f64::consts::PI / 180.0;
 
 /// A pinhole camera at the eye, aimed at a target, `width × height` pixels, vertical field `fov_y`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,4 +82,71 @@ impl Camera {
         let sy = v.dot(self.up) / z / self.tan_half_fov;
         Some(((1.0 - sy) * h / 2.0, (sx + 1.0) * w / 2.0))
     }
+}
+
+/// The extent `(x_min, x_max, y_min, y_max)` of the glass-and-straw cylinder (radius `Rv`, `z` from
+/// 0 to `Hp`) on the image plane at unit distance of a camera at `eye` looking at `target`, or
+/// `None` if part of it is behind the eye.
+///
+/// A pinhole picture of a cylinder is bounded by the pictures of its two end circles.
+fn scene_extent(eye: Vec3, target: Vec3) -> Option<(f64, f64, f64, f64)> {
+    let cam = Camera::new(eye, target, 1, 1, std::f64::consts::FRAC_PI_2);
+    let mut e = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    const STEPS: usize = 1440;
+    for k in 0..STEPS {
+        let a = k as f64 * std::f64::consts::TAU / STEPS as f64;
+        for z in [0.0, STRAW_HEIGHT] {
+            let v = Vec3::new(GLASS_RADIUS * a.cos(), GLASS_RADIUS * a.sin(), z) - eye;
+            let depth = v.dot(cam.forward);
+            if depth <= 1e-9 {
+                return None;
+            }
+            let (x, y) = (v.dot(cam.right) / depth, v.dot(cam.up) / depth);
+            e = (e.0.min(x), e.1.max(x), e.2.min(y), e.3.max(y));
+        }
+    }
+    Some(e)
+}
+
+/// The vertical field of view (radians) that just frames the glass and the straw, with a margin of
+/// [`FRAMING_MARGIN`], for a camera at `eye` aimed at `target` with `aspect = width / height`.
+///
+/// Glass and straw (wherever it stands) lie in the cylinder of radius `Rv` from `z = 0` to `Hp`;
+/// the field is the smallest that holds its picture. Capped at [`MAX_FRAMING_FOV`] (also when part
+/// of the cylinder is behind the eye).
+pub fn framing_fov(eye: Vec3, target: Vec3, aspect: f64) -> f64 {
+    let Some((x0, x1, y0, y1)) = scene_extent(eye, target) else {
+        return MAX_FRAMING_FOV;
+    };
+    let half = y0.abs().max(y1.abs()).max(x0.abs().max(x1.abs()) / aspect);
+    (2.0 * (half * (1.0 + FRAMING_MARGIN)).atan()).min(MAX_FRAMING_FOV)
+}
+
+/// A target for a camera at `eye` that centres the picture of the glass and the straw (rather than
+/// aiming at the centre of their box, which a close observer sees off-centre), at the distance of
+/// [`crate::scene::SCENE_CENTRE`]; that centre itself if the glass is partly behind the eye.
+pub fn framing_target(eye: Vec3) -> Vec3 {
+    let centre = crate::scene::SCENE_CENTRE;
+    let mut target = centre;
+    // Re-aim at the angular middle of the picture's extent; a few rounds converge (each moves
+    // the aim less). Should a round put part of the glass behind the eye, keep the last aim.
+    for _ in 0..12 {
+        let Some((x0, x1, y0, y1)) = scene_extent(eye, target) else {
+            break;
+        };
+        let cam = Camera::new(eye, target, 1, 1, std::f64::consts::FRAC_PI_2);
+        let mid = |a: f64, b: f64| (0.5 * (a.atan() + b.atan())).tan();
+        let forward = (cam.forward + mid(x0, x1) * cam.right + mid(y0, y1) * cam.up).normalize();
+        let next = eye + (centre - eye).length() * forward;
+        if scene_extent(eye, next).is_none() {
+            break;
+        }
+        target = next;
+    }
+    target
 }

@@ -3,7 +3,9 @@
 //! Data flows one way: a [`scene::Scene`] and an observer give rays ([`geometry::Ray`]), the tracer
 //! ([`trace`]) follows them through the water's faces ([`interface`]) to the straw, and each ray that
 //! arrives becomes an [`image::ImagePoint`]; [`sampling`] chooses the rays so that the straw's image is
-//! covered evenly. The crate does no I/O and prints nothing.
+//! covered evenly. The observer's own picture (SPEC §6) comes from [`camera`] and [`picture`] (one ray
+//! per pixel, for data) and [`shading`] (an RGB picture for people). The crate does no I/O and
+//! prints nothing.
 //!
 //! For speed, [`tracer::Tracer`] is the same tracer with per-scene work done once and provably
 //! useless tests skipped (same results to the bit), and [`packet`] traces course-mode pictures eight
@@ -12,6 +14,7 @@
 //! The conventions are those of the project's specification (`shared/SPEC.md`): SI units (metres),
 //! origin at the centre of the glass's base, `z` up.
 
+pub mod apparent;
 pub mod camera;
 pub mod geometry;
 pub mod image;
@@ -20,6 +23,7 @@ pub mod packet;
 pub mod picture;
 pub mod sampling;
 pub mod scene;
+pub mod shading;
 pub mod trace;
 pub mod tracer;
 

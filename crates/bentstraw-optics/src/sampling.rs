@@ -1,51 +1,68 @@
 //! Choosing the rays: aim at what the observer can see of the glass and straw, and spend the rays
 //! where they reach the straw, so that the image points cover the straw's image evenly.
 //!
-//! Directions are laid out on the image plane of a pinhole camera at the observer (gnomonic
-//! coordinates `(a, b)`: direction `f + a·r + b·u`), one frame framing the glass and straw, or the six
-//! faces of a cube around the observer when it stands so close that no single frame can hold them.
-//! A coarse grid over the frame is traced; the cells that reach the straw, grown by one cell, are
-//! split in four and traced again, level after level; the last level is a uniform grid whose spacing
-//! is chosen to give the requested number of points. The points are thus the hits of a uniform grid
-//! on the image plane (even, no clumps), restricted to a band around where the straw is seen (few
-//! wasted rays). Deterministic: the same inputs give the same points in the same order, whatever the
-//! number of threads.
+//! Directions from the observer are mapped onto a plane by Lambert's cylindrical equal-area
+//! projection, its poles to the observer's left and right: `a` is the angle of a direction around the
+//! horizontal right axis (up-down, measured from the direction of the scene's centre), `b` the sine of
+//! its angle to that axis's normal plane (left-right). Equal areas of the `(a, b)` plane are equal solid
+//! angles, so a uniform grid on it is a uniform sampling of the observer's field of view, however close
+//! the observer stands and however wide the scene appears (up to the whole sphere).
+//!
+//! A coarse grid over the rectangle where the glass and straw appear is traced; the cells that reach
+//! the straw, grown by one cell, are split in four and traced again, level after level; the last level
+//! is a uniform grid whose spacing is chosen to give the requested number of points. The points are
+//! thus the hits of one uniform grid of equal solid angles (even, no clumps), restricted to a band
+//! around where the straw is seen (few wasted rays). Deterministic: the same inputs give the same
+//! points in the same order, whatever the number of threads.
+
+use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::scene::{Scene, GLASS_RADIUS, STRAW_HEIGHT};
+use crate::scene::{Scene, GLASS_RADIUS, SCENE_CENTRE, STRAW_HEIGHT};
 use crate::tracer::Tracer;
 use crate::Vec3;
 
-/// The image plane of one viewing frame, and the rectangle of it that is sampled.
+/// The equal-area map of the observer's directions, and the rectangle of it that is sampled.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
-    /// Unit forward direction (the centre of the image plane).
+    /// Unit direction at the map's origin `(a, b) = (0, 0)`: towards the scene's centre.
     pub forward: Vec3,
-    /// Unit right direction.
+    /// Unit horizontal right direction: the map's pole (`b = 1`).
     pub right: Vec3,
-    /// Unit up direction.
+    /// Unit up direction, `right × forward`.
     pub up: Vec3,
-    /// Smallest `a` (along `right`).
+    /// Smallest `a` (radians, around `right`, positive upwards).
     pub a_min: f64,
-    /// Smallest `b` (along `up`).
+    /// Smallest `b` (sine of the angle towards `right`).
     pub b_min: f64,
-    /// Width of the sampled rectangle in `a`.
+    /// Extent of the sampled rectangle in `a`.
     pub width: f64,
-    /// Height of the sampled rectangle in `b`.
+    /// Extent of the sampled rectangle in `b`.
     pub height: f64,
 }
 
 impl Frame {
-    /// The unit direction through the image-plane point `(a, b)`.
+    /// The unit direction at map point `(a, b)`.
     #[inline]
     pub fn direction(&self, a: f64, b: f64) -> Vec3 {
-        (self.forward + a * self.right + b * self.up).normalize()
+        let c = (1.0 - b * b).max(0.0).sqrt();
+        let (sin_a, cos_a) = a.sin_cos();
+        c * (cos_a * self.forward + sin_a * self.up) + b * self.right
     }
 
-    /// A frame looking along `forward`, with right/up as in the camera of SPEC §6.
+    /// The map point `(a, b)` of a unit direction.
+    #[inline]
+    pub fn coordinates(&self, d: Vec3) -> (f64, f64) {
+        (
+            d.dot(self.up).atan2(d.dot(self.forward)),
+            d.dot(self.right).clamp(-1.0, 1.0),
+        )
+    }
+
+    /// A whole-sphere map looking along `forward`, with right/up as in the camera of SPEC §6.
     pub fn looking(forward: Vec3) -> Frame {
         let f = forward.normalize();
         let c = f.cross(Vec3::Z);
@@ -59,124 +76,52 @@ impl Frame {
             forward: f,
             right,
             up,
-            a_min: -1.0,
+            a_min: -PI,
             b_min: -1.0,
-            width: 2.0,
+            width: 2.0 * PI,
             height: 2.0,
         }
     }
 }
 
-/// The frames that together see everything of the glass and straw from `observer`.
-pub fn frames_for(observer: Vec3) -> Vec<Frame> {
-    let r = GLASS_RADIUS;
-    let corners = [
-        Vec3::new(-r, -r, 0.0),
-        Vec3::new(r, -r, 0.0),
-        Vec3::new(-r, r, 0.0),
-        Vec3::new(r, r, 0.0),
-        Vec3::new(-r, -r, STRAW_HEIGHT),
-        Vec3::new(r, -r, STRAW_HEIGHT),
-        Vec3::new(-r, r, STRAW_HEIGHT),
-        Vec3::new(r, r, STRAW_HEIGHT),
-    ];
-    let centre = Vec3::new(0.0, 0.0, STRAW_HEIGHT / 2.0);
-    let mut frame = Frame::looking(centre - observer);
-    let (mut a0, mut a1, mut b0, mut b1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    let mut fits = true;
-    for c in corners {
-        let v = c - observer;
-        let w = v.dot(frame.forward);
-        // Past about 70° off-axis the plane stretches too much: use the cube instead.
-        if w <= 0.35 * v.length() {
-            fits = false;
-            break;
-        }
-        let (a, b) = (v.dot(frame.right) / w, v.dot(frame.up) / w);
-        a0 = a0.min(a);
-        a1 = a1.max(a);
-        b0 = b0.min(b);
-        b1 = b1.max(b);
-    }
-    if fits {
-        let pad = 0.02 * (a1 - a0).max(b1 - b0);
-        frame.a_min = a0 - pad;
-        frame.b_min = b0 - pad;
-        frame.width = a1 - a0 + 2.0 * pad;
-        frame.height = b1 - b0 + 2.0 * pad;
-        return vec![frame];
-    }
-    // Too close for one frame: the six faces of a cube around the observer, each cropped to the
-    // part where the glass or straw can appear (found by projecting points spread over the box).
-    let mut faces: Vec<(Frame, [f64; 4])> = [
-        Vec3::X,
-        Vec3::NEG_X,
-        Vec3::Y,
-        Vec3::NEG_Y,
-        Vec3::Z,
-        Vec3::NEG_Z,
-    ]
-    .into_iter()
-    .map(|f| {
-        // Make the six faces' right/up well defined even when forward is ±z.
-        let up_hint = if f.z.abs() > 0.5 { Vec3::Y } else { Vec3::Z };
-        let right = f.cross(up_hint).normalize();
-        let up = right.cross(f);
-        let frame = Frame {
-            forward: f,
-            right,
-            up,
-            a_min: -1.0,
-            b_min: -1.0,
-            width: 2.0,
-            height: 2.0,
-        };
-        (frame, [f64::MAX, f64::MIN, f64::MAX, f64::MIN])
-    })
-    .collect();
+/// The map of the directions from `observer`, cropped to where the glass and straw can appear.
+pub fn frame_for(observer: Vec3) -> Frame {
+    let mut frame = Frame::looking(SCENE_CENTRE - observer);
+    // Project points spread over the box enclosing glass and straw; the box is convex, so its
+    // surface bounds what can be seen.
     const N: usize = 48;
+    let r = GLASS_RADIUS;
     let lo = Vec3::new(-r, -r, 0.0);
     let size = Vec3::new(2.0 * r, 2.0 * r, STRAW_HEIGHT);
+    let (mut a0, mut a1, mut b0, mut b1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for axis in 0..3 {
         for side in [0.0, 1.0] {
             for p in 0..=N {
                 for q in 0..=N {
-                    let (s, t) = (p as f64 / N as f64, q as f64 / N as f64);
                     let mut unit = [0.0; 3];
                     unit[axis] = side;
-                    unit[(axis + 1) % 3] = s;
-                    unit[(axis + 2) % 3] = t;
+                    unit[(axis + 1) % 3] = p as f64 / N as f64;
+                    unit[(axis + 2) % 3] = q as f64 / N as f64;
                     let v = lo + Vec3::from_array(unit) * size - observer;
-                    // The cube face this point projects onto: its largest component.
-                    let (k, w) = faces
-                        .iter()
-                        .enumerate()
-                        .map(|(k, (f, _))| (k, v.dot(f.forward)))
-                        .fold((0, f64::MIN), |best, x| if x.1 > best.1 { x } else { best });
-                    let (f, bounds) = &mut faces[k];
-                    let (a, b) = (v.dot(f.right) / w, v.dot(f.up) / w);
-                    bounds[0] = bounds[0].min(a);
-                    bounds[1] = bounds[1].max(a);
-                    bounds[2] = bounds[2].min(b);
-                    bounds[3] = bounds[3].max(b);
+                    let (a, b) = frame.coordinates(v.normalize());
+                    a0 = a0.min(a);
+                    a1 = a1.max(a);
+                    b0 = b0.min(b);
+                    b1 = b1.max(b);
                 }
             }
         }
     }
-    faces
-        .into_iter()
-        .filter(|(_, b)| b[0] <= b[1])
-        .map(|(mut f, b)| {
-            let pad = 0.05;
-            let (a0, a1) = ((b[0] - pad).max(-1.0), (b[1] + pad).min(1.0));
-            let (b0, b1) = ((b[2] - pad).max(-1.0), (b[3] + pad).min(1.0));
-            f.a_min = a0;
-            f.b_min = b0;
-            f.width = a1 - a0;
-            f.height = b1 - b0;
-            f
-        })
-        .collect()
+    // A margin of a few coarse cells; all the way round if the scene wraps behind the observer.
+    let pad = 0.02 * (a1 - a0).max(b1 - b0).max(1e-6);
+    if a1.max(-a0) > 0.9 * PI {
+        (a0, a1) = (-PI, PI);
+    }
+    frame.a_min = (a0 - pad).max(-PI);
+    frame.width = (a1 + pad).min(PI) - frame.a_min;
+    frame.b_min = (b0 - pad).max(-1.0);
+    frame.height = (b1 + pad).min(1.0) - frame.b_min;
+    frame
 }
 
 /// What a sampling run produced.
@@ -210,10 +155,10 @@ impl ImageCloud {
     }
 }
 
-/// A grid cell `(frame, i, j)` at some level.
-type Cell = (u32, u32, u32);
+/// A grid cell `(i, j)` at some level: `i` along `a`, `j` along `b`.
+type Cell = (u32, u32);
 
-/// Cells along the longer side of the coarse grid, per frame.
+/// Cells along the longer side of the coarse grid.
 const COARSE_CELLS: f64 = 128.0;
 /// Levels of refinement allowed when the coarse grid sees no straw at all.
 const BLIND_LEVELS: u32 = 2;
@@ -227,36 +172,25 @@ pub fn sample_image(
     progress: &(dyn Fn(u64) + Sync),
 ) -> ImageCloud {
     let tracer = Tracer::new(scene);
-    let frames = frames_for(observer);
-    let longest = frames
-        .iter()
-        .map(|f| f.width.max(f.height))
-        .fold(0.0, f64::max);
+    let frame = frame_for(observer);
+    let longest = frame.width.max(frame.height);
     let mut spacing = longest / COARSE_CELLS;
     let mut rays = 0u64;
 
-    // Level 0: every cell of every frame.
-    let mut cells: Vec<Cell> = Vec::new();
-    for (k, f) in frames.iter().enumerate() {
-        let (nx, ny) = grid_size(f, spacing);
-        for j in 0..ny {
-            for i in 0..nx {
-                cells.push((k as u32, i, j));
-            }
-        }
-    }
+    // Level 0: every cell.
+    let (nx, ny) = grid_size(&frame, spacing);
+    let mut cells: Vec<Cell> = (0..ny).flat_map(|j| (0..nx).map(move |i| (i, j))).collect();
     // Whether the ray through each cell's centre reaches the straw (no image point is built).
     let trace_cells = |cells: &[Cell], spacing: f64| -> Vec<bool> {
         cells
             .par_iter()
             .with_min_len(256)
-            .map(|&(k, i, j)| {
-                let f = &frames[k as usize];
-                let a = f.a_min + (i as f64 + 0.5) * spacing;
-                let b = f.b_min + (j as f64 + 0.5) * spacing;
+            .map(|&(i, j)| {
+                let a = frame.a_min + (i as f64 + 0.5) * spacing;
+                let b = frame.b_min + (j as f64 + 0.5) * spacing;
                 tracer.color(Ray {
                     origin: observer,
-                    direction: f.direction(a, b),
+                    direction: frame.direction(a, b),
                 }) > 0
             })
             .collect()
@@ -264,13 +198,13 @@ pub fn sample_image(
 
     let mut blind = 0;
     loop {
-        let results = trace_cells(&cells, spacing);
+        let hit = trace_cells(&cells, spacing);
         rays += cells.len() as u64;
         progress(rays);
         let hits: Vec<Cell> = cells
             .iter()
-            .zip(&results)
-            .filter(|(_, &r)| r)
+            .zip(&hit)
+            .filter(|(_, h)| **h)
             .map(|(c, _)| *c)
             .collect();
         if hits.is_empty() {
@@ -288,7 +222,7 @@ pub fn sample_image(
         }
         // Spacing that would give about 10% more than the points asked for.
         let target = spacing * (hits.len() as f64 / (1.1 * min_points as f64)).sqrt();
-        let active = dilate(&hits, &frames, spacing);
+        let active = dilate(&hits, &frame, spacing);
         if spacing / 2.0 > target {
             cells = split(&active);
             spacing /= 2.0;
@@ -297,7 +231,7 @@ pub fn sample_image(
         // Final level: a uniform grid of spacing `h`, traced where the last level saw the straw.
         let mut h = target.min(spacing);
         loop {
-            let points = final_level(&tracer, observer, &frames, &active, spacing, h, &mut rays);
+            let points = final_level(&tracer, observer, &frame, &active, spacing, h, &mut rays);
             progress(rays);
             if points.len() >= min_points || h < 1e-7 * longest {
                 return ImageCloud {
@@ -311,7 +245,7 @@ pub fn sample_image(
     }
 }
 
-/// Cells of a frame's grid at `spacing`: `(nx, ny)`.
+/// Cells of the grid at `spacing`: `(nx, ny)`.
 fn grid_size(f: &Frame, spacing: f64) -> (u32, u32) {
     (
         (f.width / spacing).ceil().max(1.0) as u32,
@@ -322,9 +256,9 @@ fn grid_size(f: &Frame, spacing: f64) -> (u32, u32) {
 /// The four children of every cell.
 fn split(cells: &[Cell]) -> Vec<Cell> {
     let mut out = Vec::with_capacity(4 * cells.len());
-    for &(k, i, j) in cells {
+    for &(i, j) in cells {
         for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            out.push((k, 2 * i + di, 2 * j + dj));
+            out.push((2 * i + di, 2 * j + dj));
         }
     }
     out
@@ -332,36 +266,28 @@ fn split(cells: &[Cell]) -> Vec<Cell> {
 
 /// The cells that are hits or touch one (8-neighbourhood), sorted.
 ///
-/// Marks a bitmap of each frame's grid (cheaper than hashing: one bit per cell, and reading the
-/// bits in order gives the cells already sorted as `(frame, i, j)`).
-fn dilate(hits: &[Cell], frames: &[Frame], spacing: f64) -> Vec<Cell> {
+/// Marks a bitmap of the grid (cheaper than hashing: one bit per cell, and reading the bits in
+/// order gives the cells already sorted as `(i, j)`).
+fn dilate(hits: &[Cell], frame: &Frame, spacing: f64) -> Vec<Cell> {
+    let (nx, ny) = grid_size(frame, spacing);
+    let (nx, ny) = (nx as usize, ny as usize);
+    let mut bits = vec![0u64; (nx * ny).div_ceil(64)];
+    for &(i, j) in hits {
+        let (i, j) = (i as usize, j as usize);
+        for ii in i.saturating_sub(1)..=(i + 1).min(nx - 1) {
+            for jj in j.saturating_sub(1)..=(j + 1).min(ny - 1) {
+                let n = ii * ny + jj;
+                bits[n / 64] |= 1 << (n % 64);
+            }
+        }
+    }
     let mut cells = Vec::with_capacity(hits.len() * 2);
-    for (k, frame) in frames.iter().enumerate() {
-        let k = k as u32;
-        let (nx, ny) = grid_size(frame, spacing);
-        let (nx, ny) = (nx as usize, ny as usize);
-        let mut bits = vec![0u64; (nx * ny).div_ceil(64)];
-        let mut any = false;
-        for &(_, i, j) in hits.iter().filter(|c| c.0 == k) {
-            any = true;
-            let (i, j) = (i as usize, j as usize);
-            for ii in i.saturating_sub(1)..=(i + 1).min(nx - 1) {
-                for jj in j.saturating_sub(1)..=(j + 1).min(ny - 1) {
-                    let n = ii * ny + jj;
-                    bits[n / 64] |= 1 << (n % 64);
-                }
-            }
-        }
-        if !any {
-            continue;
-        }
-        for (w, &word) in bits.iter().enumerate() {
-            let mut word = word;
-            while word != 0 {
-                let n = w * 64 + word.trailing_zeros() as usize;
-                word &= word - 1;
-                cells.push((k, (n / ny) as u32, (n % ny) as u32));
-            }
+    for (w, &word) in bits.iter().enumerate() {
+        let mut word = word;
+        while word != 0 {
+            let n = w * 64 + word.trailing_zeros() as usize;
+            word &= word - 1;
+            cells.push(((n / ny) as u32, (n % ny) as u32));
         }
     }
     cells
@@ -372,7 +298,7 @@ fn dilate(hits: &[Cell], frames: &[Frame], spacing: f64) -> Vec<Cell> {
 fn final_level(
     tracer: &Tracer,
     observer: Vec3,
-    frames: &[Frame],
+    frame: &Frame,
     active: &[Cell],
     spacing: f64,
     h: f64,
@@ -392,22 +318,21 @@ fn final_level(
         .map(|chunk| {
             let mut pts = Vec::new();
             let mut n = 0;
-            for &(k, i, j) in chunk {
-                let f = &frames[k as usize];
+            for &(i, j) in chunk {
                 let (i0, i1) = range(i);
                 let (j0, j1) = range(j);
                 for jj in j0..j1 {
-                    let b = f.b_min + (jj as f64 + 0.5) * h;
-                    if b > f.b_min + f.height {
+                    let b = frame.b_min + (jj as f64 + 0.5) * h;
+                    if b > frame.b_min + frame.height {
                         continue;
                     }
                     for ii in i0..i1 {
-                        let a = f.a_min + (ii as f64 + 0.5) * h;
-                        if a > f.a_min + f.width {
+                        let a = frame.a_min + (ii as f64 + 0.5) * h;
+                        if a > frame.a_min + frame.width {
                             continue;
                         }
                         n += 1;
-                        if let Some(p) = tracer.image_point(observer, f.direction(a, b)) {
+                        if let Some(p) = tracer.image_point(observer, frame.direction(a, b)) {
                             pts.push(p);
                         }
                     }

@@ -34,11 +34,16 @@ pub const SECTION_RGB: [[f64; 3]; SECTION_COUNT] = [
 /// Names of the sections' colours, codes 1..=5.
 pub const SECTION_NAMES: [&str; SECTION_COUNT] = ["red", "orange", "magenta", "green", "blue"];
 
+/// Lower edges of sections 2..=5 (m), written out so that `z = 0.15` is exactly an edge.
+pub const SECTION_EDGES: [f64; SECTION_COUNT - 1] = [0.05, 0.10, 0.15, 0.20];
+
 /// The colour code (1 = red at the bottom … 5 = blue at the top) of the straw at height `z`.
+///
+/// Compared with the edges, not computed as `floor(z / 0.05)`: `0.15 / 0.05` rounds to
+/// 2.9999999999999996 in binary floating point, which would paint the edge in the wrong colour.
 #[inline]
 pub fn section_at(z: f64) -> u8 {
-    let k = (z / SECTION_HEIGHT).floor();
-    (k.clamp(0.0, (SECTION_COUNT - 1) as f64) as u8) + 1
+    1 + SECTION_EDGES.iter().filter(|&&edge| z >= edge).count() as u8
 }
 
 /// Why the inputs of a simulation are not valid.

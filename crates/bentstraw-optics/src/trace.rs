@@ -100,6 +100,69 @@ impl Outcome {
     }
 }
 
+/// One step of Fresnel tracing, as reported by [`Scene::trace_fresnel_with`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FresnelStep {
+    /// A branch of weight `weight` split at a water face into `reflected + refracted`.
+    Split {
+        /// Where.
+        point: Vec3,
+        /// Unit normal of the face, out of the water.
+        normal: Vec3,
+        /// Unit direction before the split.
+        incoming: Vec3,
+        /// Index on the incoming side.
+        n1: f64,
+        /// Index on the other side.
+        n2: f64,
+        /// Weight arriving.
+        weight: f64,
+        /// Weight of the reflected branch, `R · weight`.
+        reflected: f64,
+        /// Weight of the refracted branch, `(1 − R) · weight`.
+        refracted: f64,
+    },
+    /// A branch was totally reflected, keeping its weight.
+    TotalReflection {
+        /// Where.
+        point: Vec3,
+        /// Its weight.
+        weight: f64,
+    },
+    /// A branch ended on the straw.
+    Straw {
+        /// Colour code of the section, 1..=5.
+        color: u8,
+        /// The straw point reached.
+        point: Vec3,
+        /// The straw face reached.
+        face: Face,
+        /// Its weight.
+        weight: f64,
+        /// Events on its way.
+        events: u32,
+    },
+    /// A branch left the scene along `ray` (its last straight piece).
+    Escaped {
+        /// The last straight piece of the branch, from its last event (or the start).
+        ray: Ray,
+        /// Its weight.
+        weight: f64,
+        /// Events on its way.
+        events: u32,
+    },
+    /// A branch would have needed more than `max_events` events.
+    Dropped {
+        /// Its weight.
+        weight: f64,
+    },
+    /// A branch lighter than the pruning threshold was abandoned.
+    Pruned {
+        /// Its weight.
+        weight: f64,
+    },
+}
+
 impl Scene {
     /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties (SPEC §3).
     #[inline]
@@ -237,9 +300,22 @@ impl Scene {
     /// reflectance, 1 under total reflection) and a refracted branch of weight `1 − R`; each branch
     /// keeps its own event count and is dropped past `max_events`. Branches lighter than
     /// `prune_below` are abandoned (their weight is lost, never misattributed). No allocation.
+    #[inline]
     pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
-        // Depth-first: each split pushes one branch, so the stack never holds more than one entry
-        // per event level plus the current one.
+        self.trace_fresnel_with(ray, prune_below, |_| {})
+    }
+
+    /// [`Scene::trace_fresnel`], also reporting every split and how every branch ends to `on_step`
+    /// (escaping branches with their last ray, so a picture can show what lies beyond).
+    pub fn trace_fresnel_with(
+        &self,
+        ray: Ray,
+        prune_below: f64,
+        mut on_step: impl FnMut(FresnelStep),
+    ) -> [f64; SECTION_COUNT] {
+        // Depth-first. At each split the branch on the air side is followed first: the water is
+        // convex, so a branch in air that leaves a water face never meets the water again and ends
+        // at once; the stack thus holds at most one waiting branch, whatever the event limit.
         const STACK: usize = 64;
         #[derive(Clone, Copy)]
         struct Branch {
@@ -261,14 +337,28 @@ impl Scene {
             let mut b = stack[top];
             loop {
                 let Some(hit) = self.nearest_intersection(&b.ray) else {
+                    on_step(FresnelStep::Escaped {
+                        ray: b.ray,
+                        weight: b.weight,
+                        events: b.events,
+                    });
                     break;
                 };
                 let point = b.ray.at(hit.distance);
                 if hit.face.is_straw() {
-                    weights[self.straw_color(hit.face, point) as usize - 1] += b.weight;
+                    let color = self.straw_color(hit.face, point);
+                    weights[color as usize - 1] += b.weight;
+                    on_step(FresnelStep::Straw {
+                        color,
+                        point,
+                        face: hit.face,
+                        weight: b.weight,
+                        events: b.events,
+                    });
                     break;
                 }
                 if b.events == self.max_events {
+                    on_step(FresnelStep::Dropped { weight: b.weight });
                     break;
                 }
                 b.events += 1;
@@ -281,6 +371,10 @@ impl Scene {
                 let reflected = reflect(b.ray.direction, normal);
                 match refract(b.ray.direction, normal, n1, n2) {
                     None => {
+                        on_step(FresnelStep::TotalReflection {
+                            point,
+                            weight: b.weight,
+                        });
                         b.ray = Ray {
                             origin: point,
                             direction: reflected,
@@ -290,7 +384,16 @@ impl Scene {
                         let r = fresnel_reflectance(n1, n2, b.ray.direction.dot(normal));
                         let wr = b.weight * r;
                         let wt = b.weight * (1.0 - r);
-                        // Follow the heavier branch now, keep the other for later if it matters.
+                        on_step(FresnelStep::Split {
+                            point,
+                            normal,
+                            incoming: b.ray.direction,
+                            n1,
+                            n2,
+                            weight: b.weight,
+                            reflected: wr,
+                            refracted: wt,
+                        });
                         let refl = Branch {
                             ray: Ray {
                                 origin: point,
@@ -309,12 +412,22 @@ impl Scene {
                             events: b.events,
                             weight: wt,
                         };
-                        let (now, later) = if wt >= wr { (refr, refl) } else { (refl, refr) };
+                        // The air-side branch now (it ends at once), the water-side one later.
+                        let (now, later) = if b.in_water {
+                            (refr, refl)
+                        } else {
+                            (refl, refr)
+                        };
                         if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
                             stack[top] = later;
                             top += 1;
+                        } else {
+                            on_step(FresnelStep::Pruned {
+                                weight: later.weight,
+                            });
                         }
                         if now.weight < prune_below || now.weight == 0.0 {
+                            on_step(FresnelStep::Pruned { weight: now.weight });
                             break;
                         }
                         b = now;

@@ -446,7 +446,12 @@ impl Tracer {
                             events: b.events,
                             weight: wt,
                         };
-                        let (now, later) = if wt >= wr { (refr, refl) } else { (refl, refr) };
+                        // As Scene::trace_fresnel: the air-side branch now, the water-side one later.
+                        let (now, later) = if b.in_water {
+                            (refr, refl)
+                        } else {
+                            (refl, refr)
+                        };
                         if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
                             stack[top].write(later);
                             top += 1;

@@ -59,7 +59,12 @@ pub struct SceneArgs {
     )]
     pub n_water: f64,
     /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
-    #[arg(long, value_name = "N", default_value_t = 10)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 10,
+        allow_hyphen_values = true
+    )]
     pub max_events: u32,
 }
 
@@ -82,7 +87,12 @@ pub struct SimulateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// At least this many image points
-    #[arg(long, value_name = "N", default_value_t = 20000)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 20000,
+        allow_hyphen_values = true
+    )]
     pub points: usize,
     /// Where to write the points: .csv, .json or .ply (by extension)
     #[arg(long, value_name = "FILE")]
@@ -105,7 +115,12 @@ pub struct TableArgs {
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
     /// At least this many image points per simulation
-    #[arg(long, value_name = "N", default_value_t = 20000)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 20000,
+        allow_hyphen_values = true
+    )]
     pub points: usize,
 }
 
@@ -158,10 +173,15 @@ pub struct RenderArgs {
     /// Backdrop behind the glass
     #[arg(long, value_enum, default_value_t = BackdropArg::Checker)]
     pub backdrop: BackdropArg,
-    /// Fresnel branches lighter than this are abandoned
-    #[arg(long, value_name = "W", default_value_t = 1e-4)]
+    /// Fresnel branches lighter than this are abandoned, 0 <= W < 1
+    #[arg(
+        long,
+        value_name = "W",
+        default_value_t = 1e-4,
+        allow_hyphen_values = true
+    )]
     pub prune: f64,
-    /// Samples per pixel side for anti-aliasing (N×N per pixel)
+    /// Samples per pixel side for anti-aliasing (N×N rays in pixels at an edge), 1..=16
     #[arg(long, value_name = "N", default_value_t = 3)]
     pub samples: u32,
     /// The picture (PNG)

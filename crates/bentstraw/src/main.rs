@@ -7,14 +7,74 @@ mod commands;
 mod error;
 mod files;
 mod html;
+mod model_plots;
+mod pictures;
 mod plot;
+mod progress;
+mod report;
+mod writers;
 
+use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::Parser;
 
 fn main() {
-    let cli = cli::Cli::parse();
+    let cli = match cli::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => match e.kind() {
+            // Help and version are not errors: clap prints them as it always does.
+            ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
+            _ => {
+                eprintln!("{}", one_line(&e));
+                std::process::exit(2);
+            }
+        },
+    };
     if let Err(e) = commands::run(cli) {
         eprintln!("error: {e}");
         std::process::exit(2);
     }
+}
+
+/// A clap error as one line: its first line, with the missing arguments or clap's tip folded in.
+fn one_line(e: &clap::Error) -> String {
+    if e.kind() == ErrorKind::MissingRequiredArgument {
+        if let Some(ContextValue::Strings(args)) = e.get(ContextKind::InvalidArg) {
+            return format!(
+                "error: missing required argument(s): {} (see '{} --help')",
+                args.join(", "),
+                command_of(&e.render().to_string())
+            );
+        }
+    }
+    let text = e.render().to_string();
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let mut line = lines
+        .next()
+        .unwrap_or("error: invalid arguments")
+        .to_string();
+    // clap's suggestions ("tip: a similar argument exists: '--observer'") and lists of possible
+    // values are worth keeping; the usage lines that follow them are not.
+    for extra in lines {
+        if extra.starts_with("tip:") {
+            line.push_str(&format!(" ({extra})"));
+        } else if extra.starts_with("[possible values:") {
+            line.push_str(&format!(" {extra}"));
+        }
+    }
+    line
+}
+
+/// The command named in a rendered clap error's usage line, e.g. `bentstraw simulate`.
+fn command_of(rendered: &str) -> String {
+    let usage = rendered
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("Usage: "))
+        .unwrap_or("bentstraw");
+    usage
+        .split_whitespace()
+        .take_while(|w| !w.starts_with(['[', '<', '-']))
+        .collect::<Vec<_>>()
+        .join(" ")
 }

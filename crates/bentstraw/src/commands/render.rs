@@ -1,9 +1,173 @@
-//! `bentstraw render`.
+//! `bentstraw render`: the observer's picture (SPEC §6) as a PNG for people, and optionally one ray
+//! per pixel centre as CSV.
 
-use crate::cli::RenderArgs;
+use std::path::Path;
+use std::time::Instant;
+
+use bentstraw_optics::camera::{framing_fov, Camera};
+use bentstraw_optics::picture::{course_picture, fresnel_picture};
+use bentstraw_optics::scene::{Scene, SCENE_CENTRE};
+use bentstraw_optics::shading::{shaded_picture, Backdrop, ShadingMode, ShadingOptions};
+use bentstraw_optics::Vec3;
+
+use crate::cli::{BackdropArg, CameraArgs, ModeArg, RenderArgs};
 use crate::error::{fail, CliResult};
+use crate::files;
+use crate::pictures::png_bytes;
+
+/// Picture size when `--size` is not given.
+pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
+/// Most samples per pixel side accepted by `--samples`.
+pub const MAX_SAMPLES: u32 = 16;
+/// Most pixels in a picture (the renderer keeps a few dozen bytes per pixel in memory).
+pub const MAX_PIXELS: u64 = 25_000_000;
+
+/// The validated camera of `args` at `observer`: target (default the scene's centre) finite and
+/// away from the observer, field of view in (0°, 180°) (default: framing the glass and straw).
+pub fn camera_from_args(args: &CameraArgs, observer: Vec3) -> CliResult<Camera> {
+    let target = match args.target {
+        Some(t) => {
+            for (name, v) in ["X", "Y", "Z"].iter().zip(t) {
+                if !v.is_finite() {
+                    return fail(format!("--target {name} = {v} is not a finite number"));
+                }
+            }
+            Vec3::from_array(t)
+        }
+        None => SCENE_CENTRE,
+    };
+    if (target - observer).length() < 1e-9 {
+        return fail(format!(
+            "--target ({}, {}, {}) is the observer's position: the camera must look somewhere else",
+            target.x, target.y, target.z
+        ));
+    }
+    let (width, height) = args.size.unwrap_or(DEFAULT_SIZE);
+    if width as u64 * height as u64 > MAX_PIXELS {
+        return fail(format!(
+            "--size {width}x{height} is too large: a picture may have at most {MAX_PIXELS} pixels (e.g. 6000x4000)"
+        ));
+    }
+    let fov = match args.fov {
+        Some(deg) => {
+            if !deg.is_finite() || deg <= 0.0 || deg >= 180.0 {
+                return fail(format!(
+                    "--fov {deg} is not allowed: the field of view must be a number of degrees with 0 < FOV < 180"
+                ));
+            }
+            deg.to_radians()
+        }
+        None => framing_fov(observer, target, width as f64 / height as f64),
+    };
+    Ok(Camera::new(observer, target, width, height, fov))
+}
 
 /// Runs `render`.
-pub fn run(_args: &RenderArgs) -> CliResult {
-    fail("render is not implemented yet")
+pub fn run(args: &RenderArgs) -> CliResult {
+    let start = Instant::now();
+    // Everything is checked before any work, so bad input leaves no file.
+    let (scene, observer) = args.scene.scene_and_observer()?;
+    let camera = camera_from_args(&args.camera, observer)?;
+    if !args.prune.is_finite() || !(0.0..1.0).contains(&args.prune) {
+        return fail(format!(
+            "--prune {} is not allowed: the pruning weight must satisfy 0 <= W < 1",
+            args.prune
+        ));
+    }
+    if !(1..=MAX_SAMPLES).contains(&args.samples) {
+        return fail(format!(
+            "--samples {} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}",
+            args.samples
+        ));
+    }
+    files::check_writable(&args.output)?;
+    if let Some(raw) = &args.raw {
+        if raw == &args.output {
+            return fail(format!(
+                "--raw {} is the same file as --output: give two different files",
+                raw.display()
+            ));
+        }
+        files::check_writable(raw)?;
+    }
+
+    let mode = match args.mode {
+        ModeArg::Course => ShadingMode::Course,
+        ModeArg::Fresnel => ShadingMode::Fresnel {
+            prune_below: args.prune,
+        },
+    };
+    let options = ShadingOptions {
+        mode,
+        backdrop: match args.backdrop {
+            BackdropArg::None => Backdrop::Plain,
+            BackdropArg::Checker => Backdrop::Checker,
+        },
+        samples: args.samples,
+        outline: true,
+    };
+    let picture = shaded_picture(&scene, &camera, &options);
+    let png = png_bytes(&picture)?;
+    files::write_bytes(&args.output, &png)?;
+    if let Some(raw) = &args.raw {
+        if let Err(e) = write_raw(raw, &scene, &camera, args.mode, args.prune) {
+            // All or nothing: no picture without the raw file that was asked for.
+            let _ = std::fs::remove_file(&args.output);
+            return Err(e);
+        }
+    }
+    let fov_deg = 2.0 * camera.tan_half_fov.atan().to_degrees();
+    eprintln!(
+        "render: {} mode, {}x{} pixels, {n}x{n} samples per pixel, fov {fov_deg:.2}°: wrote {}{} in {:.2} s",
+        match args.mode {
+            ModeArg::Course => "course",
+            ModeArg::Fresnel => "fresnel",
+        },
+        camera.width,
+        camera.height,
+        args.output.display(),
+        args.raw
+            .as_ref()
+            .map(|r| format!(" and {}", r.display()))
+            .unwrap_or_default(),
+        start.elapsed().as_secs_f64(),
+        n = args.samples,
+    );
+    Ok(())
+}
+
+/// Writes one ray per pixel centre, row-major: `row,col,color` (course) or `row,col,w1..w5`
+/// (fresnel, 7 significant digits; exact zeros as `0`).
+fn write_raw(path: &Path, scene: &Scene, camera: &Camera, mode: ModeArg, prune: f64) -> CliResult {
+    let w = camera.width as usize;
+    match mode {
+        ModeArg::Course => {
+            let codes = course_picture(scene, camera);
+            files::write_atomically(path, |out| {
+                writeln!(out, "row,col,color")?;
+                for (k, code) in codes.iter().enumerate() {
+                    writeln!(out, "{},{},{code}", k / w, k % w)?;
+                }
+                Ok(())
+            })
+        }
+        ModeArg::Fresnel => {
+            let weights = fresnel_picture(scene, camera, prune);
+            files::write_atomically(path, |out| {
+                writeln!(out, "row,col,w1,w2,w3,w4,w5")?;
+                for (k, px) in weights.iter().enumerate() {
+                    write!(out, "{},{}", k / w, k % w)?;
+                    for v in px {
+                        if *v == 0.0 {
+                            write!(out, ",0")?;
+                        } else {
+                            write!(out, ",{v:.6e}")?;
+                        }
+                    }
+                    writeln!(out)?;
+                }
+                Ok(())
+            })
+        }
+    }
 }

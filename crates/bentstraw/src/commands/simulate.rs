@@ -1,9 +1,264 @@
-//! `bentstraw simulate`.
+//! `bentstraw simulate`: trace rays from one observer, write the image points, optionally draw them.
+//!
+//! Everything is checked before any ray is traced (the scene, the point count, every output path),
+//! so a mistake costs nothing and leaves no file behind.
 
-use crate::cli::SimulateArgs;
-use crate::error::{fail, CliResult};
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use bentstraw_optics::apparent::{eye_model_points, stereo_points};
+use bentstraw_optics::sampling::{sample_image, ImageCloud};
+use bentstraw_optics::scene::{Scene, SECTION_NAMES};
+use bentstraw_optics::Vec3;
+
+use crate::cli::{ImageModelArg, SimulateArgs};
+use crate::error::{fail, CliError, CliResult};
+use crate::files::check_writable;
+use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
+use crate::{html, plot, progress};
 
 /// Runs `simulate`.
-pub fn run(_args: &SimulateArgs) -> CliResult {
-    fail("simulate is not implemented yet")
+pub fn run(args: &SimulateArgs) -> CliResult {
+    // 1. Validate everything, trace nothing yet.
+    let (scene, observer) = args.scene.scene_and_observer()?;
+    if args.points == 0 {
+        return fail("--points 0 is not allowed: ask for at least 1 image point");
+    }
+    let format = PointFormat::from_path(&args.output)?;
+    if let Some(p) = &args.plot {
+        require_extension(p, "--plot", &["png"])?;
+    }
+    if let Some(h) = &args.html {
+        require_extension(h, "--html", &["html", "htm"])?;
+    }
+    for path in std::iter::once(&args.output)
+        .chain(&args.plot)
+        .chain(&args.html)
+    {
+        check_writable(path)?;
+    }
+
+    // 2. Trace.
+    let started = Instant::now();
+    let cloud = trace_with_spinner(&scene, observer, args.points);
+    let traced = started.elapsed();
+
+    // 3. The apparent-position model, if not the course's.
+    let modelled = Instant::now();
+    let eye;
+    let stereo;
+    let model = match args.image_model {
+        ImageModelArg::Course => ModelPoints::Course,
+        ImageModelArg::Eye => {
+            eye = with_spinner("eye model", || {
+                eye_model_points(&scene, observer, &cloud.points)
+            });
+            ModelPoints::Eye(&eye)
+        }
+        ImageModelArg::Stereo => {
+            stereo = with_spinner("stereo model", || {
+                stereo_points(&scene, observer, &cloud.points)
+            });
+            ModelPoints::Stereo(&stereo)
+        }
+    };
+    let modelled = modelled.elapsed();
+
+    // 4. Write.
+    let set = PointSet {
+        scene: &scene,
+        observer,
+        min_points: args.points,
+        model,
+        cloud: &cloud,
+    };
+    write_points(&args.output, format, &set)?;
+    let title = format!(
+        "{} ({} model)",
+        simulation_title(&scene, observer),
+        model.name()
+    );
+    if args.plot.is_some() || args.html.is_some() {
+        let placed = set.placed_points();
+        if let Some(p) = &args.plot {
+            plot::write_cloud_figure(p, &scene, observer, &placed, &title)?;
+        }
+        if let Some(h) = &args.html {
+            html::write_cloud_viewer(h, &scene, observer, &placed, &title)?;
+        }
+    }
+    let total = started.elapsed();
+
+    let mut written = vec![format!(
+        "{} ({} points)",
+        args.output.display(),
+        format.name()
+    )];
+    if let Some(p) = &args.plot {
+        written.push(format!("{} (figure, three views)", p.display()));
+    }
+    if let Some(h) = &args.html {
+        written.push(format!("{} (rotatable 3D view)", h.display()));
+    }
+    eprint!("{}", summary(&set, traced, total, &written));
+    if !matches!(model, ModelPoints::Course) {
+        eprint!("{}", model_summary(&set, modelled));
+    }
+    Ok(())
+}
+
+/// Runs `work` with a spinner on stderr if it takes a while.
+fn with_spinner<T>(what: &str, work: impl FnOnce() -> T) -> T {
+    progress::with_progress(None, &format!("{{spinner}} {what}  [{{elapsed}}]"), |_| {
+        work()
+    })
+}
+
+/// Samples the straw's image, with a spinner counting rays when it takes a while.
+pub fn trace_with_spinner(scene: &Scene, observer: Vec3, min_points: usize) -> ImageCloud {
+    progress::with_progress(
+        None,
+        "{spinner} tracing rays: {human_pos} so far  [{elapsed}]",
+        |bar| sample_image(scene, observer, min_points, &|rays| bar.set_position(rays)),
+    )
+}
+
+/// Checks that `path` ends in one of `allowed` (lower-case, without dot).
+fn require_extension(path: &Path, flag: &str, allowed: &[&str]) -> CliResult {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if ext.as_deref().is_some_and(|e| allowed.contains(&e)) {
+        return Ok(());
+    }
+    let expected = allowed
+        .iter()
+        .map(|a| format!(".{a}"))
+        .collect::<Vec<_>>()
+        .join(" or ");
+    Err(CliError(format!(
+        "{flag} {}: the file name must end in {expected}",
+        path.display()
+    )))
+}
+
+/// A short title naming the inputs, for figures.
+pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
+    format!(
+        "observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}",
+        observer.x,
+        observer.y,
+        observer.z,
+        scene.straw_x,
+        scene.straw_y,
+        scene.water_height,
+        scene.n_water
+    )
+}
+
+/// The one-screen summary printed on stderr; `written` names the files written, one a line.
+pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[String]) -> String {
+    let (s, o, cloud) = (set.scene, set.observer, set.cloud);
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "bentstraw simulate: the straw's virtual image ({} model)",
+        set.image_model()
+    );
+    let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
+    let _ = writeln!(t, "  straw axis      ({}, {}) m", s.straw_x, s.straw_y);
+    let _ = writeln!(
+        t,
+        "  water           height {} m, index {}",
+        s.water_height, s.n_water
+    );
+    let _ = writeln!(t, "  event limit     {}", s.max_events);
+    let _ = writeln!(t, "  rays traced     {}", cloud.rays_traced);
+    let _ = writeln!(
+        t,
+        "  image points    {} (asked for at least {})",
+        cloud.points.len(),
+        set.min_points
+    );
+    for (k, n) in cloud.counts_per_color().iter().enumerate() {
+        let _ = writeln!(t, "    {} {:<8} {:>8}", k + 1, SECTION_NAMES[k], n);
+    }
+    let _ = writeln!(
+        t,
+        "  hit ratio       {:.1} % of the rays reached the straw",
+        100.0 * cloud.hit_ratio()
+    );
+    let _ = writeln!(
+        t,
+        "  time            {:.3} s tracing, {:.3} s in all",
+        traced.as_secs_f64(),
+        total.as_secs_f64()
+    );
+    if let Some((first, rest)) = written.split_first() {
+        let _ = writeln!(t, "  wrote           {first}");
+        for w in rest {
+            let _ = writeln!(t, "                  {w}");
+        }
+    }
+    if cloud.points.len() < set.min_points {
+        let _ = writeln!(
+            t,
+            "  note            fewer points than asked: the straw is all but invisible from here"
+        );
+    }
+    t
+}
+
+/// The lines of the summary about the eye or stereo model: points placed, and why others are not.
+pub fn model_summary(set: &PointSet, time: Duration) -> String {
+    let mut t = String::new();
+    match set.model {
+        ModelPoints::Course => {}
+        ModelPoints::Eye(points) => {
+            let placed = points.iter().filter(|p| p.position.is_some()).count();
+            let _ = writeln!(
+                t,
+                "  eye model       {placed} of {} points placed at (s_h + s_v)/2",
+                points.len()
+            );
+            let mut kinds: Vec<(&str, usize)> = Vec::new();
+            for p in points.iter().filter(|p| p.position.is_none()) {
+                let k = if p.s_h.kind() != "in_front" {
+                    p.s_h.kind()
+                } else {
+                    p.s_v.kind()
+                };
+                match kinds.iter_mut().find(|(name, _)| *name == k) {
+                    Some((_, n)) => *n += 1,
+                    None => kinds.push((k, 1)),
+                }
+            }
+            for (k, n) in kinds {
+                let _ = writeln!(
+                    t,
+                    "    no position   {n} with a focus {}",
+                    k.replace('_', " ")
+                );
+            }
+            let gaps: Vec<f64> = points.iter().filter_map(|p| p.gap_to_course()).collect();
+            if let Some(max) = gaps.iter().copied().reduce(f64::max) {
+                let _ = writeln!(t, "  gap to course   up to {:.2} mm", 1e3 * max);
+            }
+        }
+        ModelPoints::Stereo(s) => {
+            let placed = s.points.iter().filter(|p| p.position.is_some()).count();
+            let _ = writeln!(
+                t,
+                "  stereo model    {placed} points seen by both eyes and triangulated, {} seen by one eye only",
+                s.skipped
+            );
+            let gaps: Vec<f64> = s.points.iter().filter_map(|p| p.gap_to_course()).collect();
+            if let Some(max) = gaps.iter().copied().reduce(f64::max) {
+                let _ = writeln!(t, "  gap to course   up to {:.2} mm", 1e3 * max);
+            }
+        }
+    }
+    let _ = writeln!(t, "  model time      {:.3} s", time.as_secs_f64());
+    t
 }

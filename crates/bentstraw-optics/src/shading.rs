@@ -1,0 +1,699 @@
+//! The observer's picture for people: anti-aliased, the straw in its section colours, a light
+//! backdrop seen through (and reflected by) the water, the glass outlined; and the point cloud seen
+//! through the same camera, for comparison.
+//!
+//! Everything is computed in linear light and encoded as sRGB bytes at the end; the section
+//! colours of SPEC §1 are display (sRGB) values, so a pixel wholly on one section, facing the light,
+//! shows exactly that colour.
+//!
+//! The surroundings (chosen here; SPEC §6 is silent on them):
+//! - a vertical wall behind the glass, opposite the observer: the plane at [`WALL_DISTANCE`] behind
+//!   the glass's axis, facing the observer horizontally, up to `z =` [`WALL_TOP`];
+//! - a floor (the table the glass stands on) at `z = 0`, only when the observer is above it: an
+//!   observer below `z = 0` (reference 4) looks through a glass table, so the floor is left out and
+//!   the wall reaches down to `−`[`WALL_TOP`];
+//! - a pale sky everywhere else.
+//!
+//! Rays that leave the scene (in course mode the one ray, in Fresnel mode every escaping branch with
+//! its weight) take the colour of the surroundings where their last straight piece meets them, so the
+//! checkerboard seen through the water is distorted as in reality, and the water's faces show
+//! faintly by what they reflect. The glass (index 1, invisible) is drawn as an outline: its rim and
+//! base circles and its two silhouette lines, straight projections, the far side fainter.
+
+use rayon::prelude::*;
+
+use crate::camera::Camera;
+use crate::geometry::Ray;
+use crate::image::ImagePoint;
+use crate::scene::{Scene, GLASS_HEIGHT, GLASS_RADIUS, SECTION_RGB};
+use crate::trace::{Face, FresnelStep, Outcome};
+use crate::Vec3;
+
+/// Distance of the backdrop wall behind the glass's axis (m).
+pub const WALL_DISTANCE: f64 = 0.15;
+/// Height of the backdrop wall's top edge (m).
+pub const WALL_TOP: f64 = 0.45;
+/// Side of one checkerboard square (m), half the glass's radius.
+pub const CHECKER_SIDE: f64 = 0.02;
+
+/// What lies behind the glass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backdrop {
+    /// A plain light background, slightly lighter upwards (so that the water's faces still show).
+    Plain,
+    /// A checkerboard wall and floor.
+    Checker,
+}
+
+/// How rays are followed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShadingMode {
+    /// SPEC §3: one ray, refracted or totally reflected at each water face.
+    Course,
+    /// SPEC §6: reflected and refracted branches weighted by the Fresnel reflectance; branches
+    /// lighter than `prune_below` are abandoned.
+    Fresnel {
+        /// Pruning threshold on a branch's weight.
+        prune_below: f64,
+    },
+}
+
+/// Everything that decides how the picture looks, beside the scene and camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadingOptions {
+    /// Course or Fresnel tracing.
+    pub mode: ShadingMode,
+    /// What lies behind the glass.
+    pub backdrop: Backdrop,
+    /// Samples per pixel side (`samples²` rays per pixel); 1 traces the pixel centre only.
+    pub samples: u32,
+    /// Whether to draw the glass's outline.
+    pub outline: bool,
+}
+
+/// An RGB picture, 8-bit sRGB, row-major, 3 bytes per pixel, row 0 at the top.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RgbPicture {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width × height × 3` bytes.
+    pub pixels: Vec<u8>,
+}
+
+impl RgbPicture {
+    /// The colour of pixel row `i`, column `j`.
+    pub fn pixel(&self, i: u32, j: u32) -> [u8; 3] {
+        let k = 3 * (i as usize * self.width as usize + j as usize);
+        [self.pixels[k], self.pixels[k + 1], self.pixels[k + 2]]
+    }
+}
+
+/// sRGB display value (0..1) to linear light.
+#[inline]
+pub fn srgb_to_linear(c: f64) -> f64 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Linear light to an sRGB display value (0..1), clamped.
+#[inline]
+pub fn linear_to_srgb(c: f64) -> f64 {
+    let c = c.clamp(0.0, 1.0);
+    if c <= 0.0031308 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+fn linear(rgb: [f64; 3]) -> [f64; 3] {
+    rgb.map(srgb_to_linear)
+}
+
+fn mix(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
+    [
+        a[0] + (b[0] - a[0]) * t,
+        a[1] + (b[1] - a[1]) * t,
+        a[2] + (b[2] - a[2]) * t,
+    ]
+}
+
+/// The wall, floor and sky around the scene, placed for one observer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surroundings {
+    backdrop: Backdrop,
+    /// Horizontal unit vector from the glass's axis towards the observer; the wall faces it.
+    toward_eye: Vec3,
+    /// Horizontal unit vector along the wall.
+    along_wall: Vec3,
+    /// Whether there is a floor (the observer is above `z = 0`).
+    floor: bool,
+}
+
+impl Surroundings {
+    /// The surroundings of `backdrop` kind for an observer at `eye`.
+    pub fn new(backdrop: Backdrop, eye: Vec3) -> Surroundings {
+        let h = Vec3::new(eye.x, eye.y, 0.0);
+        let toward_eye = if h.length() > 1e-9 {
+            h.normalize()
+        } else {
+            Vec3::X
+        };
+        Surroundings {
+            backdrop,
+            toward_eye,
+            along_wall: Vec3::Z.cross(toward_eye),
+            floor: eye.z > 0.0,
+        }
+    }
+
+    /// Whether the surroundings have a floor at `z = 0`.
+    pub fn has_floor(&self) -> bool {
+        self.floor
+    }
+
+    /// Horizontal unit normal of the wall, pointing towards the observer.
+    pub fn wall_normal(&self) -> Vec3 {
+        self.toward_eye
+    }
+
+    /// Linear RGB of what `ray` (in air, leaving the scene) meets.
+    pub fn radiance(&self, ray: &Ray) -> [f64; 3] {
+        let (o, d) = (ray.origin, ray.direction);
+        if self.backdrop == Backdrop::Plain {
+            // A gentle vertical gradient: flat enough to be "plain", enough for the water to show.
+            let g = 0.80 + 0.17 * (0.5 + 0.5 * d.z);
+            return [srgb_to_linear(g); 3];
+        }
+        let mut best = f64::INFINITY;
+        let mut colour = None;
+        if self.floor && d.z < 0.0 && o.z >= 0.0 {
+            let t = -o.z / d.z;
+            let p = o + t * d;
+            // The floor ends at the wall.
+            if p.dot(self.toward_eye) >= -WALL_DISTANCE {
+                best = t;
+                let fade = 1.0 / (1.0 + (p.truncate().length() / 0.6).powi(2));
+                colour = Some(checker(
+                    p.x,
+                    p.y,
+                    [0.95, 0.92, 0.86],
+                    [0.70, 0.63, 0.55],
+                    fade,
+                ));
+            }
+        }
+        let s = d.dot(self.toward_eye);
+        if s < 0.0 {
+            let t = (-WALL_DISTANCE - o.dot(self.toward_eye)) / s;
+            if t >= 0.0 && t < best {
+                let p = o + t * d;
+                let bottom = if self.floor { 0.0 } else { -WALL_TOP };
+                if p.z >= bottom && p.z <= WALL_TOP {
+                    let u = p.dot(self.along_wall);
+                    let fade = 1.0 / (1.0 + (u / 0.6).powi(2));
+                    colour = Some(checker(
+                        u,
+                        p.z,
+                        [0.96, 0.96, 0.95],
+                        [0.66, 0.72, 0.84],
+                        fade,
+                    ));
+                }
+            }
+        }
+        colour.unwrap_or_else(|| {
+            let up = d.z.max(0.0);
+            linear(mix([0.86, 0.91, 0.97], [0.97, 0.98, 1.0], up))
+        })
+    }
+}
+
+/// Linear colour of a checkerboard of squares [`CHECKER_SIDE`] at plane coordinates `(a, b)`; its
+/// contrast shrinks by `fade` (far squares would only alias).
+fn checker(a: f64, b: f64, light: [f64; 3], dark: [f64; 3], fade: f64) -> [f64; 3] {
+    let parity = ((a / CHECKER_SIDE).floor() + (b / CHECKER_SIDE).floor()).rem_euclid(2.0);
+    let average = mix(light, dark, 0.5);
+    let square = if parity < 0.5 { light } else { dark };
+    linear(mix(average, square, fade))
+}
+
+/// Unit direction of the light that shades the straw (from the observer's side, above, left).
+fn light_direction(s: &Surroundings) -> Vec3 {
+    (s.toward_eye + 0.8 * Vec3::Z + 0.5 * s.toward_eye.cross(Vec3::Z)).normalize()
+}
+
+/// Linear colour of the straw's section `color` at `point` of `face`, gently shaded.
+fn straw_radiance(scene: &Scene, light: Vec3, color: u8, face: Face, point: Vec3) -> [f64; 3] {
+    let normal = match face {
+        Face::StrawTop => Vec3::Z,
+        Face::StrawBottom => Vec3::NEG_Z,
+        _ => Vec3::new(point.x - scene.straw_x, point.y - scene.straw_y, 0.0).normalize_or_zero(),
+    };
+    let shade = 0.62 + 0.38 * normal.dot(light).max(0.0);
+    linear(SECTION_RGB[color as usize - 1]).map(|c| c * shade)
+}
+
+/// Linear colour seen along one ray.
+fn sample(
+    scene: &Scene,
+    surroundings: &Surroundings,
+    light: Vec3,
+    mode: ShadingMode,
+    ray: Ray,
+) -> [f64; 3] {
+    match mode {
+        ShadingMode::Course => {
+            let mut last = ray;
+            let outcome = scene.trace_with(ray, |e| {
+                last = Ray {
+                    origin: e.point,
+                    direction: e.outgoing,
+                }
+            });
+            match outcome {
+                Outcome::Straw {
+                    color, point, face, ..
+                } => straw_radiance(scene, light, color, face, point),
+                Outcome::Escaped { .. } => surroundings.radiance(&last),
+                // Light that needs more events than allowed is not followed: shown dark.
+                Outcome::Dropped => [0.05; 3],
+            }
+        }
+        ShadingMode::Fresnel { prune_below } => {
+            let mut acc = [0.0; 3];
+            let mut add = |c: [f64; 3], w: f64| {
+                for k in 0..3 {
+                    acc[k] += w * c[k];
+                }
+            };
+            scene.trace_fresnel_with(ray, prune_below, |step| match step {
+                FresnelStep::Straw {
+                    color,
+                    point,
+                    face,
+                    weight,
+                    ..
+                } => add(straw_radiance(scene, light, color, face, point), weight),
+                FresnelStep::Escaped { ray, weight, .. } => {
+                    add(surroundings.radiance(&ray), weight)
+                }
+                // Dropped and pruned weight is light not followed: it adds nothing (dark).
+                _ => {}
+            });
+            acc
+        }
+    }
+}
+
+/// A deterministic pseudo-random number in `[0, 1)` from `key` (SplitMix64), for sample jitter.
+#[inline]
+fn jitter(key: u64) -> f64 {
+    let mut z = key.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Largest difference (sRGB, 0..1, any channel) between a pixel's centre and a neighbour's below
+/// which the pixel is taken as smooth and not supersampled.
+pub const SMOOTH_CONTRAST: f64 = 2.0 / 255.0;
+
+/// The picture of `scene` through `camera` for people (see the module's documentation).
+///
+/// Every pixel centre is traced first. Where a pixel differs from a neighbour by more than
+/// [`SMOOTH_CONTRAST`] (an edge), it is replaced by the average of `samples²` rays, one per cell of
+/// a `samples × samples` grid over the pixel, jittered inside its cell (deterministically). Smooth
+/// pixels keep their centre: the picture is then the same as a full supersampling to within a
+/// few grey levels, several times faster.
+pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) -> RgbPicture {
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let surroundings = Surroundings::new(options.backdrop, camera.eye);
+    let light = light_direction(&surroundings);
+    let n = options.samples.max(1) as usize;
+    let trace = |r: f64, c: f64| {
+        let ray = Ray::new(camera.eye, camera.direction_at(r, c));
+        sample(scene, &surroundings, light, options.mode, ray)
+    };
+    let mut centre = vec![[0.0f64; 3]; w * h];
+    centre.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
+        for (j, px) in row.iter_mut().enumerate() {
+            *px = trace(i as f64 + 0.5, j as f64 + 0.5).map(linear_to_srgb);
+        }
+    });
+    let mut display = centre.clone();
+    if n > 1 {
+        let edge = |i: usize, j: usize| {
+            let c = centre[i * w + j];
+            let (i0, i1) = (i.saturating_sub(1), (i + 1).min(h - 1));
+            let (j0, j1) = (j.saturating_sub(1), (j + 1).min(w - 1));
+            (i0..=i1).any(|a| {
+                (j0..=j1).any(|b| {
+                    let d = centre[a * w + b];
+                    (0..3).any(|k| (d[k] - c[k]).abs() > SMOOTH_CONTRAST)
+                })
+            })
+        };
+        display.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
+            for (j, px) in row.iter_mut().enumerate() {
+                if !edge(i, j) {
+                    continue;
+                }
+                let mut acc = [0.0; 3];
+                for a in 0..n {
+                    for b in 0..n {
+                        let key = (((i * w + j) as u64) << 16) ^ (((a * n + b) as u64) << 1);
+                        let r = i as f64 + (a as f64 + jitter(key)) / n as f64;
+                        let c = j as f64 + (b as f64 + jitter(key | 1)) / n as f64;
+                        let s = trace(r, c);
+                        for k in 0..3 {
+                            acc[k] += s[k];
+                        }
+                    }
+                }
+                let inv = 1.0 / (n * n) as f64;
+                *px = acc.map(|c| linear_to_srgb(c * inv));
+            }
+        });
+    }
+    if options.outline {
+        draw_glass_outline(&mut display, camera);
+    }
+    encode(camera, &display)
+}
+
+/// The image points seen through `camera` (its eye should be their observer): each a disc of
+/// `radius` pixels in its section colour, nearer points over farther ones, on a plain light
+/// background with the glass outlined, for side-by-side comparison with [`shaded_picture`].
+pub fn cloud_picture(camera: &Camera, points: &[ImagePoint], radius: f64) -> RgbPicture {
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let mut display = vec![[0.97f64; 3]; w * h];
+    let mut order: Vec<&ImagePoint> = points.iter().collect();
+    // Painter's order: the farthest first.
+    order.sort_by(|a, b| {
+        let da = (a.position - camera.eye).length();
+        let db = (b.position - camera.eye).length();
+        db.total_cmp(&da)
+    });
+    for p in order {
+        let Some((row, col)) = camera.project(p.position) else {
+            continue;
+        };
+        let colour = SECTION_RGB[p.color as usize - 1];
+        let reach = radius + 1.0;
+        let i0 = (row - reach).floor().max(0.0) as usize;
+        let i1 = ((row + reach).ceil().max(0.0) as usize).min(h);
+        let j0 = (col - reach).floor().max(0.0) as usize;
+        let j1 = ((col + reach).ceil().max(0.0) as usize).min(w);
+        for i in i0..i1 {
+            for j in j0..j1 {
+                let d = ((i as f64 + 0.5 - row).powi(2) + (j as f64 + 0.5 - col).powi(2)).sqrt();
+                let cover = (radius + 0.5 - d).clamp(0.0, 1.0);
+                if cover > 0.0 {
+                    let px = &mut display[i * w + j];
+                    *px = mix(*px, colour, cover);
+                }
+            }
+        }
+    }
+    draw_glass_outline(&mut display, camera);
+    encode(camera, &display)
+}
+
+fn encode(camera: &Camera, display: &[[f64; 3]]) -> RgbPicture {
+    let mut pixels = Vec::with_capacity(display.len() * 3);
+    for px in display {
+        for c in px {
+            pixels.push((c.clamp(0.0, 1.0) * 255.0).round() as u8);
+        }
+    }
+    RgbPicture {
+        width: camera.width,
+        height: camera.height,
+        pixels,
+    }
+}
+
+/// Draws the glass's outline over `display` (sRGB values): rim and base circles (the part on the
+/// observer's side stronger, the far side fainter; a circle seen from its open side wholly strong)
+/// and the two vertical silhouette lines.
+fn draw_glass_outline(display: &mut [[f64; 3]], camera: &Camera) {
+    const STRONG: f64 = 0.75;
+    const FAINT: f64 = 0.3;
+    const STEPS: usize = 720;
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let width = (camera.height as f64 / 400.0).clamp(1.0, 4.0);
+    let mut mask = vec![0.0f64; w * h];
+    let eye = camera.eye;
+    let eye_r = (eye.x * eye.x + eye.y * eye.y).sqrt();
+    let circle = |a: f64, z: f64| Vec3::new(GLASS_RADIUS * a.cos(), GLASS_RADIUS * a.sin(), z);
+    for (z, seen_inside) in [(GLASS_HEIGHT, eye.z > GLASS_HEIGHT), (0.0, eye.z < 0.0)] {
+        for k in 0..STEPS {
+            let a0 = k as f64 * std::f64::consts::TAU / STEPS as f64;
+            let a1 = (k + 1) as f64 * std::f64::consts::TAU / STEPS as f64;
+            let mid = 0.5 * (a0 + a1);
+            let near_side = eye.x * mid.cos() + eye.y * mid.sin() > GLASS_RADIUS;
+            let alpha = if seen_inside || near_side {
+                STRONG
+            } else {
+                FAINT
+            };
+            stroke(
+                &mut mask,
+                camera,
+                circle(a0, z),
+                circle(a1, z),
+                width,
+                alpha,
+            );
+        }
+    }
+    if eye_r > GLASS_RADIUS {
+        let towards = eye.y.atan2(eye.x);
+        let half = (GLASS_RADIUS / eye_r).acos();
+        for a in [towards - half, towards + half] {
+            stroke(
+                &mut mask,
+                camera,
+                circle(a, 0.0),
+                circle(a, GLASS_HEIGHT),
+                width,
+                STRONG,
+            );
+        }
+    }
+    let ink = [0.16, 0.18, 0.24];
+    for (px, m) in display.iter_mut().zip(mask) {
+        if m > 0.0 {
+            *px = mix(*px, ink, m);
+        }
+    }
+}
+
+/// Marks in `mask` (the strongest wins) an anti-aliased line of `width` pixels from the picture
+/// of `p` to that of `q`, at opacity `alpha`; long 3D segments are cut so that their pictures
+/// stay straight enough, and pieces behind the eye are skipped.
+fn stroke(mask: &mut [f64], camera: &Camera, p: Vec3, q: Vec3, width: f64, alpha: f64) {
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let pieces = match (camera.project(p), camera.project(q)) {
+        (Some((r0, c0)), Some((r1, c1))) => {
+            (((r1 - r0).powi(2) + (c1 - c0).powi(2)).sqrt() / 4.0).clamp(1.0, 256.0) as usize
+        }
+        _ => 256,
+    };
+    for k in 0..pieces {
+        let a = p + (q - p) * (k as f64 / pieces as f64);
+        let b = p + (q - p) * ((k + 1) as f64 / pieces as f64);
+        let (Some((ra, ca)), Some((rb, cb))) = (camera.project(a), camera.project(b)) else {
+            continue;
+        };
+        let reach = width / 2.0 + 1.0;
+        let i0 = (ra.min(rb) - reach).floor().max(0.0) as usize;
+        let i1 = ((ra.max(rb) + reach).ceil().max(0.0) as usize).min(h);
+        let j0 = (ca.min(cb) - reach).floor().max(0.0) as usize;
+        let j1 = ((ca.max(cb) + reach).ceil().max(0.0) as usize).min(w);
+        let (dr, dc) = (rb - ra, cb - ca);
+        let len2 = dr * dr + dc * dc;
+        for i in i0..i1 {
+            for j in j0..j1 {
+                let (pr, pc) = (i as f64 + 0.5 - ra, j as f64 + 0.5 - ca);
+                let t = if len2 > 0.0 {
+                    ((pr * dr + pc * dc) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let d = ((pr - t * dr).powi(2) + (pc - t * dc).powi(2)).sqrt();
+                let cover = (width / 2.0 + 0.5 - d).clamp(0.0, 1.0) * alpha;
+                let m = &mut mask[i * w + j];
+                if cover > *m {
+                    *m = cover;
+                }
+            }
+        }
+    }
+}
+
+/// A splat radius (pixels) for [`cloud_picture`] that makes neighbouring points just touch: 0.6 of
+/// the median distance between a projected point and its nearest neighbour, within 0.8..=4 pixels.
+pub fn splat_radius(camera: &Camera, points: &[ImagePoint]) -> f64 {
+    use std::collections::HashMap;
+    const CELL: f64 = 4.0;
+    const RINGS: i64 = 6;
+    let projected: Vec<(f64, f64)> = points
+        .iter()
+        .filter_map(|p| camera.project(p.position))
+        .collect();
+    let key = |(r, c): (f64, f64)| ((r / CELL).floor() as i64, (c / CELL).floor() as i64);
+    let mut grid: HashMap<(i64, i64), Vec<(f64, f64)>> = HashMap::new();
+    for &p in &projected {
+        grid.entry(key(p)).or_default().push(p);
+    }
+    // At most about 2000 points are measured: the median does not need more.
+    let stride = (projected.len() / 2000).max(1);
+    let mut nearest: Vec<f64> = Vec::new();
+    for &p in projected.iter().step_by(stride) {
+        let (ki, kj) = key(p);
+        let mut best = f64::INFINITY;
+        for ring in 0..=RINGS {
+            for di in -ring..=ring {
+                for dj in -ring..=ring {
+                    if di.abs().max(dj.abs()) != ring {
+                        continue;
+                    }
+                    for q in grid.get(&(ki + di, kj + dj)).into_iter().flatten() {
+                        let d = ((q.0 - p.0).powi(2) + (q.1 - p.1).powi(2)).sqrt();
+                        if d > 0.0 && d < best {
+                            best = d;
+                        }
+                    }
+                }
+            }
+            // Anything in a farther ring is at least `ring · CELL` away.
+            if best <= ring as f64 * CELL {
+                break;
+            }
+        }
+        if best.is_finite() {
+            nearest.push(best);
+        }
+    }
+    if nearest.is_empty() {
+        return 1.5;
+    }
+    nearest.sort_by(f64::total_cmp);
+    (0.6 * nearest[nearest.len() / 2]).clamp(0.8, 4.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::picture::course_picture;
+    use crate::scene::{REFERENCES, SCENE_CENTRE, WATER_INDEX};
+
+    fn options(mode: ShadingMode, samples: u32) -> ShadingOptions {
+        ShadingOptions {
+            mode,
+            backdrop: Backdrop::Checker,
+            samples,
+            outline: false,
+        }
+    }
+
+    /// Whether byte colour `c` is a (shaded) multiple of section `code`'s colour.
+    fn has_section_hue(c: [u8; 3], code: u8) -> bool {
+        let [r, g, b] = c;
+        match code {
+            1 => r > 100 && g == 0 && b == 0,
+            2 => r > g && (b as u32) * 2 < g as u32 && r > 100,
+            3 => r > 100 && g == 0 && r.abs_diff(b) <= 1,
+            4 => r == 0 && g > 100 && b == 0,
+            5 => r == 0 && g == 0 && b > 100,
+            _ => false,
+        }
+    }
+
+    #[test]
+    fn straw_pixels_show_their_section_colour_and_others_do_not() {
+        let (w, h) = (80, 60);
+        for r in REFERENCES {
+            let scene = r.scene(WATER_INDEX);
+            let cam = Camera::new(r.observer, SCENE_CENTRE, w, h, 1.6);
+            let codes = course_picture(&scene, &cam);
+            for mode in [
+                ShadingMode::Course,
+                ShadingMode::Fresnel { prune_below: 1e-4 },
+            ] {
+                let pic = shaded_picture(&scene, &cam, &options(mode, 1));
+                assert_eq!(pic.pixels.len(), (w * h * 3) as usize);
+                let mut straw = 0;
+                for i in 0..h {
+                    for j in 0..w {
+                        let code = codes[(i * w + j) as usize];
+                        let c = pic.pixel(i, j);
+                        if code != 0 && mode == ShadingMode::Course {
+                            straw += 1;
+                            assert!(has_section_hue(c, code), "{c:?} for code {code}");
+                        }
+                        if code == 0 {
+                            // The surroundings are light and greyish, never a pure section hue.
+                            assert!((1..=5).all(|k| !has_section_hue(c, k)), "{c:?}");
+                        }
+                    }
+                }
+                assert!(mode != ShadingMode::Course || straw > 20);
+            }
+        }
+    }
+
+    #[test]
+    fn antialiasing_averages_and_is_deterministic() {
+        let r = REFERENCES[1];
+        let scene = r.scene(WATER_INDEX);
+        let cam = Camera::new(r.observer, SCENE_CENTRE, 60, 45, 1.6);
+        let opts = options(ShadingMode::Fresnel { prune_below: 1e-4 }, 3);
+        let a = shaded_picture(&scene, &cam, &opts);
+        let b = shaded_picture(&scene, &cam, &opts);
+        assert_eq!(a, b);
+        // Edges get in-between colours: more distinct colours than with one sample per pixel.
+        let distinct = |p: &RgbPicture| {
+            let mut v: Vec<[u8; 3]> = p.pixels.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+            v.sort();
+            v.dedup();
+            v.len()
+        };
+        let one = shaded_picture(&scene, &cam, &options(opts.mode, 1));
+        assert!(distinct(&a) > distinct(&one));
+    }
+
+    #[test]
+    fn checkerboard_wall_and_floor_are_where_they_were_put() {
+        let s = Surroundings::new(Backdrop::Checker, Vec3::new(0.1, 0.0, 0.1));
+        assert!(s.has_floor());
+        assert!((s.wall_normal() - Vec3::X).length() < 1e-12);
+        // Horizontal rays along −x meet the wall at x = −WALL_DISTANCE; squares alternate every
+        // CHECKER_SIDE in height (light at z in [0.04, 0.06), dark in [0.06, 0.08)).
+        let at = |z: f64| s.radiance(&Ray::new(Vec3::new(0.0, 0.001, z), Vec3::NEG_X));
+        let (light, dark) = (at(0.05), at(0.07));
+        assert!(light[0] > dark[0] + 0.1);
+        assert_eq!(at(0.05), at(0.045));
+        // Above the wall's top: sky, neither square.
+        let sky = at(WALL_TOP + 0.01);
+        assert!(sky != light && sky != dark);
+        // Straight down from above: the floor, whose squares alternate in x.
+        let down = |x: f64| s.radiance(&Ray::new(Vec3::new(x, 0.001, 0.3), Vec3::NEG_Z));
+        assert!((down(0.05)[0] - down(0.07)[0]).abs() > 0.1);
+        // Seen from below z = 0 there is no floor (a glass table).
+        assert!(!Surroundings::new(Backdrop::Checker, Vec3::new(0.1, 0.0, -0.1)).has_floor());
+        // The plain backdrop has no squares.
+        let p = Surroundings::new(Backdrop::Plain, Vec3::new(0.1, 0.0, 0.1));
+        let flat = |z: f64| p.radiance(&Ray::new(Vec3::new(0.0, 0.001, z), Vec3::NEG_X));
+        assert_eq!(flat(0.05), flat(0.07));
+    }
+
+    #[test]
+    fn srgb_round_trip() {
+        for k in 0..=255 {
+            let c = k as f64 / 255.0;
+            assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn cloud_points_land_where_the_camera_sees_them() {
+        let r = REFERENCES[1];
+        let scene = r.scene(WATER_INDEX);
+        let cam = Camera::new(r.observer, SCENE_CENTRE, 80, 60, 1.6);
+        let p = scene
+            .image_point(r.observer, cam.pixel_ray(20, 45).direction)
+            .unwrap();
+        let pic = cloud_picture(&cam, &[p], 1.0);
+        assert!(has_section_hue(pic.pixel(20, 45), p.color));
+        assert_eq!(pic.pixel(5, 5), [247, 247, 247]);
+    }
+}

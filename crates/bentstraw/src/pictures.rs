@@ -1,0 +1,107 @@
+//! Pictures of one simulation for reports: the observer's picture (Fresnel mode) and the point
+//! cloud seen through the same camera, side by side.
+
+use std::path::{Path, PathBuf};
+
+use bentstraw_optics::camera::{framing_fov, framing_target, Camera};
+use bentstraw_optics::image::ImagePoint;
+use bentstraw_optics::scene::Scene;
+use bentstraw_optics::shading::{
+    cloud_picture, shaded_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
+};
+use bentstraw_optics::Vec3;
+use image::codecs::png::PngEncoder;
+use image::{ExtendedColorType, ImageEncoder};
+
+use crate::error::{CliError, CliResult};
+use crate::files;
+
+/// Size of the report's observer pictures (pixels).
+pub const REPORT_SIZE: (u32, u32) = (640, 480);
+/// Pruning threshold of the report's Fresnel pictures.
+pub const REPORT_PRUNE: f64 = 1e-4;
+
+/// The PNG encoding of `picture`.
+pub fn png_bytes(picture: &RgbPicture) -> CliResult<Vec<u8>> {
+    let mut bytes = Vec::new();
+    PngEncoder::new(&mut bytes)
+        .write_image(
+            &picture.pixels,
+            picture.width,
+            picture.height,
+            ExtendedColorType::Rgb8,
+        )
+        .map_err(|e| CliError(format!("cannot encode the picture as PNG: {e}")))?;
+    Ok(bytes)
+}
+
+/// Writes `<dir>/<stem>_observer.png` (what `observer` sees, Fresnel mode, camera framing the glass) and
+/// `<dir>/<stem>_cloud.png` (the image `points`, seen from `observer` through the same camera);
+/// returns their paths in that order.
+
+pub fn write_observer_pictures(
+    dir: &Path,
+    stem: &str,
+    scene: &Scene,
+    observer: Vec3,
+    points: &[ImagePoint],
+) -> CliResult<(PathBuf, PathBuf)> {
+    let (w, h) = REPORT_SIZE;
+    // Centred on the glass (not on its box's centre, which close observers see off-centre), so
+    // that the straw is as large as the frame allows; both pictures share this camera.
+    let target = framing_target(observer);
+    let fov = framing_fov(observer, target, w as f64 / h as f64);
+    let camera = Camera::new(observer, target, w, h, fov);
+    let view = dir.join(format!("{stem}_observer.png"));
+    let cloud = dir.join(format!("{stem}_cloud.png"));
+    files::check_writable(&view)?;
+    files::check_writable(&cloud)?;
+    let options = ShadingOptions {
+        mode: ShadingMode::Fresnel {
+            prune_below: REPORT_PRUNE,
+        },
+        backdrop: Backdrop::Checker,
+        samples: 3,
+        outline: true,
+    };
+    let seen = png_bytes(&shaded_picture(scene, &camera, &options))?;
+    let splat = png_bytes(&cloud_picture(
+        &camera,
+        points,
+        splat_radius(&camera, points),
+    ))?;
+    files::write_bytes(&view, &seen)?;
+    files::write_bytes(&cloud, &splat)?;
+    Ok((view, cloud))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bentstraw_optics::sampling::sample_image;
+    use bentstraw_optics::scene::{REFERENCES, WATER_INDEX};
+
+    /// Both pictures of a reference are written, as PNGs of the report's size, and differ (one
+    /// is the rendered view, the other the splatted cloud).
+    #[test]
+    fn observer_pictures_are_written_for_a_reference() {
+        let dir = tempfile::tempdir().unwrap();
+        // BENTSTRAW_PICTURES_DIR keeps the pictures somewhere to look at them.
+        let keep = std::env::var_os("BENTSTRAW_PICTURES_DIR").map(PathBuf::from);
+        for r in REFERENCES {
+            let scene = r.scene(WATER_INDEX);
+            let cloud = sample_image(&scene, r.observer, 20000, &|_| {});
+            let out = keep.clone().unwrap_or_else(|| dir.path().to_path_buf());
+            let stem = format!("sim{}", r.number);
+            let (view, splat) =
+                write_observer_pictures(&out, &stem, &scene, r.observer, &cloud.points).unwrap();
+            assert_eq!(view, out.join(format!("sim{}_observer.png", r.number)));
+            assert_eq!(splat, out.join(format!("sim{}_cloud.png", r.number)));
+            let a = image::open(&view).unwrap().to_rgb8();
+            let b = image::open(&splat).unwrap().to_rgb8();
+            assert_eq!(a.dimensions(), REPORT_SIZE);
+            assert_eq!(b.dimensions(), REPORT_SIZE);
+            assert_ne!(a.as_raw(), b.as_raw());
+        }
+    }
+}

@@ -1,0 +1,43 @@
+//! Progress on stderr, shown only when the work takes over a second and stderr is a terminal, so
+//! that quick runs, pipes and tests see nothing.
+
+use std::io::IsTerminal;
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::time::Duration;
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+/// How long work may run before its progress appears.
+const SHOW_AFTER: Duration = Duration::from_secs(1);
+
+/// Runs `work` with a progress bar of `total` steps (a spinner when `None`) drawn by `template`
+/// (indicatif's syntax); the bar stays hidden for the first second and when stderr is no terminal.
+pub fn with_progress<T>(
+    total: Option<u64>,
+    template: &str,
+    work: impl FnOnce(&ProgressBar) -> T,
+) -> T {
+    let bar = ProgressBar::with_draw_target(total, ProgressDrawTarget::hidden());
+    if let Ok(style) = ProgressStyle::with_template(template) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    let interactive = std::io::stderr().is_terminal();
+    let (done, finished) = mpsc::channel::<()>();
+    let out = std::thread::scope(|s| {
+        if interactive {
+            let shown = bar.clone();
+            s.spawn(move || {
+                // Woken early (disconnected) when the work ends within the first second.
+                if let Err(RecvTimeoutError::Timeout) = finished.recv_timeout(SHOW_AFTER) {
+                    shown.set_draw_target(ProgressDrawTarget::stderr());
+                    shown.enable_steady_tick(Duration::from_millis(120));
+                }
+            });
+        }
+        let out = work(&bar);
+        drop(done);
+        out
+    });
+    bar.finish_and_clear();
+    out
+}

@@ -1,0 +1,505 @@
+//! The `index.html` report of `bentstraw table`: one self-contained page (embedded CSS, no external
+//! resource) with every simulation's inputs, statistics, checks and figures.
+//!
+//! The page is built from plain data: a [`Report`] holds [`SimulationEntry`]s, each with a list of
+//! [`Section`]s holding [`Figure`]s. Later kinds of result (the observer's pictures, other
+//! apparent-position models) are added as more sections of a simulation, with no change here.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Duration;
+
+use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES};
+
+use crate::error::CliResult;
+use crate::files::write_bytes;
+use crate::writers::section_rgb8;
+
+/// The whole report.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// Page title.
+    pub title: String,
+    /// One-sentence description under the title.
+    pub subtitle: String,
+    /// The simulations, in order; consecutive ones with the same reference are grouped.
+    pub simulations: Vec<SimulationEntry>,
+    /// Wall-clock time of the whole run.
+    pub total: Duration,
+}
+
+/// One simulation: its inputs, numbers, check and sections of figures.
+#[derive(Clone, Debug)]
+pub struct SimulationEntry {
+    /// Anchor and file stem, e.g. `sim1_n1`.
+    pub id: String,
+    /// Number of the reference simulation (SPEC §5) it belongs to.
+    pub reference: u32,
+    /// Heading, e.g. "Simulation 1, check n_water = 1".
+    pub heading: String,
+    /// Inputs as label/value rows.
+    pub inputs: Vec<(String, String)>,
+    /// Refractive index of the water.
+    pub n_water: f64,
+    /// Rays traced.
+    pub rays: u64,
+    /// Image points kept.
+    pub points: usize,
+    /// Image points per colour code 1..=5.
+    pub counts: [usize; SECTION_COUNT],
+    /// Fraction of the traced rays that reached the straw.
+    pub hit_ratio: f64,
+    /// Where the time went.
+    pub timings: Vec<Timing>,
+    /// A built-in check and its verdict, if this simulation has one.
+    pub check: Option<Check>,
+    /// The results, one section per kind.
+    pub sections: Vec<Section>,
+}
+
+/// A named duration.
+#[derive(Clone, Debug)]
+pub struct Timing {
+    /// What was timed.
+    pub label: String,
+    /// How long it took.
+    pub duration: Duration,
+}
+
+impl Timing {
+    /// A timing named `label`.
+    pub fn new(label: &str, duration: Duration) -> Self {
+        Timing {
+            label: label.into(),
+            duration,
+        }
+    }
+}
+
+/// A verdict of a built-in check.
+#[derive(Clone, Debug)]
+pub struct Check {
+    /// Whether it passed.
+    pub passed: bool,
+    /// One line saying what was checked, the measured value and the verdict.
+    pub text: String,
+    /// A few words for tables, e.g. "on the straw (max 3e-16 m): pass".
+    pub short: String,
+}
+
+/// A titled group of figures within a simulation.
+#[derive(Clone, Debug)]
+pub struct Section {
+    /// Heading.
+    pub title: String,
+    /// The figures.
+    pub figures: Vec<Figure>,
+    /// Paragraphs of explanation under the figures.
+    pub notes: Vec<String>,
+}
+
+/// A picture file shown in the page, with links to companion files.
+#[derive(Clone, Debug)]
+pub struct Figure {
+    /// The image's file name, relative to the report.
+    pub file: String,
+    /// What the figure shows.
+    pub caption: String,
+    /// Companion files (3D view, data).
+    pub links: Vec<Link>,
+    /// Why the image could not be written, if it could not.
+    pub error: Option<String>,
+}
+
+impl Figure {
+    /// A figure of the image `file` with `caption`, no links, no error.
+    pub fn image(file: &str, caption: &str) -> Self {
+        Figure {
+            file: file.into(),
+            caption: caption.into(),
+            links: Vec::new(),
+            error: None,
+        }
+    }
+}
+
+/// A link to a file written beside the report.
+#[derive(Clone, Debug)]
+pub struct Link {
+    /// File name, relative to the report.
+    pub file: String,
+    /// Link text.
+    pub label: String,
+    /// Why the file could not be written, if it could not.
+    pub error: Option<String>,
+}
+
+impl Link {
+    /// A link to `file` labelled `label`, or the reason it is missing.
+    pub fn new(file: &str, label: &str, error: Option<String>) -> Self {
+        Link {
+            file: file.into(),
+            label: label.into(),
+            error,
+        }
+    }
+}
+
+/// Writes the report to `path`, all-or-nothing.
+pub fn write_report(path: &Path, report: &Report) -> CliResult {
+    write_bytes(path, render(report).as_bytes())
+}
+
+/// Escapes text for HTML content and attribute values.
+pub fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+const CSS: &str = r#"
+:root { --ink:#1d2330; --muted:#5b6475; --line:#e2e6ee; --bg:#f6f7fb; --card:#fff; --accent:#2456a6; --ok:#1d7a3a; --bad:#b3261e; }
+* { box-sizing: border-box; }
+body { margin:0; background:var(--bg); color:var(--ink); font:15px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,Helvetica,Arial,sans-serif; }
+header { background:#1f2a44; color:#fff; padding:28px 40px 22px; }
+header h1 { margin:0 0 6px; font-size:26px; font-weight:600; }
+header p { margin:0; color:#c9d3e8; max-width:900px; }
+nav { padding:10px 40px; background:#fff; border-bottom:1px solid var(--line); position:sticky; top:0; z-index:1; }
+nav a { margin-right:18px; }
+main { max-width:1280px; margin:0 auto; padding:24px 40px 40px; }
+a { color:var(--accent); text-decoration:none; } a:hover { text-decoration:underline; }
+h2 { font-size:21px; margin:34px 0 12px; padding-bottom:6px; border-bottom:2px solid var(--line); }
+h3 { font-size:17px; margin:0 0 10px; }
+h4 { font-size:15px; margin:16px 0 8px; color:var(--muted); font-weight:600; }
+table { border-collapse:collapse; font-variant-numeric:tabular-nums; }
+th, td { padding:4px 10px; text-align:right; border-bottom:1px solid var(--line); white-space:nowrap; }
+th { font-weight:600; color:var(--muted); font-size:13px; }
+td.l, th.l { text-align:left; }
+.overview { background:var(--card); border:1px solid var(--line); border-radius:8px; padding:12px 16px; overflow-x:auto; }
+.sim { background:var(--card); border:1px solid var(--line); border-radius:8px; padding:18px 20px; margin:16px 0; }
+.facts { display:flex; flex-wrap:wrap; gap:28px; align-items:flex-start; }
+.facts table td:first-child { text-align:left; color:var(--muted); }
+.sw { display:inline-block; width:11px; height:11px; border-radius:2px; margin-right:5px; vertical-align:-1px; border:1px solid rgba(0,0,0,.15); }
+.check { margin:12px 0 0; padding:6px 10px; border-radius:6px; font-size:14px; }
+.check.pass { background:#e7f4ea; color:var(--ok); } .check.fail { background:#fbe9e7; color:var(--bad); }
+.badge { font-size:12px; padding:1px 7px; border-radius:10px; }
+.badge.pass { background:#e7f4ea; color:var(--ok); } .badge.fail { background:#fbe9e7; color:var(--bad); }
+.timing { color:var(--muted); font-size:13px; margin-top:8px; }
+figure { margin:8px 0 0; }
+figure img { max-width:100%; height:auto; border:1px solid var(--line); border-radius:4px; background:#fff; }
+figcaption { color:var(--muted); font-size:13px; margin-top:4px; }
+.missing { padding:18px; border:1px dashed var(--bad); color:var(--bad); border-radius:6px; background:#fff8f7; }
+.legend { margin-top:10px; color:var(--muted); font-size:13px; }
+footer { max-width:1280px; margin:0 auto; padding:0 40px 40px; color:var(--muted); font-size:13px; }
+"#;
+
+/// A small square in the section's colour.
+fn swatch(code: usize) -> String {
+    let [r, g, b] = section_rgb8(code as u8);
+    format!("<span class=\"sw\" style=\"background:rgb({r},{g},{b})\"></span>")
+}
+
+fn seconds(d: Duration) -> String {
+    format!("{:.2} s", d.as_secs_f64())
+}
+
+/// The report as one HTML page.
+pub fn render(report: &Report) -> String {
+    let mut h = String::with_capacity(32 * 1024);
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <title>{}</title>\n<style>{CSS}</style>\n</head>\n<body>\n",
+        escape(&report.title)
+    );
+    let _ = write!(
+        h,
+        "<header>\n<h1>{}</h1>\n<p>{}</p>\n</header>\n",
+        escape(&report.title),
+        escape(&report.subtitle)
+    );
+
+    // Consecutive simulations of the same reference form one group.
+    let mut groups: Vec<(u32, Vec<&SimulationEntry>)> = Vec::new();
+    for s in &report.simulations {
+        match groups.last_mut() {
+            Some((r, list)) if *r == s.reference => list.push(s),
+            _ => groups.push((s.reference, vec![s])),
+        }
+    }
+    h.push_str("<nav><a href=\"#overview\">Overview</a>");
+    for (r, _) in &groups {
+        let _ = write!(h, "<a href=\"#reference{r}\">Simulation {r}</a>");
+    }
+    h.push_str("<a href=\"#conventions\">Conventions</a></nav>\n<main>\n");
+
+    render_overview(&mut h, report);
+    for (r, list) in &groups {
+        let _ = writeln!(h, "<h2 id=\"reference{r}\">Reference simulation {r}</h2>");
+        for s in list {
+            render_simulation(&mut h, s);
+        }
+    }
+    h.push_str("</main>\n");
+    let _ = write!(
+        h,
+        "<footer id=\"conventions\">\n<h2>Conventions</h2>\n\
+         <p>Lengths in metres; origin at the centre of the glass's base, z up. Glass radius 0.04 m and \
+         height 0.20 m; straw radius 0.005 m and height 0.25 m, five sections of 0.05 m: \
+         {}.</p>\n\
+         <p>A ray leaves the observer O with direction u0, is refracted or totally reflected at each \
+         water face (at most the event limit), and stops on the opaque straw, of whose section it \
+         takes the colour. Its image point is P = O + L·u0, with L the length of its broken path: \
+         where the observer believes the straw point is. With n_water = 1 every image point lies on \
+         the straw, which the checks measure.</p>\n\
+         <p>Written by bentstraw {} in {} (wall clock). The simulations run side by side, \
+         so each one's times are wall-clock times shared with the others.</p>\n</footer>\n</body>\n</html>\n",
+        (0..SECTION_COUNT)
+            .map(|k| format!("{}{} {}", swatch(k + 1), k + 1, SECTION_NAMES[k]))
+            .collect::<Vec<_>>()
+            .join(", "),
+        env!("CARGO_PKG_VERSION"),
+        seconds(report.total)
+    );
+    h
+}
+
+fn render_overview(h: &mut String, report: &Report) {
+    h.push_str("<h2 id=\"overview\">Overview</h2>\n<div class=\"overview\"><table>\n<tr><th class=\"l\">simulation</th><th>n_water</th><th>rays</th><th>points</th><th>hit ratio</th>");
+    for (k, name) in SECTION_NAMES.iter().enumerate() {
+        let _ = write!(h, "<th>{}{name}</th>", swatch(k + 1));
+    }
+    h.push_str("<th>time</th><th class=\"l\">check</th></tr>\n");
+    for s in &report.simulations {
+        let _ = write!(
+            h,
+            "<tr><td class=\"l\"><a href=\"#{id}\">{id}</a></td><td>{}</td><td>{}</td><td>{}</td><td>{:.1} %</td>",
+            s.n_water,
+            s.rays,
+            s.points,
+            100.0 * s.hit_ratio,
+            id = escape(&s.id)
+        );
+        for c in s.counts {
+            let _ = write!(h, "<td>{c}</td>");
+        }
+        let total: Duration = s.timings.iter().map(|t| t.duration).sum();
+        let verdict = match &s.check {
+            Some(c) => format!(
+                "<span class=\"badge {}\">{}</span>",
+                if c.passed { "pass" } else { "fail" },
+                escape(&c.short)
+            ),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            h,
+            "<td>{}</td><td class=\"l\">{verdict}</td></tr>",
+            seconds(total)
+        );
+    }
+    h.push_str("</table></div>\n");
+}
+
+fn render_simulation(h: &mut String, s: &SimulationEntry) {
+    let _ = write!(
+        h,
+        "<article class=\"sim\" id=\"{}\">\n<h3>{}</h3>\n<div class=\"facts\">\n<table>",
+        escape(&s.id),
+        escape(&s.heading)
+    );
+    for (label, value) in &s.inputs {
+        let _ = write!(
+            h,
+            "<tr><td>{}</td><td>{}</td></tr>",
+            escape(label),
+            escape(value)
+        );
+    }
+    let _ = write!(
+        h,
+        "</table>\n<table><tr><td>rays traced</td><td>{}</td></tr><tr><td>image points</td><td>{}</td></tr>\
+         <tr><td>hit ratio</td><td>{:.1} %</td></tr></table>\n<table>",
+        s.rays,
+        s.points,
+        100.0 * s.hit_ratio
+    );
+    for (k, c) in s.counts.iter().enumerate() {
+        let _ = write!(
+            h,
+            "<tr><td>{}{} {}</td><td>{c}</td></tr>",
+            swatch(k + 1),
+            k + 1,
+            SECTION_NAMES[k]
+        );
+    }
+    h.push_str("</table>\n</div>\n");
+    if let Some(c) = &s.check {
+        let _ = writeln!(
+            h,
+            "<p class=\"check {}\">{}</p>",
+            if c.passed { "pass" } else { "fail" },
+            escape(&c.text)
+        );
+    }
+    let timings: Vec<String> = s
+        .timings
+        .iter()
+        .map(|t| format!("{} {}", escape(&t.label), seconds(t.duration)))
+        .collect();
+    let _ = writeln!(h, "<p class=\"timing\">Time: {}</p>", timings.join(" · "));
+    for sec in &s.sections {
+        let _ = writeln!(h, "<h4>{}</h4>", escape(&sec.title));
+        for f in &sec.figures {
+            render_figure(h, f);
+        }
+        for n in &sec.notes {
+            let _ = writeln!(h, "<p>{}</p>", escape(n));
+        }
+    }
+    h.push_str("</article>\n");
+}
+
+fn render_figure(h: &mut String, f: &Figure) {
+    h.push_str("<figure>\n");
+    match &f.error {
+        None => {
+            let img = format!(
+                "<img src=\"{}\" alt=\"{}\" loading=\"lazy\">",
+                escape(&f.file),
+                escape(&f.caption)
+            );
+            // Clicking the picture opens its first companion (the rotatable 3D view).
+            match f.links.iter().find(|l| l.error.is_none()) {
+                Some(l) => {
+                    let _ = writeln!(h, "<a href=\"{}\">{img}</a>", escape(&l.file));
+                }
+                None => {
+                    let _ = writeln!(h, "{img}");
+                }
+            }
+        }
+        Some(e) => {
+            let _ = writeln!(
+                h,
+                "<div class=\"missing\">{} could not be written: {}</div>",
+                escape(&f.file),
+                escape(e)
+            );
+        }
+    }
+    let links: Vec<String> = f
+        .links
+        .iter()
+        .map(|l| match &l.error {
+            None => format!("<a href=\"{}\">{}</a>", escape(&l.file), escape(&l.label)),
+            Some(e) => format!("{} not written ({})", escape(&l.label), escape(e)),
+        })
+        .collect();
+    let _ = write!(h, "<figcaption>{}", escape(&f.caption));
+    if !links.is_empty() {
+        let _ = write!(h, " — {}", links.join(" · "));
+    }
+    h.push_str("</figcaption>\n</figure>\n");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entry(
+        id: &str,
+        reference: u32,
+        check: Option<Check>,
+        error: Option<String>,
+    ) -> SimulationEntry {
+        let mut figure = Figure::image(&format!("{id}.png"), "cloud <three views>");
+        figure.links = vec![Link::new(&format!("{id}.html"), "3D view", None)];
+        figure.error = error;
+        SimulationEntry {
+            id: id.into(),
+            reference,
+            heading: format!("Simulation {reference}"),
+            inputs: vec![("observer".into(), "(0, 0.1, 0.1) m".into())],
+            n_water: 1.0,
+            rays: 4000,
+            points: 1234,
+            counts: [1, 2, 3, 4, 1224],
+            hit_ratio: 0.3085,
+            timings: vec![Timing::new("tracing", Duration::from_millis(250))],
+            check,
+            sections: vec![Section {
+                title: "Image points".into(),
+                figures: vec![figure],
+                notes: vec!["a & b".into()],
+            }],
+        }
+    }
+
+    fn report() -> Report {
+        Report {
+            title: "T".into(),
+            subtitle: "S".into(),
+            simulations: vec![
+                entry("sim1", 1, None, None),
+                entry(
+                    "sim1_n1",
+                    1,
+                    Some(Check {
+                        passed: true,
+                        text: "on the straw, at most 1e-17 m".into(),
+                        short: "max 1e-17 m: pass".into(),
+                    }),
+                    None,
+                ),
+                entry(
+                    "sim2",
+                    2,
+                    Some(Check {
+                        passed: false,
+                        text: "off".into(),
+                        short: "max 1 m: FAIL".into(),
+                    }),
+                    Some("disk full".into()),
+                ),
+            ],
+            total: Duration::from_secs(3),
+        }
+    }
+
+    #[test]
+    fn every_figure_check_and_number_is_shown() {
+        let html = render(&report());
+        assert!(html.contains("<a href=\"sim1.html\"><img src=\"sim1.png\""));
+        assert!(html.contains("<img src=\"sim1_n1.png\""));
+        assert!(html.contains("<a href=\"sim1_n1.html\">3D view</a>"));
+        assert!(html.contains("sim2.png could not be written: disk full"));
+        assert!(!html.contains("<img src=\"sim2.png\""));
+        assert!(html.contains("on the straw, at most 1e-17 m"));
+        assert!(html.contains("class=\"check fail\">off"));
+        assert!(html.contains("max 1e-17 m: pass") && html.contains("max 1 m: FAIL"));
+        assert!(html.contains("<td>1224</td>") && html.contains("30.9 %"));
+        assert!(html.contains("id=\"reference1\"") && html.contains("id=\"reference2\""));
+        // One group per reference, not per simulation.
+        assert_eq!(html.matches("<h2 id=\"reference").count(), 2);
+    }
+
+    #[test]
+    fn text_is_escaped_and_nothing_is_fetched() {
+        let html = render(&report());
+        assert!(html.contains("cloud &lt;three views&gt;"));
+        assert!(html.contains("a &amp; b"));
+        assert!(!html.contains("http://") && !html.contains("https://"));
+        assert!(!html.contains("<script") && !html.contains("<link"));
+    }
+}

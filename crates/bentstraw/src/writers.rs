@@ -1,0 +1,555 @@
+//! Writing image points to files: CSV, JSON and PLY, chosen by the file's extension.
+//!
+//! Every format stores the coordinates exactly: the shortest decimal form that reads back as the
+//! same `f64` (CSV, JSON), or the `f64` bytes themselves (PLY). No timing goes into a file, so the
+//! same inputs give byte-identical files.
+//!
+//! - **CSV**: header `x,y,z,color`, then one point a row; `color` is the section code of SPEC §1
+//!   (1 = red … 5 = blue).
+//! - **JSON**: one object, schema `bentstraw-image-points/1`:
+//!   ```text
+//!   {
+//!     "schema": "bentstraw-image-points/1",
+//!     "units": "m",
+//!     "image_model": "course",
+//!     "inputs": {"observer": [x, y, z], "straw": [xp, yp], "water_height": he,
+//!                "n_water": n, "max_events": m, "min_points": N},
+//!     "stats": {"rays_traced": R, "points": P, "hit_ratio": P / R, "grid_spacing": h,
+//!               "points_per_color": {"red": .., "orange": .., "magenta": .., "green": .., "blue": ..}},
+//!     "colors": [{"code": 1, "name": "red", "rgb": [1.0, 0.0, 0.0]}, ...],
+//!     "point_fields": ["x", "y", "z", "color"],
+//!     "points": [[x, y, z, color], ...]
+//!   }
+//!   ```
+//! - **PLY**: `binary_little_endian 1.0`, one `vertex` element with `double x, y, z`, `uchar red,
+//!   green, blue` (the section's display colour) and `uchar color` (the section code); the inputs
+//!   are in `comment` lines. Opens in MeshLab, CloudCompare and Blender.
+
+use std::io::{self, Write};
+use std::path::Path;
+
+use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
+use bentstraw_optics::image::ImagePoint;
+use bentstraw_optics::sampling::ImageCloud;
+use bentstraw_optics::scene::{Scene, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
+use bentstraw_optics::Vec3;
+use serde::Serialize;
+
+use crate::error::{CliError, CliResult};
+use crate::files::write_atomically;
+
+/// A file format for image points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PointFormat {
+    /// Comma-separated values, header `x,y,z,color`.
+    Csv,
+    /// One JSON object with the inputs, the statistics and the points.
+    Json,
+    /// Stanford polygon format, coloured vertices.
+    Ply,
+}
+
+impl PointFormat {
+    /// The format named by `path`'s extension (`.csv`, `.json`, `.ply`, any case).
+    pub fn from_path(path: &Path) -> CliResult<Self> {
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        match ext.as_deref() {
+            Some("csv") => Ok(PointFormat::Csv),
+            Some("json") => Ok(PointFormat::Json),
+            Some("ply") => Ok(PointFormat::Ply),
+            Some(other) => Err(CliError(format!(
+                "output file {} has extension '.{other}': expected .csv, .json or .ply",
+                path.display()
+            ))),
+            None => Err(CliError(format!(
+                "output file {} has no extension: expected .csv, .json or .ply",
+                path.display()
+            ))),
+        }
+    }
+
+    /// Short upper-case name, for messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            PointFormat::Csv => "CSV",
+            PointFormat::Json => "JSON",
+            PointFormat::Ply => "PLY",
+        }
+    }
+}
+
+/// A simulation's result with the inputs that produced it: everything a points file records.
+#[derive(Clone, Copy, Debug)]
+pub struct PointSet<'a> {
+    /// The scene traced.
+    pub scene: &'a Scene,
+    /// The observer.
+    pub observer: Vec3,
+    /// The number of points asked for.
+    pub min_points: usize,
+    /// The apparent-position model's points (the course's are the cloud's own).
+    pub model: ModelPoints<'a>,
+    /// The traced points and ray count.
+    pub cloud: &'a ImageCloud,
+}
+
+/// The points of one apparent-position model, as written.
+#[derive(Clone, Copy, Debug)]
+pub enum ModelPoints<'a> {
+    /// The course's convention (SPEC §4): the cloud's image points.
+    Course,
+    /// The eye model: one apparent point per image point, with its two foci.
+    Eye(&'a [ApparentPoint]),
+    /// The stereo model: the points both eyes see.
+    Stereo(&'a StereoImage),
+}
+
+impl ModelPoints<'_> {
+    /// The model's name as on the command line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ModelPoints::Course => "course",
+            ModelPoints::Eye(_) => "eye",
+            ModelPoints::Stereo(_) => "stereo",
+        }
+    }
+
+    /// Names of the columns of one point, in the order the CSV and JSON write them.
+    pub fn fields(&self) -> &'static [&'static str] {
+        match self {
+            ModelPoints::Course => &["x", "y", "z", "color"],
+            ModelPoints::Eye(_) => &[
+                "x", "y", "z", "color", "s_h", "s_v", "s_h_kind", "s_v_kind", "gap",
+            ],
+            ModelPoints::Stereo(_) => &[
+                "x",
+                "y",
+                "z",
+                "color",
+                "disparity",
+                "vertical_disparity",
+                "miss_distance",
+                "gap",
+            ],
+        }
+    }
+}
+
+impl PointSet<'_> {
+    /// The model's name.
+    pub fn image_model(&self) -> &'static str {
+        self.model.name()
+    }
+
+    /// The points that have a position in this model, as image points at that position (for the
+    /// figures), in order.
+    pub fn placed_points(&self) -> Vec<ImagePoint> {
+        let moved = |image: &ImagePoint, position: Option<Vec3>| {
+            position.map(|position| ImagePoint { position, ..*image })
+        };
+        match self.model {
+            ModelPoints::Course => self.cloud.points.clone(),
+            ModelPoints::Eye(points) => points
+                .iter()
+                .filter_map(|p| moved(&p.image, p.position))
+                .collect(),
+            ModelPoints::Stereo(s) => s
+                .points
+                .iter()
+                .filter_map(|p| moved(&p.image, p.position))
+                .collect(),
+        }
+    }
+
+    /// One row of values per point: each a number, a word, or missing (`None`).
+    fn rows(&self) -> Vec<Vec<Value>> {
+        let xyz = |p: Option<Vec3>| match p {
+            Some(q) => [Value::Num(q.x), Value::Num(q.y), Value::Num(q.z)],
+            None => [Value::Missing, Value::Missing, Value::Missing],
+        };
+        let num = |v: Option<f64>| v.map_or(Value::Missing, Value::Num);
+        match self.model {
+            ModelPoints::Course => self
+                .cloud
+                .points
+                .iter()
+                .map(|p| {
+                    let mut r = xyz(Some(p.position)).to_vec();
+                    r.push(Value::Code(p.color));
+                    r
+                })
+                .collect(),
+            ModelPoints::Eye(points) => points
+                .iter()
+                .map(|p| {
+                    let mut r = xyz(p.position).to_vec();
+                    r.extend([
+                        Value::Code(p.image.color),
+                        num(p.s_h.signed_distance()),
+                        num(p.s_v.signed_distance()),
+                        Value::Word(p.s_h.kind()),
+                        Value::Word(p.s_v.kind()),
+                        num(p.gap_to_course()),
+                    ]);
+                    r
+                })
+                .collect(),
+            ModelPoints::Stereo(s) => s
+                .points
+                .iter()
+                .map(|p| {
+                    let mut r = xyz(p.position).to_vec();
+                    r.extend([
+                        Value::Code(p.image.color),
+                        Value::Num(p.disparity),
+                        Value::Num(p.vertical_disparity),
+                        Value::Num(p.miss_distance),
+                        num(p.gap_to_course()),
+                    ]);
+                    r
+                })
+                .collect(),
+        }
+    }
+}
+
+/// One value of a written point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Value {
+    /// A number, written in its shortest exact form (`inf` for an infinite focus).
+    Num(f64),
+    /// A colour code.
+    Code(u8),
+    /// A word (the kind of a focus).
+    Word(&'static str),
+    /// Not defined for this point: empty in CSV, `null` in JSON.
+    Missing,
+}
+
+impl Value {
+    fn csv(&self) -> String {
+        match *self {
+            Value::Num(v) => format!("{v}"),
+            Value::Code(c) => c.to_string(),
+            Value::Word(w) => w.to_string(),
+            Value::Missing => String::new(),
+        }
+    }
+
+    fn json(&self) -> String {
+        match *self {
+            Value::Num(v) if v.is_finite() => json(&v),
+            Value::Num(v) => json(if v > 0.0 { "inf" } else { "-inf" }),
+            Value::Code(c) => c.to_string(),
+            Value::Word(w) => json(w),
+            Value::Missing => "null".to_string(),
+        }
+    }
+}
+
+/// Writes `set` to `path` in `format`, all-or-nothing.
+pub fn write_points(path: &Path, format: PointFormat, set: &PointSet) -> CliResult {
+    write_atomically(path, |w| match format {
+        PointFormat::Csv if matches!(set.model, ModelPoints::Course) => {
+            write_csv(w, &set.cloud.points)
+        }
+        PointFormat::Csv => write_model_csv(w, set),
+        PointFormat::Json => write_json(w, set),
+        PointFormat::Ply => write_ply(w, set),
+    })
+}
+
+/// CSV: header `x,y,z,color`, coordinates in the shortest form that reads back exactly.
+pub fn write_csv(w: &mut dyn Write, points: &[ImagePoint]) -> io::Result<()> {
+    writeln!(w, "x,y,z,color")?;
+    for p in points {
+        // `{}` on f64 prints the shortest digits that parse back to the same value.
+        let q = p.position;
+        writeln!(w, "{},{},{},{}", q.x, q.y, q.z, p.color)?;
+    }
+    Ok(())
+}
+
+/// CSV of a model's points: header from [`ModelPoints::fields`], missing values left empty.
+pub fn write_model_csv(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
+    writeln!(w, "{}", set.model.fields().join(","))?;
+    for row in set.rows() {
+        let cells: Vec<String> = row.iter().map(Value::csv).collect();
+        writeln!(w, "{}", cells.join(","))?;
+    }
+    Ok(())
+}
+
+#[derive(Serialize)]
+struct JsonInputs {
+    observer: [f64; 3],
+    straw: [f64; 2],
+    water_height: f64,
+    n_water: f64,
+    max_events: u32,
+    min_points: usize,
+}
+
+#[derive(Serialize)]
+struct JsonCounts {
+    red: usize,
+    orange: usize,
+    magenta: usize,
+    green: usize,
+    blue: usize,
+}
+
+#[derive(Serialize)]
+struct JsonStats {
+    rays_traced: u64,
+    points: usize,
+    hit_ratio: f64,
+    grid_spacing: f64,
+    points_per_color: JsonCounts,
+}
+
+#[derive(Serialize)]
+struct JsonColor {
+    code: u8,
+    name: &'static str,
+    rgb: [f64; 3],
+}
+
+/// JSON: the inputs, statistics and colour legend, then one `[x, y, z, color]` array a line.
+pub fn write_json(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
+    let s = set.scene;
+    let inputs = JsonInputs {
+        observer: set.observer.to_array(),
+        straw: [s.straw_x, s.straw_y],
+        water_height: s.water_height,
+        n_water: s.n_water,
+        max_events: s.max_events,
+        min_points: set.min_points,
+    };
+    let c = set.cloud.counts_per_color();
+    let stats = JsonStats {
+        rays_traced: set.cloud.rays_traced,
+        points: set.cloud.points.len(),
+        hit_ratio: set.cloud.hit_ratio(),
+        grid_spacing: set.cloud.spacing,
+        points_per_color: JsonCounts {
+            red: c[0],
+            orange: c[1],
+            magenta: c[2],
+            green: c[3],
+            blue: c[4],
+        },
+    };
+    let colors: Vec<JsonColor> = (0..SECTION_COUNT)
+        .map(|k| JsonColor {
+            code: k as u8 + 1,
+            name: SECTION_NAMES[k],
+            rgb: SECTION_RGB[k],
+        })
+        .collect();
+    writeln!(w, "{{")?;
+    writeln!(w, "  \"schema\": \"bentstraw-image-points/1\",")?;
+    writeln!(w, "  \"units\": \"m\",")?;
+    writeln!(w, "  \"image_model\": {},", json(set.image_model()))?;
+    writeln!(w, "  \"inputs\": {},", json(&inputs))?;
+    writeln!(w, "  \"stats\": {},", json(&stats))?;
+    writeln!(w, "  \"colors\": {},", json(&colors))?;
+    writeln!(w, "  \"point_fields\": {},", json(set.model.fields()))?;
+    writeln!(w, "  \"points\": [")?;
+    let rows = set.rows();
+    let n = rows.len();
+    for (i, row) in rows.iter().enumerate() {
+        let sep = if i + 1 < n { "," } else { "" };
+        let cells: Vec<String> = row.iter().map(Value::json).collect();
+        writeln!(w, "    [{}]{sep}", cells.join(","))?;
+    }
+    writeln!(w, "  ]")?;
+    writeln!(w, "}}")
+}
+
+/// Compact JSON text of `value` (floats in their shortest exact form).
+fn json<T: Serialize + ?Sized>(value: &T) -> String {
+    serde_json::to_string(value).expect("plain data always serialises")
+}
+
+/// The 8-bit display colour of section `code` (SPEC §1).
+pub fn section_rgb8(code: u8) -> [u8; 3] {
+    SECTION_RGB[code as usize - 1].map(|c| (c * 255.0).round() as u8)
+}
+
+/// PLY, binary little-endian: `double x, y, z`, `uchar red, green, blue`, `uchar color`.
+pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
+    let s = set.scene;
+    let o = set.observer;
+    // The header is ASCII by the format's rules.
+    writeln!(w, "ply")?;
+    writeln!(w, "format binary_little_endian 1.0")?;
+    writeln!(
+        w,
+        "comment bentstraw: virtual image points of the straw ({} model), metres",
+        set.image_model()
+    )?;
+    writeln!(w, "comment observer {} {} {}", o.x, o.y, o.z)?;
+    writeln!(
+        w,
+        "comment straw {} {} water_height {} n_water {} max_events {}",
+        s.straw_x, s.straw_y, s.water_height, s.n_water, s.max_events
+    )?;
+    writeln!(
+        w,
+        "comment rays_traced {} min_points {}",
+        set.cloud.rays_traced, set.min_points
+    )?;
+    writeln!(
+        w,
+        "comment color: section code 1 red, 2 orange, 3 magenta, 4 green, 5 blue"
+    )?;
+    let points = set.placed_points();
+    writeln!(w, "element vertex {}", points.len())?;
+    for axis in ["x", "y", "z"] {
+        writeln!(w, "property double {axis}")?;
+    }
+    for channel in ["red", "green", "blue", "color"] {
+        writeln!(w, "property uchar {channel}")?;
+    }
+    writeln!(w, "end_header")?;
+    let mut record = [0u8; 28];
+    for p in &points {
+        let q = p.position;
+        record[0..8].copy_from_slice(&q.x.to_le_bytes());
+        record[8..16].copy_from_slice(&q.y.to_le_bytes());
+        record[16..24].copy_from_slice(&q.z.to_le_bytes());
+        record[24..27].copy_from_slice(&section_rgb8(p.color));
+        record[27] = p.color;
+        w.write_all(&record)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(x: f64, y: f64, z: f64, color: u8) -> ImagePoint {
+        ImagePoint {
+            position: Vec3::new(x, y, z),
+            color,
+            direction: Vec3::X,
+            path_length: 1.0,
+            straw_point: Vec3::ZERO,
+            events: 0,
+        }
+    }
+
+    fn sample() -> (Scene, ImageCloud) {
+        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+        let cloud = ImageCloud {
+            points: vec![
+                point(0.1 + 0.2, -1e-7, 0.123_456_789_012_345_68, 1),
+                point(1.0 / 3.0, 2.0f64.sqrt(), -0.0, 5),
+                point(5e-324, 1e300, 0.05, 3),
+            ],
+            rays_traced: 12,
+            spacing: 0.001,
+        };
+        (scene, cloud)
+    }
+
+    fn set<'a>(scene: &'a Scene, cloud: &'a ImageCloud) -> PointSet<'a> {
+        PointSet {
+            scene,
+            observer: Vec3::new(0.0, 0.1, 0.1),
+            min_points: 3,
+            model: ModelPoints::Course,
+            cloud,
+        }
+    }
+
+    #[test]
+    fn format_follows_the_extension() {
+        assert_eq!(
+            PointFormat::from_path(Path::new("a/b.csv")).unwrap(),
+            PointFormat::Csv
+        );
+        assert_eq!(
+            PointFormat::from_path(Path::new("b.JSON")).unwrap(),
+            PointFormat::Json
+        );
+        assert_eq!(
+            PointFormat::from_path(Path::new("b.ply")).unwrap(),
+            PointFormat::Ply
+        );
+        let e = PointFormat::from_path(Path::new("b.txt")).unwrap_err().0;
+        assert!(e.contains("b.txt") && e.contains(".txt"), "{e}");
+        assert!(PointFormat::from_path(Path::new("points")).is_err());
+    }
+
+    #[test]
+    fn csv_reads_back_bit_exactly() {
+        let (scene, cloud) = sample();
+        let mut out = Vec::new();
+        write_csv(&mut out, &set(&scene, &cloud).cloud.points).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("x,y,z,color"));
+        for (line, p) in lines.zip(&cloud.points) {
+            let f: Vec<&str> = line.split(',').collect();
+            let q = p.position;
+            for (s, v) in f[..3].iter().zip([q.x, q.y, q.z]) {
+                assert_eq!(s.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{s}");
+            }
+            assert_eq!(f[3].parse::<u8>().unwrap(), p.color);
+        }
+        assert_eq!(text.lines().count(), 1 + cloud.points.len());
+    }
+
+    #[test]
+    fn json_is_valid_and_exact() {
+        let (scene, cloud) = sample();
+        let mut out = Vec::new();
+        write_json(&mut out, &set(&scene, &cloud)).unwrap();
+        let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(v["schema"], "bentstraw-image-points/1");
+        assert_eq!(v["inputs"]["water_height"], 0.15);
+        assert_eq!(v["stats"]["points_per_color"]["blue"], 1);
+        assert_eq!(v["stats"]["rays_traced"], 12);
+        let pts = v["points"].as_array().unwrap();
+        assert_eq!(pts.len(), cloud.points.len());
+        for (j, p) in pts.iter().zip(&cloud.points) {
+            let q = p.position;
+            for (k, c) in [q.x, q.y, q.z].into_iter().enumerate() {
+                assert_eq!(j[k].as_f64().unwrap().to_bits(), c.to_bits());
+            }
+            assert_eq!(j[3].as_u64().unwrap(), p.color as u64);
+        }
+    }
+
+    #[test]
+    fn ply_header_and_records_match() {
+        let (scene, cloud) = sample();
+        let mut out = Vec::new();
+        write_ply(&mut out, &set(&scene, &cloud)).unwrap();
+        let end = b"end_header\n";
+        let at = out.windows(end.len()).position(|w| w == end).unwrap() + end.len();
+        let header = std::str::from_utf8(&out[..at]).unwrap();
+        assert!(header.starts_with("ply\nformat binary_little_endian 1.0\n"));
+        assert!(header.is_ascii());
+        assert!(header.contains("element vertex 3\n"));
+        assert!(header.contains("property double x\nproperty double y\nproperty double z\n"));
+        assert!(header.contains("property uchar red\nproperty uchar green\nproperty uchar blue\n"));
+        let body = &out[at..];
+        assert_eq!(body.len(), 28 * cloud.points.len());
+        for (rec, p) in body.chunks(28).zip(&cloud.points) {
+            let x = f64::from_le_bytes(rec[0..8].try_into().unwrap());
+            let z = f64::from_le_bytes(rec[16..24].try_into().unwrap());
+            assert_eq!(x.to_bits(), p.position.x.to_bits());
+            assert_eq!(z.to_bits(), p.position.z.to_bits());
+            assert_eq!(rec[27], p.color);
+        }
+        // Section 5 is blue, section 2 orange (SPEC §1 display colours).
+        assert_eq!(section_rgb8(5), [0, 0, 255]);
+        assert_eq!(section_rgb8(2), [237, 177, 32]);
+    }
+}
