@@ -7,6 +7,10 @@
 //! per pixel, for data) and [`shading`] (an RGB picture for people). The crate does no I/O and
 //! prints nothing.
 //!
+//! For speed, [`tracer::Tracer`] is the same tracer with per-scene work done once and provably
+//! useless tests skipped (same results to the bit), and [`packet`] traces course-mode pictures eight
+//! rays at a time in single precision (same pixels but for rare ones on colour boundaries).
+//!
 //! The conventions are those of the project's specification (`shared/SPEC.md`): SI units (metres),
 //! origin at the centre of the glass's base, `z` up.
 
@@ -15,10 +19,12 @@ pub mod camera;
 pub mod geometry;
 pub mod image;
 pub mod interface;
+pub mod packet;
 pub mod picture;
 pub mod sampling;
 pub mod scene;
 pub mod shading;
 pub mod trace;
+pub mod tracer;
 
 pub use glam::DVec3 as Vec3;

@@ -15,13 +15,14 @@
 //! around where the straw is seen (few wasted rays). Deterministic: the same inputs give the same
 //! points in the same order, whatever the number of threads.
 
-use std::collections::HashSet;
 use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
+use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_RADIUS, SCENE_CENTRE, STRAW_HEIGHT};
+use crate::tracer::Tracer;
 use crate::Vec3;
 
 /// The equal-area map of the observer's directions, and the rectangle of it that is sampled.
@@ -170,6 +171,7 @@ pub fn sample_image(
     min_points: usize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> ImageCloud {
+    let tracer = Tracer::new(scene);
     let frame = frame_for(observer);
     let longest = frame.width.max(frame.height);
     let mut spacing = longest / COARSE_CELLS;
@@ -178,13 +180,18 @@ pub fn sample_image(
     // Level 0: every cell.
     let (nx, ny) = grid_size(&frame, spacing);
     let mut cells: Vec<Cell> = (0..ny).flat_map(|j| (0..nx).map(move |i| (i, j))).collect();
+    // Whether the ray through each cell's centre reaches the straw (no image point is built).
     let trace_cells = |cells: &[Cell], spacing: f64| -> Vec<bool> {
         cells
             .par_iter()
+            .with_min_len(256)
             .map(|&(i, j)| {
                 let a = frame.a_min + (i as f64 + 0.5) * spacing;
                 let b = frame.b_min + (j as f64 + 0.5) * spacing;
-                scene.image_point(observer, frame.direction(a, b)).is_some()
+                tracer.color(Ray {
+                    origin: observer,
+                    direction: frame.direction(a, b),
+                }) > 0
             })
             .collect()
     };
@@ -224,7 +231,7 @@ pub fn sample_image(
         // Final level: a uniform grid of spacing `h`, traced where the last level saw the straw.
         let mut h = target.min(spacing);
         loop {
-            let points = final_level(scene, observer, &frame, &active, spacing, h, &mut rays);
+            let points = final_level(&tracer, observer, &frame, &active, spacing, h, &mut rays);
             progress(rays);
             if points.len() >= min_points || h < 1e-7 * longest {
                 return ImageCloud {
@@ -258,28 +265,38 @@ fn split(cells: &[Cell]) -> Vec<Cell> {
 }
 
 /// The cells that are hits or touch one (8-neighbourhood), sorted.
+///
+/// Marks a bitmap of the grid (cheaper than hashing: one bit per cell, and reading the bits in
+/// order gives the cells already sorted as `(i, j)`).
 fn dilate(hits: &[Cell], frame: &Frame, spacing: f64) -> Vec<Cell> {
     let (nx, ny) = grid_size(frame, spacing);
-    let mut set: HashSet<Cell> = HashSet::with_capacity(hits.len() * 2);
+    let (nx, ny) = (nx as usize, ny as usize);
+    let mut bits = vec![0u64; (nx * ny).div_ceil(64)];
     for &(i, j) in hits {
-        for dj in -1i64..=1 {
-            for di in -1i64..=1 {
-                let (ii, jj) = (i as i64 + di, j as i64 + dj);
-                if ii >= 0 && jj >= 0 && ii < nx as i64 && jj < ny as i64 {
-                    set.insert((ii as u32, jj as u32));
-                }
+        let (i, j) = (i as usize, j as usize);
+        for ii in i.saturating_sub(1)..=(i + 1).min(nx - 1) {
+            for jj in j.saturating_sub(1)..=(j + 1).min(ny - 1) {
+                let n = ii * ny + jj;
+                bits[n / 64] |= 1 << (n % 64);
             }
         }
     }
-    let mut cells: Vec<Cell> = set.into_iter().collect();
-    cells.sort_unstable();
+    let mut cells = Vec::with_capacity(hits.len() * 2);
+    for (w, &word) in bits.iter().enumerate() {
+        let mut word = word;
+        while word != 0 {
+            let n = w * 64 + word.trailing_zeros() as usize;
+            word &= word - 1;
+            cells.push(((n / ny) as u32, (n % ny) as u32));
+        }
+    }
     cells
 }
 
 /// Traces the points of the uniform grid of spacing `h` whose centres lie in `active` cells (of
 /// size `spacing`), and returns the image points, in cell order.
 fn final_level(
-    scene: &Scene,
+    tracer: &Tracer,
     observer: Vec3,
     frame: &Frame,
     active: &[Cell],
@@ -295,26 +312,29 @@ fn final_level(
         let end = ((hi / h) - 0.5).ceil().max(0.0) as u64;
         (first, end)
     };
+    // Chunks of cells per task: enough work per task, one vector per chunk, order kept.
     let per_cell: Vec<(u64, Vec<ImagePoint>)> = active
-        .par_iter()
-        .map(|&(i, j)| {
-            let (i0, i1) = range(i);
-            let (j0, j1) = range(j);
+        .par_chunks(64)
+        .map(|chunk| {
             let mut pts = Vec::new();
             let mut n = 0;
-            for jj in j0..j1 {
-                let b = frame.b_min + (jj as f64 + 0.5) * h;
-                if b > frame.b_min + frame.height {
-                    continue;
-                }
-                for ii in i0..i1 {
-                    let a = frame.a_min + (ii as f64 + 0.5) * h;
-                    if a > frame.a_min + frame.width {
+            for &(i, j) in chunk {
+                let (i0, i1) = range(i);
+                let (j0, j1) = range(j);
+                for jj in j0..j1 {
+                    let b = frame.b_min + (jj as f64 + 0.5) * h;
+                    if b > frame.b_min + frame.height {
                         continue;
                     }
-                    n += 1;
-                    if let Some(p) = scene.image_point(observer, frame.direction(a, b)) {
-                        pts.push(p);
+                    for ii in i0..i1 {
+                        let a = frame.a_min + (ii as f64 + 0.5) * h;
+                        if a > frame.a_min + frame.width {
+                            continue;
+                        }
+                        n += 1;
+                        if let Some(p) = tracer.image_point(observer, frame.direction(a, b)) {
+                            pts.push(p);
+                        }
                     }
                 }
             }

@@ -1,9 +1,296 @@
-//! `bentstraw bench`.
+//! `bentstraw bench`: how many primary rays per second the picture tracer traces.
+//!
+//! Each case renders one observer's picture (one ray per pixel centre, nothing written) a first
+//! time to warm up, then `--repeat` times; the median time is reported, once in a one-thread rayon
+//! pool and once in a pool of `--threads` (default: all cores).
 
-use crate::cli::BenchArgs;
-use crate::error::{fail, CliResult};
+use std::time::Instant;
+
+use bentstraw_optics::camera::Camera;
+use bentstraw_optics::picture::{course_picture, fresnel_picture};
+use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE};
+use bentstraw_optics::Vec3;
+
+use crate::cli::{BenchArgs, ModeArg, SceneArgs};
+use crate::error::{fail, CliError, CliResult};
+
+/// Vertical field of view of the benchmark views (degrees).
+const BENCH_FOV_DEG: f64 = 50.0;
+/// Picture size of the benchmark views.
+const BENCH_SIZE: (u32, u32) = (1024, 768);
+/// Fresnel branches lighter than this are abandoned (the same default as `render --prune`).
+const BENCH_PRUNE: f64 = 1e-4;
+
+/// One view to time.
+struct View {
+    /// Reference simulation number, or `None` for a view given on the command line.
+    simulation: Option<u32>,
+    scene: Scene,
+    camera: Camera,
+}
+
+/// One timed case.
+struct Measure {
+    simulation: Option<u32>,
+    mode: ModeArg,
+    threads: usize,
+    width: u32,
+    height: u32,
+    seconds: f64,
+}
+
+impl Measure {
+    fn rays(&self) -> u64 {
+        self.width as u64 * self.height as u64
+    }
+}
 
 /// Runs `bench`.
-pub fn run(_args: &BenchArgs) -> CliResult {
-    fail("bench is not implemented yet")
+pub fn run(args: &BenchArgs) -> CliResult {
+    if args.repeat == 0 {
+        return fail("--repeat 0 is not allowed: it must be at least 1");
+    }
+    let all_cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = args.threads.unwrap_or(all_cores);
+    if threads == 0 || threads > 1024 {
+        return fail(format!(
+            "--threads {threads} is not allowed: it must be between 1 and 1024"
+        ));
+    }
+    let views = views(args)?;
+    let modes: Vec<ModeArg> = match args.mode {
+        Some(m) => vec![m],
+        None => vec![ModeArg::Course, ModeArg::Fresnel],
+    };
+    let mut counts = vec![1];
+    if threads != 1 {
+        counts.push(threads);
+    }
+    let pools = counts
+        .iter()
+        .map(|&n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| CliError(format!("cannot start {n} worker threads: {e}")))
+        })
+        .collect::<CliResult<Vec<_>>>()?;
+
+    if !args.json {
+        println!(
+            "{:<10} {:<8} {:>7} {:>10} {:>11} {:>12} {:>14}",
+            "view", "mode", "threads", "size", "ms/picture", "Mrays/s", "Mpixels/s"
+        );
+    }
+    let mut measures = Vec::new();
+    for view in &views {
+        for &mode in &modes {
+            for (&n, pool) in counts.iter().zip(&pools) {
+                let seconds = pool.install(|| time_picture(view, mode, args.repeat));
+                let m = Measure {
+                    simulation: view.simulation,
+                    mode,
+                    threads: n,
+                    width: view.camera.width,
+                    height: view.camera.height,
+                    seconds,
+                };
+                print_measure(&m, args.json);
+                measures.push(m);
+            }
+        }
+    }
+    print_averages(&measures, &modes, &counts, args.json);
+    Ok(())
+}
+
+/// The views to time: the one given by the scene flags, or the four reference views.
+fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
+    let (w, h) = args.camera.size.unwrap_or(BENCH_SIZE);
+    let fov_deg = args.camera.fov.unwrap_or(BENCH_FOV_DEG);
+    if !(fov_deg > 0.0 && fov_deg < 180.0) {
+        return fail(format!(
+            "--fov {fov_deg} is not allowed: the field of view must satisfy 0 < FOV < 180 degrees"
+        ));
+    }
+    let target_flag = match args.camera.target {
+        Some(t) => {
+            let t = Vec3::from_array(t);
+            if !t.is_finite() {
+                return fail(format!(
+                    "--target {},{},{} is not allowed: each coordinate must be a finite number",
+                    t.x, t.y, t.z
+                ));
+            }
+            Some(t)
+        }
+        None => None,
+    };
+    let camera_for = |eye: Vec3, target: Vec3| -> CliResult<Camera> {
+        if (target - eye).length() < 1e-9 {
+            return fail(format!(
+                "--target {},{},{} is the observer's position: the camera needs a target away from the eye",
+                target.x, target.y, target.z
+            ));
+        }
+        Ok(Camera::new(eye, target, w, h, fov_deg.to_radians()))
+    };
+    let given = [
+        args.observer.is_some(),
+        args.straw.is_some(),
+        args.water_height.is_some(),
+    ];
+    if given.iter().any(|&g| g) {
+        let (Some(observer), Some(straw), Some(water_height)) =
+            (args.observer, args.straw, args.water_height)
+        else {
+            return fail(
+                "a single view needs all three of --observer, --straw and --water-height (give none to time the four reference views)",
+            );
+        };
+        let (scene, eye) = SceneArgs {
+            observer,
+            straw,
+            water_height,
+            n_water: args.n_water,
+            max_events: args.max_events,
+        }
+        .scene_and_observer()?;
+        let camera = camera_for(eye, target_flag.unwrap_or(SCENE_CENTRE))?;
+        return Ok(vec![View {
+            simulation: None,
+            scene,
+            camera,
+        }]);
+    }
+    REFERENCES
+        .iter()
+        .map(|r| {
+            let scene = Scene::new(
+                r.straw.0,
+                r.straw.1,
+                r.water_height,
+                args.n_water,
+                args.max_events,
+            )?;
+            // Zoomed on the straw where it enters the water (the bottom, for an observer below).
+            let zoom = if r.number == 4 {
+                Vec3::new(0.0, 0.0, 0.05)
+            } else {
+                Vec3::new(r.straw.0, r.straw.1, r.water_height)
+            };
+            let camera = camera_for(r.observer, target_flag.unwrap_or(zoom))?;
+            Ok(View {
+                simulation: Some(r.number),
+                scene,
+                camera,
+            })
+        })
+        .collect()
+}
+
+/// Median time (s) of `repeat` pictures of `view` in `mode`, after one warm-up picture.
+fn time_picture(view: &View, mode: ModeArg, repeat: usize) -> f64 {
+    let once = || -> f64 {
+        let start = Instant::now();
+        match mode {
+            ModeArg::Course => {
+                std::hint::black_box(course_picture(&view.scene, &view.camera));
+            }
+            ModeArg::Fresnel => {
+                std::hint::black_box(fresnel_picture(&view.scene, &view.camera, BENCH_PRUNE));
+            }
+        }
+        start.elapsed().as_secs_f64()
+    };
+    once();
+    let mut times: Vec<f64> = (0..repeat).map(|_| once()).collect();
+    times.sort_by(f64::total_cmp);
+    let mid = times.len() / 2;
+    if times.len() % 2 == 1 {
+        times[mid]
+    } else {
+        0.5 * (times[mid - 1] + times[mid])
+    }
+}
+
+fn mode_name(mode: ModeArg) -> &'static str {
+    match mode {
+        ModeArg::Course => "course",
+        ModeArg::Fresnel => "fresnel",
+    }
+}
+
+fn print_measure(m: &Measure, json: bool) {
+    let rays = m.rays() as f64;
+    if json {
+        let line = serde_json::json!({
+            "simulation": m.simulation,
+            "mode": mode_name(m.mode),
+            "threads": m.threads,
+            "width": m.width,
+            "height": m.height,
+            "rays": m.rays(),
+            "seconds": m.seconds,
+            "rays_per_s": rays / m.seconds,
+            "pixels_per_s": rays / m.seconds,
+        });
+        println!("{line}");
+    } else {
+        let view = m
+            .simulation
+            .map_or_else(|| "given".to_string(), |n| format!("sim {n}"));
+        println!(
+            "{:<10} {:<8} {:>7} {:>10} {:>11.3} {:>12.2} {:>14.2}",
+            view,
+            mode_name(m.mode),
+            m.threads,
+            format!("{}x{}", m.width, m.height),
+            1e3 * m.seconds,
+            rays / m.seconds / 1e6,
+            rays / m.seconds / 1e6
+        );
+    }
+}
+
+/// Per mode and thread count: all rays over all time (the mean time per picture).
+fn print_averages(measures: &[Measure], modes: &[ModeArg], counts: &[usize], json: bool) {
+    let mut parts = Vec::new();
+    for &mode in modes {
+        for &n in counts {
+            let sel: Vec<&Measure> = measures
+                .iter()
+                .filter(|m| m.mode == mode && m.threads == n)
+                .collect();
+            let rays: u64 = sel.iter().map(|m| m.rays()).sum();
+            let seconds: f64 = sel.iter().map(|m| m.seconds).sum();
+            let per_s = rays as f64 / seconds;
+            let per_picture = seconds / sel.len() as f64;
+            if json {
+                let line = serde_json::json!({
+                    "simulation": "average",
+                    "mode": mode_name(mode),
+                    "threads": n,
+                    "pictures": sel.len(),
+                    "rays": rays,
+                    "seconds": seconds,
+                    "seconds_per_picture": per_picture,
+                    "rays_per_s": per_s,
+                    "pixels_per_s": per_s,
+                });
+                println!("{line}");
+            } else {
+                parts.push(format!(
+                    "{} {}T {:.2} Mrays/s {:.3} ms/picture",
+                    mode_name(mode),
+                    n,
+                    per_s / 1e6,
+                    1e3 * per_picture
+                ));
+            }
+        }
+    }
+    if !json {
+        println!("average: {}", parts.join("; "));
+    }
 }

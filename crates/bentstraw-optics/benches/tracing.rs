@@ -1,0 +1,147 @@
+//! Criterion benchmarks of the hot functions: intersections, one ray's trace, one picture row.
+
+use std::hint::black_box;
+
+use bentstraw_optics::camera::Camera;
+use bentstraw_optics::geometry::Ray;
+use bentstraw_optics::picture::{
+    course_picture, course_picture_exact, fresnel_picture, fresnel_picture_exact,
+};
+use bentstraw_optics::scene::{Scene, REFERENCES};
+use bentstraw_optics::tracer::Tracer;
+use bentstraw_optics::Vec3;
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
+
+/// Reference simulation 2's scene and its benchmark camera (zoomed where the straw enters the water).
+fn view(w: u32, h: u32) -> (Scene, Camera) {
+    let r = REFERENCES[1];
+    let scene = r.scene(1.333);
+    let target = Vec3::new(r.straw.0, r.straw.1, r.water_height);
+    (
+        scene,
+        Camera::new(r.observer, target, w, h, 50f64.to_radians()),
+    )
+}
+
+/// One row of rays through the middle of the benchmark view (a mix of straw, water and sky).
+fn middle_row(camera: &Camera) -> Vec<Ray> {
+    (0..camera.width)
+        .map(|j| camera.pixel_ray(camera.height / 2, j))
+        .collect()
+}
+
+fn intersections(c: &mut Criterion) {
+    let (scene, camera) = view(256, 192);
+    let rays = middle_row(&camera);
+    let tracer = Tracer::new(&scene);
+    let mut g = c.benchmark_group("intersection");
+    g.throughput(Throughput::Elements(rays.len() as u64));
+    g.bench_function("cylinder side (water)", |b| {
+        let side = scene.water_side();
+        b.iter(|| {
+            rays.iter()
+                .filter_map(|r| side.intersect(black_box(r)))
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("disk (water top)", |b| {
+        let disk = scene.water_top();
+        b.iter(|| {
+            rays.iter()
+                .filter_map(|r| disk.intersect(black_box(r)))
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("Scene::nearest_intersection", |b| {
+        b.iter(|| {
+            rays.iter()
+                .filter_map(|r| scene.nearest_intersection(black_box(r)))
+                .count()
+        })
+    });
+    g.bench_function("Tracer::nearest_intersection", |b| {
+        b.iter(|| {
+            rays.iter()
+                .filter_map(|r| tracer.nearest_intersection(black_box(r)))
+                .count()
+        })
+    });
+    g.finish();
+}
+
+fn one_ray(c: &mut Criterion) {
+    let (scene, camera) = view(256, 192);
+    let rays = middle_row(&camera);
+    let tracer = Tracer::new(&scene);
+    let mut g = c.benchmark_group("trace");
+    g.throughput(Throughput::Elements(rays.len() as u64));
+    g.bench_function("course Scene::trace", |b| {
+        b.iter(|| {
+            rays.iter()
+                .map(|r| scene.trace(black_box(*r)).color() as u32)
+                .sum::<u32>()
+        })
+    });
+    g.bench_function("course Tracer::trace", |b| {
+        b.iter(|| {
+            rays.iter()
+                .map(|r| tracer.color(black_box(*r)) as u32)
+                .sum::<u32>()
+        })
+    });
+    g.bench_function("fresnel Scene::trace_fresnel", |b| {
+        b.iter(|| {
+            rays.iter()
+                .map(|r| scene.trace_fresnel(black_box(*r), 1e-4)[0])
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("fresnel Tracer::trace_fresnel", |b| {
+        b.iter(|| {
+            rays.iter()
+                .map(|r| tracer.trace_fresnel(black_box(*r), 1e-4)[0])
+                .sum::<f64>()
+        })
+    });
+    g.finish();
+}
+
+fn picture_row(c: &mut Criterion) {
+    // A one-row picture: the same view's middle row, through the picture code path (1 thread).
+    let (scene, camera) = view(1024, 768);
+    let row_camera = {
+        let mut cam = camera;
+        cam.height = 1;
+        // Keep the aspect of the full view: the row's rays are the full view's middle row.
+        cam.tan_half_fov = camera.tan_half_fov / 768.0;
+        cam
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let mut g = c.benchmark_group("picture");
+    g.throughput(Throughput::Elements(1024));
+    g.bench_function("course row 1024 px", |b| {
+        b.iter_batched(
+            || (),
+            |_| pool.install(|| course_picture(black_box(&scene), black_box(&row_camera))),
+            BatchSize::SmallInput,
+        )
+    });
+    g.bench_function("course row 1024 px, double precision", |b| {
+        b.iter(|| pool.install(|| course_picture_exact(black_box(&scene), black_box(&row_camera))))
+    });
+    g.bench_function("fresnel row 1024 px", |b| {
+        b.iter(|| pool.install(|| fresnel_picture(black_box(&scene), black_box(&row_camera), 1e-4)))
+    });
+    g.bench_function("fresnel row 1024 px, double precision", |b| {
+        b.iter(|| {
+            pool.install(|| fresnel_picture_exact(black_box(&scene), black_box(&row_camera), 1e-4))
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, intersections, one_ray, picture_row);
+criterion_main!(benches);

@@ -1,0 +1,469 @@
+//! The fast double-precision tracer: the same physics and the same arithmetic as
+//! [`Scene::trace`](crate::scene::Scene::trace) and
+//! [`Scene::trace_fresnel`](crate::scene::Scene::trace_fresnel), with the work that cannot change
+//! the answer skipped.
+//!
+//! What it saves, per intersection search:
+//! - a ray whose line passes clearly outside the glass's circle (every face lies within it) meets
+//!   nothing: one cross product, no square root, no division;
+//! - a ray whose line passes clearly outside the straw's circle meets none of the straw's three
+//!   faces (its caps lie inside that circle);
+//! - a plane `z = h` is crossed at a positive distance only if `h − z0` and `dz` have the same sign:
+//!   the division is done only then; the two faces on `z = 0` share one division;
+//! - `dx² + dy²` is shared by the two cylinders; the refractive ratios are computed once.
+//!
+//! Every distance that is computed is computed by the same floating-point operations, in the same
+//! order, as in [`crate::geometry`], so colours are identical and lengths equal to the last bit;
+//! the skips use a relative margin (1e-9) far above rounding, so they never drop a real hit.
+
+use std::mem::MaybeUninit;
+
+use crate::geometry::{Ray, MIN_DISTANCE};
+use crate::image::ImagePoint;
+use crate::interface::{fresnel_reflectance, reflect};
+use crate::scene::{section_at, Scene, GLASS_RADIUS, SECTION_COUNT, STRAW_HEIGHT, STRAW_RADIUS};
+use crate::trace::{Face, Intersection, Outcome};
+use crate::Vec3;
+
+/// Relative margin of the "line clearly misses the circle" tests, far above rounding (1e-16).
+const MISS_MARGIN: f64 = 1e-9;
+
+/// A scene made ready for tracing many rays: what every ray would recompute, computed once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tracer {
+    /// The scene traced.
+    pub scene: Scene,
+    /// `Rv²`.
+    glass_r2: f64,
+    /// `Rp²`.
+    straw_r2: f64,
+    /// `2·Rv²`.
+    glass_2r2: f64,
+    /// `2·Rp²`.
+    straw_2r2: f64,
+    /// `n1/n2` going from air into water.
+    eta_into_water: f64,
+    /// `n1/n2` going from water into air.
+    eta_into_air: f64,
+}
+
+/// The nearest root `t > MIN_DISTANCE` of an upright cylinder's side with `0 <= z <= z_max`, from
+/// the quadratic `a t² + 2 half_b t + c` with discriminant `disc >= 0` (as `CylinderSide::intersect`).
+#[inline(always)]
+fn side_root(a: f64, half_b: f64, c: f64, disc: f64, oz: f64, dz: f64, z_max: f64) -> Option<f64> {
+    if a == 0.0 || disc < 0.0 {
+        return None;
+    }
+    let sq = disc.sqrt();
+    let q = if half_b >= 0.0 {
+        -(half_b + sq)
+    } else {
+        -half_b + sq
+    };
+    let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
+    if t0 > t1 {
+        std::mem::swap(&mut t0, &mut t1);
+    }
+    for t in [t0, t1] {
+        if t > MIN_DISTANCE {
+            let z = oz + t * dz;
+            if z >= 0.0 && z <= z_max {
+                return Some(t);
+            }
+        }
+    }
+    None
+}
+
+/// Whether the ray's line passes farther than `radius·(1 + 1e-9)` from a vertical axis, given the
+/// quadratic of that axis's cylinder (`c = |p|² − radius²`, `two_r2 = 2·radius²`).
+///
+/// `disc/a = radius² − distance²`; the margin is relative to `|p|² + radius² = c + 2·radius²`, which
+/// bounds the terms of `disc`, so rounding (1e-16 of them) can never fake a miss.
+#[inline(always)]
+fn clearly_misses(a: f64, c: f64, disc: f64, two_r2: f64) -> bool {
+    disc < -MISS_MARGIN * a * (c + two_r2)
+}
+
+/// Whether a ray on or outside a vertical cylinder (`c >= 0`) moves away from its axis
+/// (`half_b >= 0`): then both roots are `<= 0` (their product `c/a >= 0`, their sum `−2·half_b/a
+/// <= 0`), and `CylinderSide::intersect` would find nothing, whatever the rounding, because its
+/// `q = −(half_b + sq) <= 0` gives `q/a <= 0` and `c/q <= 0` by the signs alone.
+#[inline(always)]
+fn moving_away(half_b: f64, c: f64) -> bool {
+    c >= 0.0 && half_b >= 0.0
+}
+
+/// Distance `t > MIN_DISTANCE` to the plane `z = h` (as `Disk::intersect`), skipping the division
+/// when the plane is behind the ray or parallel to it.
+#[inline(always)]
+fn plane_distance(h: f64, oz: f64, dz: f64) -> Option<f64> {
+    let num = h - oz;
+    // t = num/dz > 0 needs both of the same strict sign (dz == 0: parallel; num == 0: t = 0).
+    if (num > 0.0 && dz > 0.0) || (num < 0.0 && dz < 0.0) {
+        let t = num / dz;
+        (t > MIN_DISTANCE).then_some(t)
+    } else {
+        None
+    }
+}
+
+/// Whether the ray at distance `t` lies within `r2 = radius²` of the vertical axis `(cx, cy)`.
+#[inline(always)]
+fn within(o: Vec3, d: Vec3, t: f64, cx: f64, cy: f64, r2: f64) -> bool {
+    let x = o.x + t * d.x - cx;
+    let y = o.y + t * d.y - cy;
+    x * x + y * y <= r2
+}
+
+/// Refraction as [`crate::interface::refract`], with `eta = n1/n2` given.
+#[inline(always)]
+fn refract_eta(d: Vec3, normal: Vec3, eta: f64) -> Option<Vec3> {
+    let (nn, cos_i) = {
+        let c = -d.dot(normal);
+        if c >= 0.0 {
+            (normal, c)
+        } else {
+            (-normal, -c)
+        }
+    };
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t > 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some(eta * d + (eta * cos_i - cos_t) * nn)
+}
+
+/// [`refract_eta`] and, from the same `cos θi`, `sin² θt` and `cos θt`, the reflectance
+/// [`fresnel_reflectance`]`(n1, n2, d·normal)` would give (the same operations, so the same bits;
+/// it is called itself in the rare cases its clamps would act).
+#[inline(always)]
+fn refract_with_reflectance(
+    d: Vec3,
+    normal: Vec3,
+    eta: f64,
+    n1: f64,
+    n2: f64,
+) -> Option<(Vec3, f64)> {
+    let dn = d.dot(normal);
+    let c = -dn;
+    let (nn, cos_i) = if c >= 0.0 { (normal, c) } else { (-normal, -c) };
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t > 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let refracted = eta * d + (eta * cos_i - cos_t) * nn;
+    let r = if cos_i <= 1.0 && sin2_t < 1.0 {
+        let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+        let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+        0.5 * (rs * rs + rp * rp)
+    } else {
+        fresnel_reflectance(n1, n2, dn)
+    };
+    Some((refracted, r))
+}
+
+impl Tracer {
+    /// Prepares `scene` for tracing.
+    pub fn new(scene: &Scene) -> Tracer {
+        let glass_r2 = GLASS_RADIUS * GLASS_RADIUS;
+        let straw_r2 = STRAW_RADIUS * STRAW_RADIUS;
+        Tracer {
+            scene: *scene,
+            glass_r2,
+            straw_r2,
+            glass_2r2: 2.0 * glass_r2,
+            straw_2r2: 2.0 * straw_r2,
+            eta_into_water: 1.0 / scene.n_water,
+            eta_into_air: scene.n_water / 1.0,
+        }
+    }
+
+    /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties.
+    ///
+    /// The same answer, to the last bit, as [`Scene::nearest_intersection`].
+    #[inline]
+    pub fn nearest_intersection(&self, ray: &Ray) -> Option<Intersection> {
+        let (o, d) = (ray.origin, ray.direction);
+        let s = &self.scene;
+        let a = d.x * d.x + d.y * d.y;
+
+        // The glass's circle (the water's side wall), centred on the axis.
+        let half_b = o.x * d.x + o.y * d.y;
+        let c = o.x * o.x + o.y * o.y - self.glass_r2;
+        let disc = half_b * half_b - a * c;
+        if clearly_misses(a, c, disc, self.glass_2r2) {
+            return None; // every face lies inside the glass's circle
+        }
+        // The plane z = 0 holds both the water's bottom and the straw's bottom cap.
+        let t_bottom = plane_distance(0.0, o.z, d.z);
+
+        let mut water = f64::INFINITY;
+        let mut water_face = Face::WaterSide;
+        if s.has_water() {
+            if moving_away(half_b, c) {
+                // No root ahead: the wall is behind the ray.
+            } else if let Some(t) = side_root(a, half_b, c, disc, o.z, d.z, s.water_height) {
+                water = t;
+            }
+            if let Some(t) = plane_distance(s.water_height, o.z, d.z) {
+                if t < water && within(o, d, t, 0.0, 0.0, self.glass_r2) {
+                    water = t;
+                    water_face = Face::WaterTop;
+                }
+            }
+            if let Some(t) = t_bottom {
+                if t < water && within(o, d, t, 0.0, 0.0, self.glass_r2) {
+                    water = t;
+                    water_face = Face::WaterBottom;
+                }
+            }
+        }
+
+        let mut straw = f64::INFINITY;
+        let mut straw_face = Face::StrawSide;
+        let px = o.x - s.straw_x;
+        let py = o.y - s.straw_y;
+        let half_b = px * d.x + py * d.y;
+        let c = px * px + py * py - self.straw_r2;
+        let disc = half_b * half_b - a * c;
+        if !clearly_misses(a, c, disc, self.straw_2r2) {
+            if moving_away(half_b, c) {
+                // No root ahead: the straw's side is behind the ray.
+            } else if let Some(t) = side_root(a, half_b, c, disc, o.z, d.z, STRAW_HEIGHT) {
+                straw = t;
+            }
+            if let Some(t) = plane_distance(STRAW_HEIGHT, o.z, d.z) {
+                if t < straw && within(o, d, t, s.straw_x, s.straw_y, self.straw_r2) {
+                    straw = t;
+                    straw_face = Face::StrawTop;
+                }
+            }
+            if let Some(t) = t_bottom {
+                if t < straw && within(o, d, t, s.straw_x, s.straw_y, self.straw_r2) {
+                    straw = t;
+                    straw_face = Face::StrawBottom;
+                }
+            }
+        }
+
+        if straw.is_finite() && straw <= water {
+            Some(Intersection {
+                distance: straw,
+                face: straw_face,
+            })
+        } else if water.is_finite() {
+            Some(Intersection {
+                distance: water,
+                face: water_face,
+            })
+        } else {
+            None
+        }
+    }
+
+    /// Traces `ray`, which starts in air, by the course's law: the same outcome as [`Scene::trace`].
+    #[inline]
+    pub fn trace(&self, ray: Ray) -> Outcome {
+        let s = &self.scene;
+        let mut ray = ray;
+        let mut in_water = false;
+        let mut events = 0u32;
+        let mut length = 0.0;
+        loop {
+            let Some(hit) = self.nearest_intersection(&ray) else {
+                return Outcome::Escaped { events };
+            };
+            let point = ray.at(hit.distance);
+            length += hit.distance;
+            if hit.face.is_straw() {
+                return Outcome::Straw {
+                    color: s.straw_color(hit.face, point),
+                    point,
+                    path_length: length,
+                    events,
+                    face: hit.face,
+                };
+            }
+            if events == s.max_events {
+                return Outcome::Dropped;
+            }
+            events += 1;
+            let normal = s.water_normal(hit.face, point);
+            let eta = if in_water {
+                self.eta_into_air
+            } else {
+                self.eta_into_water
+            };
+            let direction = match refract_eta(ray.direction, normal, eta) {
+                Some(t) => {
+                    in_water = !in_water;
+                    t.normalize()
+                }
+                None => reflect(ray.direction, normal),
+            };
+            ray = Ray {
+                origin: point,
+                direction,
+            };
+        }
+    }
+
+    /// Colour code (0 for none) of the section `ray` reaches by the course's law.
+    #[inline]
+    pub fn color(&self, ray: Ray) -> u8 {
+        self.trace(ray).color()
+    }
+
+    /// The image point seen from `observer` along unit `u0`: the same as [`Scene::image_point`].
+    #[inline]
+    pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
+        match self.trace(Ray {
+            origin: observer,
+            direction: u0,
+        }) {
+            Outcome::Straw {
+                color,
+                point,
+                path_length,
+                events,
+                ..
+            } => Some(ImagePoint {
+                position: observer + path_length * u0,
+                color,
+                direction: u0,
+                path_length,
+                straw_point: point,
+                events,
+            }),
+            _ => None,
+        }
+    }
+
+    /// Fresnel tracing: the same weights as [`Scene::trace_fresnel`].
+    pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
+        self.fresnel::<false>(ray, prune_below)
+    }
+
+    /// Fresnel tracing for pictures: [`Self::trace_fresnel`], but branches that provably escape
+    /// are not followed.
+    ///
+    /// A branch that leaves the water through its side wall, or is reflected off the wall's
+    /// outside, moves away from the axis for good; one that leaves through the bottom, or is
+    /// reflected off it from below, moves down for good: neither can meet any face again (all lie
+    /// inside the glass's circle, above `z = 0`), so its weight is lost as the full trace would
+    /// lose it. Only the order of the sums changes (weights agree to ~1e-16).
+    pub fn trace_fresnel_escaping(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
+        self.fresnel::<true>(ray, prune_below)
+    }
+
+    #[inline(always)]
+    fn fresnel<const SKIP_ESCAPING: bool>(
+        &self,
+        ray: Ray,
+        prune_below: f64,
+    ) -> [f64; SECTION_COUNT] {
+        const STACK: usize = 64;
+        #[derive(Clone, Copy)]
+        struct Branch {
+            ray: Ray,
+            in_water: bool,
+            events: u32,
+            weight: f64,
+        }
+        let s = &self.scene;
+        let mut weights = [0.0; SECTION_COUNT];
+        // Left uninitialised: filling 64 branches would cost more than tracing most pixels.
+        let mut stack = [const { MaybeUninit::<Branch>::uninit() }; STACK];
+        stack[0].write(Branch {
+            ray,
+            in_water: false,
+            events: 0,
+            weight: 1.0,
+        });
+        let mut top = 1usize;
+        while top > 0 {
+            top -= 1;
+            // SAFETY: entries below `top` have all been written (push writes, then increments).
+            let mut b = unsafe { stack[top].assume_init() };
+            while let Some(hit) = self.nearest_intersection(&b.ray) {
+                let point = b.ray.at(hit.distance);
+                if hit.face.is_straw() {
+                    let code = match hit.face {
+                        Face::StrawBottom => 1,
+                        Face::StrawTop => SECTION_COUNT as u8,
+                        _ => section_at(point.z),
+                    };
+                    weights[code as usize - 1] += b.weight;
+                    break;
+                }
+                if b.events == s.max_events {
+                    break;
+                }
+                b.events += 1;
+                let normal = s.water_normal(hit.face, point);
+                let (n1, n2, eta) = if b.in_water {
+                    (s.n_water, 1.0, self.eta_into_air)
+                } else {
+                    (1.0, s.n_water, self.eta_into_water)
+                };
+                let reflected = reflect(b.ray.direction, normal);
+                match refract_with_reflectance(b.ray.direction, normal, eta, n1, n2) {
+                    None => {
+                        b.ray = Ray {
+                            origin: point,
+                            direction: reflected,
+                        };
+                    }
+                    Some((t, r)) => {
+                        let mut wr = b.weight * r;
+                        let mut wt = b.weight * (1.0 - r);
+                        if SKIP_ESCAPING && hit.face != Face::WaterTop {
+                            // The branch that ends up in air here escapes (see above).
+                            if b.in_water {
+                                wt = 0.0;
+                            } else {
+                                wr = 0.0;
+                            }
+                        }
+                        let refl = Branch {
+                            ray: Ray {
+                                origin: point,
+                                direction: reflected,
+                            },
+                            in_water: b.in_water,
+                            events: b.events,
+                            weight: wr,
+                        };
+                        let refr = Branch {
+                            ray: Ray {
+                                origin: point,
+                                direction: t.normalize(),
+                            },
+                            in_water: !b.in_water,
+                            events: b.events,
+                            weight: wt,
+                        };
+                        // As Scene::trace_fresnel: the air-side branch now, the water-side one later.
+                        let (now, later) = if b.in_water {
+                            (refr, refl)
+                        } else {
+                            (refl, refr)
+                        };
+                        if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
+                            stack[top].write(later);
+                            top += 1;
+                        }
+                        if now.weight < prune_below || now.weight == 0.0 {
+                            break;
+                        }
+                        b = now;
+                    }
+                }
+            }
+        }
+        weights
+    }
+}

@@ -1,0 +1,160 @@
+//! The single-precision packet picture agrees with the double-precision one on every pixel but a
+//! few on colour boundaries.
+
+use bentstraw_optics::camera::Camera;
+use bentstraw_optics::picture::{
+    course_picture, course_picture_exact, fresnel_picture, fresnel_picture_exact,
+};
+use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE};
+use bentstraw_optics::Vec3;
+
+/// Pixels that differ, and whether each lies on a colour boundary of the exact picture (a
+/// neighbour, 8-connected, of another colour).
+fn compare(scene: &Scene, camera: &Camera) -> (usize, usize) {
+    let fast = course_picture(scene, camera);
+    let exact = course_picture_exact(scene, camera);
+    let (w, h) = (camera.width as i64, camera.height as i64);
+    let at = |i: i64, j: i64| exact[(i * w + j) as usize];
+    let (mut differ, mut off_boundary) = (0, 0);
+    for i in 0..h {
+        for j in 0..w {
+            if fast[(i * w + j) as usize] == at(i, j) {
+                continue;
+            }
+            differ += 1;
+            let mut boundary = false;
+            for di in -1..=1 {
+                for dj in -1..=1 {
+                    let (ii, jj) = (i + di, j + dj);
+                    if ii >= 0 && jj >= 0 && ii < h && jj < w && at(ii, jj) != at(i, j) {
+                        boundary = true;
+                    }
+                }
+            }
+            if !boundary {
+                off_boundary += 1;
+            }
+        }
+    }
+    (differ, off_boundary)
+}
+
+fn check(scene: &Scene, camera: &Camera, what: &str) {
+    let (differ, off) = compare(scene, camera);
+    eprintln!("{what}: {differ} pixels differ, {off} off boundaries");
+    let total = (camera.width * camera.height) as usize;
+    assert_eq!(
+        off, 0,
+        "{what}: {off} differing pixels off any colour boundary"
+    );
+    assert!(
+        differ * 1000 < 5 * total,
+        "{what}: {differ} of {total} pixels differ (bound 0.5%)"
+    );
+}
+
+#[test]
+fn packet_picture_matches_exact_on_benchmark_views() {
+    for r in REFERENCES {
+        let scene = r.scene(1.333);
+        let target = if r.number == 4 {
+            Vec3::new(0.0, 0.0, 0.05)
+        } else {
+            Vec3::new(r.straw.0, r.straw.1, r.water_height)
+        };
+        let camera = Camera::new(r.observer, target, 1024, 768, 50f64.to_radians());
+        check(&scene, &camera, &format!("simulation {}", r.number));
+        // Wide view of the whole glass, odd size (partial packets at the row ends).
+        let camera = Camera::new(r.observer, SCENE_CENTRE, 301, 203, 90f64.to_radians());
+        check(&scene, &camera, &format!("simulation {} wide", r.number));
+    }
+}
+
+#[test]
+fn packet_picture_matches_exact_on_other_scenes() {
+    for (xp, yp, he, n, observer) in [
+        (0.0, 0.0, 0.1, 1.333, Vec3::new(0.15, 0.0, 0.05)),
+        (0.025, -0.015, 0.2, 1.5, Vec3::new(-0.1, 0.1, 0.25)),
+        (0.01, 0.0, 0.0, 1.333, Vec3::new(0.1, 0.05, 0.1)),
+        (0.02, 0.01, 0.12, 1.0, Vec3::new(0.0, -0.2, 0.3)),
+        (-0.02, 0.0, 0.18, 2.4, Vec3::new(0.0, 0.0, -0.15)),
+    ] {
+        let scene = Scene::new(xp, yp, he, n, 10).unwrap();
+        let camera = Camera::new(observer, SCENE_CENTRE, 320, 240, 60f64.to_radians());
+        check(&scene, &camera, &format!("scene {scene:?} from {observer}"));
+    }
+}
+
+/// Fresnel: pixels whose weights differ from the double-precision picture's by more than 1e-3
+/// (largest over the sections); how many differ by more than 0.01 off any boundary of the exact
+/// picture (no 8-neighbour whose weights differ from the pixel's by more than 0.01); the largest
+/// difference off boundaries.
+///
+/// A light secondary branch (weight ~1e-3) that grazes a rim can go either way in single
+/// precision without the pixel being on a visible boundary; a heavy one cannot.
+fn compare_fresnel(scene: &Scene, camera: &Camera) -> (usize, usize, f64) {
+    let fast = fresnel_picture(scene, camera, 1e-4);
+    let exact = fresnel_picture_exact(scene, camera, 1e-4);
+    let (w, h) = (camera.width as i64, camera.height as i64);
+    let at = |i: i64, j: i64| exact[(i * w + j) as usize];
+    let gap = |a: [f64; 5], b: [f64; 5]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    };
+    let (mut differ, mut off, mut largest_inside) = (0, 0, 0.0f64);
+    for i in 0..h {
+        for j in 0..w {
+            let d = gap(fast[(i * w + j) as usize], at(i, j));
+            let mut boundary = false;
+            for di in -1..=1 {
+                for dj in -1..=1 {
+                    let (ii, jj) = (i + di, j + dj);
+                    if ii >= 0 && jj >= 0 && ii < h && jj < w && gap(at(ii, jj), at(i, j)) > 0.01 {
+                        boundary = true;
+                    }
+                }
+            }
+            if !boundary {
+                largest_inside = largest_inside.max(d);
+            }
+            differ += usize::from(d > 1e-3);
+            off += usize::from(d > 0.01 && !boundary);
+        }
+    }
+    (differ, off, largest_inside)
+}
+
+#[test]
+fn packet_fresnel_picture_matches_exact() {
+    for r in REFERENCES {
+        let scene = r.scene(1.333);
+        let target = if r.number == 4 {
+            Vec3::new(0.0, 0.0, 0.05)
+        } else {
+            Vec3::new(r.straw.0, r.straw.1, r.water_height)
+        };
+        for camera in [
+            Camera::new(r.observer, target, 512, 384, 50f64.to_radians()),
+            Camera::new(r.observer, SCENE_CENTRE, 301, 203, 90f64.to_radians()),
+        ] {
+            let (differ, off, largest) = compare_fresnel(&scene, &camera);
+            let total = (camera.width * camera.height) as usize;
+            eprintln!(
+                "fresnel simulation {}: {differ} of {total} pixels differ by > 1e-3, {off} by > 0.01 off boundaries, largest difference off boundaries {largest:.2e}",
+                r.number
+            );
+            assert_eq!(
+                off, 0,
+                "simulation {}: {off} pixels off boundaries",
+                r.number
+            );
+            assert!(
+                differ * 1000 < 5 * total,
+                "simulation {}: {differ} pixels",
+                r.number
+            );
+        }
+    }
+}

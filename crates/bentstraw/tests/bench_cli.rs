@@ -1,0 +1,135 @@
+//! `bentstraw bench`: what it prints, and how it refuses bad input (one line, exit code 2).
+
+use std::process::{Command, Output};
+
+fn bench(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+        .arg("bench")
+        .args(args)
+        .output()
+        .expect("bentstraw runs")
+}
+
+fn assert_refused(args: &[&str], names: &str) {
+    let out = bench(args);
+    assert_eq!(out.status.code(), Some(2), "{args:?} should be refused");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.trim_end().lines().count(), 1, "one-line message: {err}");
+    assert!(err.contains(names), "message names {names}: {err}");
+    assert!(out.stdout.is_empty(), "nothing timed: {:?}", out.stdout);
+}
+
+#[test]
+fn bench_refuses_bad_input() {
+    assert_refused(&["--fov", "0"], "fov");
+    assert_refused(&["--fov", "180"], "fov");
+    assert_refused(&["--repeat", "0"], "repeat");
+    assert_refused(&["--threads", "0"], "threads");
+    assert_refused(&["--straw", "0.02,0.01"], "--observer");
+    assert_refused(
+        &[
+            "--observer",
+            "0.1,0,0.1",
+            "--straw",
+            "0.02,0.01",
+            "--water-height",
+            "0.15",
+            "--target",
+            "0.1,0,0.1",
+        ],
+        "target",
+    );
+    assert_refused(
+        &[
+            "--observer",
+            "0,0,0.1",
+            "--straw",
+            "0.02,0.01",
+            "--water-height",
+            "0.15",
+        ],
+        "observer",
+    );
+    assert_refused(
+        &[
+            "--observer",
+            "0.1,0,0.1",
+            "--straw",
+            "0.02,0.01",
+            "--water-height",
+            "0.3",
+        ],
+        "water height",
+    );
+}
+
+#[test]
+fn bench_json_reports_every_case_and_the_averages() {
+    let out = bench(&[
+        "--json",
+        "--size",
+        "32x24",
+        "--repeat",
+        "3",
+        "--threads",
+        "2",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON object a line"))
+        .collect();
+    // 4 views × 2 modes × (1 and 2 threads), then 2 modes × 2 thread counts of averages.
+    assert_eq!(lines.len(), 4 * 2 * 2 + 4);
+    for (k, v) in lines.iter().enumerate() {
+        let seconds = v["seconds"].as_f64().unwrap();
+        let rays = v["rays"].as_u64().unwrap();
+        assert!(seconds > 0.0);
+        let rate = v["rays_per_s"].as_f64().unwrap();
+        assert!((rate * seconds / rays as f64 - 1.0).abs() < 1e-9);
+        assert!(["course", "fresnel"].contains(&v["mode"].as_str().unwrap()));
+        assert!([1, 2].contains(&v["threads"].as_u64().unwrap()));
+        if k < 16 {
+            assert_eq!(rays, 32 * 24);
+            assert_eq!(
+                (v["width"].as_u64(), v["height"].as_u64()),
+                (Some(32), Some(24))
+            );
+            assert_eq!(v["simulation"].as_u64(), Some(k as u64 / 4 + 1));
+        } else {
+            assert_eq!(v["simulation"], "average");
+            assert_eq!(rays, 4 * 32 * 24);
+        }
+    }
+}
+
+#[test]
+fn bench_times_one_given_view() {
+    let out = bench(&[
+        "--observer",
+        "0.1,0,0.1",
+        "--straw",
+        "0.02,0.01",
+        "--water-height",
+        "0.15",
+        "--mode",
+        "course",
+        "--size",
+        "20x10",
+        "--repeat",
+        "1",
+        "--threads",
+        "1",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    // Header, one case (1 thread only), the averages.
+    assert_eq!(lines.len(), 3, "{text}");
+    assert!(
+        lines[1].contains("course") && lines[1].contains("20x10"),
+        "{text}"
+    );
+    assert!(lines[2].starts_with("average:"), "{text}");
+}
