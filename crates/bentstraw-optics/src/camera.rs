@@ -29,19 +29,25 @@ pub struct Camera {
     pub tan_half_fov: f64,
 }
 
+/// The orthonormal basis of SPEC §6 looking along `direction`: forward `f`, right
+/// `r = (f × ẑ)/|f × ẑ|` (`x̂` when looking straight up or down), up `u = r × f`.
+pub fn view_basis(direction: Vec3) -> (Vec3, Vec3, Vec3) {
+    let forward = direction.normalize();
+    let c = forward.cross(Vec3::Z);
+    let right = if c.length() < 1e-9 {
+        Vec3::X
+    } else {
+        c.normalize()
+    };
+    (forward, right, right.cross(forward))
+}
+
 impl Camera {
     /// The camera of SPEC §6 at `eye`, aimed at `target`, with vertical field of view `fov_y` (radians).
     ///
     /// The caller guarantees `eye != target`, `width, height > 0` and `0 < fov_y < π`.
     pub fn new(eye: Vec3, target: Vec3, width: u32, height: u32, fov_y: f64) -> Camera {
-        let forward = (target - eye).normalize();
-        let c = forward.cross(Vec3::Z);
-        let right = if c.length() < 1e-9 {
-            Vec3::X
-        } else {
-            c.normalize()
-        };
-        let up = right.cross(forward);
+        let (forward, right, up) = view_basis(target - eye);
         Camera {
             eye,
             forward,

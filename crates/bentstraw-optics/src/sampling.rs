@@ -19,6 +19,7 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
+use crate::camera::view_basis;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_RADIUS, SCENE_CENTRE, STRAW_HEIGHT};
@@ -64,14 +65,7 @@ impl Frame {
 
     /// A whole-sphere map looking along `forward`, with right/up as in the camera of SPEC §6.
     pub fn looking(forward: Vec3) -> Frame {
-        let f = forward.normalize();
-        let c = f.cross(Vec3::Z);
-        let right = if c.length() < 1e-9 {
-            Vec3::X
-        } else {
-            c.normalize()
-        };
-        let up = right.cross(f);
+        let (f, right, up) = view_basis(forward);
         Frame {
             forward: f,
             right,
