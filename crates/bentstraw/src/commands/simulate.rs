@@ -73,20 +73,33 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         model,
         cloud: &cloud,
     };
-    write_points(&args.output, format, &set)?;
     let title = format!(
         "{} ({} model)",
         simulation_title(&scene, observer),
         model.name()
     );
-    if args.plot.is_some() || args.html.is_some() {
-        let placed = set.placed_points();
-        if let Some(p) = &args.plot {
-            plot::write_cloud_figure(p, &scene, observer, &placed, &title)?;
+    // All the files or none: if a later one cannot be written, the earlier ones are removed.
+    let mut written_files: Vec<&Path> = Vec::new();
+    let result = (|| -> CliResult {
+        write_points(&args.output, format, &set)?;
+        written_files.push(&args.output);
+        if args.plot.is_some() || args.html.is_some() {
+            let placed = set.placed_points();
+            if let Some(p) = &args.plot {
+                plot::write_cloud_figure(p, &scene, observer, &placed, &title)?;
+                written_files.push(p);
+            }
+            if let Some(h) = &args.html {
+                html::write_cloud_viewer(h, &scene, observer, &placed, &title)?;
+            }
         }
-        if let Some(h) = &args.html {
-            html::write_cloud_viewer(h, &scene, observer, &placed, &title)?;
+        Ok(())
+    })();
+    if let Err(e) = result {
+        for f in written_files {
+            let _ = std::fs::remove_file(f);
         }
+        return Err(e);
     }
     let total = started.elapsed();
 
