@@ -240,58 +240,8 @@ impl Scene {
 
     /// Traces `ray`, which starts in air, calling `on_event` at every water event, in order.
     #[inline]
-    pub fn trace_with(&self, ray: Ray, mut on_event: impl FnMut(&Event)) -> Outcome {
-        let mut ray = ray;
-        let mut in_water = false;
-        let mut events = 0u32;
-        let mut length = 0.0;
-        loop {
-            let Some(hit) = self.nearest_intersection(&ray) else {
-                return Outcome::Escaped { events };
-            };
-            let point = ray.at(hit.distance);
-            length += hit.distance;
-            if hit.face.is_straw() {
-                return Outcome::Straw {
-                    color: self.straw_color(hit.face, point),
-                    point,
-                    path_length: length,
-                    events,
-                    face: hit.face,
-                };
-            }
-            if events == self.max_events {
-                return Outcome::Dropped;
-            }
-            events += 1;
-            let normal = self.water_normal(hit.face, point);
-            let (n1, n2) = if in_water {
-                (self.n_water, 1.0)
-            } else {
-                (1.0, self.n_water)
-            };
-            let (outgoing, totally_reflected) = match refract(ray.direction, normal, n1, n2) {
-                Some(t) => (t.normalize(), false),
-                None => (reflect(ray.direction, normal), true),
-            };
-            on_event(&Event {
-                point,
-                face: hit.face,
-                normal,
-                incoming: ray.direction,
-                outgoing,
-                n1,
-                n2,
-                totally_reflected,
-            });
-            if !totally_reflected {
-                in_water = !in_water;
-            }
-            ray = Ray {
-                origin: point,
-                direction: outgoing,
-            };
-        }
+    pub fn trace_with(&self, ray: Ray, on_event: impl FnMut(&Event)) -> Outcome {
+        follow_ray(self, self, ray, on_event)
     }
 
     /// Fresnel tracing (SPEC §6): the weight of `ray` that ends on each section (index 0 = code 1).
@@ -436,5 +386,82 @@ impl Scene {
             }
         }
         weights
+    }
+}
+
+/// A way of finding the nearest face a ray meets: the scene itself, or a prepared tracer
+/// ([`crate::tracer::Tracer`]) that gives the same answers faster.
+pub trait NearestFace {
+    /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties (SPEC §3).
+    fn nearest_face(&self, ray: &Ray) -> Option<Intersection>;
+}
+
+impl NearestFace for Scene {
+    #[inline]
+    fn nearest_face(&self, ray: &Ray) -> Option<Intersection> {
+        self.nearest_intersection(ray)
+    }
+}
+
+/// The course's tracing loop (SPEC §3), written once for every [`NearestFace`]: from air, face after
+/// face, refraction or total reflection at each water face, until the straw, escape, or one event
+/// more than `scene.max_events`; `on_event` is told every event, in order.
+#[inline]
+pub fn follow_ray(
+    faces: &impl NearestFace,
+    scene: &Scene,
+    ray: Ray,
+    mut on_event: impl FnMut(&Event),
+) -> Outcome {
+    let mut ray = ray;
+    let mut in_water = false;
+    let mut events = 0u32;
+    let mut length = 0.0;
+    loop {
+        let Some(hit) = faces.nearest_face(&ray) else {
+            return Outcome::Escaped { events };
+        };
+        let point = ray.at(hit.distance);
+        length += hit.distance;
+        if hit.face.is_straw() {
+            return Outcome::Straw {
+                color: scene.straw_color(hit.face, point),
+                point,
+                path_length: length,
+                events,
+                face: hit.face,
+            };
+        }
+        if events == scene.max_events {
+            return Outcome::Dropped;
+        }
+        events += 1;
+        let normal = scene.water_normal(hit.face, point);
+        let (n1, n2) = if in_water {
+            (scene.n_water, 1.0)
+        } else {
+            (1.0, scene.n_water)
+        };
+        let (outgoing, totally_reflected) = match refract(ray.direction, normal, n1, n2) {
+            Some(t) => (t.normalize(), false),
+            None => (reflect(ray.direction, normal), true),
+        };
+        on_event(&Event {
+            point,
+            face: hit.face,
+            normal,
+            incoming: ray.direction,
+            outgoing,
+            n1,
+            n2,
+            totally_reflected,
+        });
+        if !totally_reflected {
+            in_water = !in_water;
+        }
+        ray = Ray {
+            origin: point,
+            direction: outgoing,
+        };
     }
 }

@@ -22,7 +22,7 @@ use crate::geometry::{Ray, MIN_DISTANCE};
 use crate::image::ImagePoint;
 use crate::interface::{fresnel_reflectance, reflect};
 use crate::scene::{section_at, Scene, GLASS_RADIUS, SECTION_COUNT, STRAW_HEIGHT, STRAW_RADIUS};
-use crate::trace::{Face, Intersection, Outcome};
+use crate::trace::{follow_ray, Face, Intersection, NearestFace, Outcome};
 use crate::Vec3;
 
 /// Relative margin of the "line clearly misses the circle" tests, far above rounding (1e-16).
@@ -116,26 +116,7 @@ fn within(o: Vec3, d: Vec3, t: f64, cx: f64, cy: f64, r2: f64) -> bool {
     x * x + y * y <= r2
 }
 
-/// Refraction as [`crate::interface::refract`], with `eta = n1/n2` given.
-#[inline(always)]
-fn refract_eta(d: Vec3, normal: Vec3, eta: f64) -> Option<Vec3> {
-    let (nn, cos_i) = {
-        let c = -d.dot(normal);
-        if c >= 0.0 {
-            (normal, c)
-        } else {
-            (-normal, -c)
-        }
-    };
-    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
-    if sin2_t > 1.0 {
-        return None;
-    }
-    let cos_t = (1.0 - sin2_t).sqrt();
-    Some(eta * d + (eta * cos_i - cos_t) * nn)
-}
-
-/// [`refract_eta`] and, from the same `cos θi`, `sin² θt` and `cos θt`, the reflectance
+/// Refraction as [`crate::interface::refract`] with `eta = n1/n2` given and, from the same `cos θi`, `sin² θt` and `cos θt`, the reflectance
 /// [`fresnel_reflectance`]`(n1, n2, d·normal)` would give (the same operations, so the same bits;
 /// it is called itself in the rare cases its clamps would act).
 #[inline(always)]
@@ -163,6 +144,13 @@ fn refract_with_reflectance(
         fresnel_reflectance(n1, n2, dn)
     };
     Some((refracted, r))
+}
+
+impl NearestFace for Tracer {
+    #[inline]
+    fn nearest_face(&self, ray: &Ray) -> Option<Intersection> {
+        self.nearest_intersection(ray)
+    }
 }
 
 impl Tracer {
@@ -264,51 +252,11 @@ impl Tracer {
         }
     }
 
-    /// Traces `ray`, which starts in air, by the course's law: the same outcome as [`Scene::trace`].
+    /// Traces `ray`, which starts in air, by the course's law: the same outcome as [`Scene::trace`]
+    /// (the same loop, [`follow_ray`], over this tracer's faster [`Self::nearest_intersection`]).
     #[inline]
     pub fn trace(&self, ray: Ray) -> Outcome {
-        let s = &self.scene;
-        let mut ray = ray;
-        let mut in_water = false;
-        let mut events = 0u32;
-        let mut length = 0.0;
-        loop {
-            let Some(hit) = self.nearest_intersection(&ray) else {
-                return Outcome::Escaped { events };
-            };
-            let point = ray.at(hit.distance);
-            length += hit.distance;
-            if hit.face.is_straw() {
-                return Outcome::Straw {
-                    color: s.straw_color(hit.face, point),
-                    point,
-                    path_length: length,
-                    events,
-                    face: hit.face,
-                };
-            }
-            if events == s.max_events {
-                return Outcome::Dropped;
-            }
-            events += 1;
-            let normal = s.water_normal(hit.face, point);
-            let eta = if in_water {
-                self.eta_into_air
-            } else {
-                self.eta_into_water
-            };
-            let direction = match refract_eta(ray.direction, normal, eta) {
-                Some(t) => {
-                    in_water = !in_water;
-                    t.normalize()
-                }
-                None => reflect(ray.direction, normal),
-            };
-            ray = Ray {
-                origin: point,
-                direction,
-            };
-        }
+        follow_ray(self, &self.scene, ray, |_| {})
     }
 
     /// Colour code (0 for none) of the section `ray` reaches by the course's law.
