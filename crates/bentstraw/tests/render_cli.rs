@@ -4,7 +4,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use bentstraw_optics::camera::Camera;
-use bentstraw_optics::picture::{course_picture, fresnel_picture};
+use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::{Scene, SCENE_CENTRE};
 use bentstraw_optics::Vec3;
 
@@ -67,7 +67,7 @@ fn writes_the_picture_and_one_course_ray_per_pixel() {
         30,
         100f64.to_radians(),
     );
-    let codes = course_picture(&scene, &cam);
+    let codes = course_picture_exact(&scene, &cam);
     let rows: Vec<&str> = lines.collect();
     assert_eq!(rows.len(), 1200);
     for (k, line) in rows.iter().enumerate() {
@@ -103,7 +103,7 @@ fn fresnel_raw_has_weights_with_enough_digits() {
     let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
     let eye = Vec3::new(0.1, 0.0, 0.1);
     let fov = bentstraw_optics::camera::framing_fov(eye, SCENE_CENTRE, 32.0 / 24.0);
-    let want = fresnel_picture(&scene, &Camera::new(eye, SCENE_CENTRE, 32, 24, fov), 1e-4);
+    let want = fresnel_picture_exact(&scene, &Camera::new(eye, SCENE_CENTRE, 32, 24, fov), 1e-4);
     let mut n = 0;
     for (k, line) in lines.enumerate() {
         let f: Vec<&str> = line.split(',').collect();

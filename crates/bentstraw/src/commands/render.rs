@@ -5,7 +5,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use bentstraw_optics::camera::{framing_fov, Camera};
-use bentstraw_optics::picture::{course_picture, fresnel_picture};
+use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::{Scene, SCENE_CENTRE};
 use bentstraw_optics::shading::{shaded_picture, Backdrop, ShadingMode, ShadingOptions};
 use bentstraw_optics::Vec3;
@@ -138,11 +138,14 @@ pub fn run(args: &RenderArgs) -> CliResult {
 
 /// Writes one ray per pixel centre, row-major: `row,col,color` (course) or `row,col,w1..w5`
 /// (fresnel, 7 significant digits; exact zeros as `0`).
+///
+/// Traced in double precision: a data file is for checking, where the last edge pixel matters
+/// more than the milliseconds the single-precision picture path saves.
 fn write_raw(path: &Path, scene: &Scene, camera: &Camera, mode: ModeArg, prune: f64) -> CliResult {
     let w = camera.width as usize;
     match mode {
         ModeArg::Course => {
-            let codes = course_picture(scene, camera);
+            let codes = course_picture_exact(scene, camera);
             files::write_atomically(path, |out| {
                 writeln!(out, "row,col,color")?;
                 for (k, code) in codes.iter().enumerate() {
@@ -152,7 +155,7 @@ fn write_raw(path: &Path, scene: &Scene, camera: &Camera, mode: ModeArg, prune: 
             })
         }
         ModeArg::Fresnel => {
-            let weights = fresnel_picture(scene, camera, prune);
+            let weights = fresnel_picture_exact(scene, camera, prune);
             files::write_atomically(path, |out| {
                 writeln!(out, "row,col,w1,w2,w3,w4,w5")?;
                 for (k, px) in weights.iter().enumerate() {
