@@ -96,6 +96,8 @@ pub struct Section {
     pub figures: Vec<Figure>,
     /// Paragraphs of explanation under the figures.
     pub notes: Vec<String>,
+    /// Whether the figures are shown side by side (pictures meant to be compared), not stacked.
+    pub side_by_side: bool,
 }
 
 /// A picture file shown in the page, with links to companion files.
@@ -195,6 +197,7 @@ td.l, th.l { text-align:left; }
 .badge.pass { background:#e7f4ea; color:var(--ok); } .badge.fail { background:#fbe9e7; color:var(--bad); }
 .timing { color:var(--muted); font-size:13px; margin-top:8px; }
 figure { margin:8px 0 0; }
+.figs.pair { display:grid; grid-template-columns:repeat(auto-fit, minmax(380px, 1fr)); gap:12px; }
 figure img { max-width:100%; height:auto; border:1px solid var(--line); border-radius:4px; background:#fff; }
 figcaption { color:var(--muted); font-size:13px; margin-top:4px; }
 .missing { padding:18px; border:1px dashed var(--bad); color:var(--bad); border-radius:6px; background:#fff8f7; }
@@ -360,9 +363,16 @@ fn render_simulation(h: &mut String, s: &SimulationEntry) {
     let _ = writeln!(h, "<p class=\"timing\">Time: {}</p>", timings.join(" · "));
     for sec in &s.sections {
         let _ = writeln!(h, "<h4>{}</h4>", escape(&sec.title));
+        let class = if sec.side_by_side {
+            "figs pair"
+        } else {
+            "figs"
+        };
+        let _ = writeln!(h, "<div class=\"{class}\">");
         for f in &sec.figures {
             render_figure(h, f);
         }
+        h.push_str("</div>\n");
         for n in &sec.notes {
             let _ = writeln!(h, "<p>{}</p>", escape(n));
         }
@@ -442,6 +452,7 @@ mod tests {
                 title: "Image points".into(),
                 figures: vec![figure],
                 notes: vec!["a & b".into()],
+                side_by_side: false,
             }],
         }
     }

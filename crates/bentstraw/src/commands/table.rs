@@ -185,6 +185,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         title: "Virtual image points (course convention, P = O + L·u0)".into(),
         figures: vec![figure],
         notes: vec![distance_note(scene, &cloud)],
+        side_by_side: false,
     }];
     // The reference simulations proper (not the index checks) also get the observer's picture and
     // the apparent-position models.
@@ -237,6 +238,7 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         title: "What the observer sees (SPEC §6)".into(),
         figures: vec![picture, points],
         notes: vec![],
+        side_by_side: true,
     }
 }
 
@@ -332,7 +334,11 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         "Distance between the course's image point and the eye model's (and the stereo model's) \
          point of the same straw point, against the height of that straw point.",
     );
-    figure.error = write_gap_plot(&out.join(&gap), &series, &title)
+    let gap_title = format!(
+        "{}: distance from the course's image point to the eye's and the stereo point",
+        simulation_heading(job)
+    );
+    figure.error = write_gap_plot(&out.join(&gap), &series, &gap_title)
         .err()
         .map(|e| e.0);
     figures.push(figure);
@@ -361,6 +367,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
                 stereo.skipped
             ),
         ],
+        side_by_side: false,
     }
 }
 
