@@ -14,6 +14,7 @@ use crate::cli::{BackdropArg, CameraArgs, ModeArg, RenderArgs};
 use crate::error::{fail, CliResult};
 use crate::files;
 use crate::pictures::png_bytes;
+use crate::progress;
 
 /// Picture size when `--size` is not given.
 pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
@@ -106,7 +107,9 @@ pub fn run(args: &RenderArgs) -> CliResult {
         samples: args.samples,
         outline: true,
     };
-    let picture = shaded_picture(&scene, &camera, &options);
+    let picture = progress::with_progress(None, "{spinner} rendering  [{elapsed}]", |_| {
+        shaded_picture(&scene, &camera, &options)
+    });
     let png = png_bytes(&picture)?;
     files::write_bytes(&args.output, &png)?;
     if let Some(raw) = &args.raw {
