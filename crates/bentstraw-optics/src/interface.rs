@@ -40,6 +40,32 @@ pub fn refract(d: Vec3, normal: Vec3, n1: f64, n2: f64) -> Option<Vec3> {
     Some(eta * d + (eta * cos_i - cos_t) * nn)
 }
 
+/// [`refract`] and, from the same `cos θi`, `sin² θt` and `cos θt`, the reflectance
+/// [`fresnel_reflectance`]`(n1, n2, d·normal)`: the same operations, so the same bits, without
+/// computing the angles twice (it defers to [`fresnel_reflectance`] where that one's clamps act).
+/// `None` under total internal reflection.
+#[inline]
+pub fn refract_with_reflectance(d: Vec3, normal: Vec3, n1: f64, n2: f64) -> Option<(Vec3, f64)> {
+    let dn = d.dot(normal);
+    let c = -dn;
+    let (nn, cos_i) = if c >= 0.0 { (normal, c) } else { (-normal, -c) };
+    let eta = n1 / n2;
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t > 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let refracted = eta * d + (eta * cos_i - cos_t) * nn;
+    let r = if cos_i <= 1.0 && sin2_t < 1.0 {
+        let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+        let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+        0.5 * (rs * rs + rp * rp)
+    } else {
+        fresnel_reflectance(n1, n2, dn)
+    };
+    Some((refracted, r))
+}
+
 /// What happens to a ray at an interface: the outgoing direction and whether it was refracted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Scattering {

@@ -5,7 +5,7 @@
 //! refracted branch.
 
 use crate::geometry::Ray;
-use crate::interface::{fresnel_reflectance, reflect, refract};
+use crate::interface::{reflect, refract, refract_with_reflectance};
 use crate::scene::{section_at, Scene, GLASS_RADIUS, SECTION_COUNT};
 use crate::Vec3;
 
@@ -261,131 +261,9 @@ impl Scene {
         &self,
         ray: Ray,
         prune_below: f64,
-        mut on_step: impl FnMut(FresnelStep),
+        on_step: impl FnMut(FresnelStep),
     ) -> [f64; SECTION_COUNT] {
-        // Depth-first. At each split the branch on the air side is followed first: the water is
-        // convex, so a branch in air that leaves a water face never meets the water again and ends
-        // at once; the stack thus holds at most one waiting branch, whatever the event limit.
-        const STACK: usize = 64;
-        #[derive(Clone, Copy)]
-        struct Branch {
-            ray: Ray,
-            in_water: bool,
-            events: u32,
-            weight: f64,
-        }
-        let mut weights = [0.0; SECTION_COUNT];
-        let mut stack = [Branch {
-            ray,
-            in_water: false,
-            events: 0,
-            weight: 1.0,
-        }; STACK];
-        let mut top = 1usize;
-        while top > 0 {
-            top -= 1;
-            let mut b = stack[top];
-            loop {
-                let Some(hit) = self.nearest_intersection(&b.ray) else {
-                    on_step(FresnelStep::Escaped {
-                        ray: b.ray,
-                        weight: b.weight,
-                        events: b.events,
-                    });
-                    break;
-                };
-                let point = b.ray.at(hit.distance);
-                if hit.face.is_straw() {
-                    let color = self.straw_color(hit.face, point);
-                    weights[color as usize - 1] += b.weight;
-                    on_step(FresnelStep::Straw {
-                        color,
-                        point,
-                        face: hit.face,
-                        weight: b.weight,
-                        events: b.events,
-                    });
-                    break;
-                }
-                if b.events == self.max_events {
-                    on_step(FresnelStep::Dropped { weight: b.weight });
-                    break;
-                }
-                b.events += 1;
-                let normal = self.water_normal(hit.face, point);
-                let (n1, n2) = if b.in_water {
-                    (self.n_water, 1.0)
-                } else {
-                    (1.0, self.n_water)
-                };
-                let reflected = reflect(b.ray.direction, normal);
-                match refract(b.ray.direction, normal, n1, n2) {
-                    None => {
-                        on_step(FresnelStep::TotalReflection {
-                            point,
-                            weight: b.weight,
-                        });
-                        b.ray = Ray {
-                            origin: point,
-                            direction: reflected,
-                        };
-                    }
-                    Some(t) => {
-                        let r = fresnel_reflectance(n1, n2, b.ray.direction.dot(normal));
-                        let wr = b.weight * r;
-                        let wt = b.weight * (1.0 - r);
-                        on_step(FresnelStep::Split {
-                            point,
-                            normal,
-                            incoming: b.ray.direction,
-                            n1,
-                            n2,
-                            weight: b.weight,
-                            reflected: wr,
-                            refracted: wt,
-                        });
-                        let refl = Branch {
-                            ray: Ray {
-                                origin: point,
-                                direction: reflected,
-                            },
-                            in_water: b.in_water,
-                            events: b.events,
-                            weight: wr,
-                        };
-                        let refr = Branch {
-                            ray: Ray {
-                                origin: point,
-                                direction: t.normalize(),
-                            },
-                            in_water: !b.in_water,
-                            events: b.events,
-                            weight: wt,
-                        };
-                        // The air-side branch now (it ends at once), the water-side one later.
-                        let (now, later) = if b.in_water {
-                            (refr, refl)
-                        } else {
-                            (refl, refr)
-                        };
-                        if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
-                            stack[top] = later;
-                            top += 1;
-                        } else {
-                            on_step(FresnelStep::Pruned {
-                                weight: later.weight,
-                            });
-                        }
-                        if now.weight < prune_below || now.weight == 0.0 {
-                            on_step(FresnelStep::Pruned { weight: now.weight });
-                            break;
-                        }
-                        b = now;
-                    }
-                }
-            }
-        }
-        weights
+        follow_fresnel::<false>(self, self, ray, prune_below, on_step)
     }
 }
 
@@ -464,4 +342,153 @@ pub fn follow_ray(
             direction: outgoing,
         };
     }
+}
+
+/// The Fresnel tracing loop of SPEC §6, written once for every [`NearestFace`]; see
+/// [`Scene::trace_fresnel_with`]. With `SKIP_ESCAPING`, branches that provably escape are not
+/// followed (for pictures, where they add nothing): a branch that leaves the water through its side
+/// wall or bottom, or is reflected off their outside, moves away from the axis or downwards for good
+/// and can meet no face again; only the order of the sums changes (weights agree to ~1e-16), and
+/// `on_step` is then not told of those branches.
+#[inline]
+pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
+    faces: &impl NearestFace,
+    scene: &Scene,
+    ray: Ray,
+    prune_below: f64,
+    mut on_step: impl FnMut(FresnelStep),
+) -> [f64; SECTION_COUNT] {
+    // Depth-first. At each split the branch on the air side is followed first: the water is
+    // convex, so a branch in air that leaves a water face never meets the water again and ends at
+    // once; the stack thus holds at most one waiting branch, whatever the event limit (a few slots
+    // spare; a branch that found no slot would be reported as pruned).
+    const STACK: usize = 4;
+    #[derive(Clone, Copy)]
+    struct Branch {
+        ray: Ray,
+        in_water: bool,
+        events: u32,
+        weight: f64,
+    }
+    let mut weights = [0.0; SECTION_COUNT];
+    let mut stack = [Branch {
+        ray,
+        in_water: false,
+        events: 0,
+        weight: 1.0,
+    }; STACK];
+    let mut top = 1usize;
+    while top > 0 {
+        top -= 1;
+        let mut b = stack[top];
+        loop {
+            let Some(hit) = faces.nearest_face(&b.ray) else {
+                on_step(FresnelStep::Escaped {
+                    ray: b.ray,
+                    weight: b.weight,
+                    events: b.events,
+                });
+                break;
+            };
+            let point = b.ray.at(hit.distance);
+            if hit.face.is_straw() {
+                let color = scene.straw_color(hit.face, point);
+                weights[color as usize - 1] += b.weight;
+                on_step(FresnelStep::Straw {
+                    color,
+                    point,
+                    face: hit.face,
+                    weight: b.weight,
+                    events: b.events,
+                });
+                break;
+            }
+            if b.events == scene.max_events {
+                on_step(FresnelStep::Dropped { weight: b.weight });
+                break;
+            }
+            b.events += 1;
+            let normal = scene.water_normal(hit.face, point);
+            let (n1, n2) = if b.in_water {
+                (scene.n_water, 1.0)
+            } else {
+                (1.0, scene.n_water)
+            };
+            let reflected = reflect(b.ray.direction, normal);
+            match refract_with_reflectance(b.ray.direction, normal, n1, n2) {
+                None => {
+                    on_step(FresnelStep::TotalReflection {
+                        point,
+                        weight: b.weight,
+                    });
+                    b.ray = Ray {
+                        origin: point,
+                        direction: reflected,
+                    };
+                }
+                Some((t, r)) => {
+                    let mut wr = b.weight * r;
+                    let mut wt = b.weight * (1.0 - r);
+                    on_step(FresnelStep::Split {
+                        point,
+                        normal,
+                        incoming: b.ray.direction,
+                        n1,
+                        n2,
+                        weight: b.weight,
+                        reflected: wr,
+                        refracted: wt,
+                    });
+                    if SKIP_ESCAPING && hit.face != Face::WaterTop {
+                        // The branch that ends up in air here escapes (see above).
+                        if b.in_water {
+                            wt = 0.0;
+                        } else {
+                            wr = 0.0;
+                        }
+                    }
+                    let refl = Branch {
+                        ray: Ray {
+                            origin: point,
+                            direction: reflected,
+                        },
+                        in_water: b.in_water,
+                        events: b.events,
+                        weight: wr,
+                    };
+                    let refr = Branch {
+                        ray: Ray {
+                            origin: point,
+                            direction: t.normalize(),
+                        },
+                        in_water: !b.in_water,
+                        events: b.events,
+                        weight: wt,
+                    };
+                    // The air-side branch now (it ends at once), the water-side one later.
+                    let (now, later) = if b.in_water {
+                        (refr, refl)
+                    } else {
+                        (refl, refr)
+                    };
+                    if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
+                        stack[top] = later;
+                        top += 1;
+                    } else if !(SKIP_ESCAPING && later.weight == 0.0) {
+                        on_step(FresnelStep::Pruned {
+                            weight: later.weight,
+                        });
+                    }
+                    if now.weight < prune_below || now.weight == 0.0 {
+                        if !(SKIP_ESCAPING && now.weight == 0.0) {
+                            on_step(FresnelStep::Pruned { weight: now.weight });
+                        }
+                        break;
+                    }
+                    b = now;
+                }
+            }
+        }
+    }
+    weights
 }

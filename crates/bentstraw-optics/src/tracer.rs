@@ -16,13 +16,10 @@
 //! order, as in [`crate::geometry`], so colours are identical and lengths equal to the last bit;
 //! the skips use a relative margin (1e-9) far above rounding, so they never drop a real hit.
 
-use std::mem::MaybeUninit;
-
 use crate::geometry::{Ray, MIN_DISTANCE};
 use crate::image::ImagePoint;
-use crate::interface::{fresnel_reflectance, reflect};
-use crate::scene::{section_at, Scene, GLASS_RADIUS, SECTION_COUNT, STRAW_HEIGHT, STRAW_RADIUS};
-use crate::trace::{follow_ray, Face, Intersection, NearestFace, Outcome};
+use crate::scene::{Scene, GLASS_RADIUS, SECTION_COUNT, STRAW_HEIGHT, STRAW_RADIUS};
+use crate::trace::{follow_fresnel, follow_ray, Face, Intersection, NearestFace, Outcome};
 use crate::Vec3;
 
 /// Relative margin of the "line clearly misses the circle" tests, far above rounding (1e-16).
@@ -41,10 +38,6 @@ pub struct Tracer {
     glass_2r2: f64,
     /// `2·Rp²`.
     straw_2r2: f64,
-    /// `n1/n2` going from air into water.
-    eta_into_water: f64,
-    /// `n1/n2` going from water into air.
-    eta_into_air: f64,
 }
 
 /// The nearest root `t > MIN_DISTANCE` of an upright cylinder's side with `0 <= z <= z_max`, from
@@ -116,36 +109,6 @@ fn within(o: Vec3, d: Vec3, t: f64, cx: f64, cy: f64, r2: f64) -> bool {
     x * x + y * y <= r2
 }
 
-/// Refraction as [`crate::interface::refract`] with `eta = n1/n2` given and, from the same `cos θi`, `sin² θt` and `cos θt`, the reflectance
-/// [`fresnel_reflectance`]`(n1, n2, d·normal)` would give (the same operations, so the same bits;
-/// it is called itself in the rare cases its clamps would act).
-#[inline(always)]
-fn refract_with_reflectance(
-    d: Vec3,
-    normal: Vec3,
-    eta: f64,
-    n1: f64,
-    n2: f64,
-) -> Option<(Vec3, f64)> {
-    let dn = d.dot(normal);
-    let c = -dn;
-    let (nn, cos_i) = if c >= 0.0 { (normal, c) } else { (-normal, -c) };
-    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
-    if sin2_t > 1.0 {
-        return None;
-    }
-    let cos_t = (1.0 - sin2_t).sqrt();
-    let refracted = eta * d + (eta * cos_i - cos_t) * nn;
-    let r = if cos_i <= 1.0 && sin2_t < 1.0 {
-        let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-        let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
-        0.5 * (rs * rs + rp * rp)
-    } else {
-        fresnel_reflectance(n1, n2, dn)
-    };
-    Some((refracted, r))
-}
-
 impl NearestFace for Tracer {
     #[inline]
     fn nearest_face(&self, ray: &Ray) -> Option<Intersection> {
@@ -164,8 +127,6 @@ impl Tracer {
             straw_r2,
             glass_2r2: 2.0 * glass_r2,
             straw_2r2: 2.0 * straw_r2,
-            eta_into_water: 1.0 / scene.n_water,
-            eta_into_air: scene.n_water / 1.0,
         }
     }
 
@@ -290,128 +251,15 @@ impl Tracer {
         }
     }
 
-    /// Fresnel tracing: the same weights as [`Scene::trace_fresnel`].
+    /// Fresnel tracing: the same weights as [`Scene::trace_fresnel`] (the same loop,
+    /// [`follow_fresnel`], over this tracer's faster [`Self::nearest_intersection`]).
     pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
-        self.fresnel::<false>(ray, prune_below)
+        follow_fresnel::<false>(self, &self.scene, ray, prune_below, |_| {})
     }
 
     /// Fresnel tracing for pictures: [`Self::trace_fresnel`], but branches that provably escape
-    /// are not followed.
-    ///
-    /// A branch that leaves the water through its side wall, or is reflected off the wall's
-    /// outside, moves away from the axis for good; one that leaves through the bottom, or is
-    /// reflected off it from below, moves down for good: neither can meet any face again (all lie
-    /// inside the glass's circle, above `z = 0`), so its weight is lost as the full trace would
-    /// lose it. Only the order of the sums changes (weights agree to ~1e-16).
+    /// are not followed (see [`follow_fresnel`]).
     pub fn trace_fresnel_escaping(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
-        self.fresnel::<true>(ray, prune_below)
-    }
-
-    #[inline(always)]
-    fn fresnel<const SKIP_ESCAPING: bool>(
-        &self,
-        ray: Ray,
-        prune_below: f64,
-    ) -> [f64; SECTION_COUNT] {
-        const STACK: usize = 64;
-        #[derive(Clone, Copy)]
-        struct Branch {
-            ray: Ray,
-            in_water: bool,
-            events: u32,
-            weight: f64,
-        }
-        let s = &self.scene;
-        let mut weights = [0.0; SECTION_COUNT];
-        // Left uninitialised: filling 64 branches would cost more than tracing most pixels.
-        let mut stack = [const { MaybeUninit::<Branch>::uninit() }; STACK];
-        stack[0].write(Branch {
-            ray,
-            in_water: false,
-            events: 0,
-            weight: 1.0,
-        });
-        let mut top = 1usize;
-        while top > 0 {
-            top -= 1;
-            // SAFETY: entries below `top` have all been written (push writes, then increments).
-            let mut b = unsafe { stack[top].assume_init() };
-            while let Some(hit) = self.nearest_intersection(&b.ray) {
-                let point = b.ray.at(hit.distance);
-                if hit.face.is_straw() {
-                    let code = match hit.face {
-                        Face::StrawBottom => 1,
-                        Face::StrawTop => SECTION_COUNT as u8,
-                        _ => section_at(point.z),
-                    };
-                    weights[code as usize - 1] += b.weight;
-                    break;
-                }
-                if b.events == s.max_events {
-                    break;
-                }
-                b.events += 1;
-                let normal = s.water_normal(hit.face, point);
-                let (n1, n2, eta) = if b.in_water {
-                    (s.n_water, 1.0, self.eta_into_air)
-                } else {
-                    (1.0, s.n_water, self.eta_into_water)
-                };
-                let reflected = reflect(b.ray.direction, normal);
-                match refract_with_reflectance(b.ray.direction, normal, eta, n1, n2) {
-                    None => {
-                        b.ray = Ray {
-                            origin: point,
-                            direction: reflected,
-                        };
-                    }
-                    Some((t, r)) => {
-                        let mut wr = b.weight * r;
-                        let mut wt = b.weight * (1.0 - r);
-                        if SKIP_ESCAPING && hit.face != Face::WaterTop {
-                            // The branch that ends up in air here escapes (see above).
-                            if b.in_water {
-                                wt = 0.0;
-                            } else {
-                                wr = 0.0;
-                            }
-                        }
-                        let refl = Branch {
-                            ray: Ray {
-                                origin: point,
-                                direction: reflected,
-                            },
-                            in_water: b.in_water,
-                            events: b.events,
-                            weight: wr,
-                        };
-                        let refr = Branch {
-                            ray: Ray {
-                                origin: point,
-                                direction: t.normalize(),
-                            },
-                            in_water: !b.in_water,
-                            events: b.events,
-                            weight: wt,
-                        };
-                        // As Scene::trace_fresnel: the air-side branch now, the water-side one later.
-                        let (now, later) = if b.in_water {
-                            (refr, refl)
-                        } else {
-                            (refl, refr)
-                        };
-                        if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
-                            stack[top].write(later);
-                            top += 1;
-                        }
-                        if now.weight < prune_below || now.weight == 0.0 {
-                            break;
-                        }
-                        b = now;
-                    }
-                }
-            }
-        }
-        weights
+        follow_fresnel::<true>(self, &self.scene, ray, prune_below, |_| {})
     }
 }
