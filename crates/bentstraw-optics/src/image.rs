@@ -22,14 +22,12 @@ pub struct ImagePoint {
     pub events: u32,
 }
 
-impl Scene {
-    /// The image point seen from `observer` along unit direction `u0`, if that ray reaches the straw.
+impl ImagePoint {
+    /// The image point `P = O + L·u0` of the ray from `observer` along unit `u0` whose trace ended
+    /// with `outcome`, if it reached the straw.
     #[inline]
-    pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
-        match self.trace(Ray {
-            origin: observer,
-            direction: u0,
-        }) {
+    pub fn from_outcome(observer: Vec3, u0: Vec3, outcome: Outcome) -> Option<ImagePoint> {
+        match outcome {
             Outcome::Straw {
                 color,
                 point,
@@ -46,5 +44,17 @@ impl Scene {
             }),
             _ => None,
         }
+    }
+}
+
+impl Scene {
+    /// The image point seen from `observer` along unit direction `u0`, if that ray reaches the straw.
+    #[inline]
+    pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
+        let outcome = self.trace(Ray {
+            origin: observer,
+            direction: u0,
+        });
+        ImagePoint::from_outcome(observer, u0, outcome)
     }
 }

@@ -229,26 +229,11 @@ impl Tracer {
     /// The image point seen from `observer` along unit `u0`: the same as [`Scene::image_point`].
     #[inline]
     pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
-        match self.trace(Ray {
+        let outcome = self.trace(Ray {
             origin: observer,
             direction: u0,
-        }) {
-            Outcome::Straw {
-                color,
-                point,
-                path_length,
-                events,
-                ..
-            } => Some(ImagePoint {
-                position: observer + path_length * u0,
-                color,
-                direction: u0,
-                path_length,
-                straw_point: point,
-                events,
-            }),
-            _ => None,
-        }
+        });
+        ImagePoint::from_outcome(observer, u0, outcome)
     }
 
     /// Fresnel tracing: the same weights as [`Scene::trace_fresnel`] (the same loop,
