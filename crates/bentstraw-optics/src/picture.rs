@@ -13,13 +13,24 @@ use crate::tracer::Tracer;
 /// Traced in single precision, eight rays at a time ([`crate::packet`]): the same pixels as
 /// [`course_picture_exact`] except, rarely, on a colour boundary.
 pub fn course_picture(scene: &Scene, camera: &Camera) -> Vec<u8> {
+    let mut codes = vec![0u8; camera.width as usize * camera.height as usize];
+    course_picture_into(scene, camera, &mut codes);
+    codes
+}
+
+/// [`course_picture`] into a caller's buffer of `width × height` codes (an interactive view keeps
+/// one and redraws into it, with no allocation per picture).
+pub fn course_picture_into(scene: &Scene, camera: &Camera, codes: &mut [u8]) {
     let w = camera.width as usize;
+    assert_eq!(
+        codes.len(),
+        w * camera.height as usize,
+        "one code per pixel"
+    );
     let tracer = PacketTracer::new(scene);
-    let mut codes = vec![0u8; w * camera.height as usize];
     codes.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         tracer.course_row(camera, i as u32, row);
     });
-    codes
 }
 
 /// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by SPEC §3, traced in
@@ -45,16 +56,31 @@ pub fn fresnel_picture(
     camera: &Camera,
     prune_below: f64,
 ) -> Vec<[f64; SECTION_COUNT]> {
+    let mut weights = vec![[0.0; SECTION_COUNT]; camera.width as usize * camera.height as usize];
+    fresnel_picture_into(scene, camera, prune_below, &mut weights);
+    weights
+}
+
+/// [`fresnel_picture`] into a caller's buffer of `width × height` pixels (every pixel is written).
+pub fn fresnel_picture_into(
+    scene: &Scene,
+    camera: &Camera,
+    prune_below: f64,
+    weights: &mut [[f64; SECTION_COUNT]],
+) {
     let w = camera.width as usize;
+    assert_eq!(
+        weights.len(),
+        w * camera.height as usize,
+        "one pixel per pixel"
+    );
     let tracer = PacketTracer::new(scene);
-    let mut weights = vec![[0.0; SECTION_COUNT]; w * camera.height as usize];
     weights
         .par_chunks_mut(w)
         .enumerate()
         .for_each_init(FresnelWave::default, |wave, (i, row)| {
             tracer.fresnel_row(camera, i as u32, prune_below, wave, row);
         });
-    weights
 }
 
 /// Weights per section (SPEC §6, fresnel mode) of the ray through each pixel centre, row-major,

@@ -7,7 +7,8 @@
 use std::time::Instant;
 
 use bentstraw_optics::camera::Camera;
-use bentstraw_optics::picture::{course_picture, fresnel_picture};
+use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
+use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE};
 use bentstraw_optics::Vec3;
 
@@ -190,15 +191,23 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
 }
 
 /// Median time (s) of `repeat` pictures of `view` in `mode`, after one warm-up picture.
+///
+/// The picture goes into one buffer reused from run to run, as an interactive view would: the time
+/// is the tracing's, not the allocator's.
 fn time_picture(view: &View, mode: ModeArg, repeat: usize) -> f64 {
-    let once = || -> f64 {
+    let pixels = view.camera.width as usize * view.camera.height as usize;
+    let mut codes = vec![0u8; pixels];
+    let mut weights = vec![[0.0; SECTION_COUNT]; pixels];
+    let mut once = || -> f64 {
         let start = Instant::now();
         match mode {
             ModeArg::Course => {
-                std::hint::black_box(course_picture(&view.scene, &view.camera));
+                course_picture_into(&view.scene, &view.camera, &mut codes);
+                std::hint::black_box(&codes);
             }
             ModeArg::Fresnel => {
-                std::hint::black_box(fresnel_picture(&view.scene, &view.camera, BENCH_PRUNE));
+                fresnel_picture_into(&view.scene, &view.camera, BENCH_PRUNE, &mut weights);
+                std::hint::black_box(&weights);
             }
         }
         start.elapsed().as_secs_f64()
