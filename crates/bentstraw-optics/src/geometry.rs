@@ -64,29 +64,16 @@ impl CylinderSide {
         let half_b = px * dx + py * dy;
         let c = px * px + py * py - self.radius * self.radius;
         let disc = half_b * half_b - a * c;
-        if disc < 0.0 {
-            return None;
-        }
-        let sq = disc.sqrt();
-        // Roots in a cancellation-free form: q = -(half_b + sign(half_b)·sq), t = q/a and c/q.
-        let q = if half_b >= 0.0 {
-            -(half_b + sq)
-        } else {
-            -half_b + sq
-        };
-        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
-        for t in [t0, t1] {
-            if t > MIN_DISTANCE {
-                let z = ray.origin.z + t * ray.direction.z;
-                if z >= self.z_min && z <= self.z_max {
-                    return Some(t);
-                }
-            }
-        }
-        None
+        nearest_side_root(
+            a,
+            half_b,
+            c,
+            disc,
+            ray.origin.z,
+            ray.direction.z,
+            self.z_min,
+            self.z_max,
+        )
     }
 
     /// Outward unit normal at a point `p` of the side.
@@ -94,6 +81,47 @@ impl CylinderSide {
     pub fn normal(&self, p: Vec3) -> Vec3 {
         Vec3::new(p.x - self.cx, p.y - self.cy, 0.0).normalize()
     }
+}
+
+/// The nearest root `t > MIN_DISTANCE` of an upright cylinder's side, `a t² + 2 half_b t + c = 0`
+/// with discriminant `disc = half_b² − a c`, whose height `oz + t·dz` lies in `[z_min, z_max]`.
+///
+/// The roots in a cancellation-free form: `q = −(half_b + sign(half_b)·√disc)`, `t = q/a` and `c/q`.
+/// A vertical ray (`a = 0`) runs parallel to the side; `disc < 0` misses it.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn nearest_side_root(
+    a: f64,
+    half_b: f64,
+    c: f64,
+    disc: f64,
+    oz: f64,
+    dz: f64,
+    z_min: f64,
+    z_max: f64,
+) -> Option<f64> {
+    if a == 0.0 || disc < 0.0 {
+        return None;
+    }
+    let sq = disc.sqrt();
+    let q = if half_b >= 0.0 {
+        -(half_b + sq)
+    } else {
+        -half_b + sq
+    };
+    let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
+    if t0 > t1 {
+        std::mem::swap(&mut t0, &mut t1);
+    }
+    for t in [t0, t1] {
+        if t > MIN_DISTANCE {
+            let z = oz + t * dz;
+            if z >= z_min && z <= z_max {
+                return Some(t);
+            }
+        }
+    }
+    None
 }
 
 /// A horizontal disk of centre `(cx, cy, z)`, boundary included.

@@ -43,6 +43,18 @@ pub struct Intersection {
     pub face: Face,
 }
 
+impl Intersection {
+    /// The nearer of the nearest water face and the nearest straw face (each a distance, infinite
+    /// if none, and a face); the opaque straw wins ties (SPEC §3), e.g. its bottom cap on `z = 0`.
+    #[inline]
+    pub fn nearer(water: (f64, Face), straw: (f64, Face)) -> Option<Intersection> {
+        let (distance, face) = if straw.0 <= water.0 { straw } else { water };
+        distance
+            .is_finite()
+            .then_some(Intersection { distance, face })
+    }
+}
+
 /// What happened at one water face.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Event {
@@ -197,19 +209,7 @@ impl Scene {
                 }
             }
         }
-        if straw.is_finite() && straw <= water {
-            Some(Intersection {
-                distance: straw,
-                face: straw_face,
-            })
-        } else if water.is_finite() {
-            Some(Intersection {
-                distance: water,
-                face: water_face,
-            })
-        } else {
-            None
-        }
+        Intersection::nearer((water, water_face), (straw, straw_face))
     }
 
     /// Outward (out of the water) unit normal of water face `face` at point `p`.

@@ -16,7 +16,7 @@
 //! order, as in [`crate::geometry`], so colours are identical and lengths equal to the last bit;
 //! the skips use a relative margin (1e-9) far above rounding, so they never drop a real hit.
 
-use crate::geometry::{Ray, MIN_DISTANCE};
+use crate::geometry::{nearest_side_root, Ray, MIN_DISTANCE};
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_RADIUS, SECTION_COUNT, STRAW_HEIGHT, STRAW_RADIUS};
 use crate::trace::{follow_fresnel, follow_ray, Face, Intersection, NearestFace, Outcome};
@@ -38,34 +38,6 @@ pub struct Tracer {
     glass_2r2: f64,
     /// `2·Rp²`.
     straw_2r2: f64,
-}
-
-/// The nearest root `t > MIN_DISTANCE` of an upright cylinder's side with `0 <= z <= z_max`, from
-/// the quadratic `a t² + 2 half_b t + c` with discriminant `disc >= 0` (as `CylinderSide::intersect`).
-#[inline(always)]
-fn side_root(a: f64, half_b: f64, c: f64, disc: f64, oz: f64, dz: f64, z_max: f64) -> Option<f64> {
-    if a == 0.0 || disc < 0.0 {
-        return None;
-    }
-    let sq = disc.sqrt();
-    let q = if half_b >= 0.0 {
-        -(half_b + sq)
-    } else {
-        -half_b + sq
-    };
-    let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
-    if t0 > t1 {
-        std::mem::swap(&mut t0, &mut t1);
-    }
-    for t in [t0, t1] {
-        if t > MIN_DISTANCE {
-            let z = oz + t * dz;
-            if z >= 0.0 && z <= z_max {
-                return Some(t);
-            }
-        }
-    }
-    None
 }
 
 /// Whether the ray's line passes farther than `radius·(1 + 1e-9)` from a vertical axis, given the
@@ -154,7 +126,9 @@ impl Tracer {
         if s.has_water() {
             if moving_away(half_b, c) {
                 // No root ahead: the wall is behind the ray.
-            } else if let Some(t) = side_root(a, half_b, c, disc, o.z, d.z, s.water_height) {
+            } else if let Some(t) =
+                nearest_side_root(a, half_b, c, disc, o.z, d.z, 0.0, s.water_height)
+            {
                 water = t;
             }
             if let Some(t) = plane_distance(s.water_height, o.z, d.z) {
@@ -181,7 +155,9 @@ impl Tracer {
         if !clearly_misses(a, c, disc, self.straw_2r2) {
             if moving_away(half_b, c) {
                 // No root ahead: the straw's side is behind the ray.
-            } else if let Some(t) = side_root(a, half_b, c, disc, o.z, d.z, STRAW_HEIGHT) {
+            } else if let Some(t) =
+                nearest_side_root(a, half_b, c, disc, o.z, d.z, 0.0, STRAW_HEIGHT)
+            {
                 straw = t;
             }
             if let Some(t) = plane_distance(STRAW_HEIGHT, o.z, d.z) {
@@ -198,19 +174,7 @@ impl Tracer {
             }
         }
 
-        if straw.is_finite() && straw <= water {
-            Some(Intersection {
-                distance: straw,
-                face: straw_face,
-            })
-        } else if water.is_finite() {
-            Some(Intersection {
-                distance: water,
-                face: water_face,
-            })
-        } else {
-            None
-        }
+        Intersection::nearer((water, water_face), (straw, straw_face))
     }
 
     /// Traces `ray`, which starts in air, by the course's law: the same outcome as [`Scene::trace`]
