@@ -491,26 +491,9 @@ fn render_gap_plot(series: &[GapSeries], title: &str) -> Result<Vec<u8>, String>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plot::tests::{decode, point};
     use crate::plot::FIGURE_WIDTH;
     use bentstraw_optics::scene::STRAW_RADIUS;
-
-    /// A point of colour `color` at `position` (the other fields do not matter for drawing).
-    fn point(position: Vec3, color: u8) -> ImagePoint {
-        ImagePoint {
-            position,
-            color,
-            direction: Vec3::X,
-            path_length: 0.1,
-            straw_point: position,
-            events: 0,
-        }
-    }
-
-    fn decode(png: &[u8]) -> image::RgbImage {
-        image::load_from_memory_with_format(png, image::ImageFormat::Png)
-            .expect("a valid PNG")
-            .to_rgb8()
-    }
 
     /// Points on the straw's surface in section `color`, around its axis at `(x, y)`.
     fn ring(x: f64, y: f64, color: u8, n: usize) -> Vec<ImagePoint> {

@@ -1012,7 +1012,7 @@ pub(crate) fn text_width(s: &str, size: f64) -> i32 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
@@ -1029,7 +1029,7 @@ mod tests {
         }
     }
 
-    fn decode(png: &[u8]) -> image::RgbImage {
+    pub(crate) fn decode(png: &[u8]) -> image::RgbImage {
         image::load_from_memory_with_format(png, image::ImageFormat::Png)
             .expect("a valid PNG")
             .to_rgb8()
