@@ -46,6 +46,25 @@ pub fn section_at(z: f64) -> u8 {
     1 + SECTION_EDGES.iter().filter(|&&edge| z >= edge).count() as u8
 }
 
+/// A number as a message quotes it: the shortest digits that read back to the same value (so a
+/// value just past a limit shows why it fails), in scientific notation when that is shorter
+/// (`-1e-320`, not 320 zeros), and at most 24 characters (longer ones are clipped with `…`).
+pub fn number_text(x: f64) -> String {
+    // Rust's `{:?}` for f64 is the shortest round-trip form, scientific outside 1e-5..1e16.
+    clip_text(&format!("{x:?}"), 24)
+}
+
+/// `text` cut to at most `max` characters, with `…` where it was cut (for quoting user input).
+pub fn clip_text(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        text.to_string()
+    } else {
+        let mut t: String = text.chars().take(max.saturating_sub(1)).collect();
+        t.push('…');
+        t
+    }
+}
+
 /// Why the inputs of a simulation are not valid.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SceneError {
@@ -77,30 +96,38 @@ pub enum SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let q = number_text;
         match self {
-            SceneError::NotFinite { name, value } => write!(f, "{name} = {value} is not a finite number"),
+            SceneError::NotFinite { name, value } => {
+                write!(f, "{name} = {} is not a finite number", q(*value))
+            }
             SceneError::WaterHeight(h) => write!(
                 f,
-                "water height {h} m is outside the glass: it must satisfy 0 <= he <= {GLASS_HEIGHT}"
+                "water height {} m is outside the glass: it must satisfy 0 <= he <= {GLASS_HEIGHT}",
+                q(*h)
             ),
             SceneError::StrawOutsideGlass { xp, yp } => write!(
                 f,
-                "straw axis ({xp}, {yp}) does not fit in the glass: need sqrt(xp² + yp²) + {STRAW_RADIUS} <= {GLASS_RADIUS} (it is {:.6})",
-                (xp * xp + yp * yp).sqrt() + STRAW_RADIUS
+                "straw axis ({}, {}) does not fit in the glass: need sqrt(xp² + yp²) + {STRAW_RADIUS} <= {GLASS_RADIUS} (it is {})",
+                q(*xp),
+                q(*yp),
+                q((xp * xp + yp * yp).sqrt() + STRAW_RADIUS)
             ),
             SceneError::ObserverInGlass(o) => write!(
                 f,
                 "observer ({}, {}, {}) is inside or on the glass: it must not satisfy 0 <= z <= {GLASS_HEIGHT} and x² + y² <= {GLASS_RADIUS}²",
-                o.x, o.y, o.z
+                q(o.x), q(o.y), q(o.z)
             ),
             SceneError::ObserverInStraw(o) => write!(
                 f,
                 "observer ({}, {}, {}) is inside the straw where it sticks out of the glass",
-                o.x, o.y, o.z
+                q(o.x), q(o.y), q(o.z)
             ),
-            SceneError::WaterIndex(n) => {
-                write!(f, "water index {n} is not allowed: it must be a finite number >= 1")
-            }
+            SceneError::WaterIndex(n) => write!(
+                f,
+                "water index {} is not allowed: it must be a finite number >= 1",
+                q(*n)
+            ),
             SceneError::MaxEvents(m) => write!(
                 f,
                 "event limit {m} is not allowed: it must be between 1 and {MAX_EVENTS_LIMIT}"

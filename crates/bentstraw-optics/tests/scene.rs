@@ -81,3 +81,20 @@ fn distance_to_the_straw_surface() {
     assert!((scene.distance_to_straw_surface(Vec3::new(0.0, 0.0, 0.1)) - 0.005).abs() < 1e-15);
     assert!((scene.distance_to_straw_surface(Vec3::new(0.008, 0.0, -0.004)) - 0.005).abs() < 1e-15);
 }
+
+/// Messages quote numbers so that they show why a rule fails, and never at absurd length.
+#[test]
+fn messages_quote_numbers_short_and_exact() {
+    use bentstraw_optics::scene::{clip_text, number_text};
+    assert_eq!(number_text(-1e-320), "-1e-320");
+    assert_eq!(number_text(0.15), "0.15");
+    // Just past the rule: the digits show that the sum exceeds 0.04.
+    let e = Scene::with_defaults(0.0350000001, 0.0, 0.1).unwrap_err().to_string();
+    assert!(e.contains("(it is 0.0400000001"), "{e}");
+    let e = Scene::with_defaults(0.0, 0.0, -1e-320).unwrap_err().to_string();
+    assert!(e.len() < 120 && e.contains("-1e-320"), "{e}");
+    let long = "9".repeat(5000);
+    let clipped = clip_text(&long, 40);
+    assert_eq!(clipped.chars().count(), 40);
+    assert!(clipped.ends_with('…'));
+}
