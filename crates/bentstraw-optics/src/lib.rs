@@ -19,6 +19,7 @@ pub mod camera;
 pub mod geometry;
 pub mod image;
 pub mod interface;
+pub mod light_path_type;
 pub mod packet;
 pub mod picture;
 pub mod sampling;
