@@ -716,6 +716,18 @@ mod tests {
     /// The AVX2 build and the portable build give the same pixels (same IEEE operations).
     #[test]
     fn avx2_and_portable_agree() {
+        #[cfg(target_arch = "x86_64")]
+        let has_avx2 = std::is_x86_feature_detected!("avx2");
+        #[cfg(not(target_arch = "x86_64"))]
+        let has_avx2 = false;
+        if !has_avx2 {
+            // Both calls would run the portable code: comparing it with itself proves nothing.
+            // (The packet pictures are checked against the double-precision tracer elsewhere.)
+            eprintln!(
+                "skipped: this processor has no AVX2, so there is no second build to compare"
+            );
+            return;
+        }
         for r in REFERENCES {
             let scene = r.scene(1.333);
             let target = Vec3::new(r.straw.0, r.straw.1, r.water_height);

@@ -4,9 +4,10 @@
 //! Also the Fresnel tracer of SPEC §6, which splits a ray at each water face into a reflected and a
 //! refracted branch.
 
-use crate::geometry::Ray;
+use crate::geometry::{enter_bounding_sphere, Ray};
 use crate::interface::{reflect, refract, refract_with_reflectance};
 use crate::scene::{section_at, Scene, GLASS_RADIUS, SECTION_COUNT};
+use crate::tracer::Tracer;
 use crate::Vec3;
 
 /// A face of the scene a ray can meet.
@@ -176,40 +177,11 @@ pub enum FresnelStep {
 }
 
 impl Scene {
-    /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties (SPEC §3).
+    /// The nearest face `ray` meets ahead, `left` being the water face it has just left (if it
+    /// starts on one); the straw wins ties (SPEC §3). The one rule is [`Tracer::nearest_intersection`].
     #[inline]
-    pub fn nearest_intersection(&self, ray: &Ray) -> Option<Intersection> {
-        let mut water = f64::INFINITY;
-        let mut water_face = Face::WaterSide;
-        if self.has_water() {
-            for (t, face) in [
-                (self.water_side().intersect(ray), Face::WaterSide),
-                (self.water_top().intersect(ray), Face::WaterTop),
-                (self.water_bottom().intersect(ray), Face::WaterBottom),
-            ] {
-                if let Some(t) = t {
-                    if t < water {
-                        water = t;
-                        water_face = face;
-                    }
-                }
-            }
-        }
-        let mut straw = f64::INFINITY;
-        let mut straw_face = Face::StrawSide;
-        for (t, face) in [
-            (self.straw_side().intersect(ray), Face::StrawSide),
-            (self.straw_top().intersect(ray), Face::StrawTop),
-            (self.straw_bottom().intersect(ray), Face::StrawBottom),
-        ] {
-            if let Some(t) = t {
-                if t < straw {
-                    straw = t;
-                    straw_face = face;
-                }
-            }
-        }
-        Intersection::nearer((water, water_face), (straw, straw_face))
+    pub fn nearest_intersection(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
+        Tracer::new(self).nearest_intersection(ray, left)
     }
 
     /// Outward (out of the water) unit normal of water face `face` at point `p`.
@@ -241,7 +213,7 @@ impl Scene {
     /// Traces `ray`, which starts in air, calling `on_event` at every water event, in order.
     #[inline]
     pub fn trace_with(&self, ray: Ray, on_event: impl FnMut(&Event)) -> Outcome {
-        follow_ray(self, self, ray, on_event)
+        follow_ray(&Tracer::new(self), self, ray, on_event)
     }
 
     /// Fresnel tracing (SPEC §6): the weight of `ray` that ends on each section (index 0 = code 1).
@@ -263,21 +235,21 @@ impl Scene {
         prune_below: f64,
         on_step: impl FnMut(FresnelStep),
     ) -> [f64; SECTION_COUNT] {
-        follow_fresnel::<false>(self, self, ray, prune_below, on_step)
+        follow_fresnel::<false>(&Tracer::new(self), self, ray, prune_below, on_step)
     }
 }
 
-/// A way of finding the nearest face a ray meets: the scene itself, or a prepared tracer
-/// ([`crate::tracer::Tracer`]) that gives the same answers faster.
+/// A way of finding the nearest face a ray meets (the tracer, [`crate::tracer::Tracer`]).
 pub trait NearestFace {
-    /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties (SPEC §3).
-    fn nearest_face(&self, ray: &Ray) -> Option<Intersection>;
+    /// The nearest face `ray` meets ahead, `left` being the water face it has just left (if it
+    /// starts on one, after an event there); the straw wins ties (SPEC §3).
+    fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection>;
 }
 
 impl NearestFace for Scene {
     #[inline]
-    fn nearest_face(&self, ray: &Ray) -> Option<Intersection> {
-        self.nearest_intersection(ray)
+    fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
+        self.nearest_intersection(ray, left)
     }
 }
 
@@ -291,12 +263,15 @@ pub fn follow_ray(
     ray: Ray,
     mut on_event: impl FnMut(&Event),
 ) -> Outcome {
-    let mut ray = ray;
+    // A distant ray is first brought to the scene (no face lies before its bounding sphere).
+    let Some((mut ray, mut length)) = enter_bounding_sphere(ray) else {
+        return Outcome::Escaped { events: 0 };
+    };
     let mut in_water = false;
     let mut events = 0u32;
-    let mut length = 0.0;
+    let mut left = None;
     loop {
-        let Some(hit) = faces.nearest_face(&ray) else {
+        let Some(hit) = faces.nearest_face(&ray, left) else {
             return Outcome::Escaped { events };
         };
         let point = ray.at(hit.distance);
@@ -341,6 +316,7 @@ pub fn follow_ray(
             origin: point,
             direction: outgoing,
         };
+        left = Some(hit.face);
     }
 }
 
@@ -369,22 +345,35 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
         in_water: bool,
         events: u32,
         weight: f64,
+        /// The water face the branch starts on (it has just left it).
+        left: Option<Face>,
     }
     let mut weights = [0.0; SECTION_COUNT];
+    // A distant ray is first brought to the scene; one that misses it escapes as it is.
+    let Some((start, _)) = enter_bounding_sphere(ray) else {
+        on_step(FresnelStep::Escaped {
+            ray,
+            weight: 1.0,
+            events: 0,
+        });
+        return weights;
+    };
     let mut stack = [Branch {
-        ray,
+        ray: start,
         in_water: false,
         events: 0,
         weight: 1.0,
+        left: None,
     }; STACK];
     let mut top = 1usize;
     while top > 0 {
         top -= 1;
         let mut b = stack[top];
         loop {
-            let Some(hit) = faces.nearest_face(&b.ray) else {
+            let Some(hit) = faces.nearest_face(&b.ray, b.left) else {
                 on_step(FresnelStep::Escaped {
-                    ray: b.ray,
+                    // A branch that met nothing is the ray as it started, from the eye.
+                    ray: if b.events == 0 { ray } else { b.ray },
                     weight: b.weight,
                     events: b.events,
                 });
@@ -425,6 +414,7 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
                         origin: point,
                         direction: reflected,
                     };
+                    b.left = Some(hit.face);
                 }
                 Some((t, r)) => {
                     let mut wr = b.weight * r;
@@ -455,6 +445,7 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
                         in_water: b.in_water,
                         events: b.events,
                         weight: wr,
+                        left: Some(hit.face),
                     };
                     let refr = Branch {
                         ray: Ray {
@@ -464,6 +455,7 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
                         in_water: !b.in_water,
                         events: b.events,
                         weight: wt,
+                        left: Some(hit.face),
                     };
                     // The air-side branch now (it ends at once), the water-side one later.
                     let (now, later) = if b.in_water {
