@@ -23,6 +23,7 @@ use crate::geometry::{enter_bounding_sphere, BOUNDING_CENTRE};
 use crate::scene::{
     Scene, GLASS_RADIUS, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT, STRAW_RADIUS,
 };
+use crate::trace::FRESNEL_SEGMENTS_PER_RAY;
 
 /// Rays per packet.
 pub const LANES: usize = 8;
@@ -209,8 +210,9 @@ impl PacketTracer {
     ///
     /// Traced breadth first: every branch alive after `k` events is in one list, traced eight at a
     /// time; the list of their children is the next. So lanes stay full whatever the tree's shape.
-    /// Branches lighter than `prune_below` are abandoned, and branches that provably escape (out
-    /// of the water through the side or bottom, or mirrored off their outside) are not followed.
+    /// Branches lighter than `prune_below` are abandoned, branches that provably escape (out
+    /// of the water through the side or bottom, or mirrored off their outside) are not followed,
+    /// and at most [`FRESNEL_SEGMENTS_PER_RAY`] segments are followed per pixel.
     pub fn fresnel_row(
         &self,
         camera: &Camera,
@@ -271,6 +273,9 @@ impl PacketTracer {
             *w = [0.0; SECTION_COUNT];
         }
         let (cur, next) = (&mut wave.current, &mut wave.next);
+        let segments = &mut wave.segments;
+        segments.clear();
+        segments.resize(weights.len(), 1);
         cur.clear();
         cur.reserve_total(weights.len());
         let rays = row_rays(camera, row);
@@ -353,7 +358,11 @@ impl PacketTracer {
                     }
                     let q = [b.q[0].0[k], b.q[1].0[k], b.q[2].0[k]];
                     let face = hit.water_face.0[k];
-                    if wr >= prune && wr > 0.0 {
+                    // Each child is one more segment for its pixel; past the bound the light
+                    // still travelling is dropped.
+                    let used = &mut segments[pixel as usize];
+                    if wr >= prune && wr > 0.0 && *used < FRESNEL_SEGMENTS_PER_RAY {
+                        *used += 1;
                         let l = [
                             b.reflected[0].0[k],
                             b.reflected[1].0[k],
@@ -361,7 +370,8 @@ impl PacketTracer {
                         ];
                         next.push(q, l, wr, water, pixel, face);
                     }
-                    if wt >= prune && wt > 0.0 {
+                    if wt >= prune && wt > 0.0 && *used < FRESNEL_SEGMENTS_PER_RAY {
+                        *used += 1;
                         let t = [
                             b.refracted[0].0[k],
                             b.refracted[1].0[k],
@@ -712,6 +722,9 @@ fn row_rays(camera: &Camera, row: u32) -> impl Fn(usize) -> ([F8; 3], [F8; 3], M
 pub struct FresnelWave {
     current: Branches,
     next: Branches,
+    /// Ray segments followed so far for each pixel of the row (bounded by
+    /// [`FRESNEL_SEGMENTS_PER_RAY`]).
+    segments: Vec<u32>,
 }
 
 /// Fresnel branches, structure of arrays: origin and direction components, weight, medium, pixel.

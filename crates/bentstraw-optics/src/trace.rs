@@ -113,6 +113,18 @@ impl Outcome {
     }
 }
 
+/// Most straight ray segments a Fresnel trace follows for one ray from the eye, all its branches
+/// together (a picture's pixel with several samples shares [`FRESNEL_SEGMENTS_PER_PIXEL`]).
+///
+/// Without a bound the work has none: light trapped by total reflection (water of index 10, an
+/// event limit of 1000) bounces a thousand times in every branch. Past the bound, what is still
+/// travelling is dropped, exactly like light that would need an event past the limit; ordinary
+/// scenes use a few dozen segments per ray.
+pub const FRESNEL_SEGMENTS_PER_RAY: u32 = 2048;
+
+/// Most ray segments followed for one pixel of a picture, all its samples together.
+pub const FRESNEL_SEGMENTS_PER_PIXEL: u32 = 8192;
+
 /// One step of Fresnel tracing, as reported by [`Scene::trace_fresnel_with`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FresnelStep {
@@ -235,7 +247,27 @@ impl Scene {
         prune_below: f64,
         on_step: impl FnMut(FresnelStep),
     ) -> [f64; SECTION_COUNT] {
-        follow_fresnel::<false>(&Tracer::new(self), self, ray, prune_below, on_step)
+        self.trace_fresnel_bounded(ray, prune_below, FRESNEL_SEGMENTS_PER_RAY, on_step)
+    }
+
+    /// [`Scene::trace_fresnel_with`] following at most `max_segments` straight ray segments
+    /// (all branches together; see [`FRESNEL_SEGMENTS_PER_RAY`]): what still travels after them is
+    /// reported as dropped.
+    pub fn trace_fresnel_bounded(
+        &self,
+        ray: Ray,
+        prune_below: f64,
+        max_segments: u32,
+        on_step: impl FnMut(FresnelStep),
+    ) -> [f64; SECTION_COUNT] {
+        follow_fresnel::<false>(
+            &Tracer::new(self),
+            self,
+            ray,
+            prune_below,
+            max_segments,
+            on_step,
+        )
     }
 }
 
@@ -325,13 +357,15 @@ pub fn follow_ray(
 /// followed (for pictures, where they add nothing): a branch that leaves the water through its side
 /// wall or bottom, or is reflected off their outside, moves away from the axis or downwards for good
 /// and can meet no face again; only the order of the sums changes (weights agree to ~1e-16), and
-/// `on_step` is then not told of those branches.
+/// `on_step` is then not told of those branches. At most `max_segments` straight segments are
+/// followed; the branches still travelling then are reported as dropped.
 #[inline]
 pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
     faces: &impl NearestFace,
     scene: &Scene,
     ray: Ray,
     prune_below: f64,
+    max_segments: u32,
     mut on_step: impl FnMut(FresnelStep),
 ) -> [f64; SECTION_COUNT] {
     // Depth-first. At each split the branch on the air side is followed first: the water is
@@ -366,10 +400,22 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
         left: None,
     }; STACK];
     let mut top = 1usize;
+    let mut segments = 0u32;
     while top > 0 {
         top -= 1;
         let mut b = stack[top];
         loop {
+            if segments == max_segments {
+                // Out of work: this branch and every waiting one are dropped.
+                on_step(FresnelStep::Dropped { weight: b.weight });
+                for waiting in &stack[..top] {
+                    on_step(FresnelStep::Dropped {
+                        weight: waiting.weight,
+                    });
+                }
+                return weights;
+            }
+            segments += 1;
             let Some(hit) = faces.nearest_face(&b.ray, b.left) else {
                 on_step(FresnelStep::Escaped {
                     // A branch that met nothing is the ray as it started, from the eye.

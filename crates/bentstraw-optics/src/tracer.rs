@@ -16,7 +16,9 @@
 use crate::geometry::{plane_distance, Ray, SideQuadratic};
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_RADIUS, SECTION_COUNT, STRAW_HEIGHT, STRAW_RADIUS};
-use crate::trace::{follow_fresnel, follow_ray, Face, Intersection, NearestFace, Outcome};
+use crate::trace::{
+    follow_fresnel, follow_ray, Face, Intersection, NearestFace, Outcome, FRESNEL_SEGMENTS_PER_RAY,
+};
 use crate::Vec3;
 
 /// Relative margin of the "line clearly misses the circle" tests, far above rounding (1e-16).
@@ -184,12 +186,26 @@ impl Tracer {
     /// Fresnel tracing: the same weights as [`Scene::trace_fresnel`] (the same loop,
     /// [`follow_fresnel`], over this tracer's faster [`Self::nearest_intersection`]).
     pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
-        follow_fresnel::<false>(self, &self.scene, ray, prune_below, |_| {})
+        follow_fresnel::<false>(
+            self,
+            &self.scene,
+            ray,
+            prune_below,
+            FRESNEL_SEGMENTS_PER_RAY,
+            |_| {},
+        )
     }
 
     /// Fresnel tracing for pictures: [`Self::trace_fresnel`], but branches that provably escape
     /// are not followed (see [`follow_fresnel`]).
     pub fn trace_fresnel_escaping(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
-        follow_fresnel::<true>(self, &self.scene, ray, prune_below, |_| {})
+        follow_fresnel::<true>(
+            self,
+            &self.scene,
+            ray,
+            prune_below,
+            FRESNEL_SEGMENTS_PER_RAY,
+            |_| {},
+        )
     }
 }
