@@ -71,7 +71,7 @@ pub struct SceneArgs {
 /// How an image point's position is judged.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ImageModelArg {
-    /// The course's convention: full path length along the first ray (SPEC §4).
+    /// The course's convention: the point straight ahead along the first ray, as far as the light travelled (P = O + L·u0).
     #[default]
     Course,
     /// A small pupil: the astigmatic foci of the bundle reaching the eye.

@@ -89,8 +89,8 @@ pub fn run(args: &TableArgs) -> CliResult {
     let report = Report {
         title: "bentstraw: the straw's virtual image".into(),
         subtitle: format!(
-            "The four reference simulations of the specification (§5), each also with n_water = 1 \
-             and n_water = 1.05 as checks; at least {} image points each.",
+            "The four reference simulations of the straw in a glass of water, each also with water of \
+             index 1 (the image must then lie on the straw) and 1.05; at least {} image points each.",
             args.points
         ),
         simulations: entries,
@@ -235,7 +235,7 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     );
     points.error = error;
     Section {
-        title: "What the observer sees (SPEC §6)".into(),
+        title: "What the observer sees (Fresnel picture)".into(),
         figures: vec![picture, points],
         notes: vec![],
         side_by_side: true,
@@ -288,7 +288,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         placed.push(points);
     }
     let names = [
-        "course (SPEC §4)",
+        "course (P = O + L·u0)",
         "eye (small pupil)",
         "stereo (two eyes, 65 mm)",
     ];
