@@ -784,9 +784,12 @@ impl Branches {
     #[inline(always)]
     fn load_left(&self, base: usize) -> F8 {
         let v = &self.left[..self.len];
-        F8(std::array::from_fn(|k| {
-            v.get(base + k).copied().unwrap_or(NO_FACE)
-        }))
+        match v.get(base..base + LANES) {
+            Some(full) => F8(std::array::from_fn(|k| full[k])),
+            None => F8(std::array::from_fn(|k| {
+                v.get(base + k).copied().unwrap_or(NO_FACE)
+            })),
+        }
     }
 
     /// Component `c` of branches `base .. base + 8` (a harmless 0.5 past the end).

@@ -103,6 +103,10 @@ pub struct SimulateArgs {
     /// Also write a self-contained, rotatable 3D view into this HTML file
     #[arg(long, value_name = "FILE.html")]
     pub html: Option<PathBuf>,
+    /// Also draw a ray diagram (side and top views of about 40 broken light paths, coloured by
+    /// path type) into this PNG or SVG
+    #[arg(long, value_name = "FILE.svg|.png")]
+    pub rays: Option<PathBuf>,
     /// How the apparent position is judged
     #[arg(long, value_enum, default_value_t = ImageModelArg::Course)]
     pub image_model: ImageModelArg,

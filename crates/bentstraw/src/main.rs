@@ -11,6 +11,7 @@ mod model_plots;
 mod pictures;
 mod plot;
 mod progress;
+mod ray_diagram;
 mod report;
 mod writers;
 

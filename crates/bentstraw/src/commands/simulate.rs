@@ -16,7 +16,7 @@ use crate::cli::{ImageModelArg, SimulateArgs};
 use crate::error::{fail, CliError, CliResult};
 use crate::files::check_writable;
 use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
-use crate::{html, plot, progress};
+use crate::{html, plot, progress, ray_diagram};
 
 /// Runs `simulate`.
 pub fn run(args: &SimulateArgs) -> CliResult {
@@ -32,9 +32,13 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     if let Some(h) = &args.html {
         require_extension(h, "--html", &["html", "htm"])?;
     }
+    if let Some(r) = &args.rays {
+        require_extension(r, "--rays", &["svg", "png"])?;
+    }
     for path in std::iter::once(&args.output)
         .chain(&args.plot)
         .chain(&args.html)
+        .chain(&args.rays)
     {
         check_writable(path)?;
     }
@@ -91,7 +95,13 @@ pub fn run(args: &SimulateArgs) -> CliResult {
             }
             if let Some(h) = &args.html {
                 html::write_cloud_viewer(h, &scene, observer, &placed, &title)?;
+                written_files.push(h);
             }
+        }
+        if let Some(r) = &args.rays {
+            let diagram = ray_diagram::Diagram::new(&scene, observer, &cloud.points);
+            let title = format!("Ray diagram: {}", simulation_title(&scene, observer));
+            ray_diagram::write_ray_diagram(r, &scene, &diagram, &title)?;
         }
         Ok(())
     })();
@@ -113,6 +123,9 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     }
     if let Some(h) = &args.html {
         written.push(format!("{} (rotatable 3D view)", h.display()));
+    }
+    if let Some(r) = &args.rays {
+        written.push(format!("{} (ray diagram)", r.display()));
     }
     eprint!("{}", summary(&set, traced, total, &written));
     if !matches!(model, ModelPoints::Course) {
