@@ -24,11 +24,13 @@ pub enum Command {
     )]
     Simulate(SimulateArgs),
     /// Run the four reference simulations and their checks, and write a report (index.html).
-    #[command(after_help = "Example:\n  bentstraw table --out out/\n  open out/index.html")]
+    #[command(
+        after_help = "Example:\n  bentstraw table --out out/      # then open out/index.html in a web browser"
+    )]
     Table(TableArgs),
     /// Render the picture the observer's eye sees (pinhole camera).
     #[command(
-        after_help = "Example:\n  bentstraw render --observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15 \\\n      --mode fresnel --output view.png --raw view.csv"
+        after_help = "Examples:\n  # the classic broken straw, seen from 30 cm away\n  bentstraw render --observer 0.3,0,0.25 --straw 0,0.03 --water-height 0.15 --output view.png\n  bentstraw render --observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15 \\\n      --mode fresnel --output view.png --raw view.csv"
     )]
     Render(RenderArgs),
     /// Measure the tracer's speed in rays per second.
@@ -157,7 +159,7 @@ pub struct CameraArgs {
     /// Vertical field of view in degrees, 0 < FOV < 180 (default: frames the glass and straw)
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     pub fov: Option<f64>,
-    /// Picture size in pixels
+    /// Picture size in pixels [default: 800x600]
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
 }
