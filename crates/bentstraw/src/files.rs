@@ -61,12 +61,15 @@ struct Registry {
     staged: Vec<Staged>,
     /// Folders made by this run, removed on interruption if still empty.
     created: Vec<PathBuf>,
+    /// Folders whose every output a live set has reserved (set, canonical folder).
+    claimed: Vec<(u64, PathBuf)>,
 }
 
 static LIVE: Mutex<Registry> = Mutex::new(Registry {
     next_set: 0,
     staged: Vec::new(),
     created: Vec::new(),
+    claimed: Vec::new(),
 });
 
 /// The registry, even after a panic elsewhere (its content stays consistent under the lock).
@@ -137,13 +140,19 @@ impl OutputSet {
         let set = OutputSet { id };
         for (out, (target, _)) in outputs.iter().zip(targets) {
             // Made under the lock: an interruption cannot miss a temporary.
-            let (temp, file) = make_temporary(&target).map_err(|e| {
-                CliError(format!(
-                    "{}: cannot write into folder {} ({e})",
-                    named(out),
-                    shown(parent_dir(out.path))
-                ))
-            })?;
+            let (temp, file) = match make_temporary(&target) {
+                Ok(made) => made,
+                Err(e) => {
+                    // Unlocked first: dropping the set removes the temporaries made so far.
+                    drop(reg);
+                    drop(set);
+                    return Err(CliError(format!(
+                        "{}: cannot write into folder {} ({e})",
+                        named(out),
+                        shown(parent_dir(out.path))
+                    )));
+                }
+            };
             reg.staged.push(Staged {
                 set: id,
                 target,
@@ -153,6 +162,16 @@ impl OutputSet {
                 written: false,
             });
         }
+        Ok(set)
+    }
+
+    /// Like [`OutputSet::reserve`], for outputs that are all of a run's files in `folder`: writing
+    /// any other file there while the set lives is refused, so that no file escapes the set.
+    pub fn reserve_folder(folder: &Path, outputs: &[Output]) -> CliResult<OutputSet> {
+        let set = OutputSet::reserve(outputs)?;
+        let folder = fs::canonicalize(folder)
+            .map_err(|e| CliError(format!("cannot open folder {} ({e})", shown(folder))))?;
+        live().claimed.push((set.id, folder));
         Ok(set)
     }
 
@@ -170,6 +189,7 @@ impl OutputSet {
             .into_iter()
             .partition(|s| s.set == self.id);
         reg.staged = others;
+        reg.claimed.retain(|(set, _)| *set != self.id);
         let targets: Vec<PathBuf> = mine.iter().map(|s| s.target.clone()).collect();
         let previous: Vec<Previous> = targets.iter().map(|t| keep_previous(t)).collect();
         let mut failure = None;
@@ -211,7 +231,9 @@ impl OutputSet {
 impl Drop for OutputSet {
     /// Removes the temporaries of a set that was not committed.
     fn drop(&mut self) {
-        live().staged.retain(|s| s.set != self.id);
+        let mut reg = live();
+        reg.staged.retain(|s| s.set != self.id);
+        reg.claimed.retain(|(set, _)| *set != self.id);
     }
 }
 
@@ -270,11 +292,25 @@ pub fn write_atomically(
         path,
         extensions: &[],
     };
-    let held = resolve(&out).ok().and_then(|(target, _)| {
+    let resolved = resolve(&out).ok().map(|(target, _)| target);
+    let held = resolved.as_ref().and_then(|target| {
         let reg = live();
-        let s = reg.staged.iter().find(|s| s.target == target)?;
-        Some((target, s.file.try_clone()))
+        let s = reg.staged.iter().find(|s| s.target == *target)?;
+        Some((target.clone(), s.file.try_clone()))
     });
+    if held.is_none() {
+        let folder = resolved.as_deref().and_then(Path::parent);
+        if live()
+            .claimed
+            .iter()
+            .any(|(_, f)| Some(f.as_path()) == folder)
+        {
+            return Err(CliError(format!(
+                "cannot write {}: it is not among the files reserved in its folder",
+                shown(path)
+            )));
+        }
+    }
     match held {
         Some((target, file)) => {
             let result = file.and_then(|f| fill_file(f, fill));

@@ -18,9 +18,6 @@ use bentstraw_optics::scene::clip_text;
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::Parser;
 
-/// Longest user value quoted whole in a message, in characters.
-const QUOTED_MAX: usize = 60;
-
 fn main() {
     files::remove_temporaries_on_interrupt();
     let cli = match cli::Cli::try_parse() {
@@ -48,8 +45,8 @@ fn one_line(e: &clap::Error) -> String {
     let mut line = first_line(e);
     for kind in [ContextKind::InvalidValue, ContextKind::InvalidArg] {
         if let Some(ContextValue::String(value)) = e.get(kind) {
-            if value.chars().count() > QUOTED_MAX {
-                line = line.replace(value.as_str(), &clip_text(value, QUOTED_MAX));
+            if value.chars().count() > cli::QUOTED_MAX {
+                line = line.replace(value.as_str(), &clip_text(value, cli::QUOTED_MAX));
             }
         }
     }
