@@ -87,7 +87,7 @@ pub struct SimulateArgs {
     /// The scene and the observer.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// At least this many image points
+    /// At least this many image points (at most 10000000; 2000000 with the eye or stereo model)
     #[arg(
         long,
         value_name = "N",
@@ -115,7 +115,7 @@ pub struct TableArgs {
     /// Folder to write into
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// At least this many image points per simulation
+    /// At least this many image points per simulation (at most 200000)
     #[arg(
         long,
         value_name = "N",

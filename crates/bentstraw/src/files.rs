@@ -526,3 +526,140 @@ fn parent_dir(path: &Path) -> &Path {
         _ => Path::new("."),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The names in `dir`, sorted.
+    fn names(dir: &Path) -> Vec<String> {
+        let mut n: Vec<String> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        n.sort();
+        n
+    }
+
+    fn output(path: &Path) -> Output<'_> {
+        Output {
+            flag: "--output",
+            path,
+            extensions: &[],
+        }
+    }
+
+    #[test]
+    fn a_writer_failing_midway_keeps_the_previous_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.csv");
+        fs::write(&a, b"old").unwrap();
+        let err = write_atomically(&a, |w| {
+            w.write_all(&[b'x'; 5000])?;
+            Err(io::Error::other("no space left"))
+        })
+        .unwrap_err();
+        assert!(
+            err.0.contains("a.csv") && err.0.contains("no space left"),
+            "{err}"
+        );
+        assert_eq!(fs::read(&a).unwrap(), b"old");
+        assert_eq!(names(dir.path()), ["a.csv"]);
+    }
+
+    #[test]
+    fn a_set_replaces_all_its_files_only_on_commit() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
+        fs::write(&a, b"old a").unwrap();
+        let set = OutputSet::reserve(&[output(&a), output(&b)]).unwrap();
+        write_bytes(&a, b"new a").unwrap();
+        write_bytes(&b, b"new b").unwrap();
+        // Written, not yet in place.
+        assert_eq!(fs::read(&a).unwrap(), b"old a");
+        assert!(!b.exists());
+        set.commit().unwrap();
+        assert_eq!(fs::read(&a).unwrap(), b"new a");
+        assert_eq!(fs::read(&b).unwrap(), b"new b");
+        assert_eq!(names(dir.path()), ["a.txt", "b.txt"]);
+    }
+
+    #[test]
+    fn a_set_not_fully_written_replaces_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
+        fs::write(&a, b"old a").unwrap();
+        let set = OutputSet::reserve(&[output(&a), output(&b)]).unwrap();
+        write_bytes(&a, b"new a").unwrap();
+        assert!(set.commit().unwrap_err().0.contains("b.txt"));
+        assert_eq!(fs::read(&a).unwrap(), b"old a");
+        assert_eq!(names(dir.path()), ["a.txt"]);
+        // Dropped without a commit: the same.
+        let set = OutputSet::reserve(&[output(&a)]).unwrap();
+        write_bytes(&a, b"new a").unwrap();
+        drop(set);
+        assert_eq!(fs::read(&a).unwrap(), b"old a");
+        assert_eq!(names(dir.path()), ["a.txt"]);
+    }
+
+    #[test]
+    fn a_rename_failing_midway_puts_the_earlier_files_back() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b, c) = (
+            dir.path().join("a.txt"),
+            dir.path().join("b.txt"),
+            dir.path().join("c.txt"),
+        );
+        fs::write(&a, b"old a").unwrap();
+        fs::write(&c, b"old c").unwrap();
+        let set = OutputSet::reserve(&[output(&a), output(&b), output(&c)]).unwrap();
+        for p in [&a, &b, &c] {
+            write_bytes(p, b"new").unwrap();
+        }
+        // During the work, a folder takes c's place: a and b are renamed, then c fails.
+        fs::remove_file(&c).unwrap();
+        fs::create_dir(&c).unwrap();
+        let err = set.commit().unwrap_err();
+        assert!(
+            err.0.contains("c.txt") && err.0.contains("no output was replaced"),
+            "{err}"
+        );
+        assert_eq!(fs::read(&a).unwrap(), b"old a");
+        assert!(!b.exists(), "b had no previous file");
+        assert!(c.is_dir());
+        assert_eq!(names(dir.path()), ["a.txt", "c.txt"]);
+    }
+
+    #[test]
+    fn a_claimed_folder_takes_no_file_outside_the_set() {
+        let dir = tempfile::tempdir().unwrap();
+        let (x, y) = (dir.path().join("x.txt"), dir.path().join("y.txt"));
+        let set = OutputSet::reserve_folder(dir.path(), &[output(&x)]).unwrap();
+        write_bytes(&x, b"x").unwrap();
+        assert!(write_bytes(&y, b"y").unwrap_err().0.contains("not among"));
+        set.commit().unwrap();
+        assert_eq!(names(dir.path()), ["x.txt"]);
+        // Once committed, the folder is free again.
+        write_bytes(&y, b"y").unwrap();
+        assert_eq!(names(dir.path()), ["x.txt", "y.txt"]);
+    }
+
+    #[test]
+    fn two_names_of_one_file_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.txt");
+        let dotted = dir.path().join(".").join("a.txt");
+        let err = OutputSet::reserve(&[output(&a), output(&dotted)])
+            .err()
+            .unwrap();
+        assert!(err.0.contains("same file"), "{err}");
+        fs::write(&a, b"old").unwrap();
+        let linked = dir.path().join("b.txt");
+        fs::hard_link(&a, &linked).unwrap();
+        let err = OutputSet::reserve(&[output(&a), output(&linked)])
+            .err()
+            .unwrap();
+        assert!(err.0.contains("same file"), "{err}");
+        assert_eq!(names(dir.path()), ["a.txt", "b.txt"]);
+    }
+}

@@ -137,7 +137,7 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
     let started = Instant::now();
     let entries: Vec<SimulationEntry> = progress::with_progress(
         Some(jobs.len() as u64),
-        "simulating {bar:30} {pos}/{len}  [{elapsed}]",
+        "simulating {bar:30} {pos}/{len}  [{elapsed}, about {eta} left]",
         |bar| {
             // In parallel: the figures are drawn on one thread each, so this is where cores help.
             jobs.par_iter()
