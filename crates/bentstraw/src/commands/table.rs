@@ -24,7 +24,8 @@ use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use crate::{html, pictures, plot, progress};
 
 /// Most image points per simulation: the table traces twelve, and runs the eye and stereo models
-/// on four (measured: 16 s and 270 MB for 100 000 points on two cores).
+/// on four (measured on two cores: 16 s and 270 MB for 100 000 points, 35–80 s and 490 MB for
+/// 200 000, depending on the load).
 pub const MAX_POINTS: usize = 200_000;
 
 /// The report's file name in the folder.
@@ -85,8 +86,8 @@ pub fn run(args: &TableArgs) -> CliResult {
     if args.points > MAX_POINTS {
         return fail(format!(
             "--points {} is too many for the table: at most {MAX_POINTS} image points per \
-             simulation (twelve simulations, four with the eye and stereo models: about 35 s and \
-             600 MB at the limit); use simulate for one large simulation",
+             simulation (twelve simulations, four with the eye and stereo models: about 500 MB and \
+             a minute at the limit); use simulate for one large simulation",
             args.points
         ));
     }
