@@ -491,8 +491,8 @@ fn named(out: &Output) -> String {
     }
 }
 
-/// A path for a message, clipped.
-fn shown(path: &Path) -> String {
+/// A path for a message, clipped (a hostile 5 kB path must not flood the terminal).
+pub fn shown(path: &Path) -> String {
     clip_text(&path.display().to_string(), SHOWN_PATH_MAX)
 }
 

@@ -565,6 +565,7 @@ fn hostile_values_are_clipped_in_messages() {
     let huge = "1".repeat(5000);
     let size = format!("{huge}x3");
     let flag = format!("--{huge}");
+    let (bad_ext, no_ext, far) = (format!("o.{huge}"), huge.clone(), format!("{huge}/o.csv"));
     let cases: Vec<Vec<&str>> = vec![
         vec![
             "simulate",

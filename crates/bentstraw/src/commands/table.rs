@@ -8,9 +8,7 @@ use std::time::{Duration, Instant};
 
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
-use bentstraw_optics::scene::{
-    clip_text, Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX,
-};
+use bentstraw_optics::scene::{Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX};
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 
@@ -95,7 +93,7 @@ pub fn run(args: &TableArgs) -> CliResult {
     if out.exists() && !out.is_dir() {
         return fail(format!(
             "--out {}: it exists and is not a folder",
-            clip_text(&out.display().to_string(), 160)
+            files::shown(out)
         ));
     }
     let made = files::make_folder(out)?;
@@ -183,7 +181,7 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
         return fail(format!(
             "{} file(s) could not be written (first: {file}: {error}); no file in {} was replaced",
             failed.len(),
-            clip_text(&out.display().to_string(), 160)
+            files::shown(out)
         ));
     }
     outputs.commit()?;
