@@ -24,7 +24,7 @@ use crate::error::{CliError, CliResult};
 /// Longest file name (bytes) the usual file systems accept.
 const NAME_MAX: usize = 255;
 /// Longest path quoted in a message, in characters.
-const SHOWN_PATH_MAX: usize = 160;
+const SHOWN_PATH_MAX: usize = 100;
 /// Exit code after Ctrl-C or SIGTERM (128 + SIGINT, the shell's convention for an interruption).
 const INTERRUPTED_EXIT: i32 = 130;
 

@@ -563,95 +563,40 @@ fn hostile_values_are_clipped_in_messages() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let huge = "1".repeat(5000);
-    let size = format!("{huge}x3");
-    let flag = format!("--{huge}");
-    let (bad_ext, no_ext, far) = (format!("o.{huge}"), huge.clone(), format!("{huge}/o.csv"));
-    let cases: Vec<Vec<&str>> = vec![
-        vec![
-            "simulate",
-            "--observer",
-            &huge,
-            "--straw",
-            "0,0",
-            "--water-height",
-            "0.1",
-            "--output",
-            "o.csv",
-        ],
-        vec![
-            "simulate",
-            "--observer",
-            "0,0,1",
-            "--straw",
-            &huge,
-            "--water-height",
-            "0.1",
-            "--output",
-            "o.csv",
-        ],
-        vec![
-            "render",
-            "--observer",
-            "0,0,1",
-            "--straw",
-            "0,0",
-            "--water-height",
-            "0.1",
-            "--output",
-            "o.png",
-            "--size",
-            &size,
-        ],
-        vec![
-            "render",
-            "--observer",
-            "0,0,1",
-            "--straw",
-            "0,0",
-            "--water-height",
-            "0.1",
-            "--output",
-            "o.png",
-            "--mode",
-            &huge,
-        ],
-        vec![
-            "simulate",
-            "--observer",
-            "0,0,1",
-            "--straw",
-            "0,0",
-            "--water-height",
-            "0.1",
-            "--output",
-            "o.csv",
-            &flag,
-        ],
-        vec![
-            "render",
-            "--observer",
-            "0,0,1",
-            "--straw",
-            "0,0",
-            "--water-height",
-            "0.1",
-            "--output",
-            "o.png",
-            "--fov",
-            "-1e-320",
-        ],
+    let (size, flag) = (format!("{huge}x3"), format!("--{huge}"));
+    let (bad_ext, far) = (format!("o.{huge}"), format!("{huge}/o.csv"));
+    // (command, observer, straw, output, extra)
+    let cases: Vec<(&str, &str, &str, &str, Vec<&str>)> = vec![
+        ("simulate", &huge, "0,0", "o.csv", vec![]),
+        ("simulate", "0,0,1", &huge, "o.csv", vec![]),
+        ("simulate", "0,0,1", "0,0", "o.csv", vec![&flag]),
+        ("simulate", "0,0,1", "0,0", &bad_ext, vec![]),
+        ("simulate", "0,0,1", "0,0", &huge, vec![]),
+        ("simulate", "0,0,1", "0,0", &far, vec![]),
+        ("render", "0,0,1", "0,0", "o.png", vec!["--size", &size]),
+        ("render", "0,0,1", "0,0", "o.png", vec!["--mode", &huge]),
+        ("render", "0,0,1", "0,0", "o.png", vec!["--fov", "-1e-320"]),
+        ("render", "0,0,1", "0,0", &huge, vec![]),
     ];
-    for args in &cases {
-        let out = run(d, args);
+    for (command, observer, straw, output, extra) in &cases {
+        let mut args = vec![
+            *command,
+            "--observer",
+            observer,
+            "--straw",
+            straw,
+            "--water-height",
+            "0.1",
+            "--output",
+            output,
+        ];
+        args.extend(extra);
+        let out = run(d, &args);
         let err = stderr(&out);
         assert_eq!(out.status.code(), Some(2), "{err}");
         assert_eq!(err.trim_end().lines().count(), 1);
-        assert!(
-            err.chars().count() < 300,
-            "{} characters: {}",
-            err.len(),
-            &err[..300]
-        );
+        let start: String = err.chars().take(300).collect();
+        assert!(err.chars().count() < 300, "{} bytes: {start}", err.len());
     }
     assert_eq!(fs::read_dir(d).unwrap().count(), 0);
 }
