@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use bentstraw_optics::scene::clip_text;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// bentstraw: what refraction does to a straw in a glass of water.
@@ -88,7 +89,7 @@ pub struct SimulateArgs {
     /// The scene and the observer.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// At least this many image points
+    /// At least this many image points (at most 10000000; 2000000 with the eye or stereo model)
     #[arg(
         long,
         value_name = "N",
@@ -120,7 +121,7 @@ pub struct TableArgs {
     /// Folder to write into
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// At least this many image points per simulation
+    /// At least this many image points per simulation (at most 200000)
     #[arg(
         long,
         value_name = "N",
@@ -250,19 +251,33 @@ pub fn parse_vec2(s: &str) -> Result<[f64; 2], String> {
     Ok([v[0], v[1]])
 }
 
+/// Longest user text quoted whole in a parser's message, in characters.
+pub const QUOTED_MAX: usize = 40;
+
+/// User text for a message, clipped so that a hostile value cannot flood the terminal.
+fn quoted(text: &str) -> String {
+    clip_text(text, QUOTED_MAX)
+}
+
 fn parse_list(s: &str, n: usize, form: &str) -> Result<Vec<f64>, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != n {
         return Err(format!(
-            "'{s}' has {} number(s); expected {n}, as {form}",
+            "'{}' has {} number(s); expected {n}, as {form}",
+            quoted(s),
             parts.len()
         ));
     }
     parts
         .iter()
         .map(|p| {
-            p.parse::<f64>()
-                .map_err(|_| format!("'{p}' in '{s}' is not a number (expected {form})"))
+            p.parse::<f64>().map_err(|_| {
+                format!(
+                    "'{}' in '{}' is not a number (expected {form})",
+                    quoted(p),
+                    quoted(s)
+                )
+            })
         })
         .collect()
 }
@@ -271,15 +286,19 @@ fn parse_list(s: &str, n: usize, form: &str) -> Result<Vec<f64>, String> {
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
-        .ok_or_else(|| format!("'{s}' is not a size: expected WxH, e.g. 800x600"))?;
+        .ok_or_else(|| format!("'{}' is not a size: expected WxH, e.g. 800x600", quoted(s)))?;
     let parse = |t: &str| -> Result<u32, String> {
-        let v: i64 = t
-            .trim()
-            .parse()
-            .map_err(|_| format!("'{t}' in '{s}' is not a whole number of pixels"))?;
+        let v: i64 = t.trim().parse().map_err(|_| {
+            format!(
+                "'{}' in '{}' is not a whole number of pixels",
+                quoted(t),
+                quoted(s)
+            )
+        })?;
         if !(1..=16384).contains(&v) {
             return Err(format!(
-                "size '{s}': each side must be between 1 and 16384 pixels, got {v}"
+                "size '{}': each side must be between 1 and 16384 pixels, got {v}",
+                quoted(s)
             ));
         }
         Ok(v as u32)
