@@ -509,10 +509,7 @@ fn straw_outside_the_glass_is_rejected() {
         &simulate_args("0,0.1,0.1", "0.03,-0.03", "0.15", &[]),
         &["0.03", "-0.03"],
     );
-    assert_rejected(
-        &simulate_args("0,0.1,0.1", "1,1", "0.15", &[]),
-        &["(1.0, 1.0)"],
-    );
+    assert_rejected(&simulate_args("0,0.1,0.1", "1,1", "0.15", &[]), &["(1, 1)"]);
     // Just outside: the message gives the digits that show it does not fit.
     assert_rejected(
         &simulate_args("0,0.1,0.1", "0.0350000001,0", "0.15", &[]),
@@ -530,14 +527,8 @@ fn observer_in_or_on_the_glass_is_rejected() {
         "0,-0.04,0.2",
         "0.01,0.01,0.05",
     ] {
-        // Numbers as Rust writes them shortest (`0.0`, not `0`).
-        let shown = format!(
-            "({})",
-            o.split(',')
-                .map(|v| format!("{:?}", v.parse::<f64>().unwrap()))
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
+        // The numbers as the user wrote them.
+        let shown = format!("({})", o.split(',').collect::<Vec<_>>().join(", "));
         assert_rejected(
             &simulate_args(o, "0.02,0.01", "0.15", &[]),
             &[&shown, "glass"],
