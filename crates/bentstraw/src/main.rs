@@ -13,6 +13,7 @@ mod plot;
 mod progress;
 mod ray_diagram;
 mod report;
+mod validation;
 mod writers;
 
 use bentstraw_optics::scene::clip_text;
