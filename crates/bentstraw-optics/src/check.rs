@@ -703,7 +703,12 @@ mod tests {
             let (scene, o, pts) = own_points(k, 5000);
             let r = check_solution(&scene, o, &claimed(&pts), DEFAULT_TOLERANCE, 0.98);
             assert_eq!(r.tally.correct, pts.len(), "reference {}", k + 1);
-            assert!(r.complete, "reference {}: {:?}", k + 1, r.coverage.per_colour);
+            assert!(
+                r.complete,
+                "reference {}: {:?}",
+                k + 1,
+                r.coverage.per_colour
+            );
             assert!(r.passes());
         }
     }
@@ -728,7 +733,9 @@ mod tests {
             color: p.color,
         };
         assert_eq!(
-            judge_point(&tracer, o, &near, DEFAULT_TOLERANCE).verdict.kind(),
+            judge_point(&tracer, o, &near, DEFAULT_TOLERANCE)
+                .verdict
+                .kind(),
             VerdictKind::Correct
         );
         // Another colour: the true one is named.
