@@ -168,7 +168,7 @@ pub fn judge_point(
 ) -> Judgement {
     let offset = point.position - observer;
     let distance = offset.length();
-    if !(distance > 0.0) || !distance.is_finite() {
+    if distance == 0.0 || !distance.is_finite() {
         // No direction: a point at the eye shows nothing.
         return Judgement {
             verdict: Verdict::NoStraw,

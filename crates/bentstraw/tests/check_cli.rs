@@ -66,7 +66,13 @@ fn own_points(k: usize, n: usize) -> (Scene, Vec<ImagePoint>) {
 }
 
 /// Writes points as `x<sep>y<sep>z<sep>color` lines with full precision, with an optional header.
-fn write(dir: &Path, name: &str, points: &[(f64, f64, f64, u8)], sep: &str, header: bool) -> PathBuf {
+fn write(
+    dir: &Path,
+    name: &str,
+    points: &[(f64, f64, f64, u8)],
+    sep: &str,
+    header: bool,
+) -> PathBuf {
     let mut s = String::new();
     if header {
         s.push_str(&["x", "y", "z", "color"].join(sep));
@@ -211,7 +217,10 @@ fn a_colour_removed_is_missing_whole() {
     assert!(!missing.is_empty());
     assert!(missing.iter().all(|m| m["color"] == 3), "{missing:?}");
     assert_eq!(missing[0]["place"], "whole");
-    assert!(missing[0]["words"].as_str().unwrap().starts_with("magenta (3)"));
+    assert!(missing[0]["words"]
+        .as_str()
+        .unwrap()
+        .starts_with("magenta (3)"));
 }
 
 #[test]
@@ -227,7 +236,10 @@ fn points_past_the_first_total_reflection_removed_are_missing_as_total_reflectio
         trace_path_type(&scene, &scene, ray).1.total_reflections > 0
     };
     let kept: Vec<ImagePoint> = pts.iter().copied().filter(|p| !reflected(p)).collect();
-    assert!(kept.len() + 50 < pts.len(), "total reflections make part of the image");
+    assert!(
+        kept.len() + 50 < pts.len(),
+        "total reflections make part of the image"
+    );
     let file = write(dir.path(), "no_tir.csv", &rows(&kept), ",", true);
     let (code, v) = check_json(dir.path(), &file, 2, &[]);
     let n = kept.len() as u64;
@@ -303,10 +315,19 @@ fn malformed_files_are_refused_with_the_line_number_and_no_figure() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("fig.png");
     for (text, want) in [
-        ("x,y,z,color\n0.1,0,0.1,1\n0.1,0,0.1\n", "line 3: 3 value(s)"),
-        ("0.1 0 0.1 1\n0.1 0 zero 1\n", "line 2: 'zero' is not a number"),
+        (
+            "x,y,z,color\n0.1,0,0.1,1\n0.1,0,0.1\n",
+            "line 3: 3 value(s)",
+        ),
+        (
+            "0.1 0 0.1 1\n0.1 0 zero 1\n",
+            "line 2: 'zero' is not a number",
+        ),
         ("0.1 0 0.1 7\n", "line 1: colour 7.0 is not a colour code"),
-        ("NaN,NaN,NaN,NaN\nNaN,NaN,NaN,NaN\n", "line 1: x = NaN is not a finite number"),
+        (
+            "NaN,NaN,NaN,NaN\nNaN,NaN,NaN,NaN\n",
+            "line 1: x = NaN is not a finite number",
+        ),
         ("", "no points"),
     ] {
         let file = dir.path().join("bad.csv");

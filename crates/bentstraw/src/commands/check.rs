@@ -66,7 +66,19 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
     );
     let seconds = started.elapsed().as_secs_f64();
     if let Some(p) = &args.plot {
-        crate::check_plot::write_check_figure(p, &scene, observer, &solution.points, &report)?;
+        let title = format!(
+            "bentstraw check: {}: {}",
+            clip_text(&args.file.display().to_string(), 60),
+            if report.passes() { "pass" } else { "fail" }
+        );
+        crate::check_plot::write_check_figure(
+            p,
+            &scene,
+            observer,
+            &solution.points,
+            &report,
+            &title,
+        )?;
     }
     let file = args.file.display().to_string();
     if args.json {
@@ -408,7 +420,7 @@ fn summary(
         "  {:<11} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8}  {:>8}",
         "colour", "points", "correct", "colour?", "length?", "no straw", "events?", "coverage"
     );
-    for k in 0..SECTION_COUNT {
+    for (k, name) in SECTION_NAMES.iter().enumerate() {
         let c = &r.per_colour[k];
         let cov = &r.coverage.per_colour[k];
         let cov_text = if cov.true_samples == 0 {
@@ -419,7 +431,7 @@ fn summary(
         let _ = writeln!(
             t,
             "  {:<11} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8}  {:>8}",
-            format!("{} {}", k + 1, SECTION_NAMES[k]),
+            format!("{} {name}", k + 1),
             c.points,
             c.correct,
             c.wrong_colour,
@@ -486,13 +498,13 @@ fn json_report(
     let t = &r.tally;
     let mut coverage = serde_json::Map::new();
     let mut per_colour = Vec::new();
-    for k in 0..SECTION_COUNT {
+    for (k, name) in SECTION_NAMES.iter().enumerate() {
         let cov = &r.coverage.per_colour[k];
         coverage.insert((k + 1).to_string(), json!(cov.share()));
         let c = &r.per_colour[k];
         per_colour.push(json!({
             "color": k + 1,
-            "name": SECTION_NAMES[k],
+            "name": name,
             "points": c.points,
             "correct": c.correct,
             "wrong_colour": c.wrong_colour,
