@@ -255,7 +255,7 @@ pub struct CheckArgs {
     #[arg(
         long,
         value_name = "M",
-        default_value_t = 1e-6,
+        default_value_t = bentstraw_optics::check::DEFAULT_TOLERANCE,
         allow_hyphen_values = true
     )]
     pub tolerance: f64,
@@ -263,7 +263,7 @@ pub struct CheckArgs {
     #[arg(
         long,
         value_name = "SHARE",
-        default_value_t = 0.98,
+        default_value_t = bentstraw_optics::check::DEFAULT_MIN_COVERAGE,
         allow_hyphen_values = true
     )]
     pub min_coverage: f64,

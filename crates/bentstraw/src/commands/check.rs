@@ -10,6 +10,8 @@ use std::time::Instant;
 
 use bentstraw_optics::check::{check_solution, worst_points, CheckReport, ClaimedPoint, Verdict};
 use bentstraw_optics::check::{MissingRegion, VerdictKind, REACH_CELLS};
+use bentstraw_optics::check::{DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE};
+use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{clip_text, number_text, Scene, SECTION_COUNT, SECTION_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
@@ -17,6 +19,7 @@ use serde_json::{json, Value};
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
 use crate::files::check_writable;
+use crate::report::Check;
 
 /// Most points a solution may have (more is not a reasonable image: refuse rather than run for long).
 pub const MAX_POINTS: usize = 10_000_000;
@@ -483,6 +486,48 @@ fn summary(
     );
     let _ = writeln!(t, "  time          {seconds:.3} s");
     t
+}
+
+/// `bentstraw check` of a simulation's own image points with the default tolerance and minimum
+/// coverage, for the report: its verdict in one line.
+pub fn own_points_check(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> Check {
+    let claimed: Vec<ClaimedPoint> = points
+        .iter()
+        .map(|p| ClaimedPoint {
+            position: p.position,
+            color: p.color,
+        })
+        .collect();
+    let r = check_solution(
+        scene,
+        observer,
+        &claimed,
+        DEFAULT_TOLERANCE,
+        DEFAULT_MIN_COVERAGE,
+    );
+    let passed = r.passes();
+    let verdict = if passed { "pass" } else { "fail" };
+    let coverage: Vec<String> = r
+        .coverage
+        .per_colour
+        .iter()
+        .map(|c| format!("{:.1} %", 100.0 * c.share()))
+        .collect();
+    let mut text = format!(
+        "{verdict}: {} of {} points correct (path lengths within {} m), coverage per colour 1–5: {}",
+        r.tally.correct,
+        r.tally.points,
+        number_text(DEFAULT_TOLERANCE),
+        coverage.join(", ")
+    );
+    if let Some(m) = r.coverage.missing.first() {
+        let _ = write!(text, "; largest missing region: {}", region_words(m));
+    }
+    Check {
+        passed,
+        text,
+        short: format!("check: {verdict}"),
+    }
 }
 
 /// The JSON object of `--json`.
