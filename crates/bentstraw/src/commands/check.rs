@@ -478,8 +478,9 @@ fn summary(
     let _ = writeln!(t);
     let _ = writeln!(
         t,
-        "  how           each point's ray O → P is traced; coverage: {} true-image samples, a sample counts \
-         as reached when a correct-colour point lies within {} of the solution's cells ({:.2} mrad)",
+        "  how           each point's ray from the eye towards it is traced; coverage: {} samples of the true \
+         image, each reached when a point of its colour that really meets that colour lies within {} of \
+         the solution's point spacings ({:.2} mrad)",
         r.truth.points.len(),
         REACH_CELLS,
         1e3 * r.coverage.reach
