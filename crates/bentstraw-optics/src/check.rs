@@ -621,6 +621,154 @@ fn place(region: (f64, f64), seen: (f64, f64)) -> Place {
     }
 }
 
+/// A likely reason why most of a solution's points are wrong, found by trying it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Hint {
+    /// The points are correct once multiplied by `factor` (coordinates in mm or cm, not metres).
+    Units {
+        /// The factor that makes them right (1e-3 for millimetres, 1e-2 for centimetres).
+        factor: f64,
+        /// Share of the points tried that it makes correct.
+        share: f64,
+    },
+    /// `|P − O|` matches the optical path length `Σ n·l` (the course's convention is the
+    /// geometric length `Σ l`).
+    OpticalPath {
+        /// Share of the points tried that match it.
+        share: f64,
+    },
+    /// The points lie on the straw itself: the points hit, not the image points `O + L·u0`.
+    OnStraw {
+        /// Share of the points that lie on it.
+        share: f64,
+    },
+}
+
+impl std::fmt::Display for Hint {
+    /// In words, for the student.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Hint::Units { factor, share } => write!(
+                f,
+                "multiplied by {factor}, {:.0} % of the points tried would be correct: are the coordinates in {} rather than metres?",
+                100.0 * share,
+                if *factor == 1e-3 { "millimetres" } else { "centimetres" }
+            ),
+            Hint::OpticalPath { share } => write!(
+                f,
+                "for {:.0} % of the points tried, the distance from the eye equals the optical path length (index × length summed over the path); the course's convention uses the geometric length L",
+                100.0 * share
+            ),
+            Hint::OnStraw { share } => write!(
+                f,
+                "{:.0} % of the points lie on the straw itself: they look like the points the rays hit, not the image points P = O + L·u0",
+                100.0 * share
+            ),
+        }
+    }
+}
+
+/// Points tried when looking for a hint.
+const HINT_SAMPLE: usize = 400;
+/// Share of the points tried a hint must explain to be given.
+const HINT_SHARE: f64 = 0.5;
+
+/// The optical path length `Σ n·l` of the ray from `observer` along unit `u0`, if it reaches the straw.
+pub fn optical_path_length(scene: &Scene, observer: Vec3, u0: Vec3) -> Option<f64> {
+    let mut at = observer;
+    let mut in_water = false;
+    let mut optical = 0.0;
+    let outcome = scene.trace_with(
+        Ray {
+            origin: observer,
+            direction: u0,
+        },
+        |e| {
+            let n = if in_water { scene.n_water } else { 1.0 };
+            optical += n * (e.point - at).length();
+            at = e.point;
+            if !e.totally_reflected {
+                in_water = !in_water;
+            }
+        },
+    );
+    match outcome {
+        Outcome::Straw { point, .. } => {
+            let n = if in_water { scene.n_water } else { 1.0 };
+            Some(optical + n * (point - at).length())
+        }
+        _ => None,
+    }
+}
+
+/// Likely reasons why most points are wrong (none when at least half are correct): tried on an
+/// even subset of the points.
+pub fn hints(
+    scene: &Scene,
+    observer: Vec3,
+    points: &[ClaimedPoint],
+    judged: &[Judgement],
+    tolerance: f64,
+) -> Vec<Hint> {
+    let correct = judged
+        .iter()
+        .filter(|j| j.verdict.kind() == VerdictKind::Correct)
+        .count();
+    if points.is_empty() || correct as f64 >= HINT_SHARE * points.len() as f64 {
+        return Vec::new();
+    }
+    let step = points.len().div_ceil(HINT_SAMPLE).max(1);
+    let tried: Vec<&ClaimedPoint> = points.iter().step_by(step).collect();
+    let share = |n: usize| n as f64 / tried.len() as f64;
+    let tracer = Tracer::new(scene);
+    let mut out = Vec::new();
+    for factor in [1e-3, 1e-2] {
+        let n = tried
+            .iter()
+            .filter(|p| {
+                let scaled = ClaimedPoint {
+                    position: p.position * factor,
+                    color: p.color,
+                };
+                judge_point(&tracer, observer, &scaled, tolerance)
+                    .verdict
+                    .kind()
+                    == VerdictKind::Correct
+            })
+            .count();
+        if share(n) >= HINT_SHARE {
+            out.push(Hint::Units {
+                factor,
+                share: share(n),
+            });
+        }
+    }
+    let optical = tried
+        .iter()
+        .filter(|p| {
+            let d = p.position - observer;
+            let len = d.length();
+            len > 0.0
+                && optical_path_length(scene, observer, d / len)
+                    .is_some_and(|l| (l - len).abs() <= tolerance)
+        })
+        .count();
+    if scene.n_water != 1.0 && share(optical) >= HINT_SHARE {
+        out.push(Hint::OpticalPath {
+            share: share(optical),
+        });
+    }
+    let on_straw = points
+        .iter()
+        .filter(|p| scene.distance_to_straw_surface(p.position) <= tolerance)
+        .count() as f64
+        / points.len() as f64;
+    if scene.n_water != 1.0 && on_straw >= HINT_SHARE {
+        out.push(Hint::OnStraw { share: on_straw });
+    }
+    out
+}
+
 /// Everything a check finds about one solution.
 #[derive(Clone, Debug)]
 pub struct CheckReport {
@@ -636,6 +784,8 @@ pub struct CheckReport {
     pub coverage: Coverage,
     /// Whether every colour's coverage is at least the minimum asked for.
     pub complete: bool,
+    /// Likely reasons, when most points are wrong.
+    pub hints: Vec<Hint>,
 }
 
 impl CheckReport {
@@ -665,7 +815,9 @@ pub fn check_solution(
     let truth = true_image(scene, observer, points.len());
     let coverage = coverage(scene, observer, &truth, &covering, points.len());
     let complete = coverage.complete(min_coverage);
+    let hints = hints(scene, observer, points, &judged, tolerance);
     CheckReport {
+        hints,
         judged,
         tally,
         per_colour,
@@ -832,6 +984,75 @@ mod tests {
             .missing
             .iter()
             .all(|m| m.path.total_reflections > 0));
+    }
+
+    #[test]
+    fn hints_name_millimetres_optical_paths_and_straw_points() {
+        let (scene, o, pts) = own_points(1, 1000);
+        let r = check_solution(&scene, o, &claimed(&pts), DEFAULT_TOLERANCE, 0.98);
+        assert!(r.hints.is_empty());
+        let tracer = Tracer::new(&scene);
+        // In millimetres.
+        let mm: Vec<ClaimedPoint> = pts
+            .iter()
+            .map(|p| ClaimedPoint {
+                position: 1e3 * p.position,
+                color: p.color,
+            })
+            .collect();
+        let r = check_solution(&scene, o, &mm, DEFAULT_TOLERANCE, 0.98);
+        assert!(
+            matches!(r.hints[..], [Hint::Units { factor, share }] if factor == 1e-3 && share > 0.99)
+        );
+        // At the optical path length: n·l summed, larger than l for every ray through water.
+        let optical: Vec<ClaimedPoint> = pts
+            .iter()
+            .map(|p| {
+                let l = optical_path_length(&scene, o, p.direction).unwrap();
+                assert!(l >= p.path_length - 1e-12);
+                ClaimedPoint {
+                    position: o + l * p.direction,
+                    color: p.color,
+                }
+            })
+            .collect();
+        let judged = judge_points(&scene, o, &optical, DEFAULT_TOLERANCE);
+        let h = hints(&scene, o, &optical, &judged, DEFAULT_TOLERANCE);
+        assert!(
+            matches!(h[..], [Hint::OpticalPath { share }] if share > 0.9),
+            "{h:?}"
+        );
+        // The straw points themselves.
+        let on: Vec<ClaimedPoint> = pts
+            .iter()
+            .map(|p| ClaimedPoint {
+                position: p.straw_point,
+                color: p.color,
+            })
+            .collect();
+        let judged: Vec<Judgement> = on
+            .iter()
+            .map(|p| judge_point(&tracer, o, p, DEFAULT_TOLERANCE))
+            .collect();
+        let h = hints(&scene, o, &on, &judged, DEFAULT_TOLERANCE);
+        assert!(
+            h.iter()
+                .any(|h| matches!(h, Hint::OnStraw { share } if *share > 0.99)),
+            "{h:?}"
+        );
+    }
+
+    #[test]
+    fn optical_path_of_a_ray_in_air_is_its_length() {
+        // Straight down onto the straw's top cap from above: no water on the way.
+        let scene = Scene::with_defaults(0.0, 0.0, 0.15).unwrap();
+        let o = Vec3::new(0.0, 0.0, 0.4);
+        let l = optical_path_length(&scene, o, Vec3::new(0.0, 0.0, -1.0)).unwrap();
+        assert!((l - 0.15).abs() < 1e-15, "{l}");
+        // Horizontally at mid-height onto the straw on the axis: 0.1 − 0.04 in air, 0.035 in water.
+        let o = Vec3::new(0.1, 0.0, 0.07);
+        let l = optical_path_length(&scene, o, Vec3::new(-1.0, 0.0, 0.0)).unwrap();
+        assert!((l - (0.06 + 1.333 * 0.035)).abs() < 1e-12, "{l}");
     }
 
     #[test]

@@ -375,3 +375,24 @@ fn the_figure_is_written_as_png_or_svg() {
         }
     }
 }
+
+#[test]
+fn points_in_millimetres_get_a_hint() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, pts) = own_points(1, 2000);
+    let mm: Vec<(f64, f64, f64, u8)> = rows(&pts)
+        .into_iter()
+        .map(|(x, y, z, c)| (1e3 * x, 1e3 * y, 1e3 * z, c))
+        .collect();
+    let file = write(dir.path(), "mm.csv", &mm, ",", true);
+    let (code, v) = check_json(dir.path(), &file, 1, &[]);
+    assert_eq!(code, 1);
+    assert_eq!(v["correct"].as_u64(), Some(0));
+    let hints = v["hints"].as_array().unwrap();
+    assert!(hints[0].as_str().unwrap().contains("millimetres"), "{v}");
+    let text = String::from_utf8_lossy(&check(dir.path(), &file, 1, &[]).stdout).into_owned();
+    assert!(
+        text.contains("hint") && text.contains("millimetres"),
+        "{text}"
+    );
+}

@@ -444,6 +444,10 @@ fn summary(
             cov_text
         );
     }
+    for h in &r.hints {
+        let _ = writeln!(t);
+        let _ = writeln!(t, "  hint            {h}");
+    }
     let worst = worst_points(&r.judged, args.worst);
     if !worst.is_empty() {
         let _ = writeln!(t);
@@ -624,6 +628,7 @@ fn json_report(
         "per_colour": per_colour,
         "missing": missing,
         "worst": worst,
+        "hints": r.hints.iter().map(|h| h.to_string()).collect::<Vec<_>>(),
         "true_samples": r.truth.points.len(),
         "seconds": seconds,
     })
