@@ -12,7 +12,8 @@
 //! that a solution reaches measures the solid angle it covers. A true sample counts as reached when a
 //! solution point of its colour, whose ray really reaches that colour, lies within
 //! [`REACH_CELLS`] of the solution's own cell width on the map, the cell width being
-//! `sqrt(Ω / N)` for a true image of solid angle `Ω` and a solution of `N` points. The true samples
+//! `sqrt(Ω / N)` for a true image of solid angle `Ω` and a solution of `N` points (at least
+//! [`GOOD_IMAGE_POINTS`]: a good image has at least that many). The true samples
 //! left unreached, grouped by colour, by kind of light path and by adjacency on the sampling grid, are
 //! the missing regions.
 
@@ -41,6 +42,9 @@ pub const TRUE_SAMPLES_PER_POINT: usize = 4;
 pub const MIN_TRUE_SAMPLES: usize = 20_000;
 /// Most true-image samples drawn, however large the solution (time and memory stay bounded).
 pub const MAX_TRUE_SAMPLES: usize = 400_000;
+/// Points a good image has at least (the specification's rule): a sparser solution is judged as if
+/// it had this many, so that ten points cannot cover an image by being far apart.
+pub const GOOD_IMAGE_POINTS: usize = 1000;
 /// A missing region smaller than this share of its colour's image is not listed (counted all the same).
 pub const MIN_REGION_SHARE: f64 = 0.002;
 
@@ -448,7 +452,7 @@ pub fn coverage(
     let h = truth.spacing;
     let sample_solid_angle = h * h;
     let total_solid_angle = truth.points.len() as f64 * sample_solid_angle;
-    let cell = (total_solid_angle / solution_points.max(1) as f64).sqrt();
+    let cell = (total_solid_angle / solution_points.max(GOOD_IMAGE_POINTS) as f64).sqrt();
     // Never reach less than two true samples' spacing: a solution denser than the true sampling is
     // judged at the true sampling's resolution.
     let reach = (REACH_CELLS * cell).max(2.0 * h);
@@ -1053,6 +1057,21 @@ mod tests {
         let o = Vec3::new(0.1, 0.0, 0.07);
         let l = optical_path_length(&scene, o, Vec3::new(-1.0, 0.0, 0.0)).unwrap();
         assert!((l - (0.06 + 1.333 * 0.035)).abs() < 1e-12, "{l}");
+    }
+
+    #[test]
+    fn a_few_correct_points_do_not_cover_the_image() {
+        // Every 100th point: all correct, but judged at the density of a good image, far from complete.
+        let (scene, o, pts) = own_points(1, 5000);
+        let few: Vec<ImagePoint> = pts.iter().copied().step_by(100).collect();
+        let r = check_solution(&scene, o, &claimed(&few), DEFAULT_TOLERANCE, 0.98);
+        assert_eq!(r.tally.correct, few.len());
+        assert!(!r.complete, "{:?}", r.coverage.per_colour);
+        // Every 4th (over 1000 points): complete again.
+        let quarter: Vec<ImagePoint> = pts.iter().copied().step_by(4).collect();
+        assert!(quarter.len() > GOOD_IMAGE_POINTS);
+        let r = check_solution(&scene, o, &claimed(&quarter), DEFAULT_TOLERANCE, 0.98);
+        assert!(r.passes(), "{:?}", r.coverage.per_colour);
     }
 
     #[test]
