@@ -10,14 +10,18 @@
 //! [`sample_image`](crate::sampling::sample_image) on the equal-area map of the observer's directions
 //! ([`Frame`]): equal areas of that map are equal solid angles, so counting the true image's samples
 //! that a solution reaches measures the solid angle it covers. A true sample counts as reached when a
-//! solution point of its colour, whose ray really reaches that colour, lies within
-//! [`REACH_CELLS`] of the solution's own cell width on the map, the cell width being
-//! `sqrt(Ω / N)` for a true image of solid angle `Ω` and a solution of `N` points (at least
-//! [`GOOD_IMAGE_POINTS`]: a good image has at least that many). The true samples
+//! solution point of its colour, whose ray really reaches that colour, lies within [`REACH_CELLS`]
+//! of the solution's own spacing there: the distance from that point to its nearest neighbour of the
+//! same colour, but at least the even spacing `sqrt(Ω / N)` (for a true image of solid angle `Ω` and
+//! a solution of `N` points) and at most that of a good image of [`GOOD_IMAGE_POINTS`] points (a
+//! sparser solution is judged as if it had that many). So a solution that samples some directions
+//! more sparsely than others is judged at its own density there, and only holes larger than that
+//! count as missing. The true samples
 //! left unreached, grouped by colour, by kind of light path and by adjacency on the sampling grid, are
 //! the missing regions.
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
@@ -425,7 +429,8 @@ pub struct Coverage {
     pub reached: Vec<bool>,
     /// The missing regions at least [`MIN_REGION_SHARE`] of their colour, largest first.
     pub missing: Vec<MissingRegion>,
-    /// The reach of one solution point on the map (`REACH_CELLS` cell widths; ≈ radians).
+    /// The reach of one solution point on the map where the solution is evenly dense
+    /// (`REACH_CELLS` cell widths; ≈ radians); points where it is sparser reach farther.
     pub reach: f64,
     /// Solid angle of one true-image sample (sr).
     pub sample_solid_angle: f64,
@@ -452,44 +457,73 @@ pub fn coverage(
     let h = truth.spacing;
     let sample_solid_angle = h * h;
     let total_solid_angle = truth.points.len() as f64 * sample_solid_angle;
+    // The solution's spacing where it is evenly dense, and that of a good image (the sparsest
+    // spacing any point is allowed).
     let cell = (total_solid_angle / solution_points.max(GOOD_IMAGE_POINTS) as f64).sqrt();
-    // Never reach less than two true samples' spacing: a solution denser than the true sampling is
-    // judged at the true sampling's resolution.
-    let reach = (REACH_CELLS * cell).max(2.0 * h);
-
-    // The solution's points binned per colour on a grid of `reach`-sized bins.
-    let bin = |a: f64, b: f64| -> (i64, i64) {
-        (
-            ((a - frame.a_min) / reach).floor() as i64,
-            ((b - frame.b_min) / reach).floor() as i64,
-        )
-    };
-    let mut bins: HashMap<(u8, i64, i64), Vec<(f64, f64)>> = HashMap::new();
-    for &(d, c) in covering {
-        let (a, b) = frame.coordinates(d);
-        let (i, j) = bin(a, b);
-        bins.entry((c, i, j)).or_default().push((a, b));
-    }
-    let reach2 = reach * reach;
-    let reached: Vec<bool> = truth
-        .points
-        .par_iter()
-        .with_min_len(1024)
-        .map(|p| {
-            let (a, b) = frame.coordinates(p.direction);
-            let (i, j) = bin(a, b);
-            (i - 1..=i + 1).any(|ii| {
-                (j - 1..=j + 1).any(|jj| {
-                    bins.get(&(p.color, ii, jj)).is_some_and(|v| {
-                        v.iter().any(|&(x, y)| {
-                            let (da, db) = (x - a, y - b);
-                            da * da + db * db <= reach2
-                        })
-                    })
-                })
-            })
+    let sparsest = (total_solid_angle / GOOD_IMAGE_POINTS as f64).sqrt();
+    let on_map: Vec<(f64, f64, u8)> = covering
+        .iter()
+        .map(|&(d, c)| {
+            let (a, b) = frame.coordinates(d);
+            (a, b, c)
         })
         .collect();
+    // Each point reaches REACH_CELLS of its own local spacing (the distance to its nearest
+    // neighbour of the same colour), between the even spacing and a good image's: a solution that
+    // samples some directions more sparsely than others (a grid on a plane, in angles) is judged
+    // at its density there; never less than two true samples' spacing (a solution denser than the
+    // true sampling is judged at the true sampling's resolution).
+    let spacing = nearest_spacing(&on_map, cell, sparsest);
+    let reaches: Vec<f64> = spacing
+        .iter()
+        .map(|&s| (REACH_CELLS * s.clamp(cell, sparsest)).max(2.0 * h))
+        .collect();
+    let reach = (REACH_CELLS * cell).max(2.0 * h);
+
+    // Mark the true samples within each point's reach: the true image is one uniform grid of
+    // spacing h (centres at `min + (index + 0.5)·h`), so the samples near a point are found by
+    // their grid indices.
+    let index_of = |a: f64, b: f64| -> (i64, i64) {
+        (
+            ((a - frame.a_min) / h - 0.5).round() as i64,
+            ((b - frame.b_min) / h - 0.5).round() as i64,
+        )
+    };
+    let grid: HashMap<(i64, i64), usize> = truth
+        .points
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let (a, b) = frame.coordinates(p.direction);
+            (index_of(a, b), k)
+        })
+        .collect();
+    let marks: Vec<AtomicBool> = (0..truth.points.len())
+        .map(|_| AtomicBool::new(false))
+        .collect();
+    on_map
+        .par_iter()
+        .zip(&reaches)
+        .with_min_len(256)
+        .for_each(|(&(a, b, c), &r)| {
+            let lo = |x: f64| ((x - r) / h - 0.5).ceil() as i64;
+            let hi = |x: f64| ((x + r) / h - 0.5).floor() as i64;
+            let (x, y) = (a - frame.a_min, b - frame.b_min);
+            for i in lo(x)..=hi(x) {
+                for j in lo(y)..=hi(y) {
+                    let (da, db) = ((i as f64 + 0.5) * h - x, (j as f64 + 0.5) * h - y);
+                    if da * da + db * db > r * r {
+                        continue;
+                    }
+                    if let Some(&k) = grid.get(&(i, j)) {
+                        if truth.points[k].color == c {
+                            marks[k].store(true, Ordering::Relaxed);
+                        }
+                    }
+                }
+            }
+        });
+    let reached: Vec<bool> = marks.into_iter().map(AtomicBool::into_inner).collect();
 
     let mut per_colour = [ColourCoverage::default(); SECTION_COUNT];
     for (p, &r) in truth.points.iter().zip(&reached) {
@@ -516,6 +550,47 @@ pub fn coverage(
         reach,
         sample_solid_angle,
     }
+}
+
+/// For each point `(a, b, colour)` on the map, the distance to its nearest neighbour of the same
+/// colour, or `cap` if there is none nearer (searched on bins of size `bin`, ring by ring).
+fn nearest_spacing(points: &[(f64, f64, u8)], bin: f64, cap: f64) -> Vec<f64> {
+    let key = |a: f64, b: f64| ((a / bin).floor() as i64, (b / bin).floor() as i64);
+    let mut bins: HashMap<(u8, i64, i64), Vec<usize>> = HashMap::new();
+    for (n, &(a, b, c)) in points.iter().enumerate() {
+        let (i, j) = key(a, b);
+        bins.entry((c, i, j)).or_default().push(n);
+    }
+    let rings = (cap / bin).ceil() as i64 + 1;
+    points
+        .par_iter()
+        .enumerate()
+        .with_min_len(256)
+        .map(|(n, &(a, b, c))| {
+            let (i, j) = key(a, b);
+            let mut best = cap;
+            for r in 0..=rings {
+                // Points in ring r are at least (r − 1) bins away.
+                if (r - 1) as f64 * bin > best {
+                    break;
+                }
+                for ii in i - r..=i + r {
+                    for jj in j - r..=j + r {
+                        if (ii - i).abs() != r && (jj - j).abs() != r {
+                            continue;
+                        }
+                        for &m in bins.get(&(c, ii, jj)).map(Vec::as_slice).unwrap_or(&[]) {
+                            if m != n {
+                                let (x, y, _) = points[m];
+                                best = best.min((x - a).hypot(y - b));
+                            }
+                        }
+                    }
+                }
+            }
+            best
+        })
+        .collect()
 }
 
 /// Groups the unreached true samples into regions: same colour, same kind of light path, and
@@ -1072,6 +1147,39 @@ mod tests {
         assert!(quarter.len() > GOOD_IMAGE_POINTS);
         let r = check_solution(&scene, o, &claimed(&quarter), DEFAULT_TOLERANCE, 0.98);
         assert!(r.passes(), "{:?}", r.coverage.per_colour);
+    }
+
+    #[test]
+    fn a_solution_sparser_in_some_directions_is_judged_at_its_density_there() {
+        // Half of the image sampled five times more sparsely in each direction (every fifth grid
+        // point both ways): no hole larger than the solution's own spacing there.
+        let r = &REFERENCES[1];
+        let scene = r.scene(1.333);
+        let cloud = sample_image(&scene, r.observer, 10_000, &|_| {});
+        let frame = frame_for(r.observer);
+        let h = cloud.spacing;
+        let index = |p: &ImagePoint| {
+            let (a, b) = frame.coordinates(p.direction);
+            (
+                ((a - frame.a_min) / h - 0.5).round() as i64,
+                ((b - frame.b_min) / h - 0.5).round() as i64,
+            )
+        };
+        let mut bs: Vec<i64> = cloud.points.iter().map(|p| index(p).1).collect();
+        bs.sort_unstable();
+        let middle = bs[bs.len() / 2];
+        let kept: Vec<ImagePoint> = cloud
+            .points
+            .iter()
+            .copied()
+            .filter(|p| {
+                let (i, j) = index(p);
+                j < middle || (i % 5 == 0 && j % 5 == 0)
+            })
+            .collect();
+        assert!(kept.len() < cloud.points.len() * 6 / 10);
+        let rep = check_solution(&scene, r.observer, &claimed(&kept), DEFAULT_TOLERANCE, 0.98);
+        assert!(rep.passes(), "{:?}", rep.coverage.per_colour);
     }
 
     #[test]
