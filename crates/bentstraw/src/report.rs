@@ -360,7 +360,7 @@ fn render_simulation(h: &mut String, s: &SimulationEntry) {
     if let Some(c) = &s.solution_check {
         let _ = writeln!(
             h,
-            "<p class=\"check {}\">Checked as a solution (<code>bentstraw check</code>): {}</p>",
+            "<p class=\"check {} solution\">Checked as a solution (<code>bentstraw check</code>): {}</p>",
             if c.passed { "pass" } else { "fail" },
             escape(&c.text)
         );
