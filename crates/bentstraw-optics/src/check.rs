@@ -473,7 +473,12 @@ pub fn coverage(
     // samples some directions more sparsely than others (a grid on a plane, in angles) is judged
     // at its density there; never less than two true samples' spacing (a solution denser than the
     // true sampling is judged at the true sampling's resolution).
-    let spacing = nearest_spacing(&on_map, cell, sparsest);
+    let spacing = if truth.points.is_empty() {
+        // Nothing to cover (the straw is not seen): no spacing to measure.
+        vec![0.0; on_map.len()]
+    } else {
+        nearest_spacing(&on_map, cell, sparsest)
+    };
     let reaches: Vec<f64> = spacing
         .iter()
         .map(|&s| (REACH_CELLS * s.clamp(cell, sparsest)).max(2.0 * h))
