@@ -494,15 +494,16 @@ pub fn coverage(
             ((b - frame.b_min) / h - 0.5).round() as i64,
         )
     };
-    let grid: HashMap<(i64, i64), usize> = truth
-        .points
-        .iter()
-        .enumerate()
-        .map(|(k, p)| {
-            let (a, b) = frame.coordinates(p.direction);
-            (index_of(a, b), k)
-        })
-        .collect();
+    let grid = Bins::new(
+        &truth
+            .points
+            .iter()
+            .map(|p| {
+                let (a, b) = frame.coordinates(p.direction);
+                index_of(a, b)
+            })
+            .collect::<Vec<_>>(),
+    );
     let marks: Vec<AtomicBool> = (0..truth.points.len())
         .map(|_| AtomicBool::new(false))
         .collect();
@@ -520,9 +521,9 @@ pub fn coverage(
                     if da * da + db * db > r * r {
                         continue;
                     }
-                    if let Some(&k) = grid.get(&(i, j)) {
-                        if truth.points[k].color == c {
-                            marks[k].store(true, Ordering::Relaxed);
+                    for &k in grid.get(i, j) {
+                        if truth.points[k as usize].color == c {
+                            marks[k as usize].store(true, Ordering::Relaxed);
                         }
                     }
                 }
@@ -557,16 +558,99 @@ pub fn coverage(
     }
 }
 
+/// Most cells of a dense [`Bins`] table (beyond that, a hash map).
+const DENSE_CELLS: i64 = 1 << 24;
+
+/// Item indices filed by integer cell `(i, j)`: a dense table over the cells' bounding box (fast
+/// look-ups), or a hash map when that box would be too large.
+enum Bins {
+    /// Cell `(i, j)` holds `items[start[c]..start[c + 1]]`, `c = (i − i0)·nj + (j − j0)`.
+    Dense {
+        i0: i64,
+        j0: i64,
+        ni: i64,
+        nj: i64,
+        start: Vec<u32>,
+        items: Vec<u32>,
+    },
+    /// For scattered cells.
+    Sparse(HashMap<(i64, i64), Vec<u32>>),
+}
+
+impl Bins {
+    /// Files item `k` in cell `keys[k]`, for every `k`.
+    fn new(keys: &[(i64, i64)]) -> Bins {
+        let (mut i0, mut i1, mut j0, mut j1) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
+        for &(i, j) in keys {
+            (i0, i1, j0, j1) = (i0.min(i), i1.max(i), j0.min(j), j1.max(j));
+        }
+        let (ni, nj) = (i1.saturating_sub(i0) + 1, j1.saturating_sub(j0) + 1);
+        if keys.is_empty() || ni.checked_mul(nj).is_none_or(|n| n > DENSE_CELLS) {
+            let mut map: HashMap<(i64, i64), Vec<u32>> = HashMap::new();
+            for (k, &key) in keys.iter().enumerate() {
+                map.entry(key).or_default().push(k as u32);
+            }
+            return Bins::Sparse(map);
+        }
+        let cell = |(i, j): (i64, i64)| ((i - i0) * nj + (j - j0)) as usize;
+        let mut start = vec![0u32; (ni * nj) as usize + 1];
+        for &key in keys {
+            start[cell(key) + 1] += 1;
+        }
+        for c in 1..start.len() {
+            start[c] += start[c - 1];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![0u32; keys.len()];
+        for (k, &key) in keys.iter().enumerate() {
+            let c = cell(key);
+            items[fill[c] as usize] = k as u32;
+            fill[c] += 1;
+        }
+        Bins::Dense {
+            i0,
+            j0,
+            ni,
+            nj,
+            start,
+            items,
+        }
+    }
+
+    /// The items in cell `(i, j)`.
+    fn get(&self, i: i64, j: i64) -> &[u32] {
+        match self {
+            Bins::Dense {
+                i0,
+                j0,
+                ni,
+                nj,
+                start,
+                items,
+            } => {
+                let (di, dj) = (i - i0, j - j0);
+                if di < 0 || dj < 0 || di >= *ni || dj >= *nj {
+                    return &[];
+                }
+                let c = (di * nj + dj) as usize;
+                &items[start[c] as usize..start[c + 1] as usize]
+            }
+            Bins::Sparse(map) => map.get(&(i, j)).map(Vec::as_slice).unwrap_or(&[]),
+        }
+    }
+}
+
 /// For each point `(a, b, colour)` on the map, the distance to its nearest neighbour of the same
 /// colour, or `cap` if there is none nearer (searched on bins of size `bin`, ring by ring).
 fn nearest_spacing(points: &[(f64, f64, u8)], bin: f64, cap: f64) -> Vec<f64> {
     let key = |a: f64, b: f64| ((a / bin).floor() as i64, (b / bin).floor() as i64);
-    let mut bins: HashMap<(u8, i64, i64), Vec<usize>> = HashMap::new();
-    for (n, &(a, b, c)) in points.iter().enumerate() {
-        let (i, j) = key(a, b);
-        bins.entry((c, i, j)).or_default().push(n);
-    }
-    let rings = (cap / bin).ceil() as i64 + 1;
+    let bins = Bins::new(
+        &points
+            .iter()
+            .map(|&(a, b, _)| key(a, b))
+            .collect::<Vec<_>>(),
+    );
+    let rings = (cap / bin).ceil().min(1e6) as i64 + 1;
     points
         .par_iter()
         .enumerate()
@@ -584,10 +668,11 @@ fn nearest_spacing(points: &[(f64, f64, u8)], bin: f64, cap: f64) -> Vec<f64> {
                         if (ii - i).abs() != r && (jj - j).abs() != r {
                             continue;
                         }
-                        for &m in bins.get(&(c, ii, jj)).map(Vec::as_slice).unwrap_or(&[]) {
-                            if m != n {
-                                let (x, y, _) = points[m];
-                                best = best.min((x - a).hypot(y - b));
+                        for &m in bins.get(ii, jj) {
+                            let (x, y, cm) = points[m as usize];
+                            if m as usize != n && cm == c {
+                                let (dx, dy) = (x - a, y - b);
+                                best = best.min((dx * dx + dy * dy).sqrt());
                             }
                         }
                     }
@@ -1185,6 +1270,22 @@ mod tests {
         assert!(kept.len() < cloud.points.len() * 6 / 10);
         let rep = check_solution(&scene, r.observer, &claimed(&kept), DEFAULT_TOLERANCE, 0.98);
         assert!(rep.passes(), "{:?}", rep.coverage.per_colour);
+    }
+
+    #[test]
+    fn bins_dense_and_sparse_file_the_same_items() {
+        let keys = [(0, 0), (2, -1), (0, 0), (5, 3)];
+        let far = [(0, 0), (1 << 40, -1), (0, 0), (5, 3)];
+        let dense = Bins::new(&keys);
+        assert!(matches!(dense, Bins::Dense { .. }));
+        assert!(matches!(Bins::new(&far), Bins::Sparse(_)));
+        for bins in [dense, Bins::new(&far)] {
+            assert_eq!(bins.get(0, 0), &[0, 2]);
+            assert_eq!(bins.get(5, 3), &[3]);
+            assert!(bins.get(1, 1).is_empty() && bins.get(-9, 0).is_empty());
+        }
+        assert_eq!(Bins::new(&keys).get(2, -1), &[1]);
+        assert!(Bins::new(&[]).get(0, 0).is_empty());
     }
 
     #[test]
