@@ -39,6 +39,15 @@ pub enum Command {
         after_help = "Example:\n  bentstraw bench            # the four reference views, both modes\n  bentstraw bench --json --threads 2"
     )]
     Bench(BenchArgs),
+    /// Check a solution's image points: which are right, which are wrong, and what is missing.
+    #[command(
+        after_help = "Reads columns x y z color (a header may name them in another order; separators: \
+comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit code 0: pass, \
+1: fail, 2: bad input.\n\nExample:\n  bentstraw check mine.csv --observer 0.1,0,0.1 --straw 0.02,0.01 \
+--water-height 0.15 --plot check.png\n  bentstraw check mine.txt --observer 0.1,0,0.1 --straw 0.02,0.01 \
+--water-height 0.15 --json"
+    )]
+    Check(CheckArgs),
 }
 
 /// The scene and observer: the inputs of one simulation (SPEC §2).
@@ -237,6 +246,43 @@ pub struct BenchArgs {
     /// Mode of a single view (default: both)
     #[arg(long, value_enum)]
     pub mode: Option<ModeArg>,
+}
+
+/// Arguments of `check`.
+#[derive(Args, Debug)]
+pub struct CheckArgs {
+    /// The solution's image points: columns x y z color, in metres and colour codes 1..5
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// The scene and the observer the solution was computed for.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Largest allowed difference between a point's distance from the observer and its ray's path
+    /// length, in metres (> 0)
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = bentstraw_optics::check::DEFAULT_TOLERANCE,
+        allow_hyphen_values = true
+    )]
+    pub tolerance: f64,
+    /// Share of each colour's true image (by solid angle) the points must cover to be complete, 0..=1
+    #[arg(
+        long,
+        value_name = "SHARE",
+        default_value_t = bentstraw_optics::check::DEFAULT_MIN_COVERAGE,
+        allow_hyphen_values = true
+    )]
+    pub min_coverage: f64,
+    /// Print one JSON object (for graders' scripts) instead of the summary
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw a figure: the true image, the solution's points and what is missing (.png or .svg)
+    #[arg(long, value_name = "FILE.png|FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// How many of the worst points to list
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    pub worst: usize,
 }
 
 /// Parses `X,Y,Z` (three finite or non-finite numbers; finiteness is checked with the scene).

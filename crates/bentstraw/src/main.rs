@@ -2,6 +2,7 @@
 //!
 //! This crate parses arguments, writes files and draws pictures; all physics lives in the library.
 
+mod check_plot;
 mod cli;
 mod commands;
 mod error;

@@ -278,7 +278,7 @@ impl Projection {
     }
 
     /// Pixel coordinates rounded for drawing.
-    fn at(&self, p: Vec3) -> (i32, i32) {
+    pub fn at(&self, p: Vec3) -> (i32, i32) {
         let (x, y) = self.pixel(p);
         (x.round() as i32, y.round() as i32)
     }
@@ -412,6 +412,11 @@ pub(crate) fn counts(points: &[ImagePoint]) -> [usize; SECTION_COUNT] {
 
 /// A drawing area on a bitmap.
 pub(crate) type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+/// A drawing area on any backend (bitmap or SVG): the shared drawing code takes these.
+pub(crate) type AreaOn<DB> = DrawingArea<DB, plotters::coord::Shift>;
+/// What drawing on any backend returns.
+pub(crate) type DrawResultOn<DB> =
+    Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// Turns a drawing error into the message naming the file.
 pub(crate) fn draw_err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> CliError + '_ {
@@ -449,7 +454,7 @@ pub(crate) const PAD_TOP: f64 = 14.0;
 pub(crate) const PAD_TOP_NOTE: f64 = 30.0;
 
 /// The three panels side by side, each fitting the whole box.
-fn layout(bx: &AxisBox, views: &[(ViewDirection, String)]) -> Vec<Panel> {
+pub(crate) fn layout(bx: &AxisBox, views: &[(ViewDirection, String)]) -> Vec<Panel> {
     let panel_w = FIGURE_WIDTH as i32 / views.len() as i32;
     let panel_h = FIGURE_HEIGHT as i32 - TITLE_BAND - LEGEND_BAND;
     let pad_top = if bx.observer_inside {
@@ -582,7 +587,11 @@ fn draw_titles(root: &Area, scene: &Scene, observer: Vec3, n: usize, title: &str
 }
 
 /// The panes of the box's three far faces, with grid lines at the ticks, and the panel's caption.
-pub(crate) fn draw_panes(root: &Area, panel: &Panel, bx: &AxisBox) -> DrawResult {
+pub(crate) fn draw_panes<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    panel: &Panel,
+    bx: &AxisBox,
+) -> DrawResultOn<DB> {
     root.draw(&Text::new(
         panel.caption.clone(),
         (
@@ -641,12 +650,23 @@ fn axis_step(bx: &AxisBox, a: usize) -> f64 {
     tick_step(bx.max[a] - bx.min[a], 5.0)
 }
 
-fn line(root: &Area, proj: &Projection, a: Vec3, b: Vec3, color: RGBColor) -> DrawResult {
+fn line<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    proj: &Projection,
+    a: Vec3,
+    b: Vec3,
+    color: RGBColor,
+) -> DrawResultOn<DB> {
     root.draw(&PathElement::new(vec![proj.at(a), proj.at(b)], color))
 }
 
 /// The water's wireframe segments on the near (`front`) or far side of the glass's axis.
-pub(crate) fn draw_water(root: &Area, proj: &Projection, scene: &Scene, front: bool) -> DrawResult {
+pub(crate) fn draw_water<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    proj: &Projection,
+    scene: &Scene,
+    front: bool,
+) -> DrawResultOn<DB> {
     let axis_depth = proj.nearness(Vec3::new(0.0, 0.0, scene.water_height / 2.0));
     let color = if front {
         rgb(WATER_RGB).mix(0.75)
@@ -663,7 +683,11 @@ pub(crate) fn draw_water(root: &Area, proj: &Projection, scene: &Scene, front: b
 }
 
 /// The straw's true outline, dashed: its section boundaries and its two silhouette lines.
-pub(crate) fn draw_straw_outline(root: &Area, proj: &Projection, scene: &Scene) -> DrawResult {
+pub(crate) fn draw_straw_outline<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    proj: &Projection,
+    scene: &Scene,
+) -> DrawResultOn<DB> {
     let color = rgb(STRAW_OUTLINE_RGB);
     for k in 0..=SECTION_COUNT {
         let c = circle(
@@ -686,7 +710,11 @@ pub(crate) fn draw_straw_outline(root: &Area, proj: &Projection, scene: &Scene) 
 }
 
 /// A dashed polyline through pixel positions: 5 px on, 4 px off.
-pub(crate) fn dashed(root: &Area, px: &[(f64, f64)], color: RGBColor) -> DrawResult {
+pub(crate) fn dashed<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    px: &[(f64, f64)],
+    color: RGBColor,
+) -> DrawResultOn<DB> {
     const ON: f64 = 5.0;
     const PERIOD: f64 = 9.0;
     let mut phase = 0.0f64;
@@ -754,7 +782,11 @@ pub(crate) fn draw_points(buf: &mut [u8], w: u32, h: u32, panel: &Panel, points:
 }
 
 /// Tick labels and axis names along three outer edges of the box.
-pub(crate) fn draw_axis_labels(root: &Area, panel: &Panel, bx: &AxisBox) -> DrawResult {
+pub(crate) fn draw_axis_labels<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    panel: &Panel,
+    bx: &AxisBox,
+) -> DrawResultOn<DB> {
     let proj = &panel.proj;
     let (ox, oy) = proj.pixel(bx.centre());
     let names = ["x (m)", "y (m)", "z (m)"];
@@ -867,12 +899,12 @@ pub(crate) fn draw_axis_labels(root: &Area, panel: &Panel, bx: &AxisBox) -> Draw
 }
 
 /// The observer as a black dot, or, when too far away to draw to scale, an arrow pointing to it.
-pub(crate) fn draw_observer(
-    root: &Area,
+pub(crate) fn draw_observer<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
     panel: &Panel,
     bx: &AxisBox,
     observer: Vec3,
-) -> DrawResult {
+) -> DrawResultOn<DB> {
     let proj = &panel.proj;
     if bx.observer_inside {
         let (x, y) = proj.at(observer);

@@ -53,6 +53,8 @@ pub struct SimulationEntry {
     pub timings: Vec<Timing>,
     /// A built-in check and its verdict, if this simulation has one.
     pub check: Option<Check>,
+    /// What `bentstraw check` says of these image points, as it would of a student's.
+    pub solution_check: Option<Check>,
     /// The results, one section per kind.
     pub sections: Vec<Section>,
 }
@@ -355,6 +357,14 @@ fn render_simulation(h: &mut String, s: &SimulationEntry) {
             escape(&c.text)
         );
     }
+    if let Some(c) = &s.solution_check {
+        let _ = writeln!(
+            h,
+            "<p class=\"check {} solution\">Checked as a solution (<code>bentstraw check</code>): {}</p>",
+            if c.passed { "pass" } else { "fail" },
+            escape(&c.text)
+        );
+    }
     let timings: Vec<String> = s
         .timings
         .iter()
@@ -448,6 +458,11 @@ mod tests {
             hit_ratio: 0.3085,
             timings: vec![Timing::new("tracing", Duration::from_millis(250))],
             check,
+            solution_check: Some(Check {
+                passed: true,
+                text: format!("pass: 1234 of 1234 points correct <{id}>"),
+                short: "pass".into(),
+            }),
             sections: vec![Section {
                 title: "Image points".into(),
                 figures: vec![figure],
@@ -503,6 +518,10 @@ mod tests {
         assert!(html.contains("id=\"reference1\"") && html.contains("id=\"reference2\""));
         // One group per reference, not per simulation.
         assert_eq!(html.matches("<h2 id=\"reference").count(), 2);
+        // Each simulation's points checked as a solution, escaped.
+        assert!(html.contains(
+            "(<code>bentstraw check</code>): pass: 1234 of 1234 points correct &lt;sim2&gt;</p>"
+        ));
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! One module per command.
 
 pub mod bench;
+pub mod check;
 pub mod render;
 pub mod simulate;
 pub mod table;
@@ -19,6 +20,15 @@ pub fn run(cli: Cli) -> CliResult {
         Some(Command::Table(a)) => table::run(&a),
         Some(Command::Render(a)) => render::run(&a),
         Some(Command::Bench(a)) => bench::run(&a),
+        Some(Command::Check(a)) => {
+            // A fail is a result, not an error: exit code 1 (errors get 2).
+            if !check::run(&a)? {
+                use std::io::Write as _;
+                let _ = std::io::stdout().flush();
+                std::process::exit(1);
+            }
+            Ok(())
+        }
     }
 }
 

@@ -277,6 +277,11 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         hit_ratio: cloud.hit_ratio(),
         timings,
         check: check(scene, &cloud),
+        solution_check: Some(crate::commands::check::own_points_check(
+            scene,
+            observer,
+            &cloud.points,
+        )),
         sections,
     }
 }

@@ -1,0 +1,390 @@
+//! The figure of `bentstraw check`: the true image pale, the solution's points over it, wrong points
+//! marked by kind, missing regions outlined; PNG or SVG from the same drawing code.
+
+use std::path::Path;
+
+use bentstraw_optics::check::{CheckReport, ClaimedPoint, VerdictKind};
+use bentstraw_optics::scene::{Scene, SECTION_COUNT, SECTION_NAMES};
+use bentstraw_optics::Vec3;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+use crate::error::{CliError, CliResult};
+use crate::files;
+use crate::plot::{
+    axis_box, dashed, draw_axis_labels, draw_observer, draw_panes, draw_straw_outline, draw_water,
+    encode_png, figure_views, font, layout, register_font, section_rgb8, text_width, AreaOn,
+    DrawResultOn, Panel, FIGURE_HEIGHT, FIGURE_WIDTH, LEGEND_BAND,
+};
+
+/// The figure's file format, by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlotFormat {
+    /// A bitmap.
+    Png,
+    /// A vector drawing.
+    Svg,
+}
+
+impl PlotFormat {
+    /// The format of `path` by its extension, or an error naming the accepted ones.
+    pub fn from_path(path: &Path) -> CliResult<PlotFormat> {
+        match path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .as_deref()
+        {
+            Some("png") => Ok(PlotFormat::Png),
+            Some("svg") => Ok(PlotFormat::Svg),
+            _ => Err(CliError(format!(
+                "--plot {}: the file name must end in .png or .svg",
+                path.display()
+            ))),
+        }
+    }
+}
+
+/// Most true-image samples and correct points drawn per panel in a PNG (an even subset beyond that).
+const MAX_DRAWN_PNG: (usize, usize) = (30_000, 40_000);
+/// The same in an SVG, where every point is an element of the file (keeps it to a few megabytes).
+const MAX_DRAWN_SVG: (usize, usize) = (4_000, 6_000);
+/// Most wrong points marked.
+const MAX_MARKED: usize = 5_000;
+/// Missing regions outlined (the largest, numbered as in the summary).
+const MAX_OUTLINED: usize = 12;
+
+/// The marker colour of a kind of wrong point.
+fn kind_rgb(kind: VerdictKind) -> RGBColor {
+    match kind {
+        VerdictKind::Correct => RGBColor(0, 0, 0),
+        VerdictKind::WrongColour => RGBColor(0, 0, 0),
+        VerdictKind::WrongLength => RGBColor(150, 75, 0),
+        VerdictKind::NoStraw => RGBColor(110, 110, 110),
+        VerdictKind::TooManyEvents => RGBColor(0, 150, 150),
+    }
+}
+
+/// A section's colour faded towards white: the true image in the background.
+fn pale(code: u8) -> RGBColor {
+    let c = section_rgb8(code);
+    let f = |v: u8| (0.3 * v as f64 + 0.7 * 255.0).round() as u8;
+    RGBColor(f(c[0]), f(c[1]), f(c[2]))
+}
+
+/// Draws the check figure of `points` (the solution) and `report` into `path` (.png or .svg).
+pub fn write_check_figure(
+    path: &Path,
+    scene: &Scene,
+    observer: Vec3,
+    points: &[ClaimedPoint],
+    report: &CheckReport,
+    title: &str,
+) -> CliResult {
+    let format = PlotFormat::from_path(path)?;
+    register_font();
+    let (w, h) = (FIGURE_WIDTH, FIGURE_HEIGHT);
+    let err = |e: String| CliError(format!("cannot draw {}: {e}", path.display()));
+    let bytes = match format {
+        PlotFormat::Png => {
+            let mut buf = vec![255u8; (w * h * 3) as usize];
+            {
+                let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+                draw_check(&root, scene, observer, points, report, title, MAX_DRAWN_PNG)
+                    .map_err(|e| err(e.to_string()))?;
+                root.present().map_err(|e| err(e.to_string()))?;
+            }
+            encode_png(&buf, w, h).map_err(err)?
+        }
+        PlotFormat::Svg => {
+            let mut svg = String::new();
+            {
+                let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+                root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+                draw_check(&root, scene, observer, points, report, title, MAX_DRAWN_SVG)
+                    .map_err(|e| err(e.to_string()))?;
+                root.present().map_err(|e| err(e.to_string()))?;
+            }
+            svg.into_bytes()
+        }
+    };
+    files::write_bytes(path, &bytes)
+}
+
+/// Whether pixel `(x, y)` lies inside `panel`.
+fn inside(panel: &Panel, (x, y): (f64, f64)) -> bool {
+    x >= panel.left as f64
+        && x < (panel.left + panel.width) as f64
+        && y >= panel.top as f64
+        && y < (panel.top + panel.height) as f64
+}
+
+/// Every `stride`-th index so that at most `max` of `n` remain.
+fn stride(n: usize, max: usize) -> usize {
+    n.div_ceil(max).max(1)
+}
+
+/// The figure on any backend: the same code draws the PNG and the SVG.
+fn draw_check<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    scene: &Scene,
+    observer: Vec3,
+    points: &[ClaimedPoint],
+    report: &CheckReport,
+    title: &str,
+    (max_background, max_correct): (usize, usize),
+) -> DrawResultOn<DB> {
+    let truth = &report.truth.points;
+    let bx = axis_box(scene, observer, truth);
+    let panels = layout(&bx, &figure_views(observer));
+    let w = FIGURE_WIDTH as i32;
+    root.draw(&Text::new(
+        title.to_string(),
+        (w / 2, 20),
+        font(24.0).pos(Pos::new(HPos::Center, VPos::Center)),
+    ))?;
+    let t = &report.tally;
+    let cov: Vec<String> = (0..SECTION_COUNT)
+        .map(|k| format!("{:.0} %", 100.0 * report.coverage.per_colour[k].share()))
+        .collect();
+    let sub = format!(
+        "{} points: {} correct, {} wrong colour, {} wrong length, {} no straw, {} need more events · \
+         coverage per colour 1–5: {} · lengths in metres, same scale on every axis",
+        t.points,
+        t.correct,
+        t.wrong_colour,
+        t.wrong_length,
+        t.no_straw,
+        t.too_many_events,
+        cov.join(", ")
+    );
+    root.draw(&Text::new(
+        sub,
+        (w / 2, 48),
+        font(15.0)
+            .color(&RGBColor(60, 60, 60))
+            .pos(Pos::new(HPos::Center, VPos::Center)),
+    ))?;
+
+    for panel in &panels {
+        let proj = &panel.proj;
+        draw_panes(root, panel, &bx)?;
+        draw_water(root, proj, scene, false)?;
+        draw_straw_outline(root, proj, scene)?;
+        // The true image, pale.
+        for p in truth.iter().step_by(stride(truth.len(), max_background)) {
+            let (x, y) = proj.pixel(p.position);
+            if inside(panel, (x, y)) {
+                let (x, y) = (x.round() as i32, y.round() as i32);
+                root.draw(&Rectangle::new(
+                    [(x - 1, y - 1), (x + 1, y + 1)],
+                    pale(p.color).filled(),
+                ))?;
+            }
+        }
+        // The correct points in their colours, far to near.
+        let correct: Vec<usize> = (0..points.len())
+            .filter(|&i| report.judged[i].verdict.kind() == VerdictKind::Correct)
+            .collect();
+        let mut shown: Vec<(f64, usize)> = correct
+            .iter()
+            .step_by(stride(correct.len(), max_correct))
+            .map(|&i| (proj.nearness(points[i].position), i))
+            .collect();
+        shown.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (_, i) in shown {
+            let p = &points[i];
+            let (x, y) = proj.pixel(p.position);
+            if inside(panel, (x, y)) {
+                let c = section_rgb8(p.color);
+                let (x, y) = (x.round() as i32, y.round() as i32);
+                root.draw(&Rectangle::new(
+                    [(x - 1, y - 1), (x + 2, y + 2)],
+                    RGBColor(c[0], c[1], c[2]).filled(),
+                ))?;
+            }
+        }
+        // The missing regions, outlined and numbered as in the summary.
+        for (n, m) in report
+            .coverage
+            .missing
+            .iter()
+            .take(MAX_OUTLINED)
+            .enumerate()
+        {
+            let px: Vec<(f64, f64)> = m
+                .samples
+                .iter()
+                .map(|&i| proj.pixel(truth[i].position))
+                .collect();
+            let mut hull = convex_hull(&px);
+            if let Some(&first) = hull.first() {
+                hull.push(first);
+                dashed(root, &hull, BLACK)?;
+                let top = hull
+                    .iter()
+                    .copied()
+                    .fold(first, |a, b| if b.1 < a.1 { b } else { a });
+                if inside(panel, top) {
+                    root.draw(&Text::new(
+                        (n + 1).to_string(),
+                        (top.0.round() as i32, top.1.round() as i32 - 4),
+                        font(14.0).pos(Pos::new(HPos::Center, VPos::Bottom)),
+                    ))?;
+                }
+            }
+        }
+        // The wrong points, marked by kind.
+        let wrong: Vec<usize> = (0..points.len())
+            .filter(|&i| report.judged[i].verdict.kind() != VerdictKind::Correct)
+            .collect();
+        for &i in wrong.iter().step_by(stride(wrong.len(), MAX_MARKED)) {
+            let kind = report.judged[i].verdict.kind();
+            let (x, y) = proj.pixel(points[i].position);
+            if inside(panel, (x, y)) {
+                marker(root, (x.round() as i32, y.round() as i32), kind)?;
+            }
+        }
+        draw_water(root, proj, scene, true)?;
+        draw_axis_labels(root, panel, &bx)?;
+        draw_observer(root, panel, &bx, observer)?;
+    }
+    draw_check_legend(root, report)
+}
+
+/// The mark of a wrong point: a cross for a wrong colour or length, a ring for no straw or too
+/// many events.
+fn marker<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    (x, y): (i32, i32),
+    kind: VerdictKind,
+) -> DrawResultOn<DB> {
+    let c = kind_rgb(kind);
+    match kind {
+        VerdictKind::WrongColour | VerdictKind::WrongLength => {
+            let s = c.stroke_width(2);
+            root.draw(&PathElement::new(vec![(x - 4, y - 4), (x + 4, y + 4)], s))?;
+            root.draw(&PathElement::new(vec![(x - 4, y + 4), (x + 4, y - 4)], s))
+        }
+        _ => root.draw(&Circle::new((x, y), 4, c.stroke_width(2))),
+    }
+}
+
+/// The legend: colours of the sections, the marks of the wrong points, the outlines.
+fn draw_check_legend<DB: DrawingBackend>(
+    root: &AreaOn<DB>,
+    report: &CheckReport,
+) -> DrawResultOn<DB> {
+    let y = FIGURE_HEIGHT as i32 - LEGEND_BAND / 2;
+    let mut x = 24;
+    let style = font(14.0).pos(Pos::new(HPos::Left, VPos::Center));
+    for (k, name) in SECTION_NAMES.iter().enumerate() {
+        let c = section_rgb8(k as u8 + 1);
+        root.draw(&Rectangle::new(
+            [(x, y - 7), (x + 7, y + 7)],
+            pale(k as u8 + 1).filled(),
+        ))?;
+        root.draw(&Rectangle::new(
+            [(x + 7, y - 7), (x + 14, y + 7)],
+            RGBColor(c[0], c[1], c[2]).filled(),
+        ))?;
+        let s = format!("{} {name}", k + 1);
+        root.draw(&Text::new(s.clone(), (x + 20, y), style.clone()))?;
+        x += 20 + text_width(&s, 14.0) + 16;
+    }
+    let s = "(pale: true image; full: correct points)";
+    root.draw(&Text::new(s, (x, y), style.clone()))?;
+    x += text_width(s, 14.0) + 26;
+    for kind in [
+        VerdictKind::WrongColour,
+        VerdictKind::WrongLength,
+        VerdictKind::NoStraw,
+        VerdictKind::TooManyEvents,
+    ] {
+        marker(root, (x + 5, y), kind)?;
+        let s = format!("{}: {}", kind.words(), report.tally.count(kind));
+        root.draw(&Text::new(s.clone(), (x + 16, y), style.clone()))?;
+        x += 16 + text_width(&s, 14.0) + 22;
+    }
+    dashed(
+        root,
+        &[(x as f64, y as f64), (x as f64 + 24.0, y as f64)],
+        BLACK,
+    )?;
+    root.draw(&Text::new(
+        "missing (numbered as listed)",
+        (x + 30, y),
+        style,
+    ))?;
+    Ok(())
+}
+
+/// The convex hull of pixel positions, counter-clockwise on screen (Andrew's monotone chain).
+fn convex_hull(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut p: Vec<(f64, f64)> = points
+        .iter()
+        .copied()
+        .filter(|q| q.0.is_finite() && q.1.is_finite())
+        .collect();
+    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut hull: Vec<(f64, f64)> = Vec::with_capacity(2 * p.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &(f64, f64)>> = if pass == 0 {
+            Box::new(p.iter())
+        } else {
+            Box::new(p.iter().rev())
+        };
+        for &q in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hull_of_a_square_with_inner_points_is_its_corners() {
+        let pts = [
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 2.0),
+            (0.0, 2.0),
+            (1.0, 1.0),
+            (1.0, 0.0),
+        ];
+        let mut h = convex_hull(&pts);
+        h.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(h, vec![(0.0, 0.0), (0.0, 2.0), (2.0, 0.0), (2.0, 2.0)]);
+        assert_eq!(convex_hull(&[(1.0, 1.0)]), vec![(1.0, 1.0)]);
+    }
+
+    #[test]
+    fn only_png_and_svg_are_figures() {
+        assert_eq!(
+            PlotFormat::from_path(Path::new("a.PNG")).unwrap(),
+            PlotFormat::Png
+        );
+        assert_eq!(
+            PlotFormat::from_path(Path::new("a.svg")).unwrap(),
+            PlotFormat::Svg
+        );
+        assert!(PlotFormat::from_path(Path::new("a.jpg")).is_err());
+        assert!(PlotFormat::from_path(Path::new("a")).is_err());
+    }
+}
