@@ -89,13 +89,9 @@ fn messages_quote_numbers_short_and_exact() {
     assert_eq!(number_text(-1e-320), "-1e-320");
     assert_eq!(number_text(0.15), "0.15");
     // Just past the rule: the digits show that the sum exceeds 0.04.
-    let e = Scene::with_defaults(0.0350000001, 0.0, 0.1)
-        .unwrap_err()
-        .to_string();
+    let e = Scene::with_defaults(0.0350000001, 0.0, 0.1).unwrap_err().to_string();
     assert!(e.contains("(it is 0.0400000001"), "{e}");
-    let e = Scene::with_defaults(0.0, 0.0, -1e-320)
-        .unwrap_err()
-        .to_string();
+    let e = Scene::with_defaults(0.0, 0.0, -1e-320).unwrap_err().to_string();
     assert!(e.len() < 120 && e.contains("-1e-320"), "{e}");
     let long = "9".repeat(5000);
     let clipped = clip_text(&long, 40);
