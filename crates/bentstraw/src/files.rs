@@ -450,7 +450,8 @@ fn make_temporary(target: &Path) -> io::Result<(TempPath, File)> {
         .permissions(default_permissions())
         .tempfile_in(dir)?;
     if let Ok(m) = fs::metadata(target) {
-        fs::set_permissions(temp.path(), m.permissions())?;
+        // Best effort: where permissions cannot be set, the file gets a new file's.
+        let _ = fs::set_permissions(temp.path(), m.permissions());
     }
     let file = temp.as_file().try_clone()?;
     Ok((temp.into_temp_path(), file))

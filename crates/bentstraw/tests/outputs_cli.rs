@@ -31,16 +31,17 @@ fn with_scene<'a>(command: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
     args
 }
 
-/// Runs the binary with files limited to `kib` KiB (as on a nearly full disk): writes past the limit
-/// fail with "File too large" (SIGXFSZ is ignored, as the shell's `trap '' XFSZ` does).
-fn run_limited(dir: &Path, kib: u64, args: &[&str]) -> Output {
-    // The shell's unit for `ulimit -f` is 512 or 1024 bytes; both are far from the sizes used here.
+/// Runs the binary with files limited to `blocks` blocks (as on a nearly full disk): writes past the
+/// limit fail with "File too large" (SIGXFSZ is ignored, as the shell's `trap '' XFSZ` does).
+fn run_limited(dir: &Path, blocks: u64, args: &[&str]) -> Output {
+    // The shell's block for `ulimit -f` is 512 bytes (dash) or 1024 (bash); the sizes used here
+    // are far from both limits.
     Command::new("sh")
         .current_dir(dir)
         .arg("-c")
         .arg("trap '' XFSZ; ulimit -f \"$1\"; shift; exec \"$@\"")
         .arg("sh")
-        .arg(kib.to_string())
+        .arg(blocks.to_string())
         .arg(env!("CARGO_BIN_EXE_bentstraw"))
         .args(args)
         .output()
@@ -87,16 +88,17 @@ fn a_failed_simulate_keeps_the_previous_files() {
         fs::read(d.join("o.csv")).unwrap(),
         fs::read(d.join("p.png")).unwrap(),
     );
-    // 20 000 points make a CSV of about 1.4 MB: more than the 200 KiB allowed.
+    // 300 points make a CSV of about 25 kB, but the figure is about 140 kB: more than the 100 blocks
+    // (50 or 100 KiB) allowed. The new points are complete before the figure fails.
     let out = run_limited(
         d,
-        200,
+        100,
         &with_scene(
             "simulate",
-            &["--points", "20000", "--output", "o.csv", "--plot", "p.png"],
+            &["--points", "300", "--output", "o.csv", "--plot", "p.png"],
         ),
     );
-    assert_refused(&out, &["o.csv", "File too large"]);
+    assert_refused(&out, &["p.png", "File too large"]);
     assert_eq!(fs::read(d.join("o.csv")).unwrap(), csv, "o.csv changed");
     assert_eq!(fs::read(d.join("p.png")).unwrap(), png, "p.png changed");
     assert_eq!(temporaries(d), Vec::<String>::new());

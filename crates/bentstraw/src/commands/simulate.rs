@@ -18,7 +18,8 @@ use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use crate::{html, plot, progress, ray_diagram};
 
 /// Most image points `simulate` traces with the course model: measured at about 220 bytes a point
-/// for a CSV and 360 with the figure and the 3D view, this keeps a run under 4 GB (and ~15 s).
+/// for a CSV and 310 with the figure and the 3D view; at the limit a run takes 2.2–3.1 GB and
+/// 27–38 s (two cores).
 pub const MAX_POINTS: usize = 10_000_000;
 /// Most image points with the eye or stereo model: about 600 bytes and 10–30 µs a point (two
 /// cores), so at most ~1.2 GB and a minute.
@@ -32,7 +33,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         return fail("--points 0 is not allowed: ask for at least 1 image point");
     }
     let (most, per_point, model_name) = match args.image_model {
-        ImageModelArg::Course => (MAX_POINTS, "about 360 bytes", "course"),
+        ImageModelArg::Course => (MAX_POINTS, "about 300 bytes", "course"),
         ImageModelArg::Eye => (MAX_MODEL_POINTS, "about 600 bytes", "eye"),
         ImageModelArg::Stereo => (MAX_MODEL_POINTS, "about 600 bytes", "stereo"),
     };
