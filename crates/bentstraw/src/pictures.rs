@@ -17,7 +17,7 @@ use crate::error::{CliError, CliResult};
 use crate::files;
 
 /// Size of the report's observer pictures (pixels).
-pub const REPORT_SIZE: (u32, u32) = (640, 480);
+pub const REPORT_SIZE: (u32, u32) = (1600, 1200);
 /// Pruning threshold of the report's Fresnel pictures.
 pub const REPORT_PRUNE: f64 = 1e-4;
 
@@ -33,6 +33,24 @@ pub fn png_bytes(picture: &RgbPicture) -> CliResult<Vec<u8>> {
         )
         .map_err(|e| CliError(format!("cannot encode the picture as PNG: {e}")))?;
     Ok(bytes)
+}
+
+/// Writes `path`: what `observer` sees (Fresnel mode with the checker backdrop, camera aimed at
+/// the glass, a moderate field of view framing glass and straw), [`REPORT_SIZE`].
+pub fn write_view_picture(path: &Path, scene: &Scene, observer: Vec3) -> CliResult {
+    let (w, h) = REPORT_SIZE;
+    let target = framing_target(observer);
+    let fov = framing_fov(observer, target, w as f64 / h as f64);
+    let camera = Camera::new(observer, target, w, h, fov);
+    let options = ShadingOptions {
+        mode: ShadingMode::Fresnel {
+            prune_below: REPORT_PRUNE,
+        },
+        backdrop: Backdrop::Checker,
+        samples: 3,
+        outline: true,
+    };
+    files::write_bytes(path, &png_bytes(&shaded_picture(scene, &camera, &options))?)
 }
 
 /// Writes `<dir>/<stem>_observer.png` (what `observer` sees, Fresnel mode, camera framing the glass) and

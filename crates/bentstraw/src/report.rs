@@ -22,8 +22,12 @@ pub struct Report {
     pub title: String,
     /// One-sentence description under the title.
     pub subtitle: String,
+    /// Sections before the simulations: the effect at a glance, the method.
+    pub intro: Vec<Section>,
     /// The simulations, in order; consecutive ones with the same reference are grouped.
     pub simulations: Vec<SimulationEntry>,
+    /// Sections after the simulations: the validation, the limits.
+    pub closing: Vec<Section>,
     /// Wall-clock time of the whole run.
     pub total: Duration,
 }
@@ -33,7 +37,7 @@ pub struct Report {
 pub struct SimulationEntry {
     /// Anchor and file stem, e.g. `sim1_n1`.
     pub id: String,
-    /// Number of the reference simulation (SPEC §5) it belongs to.
+    /// Number of the reference simulation it belongs to.
     pub reference: u32,
     /// Heading, e.g. "Simulation 1, check n_water = 1".
     pub heading: String,
@@ -100,6 +104,8 @@ pub struct Section {
     pub notes: Vec<String>,
     /// Whether the figures are shown side by side (pictures meant to be compared), not stacked.
     pub side_by_side: bool,
+    /// A table of numbers under the figures: a header row, then data rows.
+    pub table: Vec<Vec<String>>,
 }
 
 /// A picture file shown in the page, with links to companion files.
@@ -199,7 +205,17 @@ td.l, th.l { text-align:left; }
 .badge.pass { background:#e7f4ea; color:var(--ok); } .badge.fail { background:#fbe9e7; color:var(--bad); }
 .timing { color:var(--muted); font-size:13px; margin-top:8px; }
 figure { margin:8px 0 0; }
-.figs.pair { display:grid; grid-template-columns:repeat(auto-fit, minmax(380px, 1fr)); gap:12px; }
+.figs.pair { display:grid; grid-template-columns:repeat(auto-fit, minmax(min(380px, 100%), 1fr)); gap:12px; }
+.facts > table { max-width:100%; overflow-x:auto; display:block; }
+main p { max-width:900px; }
+@media (max-width: 700px) {
+  header, nav, main, footer { padding-left:14px; padding-right:14px; }
+  nav { position:static; }
+  nav a { display:inline-block; margin:2px 12px 2px 0; }
+  .sim { padding:12px; }
+  th, td { padding:3px 6px; }
+  body { overflow-wrap:anywhere; }
+}
 figure img { max-width:100%; height:auto; border:1px solid var(--line); border-radius:4px; background:#fff; }
 figcaption { color:var(--muted); font-size:13px; margin-top:4px; }
 .missing { padding:18px; border:1px dashed var(--bad); color:var(--bad); border-radius:6px; background:#fff8f7; }
@@ -242,18 +258,33 @@ pub fn render(report: &Report) -> String {
             _ => groups.push((s.reference, vec![s])),
         }
     }
-    h.push_str("<nav><a href=\"#overview\">Overview</a>");
+    h.push_str("<nav>");
+    for (k, sec) in report.intro.iter().enumerate() {
+        let _ = write!(h, "<a href=\"#intro{k}\">{}</a>", escape(&sec.title));
+    }
+    h.push_str("<a href=\"#overview\">Overview</a>");
     for (r, _) in &groups {
         let _ = write!(h, "<a href=\"#reference{r}\">Simulation {r}</a>");
     }
+    for (k, sec) in report.closing.iter().enumerate() {
+        let _ = write!(h, "<a href=\"#closing{k}\">{}</a>", escape(&sec.title));
+    }
     h.push_str("<a href=\"#conventions\">Conventions</a></nav>\n<main>\n");
 
+    for (k, sec) in report.intro.iter().enumerate() {
+        let _ = writeln!(h, "<h2 id=\"intro{k}\">{}</h2>", escape(&sec.title));
+        render_section_body(&mut h, sec);
+    }
     render_overview(&mut h, report);
     for (r, list) in &groups {
         let _ = writeln!(h, "<h2 id=\"reference{r}\">Reference simulation {r}</h2>");
         for s in list {
             render_simulation(&mut h, s);
         }
+    }
+    for (k, sec) in report.closing.iter().enumerate() {
+        let _ = writeln!(h, "<h2 id=\"closing{k}\">{}</h2>", escape(&sec.title));
+        render_section_body(&mut h, sec);
     }
     h.push_str("</main>\n");
     let _ = write!(
@@ -373,21 +404,43 @@ fn render_simulation(h: &mut String, s: &SimulationEntry) {
     let _ = writeln!(h, "<p class=\"timing\">Time: {}</p>", timings.join(" · "));
     for sec in &s.sections {
         let _ = writeln!(h, "<h4>{}</h4>", escape(&sec.title));
-        let class = if sec.side_by_side {
-            "figs pair"
-        } else {
-            "figs"
-        };
+        render_section_body(h, sec);
+    }
+    h.push_str("</article>\n");
+}
+
+/// A section's figures, notes and table (its heading is the caller's).
+fn render_section_body(h: &mut String, sec: &Section) {
+    let class = if sec.side_by_side {
+        "figs pair"
+    } else {
+        "figs"
+    };
+    if !sec.figures.is_empty() {
         let _ = writeln!(h, "<div class=\"{class}\">");
         for f in &sec.figures {
             render_figure(h, f);
         }
         h.push_str("</div>\n");
-        for n in &sec.notes {
-            let _ = writeln!(h, "<p>{}</p>", escape(n));
-        }
     }
-    h.push_str("</article>\n");
+    for n in &sec.notes {
+        let _ = writeln!(h, "<p>{}</p>", escape(n));
+    }
+    if let Some((head, rows)) = sec.table.split_first() {
+        h.push_str("<div class=\"overview\"><table>\n<tr>");
+        for c in head {
+            let _ = write!(h, "<th>{}</th>", escape(c));
+        }
+        h.push_str("</tr>\n");
+        for row in rows {
+            h.push_str("<tr>");
+            for c in row {
+                let _ = write!(h, "<td>{}</td>", escape(c));
+            }
+            h.push_str("</tr>\n");
+        }
+        h.push_str("</table></div>\n");
+    }
 }
 
 fn render_figure(h: &mut String, f: &Figure) {
@@ -468,6 +521,7 @@ mod tests {
                 figures: vec![figure],
                 notes: vec!["a & b".into()],
                 side_by_side: false,
+                table: Vec::new(),
             }],
         }
     }
@@ -476,6 +530,8 @@ mod tests {
         Report {
             title: "T".into(),
             subtitle: "S".into(),
+            intro: Vec::new(),
+            closing: Vec::new(),
             simulations: vec![
                 entry("sim1", 1, None, None),
                 entry(

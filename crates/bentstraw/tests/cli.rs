@@ -398,10 +398,15 @@ fn table_writes_every_simulation_and_the_report() {
         .unwrap()
         .starts_with(b"\x89PNG"));
     let files = fs::read_dir(&folder).unwrap().count();
-    // 12 × (csv, png, html), 4 × 8 pictures and model files, the report.
+    // 12 × (csv, png, html), 4 × 9 pictures, model files and ray diagrams, the opening view and
+    // its ray diagram, the validation figure, the report.
+    for f in ["classic_view.png", "classic_rays.svg", "validation.svg", "sim3_rays.svg"] {
+        assert!(folder.join(f).is_file(), "{f}");
+        assert!(index.contains(f), "{f} not in the report");
+    }
     assert_eq!(
         files,
-        12 * 3 + 4 * 8 + 1,
+        12 * 3 + 4 * 9 + 2 + 1 + 1,
         "unexpected files in the table's folder"
     );
     assert!(!err.contains("could not be written"), "{err}");

@@ -1,4 +1,4 @@
-//! `bentstraw table` (and `bentstraw` alone): the four reference simulations of SPEC §5, each also
+//! `bentstraw table` (and `bentstraw` alone): the four reference simulations, each also
 //! with `n_water = 1` (whose image points must lie on the straw) and `n_water = 1.05`, written as
 //! CSV, PNG and HTML into one folder with an `index.html` report.
 
@@ -17,7 +17,9 @@ use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
 use crate::files::{self, Output, OutputSet};
 use crate::model_plots::{write_gap_plot, write_model_comparison, GapSeries, ModelCloud};
+use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
+use crate::validation::{self, write_validation_figure, ValidationSeries};
 use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use crate::{html, pictures, plot, progress};
 
@@ -68,6 +70,7 @@ impl Job {
                 "_stereo.html",
                 "_models.png",
                 "_gap.png",
+                "_rays.svg",
             ] {
                 names.push(format!("{stem}{suffix}"));
             }
@@ -120,7 +123,8 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
     let paths: Vec<PathBuf> = jobs
         .iter()
         .flat_map(|job| job.outputs())
-        .chain([REPORT_FILE.to_string()])
+        .chain(INTRO_FILES.iter().map(|f| f.to_string()))
+        .chain([VALIDATION_FILE.to_string(), REPORT_FILE.to_string()])
         .map(|name| out.join(name))
         .collect();
     let outputs: Vec<Output> = paths
@@ -148,16 +152,23 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
                 .collect()
         },
     );
+    let intro = intro_sections(out, args.points);
+    let closing = closing_sections(out);
     let elapsed = started.elapsed();
 
     let report = Report {
-        title: "bentstraw: the straw's virtual image".into(),
+        title: "bentstraw: why a straw in a glass of water looks broken".into(),
         subtitle: format!(
-            "The four reference simulations of the straw in a glass of water, each also with water of \
-             index 1 (the image must then lie on the straw) and 1.05; at least {} image points each.",
+            "A short lab report. Rays are traced from the observer's eye through the water \
+             (Snell–Descartes refraction and total reflection) to a five-colour straw, and each \
+             ray that reaches it gives an image point: where the observer believes that piece of \
+             straw is. Four reference simulations, each also with water of index 1 (the image must \
+             then lie on the straw) and 1.05; at least {} image points each.",
             args.points
         ),
+        intro,
         simulations: entries,
+        closing,
         total: elapsed,
     };
     report::write_report(&out.join(REPORT_FILE), &report)?;
@@ -167,6 +178,8 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
         .simulations
         .iter()
         .flat_map(|s| &s.sections)
+        .chain(&report.intro)
+        .chain(&report.closing)
         .flat_map(|s| &s.figures)
         .flat_map(|f| {
             let own = f.error.as_deref().map(|e| (f.file.as_str(), e));
@@ -253,6 +266,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         figures: vec![figure],
         notes: vec![distance_note(scene, &cloud)],
         side_by_side: false,
+        table: Vec::new(),
     }];
     // The reference simulations proper (not the index checks) also get the observer's picture and
     // the apparent-position models.
@@ -260,6 +274,9 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         let t = Instant::now();
         sections.push(observer_section(job, out, &cloud));
         timings.push(Timing::new("observer's picture", t.elapsed()));
+        let t = Instant::now();
+        sections.push(rays_section(job, out, &cloud));
+        timings.push(Timing::new("ray diagram", t.elapsed()));
         let t = Instant::now();
         sections.push(models_section(job, out, &cloud));
         timings.push(Timing::new("eye and stereo models", t.elapsed()));
@@ -311,7 +328,193 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         figures: vec![picture, points],
         notes: vec![],
         side_by_side: true,
+        table: Vec::new(),
     }
+}
+
+/// The ray diagram of one simulation: which light paths make which pieces of its image.
+fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
+    let (scene, observer) = (&job.scene, job.reference.observer);
+    let file = format!("{}_rays.svg", job.stem);
+    let diagram = Diagram::new(scene, observer, &cloud.points);
+    let title = format!(
+        "{} ray diagram: {}",
+        simulation_heading(job),
+        simulation_title(scene, observer)
+    );
+    let mut figure = Figure::image(
+        &file,
+        "About forty of the rays, each drawn as its broken path from the eye (black dot) through \
+         the water's faces to the straw, coloured by the kind of light path; rings mark \
+         refractions, crosses total reflections, and the dashed line runs from the eye straight \
+         to the ray's image point. Side view in the vertical plane through the glass's axis and \
+         the observer (the observer to the right), and top view.",
+    );
+    figure.error = write_ray_diagram(&out.join(&file), scene, &diagram, &title)
+        .err()
+        .map(|e| e.0);
+    let total: usize = diagram.counts.iter().map(|c| c.1).sum::<usize>().max(1);
+    let shares: Vec<String> = diagram
+        .counts
+        .iter()
+        .map(|(kind, n)| format!("{kind}: {:.1} %", 100.0 * *n as f64 / total as f64))
+        .collect();
+    Section {
+        title: "Which light path makes which piece (ray diagram)".into(),
+        figures: vec![figure],
+        notes: vec![format!(
+            "Image points by light path: {}. Pieces of the image far from the straw, even \
+             outside the glass, come from light totally reflected inside the water: the eye, \
+             looking along the first straight piece of the ray, places the straw as far away as \
+             the light really travelled.",
+            shares.join("; ")
+        )],
+        side_by_side: false,
+        table: Vec::new(),
+    }
+}
+
+/// The files of the report's opening sections.
+const INTRO_FILES: [&str; 2] = ["classic_view.png", "classic_rays.svg"];
+/// The validation figure's file.
+const VALIDATION_FILE: &str = "validation.svg";
+/// The classic view: an observer 30 cm away, a little above the water, the straw off the axis.
+const CLASSIC_OBSERVER: Vec3 = Vec3::new(0.3, 0.0, 0.25);
+/// The straw of the classic view.
+const CLASSIC_STRAW: (f64, f64) = (0.0, 0.03);
+/// Water height of the classic view.
+const CLASSIC_WATER: f64 = 0.15;
+
+/// The report's opening: the effect at a glance (a realistic view), and the method with its ray
+/// diagram.
+fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
+    let scene = Scene::with_defaults(CLASSIC_STRAW.0, CLASSIC_STRAW.1, CLASSIC_WATER)
+        .expect("the classic view is valid");
+    let observer = CLASSIC_OBSERVER;
+    let mut view = Figure::image(
+        INTRO_FILES[0],
+        "What an eye 30 cm from the glass sees (bentstraw render --observer 0.3,0,0.25 --straw \
+         0,0.03 --water-height 0.15): below the water's surface the straw is shifted sideways and \
+         looks wider; above it, it is seen straight.",
+    );
+    view.error = pictures::write_view_picture(&out.join(INTRO_FILES[0]), &scene, observer)
+        .err()
+        .map(|e| e.0);
+    let cloud = sample_image(&scene, observer, points.min(20_000), &|_| {});
+    let diagram = Diagram::new(&scene, observer, &cloud.points);
+    let mut rays = Figure::image(
+        INTRO_FILES[1],
+        "The same view as a ray diagram: each ray's broken path from the eye to the straw, and \
+         the dashed straight line along which the eye looks. The eye places each piece of straw \
+         on that line, as far away as the light travelled.",
+    );
+    rays.error = write_ray_diagram(
+        &out.join(INTRO_FILES[1]),
+        &scene,
+        &diagram,
+        &format!("Ray diagram: {}", simulation_title(&scene, observer)),
+    )
+    .err()
+    .map(|e| e.0);
+    vec![
+        Section {
+            title: "The broken straw".into(),
+            figures: vec![view],
+            notes: vec![],
+            side_by_side: false,
+            table: Vec::new(),
+        },
+        Section {
+            title: "Method".into(),
+            figures: vec![rays],
+            notes: vec![
+                "A ray leaves the observer's eye O with direction u0 and goes straight until it \
+                 meets a face of the water (its side, its surface, its bottom) or the straw. At a \
+                 water face it is refracted by Snell–Descartes, n1 sin θ1 = n2 sin θ2, or totally \
+                 reflected when no refracted ray exists (from water to air beyond 48.6°); at most \
+                 ten such events. A ray that meets the opaque straw stops there and takes the \
+                 colour of that section. Its image point is P = O + L·u0, with L the length of its \
+                 broken path: where the eye, looking along u0, believes the light came from. \
+                 Rays are spread evenly over the directions in which the straw can be seen."
+                    .into(),
+                "Every image point is checked: with water of index 1 the points must lie on the \
+                 straw; and every simulation's points are re-traced one by one by bentstraw check, \
+                 the tool a student uses on their own program's output."
+                    .into(),
+            ],
+            side_by_side: false,
+            table: Vec::new(),
+        },
+    ]
+}
+
+/// The report's closing: the validation as the index grows, and the limits of the model.
+fn closing_sections(out: &Path) -> Vec<Section> {
+    let series: Vec<ValidationSeries> = REFERENCES
+        .par_iter()
+        .map(|r| {
+            validation::series(
+                &format!("simulation {}", r.number),
+                &r.scene(WATER_INDEX),
+                r.observer,
+            )
+        })
+        .collect();
+    let mut figure = Figure::image(
+        VALIDATION_FILE,
+        "For the image points seen through the water, the largest (solid) and median (dashed) \
+         distance from the straw's surface, as the water's index goes from 1 to 1.333, log scale.",
+    );
+    figure.error = write_validation_figure(&out.join(VALIDATION_FILE), &series)
+        .err()
+        .map(|e| e.0);
+    let mut table = vec![{
+        let mut head = vec!["n_water".to_string()];
+        for s in &series {
+            head.push(format!("{}: largest (m)", s.label));
+            head.push(format!("{}: median (m)", s.label));
+        }
+        head
+    }];
+    for (k, n) in validation::indices().into_iter().enumerate() {
+        let mut row = vec![format!("{n:.4}")];
+        for s in &series {
+            row.push(format!("{:.2e}", s.rows[k].1));
+            row.push(format!("{:.2e}", s.rows[k].2));
+        }
+        table.push(row);
+    }
+    vec![
+        Section {
+            title: "Validation".into(),
+            figures: vec![figure],
+            notes: vec![format!(
+                "With index 1 the water bends nothing, and every image point lies on the straw to \
+                 rounding (about 1e-16 m); as soon as the index grows, the points seen through the \
+                 water leave the straw, by millimetres at first and by centimetres at 1.333. The \
+                 points seen straight through air are left out: they lie on the straw whatever the \
+                 water. {} image points per simulation and index.",
+                validation::VALIDATION_POINTS
+            )],
+            side_by_side: false,
+            table,
+        },
+        Section {
+            title: "Limits".into(),
+            figures: vec![],
+            notes: vec![
+                "The image point P = O + L·u0 is the course's convention, not what an eye measures: \
+                 the eye and stereo models above say where one eye with a small pupil, and two \
+                 eyes, see each point. The glass has walls of no thickness and the index of air; \
+                 the straw is opaque and its surface does not reflect; light is traced for one \
+                 colour (no dispersion). The pictures' Fresnel mode follows at most 2048 ray \
+                 segments per ray from the eye."
+                    .into(),
+            ],
+            side_by_side: false,
+            table: Vec::new(),
+        },
+    ]
 }
 
 /// The course's, the eye's and the stereo image side by side, and how far apart they are.
@@ -440,6 +643,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
             ),
         ],
         side_by_side: false,
+        table: Vec::new(),
     }
 }
 
