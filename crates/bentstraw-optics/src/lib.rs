@@ -16,6 +16,7 @@
 
 pub mod apparent;
 pub mod camera;
+pub mod frame;
 pub mod geometry;
 pub mod image;
 pub mod interface;

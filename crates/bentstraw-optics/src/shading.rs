@@ -26,7 +26,8 @@ use crate::camera::Camera;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_HEIGHT, GLASS_RADIUS, SECTION_RGB};
-use crate::trace::{Face, FresnelStep, Outcome};
+use crate::trace::{follow_fresnel, follow_ray, Face, FresnelStep, NearestFace, Outcome};
+use crate::tracer::Tracer;
 use crate::Vec3;
 
 /// Distance of the backdrop wall behind the glass's axis (m).
@@ -72,7 +73,7 @@ pub struct ShadingOptions {
 }
 
 /// An RGB picture, 8-bit sRGB, row-major, 3 bytes per pixel, row 0 at the top.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct RgbPicture {
     /// Width in pixels.
     pub width: u32,
@@ -239,8 +240,10 @@ fn straw_radiance(scene: &Scene, light: Vec3, color: u8, face: Face, point: Vec3
     linear(SECTION_RGB[color as usize - 1]).map(|c| c * shade)
 }
 
-/// Linear colour seen along one ray.
+/// Linear colour seen along one ray, traced by the prepared tracer (the same outcomes as the
+/// scene's own loop, faster).
 fn sample(
+    tracer: &impl NearestFace,
     scene: &Scene,
     surroundings: &Surroundings,
     light: Vec3,
@@ -250,7 +253,7 @@ fn sample(
     match mode {
         ShadingMode::Course => {
             let mut last = ray;
-            let outcome = scene.trace_with(ray, |e| {
+            let outcome = follow_ray(tracer, scene, ray, |e| {
                 last = Ray {
                     origin: e.point,
                     direction: e.outgoing,
@@ -272,7 +275,7 @@ fn sample(
                     acc[k] += w * c[k];
                 }
             };
-            scene.trace_fresnel_with(ray, prune_below, |step| match step {
+            follow_fresnel::<false>(tracer, scene, ray, prune_below, |step| match step {
                 FresnelStep::Straw {
                     color,
                     point,
@@ -313,21 +316,53 @@ pub const SMOOTH_CONTRAST: f64 = 2.0 / 255.0;
 /// pixels keep their centre: the picture is then the same as a full supersampling to within a
 /// few grey levels, several times faster.
 pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) -> RgbPicture {
+    let mut picture = RgbPicture::default();
+    shaded_picture_into(
+        scene,
+        camera,
+        options,
+        &mut ShadingBuffers::default(),
+        &mut picture,
+    );
+    picture
+}
+
+/// Work space of [`shaded_picture_into`], kept from one picture to the next.
+#[derive(Clone, Debug, Default)]
+pub struct ShadingBuffers {
+    centre: Vec<[f64; 3]>,
+    display: Vec<[f64; 3]>,
+}
+
+/// [`shaded_picture`] into `picture`, reusing its pixels and `buffers` (an interactive view
+/// redraws with no allocation once the size stops changing).
+pub fn shaded_picture_into(
+    scene: &Scene,
+    camera: &Camera,
+    options: &ShadingOptions,
+    buffers: &mut ShadingBuffers,
+    picture: &mut RgbPicture,
+) {
     let (w, h) = (camera.width as usize, camera.height as usize);
     let surroundings = Surroundings::new(options.backdrop, camera.eye);
     let light = light_direction(&surroundings);
     let n = options.samples.max(1) as usize;
+    let tracer = Tracer::new(scene);
     let trace = |r: f64, c: f64| {
         let ray = Ray::new(camera.eye, camera.direction_at(r, c));
-        sample(scene, &surroundings, light, options.mode, ray)
+        sample(&tracer, scene, &surroundings, light, options.mode, ray)
     };
-    let mut centre = vec![[0.0f64; 3]; w * h];
+    let centre = &mut buffers.centre;
+    centre.resize(w * h, [0.0; 3]);
     centre.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         for (j, px) in row.iter_mut().enumerate() {
             *px = trace(i as f64 + 0.5, j as f64 + 0.5).map(linear_to_srgb);
         }
     });
-    let mut display = centre.clone();
+    let centre = &buffers.centre;
+    let display = &mut buffers.display;
+    display.clear();
+    display.extend_from_slice(centre);
     if n > 1 {
         let edge = |i: usize, j: usize| {
             let c = centre[i * w + j];
@@ -363,9 +398,9 @@ pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) 
         });
     }
     if options.outline {
-        draw_glass_outline(&mut display, camera);
+        draw_glass_outline(display, camera);
     }
-    encode(camera, &display)
+    encode_into(camera, display, picture);
 }
 
 /// The image points seen through `camera` (its eye should be their observer): each a disc of
@@ -407,16 +442,20 @@ pub fn cloud_picture(camera: &Camera, points: &[ImagePoint], radius: f64) -> Rgb
 }
 
 fn encode(camera: &Camera, display: &[[f64; 3]]) -> RgbPicture {
-    let mut pixels = Vec::with_capacity(display.len() * 3);
+    let mut picture = RgbPicture::default();
+    encode_into(camera, display, &mut picture);
+    picture
+}
+
+fn encode_into(camera: &Camera, display: &[[f64; 3]], picture: &mut RgbPicture) {
+    picture.width = camera.width;
+    picture.height = camera.height;
+    picture.pixels.clear();
+    picture.pixels.reserve(display.len() * 3);
     for px in display {
         for c in px {
-            pixels.push((c.clamp(0.0, 1.0) * 255.0).round() as u8);
+            picture.pixels.push((c.clamp(0.0, 1.0) * 255.0).round() as u8);
         }
-    }
-    RgbPicture {
-        width: camera.width,
-        height: camera.height,
-        pixels,
     }
 }
 
@@ -674,6 +713,48 @@ mod tests {
         let p = Surroundings::new(Backdrop::Plain, Vec3::new(0.1, 0.0, 0.1));
         let flat = |z: f64| p.radiance(&Ray::new(Vec3::new(0.0, 0.001, z), Vec3::NEG_X));
         assert_eq!(flat(0.05), flat(0.07));
+    }
+
+    /// The picture's rays go through the prepared tracer; every sample must be what the scene's
+    /// own (plain) tracer sees along the same ray.
+    #[test]
+    fn prepared_tracer_shades_as_the_scene_tracer() {
+        for r in REFERENCES {
+            let scene = r.scene(WATER_INDEX);
+            let tracer = Tracer::new(&scene);
+            let cam = Camera::new(r.observer, SCENE_CENTRE, 64, 48, 1.6);
+            let s = Surroundings::new(Backdrop::Checker, cam.eye);
+            let light = light_direction(&s);
+            for mode in [
+                ShadingMode::Course,
+                ShadingMode::Fresnel { prune_below: 1e-4 },
+            ] {
+                for i in 0..cam.height {
+                    for j in 0..cam.width {
+                        let ray = cam.pixel_ray(i, j);
+                        let fast = sample(&tracer, &scene, &s, light, mode, ray);
+                        let plain = sample(&scene, &scene, &s, light, mode, ray);
+                        assert_eq!(fast, plain, "pixel ({i}, {j}) of reference {}", r.number);
+                    }
+                }
+            }
+        }
+    }
+
+    /// A buffer reused across sizes holds nothing of the previous picture.
+    #[test]
+    fn reused_buffers_give_the_fresh_picture() {
+        let r = REFERENCES[2];
+        let scene = r.scene(WATER_INDEX);
+        let opts = options(ShadingMode::Fresnel { prune_below: 1e-4 }, 2);
+        let mut buffers = ShadingBuffers::default();
+        let mut pic = RgbPicture::default();
+        for (w, h) in [(90, 70), (40, 30), (64, 48)] {
+            let cam = Camera::new(r.observer, SCENE_CENTRE, w, h, 1.2);
+            shaded_picture_into(&scene, &cam, &opts, &mut buffers, &mut pic);
+            let fresh = shaded_picture(&scene, &cam, &opts);
+            assert_eq!(pic, fresh, "{w}x{h}");
+        }
     }
 
     #[test]
