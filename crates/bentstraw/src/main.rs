@@ -5,6 +5,7 @@
 mod cli;
 mod commands;
 mod error;
+mod explore;
 mod files;
 mod html;
 mod model_plots;

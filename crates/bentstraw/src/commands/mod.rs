@@ -19,6 +19,7 @@ pub fn run(cli: Cli) -> CliResult {
         Some(Command::Table(a)) => table::run(&a),
         Some(Command::Render(a)) => render::run(&a),
         Some(Command::Bench(a)) => bench::run(&a),
+        Some(Command::Explore(a)) => crate::explore::run(&a),
     }
 }
 
