@@ -135,7 +135,13 @@ let inFlight = null;       // { quick, since }
 let dirty = false;
 let fullTimer = null;
 const latencies = [];      // input-to-paint times of painted frames (ms), for the benchmark
-window.bentstraw = { state, latencies, frames: 0, get frame() { return frame; }, get path() { return path; }, get models() { return models; } };
+let fullPending = false;
+window.bentstraw = {
+  state, latencies, frames: 0,
+  get frame() { return frame; }, get path() { return path; }, get models() { return models; },
+  /** Whether a frame is being computed or the full-quality frame is still to come. */
+  busy: () => inFlight !== null || fullPending || dirty || (frame !== null && frame.quick),
+};
 
 /** Picture size for the eye panel (full quality) in pixels. */
 function pictureSize() {
@@ -147,15 +153,19 @@ function pictureSize() {
 /** Called on every change of the state by the user. */
 function changed(options) {
   if (inputSince === null) inputSince = performance.now();
+  document.body.dataset.ready = "0";
   history.replaceState(null, "", stateHash(state));
   syncControls();
   drawMaps();
   if (!(options && options.keepPath)) { path = null; state.pick = ""; }
+  // The models' points belong to the previous view: they come back with the full frame.
+  models = { eye: null, stereo: null };
   requestFrame(true);
 }
 
 function requestFrame(quick) {
   clearTimeout(fullTimer);
+  fullPending = false;
   if (inFlight && inFlight.quick && quick) { dirty = true; return; }
   sendFrame(quick);
 }
@@ -171,10 +181,12 @@ async function sendFrame(quick) {
   try { r = await ask("frame", "/api/frame", query); } catch (e) { showError("the server does not answer: " + e.message); inFlight = null; return; }
   if (r === null) return; // superseded by a newer request
   inFlight = null;
-  if (r.status === 503) { fullTimer = setTimeout(() => requestFrame(quick), 60); return; }
+  if (r.status === 503) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(quick); }, 60); return; }
   if (!r.ok) {
     showError(await r.text());
     inputSince = null;
+    if (frame) frame.quick = false; // the last good view stays, as it is
+    document.body.dataset.refused = String(Number(document.body.dataset.refused || 0) + 1);
     return;
   }
   const bytes = await r.arrayBuffer();
@@ -189,7 +201,7 @@ async function sendFrame(quick) {
   });
   if (since === inputSince) inputSince = null;
   if (dirty) { sendFrame(true); return; }
-  if (quick) fullTimer = setTimeout(() => sendFrame(false), 150);
+  if (quick) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 150); }
   else {
     document.body.dataset.ready = "1";
     requestModels();
@@ -219,8 +231,9 @@ async function requestModels() {
     if (!r || !r.ok) continue;
     const b = await r.arrayBuffer();
     const n = new DataView(b).getUint32(0, true);
-    models[m] = { xyz: new Float32Array(b.slice(4, 4 + 12 * n)), color: new Uint8Array(b, 4 + 12 * n, n) };
-    drawCloud();
+    models[m] = { xyz: new Float32Array(b.slice(4, 4 + 12 * n)), color: new Uint8Array(b, 4 + 12 * n, n), query: viewQuery(state) };
+    drawCloud(); drawLegend();
+    document.body.dataset.models = state.models.join(",");
   }
 }
 
@@ -528,9 +541,17 @@ async function pick(what) {
   if (!r.ok) { showError(await r.text()); return; }
   path = await r.json();
   showReadout();
+  document.body.dataset.picked = what;
   drawCloud();
 }
 function restorePick() { if (state.pick) pick(state.pick); }
+window.bentstraw.pickPoint = (k) => pick(`point:${k}`);
+/** Where point `k` of the cloud is drawn, in the window's coordinates. */
+window.bentstraw.screenOfPoint = (k) => {
+  const r = cloudCanvas.getBoundingClientRect();
+  const [x, y] = cloudProjection(r.width, r.height).p([frame.xyz[3 * k], frame.xyz[3 * k + 1], frame.xyz[3 * k + 2]]);
+  return [r.left + x, r.top + y];
+};
 
 const m = (x) => (x == null ? "—" : Number(x).toFixed(4) + " m");
 const v3 = (p) => (p ? `(${p.map((x) => x.toFixed(4)).join(", ")})` : "—");
@@ -612,7 +633,7 @@ function showCommands() {
 }
 $("show-commands").addEventListener("click", () => { const c = $("commands"); c.hidden = !c.hidden; showCommands(); });
 
-window.addEventListener("resize", () => { drawMaps(); drawCloud(); clearTimeout(fullTimer); fullTimer = setTimeout(() => sendFrame(false), 200); });
+window.addEventListener("resize", () => { drawMaps(); drawCloud(); clearTimeout(fullTimer); fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 200); });
 window.addEventListener("hashchange", () => { readParams(location.hash, state); syncControls(); drawMaps(); requestFrame(false); });
 
 // ---- start: the address's state, else the command line's ----
