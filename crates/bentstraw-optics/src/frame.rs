@@ -68,15 +68,7 @@ pub fn draw_frame(scene: &Scene, request: &FrameRequest, frame: &mut Frame) {
     } = frame;
     let observer = request.camera.eye;
     rayon::join(
-        || {
-            shaded_picture_into(
-                scene,
-                &request.camera,
-                &request.shading,
-                shading,
-                picture,
-            )
-        },
+        || shaded_picture_into(scene, &request.camera, &request.shading, shading, picture),
         || {
             points.clear();
             paths.clear();
@@ -155,7 +147,11 @@ mod tests {
     fn reference_three_has_top_and_totally_reflected_paths() {
         let r = REFERENCES[2];
         let mut frame = Frame::default();
-        draw_frame(&r.scene(WATER_INDEX), &request(r.observer, 5000), &mut frame);
+        draw_frame(
+            &r.scene(WATER_INDEX),
+            &request(r.observer, 5000),
+            &mut frame,
+        );
         let counts = frame.path_counts();
         assert!(counts
             .iter()

@@ -490,7 +490,9 @@ fn encode_into(camera: &Camera, display: &[[f64; 3]], picture: &mut RgbPicture) 
     picture.pixels.reserve(display.len() * 3);
     for px in display {
         for c in px {
-            picture.pixels.push((c.clamp(0.0, 1.0) * 255.0).round() as u8);
+            picture
+                .pixels
+                .push((c.clamp(0.0, 1.0) * 255.0).round() as u8);
         }
     }
 }

@@ -8,6 +8,8 @@ const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff"];
 const SECTION_NAMES = ["red", "orange", "magenta", "green", "blue"];
 // Colours of the kinds of light path, in the server's order of kinds (direct, top, wall, bottom…).
 const PATH_COLORS = ["#222222", "#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
+// Quick frames (while dragging) have this many times fewer pixels along each side.
+const QUICK = 2.5;
 // The centre the eye orbits round: the middle of the glass.
 const ORBIT = [0, 0, 0.1];
 
@@ -172,19 +174,23 @@ function requestFrame(quick) {
 
 async function sendFrame(quick) {
   const [w, h] = pictureSize();
-  const size = quick ? [Math.max(40, Math.round(w / 2)), Math.max(30, Math.round(h / 2))] : [w, h];
+  const size = quick ? [Math.max(40, Math.round(w / QUICK)), Math.max(30, Math.round(h / QUICK))] : [w, h];
   const query = viewQuery(state, { size: `${size[0]}x${size[1]}`, samples: quick ? 1 : 3 });
+  // This request is the first to show the inputs since `since`: its paint ends their wait.
   const since = inputSince;
+  inputSince = null;
   inFlight = { quick, since };
   dirty = false;
   let r;
   try { r = await ask("frame", "/api/frame", query); } catch (e) { showError("the server does not answer: " + e.message); inFlight = null; return; }
-  if (r === null) return; // superseded by a newer request
+  // Not painted: its inputs still wait (for the request that replaced it, or the retry).
+  const unpainted = () => { if (since !== null && (inputSince === null || since < inputSince)) inputSince = since; };
+  if (r === null) { unpainted(); return; } // superseded by a newer request
   inFlight = null;
+  if (r.status === 503) unpainted();
   if (r.status === 503) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(quick); }, 60); return; }
   if (!r.ok) {
     showError(await r.text());
-    inputSince = null;
     if (frame) frame.quick = false; // the last good view stays, as it is
     document.body.dataset.refused = String(Number(document.body.dataset.refused || 0) + 1);
     return;
@@ -193,13 +199,14 @@ async function sendFrame(quick) {
   frame = decodeFrame(bytes, quick);
   frame.query = query;
   showError("");
+  const t = performance.now();
   paintAll();
+  const paintMs = performance.now() - t;
   requestAnimationFrame(() => {
-    if (since !== null) latencies.push({ ms: performance.now() - since, quick, mode: state.mode });
+    if (since !== null) latencies.push({ ms: performance.now() - since, quick, mode: state.mode, server: frame.header.ms, paint: paintMs });
     window.bentstraw.frames += 1;
     document.body.dataset.frames = String(window.bentstraw.frames);
   });
-  if (since === inputSince) inputSince = null;
   if (dirty) { sendFrame(true); return; }
   if (quick) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 150); }
   else {
@@ -286,6 +293,13 @@ function cloudProjection(w, h) {
   };
 }
 
+let layer = null, layerPixels = null;
+/** A CSS colour "#rrggbb" and an alpha 0..255 as one little-endian RGBA pixel. */
+function rgba32(hex, alpha) {
+  const v = parseInt(hex.slice(1), 16);
+  return ((alpha << 24) | ((v & 0xff) << 16) | (v & 0xff00) | (v >> 16)) >>> 0;
+}
+
 function drawCloud() {
   const { ctx, w, h } = fit(cloudCanvas);
   ctx.clearRect(0, 0, w, h);
@@ -306,19 +320,31 @@ function drawCloud() {
   const [sx, sy] = state.straw;
   for (let z = 0; z <= STRAW_H + 1e-9; z += 0.05) line(circle(sx, sy, STRAW_R, z), "#888", 1, [2, 3]);
   for (const a of [0, Math.PI / 2, Math.PI, 1.5 * Math.PI]) line([[sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), 0], [sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), STRAW_H]], "#888", 1, [2, 3]);
-  // The points.
-  const drawSet = (xyz, color, kind, tint) => {
+  // The points: written as pixels into an offscreen layer (tens of thousands of fillRect calls
+  // would cost more than the frame itself), then laid over the outlines.
+  const d = window.devicePixelRatio || 1;
+  const W = cloudCanvas.width, H = cloudCanvas.height;
+  if (!layer || layer.width !== W || layer.height !== H) { layer = new OffscreenCanvas(W, H); layerPixels = new ImageData(W, H); }
+  const px = new Uint32Array(layerPixels.data.buffer);
+  px.fill(0);
+  const drawSet = (xyz, color, kind, alpha) => {
+    const palette = (state.color === "path" && kind ? PATH_COLORS : SECTION_RGB).map((c) => rgba32(c, alpha));
+    const r = Math.max(1, Math.round(1.2 * d));
     for (let i = 0; i < color.length; i++) {
       const [x, y] = pr.p([xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]]);
-      ctx.fillStyle = state.color === "path" && kind ? PATH_COLORS[kind[i] % PATH_COLORS.length] : SECTION_RGB[color[i] - 1];
-      if (tint) ctx.fillRect(x - 1, y - 1, 2, 2); else ctx.fillRect(x - 1.2, y - 1.2, 2.4, 2.4);
+      const cx = Math.round(x * d), cy = Math.round(y * d);
+      if (cx < r || cy < r || cx >= W - r || cy >= H - r) continue;
+      const c = palette[kind ? kind[i] % palette.length : color[i] - 1];
+      for (let a = -r; a < r; a++) px.fill(c, (cy + a) * W + cx - r, (cy + a) * W + cx + r);
     }
   };
-  if (frame && state.models.includes("course")) drawSet(frame.xyz, frame.color, frame.kind, false);
-  ctx.globalAlpha = 0.55;
-  if (models.eye && state.models.includes("eye")) drawSet(models.eye.xyz, models.eye.color, null, "eye");
-  if (models.stereo && state.models.includes("stereo")) drawSet(models.stereo.xyz, models.stereo.color, null, "stereo");
-  ctx.globalAlpha = 1;
+  if (frame && state.models.includes("course")) drawSet(frame.xyz, frame.color, state.color === "path" ? frame.kind : null, 255);
+  if (models.eye && state.models.includes("eye")) drawSet(models.eye.xyz, models.eye.color, null, 110);
+  if (models.stereo && state.models.includes("stereo")) drawSet(models.stereo.xyz, models.stereo.color, null, 110);
+  layer.getContext("2d").putImageData(layerPixels, 0, 0);
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
+  ctx.drawImage(layer, 0, 0);
+  ctx.setTransform(d, 0, 0, d, 0, 0);
   // The observer, and the clicked ray's path.
   const [ox, oy] = pr.p(state.observer);
   ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ox, oy, 5, 0, 2 * Math.PI); ctx.fill();

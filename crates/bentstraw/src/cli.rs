@@ -256,16 +256,36 @@ pub struct ExploreArgs {
     #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true, default_value = "0.02,0.01")]
     pub straw: [f64; 2],
     /// Water height in metres to start with, 0 <= H <= 0.2
-    #[arg(long, value_name = "H", allow_hyphen_values = true, default_value_t = 0.15)]
+    #[arg(
+        long,
+        value_name = "H",
+        allow_hyphen_values = true,
+        default_value_t = 0.15
+    )]
     pub water_height: f64,
     /// Refractive index of the water (>= 1)
-    #[arg(long, value_name = "N", default_value_t = 1.333, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1.333,
+        allow_hyphen_values = true
+    )]
     pub n_water: f64,
     /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
-    #[arg(long, value_name = "N", default_value_t = 10, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 10,
+        allow_hyphen_values = true
+    )]
     pub max_events: u32,
     /// At least this many image points in the 3D view
-    #[arg(long, value_name = "N", default_value_t = 20000, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 20000,
+        allow_hyphen_values = true
+    )]
     pub points: usize,
     /// The picture's mode to start with
     #[arg(long, value_enum, default_value_t = ModeArg::Fresnel)]

@@ -106,9 +106,7 @@ fn percent_decode(s: &str) -> Result<String, String> {
                     .get(i + 1..i + 3)
                     .and_then(|h| std::str::from_utf8(h).ok())
                     .and_then(|h| u8::from_str_radix(h, 16).ok())
-                    .ok_or_else(|| {
-                        format!("'{}' has a broken %-escape", clip_text(s, 40))
-                    })?;
+                    .ok_or_else(|| format!("'{}' has a broken %-escape", clip_text(s, 40)))?;
                 out.push(hex);
                 i += 2;
             }
@@ -166,7 +164,12 @@ fn number<T: std::str::FromStr>(text: &str, name: &str) -> Result<T, String> {
 }
 
 fn flag<T>(r: Result<T, String>, name: &str, text: &str) -> Result<T, String> {
-    r.map_err(|e| format!("invalid value '{}' for '--{name}': {e}", clip_text(text, 40)))
+    r.map_err(|e| {
+        format!(
+            "invalid value '{}' for '--{name}': {e}",
+            clip_text(text, 40)
+        )
+    })
 }
 
 impl View {
@@ -353,7 +356,7 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
         "render": view.render_command(),
     });
     let mut head = header.to_string().into_bytes();
-    while (head.len() + 4) % 4 != 0 {
+    while head.len() & 3 != 0 {
         head.push(b' ');
     }
     let n = frame.points.len();
@@ -524,11 +527,8 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     let format = get(q, "format").unwrap_or("csv");
     let model = get(q, "model").unwrap_or("course");
     if format == "png" {
-        let picture = bentstraw_optics::shading::shaded_picture(
-            &view.scene,
-            &view.camera,
-            &view.shading(),
-        );
+        let picture =
+            bentstraw_optics::shading::shaded_picture(&view.scene, &view.camera, &view.shading());
         let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.0)?);
         r.file_name = Some("view.png".into());
         return Ok(r);
@@ -567,7 +567,10 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
             write_csv(&mut body, &cloud.points).map(|_| "text/csv"),
             "view.csv",
         ),
-        "csv" => (write_model_csv(&mut body, &set).map(|_| "text/csv"), "view.csv"),
+        "csv" => (
+            write_model_csv(&mut body, &set).map(|_| "text/csv"),
+            "view.csv",
+        ),
         "ply" => (
             write_ply(&mut body, &set).map(|_| "application/octet-stream"),
             "view.ply",
@@ -633,7 +636,10 @@ mod tests {
     fn invalid_values_get_the_command_lines_messages() {
         let msg = |s: &str| View::from_query(&query(s)).unwrap_err();
         let he = msg("observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.3");
-        assert!(he.starts_with("water height 0.3 m is outside the glass"), "{he}");
+        assert!(
+            he.starts_with("water height 0.3 m is outside the glass"),
+            "{he}"
+        );
         let inside = msg("observer=0,0,0.1&straw=0.02,0.01&water-height=0.1");
         assert!(inside.contains("is inside or on the glass"), "{inside}");
         let n = msg(&format!("{REF2}&n-water=0.5"));
@@ -687,7 +693,10 @@ mod tests {
         let r = ray_reply(&view, &query("point=17")).unwrap();
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         let p = pts[17];
-        assert_eq!(v["image_point"], json!([p.position.x, p.position.y, p.position.z]));
+        assert_eq!(
+            v["image_point"],
+            json!([p.position.x, p.position.y, p.position.z])
+        );
         assert_eq!(v["path_length"], json!(p.path_length));
         assert_eq!(v["color"], json!(p.color));
         assert_eq!(v["events"].as_array().unwrap().len(), p.events as usize);
@@ -702,5 +711,93 @@ mod tests {
         assert_eq!(handle("/api/frame", "observer=1", &mut f).status, 400);
         let e = handle("/api/export", &format!("{REF2}&format=exe"), &mut f);
         assert_eq!(e.status, 400);
+    }
+
+    mod fuzz {
+        use super::*;
+        use proptest::prelude::*;
+
+        const ROUTES: [&str; 5] = [
+            "/api/frame",
+            "/api/model",
+            "/api/ray",
+            "/api/export",
+            "/api/x",
+        ];
+
+        /// A value for a parameter: good ones, and the hostile kinds (not numbers, huge, NaN,
+        /// negative, empty, broken escapes, long).
+        fn value() -> impl Strategy<Value = String> {
+            prop_oneof![
+                Just("0.1,0,0.1".to_string()),
+                Just("0.02,0.01".to_string()),
+                Just("0.15".to_string()),
+                Just("16x12".to_string()),
+                Just("NaN".to_string()),
+                Just("inf,-inf,1e308".to_string()),
+                Just("-1".to_string()),
+                Just("".to_string()),
+                Just("%".to_string()),
+                Just("%e2%82".to_string()),
+                Just("99999999999999999999999".to_string()),
+                Just("0x0".to_string()),
+                Just("1e-320".to_string()),
+                "[ -~]{0,40}",
+                "[0-9.,x+-]{0,12}",
+            ]
+        }
+
+        fn query() -> impl Strategy<Value = String> {
+            let names = prop_oneof![
+                Just("observer"),
+                Just("straw"),
+                Just("water-height"),
+                Just("n-water"),
+                Just("max-events"),
+                Just("size"),
+                Just("points"),
+                Just("samples"),
+                Just("mode"),
+                Just("target"),
+                Just("fov"),
+                Just("row"),
+                Just("col"),
+                Just("point"),
+                Just("format"),
+                Just("model"),
+            ];
+            proptest::collection::vec((names, value()), 0..14).prop_map(|pairs| {
+                pairs
+                    .iter()
+                    .map(|(n, v)| format!("{n}={v}"))
+                    .collect::<Vec<_>>()
+                    .join("&")
+            })
+        }
+
+        proptest! {
+            #![proptest_config(ProptestConfig::with_cases(400))]
+
+            /// No query reaches a panic, and every answer is a success or a refusal: the work
+            /// each may cause is bounded by the limits (small sizes here keep the run short).
+            #[test]
+            fn any_query_gets_an_answer(q in query(), route in 0..ROUTES.len()) {
+                // Keep accepted work small: the fuzzing is about parsing, not about big frames.
+                let q = format!("{q}&points=50&size=16x12");
+                let r = handle(ROUTES[route], &q, &mut Frame::default());
+                prop_assert!([200, 400, 404].contains(&r.status), "{} for {q}", r.status);
+                if r.status != 200 {
+                    let text = String::from_utf8(r.body).unwrap();
+                    prop_assert!(!text.is_empty() && !text.contains('\n'), "{text:?}");
+                }
+            }
+
+            /// Raw text, however broken, decodes or is refused.
+            #[test]
+            fn any_text_parses_or_is_refused(q in "[ -~]{0,300}") {
+                let _ = parse_query(&q);
+                let _ = handle("/api/frame", &q, &mut Frame::default());
+            }
+        }
     }
 }

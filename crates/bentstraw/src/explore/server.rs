@@ -50,7 +50,10 @@ pub fn serve(server: Server, initial: &str) {
     for request in server.incoming_requests() {
         let url = request.url().to_string();
         if url.len() > MAX_URL {
-            respond(request, Reply::text(414, format!("address longer than {MAX_URL} bytes")));
+            respond(
+                request,
+                Reply::text(414, format!("address longer than {MAX_URL} bytes")),
+            );
             continue;
         }
         if !matches!(request.method(), Method::Get | Method::Head) {
@@ -63,7 +66,13 @@ pub fn serve(server: Server, initial: &str) {
             "/explorer.js" => Some(asset("text/javascript; charset=utf-8", SCRIPT)),
             "/explorer.css" => Some(asset("text/css; charset=utf-8", STYLE)),
             p if p.starts_with("/api/") => None,
-            p => Some(Reply::text(404, format!("no such page: {}", bentstraw_optics::scene::clip_text(p, 60)))),
+            p => Some(Reply::text(
+                404,
+                format!(
+                    "no such page: {}",
+                    bentstraw_optics::scene::clip_text(p, 60)
+                ),
+            )),
         };
         if let Some(reply) = reply {
             respond(request, reply);
@@ -120,15 +129,20 @@ fn worker(rx: &Mutex<Receiver<Job>>, latest: &Latest) {
                 .copied()
                 .unwrap_or(0);
             if newest > *seq {
-                respond(job.request, Reply::text(409, "stale: a newer request replaced this one"));
+                respond(
+                    job.request,
+                    Reply::text(409, "stale: a newer request replaced this one"),
+                );
                 continue;
             }
         }
-        let reply = catch_unwind(AssertUnwindSafe(|| api::handle(&job.path, &job.query, &mut frame)))
-            .unwrap_or_else(|_| {
-                frame = Frame::default();
-                Reply::text(500, "internal error while computing this view")
-            });
+        let reply = catch_unwind(AssertUnwindSafe(|| {
+            api::handle(&job.path, &job.query, &mut frame)
+        }))
+        .unwrap_or_else(|_| {
+            frame = Frame::default();
+            Reply::text(500, "internal error while computing this view")
+        });
         respond(job.request, reply);
     }
 }
