@@ -350,6 +350,268 @@ impl PacketTracer {
         }
     }
 
+    /// How every branch of the rays through the centres of pixel row `row` ends, for a picture
+    /// that shows what each branch meets: `on_end(pixel, end)` once per branch end.
+    ///
+    /// With `split` (SPEC §6, fresnel) each branch splits at every water face by the Fresnel
+    /// reflectance, branches lighter than `prune_below` are abandoned; without it (SPEC §3, course)
+    /// each ray is refracted or totally reflected and keeps weight 1. Branches that provably
+    /// escape (out of the water through the side or bottom, or mirrored off their outside) are
+    /// reported as escaping from the face at once. Same breadth-first order as
+    /// [`Self::fresnel_row`], so the lanes stay full.
+    pub fn branch_ends_row(
+        &self,
+        camera: &Camera,
+        row: u32,
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2, checked just above.
+                unsafe { self.branch_ends_row_avx2(camera, row, split, prune_below, wave, on_end) };
+                return;
+            }
+        }
+        self.branch_ends_row_generic(camera, row, split, prune_below, wave, on_end);
+    }
+
+    /// [`Self::branch_ends_row`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn branch_ends_row_avx2(
+        &self,
+        camera: &Camera,
+        row: u32,
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        self.branch_ends_row_generic(camera, row, split, prune_below, wave, on_end);
+    }
+
+    #[inline(always)]
+    fn branch_ends_row_generic(
+        &self,
+        camera: &Camera,
+        row: u32,
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        let width = camera.width as usize;
+        let cur = &mut wave.current;
+        cur.clear();
+        cur.reserve_total(width);
+        let (eye, dirs) = row_rays(camera, row);
+        for (p, chunk_start) in (0..width).step_by(LANES).enumerate() {
+            let [dx, dy, dz] = dirs(p);
+            for k in 0..LANES.min(width - chunk_start) {
+                cur.push(
+                    eye,
+                    [dx.0[k], dy.0[k], dz.0[k]],
+                    1.0,
+                    false,
+                    (chunk_start + k) as u32,
+                );
+            }
+        }
+        self.follow_branches(split, prune_below, wave, on_end);
+    }
+
+    /// [`Self::branch_ends_row`] for any rays from `eye` along unit `directions`; `on_end` is
+    /// given the index of the ray in `directions`.
+    pub fn branch_ends(
+        &self,
+        eye: [f32; 3],
+        directions: &[[f32; 3]],
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2, checked just above.
+                unsafe { self.branch_ends_avx2(eye, directions, split, prune_below, wave, on_end) };
+                return;
+            }
+        }
+        self.branch_ends_generic(eye, directions, split, prune_below, wave, on_end);
+    }
+
+    /// [`Self::branch_ends`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn branch_ends_avx2(
+        &self,
+        eye: [f32; 3],
+        directions: &[[f32; 3]],
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        self.branch_ends_generic(eye, directions, split, prune_below, wave, on_end);
+    }
+
+    #[inline(always)]
+    fn branch_ends_generic(
+        &self,
+        eye: [f32; 3],
+        directions: &[[f32; 3]],
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        let cur = &mut wave.current;
+        cur.clear();
+        cur.reserve_total(directions.len());
+        for (k, d) in directions.iter().enumerate() {
+            cur.push(eye, *d, 1.0, false, k as u32);
+        }
+        self.follow_branches(split, prune_below, wave, on_end);
+    }
+
+    /// Follows the branches in `wave.current` to their ends, breadth first (see
+    /// [`Self::branch_ends_row`]).
+    #[inline(always)]
+    fn follow_branches(
+        &self,
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        let prune = prune_below as f32;
+        let n_water = self.eta_into_air;
+        let (cur, next) = (&mut wave.current, &mut wave.next);
+        let lane = |v: &[F8; 3], k: usize| [v[0].0[k], v[1].0[k], v[2].0[k]];
+        for event in 0..=self.max_events {
+            if cur.len() == 0 {
+                break;
+            }
+            next.clear();
+            next.reserve_total(2 * cur.len());
+            for base in (0..cur.len()).step_by(LANES) {
+                let n = LANES.min(cur.len() - base);
+                let alive = M8(std::array::from_fn(|k| if k < n { u32::MAX } else { 0 }));
+                let o = [cur.load(0, base), cur.load(1, base), cur.load(2, base)];
+                let d = [cur.load(3, base), cur.load(4, base), cur.load(5, base)];
+                let escape = |k: usize, on_end: &mut dyn FnMut(usize, BranchEnd)| {
+                    on_end(
+                        cur.pixel[base + k] as usize,
+                        BranchEnd::Escaped {
+                            origin: lane(&o, k),
+                            direction: lane(&d, k),
+                            weight: cur.w[base + k],
+                        },
+                    )
+                };
+                let Some(hit) = self.hit8(o, d, alive) else {
+                    for k in 0..n {
+                        escape(k, on_end);
+                    }
+                    continue;
+                };
+                let inf = F8::splat(f32::INFINITY);
+                let hits_straw = alive
+                    .and(hit.t_straw.lt(inf))
+                    .and(hit.t_straw.le(hit.t_water));
+                let hits_water = alive.and_not(hits_straw).and(hit.t_water.lt(inf));
+                for k in 0..n {
+                    let pixel = cur.pixel[base + k] as usize;
+                    let w = cur.w[base + k];
+                    if hits_straw.0[k] != 0 {
+                        let t = hit.t_straw.0[k];
+                        let [ox, oy, oz] = lane(&o, k);
+                        let [dx, dy, dz] = lane(&d, k);
+                        on_end(
+                            pixel,
+                            BranchEnd::Straw {
+                                code: hit.straw_code.0[k] as u8,
+                                point: [ox + t * dx, oy + t * dy, oz + t * dz],
+                                weight: w,
+                            },
+                        );
+                    } else if hits_water.0[k] == 0 {
+                        escape(k, on_end);
+                    } else if event == self.max_events {
+                        on_end(pixel, BranchEnd::Dropped { weight: w });
+                    }
+                }
+                if event == self.max_events || !hits_water.any() {
+                    continue;
+                }
+                let in_water = M8(std::array::from_fn(|k| {
+                    if k < n && cur.in_water[base + k] {
+                        u32::MAX
+                    } else {
+                        0
+                    }
+                }));
+                let b = self.bend8(o, d, hit.t_water, hit.water_face, in_water);
+                let one = F8::splat(1.0);
+                let nw = F8::splat(n_water);
+                let (n1, n2) = (in_water.select(nw, one), in_water.select(one, nw));
+                let rs = (n1 * b.cos_i - n2 * b.cos_t) / (n1 * b.cos_i + n2 * b.cos_t);
+                let rp = (n2 * b.cos_i - n1 * b.cos_t) / (n2 * b.cos_i + n1 * b.cos_t);
+                let r = b.total.select(one, F8::splat(0.5) * (rs * rs + rp * rp));
+                for k in 0..n {
+                    if hits_water.0[k] == 0 {
+                        continue;
+                    }
+                    let (w, water, pixel) =
+                        (cur.w[base + k], cur.in_water[base + k], cur.pixel[base + k]);
+                    let total = b.total.0[k] != 0;
+                    // Course: the one branch the law picks keeps the whole weight.
+                    let (wr, wt) = match (split, total) {
+                        (_, true) => (w, 0.0),
+                        (true, false) => (w * r.0[k], w - w * r.0[k]),
+                        (false, false) => (0.0, w),
+                    };
+                    let q = lane(&b.q, k);
+                    let reflected = lane(&b.reflected, k);
+                    let refracted = lane(&b.refracted, k);
+                    // Out through the side or bottom, or mirrored off their outside: escapes.
+                    let (reflected_escapes, refracted_escapes) = if b.is_top.0[k] == 0 {
+                        (!water, water)
+                    } else {
+                        (false, false)
+                    };
+                    for (weight, dir, escapes, to_water) in [
+                        (wr, reflected, reflected_escapes, water),
+                        (wt, refracted, refracted_escapes, !water),
+                    ] {
+                        if weight <= 0.0 || (split && weight < prune) {
+                            continue;
+                        }
+                        if escapes {
+                            on_end(
+                                pixel as usize,
+                                BranchEnd::Escaped {
+                                    origin: q,
+                                    direction: dir,
+                                    weight,
+                                },
+                            );
+                        } else {
+                            next.push(q, dir, weight, to_water, pixel);
+                        }
+                    }
+                }
+            }
+            std::mem::swap(cur, next);
+        }
+    }
+
     /// Colour codes of eight rays from `eye` along unit directions `d`.
     #[inline(always)]
     fn trace8(&self, eye: [f32; 3], d: [F8; 3]) -> [u8; LANES] {
@@ -572,6 +834,34 @@ impl PacketTracer {
             cos_t,
         }
     }
+}
+
+/// How one branch of a pixel's ray ends ([`PacketTracer::branch_ends_row`]), in single precision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BranchEnd {
+    /// On the straw.
+    Straw {
+        /// Colour code of the section, 1..=5.
+        code: u8,
+        /// The straw point reached.
+        point: [f32; 3],
+        /// The branch's weight.
+        weight: f32,
+    },
+    /// Out of the scene along its last straight piece.
+    Escaped {
+        /// Where the last piece starts (the eye or the last event).
+        origin: [f32; 3],
+        /// Its unit direction.
+        direction: [f32; 3],
+        /// The branch's weight.
+        weight: f32,
+    },
+    /// It would need more events than allowed.
+    Dropped {
+        /// The branch's weight.
+        weight: f32,
+    },
 }
 
 /// The nearest faces ahead of eight rays.

@@ -25,8 +25,12 @@ use rayon::prelude::*;
 use crate::camera::Camera;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
+use crate::packet::{BranchEnd, FresnelWave, PacketTracer};
 use crate::scene::{Scene, GLASS_HEIGHT, GLASS_RADIUS, SECTION_RGB};
-use crate::trace::{follow_fresnel, follow_ray, Face, FresnelStep, NearestFace, Outcome};
+use crate::trace::Face;
+#[cfg(test)]
+use crate::trace::{follow_fresnel, follow_ray, FresnelStep, NearestFace, Outcome};
+#[cfg(test)]
 use crate::tracer::Tracer;
 use crate::Vec3;
 
@@ -170,6 +174,43 @@ pub struct Surroundings {
     along_wall: Vec3,
     /// Whether there is a floor (the observer is above `z = 0`).
     floor: bool,
+    /// The floor's and the wall's squares.
+    floor_squares: Checker,
+    wall_squares: Checker,
+    /// Linear colours of the sky at the horizon and straight up; of the plain backdrop looking
+    /// straight down and straight up.
+    sky: [[f64; 3]; 2],
+    plain: [f64; 2],
+}
+
+/// A checkerboard's two squares and their average, in linear light (worked out once per picture,
+/// not per ray).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Checker {
+    light: [f64; 3],
+    dark: [f64; 3],
+    average: [f64; 3],
+}
+
+impl Checker {
+    /// The squares of display (sRGB) colours `light` and `dark`.
+    fn new(light: [f64; 3], dark: [f64; 3]) -> Checker {
+        let exact = |c: [f64; 3]| c.map(srgb_to_linear);
+        Checker {
+            light: exact(light),
+            dark: exact(dark),
+            average: exact(mix(light, dark, 0.5)),
+        }
+    }
+
+    /// Linear colour at plane coordinates `(a, b)` (squares of [`CHECKER_SIDE`]); the contrast
+    /// shrinks by `fade` (far squares would only alias).
+    #[inline]
+    fn at(&self, a: f64, b: f64, fade: f64) -> [f64; 3] {
+        let parity = ((a / CHECKER_SIDE).floor() as i64 + (b / CHECKER_SIDE).floor() as i64) & 1;
+        let square = if parity == 0 { self.light } else { self.dark };
+        mix(self.average, square, fade)
+    }
 }
 
 impl Surroundings {
@@ -186,6 +227,13 @@ impl Surroundings {
             toward_eye,
             along_wall: Vec3::Z.cross(toward_eye),
             floor: eye.z > 0.0,
+            floor_squares: Checker::new([0.95, 0.92, 0.86], [0.70, 0.63, 0.55]),
+            wall_squares: Checker::new([0.96, 0.96, 0.95], [0.66, 0.72, 0.84]),
+            sky: [
+                [0.86, 0.91, 0.97].map(srgb_to_linear),
+                [0.97, 0.98, 1.0].map(srgb_to_linear),
+            ],
+            plain: [srgb_to_linear(0.80), srgb_to_linear(0.97)],
         }
     }
 
@@ -204,8 +252,8 @@ impl Surroundings {
         let (o, d) = (ray.origin, ray.direction);
         if self.backdrop == Backdrop::Plain {
             // A gentle vertical gradient: flat enough to be "plain", enough for the water to show.
-            let g = 0.80 + 0.17 * (0.5 + 0.5 * d.z);
-            return [srgb_to_linear_fast(g); 3];
+            let [down, up] = self.plain;
+            return [down + (up - down) * (0.5 + 0.5 * d.z); 3];
         }
         let mut best = f64::INFINITY;
         let mut colour = None;
@@ -216,13 +264,7 @@ impl Surroundings {
             if p.dot(self.toward_eye) >= -WALL_DISTANCE {
                 best = t;
                 let fade = 1.0 / (1.0 + (p.truncate().length() / 0.6).powi(2));
-                colour = Some(checker(
-                    p.x,
-                    p.y,
-                    [0.95, 0.92, 0.86],
-                    [0.70, 0.63, 0.55],
-                    fade,
-                ));
+                colour = Some(self.floor_squares.at(p.x, p.y, fade));
             }
         }
         let s = d.dot(self.toward_eye);
@@ -234,30 +276,12 @@ impl Surroundings {
                 if p.z >= bottom && p.z <= WALL_TOP {
                     let u = p.dot(self.along_wall);
                     let fade = 1.0 / (1.0 + (u / 0.6).powi(2));
-                    colour = Some(checker(
-                        u,
-                        p.z,
-                        [0.96, 0.96, 0.95],
-                        [0.66, 0.72, 0.84],
-                        fade,
-                    ));
+                    colour = Some(self.wall_squares.at(u, p.z, fade));
                 }
             }
         }
-        colour.unwrap_or_else(|| {
-            let up = d.z.max(0.0);
-            linear(mix([0.86, 0.91, 0.97], [0.97, 0.98, 1.0], up))
-        })
+        colour.unwrap_or_else(|| mix(self.sky[0], self.sky[1], d.z.max(0.0)))
     }
-}
-
-/// Linear colour of a checkerboard of squares [`CHECKER_SIDE`] at plane coordinates `(a, b)`; its
-/// contrast shrinks by `fade` (far squares would only alias).
-fn checker(a: f64, b: f64, light: [f64; 3], dark: [f64; 3], fade: f64) -> [f64; 3] {
-    let parity = ((a / CHECKER_SIDE).floor() + (b / CHECKER_SIDE).floor()).rem_euclid(2.0);
-    let average = mix(light, dark, 0.5);
-    let square = if parity < 0.5 { light } else { dark };
-    linear(mix(average, square, fade))
 }
 
 /// Unit direction of the light that shades the straw (from the observer's side, above, left).
@@ -276,8 +300,21 @@ fn straw_radiance(scene: &Scene, light: Vec3, color: u8, face: Face, point: Vec3
     linear(SECTION_RGB[color as usize - 1]).map(|c| c * shade)
 }
 
-/// Linear colour seen along one ray, traced by the prepared tracer (the same outcomes as the
-/// scene's own loop, faster).
+/// The straw's face at a point `p` on it (from the packet tracer, which reports points only):
+/// the caps within a micrometre of their planes, else the side.
+fn straw_face_at(p: Vec3) -> Face {
+    if p.z >= crate::scene::STRAW_HEIGHT - 1e-6 {
+        Face::StrawTop
+    } else if p.z <= 1e-6 {
+        Face::StrawBottom
+    } else {
+        Face::StrawSide
+    }
+}
+
+/// Linear colour seen along one ray, traced in double precision by `tracer`: the reference the
+/// packet-traced pictures are checked against.
+#[cfg(test)]
 fn sample(
     tracer: &impl NearestFace,
     scene: &Scene,
@@ -383,18 +420,65 @@ pub fn shaded_picture_into(
     let surroundings = Surroundings::new(options.backdrop, camera.eye);
     let light = light_direction(&surroundings);
     let n = options.samples.max(1) as usize;
-    let tracer = Tracer::new(scene);
-    let trace = |r: f64, c: f64| {
-        let ray = Ray::new(camera.eye, camera.direction_at(r, c));
-        sample(&tracer, scene, &surroundings, light, options.mode, ray)
-    };
     let centre = &mut buffers.centre;
     centre.resize(w * h, [0.0; 3]);
-    centre.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
-        for (j, px) in row.iter_mut().enumerate() {
-            *px = trace(i as f64 + 0.5, j as f64 + 0.5).map(linear_to_srgb_fast);
+    // Pixel centres: the single-precision packet tracer, eight rays at a time (most of a
+    // picture's rays); the samples at edges below stay in double precision.
+    let packets = PacketTracer::new(scene);
+    let (split, prune) = match options.mode {
+        ShadingMode::Course => (false, 0.0),
+        ShadingMode::Fresnel { prune_below } => (true, prune_below),
+    };
+    // The linear colour and weight a branch's end adds to its pixel.
+    let shade_end = |end: BranchEnd| -> Option<([f64; 3], f64)> {
+        let v = |a: [f32; 3]| Vec3::new(a[0] as f64, a[1] as f64, a[2] as f64);
+        match end {
+            BranchEnd::Straw {
+                code,
+                point,
+                weight,
+            } => {
+                let p = v(point);
+                Some((
+                    straw_radiance(scene, light, code, straw_face_at(p), p),
+                    weight as f64,
+                ))
+            }
+            BranchEnd::Escaped {
+                origin,
+                direction,
+                weight,
+            } => {
+                let ray = Ray {
+                    origin: v(origin),
+                    direction: v(direction),
+                };
+                Some((surroundings.radiance(&ray), weight as f64))
+            }
+            // Light not followed: dark in course mode (as `sample` shows it), nothing added in
+            // Fresnel mode.
+            BranchEnd::Dropped { weight } if !split => Some(([0.05; 3], weight as f64)),
+            BranchEnd::Dropped { .. } => None,
         }
-    });
+    };
+    centre
+        .par_chunks_mut(w)
+        .enumerate()
+        .for_each_init(FresnelWave::default, |wave, (i, row)| {
+            row.fill([0.0; 3]);
+            let mut on_end = |j: usize, end: BranchEnd| {
+                if let Some((colour, weight)) = shade_end(end) {
+                    let px = &mut row[j];
+                    for k in 0..3 {
+                        px[k] += weight * colour[k];
+                    }
+                }
+            };
+            packets.branch_ends_row(camera, i as u32, split, prune, wave, &mut on_end);
+            for px in row.iter_mut() {
+                *px = px.map(linear_to_srgb_fast);
+            }
+        });
     let centre = &buffers.centre;
     let display = &mut buffers.display;
     display.clear();
@@ -411,27 +495,48 @@ pub fn shaded_picture_into(
                 })
             })
         };
-        display.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
-            for (j, px) in row.iter_mut().enumerate() {
-                if !edge(i, j) {
-                    continue;
-                }
-                let mut acc = [0.0; 3];
-                for a in 0..n {
-                    for b in 0..n {
-                        let key = (((i * w + j) as u64) << 16) ^ (((a * n + b) as u64) << 1);
-                        let r = i as f64 + (a as f64 + jitter(key)) / n as f64;
-                        let c = j as f64 + (b as f64 + jitter(key | 1)) / n as f64;
-                        let s = trace(r, c);
-                        for k in 0..3 {
-                            acc[k] += s[k];
+        // The edges' samples, a row at a time, through the packet tracer as the centres.
+        let eye = camera.eye.as_vec3().to_array();
+        let per_pixel = n * n;
+        display.par_chunks_mut(w).enumerate().for_each_init(
+            || (FresnelWave::default(), Vec::new(), Vec::new(), Vec::new()),
+            |(wave, edges, dirs, acc), (i, row)| {
+                edges.clear();
+                dirs.clear();
+                for j in 0..w {
+                    if !edge(i, j) {
+                        continue;
+                    }
+                    edges.push(j);
+                    for a in 0..n {
+                        for b in 0..n {
+                            let key = (((i * w + j) as u64) << 16) ^ (((a * n + b) as u64) << 1);
+                            let r = i as f64 + (a as f64 + jitter(key)) / n as f64;
+                            let c = j as f64 + (b as f64 + jitter(key | 1)) / n as f64;
+                            let d = camera.direction_at(r, c).normalize();
+                            dirs.push([d.x as f32, d.y as f32, d.z as f32]);
                         }
                     }
                 }
-                let inv = 1.0 / (n * n) as f64;
-                *px = acc.map(|c| linear_to_srgb_fast(c * inv));
-            }
-        });
+                if edges.is_empty() {
+                    return;
+                }
+                acc.clear();
+                acc.resize(edges.len(), [0.0f64; 3]);
+                packets.branch_ends(eye, dirs, split, prune, wave, &mut |k, end| {
+                    if let Some((colour, weight)) = shade_end(end) {
+                        let px = &mut acc[k / per_pixel];
+                        for c in 0..3 {
+                            px[c] += weight * colour[c];
+                        }
+                    }
+                });
+                let inv = 1.0 / per_pixel as f64;
+                for (&j, sum) in edges.iter().zip(acc.iter()) {
+                    row[j] = sum.map(|c| linear_to_srgb_fast(c * inv));
+                }
+            },
+        );
     }
     if options.outline {
         draw_glass_outline(display, camera);
@@ -775,6 +880,44 @@ mod tests {
                         assert_eq!(fast, plain, "pixel ({i}, {j}) of reference {}", r.number);
                     }
                 }
+            }
+        }
+    }
+
+    /// Pixel centres come from the single-precision packet tracer: they must be what the
+    /// double-precision tracer sees there, but for a few pixels on the picture's boundaries.
+    #[test]
+    fn packet_centres_shade_as_the_double_precision_tracer() {
+        for r in REFERENCES {
+            let scene = r.scene(WATER_INDEX);
+            let tracer = Tracer::new(&scene);
+            let cam = Camera::new(r.observer, SCENE_CENTRE, 160, 120, 1.6);
+            let s = Surroundings::new(Backdrop::Checker, cam.eye);
+            let light = light_direction(&s);
+            for mode in [
+                ShadingMode::Course,
+                ShadingMode::Fresnel { prune_below: 1e-4 },
+            ] {
+                let mut opts = options(mode, 1);
+                opts.outline = false;
+                let pic = shaded_picture(&scene, &cam, &opts);
+                let mut off = 0;
+                for i in 0..cam.height {
+                    for j in 0..cam.width {
+                        let exact = sample(&tracer, &scene, &s, light, mode, cam.pixel_ray(i, j))
+                            .map(|c| (linear_to_srgb(c) * 255.0).round() as i32);
+                        let got = pic.pixel(i, j).map(i32::from);
+                        if (0..3).any(|k| (exact[k] - got[k]).abs() > 2) {
+                            off += 1;
+                        }
+                    }
+                }
+                let share = off as f64 / (cam.width * cam.height) as f64;
+                assert!(
+                    share < 0.01,
+                    "reference {} {mode:?}: {off} pixels off",
+                    r.number
+                );
             }
         }
     }
