@@ -95,7 +95,7 @@ test("a preset loads a reference simulation whose points are simulate's", async 
 
 test("clicking a point of the cloud shows its path with simulate's numbers", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
-  await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=20000");
+  await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=20000&view=-60,12,1.7");
   await waitReady(page);
   const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-"));
   const csv = path.join(dir, "sim2.csv");
