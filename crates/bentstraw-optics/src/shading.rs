@@ -38,6 +38,9 @@ use crate::Vec3;
 pub const WALL_DISTANCE: f64 = 0.15;
 /// Height of the backdrop wall's top edge (m).
 pub const WALL_TOP: f64 = 0.45;
+/// How far below the floor (m) a ray may start and still meet it: rays out of the water's bottom
+/// start on `z = 0` only to rounding.
+pub const FLOOR_TOLERANCE: f64 = 1e-6;
 /// Side of one checkerboard square (m), half the glass's radius.
 pub const CHECKER_SIDE: f64 = 0.02;
 
@@ -257,8 +260,10 @@ impl Surroundings {
         }
         let mut best = f64::INFINITY;
         let mut colour = None;
-        if self.floor && d.z < 0.0 && o.z >= 0.0 {
-            let t = -o.z / d.z;
+        // A ray leaving the water's bottom starts on z = 0 to rounding (a hair below it in single
+        // precision): it still meets the floor there.
+        if self.floor && d.z < 0.0 && o.z >= -FLOOR_TOLERANCE {
+            let t = (-o.z / d.z).max(0.0);
             let p = o + t * d;
             // The floor ends at the wall.
             if p.dot(self.toward_eye) >= -WALL_DISTANCE {
@@ -850,6 +855,14 @@ mod tests {
         // Straight down from above: the floor, whose squares alternate in x.
         let down = |x: f64| s.radiance(&Ray::new(Vec3::new(x, 0.001, 0.3), Vec3::NEG_Z));
         assert!((down(0.05)[0] - down(0.07)[0]).abs() > 0.1);
+        // A ray out of the water's bottom, a rounding error below z = 0, meets the floor too.
+        let out = |z0: f64| {
+            s.radiance(&Ray::new(
+                Vec3::new(0.01, 0.001, z0),
+                Vec3::new(0.3, 0.1, -1.0),
+            ))
+        };
+        assert_eq!(out(-3e-8), out(0.0));
         // Seen from below z = 0 there is no floor (a glass table).
         assert!(!Surroundings::new(Backdrop::Checker, Vec3::new(0.1, 0.0, -0.1)).has_floor());
         // The plain backdrop has no squares.
