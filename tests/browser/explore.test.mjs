@@ -95,7 +95,7 @@ test("a preset loads a reference simulation whose points are simulate's", async 
 
 test("clicking a point of the cloud shows its path with simulate's numbers", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
-  await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=20000&view=-60,12,1.7");
+  await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=20000&view=-60,12,1.25");
   await waitReady(page);
   const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-"));
   const csv = path.join(dir, "sim2.csv");
@@ -123,8 +123,21 @@ test("clicking a point of the cloud shows its path with simulate's numbers", asy
   await page.mouse.click(box.x + box.width * 0.52, box.y + box.height * 0.55);
   await page.waitForFunction(() => (document.body.dataset.picked || "").startsWith("px:"));
   // A real click on the cloud picks the point drawn there (one made by a total reflection).
-  const k = await page.evaluate(() => { const f = window.bentstraw.frame; return f.header.paths.findIndex((p) => /total/.test(p.words)) >= 0 ? Array.from(f.kind).findIndex((c) => /total/.test(f.header.paths[c].words)) : 0; });
-  const hit = await page.evaluate((i) => window.bentstraw.screenOfPoint(i), k);
+  // (One the legend does not cover, inside the view.)
+  const hit = await page.evaluate(() => {
+    const f = window.bentstraw.frame;
+    const c = document.getElementById("cloud").getBoundingClientRect();
+    const l = document.getElementById("legend").getBoundingClientRect();
+    const clear = ([x, y]) => x > c.left + 10 && x < c.right - 10 && y > c.top + 10 && y < c.bottom - 10 && !(x > l.left - 10 && x < l.right + 10 && y > l.top - 10 && y < l.bottom + 10);
+    const total = (i) => /total/.test(f.header.paths[f.kind[i]].words);
+    let best = -1;
+    for (let i = 0; i < f.color.length; i += 7) {
+      if (!clear(window.bentstraw.screenOfPoint(i))) continue;
+      if (best < 0) best = i;
+      if (total(i)) { best = i; break; }
+    }
+    return window.bentstraw.screenOfPoint(best);
+  });
   await page.mouse.click(hit[0], hit[1]);
   await page.waitForFunction(() => (document.body.dataset.picked || "").startsWith("point:") && document.body.dataset.picked !== "point:1234");
   assert.equal(await page.evaluate(() => window.bentstraw.path.outcome), "straw");
@@ -191,4 +204,20 @@ test("the server survives a burst of malformed requests", async () => {
   assert.ok(burst.includes(200));
   const after = await fetch(base + "api/frame?" + good);
   assert.equal(after.status, 200);
+});
+
+test("a busy port is named in one line, exit code 2; Ctrl-C stops the server", async () => {
+  const port = new URL(server.url).port;
+  const r = await runCli(["explore", "--no-open", "--port", port]);
+  assert.equal(r.code, 2);
+  assert.equal(r.stderr.trim().split("\n").length, 1);
+  assert.match(r.stderr, new RegExp(`port ${port} on 127\\.0\\.0\\.1 is busy`));
+  const bad = await runCli(["explore", "--no-open", "--port", "0", "--water-height", "0.5"]);
+  assert.equal(bad.code, 2);
+  assert.match(bad.stderr, /water height 0\.5 m is outside the glass/);
+  const other = await startServer();
+  const ended = new Promise((resolve) => other.child.on("exit", (code, signal) => resolve({ code, signal })));
+  other.stop();
+  const how = await ended;
+  assert.ok(how.signal === "SIGINT" || how.code === 0 || how.code === 130, JSON.stringify(how));
 });
