@@ -494,7 +494,9 @@ onDrag(pictureCanvas, {
     pick(`px:${Math.round(row * 100) / 100},${Math.round(col * 100) / 100},${width}x${height}`);
   },
 });
-pictureCanvas.addEventListener("wheel", (e) => { e.preventDefault(); orbitBy(0, 0, Math.exp(0.0015 * e.deltaY)); }, { passive: false });
+for (const el of [pictureCanvas, sideCanvas, topCanvas]) {
+  el.addEventListener("wheel", (e) => { e.preventDefault(); orbitBy(0, 0, Math.exp(0.0015 * e.deltaY)); }, { passive: false });
+}
 
 onDrag(cloudCanvas, {
   move: (dx, dy) => {
