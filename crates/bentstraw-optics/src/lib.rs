@@ -17,6 +17,7 @@
 pub mod apparent;
 pub mod camera;
 pub mod check;
+pub mod frame;
 pub mod geometry;
 pub mod image;
 pub mod interface;

@@ -19,11 +19,12 @@
 //! same order (no fused multiply-add), so both give the same pixels.
 
 use crate::camera::Camera;
-use crate::geometry::{enter_bounding_sphere, BOUNDING_CENTRE};
+use crate::geometry::{enter_bounding_sphere, Ray, BOUNDING_CENTRE};
 use crate::scene::{
     Scene, GLASS_RADIUS, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT, STRAW_RADIUS,
 };
 use crate::trace::FRESNEL_SEGMENTS_PER_RAY;
+use crate::Vec3;
 
 /// Rays per packet.
 pub const LANES: usize = 8;
@@ -385,6 +386,380 @@ impl PacketTracer {
         }
     }
 
+    /// How every branch of the rays through the centres of pixel row `row` ends, for a picture
+    /// that shows what each branch meets: `on_end(pixel, end)` once per branch end.
+    ///
+    /// With `split` (SPEC §6, fresnel) each branch splits at every water face by the Fresnel
+    /// reflectance, branches lighter than `prune_below` are abandoned; without it (SPEC §3, course)
+    /// each ray is refracted or totally reflected and keeps weight 1. Branches that provably
+    /// escape (out of the water through the side or bottom, or mirrored off their outside) are
+    /// reported as escaping from the face at once. Same breadth-first order as
+    /// [`Self::fresnel_row`], so the lanes stay full.
+    pub fn branch_ends_row(
+        &self,
+        camera: &Camera,
+        row: u32,
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2, checked just above.
+                unsafe { self.branch_ends_row_avx2(camera, row, split, prune_below, wave, on_end) };
+                return;
+            }
+        }
+        self.branch_ends_row_generic(camera, row, split, prune_below, wave, on_end);
+    }
+
+    /// [`Self::branch_ends_row`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn branch_ends_row_avx2(
+        &self,
+        camera: &Camera,
+        row: u32,
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        self.branch_ends_row_generic(camera, row, split, prune_below, wave, on_end);
+    }
+
+    #[inline(always)]
+    fn branch_ends_row_generic(
+        &self,
+        camera: &Camera,
+        row: u32,
+        split: bool,
+        prune_below: f64,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        let width = camera.width as usize;
+        let eye = [
+            camera.eye.x as f32,
+            camera.eye.y as f32,
+            camera.eye.z as f32,
+        ];
+        wave.eye = eye;
+        let cur = &mut wave.current;
+        cur.clear();
+        cur.reserve_total(width);
+        let rays = row_rays(camera, row);
+        for (p, chunk_start) in (0..width).step_by(LANES).enumerate() {
+            let ([ox, oy, oz], [dx, dy, dz], alive) = rays(p);
+            for k in 0..LANES.min(width - chunk_start) {
+                let direction = [dx.0[k], dy.0[k], dz.0[k]];
+                if alive.0[k] == 0 {
+                    // Misses the scene: straight on to the backdrop.
+                    on_end(
+                        chunk_start + k,
+                        BranchEnd::Escaped {
+                            origin: eye,
+                            direction,
+                            weight: 1.0,
+                        },
+                    );
+                    continue;
+                }
+                cur.push(
+                    [ox.0[k], oy.0[k], oz.0[k]],
+                    direction,
+                    1.0,
+                    false,
+                    (chunk_start + k) as u32,
+                    NO_FACE,
+                );
+            }
+        }
+        self.follow_branches(
+            split,
+            prune_below,
+            FRESNEL_SEGMENTS_PER_RAY,
+            width,
+            wave,
+            on_end,
+        );
+    }
+
+    /// [`Self::branch_ends_row`] for any rays from `eye` along unit `directions`, each following
+    /// at most `max_segments` segments; `on_end` is given the index of the ray in `directions`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn branch_ends(
+        &self,
+        eye: Vec3,
+        directions: &[Vec3],
+        split: bool,
+        prune_below: f64,
+        max_segments: u32,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2, checked just above.
+                unsafe {
+                    self.branch_ends_avx2(
+                        eye,
+                        directions,
+                        split,
+                        prune_below,
+                        max_segments,
+                        wave,
+                        on_end,
+                    )
+                };
+                return;
+            }
+        }
+        self.branch_ends_generic(
+            eye,
+            directions,
+            split,
+            prune_below,
+            max_segments,
+            wave,
+            on_end,
+        );
+    }
+
+    /// [`Self::branch_ends`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn branch_ends_avx2(
+        &self,
+        eye: Vec3,
+        directions: &[Vec3],
+        split: bool,
+        prune_below: f64,
+        max_segments: u32,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        self.branch_ends_generic(
+            eye,
+            directions,
+            split,
+            prune_below,
+            max_segments,
+            wave,
+            on_end,
+        );
+    }
+
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn branch_ends_generic(
+        &self,
+        eye: Vec3,
+        directions: &[Vec3],
+        split: bool,
+        prune_below: f64,
+        max_segments: u32,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        let v = |x: Vec3| [x.x as f32, x.y as f32, x.z as f32];
+        let far = (eye - BOUNDING_CENTRE).length() > FAR_EYE;
+        wave.eye = v(eye);
+        let cur = &mut wave.current;
+        cur.clear();
+        cur.reserve_total(directions.len());
+        for (k, &d) in directions.iter().enumerate() {
+            // A far eye's rays start on the bounding sphere, made in double precision.
+            let start = if far {
+                enter_bounding_sphere(Ray {
+                    origin: eye,
+                    direction: d,
+                })
+                .map(|(r, _)| r.origin)
+            } else {
+                Some(eye)
+            };
+            match start {
+                Some(o) => cur.push(v(o), v(d), 1.0, false, k as u32, NO_FACE),
+                None => on_end(
+                    k,
+                    BranchEnd::Escaped {
+                        origin: v(eye),
+                        direction: v(d),
+                        weight: 1.0,
+                    },
+                ),
+            }
+        }
+        self.follow_branches(
+            split,
+            prune_below,
+            max_segments,
+            directions.len(),
+            wave,
+            on_end,
+        );
+    }
+
+    /// Follows the branches in `wave.current` to their ends, breadth first (see
+    /// [`Self::branch_ends_row`]), at most `max_segments` segments for each of the `pixels`
+    /// pixels (what still travels then is dropped).
+    #[inline(always)]
+    fn follow_branches(
+        &self,
+        split: bool,
+        prune_below: f64,
+        max_segments: u32,
+        pixels: usize,
+        wave: &mut FresnelWave,
+        on_end: &mut dyn FnMut(usize, BranchEnd),
+    ) {
+        let prune = prune_below as f32;
+        let n_water = self.eta_into_air;
+        let eye = wave.eye;
+        let segments = &mut wave.segments;
+        segments.clear();
+        segments.resize(pixels, 1);
+        let (cur, next) = (&mut wave.current, &mut wave.next);
+        let lane = |v: &[F8; 3], k: usize| [v[0].0[k], v[1].0[k], v[2].0[k]];
+        for event in 0..=self.max_events {
+            if cur.len() == 0 {
+                break;
+            }
+            next.clear();
+            next.reserve_total(2 * cur.len());
+            for base in (0..cur.len()).step_by(LANES) {
+                let n = LANES.min(cur.len() - base);
+                let alive = M8(std::array::from_fn(|k| if k < n { u32::MAX } else { 0 }));
+                let o = [cur.load(0, base), cur.load(1, base), cur.load(2, base)];
+                let d = [cur.load(3, base), cur.load(4, base), cur.load(5, base)];
+                let left = cur.load_left(base);
+                let escape = |k: usize, on_end: &mut dyn FnMut(usize, BranchEnd)| {
+                    // A branch that met nothing is the ray from the eye (a far eye's rays start
+                    // on the bounding sphere, possibly past the backdrop's floor).
+                    let origin = if cur.left[base + k] == NO_FACE {
+                        eye
+                    } else {
+                        lane(&o, k)
+                    };
+                    on_end(
+                        cur.pixel[base + k] as usize,
+                        BranchEnd::Escaped {
+                            origin,
+                            direction: lane(&d, k),
+                            weight: cur.w[base + k],
+                        },
+                    )
+                };
+                let Some(hit) = self.hit8(o, d, alive, left) else {
+                    for k in 0..n {
+                        escape(k, on_end);
+                    }
+                    continue;
+                };
+                let inf = F8::splat(f32::INFINITY);
+                let hits_straw = alive
+                    .and(hit.t_straw.lt(inf))
+                    .and(hit.t_straw.le(hit.t_water));
+                let hits_water = alive.and_not(hits_straw).and(hit.t_water.lt(inf));
+                for k in 0..n {
+                    let pixel = cur.pixel[base + k] as usize;
+                    let w = cur.w[base + k];
+                    if hits_straw.0[k] != 0 {
+                        let t = hit.t_straw.0[k];
+                        let [ox, oy, oz] = lane(&o, k);
+                        let [dx, dy, dz] = lane(&d, k);
+                        on_end(
+                            pixel,
+                            BranchEnd::Straw {
+                                code: hit.straw_code.0[k] as u8,
+                                point: [ox + t * dx, oy + t * dy, oz + t * dz],
+                                weight: w,
+                            },
+                        );
+                    } else if hits_water.0[k] == 0 {
+                        escape(k, on_end);
+                    } else if event == self.max_events {
+                        on_end(pixel, BranchEnd::Dropped { weight: w });
+                    }
+                }
+                if event == self.max_events || !hits_water.any() {
+                    continue;
+                }
+                let in_water = M8(std::array::from_fn(|k| {
+                    if k < n && cur.in_water[base + k] {
+                        u32::MAX
+                    } else {
+                        0
+                    }
+                }));
+                let b = self.bend8(o, d, hit.t_water, hit.water_face, in_water);
+                let one = F8::splat(1.0);
+                let nw = F8::splat(n_water);
+                let (n1, n2) = (in_water.select(nw, one), in_water.select(one, nw));
+                let rs = (n1 * b.cos_i - n2 * b.cos_t) / (n1 * b.cos_i + n2 * b.cos_t);
+                let rp = (n2 * b.cos_i - n1 * b.cos_t) / (n2 * b.cos_i + n1 * b.cos_t);
+                let r = b.total.select(one, F8::splat(0.5) * (rs * rs + rp * rp));
+                for k in 0..n {
+                    if hits_water.0[k] == 0 {
+                        continue;
+                    }
+                    let (w, water, pixel) =
+                        (cur.w[base + k], cur.in_water[base + k], cur.pixel[base + k]);
+                    let total = b.total.0[k] != 0;
+                    // Course: the one branch the law picks keeps the whole weight.
+                    let (wr, wt) = match (split, total) {
+                        (_, true) => (w, 0.0),
+                        (true, false) => (w * r.0[k], w - w * r.0[k]),
+                        (false, false) => (0.0, w),
+                    };
+                    let q = lane(&b.q, k);
+                    let reflected = lane(&b.reflected, k);
+                    let refracted = lane(&b.refracted, k);
+                    // Out through the side or bottom, or mirrored off their outside: escapes.
+                    let (reflected_escapes, refracted_escapes) = if b.is_top.0[k] == 0 {
+                        (!water, water)
+                    } else {
+                        (false, false)
+                    };
+                    let face = hit.water_face.0[k];
+                    for (weight, dir, escapes, to_water) in [
+                        (wr, reflected, reflected_escapes, water),
+                        (wt, refracted, refracted_escapes, !water),
+                    ] {
+                        if weight <= 0.0 || (split && weight < prune) {
+                            continue;
+                        }
+                        let used = &mut segments[pixel as usize];
+                        if !escapes && *used >= max_segments {
+                            // The pixel's work is spent: dropped, like light past the limit.
+                            on_end(pixel as usize, BranchEnd::Dropped { weight });
+                            continue;
+                        }
+                        if escapes {
+                            on_end(
+                                pixel as usize,
+                                BranchEnd::Escaped {
+                                    origin: q,
+                                    direction: dir,
+                                    weight,
+                                },
+                            );
+                        } else {
+                            *used += 1;
+                            next.push(q, dir, weight, to_water, pixel, face);
+                        }
+                    }
+                }
+            }
+            std::mem::swap(cur, next);
+        }
+    }
+
     /// Colour codes of eight rays from `o` along unit directions `d` (lanes not `alive` see
     /// nothing).
     #[inline(always)]
@@ -629,6 +1004,34 @@ impl PacketTracer {
     }
 }
 
+/// How one branch of a pixel's ray ends ([`PacketTracer::branch_ends_row`]), in single precision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BranchEnd {
+    /// On the straw.
+    Straw {
+        /// Colour code of the section, 1..=5.
+        code: u8,
+        /// The straw point reached.
+        point: [f32; 3],
+        /// The branch's weight.
+        weight: f32,
+    },
+    /// Out of the scene along its last straight piece.
+    Escaped {
+        /// Where the last piece starts (the eye or the last event).
+        origin: [f32; 3],
+        /// Its unit direction.
+        direction: [f32; 3],
+        /// The branch's weight.
+        weight: f32,
+    },
+    /// It would need more events than allowed.
+    Dropped {
+        /// The branch's weight.
+        weight: f32,
+    },
+}
+
 /// The nearest faces ahead of eight rays.
 #[derive(Clone, Copy, Debug)]
 struct Hit8 {
@@ -672,7 +1075,7 @@ fn row_rays(camera: &Camera, row: u32) -> impl Fn(usize) -> ([F8; 3], [F8; 3], M
     let sy = ((1.0 - 2.0 * (row as f64 + 0.5) / h) * camera.tan_half_fov) as f32;
     let sx_step = (2.0 / w * sx_scale) as f32;
     let sx_start = (sx_scale * (1.0 / w - 1.0)) as f32; // pixel 0's centre
-    let v = |x: crate::Vec3| [x.x as f32, x.y as f32, x.z as f32];
+    let v = |x: Vec3| [x.x as f32, x.y as f32, x.z as f32];
     let (f, r, u) = (v(camera.forward), v(camera.right), v(camera.up));
     // The row's part common to all pixels: f + sy·u.
     let base = [f[0] + sy * u[0], f[1] + sy * u[1], f[2] + sy * u[2]];
@@ -687,18 +1090,20 @@ fn row_rays(camera: &Camera, row: u32) -> impl Fn(usize) -> ([F8; 3], [F8; 3], M
             for k in 0..LANES {
                 // Columns past the picture's edge are traced (and ignored) like any other.
                 let ray = camera.pixel_ray(row, (p * LANES + k) as u32);
-                if let Some((start, _)) = enter_bounding_sphere(ray) {
-                    for (c, (x, y)) in v(start.origin)
-                        .into_iter()
-                        .zip(v(start.direction))
-                        .enumerate()
-                    {
-                        o[c][k] = x;
-                        d[c][k] = y;
-                    }
+                // A ray that misses the scene keeps the eye and its direction (a picture still
+                // shows what lies behind), but is not traced.
+                let start = enter_bounding_sphere(ray);
+                let start_ray = start.map_or(ray, |(r, _)| r);
+                for (c, (x, y)) in v(start_ray.origin)
+                    .into_iter()
+                    .zip(v(start_ray.direction))
+                    .enumerate()
+                {
+                    o[c][k] = x;
+                    d[c][k] = y;
+                }
+                if start.is_some() {
                     alive[k] = u32::MAX;
-                } else {
-                    d[2][k] = 1.0; // a harmless unit direction for a dead lane
                 }
             }
             return (o.map(F8), d.map(F8), M8(alive));
@@ -725,6 +1130,8 @@ pub struct FresnelWave {
     /// Ray segments followed so far for each pixel of the row (bounded by
     /// [`FRESNEL_SEGMENTS_PER_RAY`]).
     segments: Vec<u32>,
+    /// The eye of the rays being followed, in single precision.
+    eye: [f32; 3],
 }
 
 /// Fresnel branches, structure of arrays: origin and direction components, weight, medium, pixel.

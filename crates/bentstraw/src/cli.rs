@@ -48,6 +48,11 @@ comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit 
 --water-height 0.15 --json"
     )]
     Check(CheckArgs),
+    /// Explore live in the browser: drag the eye around the glass, click to see the light's path.
+    #[command(
+        after_help = "Example:\n  bentstraw explore                       # opens http://127.0.0.1:8157/\n  bentstraw explore --port 0 --no-open --observer 0.3,0,0.1 --straw 0,0 --water-height 0.15"
+    )]
+    Explore(ExploreArgs),
 }
 
 /// The scene and observer: the inputs of one simulation (SPEC §2).
@@ -283,6 +288,61 @@ pub struct CheckArgs {
     /// How many of the worst points to list
     #[arg(long, value_name = "N", default_value_t = 10)]
     pub worst: usize,
+}
+
+/// Arguments of `explore`.
+#[derive(Args, Debug)]
+pub struct ExploreArgs {
+    /// Port to listen on (0: any free port)
+    #[arg(long, value_name = "N", default_value_t = 8157)]
+    pub port: u16,
+    /// Address to listen on; only 127.0.0.1 (this machine) unless you give another
+    #[arg(long, value_name = "ADDR", default_value = "127.0.0.1")]
+    pub host: String,
+    /// Do not open a browser (print the address only)
+    #[arg(long)]
+    pub no_open: bool,
+    /// Observer position X,Y,Z in metres to start with
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0.1,0,0.1")]
+    pub observer: [f64; 3],
+    /// Straw axis XP,YP in metres to start with
+    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true, default_value = "0.02,0.01")]
+    pub straw: [f64; 2],
+    /// Water height in metres to start with, 0 <= H <= 0.2
+    #[arg(
+        long,
+        value_name = "H",
+        allow_hyphen_values = true,
+        default_value_t = 0.15
+    )]
+    pub water_height: f64,
+    /// Refractive index of the water (>= 1)
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1.333,
+        allow_hyphen_values = true
+    )]
+    pub n_water: f64,
+    /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 10,
+        allow_hyphen_values = true
+    )]
+    pub max_events: u32,
+    /// At least this many image points in the 3D view
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 20000,
+        allow_hyphen_values = true
+    )]
+    pub points: usize,
+    /// The picture's mode to start with
+    #[arg(long, value_enum, default_value_t = ModeArg::Fresnel)]
+    pub mode: ModeArg,
 }
 
 /// Parses `X,Y,Z` (three finite or non-finite numbers; finiteness is checked with the scene).

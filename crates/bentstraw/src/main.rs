@@ -6,6 +6,7 @@ mod check_plot;
 mod cli;
 mod commands;
 mod error;
+mod explore;
 mod files;
 mod html;
 mod model_plots;

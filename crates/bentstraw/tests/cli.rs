@@ -400,7 +400,12 @@ fn table_writes_every_simulation_and_the_report() {
     let files = fs::read_dir(&folder).unwrap().count();
     // 12 × (csv, png, html), 4 × 9 pictures, model files and ray diagrams, the opening view and
     // its ray diagram, the validation figure, the report.
-    for f in ["classic_view.png", "classic_rays.svg", "validation.svg", "sim3_rays.svg"] {
+    for f in [
+        "classic_view.png",
+        "classic_rays.svg",
+        "validation.svg",
+        "sim3_rays.svg",
+    ] {
         assert!(folder.join(f).is_file(), "{f}");
         assert!(index.contains(f), "{f} not in the report");
     }

@@ -29,6 +29,7 @@ pub fn run(cli: Cli) -> CliResult {
             }
             Ok(())
         }
+        Some(Command::Explore(a)) => crate::explore::run(&a),
     }
 }
 

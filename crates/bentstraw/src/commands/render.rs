@@ -5,9 +5,10 @@ use std::path::Path;
 use std::time::Instant;
 
 use bentstraw_optics::camera::{framing_fov, Camera};
+use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::{number_text, Scene, SCENE_CENTRE};
-use bentstraw_optics::shading::{shaded_picture, Backdrop, ShadingMode, ShadingOptions};
+use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
 use bentstraw_optics::Vec3;
 
 use crate::cli::{BackdropArg, CameraArgs, ModeArg, RenderArgs};
@@ -134,8 +135,16 @@ pub fn run(args: &RenderArgs) -> CliResult {
         samples: args.samples,
         outline: true,
     };
+    // The explorer's frame call, picture only: the command line draws as fast as the live view.
     let picture = progress::with_progress(None, "{spinner} rendering  [{elapsed}]", |_| {
-        shaded_picture(&scene, &camera, &options)
+        let mut frame = Frame::default();
+        let request = FrameRequest {
+            camera,
+            shading: options,
+            min_points: 0,
+        };
+        draw_frame(&scene, &request, &mut frame);
+        frame.picture
     });
     let png = png_bytes(&picture)?;
     files::write_bytes(&args.output, &png)?;

@@ -1,0 +1,171 @@
+//! One frame of a live view, in one call: the observer's picture for people and the straw's image
+//! points with the kind of light path that made each, into buffers kept from frame to frame.
+//!
+//! The explorer redraws a frame at every input event and `render` draws one picture through the
+//! same call, so both get the same speed and the same pixels.
+
+use rayon::prelude::*;
+
+use crate::camera::Camera;
+use crate::geometry::Ray;
+use crate::image::ImagePoint;
+use crate::light_path_type::{trace_path_type, LightPathType};
+use crate::sampling::sample_image;
+use crate::scene::Scene;
+use crate::shading::{shaded_picture_into, RgbPicture, ShadingBuffers, ShadingOptions};
+use crate::tracer::Tracer;
+
+/// What one frame shows, beside the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameRequest {
+    /// The observer's camera (its eye is the observer).
+    pub camera: Camera,
+    /// How the picture is shaded (mode, backdrop, anti-aliasing, outline).
+    pub shading: ShadingOptions,
+    /// At least this many image points (0: no points, the picture only).
+    pub min_points: usize,
+}
+
+/// A frame: the picture and the image points, with the buffers they are drawn into.
+#[derive(Clone, Debug, Default)]
+pub struct Frame {
+    /// What the eye sees.
+    pub picture: RgbPicture,
+    /// The straw's image points (course convention), in sampling order.
+    pub points: Vec<ImagePoint>,
+    /// The light path of each point, same order.
+    pub paths: Vec<LightPathType>,
+    /// Rays traced to find the points (coarse levels included).
+    pub rays_traced: u64,
+    shading: ShadingBuffers,
+}
+
+impl Frame {
+    /// Points per kind of light path, sorted by kind (direct first, then by entry face and
+    /// number of total reflections).
+    pub fn path_counts(&self) -> Vec<(LightPathType, usize)> {
+        let mut counts: Vec<(LightPathType, usize)> = Vec::new();
+        for p in &self.paths {
+            match counts.binary_search_by(|(k, _)| k.cmp(p)) {
+                Ok(i) => counts[i].1 += 1,
+                Err(i) => counts.insert(i, (*p, 1)),
+            }
+        }
+        counts
+    }
+}
+
+/// Draws the frame of `scene` asked for by `request` into `frame`: the picture and the points are
+/// computed side by side (each in parallel itself), the points by [`sample_image`], so they are
+/// exactly `simulate`'s for the same inputs.
+pub fn draw_frame(scene: &Scene, request: &FrameRequest, frame: &mut Frame) {
+    let Frame {
+        picture,
+        points,
+        paths,
+        rays_traced,
+        shading,
+    } = frame;
+    let observer = request.camera.eye;
+    rayon::join(
+        || shaded_picture_into(scene, &request.camera, &request.shading, shading, picture),
+        || {
+            points.clear();
+            paths.clear();
+            *rays_traced = 0;
+            if request.min_points == 0 {
+                return;
+            }
+            let cloud = sample_image(scene, observer, request.min_points, &|_| {});
+            *points = cloud.points;
+            *rays_traced = cloud.rays_traced;
+            let tracer = Tracer::new(scene);
+            points
+                .par_iter()
+                .map(|p| {
+                    let ray = Ray {
+                        origin: observer,
+                        direction: p.direction,
+                    };
+                    trace_path_type(&tracer, scene, ray).1
+                })
+                .collect_into_vec(paths);
+        },
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light_path_type::Entry;
+    use crate::scene::{REFERENCES, SCENE_CENTRE, WATER_INDEX};
+    use crate::shading::{Backdrop, ShadingMode};
+
+    fn request(observer: crate::Vec3, min_points: usize) -> FrameRequest {
+        FrameRequest {
+            camera: Camera::new(observer, SCENE_CENTRE, 48, 36, 1.4),
+            shading: ShadingOptions {
+                mode: ShadingMode::Course,
+                backdrop: Backdrop::Checker,
+                samples: 1,
+                outline: true,
+            },
+            min_points,
+        }
+    }
+
+    /// Each point's path kind agrees with its own trace: no event means direct, and a point
+    /// reached through the water has at least one refraction besides its total reflections.
+    #[test]
+    fn path_kinds_agree_with_the_points_events() {
+        let mut frame = Frame::default();
+        for r in REFERENCES {
+            let scene = r.scene(WATER_INDEX);
+            draw_frame(&scene, &request(r.observer, 2000), &mut frame);
+            assert!(frame.points.len() >= 2000);
+            assert_eq!(frame.points.len(), frame.paths.len());
+            for (p, k) in frame.points.iter().zip(&frame.paths) {
+                if p.events == 0 {
+                    assert_eq!(k.entry, Entry::Direct);
+                } else {
+                    assert_ne!(k.entry, Entry::Direct);
+                    assert!(k.total_reflections < p.events, "{p:?} {k:?}");
+                }
+            }
+            let counts = frame.path_counts();
+            assert_eq!(
+                counts.iter().map(|c| c.1).sum::<usize>(),
+                frame.points.len()
+            );
+            assert!(counts.windows(2).all(|w| w[0].0 < w[1].0));
+        }
+    }
+
+    /// Reference 3 (eye above the rim) sees the straw through the surface and, beside the glass,
+    /// pieces made by total reflection at the wall: both kinds must be found.
+    #[test]
+    fn reference_three_has_top_and_totally_reflected_paths() {
+        let r = REFERENCES[2];
+        let mut frame = Frame::default();
+        draw_frame(
+            &r.scene(WATER_INDEX),
+            &request(r.observer, 5000),
+            &mut frame,
+        );
+        let counts = frame.path_counts();
+        assert!(counts
+            .iter()
+            .any(|(k, _)| k.entry == Entry::Top && k.total_reflections == 0));
+        assert!(counts.iter().any(|(k, _)| k.total_reflections > 0));
+    }
+
+    /// No points asked: none given, and the picture is still drawn.
+    #[test]
+    fn picture_only() {
+        let r = REFERENCES[0];
+        let mut frame = Frame::default();
+        draw_frame(&r.scene(WATER_INDEX), &request(r.observer, 0), &mut frame);
+        assert!(frame.points.is_empty() && frame.paths.is_empty());
+        assert_eq!(frame.picture.pixels.len(), 48 * 36 * 3);
+    }
+}

@@ -1,0 +1,672 @@
+// bentstraw explore: the page. All physics is bentstraw's (the server calls the library); this
+// script only keeps the state (in the address), asks for frames and draws them.
+"use strict";
+
+// ---- the scene's fixed sizes (SPEC §1), for drawing outlines only ----
+const GLASS_R = 0.04, GLASS_H = 0.20, STRAW_R = 0.005, STRAW_H = 0.25;
+const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff"];
+const SECTION_NAMES = ["red", "orange", "magenta", "green", "blue"];
+// Colours of the kinds of light path, in the server's order of kinds (direct, top, wall, bottom…).
+const PATH_COLORS = ["#222222", "#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
+// Quick frames (while dragging) have this many times fewer pixels along each side.
+const QUICK = 2.5;
+// The centre the eye orbits round: the middle of the glass.
+const ORBIT = [0, 0, 0.1];
+
+const PRESETS = [
+  { name: "Reference 1: eye at (0, 0.1, 0.1)", v: { observer: [0, 0.1, 0.1], straw: [0.02, 0.01], he: 0.15 } },
+  { name: "Reference 2: eye at (0.1, 0, 0.1)", v: { observer: [0.1, 0, 0.1], straw: [0.02, 0.01], he: 0.15 } },
+  { name: "Reference 3: eye above, (0.1, 0, 0.3)", v: { observer: [0.1, 0, 0.3], straw: [0.02, 0.01], he: 0.2 } },
+  { name: "Reference 4: eye below, (0.1, 0, -0.1)", v: { observer: [0.1, 0, -0.1], straw: [0, 0], he: 0.2 } },
+  { name: "The broken straw, from the side at 0.3 m", v: { observer: [0.3, 0, 0.16], straw: [0, 0.025], he: 0.12 } },
+  { name: "Straw on the axis: n times wider", v: { observer: [0.3, 0, 0.07], straw: [0, 0], he: 0.15 } },
+  { name: "The straw vanishing near the wall", v: { observer: [0.3, 0, 0.07], straw: [0, 0.034], he: 0.15 } },
+  { name: "From above", v: { observer: [0.03, 0, 0.45], straw: [0.02, 0.01], he: 0.15 } },
+  { name: "From below", v: { observer: [0.06, 0, -0.25], straw: [0.02, 0.01], he: 0.15 } },
+  { name: "Displaced pieces made by total reflection", v: { observer: [0.1, 0, 0.3], straw: [0.02, 0.01], he: 0.2, color: "path" } },
+];
+
+// ---- state: everything the address holds ----
+const state = {
+  observer: [0.1, 0, 0.1], straw: [0.02, 0.01], he: 0.15, n: 1.333, events: 10, points: 20000,
+  mode: "fresnel", backdrop: "checker", color: "section", models: ["course"],
+  view: [-35, 22, 1], pick: "",
+};
+
+/** Shortest text of a number rounded to 0.1 µm (no float noise in addresses and commands). */
+function num(x) { return String(Math.round(x * 1e7) / 1e7); }
+
+/** The server's query for the state (names as the command line's flags). */
+function viewQuery(s, extra) {
+  const p = new URLSearchParams();
+  p.set("observer", s.observer.map(num).join(","));
+  p.set("straw", s.straw.map(num).join(","));
+  p.set("water-height", num(s.he));
+  p.set("n-water", num(s.n));
+  p.set("max-events", String(s.events));
+  p.set("points", String(s.points));
+  p.set("mode", s.mode);
+  p.set("backdrop", s.backdrop);
+  for (const [k, v] of Object.entries(extra || {})) p.set(k, String(v));
+  return p.toString();
+}
+
+/** The address's fragment for the state. */
+function stateHash(s) {
+  const p = new URLSearchParams(viewQuery(s));
+  p.set("color", s.color);
+  p.set("models", s.models.join(","));
+  p.set("view", s.view.map((x) => Math.round(x * 100) / 100).join(","));
+  if (s.pick) p.set("pick", s.pick);
+  return "#" + p.toString();
+}
+
+/** Reads a query or fragment into the state; values are kept as text-parsed numbers, checked by the server. */
+function readParams(text, s) {
+  const p = new URLSearchParams(text.replace(/^[#?]/, ""));
+  const list = (v) => v.split(",").map(Number);
+  if (p.has("observer")) s.observer = list(p.get("observer"));
+  if (p.has("straw")) s.straw = list(p.get("straw"));
+  if (p.has("water-height")) s.he = Number(p.get("water-height"));
+  if (p.has("n-water")) s.n = Number(p.get("n-water"));
+  if (p.has("max-events")) s.events = Number(p.get("max-events"));
+  if (p.has("points")) s.points = Number(p.get("points"));
+  if (p.has("mode")) s.mode = p.get("mode");
+  if (p.has("backdrop")) s.backdrop = p.get("backdrop");
+  if (p.has("color")) s.color = p.get("color");
+  if (p.has("models")) s.models = p.get("models").split(",").filter(Boolean);
+  if (p.has("view")) { const v = list(p.get("view")); if (v.length === 3 && v.every(Number.isFinite)) s.view = v; }
+  s.pick = p.get("pick") || "";
+}
+
+// ---- vectors and the orbit ----
+const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const scale = (a, k) => [a[0] * k, a[1] * k, a[2] * k];
+
+/** The observer's azimuth and elevation (degrees) and distance round the orbit centre. */
+function orbitOf(o) {
+  const d = sub(o, ORBIT), r = Math.hypot(d[0], d[1]);
+  return { az: Math.atan2(d[1], d[0]) * 180 / Math.PI, el: Math.atan2(d[2], r) * 180 / Math.PI, dist: Math.hypot(r, d[2]) };
+}
+function fromOrbit(az, el, dist) {
+  const a = az * Math.PI / 180, e = el * Math.PI / 180;
+  return add(ORBIT, [dist * Math.cos(e) * Math.cos(a), dist * Math.cos(e) * Math.sin(a), dist * Math.sin(e)]);
+}
+
+// ---- the page's elements ----
+const $ = (id) => document.getElementById(id);
+const pictureCanvas = $("picture"), cloudCanvas = $("cloud"), sideCanvas = $("map-side"), topCanvas = $("map-top");
+
+// ---- talking to the server: at most one request per channel in flight; newer input waits for it
+// and is then sent as one request for the latest state (intermediate states are dropped) ----
+const clientId = Math.random().toString(36).slice(2, 10);
+const channels = {};
+function channel(name) {
+  return channels[name] || (channels[name] = { seq: 0, controller: null, busy: false, pending: null });
+}
+
+/** Fetches `url` on channel `name`, aborting what that channel had in flight; resolves to the
+ * response or null when superseded. */
+async function ask(name, route, query) {
+  const ch = channel(name);
+  if (ch.controller) ch.controller.abort();
+  const controller = new AbortController();
+  ch.controller = controller;
+  ch.seq += 1;
+  const url = `${route}?${query}&chan=${clientId}-${name}&seq=${ch.seq}`;
+  try {
+    const r = await fetch(url, { signal: controller.signal });
+    if (r.status === 409 || controller.signal.aborted) return null;
+    return r;
+  } catch (e) {
+    if (e.name === "AbortError") return null;
+    throw e;
+  } finally {
+    if (ch.controller === controller) ch.controller = null;
+  }
+}
+
+// ---- frames ----
+let frame = null;          // the last good frame: picture, points, header
+let models = { eye: null, stereo: null };
+let path = null;           // the clicked ray's path (JSON from the server)
+let inputSince = null;     // time of the oldest input the painted frame does not show yet
+let inFlight = null;       // { quick, since }
+let dirty = false;
+let fullTimer = null;
+const latencies = [];      // input-to-paint times of painted frames (ms), for the benchmark
+let fullPending = false;
+window.bentstraw = {
+  state, latencies, frames: 0,
+  get frame() { return frame; }, get path() { return path; }, get models() { return models; },
+  /** Whether a frame is being computed or the full-quality frame is still to come. */
+  busy: () => inFlight !== null || fullPending || dirty || (frame !== null && frame.quick),
+};
+
+/** Picture size for the eye panel (full quality) in pixels. */
+function pictureSize() {
+  const r = pictureCanvas.getBoundingClientRect();
+  const w = Math.max(40, Math.min(1600, Math.round(r.width))), h = Math.max(30, Math.min(1200, Math.round(r.height)));
+  return [w, h];
+}
+
+/** Called on every change of the state by the user. */
+function changed(options) {
+  if (inputSince === null) inputSince = performance.now();
+  document.body.dataset.ready = "0";
+  history.replaceState(null, "", stateHash(state));
+  syncControls();
+  drawMaps();
+  if (!(options && options.keepPath)) { path = null; state.pick = ""; }
+  // The models' points belong to the previous view: they come back with the full frame.
+  models = { eye: null, stereo: null };
+  requestFrame(true);
+}
+
+function requestFrame(quick) {
+  clearTimeout(fullTimer);
+  fullPending = false;
+  if (inFlight && inFlight.quick && quick) { dirty = true; return; }
+  sendFrame(quick);
+}
+
+async function sendFrame(quick) {
+  const [w, h] = pictureSize();
+  const size = quick ? [Math.max(40, Math.round(w / QUICK)), Math.max(30, Math.round(h / QUICK))] : [w, h];
+  const query = viewQuery(state, { size: `${size[0]}x${size[1]}`, samples: quick ? 1 : 3 });
+  // This request is the first to show the inputs since `since`: its paint ends their wait.
+  const since = inputSince;
+  inputSince = null;
+  inFlight = { quick, since };
+  dirty = false;
+  let r;
+  try { r = await ask("frame", "/api/frame", query); } catch (e) { showError("the server does not answer: " + e.message); inFlight = null; return; }
+  // Not painted: its inputs still wait (for the request that replaced it, or the retry).
+  const unpainted = () => { if (since !== null && (inputSince === null || since < inputSince)) inputSince = since; };
+  if (r === null) { unpainted(); return; } // superseded by a newer request
+  inFlight = null;
+  if (r.status === 503) unpainted();
+  if (r.status === 503) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(quick); }, 60); return; }
+  if (!r.ok) {
+    showError(await r.text());
+    if (frame) frame.quick = false; // the last good view stays, as it is
+    document.body.dataset.refused = String(Number(document.body.dataset.refused || 0) + 1);
+    return;
+  }
+  const bytes = await r.arrayBuffer();
+  frame = decodeFrame(bytes, quick);
+  frame.query = query;
+  showError("");
+  const t = performance.now();
+  paintAll();
+  const paintMs = performance.now() - t;
+  requestAnimationFrame(() => {
+    if (since !== null) latencies.push({ ms: performance.now() - since, quick, mode: state.mode, server: frame.header.ms, paint: paintMs });
+    window.bentstraw.frames += 1;
+    document.body.dataset.frames = String(window.bentstraw.frames);
+  });
+  if (dirty) { sendFrame(true); return; }
+  if (quick) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 150); }
+  else {
+    document.body.dataset.ready = "1";
+    requestModels();
+    if (state.pick && !path) restorePick();
+  }
+}
+
+/** The server's binary frame: header, RGBA picture, points. */
+function decodeFrame(buffer, quick) {
+  const view = new DataView(buffer);
+  const len = view.getUint32(0, true);
+  const header = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, len)));
+  let at = 4 + len;
+  const npx = header.width * header.height * 4;
+  const rgba = new Uint8ClampedArray(buffer, at, npx); at += npx;
+  const n = header.n;
+  const xyz = new Float32Array(buffer.slice(at, at + 12 * n)); at += 12 * n;
+  const color = new Uint8Array(buffer, at, n); at += n;
+  const kind = new Uint8Array(buffer, at, n);
+  return { header, rgba, xyz, color, kind, quick };
+}
+
+async function requestModels() {
+  for (const m of ["eye", "stereo"]) {
+    if (!state.models.includes(m)) { models[m] = null; continue; }
+    const r = await ask("model-" + m, "/api/model", viewQuery(state, { model: m }));
+    if (!r || !r.ok) continue;
+    const b = await r.arrayBuffer();
+    const n = new DataView(b).getUint32(0, true);
+    models[m] = { xyz: new Float32Array(b.slice(4, 4 + 12 * n)), color: new Uint8Array(b, 4 + 12 * n, n), query: viewQuery(state) };
+    drawCloud(); drawLegend();
+    document.body.dataset.models = state.models.join(",");
+  }
+}
+
+function showError(text) {
+  const e = $("error");
+  e.textContent = text;
+  e.hidden = !text;
+}
+
+// ---- painting ----
+function paintAll() {
+  drawPicture();
+  drawCloud();
+  drawLegend();
+  const h = frame.header;
+  $("status").textContent = `${h.width}x${h.height} picture, ${h.n} image points from ${h.rays_traced} rays, field of view ${h.fov_deg.toFixed(1)}°, ${h.ms.toFixed(0)} ms on the server`;
+  if (!$("commands").hidden) showCommands();
+}
+
+function drawPicture() {
+  if (!frame) return;
+  const { width, height } = frame.header;
+  pictureCanvas.width = width; pictureCanvas.height = height;
+  const ctx = pictureCanvas.getContext("2d");
+  ctx.putImageData(new ImageData(frame.rgba, width, height), 0, 0);
+}
+
+/** Canvas sized to its box (in CSS pixels times the screen's density). */
+function fit(canvas) {
+  const r = canvas.getBoundingClientRect(), d = window.devicePixelRatio || 1;
+  const w = Math.max(1, Math.round(r.width * d)), h = Math.max(1, Math.round(r.height * d));
+  if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
+  const ctx = canvas.getContext("2d");
+  ctx.setTransform(d, 0, 0, d, 0, 0);
+  return { ctx, w: r.width, h: r.height };
+}
+
+/** The 3D view's projection: orthographic, z up, azimuth/elevation/zoom of state.view. */
+function cloudProjection(w, h) {
+  const [az, el, zoom] = state.view;
+  const a = az * Math.PI / 180, e = el * Math.PI / 180;
+  const right = [-Math.sin(a), Math.cos(a), 0];
+  const up = [-Math.sin(e) * Math.cos(a), -Math.sin(e) * Math.sin(a), Math.cos(e)];
+  const toward = [Math.cos(e) * Math.cos(a), Math.cos(e) * Math.sin(a), Math.sin(e)];
+  const centre = [0, 0, 0.125];
+  const k = zoom * Math.min(w, h) / 0.36;
+  return {
+    toward,
+    p(q) { const d = sub(q, centre); return [w / 2 + k * dot(d, right), h / 2 - k * dot(d, up)]; },
+  };
+}
+
+let layer = null, layerPixels = null;
+/** A CSS colour "#rrggbb" and an alpha 0..255 as one little-endian RGBA pixel. */
+function rgba32(hex, alpha) {
+  const v = parseInt(hex.slice(1), 16);
+  return ((alpha << 24) | ((v & 0xff) << 16) | (v & 0xff00) | (v >> 16)) >>> 0;
+}
+
+function drawCloud() {
+  const { ctx, w, h } = fit(cloudCanvas);
+  ctx.clearRect(0, 0, w, h);
+  const pr = cloudProjection(w, h);
+  const line = (pts, style, width, dash) => {
+    ctx.beginPath();
+    pts.forEach((q, i) => { const [x, y] = pr.p(q); if (i) ctx.lineTo(x, y); else ctx.moveTo(x, y); });
+    ctx.strokeStyle = style; ctx.lineWidth = width || 1; ctx.setLineDash(dash || []); ctx.stroke(); ctx.setLineDash([]);
+  };
+  const circle = (cx, cy, r, z) => Array.from({ length: 73 }, (_, i) => [cx + r * Math.cos(i * Math.PI / 36), cy + r * Math.sin(i * Math.PI / 36), z]);
+  // The water's wireframe, the glass's rim, the straw's true outline.
+  for (const z of [0, state.he]) line(circle(0, 0, GLASS_R, z), "#4a7fc1", 1);
+  line(circle(0, 0, GLASS_R, GLASS_H), "#b8c2d3", 1, [3, 3]);
+  for (let i = 0; i < 30; i++) {
+    const a = i * Math.PI / 15;
+    line([[GLASS_R * Math.cos(a), GLASS_R * Math.sin(a), 0], [GLASS_R * Math.cos(a), GLASS_R * Math.sin(a), state.he]], "rgba(74,127,193,0.35)", 1);
+  }
+  const [sx, sy] = state.straw;
+  for (let z = 0; z <= STRAW_H + 1e-9; z += 0.05) line(circle(sx, sy, STRAW_R, z), "#888", 1, [2, 3]);
+  for (const a of [0, Math.PI / 2, Math.PI, 1.5 * Math.PI]) line([[sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), 0], [sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), STRAW_H]], "#888", 1, [2, 3]);
+  // The points: written as pixels into an offscreen layer (tens of thousands of fillRect calls
+  // would cost more than the frame itself), then laid over the outlines.
+  const d = window.devicePixelRatio || 1;
+  const W = cloudCanvas.width, H = cloudCanvas.height;
+  if (!layer || layer.width !== W || layer.height !== H) { layer = new OffscreenCanvas(W, H); layerPixels = new ImageData(W, H); }
+  const px = new Uint32Array(layerPixels.data.buffer);
+  px.fill(0);
+  const drawSet = (xyz, color, kind, alpha) => {
+    const palette = (state.color === "path" && kind ? PATH_COLORS : SECTION_RGB).map((c) => rgba32(c, alpha));
+    const r = Math.max(1, Math.round(1.2 * d));
+    for (let i = 0; i < color.length; i++) {
+      const [x, y] = pr.p([xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]]);
+      const cx = Math.round(x * d), cy = Math.round(y * d);
+      if (cx < r || cy < r || cx >= W - r || cy >= H - r) continue;
+      const c = palette[kind ? kind[i] % palette.length : color[i] - 1];
+      for (let a = -r; a < r; a++) px.fill(c, (cy + a) * W + cx - r, (cy + a) * W + cx + r);
+    }
+  };
+  if (frame && state.models.includes("course")) drawSet(frame.xyz, frame.color, state.color === "path" ? frame.kind : null, 255);
+  if (models.eye && state.models.includes("eye")) drawSet(models.eye.xyz, models.eye.color, null, 110);
+  if (models.stereo && state.models.includes("stereo")) drawSet(models.stereo.xyz, models.stereo.color, null, 110);
+  layer.getContext("2d").putImageData(layerPixels, 0, 0);
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
+  ctx.drawImage(layer, 0, 0);
+  ctx.setTransform(d, 0, 0, d, 0, 0);
+  // The observer, and the clicked ray's path.
+  const [ox, oy] = pr.p(state.observer);
+  ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ox, oy, 5, 0, 2 * Math.PI); ctx.fill();
+  if (path) drawPath(ctx, pr);
+}
+
+/** The clicked ray: the broken path (solid), the course's line of sight to its image point
+ * (dashed), events marked (circle: refraction, square: total reflection), the models' points. */
+function drawPath(ctx, pr) {
+  const pts = [path.observer, ...path.events.map((e) => e.point)];
+  if (path.outcome === "straw") pts.push(path.straw_point);
+  else if (path.leaves) pts.push(add(path.leaves.from, scale(path.leaves.direction, 0.15)));
+  ctx.lineWidth = 2.5; ctx.strokeStyle = "#111";
+  ctx.beginPath(); pts.forEach((q, i) => { const [x, y] = pr.p(q); if (i) ctx.lineTo(x, y); else ctx.moveTo(x, y); }); ctx.stroke();
+  if (path.image_point) {
+    ctx.setLineDash([6, 4]); ctx.lineWidth = 1.5; ctx.strokeStyle = "#555";
+    const [x0, y0] = pr.p(path.observer), [x1, y1] = pr.p(path.image_point);
+    ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1); ctx.stroke(); ctx.setLineDash([]);
+    marker(ctx, pr.p(path.image_point), "image", "#111");
+    if (path.eye_point) marker(ctx, pr.p(path.eye_point), "eye", "#0a7");
+    if (path.stereo_point) marker(ctx, pr.p(path.stereo_point), "stereo", "#a50");
+  }
+  for (const e of path.events) {
+    const [x, y] = pr.p(e.point);
+    ctx.fillStyle = e.event === "refraction" ? "#1f77b4" : "#d62728";
+    ctx.beginPath();
+    if (e.event === "refraction") ctx.arc(x, y, 4.5, 0, 2 * Math.PI); else ctx.rect(x - 4.5, y - 4.5, 9, 9);
+    ctx.fill();
+  }
+}
+
+function marker(ctx, [x, y], label, colour) {
+  ctx.strokeStyle = colour; ctx.lineWidth = 2;
+  ctx.beginPath(); ctx.moveTo(x - 6, y - 6); ctx.lineTo(x + 6, y + 6); ctx.moveTo(x - 6, y + 6); ctx.lineTo(x + 6, y - 6); ctx.stroke();
+  ctx.fillStyle = colour; ctx.font = "12px system-ui, sans-serif"; ctx.fillText(label, x + 8, y - 6);
+}
+
+function drawLegend() {
+  const ul = $("legend");
+  ul.textContent = "";
+  const item = (colour, text, count) => {
+    const li = document.createElement("li");
+    li.innerHTML = `<span class="swatch" style="background:${colour}"></span><span></span><span class="count"></span>`;
+    li.children[1].textContent = text;
+    li.children[2].textContent = count;
+    ul.appendChild(li);
+  };
+  if (!frame) return;
+  if (state.color === "path") frame.header.paths.forEach((p, i) => item(PATH_COLORS[i % PATH_COLORS.length], p.words, p.count));
+  else frame.header.points_per_color.forEach((c, i) => item(SECTION_RGB[i], `${i + 1} ${SECTION_NAMES[i]}`, c));
+  if (state.models.includes("eye")) item("rgba(0,0,0,.3)", "eye model: faint, smaller", models.eye ? models.eye.color.length : "…");
+  if (state.models.includes("stereo")) item("rgba(0,0,0,.3)", "stereo model: faint, smaller", models.stereo ? models.stereo.color.length : "…");
+}
+
+// ---- the map: side (plane through the axis and the eye) and top ----
+function mapScale(w, h, extent) { return Math.min(w, h) / (2.2 * extent); }
+function mapGeometry() {
+  const o = state.observer;
+  const extent = Math.max(0.07, 1.1 * Math.max(Math.hypot(o[0], o[1]), Math.abs(o[2] - 0.1), 0.15));
+  return { extent };
+}
+
+function drawMaps() {
+  const g = mapGeometry();
+  const o = state.observer, [sx, sy] = state.straw;
+  // Side: horizontal axis along the eye's azimuth.
+  {
+    const { ctx, w, h } = fit(sideCanvas);
+    ctx.clearRect(0, 0, w, h);
+    const k = mapScale(w, h, g.extent);
+    const az = Math.atan2(o[1], o[0]);
+    const u = [Math.cos(az), Math.sin(az)];
+    const P = (s, z) => [w / 2 + k * s, h / 2 - k * (z - 0.1)];
+    ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText("side", 6, 14);
+    const [wx0, wy0] = P(-GLASS_R, state.he), [wx1, wy1] = P(GLASS_R, 0);
+    ctx.fillStyle = "rgba(74,127,193,0.25)"; ctx.fillRect(wx0, wy0, wx1 - wx0, wy1 - wy0);
+    ctx.strokeStyle = "#4a7fc1"; ctx.strokeRect(...P(-GLASS_R, GLASS_H), 2 * GLASS_R * k, GLASS_H * k);
+    const s = sx * u[0] + sy * u[1];
+    for (let i = 0; i < 5; i++) {
+      const [x0, y0] = P(s - STRAW_R, 0.05 * (i + 1));
+      ctx.fillStyle = SECTION_RGB[i]; ctx.fillRect(x0, y0, 2 * STRAW_R * k, 0.05 * k);
+    }
+    ctx.strokeStyle = "#999"; ctx.beginPath(); ctx.moveTo(0, P(0, 0)[1]); ctx.lineTo(w, P(0, 0)[1]); ctx.stroke();
+    const [ex, ey] = P(Math.hypot(o[0], o[1]), o[2]);
+    ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
+    sideCanvas.mapInverse = (x, y) => [(x - w / 2) / k, 0.1 - (y - h / 2) / k];
+    sideCanvas.eyeAt = [ex, ey];
+  }
+  // Top.
+  {
+    const { ctx, w, h } = fit(topCanvas);
+    ctx.clearRect(0, 0, w, h);
+    const k = mapScale(w, h, g.extent);
+    const P = (x, y) => [w / 2 + k * y, h / 2 + k * x]; // x down, y right: the eye of reference 2 below the glass
+    ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText("from above (x down, y right)", 6, 14);
+    ctx.fillStyle = state.he > 0 ? "rgba(74,127,193,0.25)" : "transparent"; ctx.strokeStyle = "#4a7fc1";
+    ctx.beginPath(); ctx.arc(...P(0, 0), GLASS_R * k, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+    ctx.fillStyle = SECTION_RGB[4]; ctx.beginPath(); ctx.arc(...P(sx, sy), Math.max(3, STRAW_R * k), 0, 2 * Math.PI); ctx.fill();
+    const [ex, ey] = P(o[0], o[1]);
+    ctx.strokeStyle = "rgba(0,0,0,.35)"; ctx.beginPath(); ctx.moveTo(ex, ey); ctx.lineTo(...P(0, 0)); ctx.stroke();
+    ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
+    topCanvas.mapInverse = (x, y) => [(y - h / 2) / k, (x - w / 2) / k];
+    topCanvas.eyeAt = [ex, ey];
+    topCanvas.strawAt = P(sx, sy);
+  }
+}
+
+// ---- input ----
+/** Pointer dragging on `el`: `move(dx, dy, event)` while dragging, `click(event)` for a click. */
+function onDrag(el, { start, move, click }) {
+  let last = null, moved = 0;
+  el.addEventListener("pointerdown", (e) => {
+    last = [e.clientX, e.clientY]; moved = 0; el.setPointerCapture(e.pointerId);
+    if (start) start(e);
+  });
+  el.addEventListener("pointermove", (e) => {
+    if (!last) return;
+    const dx = e.clientX - last[0], dy = e.clientY - last[1];
+    last = [e.clientX, e.clientY]; moved += Math.abs(dx) + Math.abs(dy);
+    if (moved > 3) move(dx, dy, e);
+  });
+  el.addEventListener("pointerup", (e) => {
+    if (last && moved <= 3 && click) click(e);
+    last = null;
+  });
+}
+
+/** Moves the eye round the orbit centre by `daz`, `del` degrees and distance factor `f`. */
+function orbitBy(daz, del, f) {
+  const o = orbitOf(state.observer);
+  const el = Math.max(-89, Math.min(89, o.el + del));
+  const dist = Math.max(0.045, Math.min(3, o.dist * f));
+  state.observer = fromOrbit(o.az + daz, el, dist).map((x) => Math.round(x * 1e5) / 1e5);
+  changed();
+}
+
+onDrag(pictureCanvas, {
+  move: (dx, dy) => orbitBy(-0.4 * dx, 0.4 * dy, 1),
+  click: (e) => {
+    if (!frame) return;
+    const r = pictureCanvas.getBoundingClientRect();
+    // The picture keeps its aspect inside the canvas box (object-fit: contain).
+    const { width, height } = frame.header;
+    const k = Math.min(r.width / width, r.height / height);
+    const col = (e.clientX - r.left - (r.width - k * width) / 2) / k, row = (e.clientY - r.top - (r.height - k * height) / 2) / k;
+    if (col < 0 || row < 0 || col > width || row > height) return;
+    pick(`px:${Math.round(row * 100) / 100},${Math.round(col * 100) / 100},${width}x${height}`);
+  },
+});
+for (const el of [pictureCanvas, sideCanvas, topCanvas]) {
+  el.addEventListener("wheel", (e) => { e.preventDefault(); orbitBy(0, 0, Math.exp(0.0015 * e.deltaY)); }, { passive: false });
+}
+
+onDrag(cloudCanvas, {
+  move: (dx, dy) => {
+    state.view[0] -= 0.5 * dx; state.view[1] = Math.max(-89, Math.min(89, state.view[1] + 0.5 * dy));
+    history.replaceState(null, "", stateHash(state)); drawCloud();
+  },
+  click: (e) => {
+    if (!frame) return;
+    const r = cloudCanvas.getBoundingClientRect();
+    const x = e.clientX - r.left, y = e.clientY - r.top;
+    const pr = cloudProjection(r.width, r.height);
+    let best = -1, bestD = 8 * 8;
+    for (let i = 0; i < frame.color.length; i++) {
+      const [px, py] = pr.p([frame.xyz[3 * i], frame.xyz[3 * i + 1], frame.xyz[3 * i + 2]]);
+      const d = (px - x) ** 2 + (py - y) ** 2;
+      if (d < bestD) { bestD = d; best = i; }
+    }
+    if (best >= 0) pick(`point:${best}`);
+  },
+});
+cloudCanvas.addEventListener("wheel", (e) => {
+  e.preventDefault();
+  state.view[2] = Math.max(0.1, Math.min(40, state.view[2] * Math.exp(-0.0015 * e.deltaY)));
+  history.replaceState(null, "", stateHash(state)); drawCloud();
+}, { passive: false });
+
+let dragging = null;
+onDrag(topCanvas, {
+  start: (e) => {
+    const r = topCanvas.getBoundingClientRect(), x = e.clientX - r.left, y = e.clientY - r.top;
+    const near = (p) => p && Math.hypot(p[0] - x, p[1] - y) < 14;
+    dragging = near(topCanvas.strawAt) && !near(topCanvas.eyeAt) ? "straw" : "eye";
+  },
+  move: (dx, dy, e) => {
+    const r = topCanvas.getBoundingClientRect();
+    const [x, y] = topCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
+    if (dragging === "straw") {
+      // Kept inside the glass, so that a drag never stops at the rule's edge.
+      const lim = GLASS_R - STRAW_R - 1e-4, d = Math.hypot(x, y), f = d > lim ? lim / d : 1;
+      state.straw = [x * f, y * f].map((v) => Math.round(v * 1e5) / 1e5);
+    } else {
+      state.observer = [x, y, state.observer[2]].map((v) => Math.round(v * 1e5) / 1e5);
+    }
+    changed();
+  },
+});
+onDrag(sideCanvas, {
+  move: (dx, dy, e) => {
+    const r = sideCanvas.getBoundingClientRect();
+    const [s, z] = sideCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
+    const o = state.observer, az = Math.atan2(o[1], o[0]);
+    const d = Math.max(0.001, s);
+    state.observer = [d * Math.cos(az), d * Math.sin(az), z].map((v) => Math.round(v * 1e5) / 1e5);
+    changed();
+  },
+});
+
+// ---- the light's path ----
+async function pick(what) {
+  state.pick = what;
+  history.replaceState(null, "", stateHash(state));
+  let extra;
+  if (what.startsWith("point:")) extra = { point: what.slice(6) };
+  else {
+    const [row, col, size] = what.slice(3).split(",");
+    extra = { row, col, size: size || pictureSize().join("x") };
+  }
+  const r = await ask("ray", "/api/ray", viewQuery(state, extra));
+  if (!r) return;
+  if (!r.ok) { showError(await r.text()); return; }
+  path = await r.json();
+  showReadout();
+  document.body.dataset.picked = what;
+  drawCloud();
+}
+function restorePick() { if (state.pick) pick(state.pick); }
+window.bentstraw.pickPoint = (k) => pick(`point:${k}`);
+/** Where point `k` of the cloud is drawn, in the window's coordinates. */
+window.bentstraw.screenOfPoint = (k) => {
+  const r = cloudCanvas.getBoundingClientRect();
+  const [x, y] = cloudProjection(r.width, r.height).p([frame.xyz[3 * k], frame.xyz[3 * k + 1], frame.xyz[3 * k + 2]]);
+  return [r.left + x, r.top + y];
+};
+
+const m = (x) => (x == null ? "—" : Number(x).toFixed(4) + " m");
+const v3 = (p) => (p ? `(${p.map((x) => x.toFixed(4)).join(", ")})` : "—");
+const focus = (f) => (f.distance == null ? f.kind.replace("_", " ") : (f.kind === "in_front" ? "" : f.kind.replace("_", " ") + " ") + Number(f.distance).toFixed(4) + " m");
+
+function showReadout() {
+  const el = $("readout");
+  const rows = [];
+  const row = (a, b) => rows.push(`<tr><td>${a}</td><td>${b}</td></tr>`);
+  if (path.outcome === "straw") row("colour", `<span class="swatch-inline" style="color:${SECTION_RGB[path.color - 1]}">■</span> ${path.color} ${path.color_name}`);
+  else row("outcome", path.outcome === "escaped" ? "the ray misses the straw" : "dropped: it would need more events than allowed");
+  row("light path", path.path);
+  path.events.forEach((e, i) => row(`event ${i + 1}`, `${e.event} at the ${e.face}, incidence ${e.incidence_deg.toFixed(2)}°, n ${e.n1} → ${e.n2}`));
+  if (path.outcome === "straw") {
+    row("path length L", m(path.path_length));
+    row("straw point", v3(path.straw_point));
+    row("image point (course)", v3(path.image_point));
+    row("s_h, s_v", `${focus(path.s_h)}, ${focus(path.s_v)}`);
+    row("eye model point", v3(path.eye_point));
+    row("gap course–eye", m(path.gap_eye));
+    row("stereo model point", v3(path.stereo_point));
+    row("gap course–stereo", m(path.gap_stereo));
+  }
+  el.innerHTML = `<table id="path-table">${rows.join("")}</table>`;
+}
+
+// ---- controls ----
+function syncControls() {
+  $("he").value = state.he; $("he-out").textContent = num(state.he) + " m";
+  $("n").value = state.n; $("n-out").textContent = num(state.n);
+  $("events").value = state.events; $("events-out").textContent = String(state.events);
+  $("mode").value = state.mode; $("backdrop").value = state.backdrop; $("color-by").value = state.color;
+  for (const k of ["course", "eye", "stereo"]) $("show-" + k).checked = state.models.includes(k);
+}
+
+$("he").addEventListener("input", (e) => { state.he = Number(e.target.value); changed(); });
+$("n").addEventListener("input", (e) => { state.n = Number(e.target.value); changed(); });
+$("events").addEventListener("input", (e) => { state.events = Number(e.target.value); changed(); });
+$("mode").addEventListener("change", (e) => { state.mode = e.target.value; changed({ keepPath: true }); });
+$("backdrop").addEventListener("change", (e) => { state.backdrop = e.target.value; changed({ keepPath: true }); });
+$("color-by").addEventListener("change", (e) => { state.color = e.target.value; history.replaceState(null, "", stateHash(state)); drawCloud(); drawLegend(); });
+for (const k of ["course", "eye", "stereo"]) {
+  $("show-" + k).addEventListener("change", (e) => {
+    state.models = ["course", "eye", "stereo"].filter((x) => (x === k ? e.target.checked : state.models.includes(x)));
+    history.replaceState(null, "", stateHash(state));
+    drawCloud(); drawLegend(); requestModels();
+  });
+}
+PRESETS.forEach((p, i) => { const o = document.createElement("option"); o.value = String(i); o.textContent = p.name; $("preset").appendChild(o); });
+$("preset").addEventListener("change", (e) => {
+  const p = PRESETS[Number(e.target.value)];
+  if (!p) return;
+  Object.assign(state, { n: 1.333, events: 10, color: "section" }, p.v);
+  state.observer = p.v.observer.slice(); state.straw = p.v.straw.slice();
+  changed();
+});
+
+$("copy-link").addEventListener("click", async () => {
+  const link = location.href;
+  document.body.dataset.link = link;
+  try { await navigator.clipboard.writeText(link); $("status").textContent = "link copied: " + link; } catch (_) { prompt("Copy this link:", link); }
+});
+function download(format, model) {
+  const [w, h] = pictureSize();
+  const a = document.createElement("a");
+  a.href = "/api/export?" + viewQuery(state, { format, size: `${w}x${h}`, model: model || "course" });
+  a.download = "";
+  document.body.appendChild(a); a.click(); a.remove();
+}
+$("export-png").addEventListener("click", () => download("png"));
+$("export-csv").addEventListener("click", () => download("csv"));
+$("export-ply").addEventListener("click", () => download("ply"));
+function showCommands() {
+  if (!frame) return;
+  const c = $("commands");
+  c.innerHTML = "<b>Reproduce this view on the command line</b><code id=\"cmd-simulate\"></code><code id=\"cmd-render\"></code>";
+  $("cmd-simulate").textContent = frame.header.simulate;
+  $("cmd-render").textContent = frame.header.render;
+}
+$("show-commands").addEventListener("click", () => { const c = $("commands"); c.hidden = !c.hidden; showCommands(); });
+
+window.addEventListener("resize", () => { drawMaps(); drawCloud(); clearTimeout(fullTimer); fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 200); });
+window.addEventListener("hashchange", () => { readParams(location.hash, state); syncControls(); drawMaps(); requestFrame(false); });
+
+// ---- start: the address's state, else the command line's ----
+readParams(document.body.dataset.initial || "", state);
+if (location.hash.length > 1) readParams(location.hash, state);
+syncControls();
+drawMaps();
+sendFrame(false);

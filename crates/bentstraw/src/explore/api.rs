@@ -1,0 +1,803 @@
+//! The explorer's API: a request's address in, a response (status, type, bytes) out.
+//!
+//! Every value is read and checked as the command line reads and checks it (the same parsers, the
+//! same scene rules, the same camera rules), so the page shows the command line's messages. The
+//! physics is the library's: this module only turns numbers into bytes.
+
+use std::collections::HashMap;
+
+use bentstraw_optics::apparent::{eye_model_points, stereo_points, Focus};
+use bentstraw_optics::camera::Camera;
+use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
+use bentstraw_optics::image::ImagePoint;
+use bentstraw_optics::light_path_type::LightPathType;
+use bentstraw_optics::sampling::sample_image;
+use bentstraw_optics::scene::{clip_text, Scene, SECTION_NAMES};
+use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
+use bentstraw_optics::trace::{Face, Outcome};
+use bentstraw_optics::Vec3;
+use serde_json::{json, Value};
+
+use crate::cli::{parse_size, parse_vec2, parse_vec3, CameraArgs, SceneArgs};
+use crate::commands::render::{camera_from_args, MAX_SAMPLES};
+use crate::pictures::png_bytes;
+use crate::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
+
+/// Most image points one request may ask for (a million take about half a second).
+pub const MAX_POINTS: usize = 1_000_000;
+/// Most pixels of a picture the explorer draws (4K); the command line allows more, but a page
+/// never shows more than its screen.
+pub const MAX_PICTURE_PIXELS: u64 = 3840 * 2160;
+/// Longest request address accepted (bytes).
+pub const MAX_URL: usize = 4096;
+/// Most parameters in one address.
+const MAX_PARAMS: usize = 40;
+/// Fresnel branches lighter than this are abandoned (the command line's default).
+const PRUNE: f64 = 1e-4;
+
+/// A finished answer to a request.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reply {
+    /// HTTP status.
+    pub status: u16,
+    /// `Content-Type`.
+    pub content_type: &'static str,
+    /// The body.
+    pub body: Vec<u8>,
+    /// A file name for downloads (`Content-Disposition: attachment`).
+    pub file_name: Option<String>,
+}
+
+impl Reply {
+    /// A plain-text reply (errors: one line naming the value and the rule).
+    pub fn text(status: u16, message: impl Into<String>) -> Reply {
+        Reply {
+            status,
+            content_type: "text/plain; charset=utf-8",
+            body: message.into().into_bytes(),
+            file_name: None,
+        }
+    }
+
+    fn json(value: &Value) -> Reply {
+        Reply {
+            status: 200,
+            content_type: "application/json",
+            body: value.to_string().into_bytes(),
+            file_name: None,
+        }
+    }
+
+    fn bytes(content_type: &'static str, body: Vec<u8>) -> Reply {
+        Reply {
+            status: 200,
+            content_type,
+            body,
+            file_name: None,
+        }
+    }
+}
+
+/// A request's query string as name → value (percent-decoded; `+` is a space).
+pub fn parse_query(query: &str) -> Result<HashMap<String, String>, String> {
+    let mut out = HashMap::new();
+    for (k, part) in query.split('&').filter(|p| !p.is_empty()).enumerate() {
+        if k >= MAX_PARAMS {
+            return Err(format!("too many parameters: at most {MAX_PARAMS}"));
+        }
+        let (name, value) = part.split_once('=').unwrap_or((part, ""));
+        let name = percent_decode(name)?;
+        let value = percent_decode(value)?;
+        out.insert(name, value);
+    }
+    Ok(out)
+}
+
+/// `%XX` and `+` decoded; an error for a broken escape or bytes that are not UTF-8.
+fn percent_decode(s: &str) -> Result<String, String> {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'+' => out.push(b' '),
+            b'%' => {
+                let hex = bytes
+                    .get(i + 1..i + 3)
+                    .and_then(|h| std::str::from_utf8(h).ok())
+                    .and_then(|h| u8::from_str_radix(h, 16).ok())
+                    .ok_or_else(|| format!("'{}' has a broken %-escape", clip_text(s, 40)))?;
+                out.push(hex);
+                i += 2;
+            }
+            b => out.push(b),
+        }
+        i += 1;
+    }
+    String::from_utf8(out).map_err(|_| "a parameter is not UTF-8 text".to_string())
+}
+
+/// Everything that defines a view: the scene, the observer, the picture and the points.
+#[derive(Debug, Clone)]
+pub struct View {
+    /// The scene (validated).
+    pub scene: Scene,
+    /// The observer (validated).
+    pub observer: Vec3,
+    /// The scene's inputs as the command line takes them.
+    pub scene_args: SceneArgs,
+    /// The camera's inputs as the command line takes them.
+    pub camera_args: CameraArgs,
+    /// The camera (validated).
+    pub camera: Camera,
+    /// Fresnel (true) or course picture.
+    pub fresnel: bool,
+    /// The checkerboard backdrop (true) or a plain one.
+    pub checker: bool,
+    /// Anti-aliasing samples per pixel side.
+    pub samples: u32,
+    /// Image points asked for (0: none).
+    pub points: usize,
+}
+
+fn get<'a>(q: &'a HashMap<String, String>, name: &str) -> Option<&'a str> {
+    q.get(name).map(String::as_str)
+}
+
+fn required<'a>(q: &'a HashMap<String, String>, name: &str) -> Result<&'a str, String> {
+    get(q, name).ok_or_else(|| format!("missing required parameter '{name}'"))
+}
+
+/// Parses a number as clap does for the flag `--name`.
+fn number<T: std::str::FromStr>(text: &str, name: &str) -> Result<T, String> {
+    text.trim().parse().map_err(|_| {
+        format!(
+            "invalid value '{}' for '--{name}': not a {}",
+            clip_text(text, 40),
+            if std::any::type_name::<T>() == "f64" {
+                "number"
+            } else {
+                "whole number in range"
+            }
+        )
+    })
+}
+
+fn flag<T>(r: Result<T, String>, name: &str, text: &str) -> Result<T, String> {
+    r.map_err(|e| {
+        format!(
+            "invalid value '{}' for '--{name}': {e}",
+            clip_text(text, 40)
+        )
+    })
+}
+
+impl View {
+    /// The view described by the query `q` (names as the command line's flags), or the command
+    /// line's message for the first value that breaks a rule.
+    pub fn from_query(q: &HashMap<String, String>) -> Result<View, String> {
+        let observer_text = required(q, "observer")?;
+        let straw_text = required(q, "straw")?;
+        let he_text = required(q, "water-height")?;
+        let scene_args = SceneArgs {
+            observer: flag(parse_vec3(observer_text), "observer", observer_text)?,
+            straw: flag(parse_vec2(straw_text), "straw", straw_text)?,
+            water_height: number(he_text, "water-height")?,
+            n_water: get(q, "n-water").map_or(Ok(1.333), |t| number(t, "n-water"))?,
+            max_events: get(q, "max-events").map_or(Ok(10), |t| number(t, "max-events"))?,
+        };
+        let (scene, observer) = scene_args.scene_and_observer().map_err(|e| e.0)?;
+        let camera_args = CameraArgs {
+            target: get(q, "target")
+                .map(|t| flag(parse_vec3(t), "target", t))
+                .transpose()?,
+            fov: get(q, "fov").map(|t| number(t, "fov")).transpose()?,
+            size: get(q, "size")
+                .map(|t| flag(parse_size(t), "size", t))
+                .transpose()?,
+        };
+        if let Some((w, h)) = camera_args.size {
+            if w as u64 * h as u64 > MAX_PICTURE_PIXELS {
+                return Err(format!(
+                    "--size {w}x{h} is too large for the explorer: at most {MAX_PICTURE_PIXELS} pixels (3840x2160)"
+                ));
+            }
+        }
+        let camera = camera_from_args(&camera_args, observer).map_err(|e| e.0)?;
+        let fresnel = match get(q, "mode").unwrap_or("fresnel") {
+            "fresnel" => true,
+            "course" => false,
+            other => {
+                return Err(format!(
+                    "invalid value '{}' for '--mode' [possible values: course, fresnel]",
+                    clip_text(other, 40)
+                ))
+            }
+        };
+        let checker = match get(q, "backdrop").unwrap_or("checker") {
+            "checker" => true,
+            "none" => false,
+            other => {
+                return Err(format!(
+                    "invalid value '{}' for '--backdrop' [possible values: none, checker]",
+                    clip_text(other, 40)
+                ))
+            }
+        };
+        let samples: u32 = get(q, "samples").map_or(Ok(3), |t| number(t, "samples"))?;
+        if !(1..=MAX_SAMPLES).contains(&samples) {
+            return Err(format!(
+                "--samples {samples} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}"
+            ));
+        }
+        let points: usize = get(q, "points").map_or(Ok(20000), |t| number(t, "points"))?;
+        if points > MAX_POINTS {
+            return Err(format!(
+                "--points {points} is too many for the explorer: at most {MAX_POINTS}"
+            ));
+        }
+        Ok(View {
+            scene,
+            observer,
+            scene_args,
+            camera_args,
+            camera,
+            fresnel,
+            checker,
+            samples,
+            points,
+        })
+    }
+
+    fn shading(&self) -> ShadingOptions {
+        ShadingOptions {
+            mode: if self.fresnel {
+                ShadingMode::Fresnel { prune_below: PRUNE }
+            } else {
+                ShadingMode::Course
+            },
+            backdrop: if self.checker {
+                Backdrop::Checker
+            } else {
+                Backdrop::Plain
+            },
+            samples: self.samples,
+            outline: true,
+        }
+    }
+
+    /// The scene flags, as `simulate` and `render` take them.
+    fn scene_flags(&self) -> String {
+        let a = &self.scene_args;
+        let mut s = format!(
+            "--observer {},{},{} --straw {},{} --water-height {}",
+            a.observer[0], a.observer[1], a.observer[2], a.straw[0], a.straw[1], a.water_height
+        );
+        if a.n_water != 1.333 {
+            s += &format!(" --n-water {}", a.n_water);
+        }
+        if a.max_events != 10 {
+            s += &format!(" --max-events {}", a.max_events);
+        }
+        s
+    }
+
+    /// The `bentstraw simulate` command line that writes this view's points.
+    pub fn simulate_command(&self, model: &str) -> String {
+        let mut s = format!(
+            "bentstraw simulate {} --points {}",
+            self.scene_flags(),
+            self.points.max(1)
+        );
+        if model != "course" {
+            s += &format!(" --image-model {model}");
+        }
+        s + " --output view.csv"
+    }
+
+    /// The `bentstraw render` command line that draws this view's picture.
+    pub fn render_command(&self) -> String {
+        let c = &self.camera_args;
+        let mut s = format!("bentstraw render {}", self.scene_flags());
+        if let Some(t) = c.target {
+            s += &format!(" --target {},{},{}", t[0], t[1], t[2]);
+        }
+        if let Some(f) = c.fov {
+            s += &format!(" --fov {f}");
+        }
+        s += &format!(
+            " --size {}x{} --mode {} --backdrop {}",
+            self.camera.width,
+            self.camera.height,
+            if self.fresnel { "fresnel" } else { "course" },
+            if self.checker { "checker" } else { "none" }
+        );
+        if self.samples != 3 {
+            s += &format!(" --samples {}", self.samples);
+        }
+        s + " --output view.png"
+    }
+}
+
+/// The colour's name of section `code`.
+fn color_name(code: u8) -> &'static str {
+    SECTION_NAMES[code as usize - 1]
+}
+
+/// `GET /api/frame`: the picture (RGBA) and the points (f32 xyz, colour codes, path kinds) in one
+/// binary answer: `u32` length of a JSON header, the header (padded with spaces to 4 bytes), then
+/// `width × height × 4` bytes, `3n` little-endian `f32`, `n` colour bytes, `n` path-kind bytes
+/// (indices into the header's `paths`).
+pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
+    let request = FrameRequest {
+        camera: view.camera,
+        shading: view.shading(),
+        min_points: view.points,
+    };
+    let started = std::time::Instant::now();
+    draw_frame(&view.scene, &request, frame);
+    let ms = started.elapsed().as_secs_f64() * 1e3;
+    let counts = frame.path_counts();
+    let kinds: Vec<LightPathType> = counts.iter().map(|c| c.0).collect();
+    let mut per_color = [0usize; 5];
+    for p in &frame.points {
+        per_color[p.color as usize - 1] += 1;
+    }
+    let header = json!({
+        "width": view.camera.width,
+        "height": view.camera.height,
+        "n": frame.points.len(),
+        "rays_traced": frame.rays_traced,
+        "points_per_color": per_color,
+        "paths": counts.iter().map(|(k, n)| json!({"key": k.key(), "words": k.to_string(), "count": n})).collect::<Vec<_>>(),
+        "fov_deg": 2.0 * view.camera.tan_half_fov.atan().to_degrees(),
+        "ms": ms,
+        "simulate": view.simulate_command("course"),
+        "render": view.render_command(),
+    });
+    let mut head = header.to_string().into_bytes();
+    while head.len() & 3 != 0 {
+        head.push(b' ');
+    }
+    let n = frame.points.len();
+    let pixels = frame.picture.pixels.len() / 3;
+    let mut body = Vec::with_capacity(4 + head.len() + 4 * pixels + 14 * n);
+    body.extend_from_slice(&(head.len() as u32).to_le_bytes());
+    body.extend_from_slice(&head);
+    for rgb in frame.picture.pixels.chunks_exact(3) {
+        body.extend_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
+    }
+    for p in &frame.points {
+        for v in p.position.to_array() {
+            body.extend_from_slice(&(v as f32).to_le_bytes());
+        }
+    }
+    body.extend(frame.points.iter().map(|p| p.color));
+    body.extend(
+        frame
+            .paths
+            .iter()
+            .map(|k| kinds.binary_search(k).unwrap_or(0) as u8),
+    );
+    Reply::bytes("application/octet-stream", body)
+}
+
+/// `GET /api/model?model=eye|stereo`: the model's points as `u32` count, `3n` `f32`, `n` colours
+/// (the points the model places; the others are left out).
+pub fn model_reply(view: &View, model: &str) -> Reply {
+    let cloud = sample_image(&view.scene, view.observer, view.points.max(1), &|_| {});
+    let placed: Vec<(Vec3, u8)> = match model {
+        "eye" => eye_model_points(&view.scene, view.observer, &cloud.points)
+            .iter()
+            .filter_map(|p| Some((p.position?, p.image.color)))
+            .collect(),
+        "stereo" => stereo_points(&view.scene, view.observer, &cloud.points)
+            .points
+            .iter()
+            .filter_map(|p| Some((p.position?, p.image.color)))
+            .collect(),
+        other => {
+            return Reply::text(
+                400,
+                format!(
+                    "invalid value '{}' for '--image-model' [possible values: eye, stereo]",
+                    clip_text(other, 40)
+                ),
+            )
+        }
+    };
+    let mut body = Vec::with_capacity(4 + 13 * placed.len());
+    body.extend_from_slice(&(placed.len() as u32).to_le_bytes());
+    for (q, _) in &placed {
+        for v in q.to_array() {
+            body.extend_from_slice(&(v as f32).to_le_bytes());
+        }
+    }
+    body.extend(placed.iter().map(|p| p.1));
+    Reply::bytes("application/octet-stream", body)
+}
+
+fn vec_json(v: Vec3) -> Value {
+    json!([v.x, v.y, v.z])
+}
+
+fn focus_json(f: &Focus) -> Value {
+    json!({"kind": f.kind(), "distance": f.signed_distance()})
+}
+
+/// `GET /api/ray?row=R&col=C` (a point of the picture, in its pixels) or `?point=K` (the K-th
+/// image point, as `simulate` numbers them): the ray's broken path, its events, and the course's,
+/// eye model's and stereo model's points.
+pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, String> {
+    let u0 = if let Some(k) = get(q, "point") {
+        let k: usize = number(k, "point")?;
+        let cloud = sample_image(&view.scene, view.observer, view.points.max(1), &|_| {});
+        let Some(p) = cloud.points.get(k) else {
+            return Err(format!(
+                "point {k} does not exist: the view has {} image points",
+                cloud.points.len()
+            ));
+        };
+        p.direction
+    } else {
+        let row: f64 = number(required(q, "row")?, "row")?;
+        let col: f64 = number(required(q, "col")?, "col")?;
+        let (w, h) = (view.camera.width as f64, view.camera.height as f64);
+        if !(0.0..=h).contains(&row) || !(0.0..=w).contains(&col) {
+            return Err(format!(
+                "pixel ({}, {}) is outside the {}x{} picture",
+                clip_text(&row.to_string(), 24),
+                clip_text(&col.to_string(), 24),
+                view.camera.width,
+                view.camera.height
+            ));
+        }
+        view.camera.direction_at(row, col).normalize()
+    };
+    Ok(Reply::json(&ray_json(view, u0)))
+}
+
+/// The light path of the ray from the observer along unit `u0`, as the page shows it.
+pub fn ray_json(view: &View, u0: Vec3) -> Value {
+    let scene = &view.scene;
+    let eye = view.observer;
+    let mut events = Vec::new();
+    let mut kind = LightPathType::DIRECT;
+    let mut last = (eye, u0);
+    let outcome = scene.trace_with(
+        bentstraw_optics::geometry::Ray {
+            origin: eye,
+            direction: u0,
+        },
+        |e| {
+            kind.record(e);
+            let cos = e.incoming.dot(e.normal).abs().min(1.0);
+            events.push(json!({
+                "point": vec_json(e.point),
+                "face": match e.face { Face::WaterTop => "top (water surface)", Face::WaterBottom => "bottom", _ => "wall" },
+                "event": if e.totally_reflected { "total reflection" } else { "refraction" },
+                "incidence_deg": cos.acos().to_degrees(),
+                "n1": e.n1,
+                "n2": e.n2,
+            }));
+            last = (e.point, e.outgoing);
+        },
+    );
+    let mut out = json!({
+        "observer": vec_json(eye),
+        "direction": vec_json(u0),
+        "events": events,
+        "path": kind.to_string(),
+        "path_key": kind.key(),
+    });
+    match outcome {
+        Outcome::Straw { .. } => {
+            let image = ImagePoint::from_outcome(eye, u0, outcome).expect("reached the straw");
+            let apparent = scene.apparent_point(eye, &image);
+            let stereo = stereo_points(scene, eye, &[image]);
+            out["outcome"] = json!("straw");
+            out["color"] = json!(image.color);
+            out["color_name"] = json!(color_name(image.color));
+            out["straw_point"] = vec_json(image.straw_point);
+            out["path_length"] = json!(image.path_length);
+            out["image_point"] = vec_json(image.position);
+            out["s_h"] = focus_json(&apparent.s_h);
+            out["s_v"] = focus_json(&apparent.s_v);
+            out["eye_point"] = apparent.position.map_or(Value::Null, vec_json);
+            out["gap_eye"] = json!(apparent.gap_to_course());
+            let sp = stereo.points.first();
+            out["stereo_point"] = sp.and_then(|p| p.position).map_or(Value::Null, vec_json);
+            out["gap_stereo"] = json!(sp.and_then(|p| p.gap_to_course()));
+        }
+        Outcome::Escaped { .. } => {
+            out["outcome"] = json!("escaped");
+            out["leaves"] = json!({"from": vec_json(last.0), "direction": vec_json(last.1)});
+        }
+        Outcome::Dropped => {
+            out["outcome"] = json!("dropped");
+            out["leaves"] = json!({"from": vec_json(last.0), "direction": vec_json(last.1)});
+        }
+    }
+    out
+}
+
+/// `GET /api/export?format=csv|ply|png` (`&model=eye|stereo` for the points): the file `simulate`
+/// or `render` would write for this view.
+pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, String> {
+    let format = get(q, "format").unwrap_or("csv");
+    let model = get(q, "model").unwrap_or("course");
+    if format == "png" {
+        let picture =
+            bentstraw_optics::shading::shaded_picture(&view.scene, &view.camera, &view.shading());
+        let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.0)?);
+        r.file_name = Some("view.png".into());
+        return Ok(r);
+    }
+    if !["course", "eye", "stereo"].contains(&model) {
+        return Err(format!(
+            "invalid value '{}' for '--image-model' [possible values: course, eye, stereo]",
+            clip_text(model, 40)
+        ));
+    }
+    let points = view.points.max(1);
+    let cloud = sample_image(&view.scene, view.observer, points, &|_| {});
+    let eye;
+    let stereo;
+    let set_model = match model {
+        "eye" => {
+            eye = eye_model_points(&view.scene, view.observer, &cloud.points);
+            ModelPoints::Eye(&eye)
+        }
+        "stereo" => {
+            stereo = stereo_points(&view.scene, view.observer, &cloud.points);
+            ModelPoints::Stereo(&stereo)
+        }
+        _ => ModelPoints::Course,
+    };
+    let set = PointSet {
+        scene: &view.scene,
+        observer: view.observer,
+        min_points: points,
+        model: set_model,
+        cloud: &cloud,
+    };
+    let mut body = Vec::new();
+    let (kind, name) = match format {
+        "csv" if model == "course" => (
+            write_csv(&mut body, &cloud.points).map(|_| "text/csv"),
+            "view.csv",
+        ),
+        "csv" => (
+            write_model_csv(&mut body, &set).map(|_| "text/csv"),
+            "view.csv",
+        ),
+        "ply" => (
+            write_ply(&mut body, &set).map(|_| "application/octet-stream"),
+            "view.ply",
+        ),
+        other => {
+            return Err(format!(
+                "invalid value '{}' for 'format' [possible values: csv, ply, png]",
+                clip_text(other, 40)
+            ))
+        }
+    };
+    let kind = kind.map_err(|e| format!("cannot write the points: {e}"))?;
+    let mut r = Reply::bytes(kind, body);
+    r.file_name = Some(name.into());
+    Ok(r)
+}
+
+/// The answer to `GET path?query` for the API routes (`/api/...`), with a reusable frame.
+pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
+    let q = match parse_query(query) {
+        Ok(q) => q,
+        Err(e) => return Reply::text(400, e),
+    };
+    let view = match View::from_query(&q) {
+        Ok(v) => v,
+        Err(e) => return Reply::text(400, e),
+    };
+    let result = match path {
+        "/api/frame" => Ok(frame_reply(&view, frame)),
+        "/api/model" => Ok(model_reply(&view, get(&q, "model").unwrap_or("eye"))),
+        "/api/ray" => ray_reply(&view, &q),
+        "/api/export" => export_reply(&view, &q),
+        _ => return Reply::text(404, format!("no such route: {}", clip_text(path, 60))),
+    };
+    result.unwrap_or_else(|e| Reply::text(400, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn query(s: &str) -> HashMap<String, String> {
+        parse_query(s).unwrap()
+    }
+
+    const REF2: &str = "observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15";
+
+    #[test]
+    fn queries_decode_escapes_and_refuse_broken_ones() {
+        let q = query("observer=0.1%2C0%2C0.1&a+b=c+d&flag");
+        assert_eq!(q["observer"], "0.1,0,0.1");
+        assert_eq!(q["a b"], "c d");
+        assert_eq!(q["flag"], "");
+        assert!(parse_query("x=%G1").is_err());
+        assert!(parse_query("x=%").is_err());
+        assert!(parse_query("x=%ff").is_err()); // not UTF-8
+        let many: Vec<String> = (0..100).map(|k| format!("p{k}=1")).collect();
+        assert!(parse_query(&many.join("&")).is_err());
+    }
+
+    /// The page gets the command line's own messages for values that break a rule.
+    #[test]
+    fn invalid_values_get_the_command_lines_messages() {
+        let msg = |s: &str| View::from_query(&query(s)).unwrap_err();
+        let he = msg("observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.3");
+        assert!(
+            he.starts_with("water height 0.3 m is outside the glass"),
+            "{he}"
+        );
+        let inside = msg("observer=0,0,0.1&straw=0.02,0.01&water-height=0.1");
+        assert!(inside.contains("is inside or on the glass"), "{inside}");
+        let n = msg(&format!("{REF2}&n-water=0.5"));
+        assert!(n.contains("water index 0.5 is not allowed"), "{n}");
+        let ev = msg(&format!("{REF2}&max-events=0"));
+        assert!(ev.contains("event limit 0"), "{ev}");
+        let nan = msg("observer=nan,0,0.1&straw=0.02,0.01&water-height=0.1");
+        assert!(nan.contains("not a finite number"), "{nan}");
+        let bad = msg("observer=0.1,0&straw=0.02,0.01&water-height=0.1");
+        assert!(bad.contains("expected 3"), "{bad}");
+        let size = msg(&format!("{REF2}&size=100000x100000"));
+        assert!(size.contains("--size"), "{size}");
+        let size = msg(&format!("{REF2}&size=4000x4000"));
+        assert!(size.contains("too large"), "{size}");
+        let pts = msg(&format!("{REF2}&points=99999999999"));
+        assert!(pts.contains("--points"), "{pts}");
+        assert!(msg("straw=0.02,0.01&water-height=0.1").contains("'observer'"));
+        assert!(msg(&format!("{REF2}&mode=wave")).contains("possible values"));
+        assert!(msg(&format!("{REF2}&fov=190")).contains("--fov 190"));
+    }
+
+    /// The frame's binary layout: header, RGBA picture, points; the points are `simulate`'s.
+    #[test]
+    fn frame_reply_layout_and_points() {
+        let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=1500"))).unwrap();
+        let reply = frame_reply(&view, &mut Frame::default());
+        assert_eq!(reply.status, 200);
+        let b = &reply.body;
+        let len = u32::from_le_bytes(b[0..4].try_into().unwrap()) as usize;
+        assert_eq!((4 + len) % 4, 0);
+        let header: Value = serde_json::from_slice(&b[4..4 + len]).unwrap();
+        let n = header["n"].as_u64().unwrap() as usize;
+        let expected = sample_image(&view.scene, view.observer, 1500, &|_| {}).points;
+        assert_eq!(n, expected.len());
+        let start = 4 + len + 40 * 30 * 4;
+        assert_eq!(b.len(), start + 12 * n + 2 * n);
+        let x0 = f32::from_le_bytes(b[start..start + 4].try_into().unwrap());
+        assert_eq!(x0, expected[0].position.x as f32);
+        assert_eq!(b[start + 12 * n], expected[0].color);
+        assert!(header["render"]
+            .as_str()
+            .unwrap()
+            .contains("--size 40x30 --mode fresnel"));
+    }
+
+    /// A clicked image point's readout has the numbers of that point in `simulate`'s list.
+    #[test]
+    fn ray_of_a_point_is_that_point() {
+        let view = View::from_query(&query(&format!("{REF2}&points=1000"))).unwrap();
+        let pts = sample_image(&view.scene, view.observer, 1000, &|_| {}).points;
+        let r = ray_reply(&view, &query("point=17")).unwrap();
+        let v: Value = serde_json::from_slice(&r.body).unwrap();
+        let p = pts[17];
+        assert_eq!(
+            v["image_point"],
+            json!([p.position.x, p.position.y, p.position.z])
+        );
+        assert_eq!(v["path_length"], json!(p.path_length));
+        assert_eq!(v["color"], json!(p.color));
+        assert_eq!(v["events"].as_array().unwrap().len(), p.events as usize);
+        assert!(ray_reply(&view, &query("point=99999999")).is_err());
+        assert!(ray_reply(&view, &query("row=-1&col=3")).is_err());
+    }
+
+    #[test]
+    fn unknown_routes_and_formats_are_refused() {
+        let mut f = Frame::default();
+        assert_eq!(handle("/api/nothing", REF2, &mut f).status, 404);
+        assert_eq!(handle("/api/frame", "observer=1", &mut f).status, 400);
+        let e = handle("/api/export", &format!("{REF2}&format=exe"), &mut f);
+        assert_eq!(e.status, 400);
+    }
+
+    mod fuzz {
+        use super::*;
+        use proptest::prelude::*;
+
+        const ROUTES: [&str; 5] = [
+            "/api/frame",
+            "/api/model",
+            "/api/ray",
+            "/api/export",
+            "/api/x",
+        ];
+
+        /// A value for a parameter: good ones, and the hostile kinds (not numbers, huge, NaN,
+        /// negative, empty, broken escapes, long).
+        fn value() -> impl Strategy<Value = String> {
+            prop_oneof![
+                Just("0.1,0,0.1".to_string()),
+                Just("0.02,0.01".to_string()),
+                Just("0.15".to_string()),
+                Just("16x12".to_string()),
+                Just("NaN".to_string()),
+                Just("inf,-inf,1e308".to_string()),
+                Just("-1".to_string()),
+                Just("".to_string()),
+                Just("%".to_string()),
+                Just("%e2%82".to_string()),
+                Just("99999999999999999999999".to_string()),
+                Just("0x0".to_string()),
+                Just("1e-320".to_string()),
+                "[ -~]{0,40}",
+                "[0-9.,x+-]{0,12}",
+            ]
+        }
+
+        fn query() -> impl Strategy<Value = String> {
+            let names = prop_oneof![
+                Just("observer"),
+                Just("straw"),
+                Just("water-height"),
+                Just("n-water"),
+                Just("max-events"),
+                Just("size"),
+                Just("points"),
+                Just("samples"),
+                Just("mode"),
+                Just("target"),
+                Just("fov"),
+                Just("row"),
+                Just("col"),
+                Just("point"),
+                Just("format"),
+                Just("model"),
+            ];
+            proptest::collection::vec((names, value()), 0..14).prop_map(|pairs| {
+                pairs
+                    .iter()
+                    .map(|(n, v)| format!("{n}={v}"))
+                    .collect::<Vec<_>>()
+                    .join("&")
+            })
+        }
+
+        proptest! {
+            #![proptest_config(ProptestConfig::with_cases(400))]
+
+            /// No query reaches a panic, and every answer is a success or a refusal: the work
+            /// each may cause is bounded by the limits (small sizes here keep the run short).
+            #[test]
+            fn any_query_gets_an_answer(q in query(), route in 0..ROUTES.len()) {
+                // Keep accepted work small: the fuzzing is about parsing, not about big frames.
+                let q = format!("{q}&points=50&size=16x12");
+                let r = handle(ROUTES[route], &q, &mut Frame::default());
+                prop_assert!([200, 400, 404].contains(&r.status), "{} for {q}", r.status);
+                if r.status != 200 {
+                    let text = String::from_utf8(r.body).unwrap();
+                    prop_assert!(!text.is_empty() && !text.contains('\n'), "{text:?}");
+                }
+            }
+
+            /// Raw text, however broken, decodes or is refused.
+            #[test]
+            fn any_text_parses_or_is_refused(q in "[ -~]{0,300}") {
+                let _ = parse_query(&q);
+                let _ = handle("/api/frame", &q, &mut Frame::default());
+            }
+        }
+    }
+}

@@ -1,0 +1,96 @@
+//! `bentstraw explore`: a live explorer in the browser, served by bentstraw itself on this
+//! machine. The page (embedded in the binary, no network needed) asks the server for frames; the
+//! server only checks inputs and calls the library.
+
+pub mod api;
+mod server;
+
+use std::io::Write;
+
+use crate::cli::ExploreArgs;
+use crate::error::{fail, CliResult};
+
+/// Runs `explore`.
+pub fn run(args: &ExploreArgs) -> CliResult {
+    let initial = initial_query(args);
+    // The starting view obeys the same rules as the page's: refuse it before listening.
+    let q = api::parse_query(&initial).map_err(crate::error::CliError)?;
+    api::View::from_query(&q).map_err(crate::error::CliError)?;
+    let address = format!("{}:{}", args.host, args.port);
+    let server = match tiny_http::Server::http(&address) {
+        Ok(s) => s,
+        Err(e) => {
+            let busy = e
+                .downcast_ref::<std::io::Error>()
+                .is_some_and(|io| io.kind() == std::io::ErrorKind::AddrInUse);
+            return if busy {
+                fail(format!(
+                    "port {} on {} is busy (another program listens there): choose another with --port, or --port 0 for any free port",
+                    args.port, args.host
+                ))
+            } else {
+                fail(format!("cannot listen on {address}: {e}"))
+            };
+        }
+    };
+    let port = server
+        .server_addr()
+        .to_ip()
+        .map(|a| a.port())
+        .unwrap_or(args.port);
+    let url = format!("http://{}:{port}/", args.host);
+    println!("bentstraw explore: open {url}  (Ctrl-C stops the server)");
+    let _ = std::io::stdout().flush();
+    if !args.no_open {
+        open_browser(&url);
+    }
+    server::serve(server, &initial);
+    Ok(())
+}
+
+/// The query of the view given on the command line (flags as the page's parameters).
+fn initial_query(a: &ExploreArgs) -> String {
+    let o = a.observer;
+    let s = a.straw;
+    format!(
+        "observer={},{},{}&straw={},{}&water-height={}&n-water={}&max-events={}&points={}&mode={}",
+        o[0],
+        o[1],
+        o[2],
+        s[0],
+        s[1],
+        a.water_height,
+        a.n_water,
+        a.max_events,
+        a.points,
+        match a.mode {
+            crate::cli::ModeArg::Course => "course",
+            crate::cli::ModeArg::Fresnel => "fresnel",
+        }
+    )
+}
+
+/// Opens `url` in the default browser if one can be found; says nothing if none.
+fn open_browser(url: &str) {
+    let candidates: &[(&str, &[&str])] = if cfg!(target_os = "macos") {
+        &[("open", &[])]
+    } else if cfg!(windows) {
+        &[("cmd", &["/C", "start", ""])]
+    } else {
+        &[("xdg-open", &[]), ("sensible-browser", &[])]
+    };
+    for (program, before) in candidates {
+        let child = std::process::Command::new(program)
+            .args(*before)
+            .arg(url)
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn();
+        if let Ok(mut child) = child {
+            // Reap it when it ends, so no zombie stays behind.
+            std::thread::spawn(move || child.wait());
+            return;
+        }
+    }
+}

@@ -1,0 +1,185 @@
+//! The explorer's web server: one thread takes requests and answers the cheap ones (the page, its
+//! script, refusals); a fixed pool of workers computes frames from a short queue. A full queue
+//! answers 503 at once, and work superseded by a newer request of the same page (its sequence
+//! number) answers 409 without being computed, so a fast drag never piles up work.
+
+use std::collections::HashMap;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::mpsc::{sync_channel, Receiver, TrySendError};
+use std::sync::{Arc, Mutex};
+
+use bentstraw_optics::frame::Frame;
+use tiny_http::{Header, Method, Request, Response, Server};
+
+use super::api::{self, Reply, MAX_URL};
+
+/// Frames computed at once (each is itself parallel over the cores).
+pub const WORKERS: usize = 2;
+/// Requests waiting for a worker, beyond which the server answers 503.
+pub const QUEUE: usize = 4;
+/// Most channels (page × kind of request) whose latest sequence number is remembered.
+const MAX_CHANNELS: usize = 256;
+
+/// The page, with `__INITIAL_VIEW__` replaced by the starting view's query.
+const PAGE: &str = include_str!("../../assets/explorer.html");
+const SCRIPT: &str = include_str!("../../assets/explorer.js");
+const STYLE: &str = include_str!("../../assets/explorer.css");
+
+/// Latest sequence number seen per channel.
+type Latest = Arc<Mutex<HashMap<String, u64>>>;
+
+struct Job {
+    request: Request,
+    path: String,
+    query: String,
+    ticket: Option<(String, u64)>,
+}
+
+/// Serves the explorer on `server` until the process ends; `initial` is the query of the view the
+/// page starts with (when its address holds none).
+pub fn serve(server: Server, initial: &str) {
+    let page = PAGE.replace("__INITIAL_VIEW__", &html_attribute(initial));
+    let latest: Latest = Arc::default();
+    let (tx, rx) = sync_channel::<Job>(QUEUE);
+    let rx = Arc::new(Mutex::new(rx));
+    for _ in 0..WORKERS {
+        let rx = Arc::clone(&rx);
+        let latest = Arc::clone(&latest);
+        std::thread::spawn(move || worker(&rx, &latest));
+    }
+    for request in server.incoming_requests() {
+        let url = request.url().to_string();
+        if url.len() > MAX_URL {
+            respond(
+                request,
+                Reply::text(414, format!("address longer than {MAX_URL} bytes")),
+            );
+            continue;
+        }
+        if !matches!(request.method(), Method::Get | Method::Head) {
+            respond(request, Reply::text(405, "only GET is served"));
+            continue;
+        }
+        let (path, query) = url.split_once('?').unwrap_or((&url, ""));
+        let reply = match path {
+            "/" | "/index.html" => Some(asset("text/html; charset=utf-8", &page)),
+            "/explorer.js" => Some(asset("text/javascript; charset=utf-8", SCRIPT)),
+            "/explorer.css" => Some(asset("text/css; charset=utf-8", STYLE)),
+            p if p.starts_with("/api/") => None,
+            p => Some(Reply::text(
+                404,
+                format!(
+                    "no such page: {}",
+                    bentstraw_optics::scene::clip_text(p, 60)
+                ),
+            )),
+        };
+        if let Some(reply) = reply {
+            respond(request, reply);
+            continue;
+        }
+        let ticket = ticket_of(query);
+        if let Some((chan, seq)) = &ticket {
+            let mut map = latest.lock().unwrap_or_else(|e| e.into_inner());
+            if map.len() >= MAX_CHANNELS && !map.contains_key(chan) {
+                map.clear();
+            }
+            let entry = map.entry(chan.clone()).or_insert(*seq);
+            *entry = (*entry).max(*seq);
+        }
+        let job = Job {
+            request,
+            path: path.to_string(),
+            query: query.to_string(),
+            ticket,
+        };
+        match tx.try_send(job) {
+            Ok(()) => {}
+            Err(TrySendError::Full(job)) | Err(TrySendError::Disconnected(job)) => respond(
+                job.request,
+                Reply::text(503, "the explorer is busy: try again in a moment"),
+            ),
+        }
+    }
+}
+
+/// The channel and sequence number of an API request (`chan=…&seq=N`), if it has both.
+fn ticket_of(query: &str) -> Option<(String, u64)> {
+    let q = api::parse_query(query).ok()?;
+    let chan = q.get("chan")?;
+    let seq = q.get("seq")?.parse().ok()?;
+    Some((bentstraw_optics::scene::clip_text(chan, 64), seq))
+}
+
+fn worker(rx: &Mutex<Receiver<Job>>, latest: &Latest) {
+    let mut frame = Frame::default();
+    loop {
+        let job = {
+            let rx = rx.lock().unwrap_or_else(|e| e.into_inner());
+            match rx.recv() {
+                Ok(job) => job,
+                Err(_) => return,
+            }
+        };
+        if let Some((chan, seq)) = &job.ticket {
+            let newest = latest
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .get(chan)
+                .copied()
+                .unwrap_or(0);
+            if newest > *seq {
+                respond(
+                    job.request,
+                    Reply::text(409, "stale: a newer request replaced this one"),
+                );
+                continue;
+            }
+        }
+        let reply = catch_unwind(AssertUnwindSafe(|| {
+            api::handle(&job.path, &job.query, &mut frame)
+        }))
+        .unwrap_or_else(|_| {
+            frame = Frame::default();
+            Reply::text(500, "internal error while computing this view")
+        });
+        respond(job.request, reply);
+    }
+}
+
+fn asset(content_type: &'static str, text: &str) -> Reply {
+    Reply {
+        status: 200,
+        content_type,
+        body: text.as_bytes().to_vec(),
+        file_name: None,
+    }
+}
+
+fn header(name: &str, value: &str) -> Header {
+    Header::from_bytes(name.as_bytes(), value.as_bytes()).expect("ASCII header")
+}
+
+fn respond(request: Request, reply: Reply) {
+    let mut response = Response::from_data(reply.body)
+        .with_status_code(reply.status)
+        .with_header(header("Content-Type", reply.content_type))
+        .with_header(header("Cache-Control", "no-store"))
+        .with_header(header("X-Content-Type-Options", "nosniff"));
+    if let Some(name) = reply.file_name {
+        response = response.with_header(header(
+            "Content-Disposition",
+            &format!("attachment; filename=\"{name}\""),
+        ));
+    }
+    // The page may have gone (a cancelled request): nothing to do about it.
+    let _ = request.respond(response);
+}
+
+/// `text` safe inside a double-quoted HTML attribute.
+fn html_attribute(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}

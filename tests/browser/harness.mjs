@@ -1,0 +1,78 @@
+// Shared by the browser tests and the latency benchmark: a bentstraw explore server on a free
+// port, and headless Chromium.
+import { spawn } from "node:child_process";
+import { fileURLToPath } from "node:url";
+import path from "node:path";
+import { chromium } from "playwright-core";
+
+export const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), "../..");
+/** The bentstraw binary: $BENTSTRAW, else the release build. */
+export const BIN = process.env.BENTSTRAW || path.join(ROOT, "target/release/bentstraw");
+
+/** Starts `bentstraw explore --no-open --port 0 ...args`; resolves to { url, stop }. */
+export function startServer(args = []) {
+  const child = spawn(BIN, ["explore", "--no-open", "--port", "0", ...args], { stdio: ["ignore", "pipe", "pipe"] });
+  let stderr = "";
+  child.stderr.on("data", (d) => { stderr += d; });
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error("no address printed: " + stderr)), 15000);
+    child.stdout.on("data", (d) => {
+      const m = /http:\/\/\S+\//.exec(String(d));
+      if (m) { clearTimeout(timer); resolve({ url: m[0], child, stop: () => child.kill("SIGINT"), stderr: () => stderr }); }
+    });
+    child.on("exit", (code) => reject(new Error(`explore exited with ${code}: ${stderr}`)));
+  });
+}
+
+/** Headless Chromium as the project runs it. */
+export function launch() {
+  return chromium.launch({
+    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update", "--no-first-run"],
+  });
+}
+
+/** A page on `url` that records console errors, failed requests and any request off the server. */
+export async function openPage(browser, url, viewport = { width: 1400, height: 900 }) {
+  const context = await browser.newContext({ viewport });
+  const page = await context.newPage();
+  const problems = [];
+  const origin = new URL(url).origin;
+  await context.route("**/*", (route) => {
+    const u = route.request().url();
+    if (u.startsWith(origin) || u.startsWith("data:")) return route.continue();
+    problems.push("request off the server: " + u);
+    return route.abort();
+  });
+  page.on("console", (m) => { if (m.type() === "error") problems.push("console error: " + m.text()); });
+  page.on("pageerror", (e) => problems.push("page error: " + e.message));
+  page.on("requestfailed", (r) => {
+    // The page cancels its own superseded requests by design (a newer view replaces them).
+    if (r.failure()?.errorText === "net::ERR_ABORTED" && r.url().includes("/api/")) return;
+    problems.push(`failed request: ${r.url()} ${r.failure()?.errorText}`);
+  });
+  return { page, context, problems };
+}
+
+/** Waits until the page has painted a full-quality frame after `since` frames. */
+export async function waitReady(page, sinceFrames = -1) {
+  await page.waitForFunction((n) => document.body.dataset.ready === "1" && Number(document.body.dataset.frames || 0) > n && !window.bentstraw.busy(), sinceFrames, { timeout: 60000 });
+}
+
+/** Runs the bentstraw command line; resolves to { code, stdout, stderr }. */
+export function runCli(args) {
+  return new Promise((resolve) => {
+    const child = spawn(BIN, args, { stdio: ["ignore", "pipe", "pipe"] });
+    let stdout = "", stderr = "";
+    child.stdout.on("data", (d) => { stdout += d; });
+    child.stderr.on("data", (d) => { stderr += d; });
+    child.on("exit", (code) => resolve({ code, stdout, stderr }));
+  });
+}
+
+/** Percentile `p` (0..100) of numbers. */
+export function percentile(values, p) {
+  const v = [...values].sort((a, b) => a - b);
+  if (!v.length) return NaN;
+  return v[Math.min(v.length - 1, Math.ceil((p / 100) * v.length) - 1)];
+}

@@ -1,0 +1,51 @@
+// The explorer's latency benchmark (not a test): a scripted drag in the picture, in course and in
+// Fresnel mode, and the input-to-paint latency of the frames painted meanwhile.
+// Run: node latency.mjs   (after cargo build --release; BENTSTRAW=path to use another binary)
+import os from "node:os";
+import { startServer, launch, openPage, waitReady, percentile } from "./harness.mjs";
+
+const MOVES = Number(process.env.MOVES || 120); // pointer moves, one every 16 ms (60 Hz)
+const server = await startServer();
+const browser = await launch();
+console.log(`machine: ${os.cpus()[0].model}, ${os.cpus().length} cores, load ${os.loadavg().map((x) => x.toFixed(1)).join(" ")}`);
+console.log("mode     picture  points  frames  p50 ms  p95 ms  max ms  fps   (quick frames while dragging)");
+for (const mode of ["course", "fresnel"]) {
+  // 1000x750 CSS pixels for the picture's panel: quick frames of about 500x375, full ones about 1000x750.
+  const { page, context } = await openPage(browser, server.url, { width: 1900, height: 1500 });
+  await page.goto(server.url + `#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&mode=${mode}&points=20000`);
+  await waitReady(page);
+  const size = await page.evaluate(() => `${window.bentstraw.frame.header.width}x${window.bentstraw.frame.header.height}`);
+  await page.evaluate(() => { window.bentstraw.latencies.length = 0; });
+  const box = await page.locator("#picture").boundingBox();
+  const x0 = box.x + box.width / 2, y0 = box.y + box.height / 2;
+  await page.mouse.move(x0, y0);
+  await page.mouse.down();
+  const frames0 = await page.evaluate(() => window.bentstraw.frames);
+  const t0 = Date.now();
+  for (let i = 1; i <= MOVES; i++) {
+    await page.mouse.move(x0 + 160 * Math.sin(i / 20), y0 + 60 * Math.sin(i / 33));
+    await page.waitForTimeout(16);
+  }
+  const seconds = (Date.now() - t0) / 1000;
+  const frames = (await page.evaluate(() => window.bentstraw.frames)) - frames0;
+  await page.mouse.up();
+  const all = await page.evaluate(() => window.bentstraw.latencies.filter((l) => l.quick));
+  const lat = all.map((l) => l.ms);
+  if (process.env.VERBOSE) console.log(all.map((l) => `${l.ms.toFixed(0)}/${l.server.toFixed(0)}/${l.paint.toFixed(0)}`).join(" "));
+  await waitReady(page);
+  const points = await page.evaluate(() => window.bentstraw.frame.header.n);
+  console.log(`${mode.padEnd(8)} ${size.padEnd(8)} ${String(points).padStart(6)}  ${String(lat.length).padStart(6)}  ${percentile(lat, 50).toFixed(0).padStart(6)}  ${percentile(lat, 95).toFixed(0).padStart(6)}  ${Math.max(...lat).toFixed(0).padStart(6)}  ${(frames / seconds).toFixed(1).padStart(4)}`);
+  // The eye and stereo models after the drag: time from switching them on to their points drawn.
+  for (const model of ["eye", "stereo"]) {
+    const t = await page.evaluate(async (m) => {
+      const t1 = performance.now();
+      document.getElementById("show-" + m).click();
+      while (!window.bentstraw.models[m]) await new Promise((r) => setTimeout(r, 5));
+      return performance.now() - t1;
+    }, model);
+    console.log(`         ${model} model: ${t.toFixed(0)} ms from switching it on to its points`);
+  }
+  await context.close();
+}
+await browser.close();
+server.stop();
