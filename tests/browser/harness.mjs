@@ -14,6 +14,8 @@ export function startServer(args = []) {
   const child = spawn(BIN, ["explore", "--no-open", "--port", "0", ...args], { stdio: ["ignore", "pipe", "pipe"] });
   let stderr = "";
   child.stderr.on("data", (d) => { stderr += d; });
+  // Never leave a server behind, even when a test run is cut short.
+  process.on("exit", () => child.kill());
   return new Promise((resolve, reject) => {
     const timer = setTimeout(() => reject(new Error("no address printed: " + stderr)), 15000);
     child.stdout.on("data", (d) => {

@@ -4,10 +4,11 @@
 use std::path::{Path, PathBuf};
 
 use bentstraw_optics::camera::{framing_fov, framing_target, Camera};
+use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::Scene;
 use bentstraw_optics::shading::{
-    cloud_picture, shaded_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
+    cloud_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
 };
 use bentstraw_optics::Vec3;
 use image::codecs::png::PngEncoder;
@@ -81,7 +82,15 @@ pub fn write_observer_pictures(
         samples: 3,
         outline: true,
     };
-    let seen = png_bytes(&shaded_picture(scene, &camera, &options))?;
+    // The explorer's frame call, picture only (the points are the caller's).
+    let mut frame = Frame::default();
+    let request = FrameRequest {
+        camera,
+        shading: options,
+        min_points: 0,
+    };
+    draw_frame(scene, &request, &mut frame);
+    let seen = png_bytes(&frame.picture)?;
     let splat = png_bytes(&cloud_picture(
         &camera,
         points,
