@@ -262,10 +262,10 @@ fn marker<DB: DrawingBackend>(
     match kind {
         VerdictKind::WrongColour | VerdictKind::WrongLength => {
             let s = c.stroke_width(2);
-            root.draw(&PathElement::new(vec![(x - 4, y - 4), (x + 4, y + 4)], s))?;
-            root.draw(&PathElement::new(vec![(x - 4, y + 4), (x + 4, y - 4)], s))
+            root.draw(&PathElement::new(vec![(x - 3, y - 3), (x + 3, y + 3)], s))?;
+            root.draw(&PathElement::new(vec![(x - 3, y + 3), (x + 3, y - 3)], s))
         }
-        _ => root.draw(&Circle::new((x, y), 4, c.stroke_width(2))),
+        _ => root.draw(&Circle::new((x, y), 3, c.stroke_width(2))),
     }
 }
 

@@ -313,17 +313,17 @@ fn point_words(p: &ClaimedPoint, v: &Verdict, path: &str) -> String {
     match v {
         Verdict::Correct { .. } => format!("{at}: correct"),
         Verdict::WrongColour { actual } => format!(
-            "{at}: wrong colour, the ray meets {} ({path})",
+            "{at}: wrong colour, the ray meets {}, seen {path}",
             colour_words(*actual)
         ),
         Verdict::WrongLength { length_error } => format!(
-            "{at}: wrong length, {} too {} ({path})",
+            "{at}: wrong length, {} too {}, seen {path}",
             length_words(length_error.abs()),
             if *length_error > 0.0 { "far" } else { "near" }
         ),
         Verdict::NoStraw => format!("{at}: no straw in that direction (the ray escapes)"),
         Verdict::TooManyEvents { events, actual } => format!(
-            "{at}: the ray meets {} only after {events} events ({path})",
+            "{at}: the ray meets {} only after {events} events, seen {path}",
             colour_words(*actual)
         ),
     }
@@ -682,9 +682,9 @@ mod tests {
                 "line 2: 'abc' is not a number (column 3)",
             ),
             ("1,2,3,1\n\n1,,3,1\n", "line 3: empty value in column 2"),
-            ("1,2,3,6\n", "line 1: colour 6.0 is not a colour code"),
+            ("1,2,3,6\n", "line 1: colour 6"),
             ("1,2,3,2.5\n", "line 1: colour 2.5 is not a colour code"),
-            ("1,2,3,0\n", "line 1: colour 0.0 is not a colour code"),
+            ("1,2,3,0\n", "line 1: colour 0"),
             (
                 "NaN NaN NaN NaN\n",
                 "line 1: x = NaN is not a finite number",
