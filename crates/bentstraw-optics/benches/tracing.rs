@@ -52,17 +52,10 @@ fn intersections(c: &mut Criterion) {
                 .sum::<f64>()
         })
     });
-    g.bench_function("Scene::nearest_intersection", |b| {
-        b.iter(|| {
-            rays.iter()
-                .filter_map(|r| scene.nearest_intersection(black_box(r)))
-                .count()
-        })
-    });
     g.bench_function("Tracer::nearest_intersection", |b| {
         b.iter(|| {
             rays.iter()
-                .filter_map(|r| tracer.nearest_intersection(black_box(r)))
+                .filter_map(|r| tracer.nearest_intersection(black_box(r), None))
                 .count()
         })
     });

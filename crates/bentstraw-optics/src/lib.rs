@@ -23,6 +23,7 @@ pub mod interface;
 pub mod light_path_type;
 pub mod packet;
 pub mod picture;
+pub mod ray_diagram;
 pub mod sampling;
 pub mod scene;
 pub mod shading;

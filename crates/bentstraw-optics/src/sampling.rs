@@ -107,7 +107,7 @@ pub fn frame_for(observer: Vec3) -> Frame {
         }
     }
     // A margin of a few coarse cells; all the way round if the scene wraps behind the observer.
-    let pad = 0.02 * (a1 - a0).max(b1 - b0).max(1e-6);
+    let pad = 0.02 * (a1 - a0).max(b1 - b0).max(f64::MIN_POSITIVE);
     if a1.max(-a0) > 0.9 * PI {
         (a0, a1) = (-PI, PI);
     }

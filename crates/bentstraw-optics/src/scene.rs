@@ -50,8 +50,10 @@ pub fn section_at(z: f64) -> u8 {
 /// value just past a limit shows why it fails), in scientific notation when that is shorter
 /// (`-1e-320`, not 320 zeros), and at most 24 characters (longer ones are clipped with `…`).
 pub fn number_text(x: f64) -> String {
-    // Rust's `{:?}` for f64 is the shortest round-trip form, scientific outside 1e-5..1e16.
-    clip_text(&format!("{x:?}"), 24)
+    // Rust's `{:?}` for f64 is the shortest round-trip form, scientific outside 1e-5..1e16; a
+    // whole number reads as the user wrote it (`1`, not `1.0`).
+    let t = format!("{x:?}");
+    clip_text(t.strip_suffix(".0").unwrap_or(&t), 24)
 }
 
 /// `text` cut to at most `max` characters, with `…` where it was cut (for quoting user input).

@@ -26,7 +26,7 @@ use crate::camera::Camera;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_HEIGHT, GLASS_RADIUS, SECTION_RGB};
-use crate::trace::{Face, FresnelStep, Outcome};
+use crate::trace::{Face, FresnelStep, Outcome, FRESNEL_SEGMENTS_PER_PIXEL};
 use crate::Vec3;
 
 /// Distance of the backdrop wall behind the glass's axis (m).
@@ -239,13 +239,14 @@ fn straw_radiance(scene: &Scene, light: Vec3, color: u8, face: Face, point: Vec3
     linear(SECTION_RGB[color as usize - 1]).map(|c| c * shade)
 }
 
-/// Linear colour seen along one ray.
+/// Linear colour seen along one ray; a Fresnel trace follows at most `max_segments` segments.
 fn sample(
     scene: &Scene,
     surroundings: &Surroundings,
     light: Vec3,
     mode: ShadingMode,
     ray: Ray,
+    max_segments: u32,
 ) -> [f64; 3] {
     match mode {
         ShadingMode::Course => {
@@ -272,7 +273,7 @@ fn sample(
                     acc[k] += w * c[k];
                 }
             };
-            scene.trace_fresnel_with(ray, prune_below, |step| match step {
+            scene.trace_fresnel_bounded(ray, prune_below, max_segments, |step| match step {
                 FresnelStep::Straw {
                     color,
                     point,
@@ -317,9 +318,12 @@ pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) 
     let surroundings = Surroundings::new(options.backdrop, camera.eye);
     let light = light_direction(&surroundings);
     let n = options.samples.max(1) as usize;
+    // A pixel's rays (its centre and its samples) share the pixel's bound on Fresnel work, but
+    // each may follow at least 64 segments (ordinary rays need a few dozen).
+    let max_segments = (FRESNEL_SEGMENTS_PER_PIXEL / (1 + n * n) as u32).max(64);
     let trace = |r: f64, c: f64| {
         let ray = Ray::new(camera.eye, camera.direction_at(r, c));
-        sample(scene, &surroundings, light, options.mode, ray)
+        sample(scene, &surroundings, light, options.mode, ray, max_segments)
     };
     let mut centre = vec![[0.0f64; 3]; w * h];
     centre.par_chunks_mut(w).enumerate().for_each(|(i, row)| {

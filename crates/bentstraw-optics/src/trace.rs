@@ -4,9 +4,10 @@
 //! Also the Fresnel tracer of SPEC §6, which splits a ray at each water face into a reflected and a
 //! refracted branch.
 
-use crate::geometry::Ray;
+use crate::geometry::{enter_bounding_sphere, Ray};
 use crate::interface::{reflect, refract, refract_with_reflectance};
 use crate::scene::{section_at, Scene, GLASS_RADIUS, SECTION_COUNT};
+use crate::tracer::Tracer;
 use crate::Vec3;
 
 /// A face of the scene a ray can meet.
@@ -112,6 +113,18 @@ impl Outcome {
     }
 }
 
+/// Most straight ray segments a Fresnel trace follows for one ray from the eye, all its branches
+/// together (a picture's pixel with several samples shares [`FRESNEL_SEGMENTS_PER_PIXEL`]).
+///
+/// Without a bound the work has none: light trapped by total reflection (water of index 10, an
+/// event limit of 1000) bounces a thousand times in every branch. Past the bound, what is still
+/// travelling is dropped, exactly like light that would need an event past the limit; ordinary
+/// scenes use a few dozen segments per ray.
+pub const FRESNEL_SEGMENTS_PER_RAY: u32 = 2048;
+
+/// Most ray segments followed for one pixel of a picture, all its samples together.
+pub const FRESNEL_SEGMENTS_PER_PIXEL: u32 = 8192;
+
 /// One step of Fresnel tracing, as reported by [`Scene::trace_fresnel_with`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FresnelStep {
@@ -176,40 +189,11 @@ pub enum FresnelStep {
 }
 
 impl Scene {
-    /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties (SPEC §3).
+    /// The nearest face `ray` meets ahead, `left` being the water face it has just left (if it
+    /// starts on one); the straw wins ties (SPEC §3). The one rule is [`Tracer::nearest_intersection`].
     #[inline]
-    pub fn nearest_intersection(&self, ray: &Ray) -> Option<Intersection> {
-        let mut water = f64::INFINITY;
-        let mut water_face = Face::WaterSide;
-        if self.has_water() {
-            for (t, face) in [
-                (self.water_side().intersect(ray), Face::WaterSide),
-                (self.water_top().intersect(ray), Face::WaterTop),
-                (self.water_bottom().intersect(ray), Face::WaterBottom),
-            ] {
-                if let Some(t) = t {
-                    if t < water {
-                        water = t;
-                        water_face = face;
-                    }
-                }
-            }
-        }
-        let mut straw = f64::INFINITY;
-        let mut straw_face = Face::StrawSide;
-        for (t, face) in [
-            (self.straw_side().intersect(ray), Face::StrawSide),
-            (self.straw_top().intersect(ray), Face::StrawTop),
-            (self.straw_bottom().intersect(ray), Face::StrawBottom),
-        ] {
-            if let Some(t) = t {
-                if t < straw {
-                    straw = t;
-                    straw_face = face;
-                }
-            }
-        }
-        Intersection::nearer((water, water_face), (straw, straw_face))
+    pub fn nearest_intersection(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
+        Tracer::new(self).nearest_intersection(ray, left)
     }
 
     /// Outward (out of the water) unit normal of water face `face` at point `p`.
@@ -241,7 +225,7 @@ impl Scene {
     /// Traces `ray`, which starts in air, calling `on_event` at every water event, in order.
     #[inline]
     pub fn trace_with(&self, ray: Ray, on_event: impl FnMut(&Event)) -> Outcome {
-        follow_ray(self, self, ray, on_event)
+        follow_ray(&Tracer::new(self), self, ray, on_event)
     }
 
     /// Fresnel tracing (SPEC §6): the weight of `ray` that ends on each section (index 0 = code 1).
@@ -263,21 +247,41 @@ impl Scene {
         prune_below: f64,
         on_step: impl FnMut(FresnelStep),
     ) -> [f64; SECTION_COUNT] {
-        follow_fresnel::<false>(self, self, ray, prune_below, on_step)
+        self.trace_fresnel_bounded(ray, prune_below, FRESNEL_SEGMENTS_PER_RAY, on_step)
+    }
+
+    /// [`Scene::trace_fresnel_with`] following at most `max_segments` straight ray segments
+    /// (all branches together; see [`FRESNEL_SEGMENTS_PER_RAY`]): what still travels after them is
+    /// reported as dropped.
+    pub fn trace_fresnel_bounded(
+        &self,
+        ray: Ray,
+        prune_below: f64,
+        max_segments: u32,
+        on_step: impl FnMut(FresnelStep),
+    ) -> [f64; SECTION_COUNT] {
+        follow_fresnel::<false>(
+            &Tracer::new(self),
+            self,
+            ray,
+            prune_below,
+            max_segments,
+            on_step,
+        )
     }
 }
 
-/// A way of finding the nearest face a ray meets: the scene itself, or a prepared tracer
-/// ([`crate::tracer::Tracer`]) that gives the same answers faster.
+/// A way of finding the nearest face a ray meets (the tracer, [`crate::tracer::Tracer`]).
 pub trait NearestFace {
-    /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties (SPEC §3).
-    fn nearest_face(&self, ray: &Ray) -> Option<Intersection>;
+    /// The nearest face `ray` meets ahead, `left` being the water face it has just left (if it
+    /// starts on one, after an event there); the straw wins ties (SPEC §3).
+    fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection>;
 }
 
 impl NearestFace for Scene {
     #[inline]
-    fn nearest_face(&self, ray: &Ray) -> Option<Intersection> {
-        self.nearest_intersection(ray)
+    fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
+        self.nearest_intersection(ray, left)
     }
 }
 
@@ -291,12 +295,15 @@ pub fn follow_ray(
     ray: Ray,
     mut on_event: impl FnMut(&Event),
 ) -> Outcome {
-    let mut ray = ray;
+    // A distant ray is first brought to the scene (no face lies before its bounding sphere).
+    let Some((mut ray, mut length)) = enter_bounding_sphere(ray) else {
+        return Outcome::Escaped { events: 0 };
+    };
     let mut in_water = false;
     let mut events = 0u32;
-    let mut length = 0.0;
+    let mut left = None;
     loop {
-        let Some(hit) = faces.nearest_face(&ray) else {
+        let Some(hit) = faces.nearest_face(&ray, left) else {
             return Outcome::Escaped { events };
         };
         let point = ray.at(hit.distance);
@@ -341,6 +348,7 @@ pub fn follow_ray(
             origin: point,
             direction: outgoing,
         };
+        left = Some(hit.face);
     }
 }
 
@@ -349,13 +357,15 @@ pub fn follow_ray(
 /// followed (for pictures, where they add nothing): a branch that leaves the water through its side
 /// wall or bottom, or is reflected off their outside, moves away from the axis or downwards for good
 /// and can meet no face again; only the order of the sums changes (weights agree to ~1e-16), and
-/// `on_step` is then not told of those branches.
+/// `on_step` is then not told of those branches. At most `max_segments` straight segments are
+/// followed; the branches still travelling then are reported as dropped.
 #[inline]
 pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
     faces: &impl NearestFace,
     scene: &Scene,
     ray: Ray,
     prune_below: f64,
+    max_segments: u32,
     mut on_step: impl FnMut(FresnelStep),
 ) -> [f64; SECTION_COUNT] {
     // Depth-first. At each split the branch on the air side is followed first: the water is
@@ -369,22 +379,47 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
         in_water: bool,
         events: u32,
         weight: f64,
+        /// The water face the branch starts on (it has just left it).
+        left: Option<Face>,
     }
     let mut weights = [0.0; SECTION_COUNT];
+    // A distant ray is first brought to the scene; one that misses it escapes as it is.
+    let Some((start, _)) = enter_bounding_sphere(ray) else {
+        on_step(FresnelStep::Escaped {
+            ray,
+            weight: 1.0,
+            events: 0,
+        });
+        return weights;
+    };
     let mut stack = [Branch {
-        ray,
+        ray: start,
         in_water: false,
         events: 0,
         weight: 1.0,
+        left: None,
     }; STACK];
     let mut top = 1usize;
+    let mut segments = 0u32;
     while top > 0 {
         top -= 1;
         let mut b = stack[top];
         loop {
-            let Some(hit) = faces.nearest_face(&b.ray) else {
+            if segments == max_segments {
+                // Out of work: this branch and every waiting one are dropped.
+                on_step(FresnelStep::Dropped { weight: b.weight });
+                for waiting in &stack[..top] {
+                    on_step(FresnelStep::Dropped {
+                        weight: waiting.weight,
+                    });
+                }
+                return weights;
+            }
+            segments += 1;
+            let Some(hit) = faces.nearest_face(&b.ray, b.left) else {
                 on_step(FresnelStep::Escaped {
-                    ray: b.ray,
+                    // A branch that met nothing is the ray as it started, from the eye.
+                    ray: if b.events == 0 { ray } else { b.ray },
                     weight: b.weight,
                     events: b.events,
                 });
@@ -425,6 +460,7 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
                         origin: point,
                         direction: reflected,
                     };
+                    b.left = Some(hit.face);
                 }
                 Some((t, r)) => {
                     let mut wr = b.weight * r;
@@ -455,6 +491,7 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
                         in_water: b.in_water,
                         events: b.events,
                         weight: wr,
+                        left: Some(hit.face),
                     };
                     let refr = Branch {
                         ray: Ray {
@@ -464,6 +501,7 @@ pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
                         in_water: !b.in_water,
                         events: b.events,
                         weight: wt,
+                        left: Some(hit.face),
                     };
                     // The air-side branch now (it ends at once), the water-side one later.
                     let (now, later) = if b.in_water {

@@ -1,25 +1,24 @@
-//! The fast double-precision tracer: the same physics and the same arithmetic as
-//! [`Scene::trace`](crate::scene::Scene::trace) and
-//! [`Scene::trace_fresnel`](crate::scene::Scene::trace_fresnel), with the work that cannot change
-//! the answer skipped.
+//! The double-precision tracer: the scene made ready for tracing many rays, and the one rule for
+//! the nearest face a ray meets, which every double-precision trace uses ([`Scene::trace`] and
+//! [`Scene::trace_fresnel`](crate::scene::Scene::trace_fresnel) prepare one and call it).
 //!
-//! What it saves, per intersection search:
+//! Work that cannot change the answer is skipped, per intersection search:
 //! - a ray whose line passes clearly outside the glass's circle (every face lies within it) meets
 //!   nothing: one cross product, no square root, no division;
 //! - a ray whose line passes clearly outside the straw's circle meets none of the straw's three
 //!   faces (its caps lie inside that circle);
 //! - a plane `z = h` is crossed at a positive distance only if `h − z0` and `dz` have the same sign:
-//!   the division is done only then; the two faces on `z = 0` share one division;
-//! - `dx² + dy²` is shared by the two cylinders; the refractive ratios are computed once.
+//!   the division is done only then; the two faces on `z = 0` share one division.
 //!
-//! Every distance that is computed is computed by the same floating-point operations, in the same
-//! order, as in [`crate::geometry`], so colours are identical and lengths equal to the last bit;
-//! the skips use a relative margin (1e-9) far above rounding, so they never drop a real hit.
+//! The quadratics and roots are [`crate::geometry`]'s own (the same operations), and the skips use
+//! a relative margin (1e-9) far above rounding, so they never drop a real hit.
 
-use crate::geometry::{nearest_side_root, Ray, MIN_DISTANCE};
+use crate::geometry::{plane_distance, Ray, SideQuadratic};
 use crate::image::ImagePoint;
 use crate::scene::{Scene, GLASS_RADIUS, SECTION_COUNT, STRAW_HEIGHT, STRAW_RADIUS};
-use crate::trace::{follow_fresnel, follow_ray, Face, Intersection, NearestFace, Outcome};
+use crate::trace::{
+    follow_fresnel, follow_ray, Face, Intersection, NearestFace, Outcome, FRESNEL_SEGMENTS_PER_RAY,
+};
 use crate::Vec3;
 
 /// Relative margin of the "line clearly misses the circle" tests, far above rounding (1e-16).
@@ -34,43 +33,25 @@ pub struct Tracer {
     glass_r2: f64,
     /// `Rp²`.
     straw_r2: f64,
-    /// `2·Rv²`.
-    glass_2r2: f64,
-    /// `2·Rp²`.
-    straw_2r2: f64,
 }
 
-/// Whether the ray's line passes farther than `radius·(1 + 1e-9)` from a vertical axis, given the
-/// quadratic of that axis's cylinder (`c = |p|² − radius²`, `two_r2 = 2·radius²`).
+/// Whether the ray's line passes farther than `r·(1 + 1e-9)` from a vertical axis, given its
+/// quadratic for that axis's cylinder of radius² `r2`.
 ///
-/// `disc/a = radius² − distance²`; the margin is relative to `|p|² + radius² = c + 2·radius²`, which
-/// bounds the terms of `disc`, so rounding (1e-16 of them) can never fake a miss.
+/// `disc/a = r² − distance²`, computed without cancellation (see [`SideQuadratic`]); the margin is
+/// relative to `a·r²`, far above its rounding, so rounding can never fake a miss.
 #[inline(always)]
-fn clearly_misses(a: f64, c: f64, disc: f64, two_r2: f64) -> bool {
-    disc < -MISS_MARGIN * a * (c + two_r2)
+fn clearly_misses(q: &SideQuadratic, r2: f64) -> bool {
+    q.disc < -MISS_MARGIN * q.a * r2
 }
 
 /// Whether a ray on or outside a vertical cylinder (`c >= 0`) moves away from its axis
 /// (`half_b >= 0`): then both roots are `<= 0` (their product `c/a >= 0`, their sum `−2·half_b/a
-/// <= 0`), and `CylinderSide::intersect` would find nothing, whatever the rounding, because its
-/// `q = −(half_b + sq) <= 0` gives `q/a <= 0` and `c/q <= 0` by the signs alone.
+/// <= 0`), so it meets the side nowhere ahead, whatever the rounding (the roots' signs follow
+/// from those of `c`, `half_b` and `q` alone).
 #[inline(always)]
-fn moving_away(half_b: f64, c: f64) -> bool {
-    c >= 0.0 && half_b >= 0.0
-}
-
-/// Distance `t > MIN_DISTANCE` to the plane `z = h` (as `Disk::intersect`), skipping the division
-/// when the plane is behind the ray or parallel to it.
-#[inline(always)]
-fn plane_distance(h: f64, oz: f64, dz: f64) -> Option<f64> {
-    let num = h - oz;
-    // t = num/dz > 0 needs both of the same strict sign (dz == 0: parallel; num == 0: t = 0).
-    if (num > 0.0 && dz > 0.0) || (num < 0.0 && dz < 0.0) {
-        let t = num / dz;
-        (t > MIN_DISTANCE).then_some(t)
-    } else {
-        None
-    }
+fn moving_away(q: &SideQuadratic) -> bool {
+    q.c >= 0.0 && q.half_b >= 0.0
 }
 
 /// Whether the ray at distance `t` lies within `r2 = radius²` of the vertical axis `(cx, cy)`.
@@ -83,58 +64,65 @@ fn within(o: Vec3, d: Vec3, t: f64, cx: f64, cy: f64, r2: f64) -> bool {
 
 impl NearestFace for Tracer {
     #[inline]
-    fn nearest_face(&self, ray: &Ray) -> Option<Intersection> {
-        self.nearest_intersection(ray)
+    fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
+        self.nearest_intersection(ray, left)
     }
 }
 
 impl Tracer {
     /// Prepares `scene` for tracing.
     pub fn new(scene: &Scene) -> Tracer {
-        let glass_r2 = GLASS_RADIUS * GLASS_RADIUS;
-        let straw_r2 = STRAW_RADIUS * STRAW_RADIUS;
         Tracer {
             scene: *scene,
-            glass_r2,
-            straw_r2,
-            glass_2r2: 2.0 * glass_r2,
-            straw_2r2: 2.0 * straw_r2,
+            glass_r2: GLASS_RADIUS * GLASS_RADIUS,
+            straw_r2: STRAW_RADIUS * STRAW_RADIUS,
         }
     }
 
-    /// The nearest face `ray` meets at a distance `> MIN_DISTANCE`; the straw wins ties.
+    /// The nearest face `ray` meets ahead (`t > 0`); the straw wins ties (SPEC §3).
     ///
-    /// The same answer, to the last bit, as [`Scene::nearest_intersection`].
+    /// `left` is the face the ray has just left (it starts on it, after an event there, or, for a
+    /// ray sent back from the straw, on the straw): its root at the start is excluded exactly (a
+    /// plane is not met again, a side only at its other root, the convex straw not at all), while
+    /// every other face counts at any positive distance, so a face a hair away is never skipped.
+    /// The straw is opaque: only the root by which a ray enters it counts.
     #[inline]
-    pub fn nearest_intersection(&self, ray: &Ray) -> Option<Intersection> {
+    pub fn nearest_intersection(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
         let (o, d) = (ray.origin, ray.direction);
         let s = &self.scene;
-        let a = d.x * d.x + d.y * d.y;
 
         // The glass's circle (the water's side wall), centred on the axis.
-        let half_b = o.x * d.x + o.y * d.y;
-        let c = o.x * o.x + o.y * o.y - self.glass_r2;
-        let disc = half_b * half_b - a * c;
-        if clearly_misses(a, c, disc, self.glass_2r2) {
+        let glass = SideQuadratic::new(o.x, o.y, d.x, d.y, self.glass_r2);
+        if clearly_misses(&glass, self.glass_r2) {
             return None; // every face lies inside the glass's circle
         }
-        // The plane z = 0 holds both the water's bottom and the straw's bottom cap.
-        let t_bottom = plane_distance(0.0, o.z, d.z);
+        // The plane z = 0 holds both the water's bottom and the straw's bottom cap: a ray that has
+        // just left the water's bottom is on it and meets neither.
+        let t_bottom = if left == Some(Face::WaterBottom) {
+            None
+        } else {
+            plane_distance(0.0, o.z, d.z)
+        };
 
         let mut water = f64::INFINITY;
         let mut water_face = Face::WaterSide;
         if s.has_water() {
-            if moving_away(half_b, c) {
-                // No root ahead: the wall is behind the ray.
-            } else if let Some(t) =
-                nearest_side_root(a, half_b, c, disc, o.z, d.z, 0.0, s.water_height)
-            {
+            let side = if left == Some(Face::WaterSide) {
+                glass.other_root(o.z, d.z, 0.0, s.water_height)
+            } else if moving_away(&glass) {
+                None // the wall is behind the ray
+            } else {
+                glass.nearest_root(o.z, d.z, 0.0, s.water_height)
+            };
+            if let Some(t) = side {
                 water = t;
             }
-            if let Some(t) = plane_distance(s.water_height, o.z, d.z) {
-                if t < water && within(o, d, t, 0.0, 0.0, self.glass_r2) {
-                    water = t;
-                    water_face = Face::WaterTop;
+            if left != Some(Face::WaterTop) {
+                if let Some(t) = plane_distance(s.water_height, o.z, d.z) {
+                    if t < water && within(o, d, t, 0.0, 0.0, self.glass_r2) {
+                        water = t;
+                        water_face = Face::WaterTop;
+                    }
                 }
             }
             if let Some(t) = t_bottom {
@@ -147,17 +135,12 @@ impl Tracer {
 
         let mut straw = f64::INFINITY;
         let mut straw_face = Face::StrawSide;
-        let px = o.x - s.straw_x;
-        let py = o.y - s.straw_y;
-        let half_b = px * d.x + py * d.y;
-        let c = px * px + py * py - self.straw_r2;
-        let disc = half_b * half_b - a * c;
-        if !clearly_misses(a, c, disc, self.straw_2r2) {
-            if moving_away(half_b, c) {
-                // No root ahead: the straw's side is behind the ray.
-            } else if let Some(t) =
-                nearest_side_root(a, half_b, c, disc, o.z, d.z, 0.0, STRAW_HEIGHT)
-            {
+        let straw_side =
+            SideQuadratic::new(o.x - s.straw_x, o.y - s.straw_y, d.x, d.y, self.straw_r2);
+        // The straw is convex: a ray that starts on it (sent back from it) does not meet it again.
+        let leaving_straw = left.is_some_and(Face::is_straw);
+        if !leaving_straw && !clearly_misses(&straw_side, self.straw_r2) {
+            if let Some(t) = straw_side.entering_root(o.z, d.z, 0.0, STRAW_HEIGHT) {
                 straw = t;
             }
             if let Some(t) = plane_distance(STRAW_HEIGHT, o.z, d.z) {
@@ -203,12 +186,26 @@ impl Tracer {
     /// Fresnel tracing: the same weights as [`Scene::trace_fresnel`] (the same loop,
     /// [`follow_fresnel`], over this tracer's faster [`Self::nearest_intersection`]).
     pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
-        follow_fresnel::<false>(self, &self.scene, ray, prune_below, |_| {})
+        follow_fresnel::<false>(
+            self,
+            &self.scene,
+            ray,
+            prune_below,
+            FRESNEL_SEGMENTS_PER_RAY,
+            |_| {},
+        )
     }
 
     /// Fresnel tracing for pictures: [`Self::trace_fresnel`], but branches that provably escape
     /// are not followed (see [`follow_fresnel`]).
     pub fn trace_fresnel_escaping(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
-        follow_fresnel::<true>(self, &self.scene, ray, prune_below, |_| {})
+        follow_fresnel::<true>(
+            self,
+            &self.scene,
+            ray,
+            prune_below,
+            FRESNEL_SEGMENTS_PER_RAY,
+            |_| {},
+        )
     }
 }

@@ -158,3 +158,32 @@ fn packet_fresnel_picture_matches_exact() {
         }
     }
 }
+
+/// Far observers (1 km to 100 km) with a field of view that frames the glass: the packet
+/// pictures agree with the double-precision ones as closely as near views do (the rays are made
+/// in double precision and started on the scene's bounding sphere before they are rounded).
+#[test]
+fn packet_pictures_of_far_observers_match_exact() {
+    let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+    for d in [1e3, 1e4, 1e5] {
+        let observer = Vec3::new(d * 0.8, d * 0.6, 0.1 + d * 0.1);
+        // The glass and straw, 0.3 m tall, fill about 80 % of the picture's height.
+        let fov = 2.0 * (0.19 / d).atan();
+        let camera = Camera::new(observer, SCENE_CENTRE, 320, 240, fov);
+        check(&scene, &camera, &format!("course from {d} m"));
+        let straw_pixels = course_picture_exact(&scene, &camera)
+            .iter()
+            .filter(|&&c| c > 0)
+            .count();
+        assert!(
+            straw_pixels > 800,
+            "from {d} m only {straw_pixels} straw pixels"
+        );
+        let (differ, off, _) = compare_fresnel(&scene, &camera);
+        assert_eq!(off, 0, "fresnel from {d} m: {off} pixels off boundaries");
+        assert!(
+            differ * 1000 < 5 * 320 * 240,
+            "fresnel from {d} m: {differ} pixels"
+        );
+    }
+}

@@ -92,7 +92,7 @@ fn messages_quote_numbers_short_and_exact() {
     let e = Scene::with_defaults(0.0350000001, 0.0, 0.1)
         .unwrap_err()
         .to_string();
-    assert!(e.contains("(it is 0.0400000001"), "{e}");
+    assert!(e.contains("(it is 0.04000000009"), "{e}");
     let e = Scene::with_defaults(0.0, 0.0, -1e-320)
         .unwrap_err()
         .to_string();

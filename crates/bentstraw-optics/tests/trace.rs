@@ -276,14 +276,17 @@ proptest! {
         prop_assume!(scene.validate_observer(observer).is_ok());
         let ray = Ray::new(observer, aim - observer);
         let (outcome, events) = events_of(&scene, ray);
-        let Outcome::Straw { point, .. } = outcome else { return Ok(()) };
+        let Outcome::Straw { point, face, .. } = outcome else { return Ok(()) };
         let last_dir = events.last().map_or(ray.direction, |e| e.outgoing);
-        // Start just off the straw (the tracer's rays start in air; here we follow the laws by hand,
-        // using only the scene's intersection and the interface laws).
+        // Start on the straw, in the water when the light came through it (the tracer's rays start
+        // in air; here we follow the laws by hand, using only the scene's intersection, told which
+        // face each piece starts on, and the interface laws).
         let mut back = Ray::new(point, -last_dir);
+        let mut left = Some(face);
         let mut in_water = events.iter().filter(|e| !e.totally_reflected).count() % 2 == 1;
         for _ in 0..events.len() {
-            let hit = scene.nearest_intersection(&back).expect("the path back meets the water");
+            let hit = scene.nearest_intersection(&back, left).expect("the path back meets the water");
+            left = Some(hit.face);
             prop_assert!(!hit.face.is_straw());
             let p = back.at(hit.distance);
             let normal = scene.water_normal(hit.face, p);

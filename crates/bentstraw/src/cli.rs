@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use bentstraw_optics::scene::clip_text;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// bentstraw: what refraction does to a straw in a glass of water.
@@ -24,11 +25,13 @@ pub enum Command {
     )]
     Simulate(SimulateArgs),
     /// Run the four reference simulations and their checks, and write a report (index.html).
-    #[command(after_help = "Example:\n  bentstraw table --out out/\n  open out/index.html")]
+    #[command(
+        after_help = "Example:\n  bentstraw table --out out/      # then open out/index.html in a web browser"
+    )]
     Table(TableArgs),
     /// Render the picture the observer's eye sees (pinhole camera).
     #[command(
-        after_help = "Example:\n  bentstraw render --observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15 \\\n      --mode fresnel --output view.png --raw view.csv"
+        after_help = "Examples:\n  # the classic broken straw, seen from 30 cm away\n  bentstraw render --observer 0.3,0,0.25 --straw 0,0.03 --water-height 0.15 --output view.png\n  bentstraw render --observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15 \\\n      --mode fresnel --output view.png --raw view.csv"
     )]
     Render(RenderArgs),
     /// Measure the tracer's speed in rays per second.
@@ -80,7 +83,7 @@ pub struct SceneArgs {
 /// How an image point's position is judged.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ImageModelArg {
-    /// The course's convention: full path length along the first ray (SPEC §4).
+    /// The course's convention: the point straight ahead along the first ray, as far as the light travelled (P = O + L·u0).
     #[default]
     Course,
     /// A small pupil: the astigmatic foci of the bundle reaching the eye.
@@ -95,7 +98,7 @@ pub struct SimulateArgs {
     /// The scene and the observer.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// At least this many image points
+    /// At least this many image points (at most 10000000; 2000000 with the eye or stereo model)
     #[arg(
         long,
         value_name = "N",
@@ -112,6 +115,10 @@ pub struct SimulateArgs {
     /// Also write a self-contained, rotatable 3D view into this HTML file
     #[arg(long, value_name = "FILE.html")]
     pub html: Option<PathBuf>,
+    /// Also draw a ray diagram (side and top views of about 40 broken light paths, coloured by
+    /// path type) into this PNG or SVG
+    #[arg(long, value_name = "FILE.svg|.png")]
+    pub rays: Option<PathBuf>,
     /// How the apparent position is judged
     #[arg(long, value_enum, default_value_t = ImageModelArg::Course)]
     pub image_model: ImageModelArg,
@@ -123,7 +130,7 @@ pub struct TableArgs {
     /// Folder to write into
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// At least this many image points per simulation
+    /// At least this many image points per simulation (at most 200000)
     #[arg(
         long,
         value_name = "N",
@@ -162,7 +169,7 @@ pub struct CameraArgs {
     /// Vertical field of view in degrees, 0 < FOV < 180 (default: frames the glass and straw)
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     pub fov: Option<f64>,
-    /// Picture size in pixels
+    /// Picture size in pixels [default: 800x600]
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
 }
@@ -290,19 +297,33 @@ pub fn parse_vec2(s: &str) -> Result<[f64; 2], String> {
     Ok([v[0], v[1]])
 }
 
+/// Longest user text quoted whole in a parser's message, in characters.
+pub const QUOTED_MAX: usize = 40;
+
+/// User text for a message, clipped so that a hostile value cannot flood the terminal.
+fn quoted(text: &str) -> String {
+    clip_text(text, QUOTED_MAX)
+}
+
 fn parse_list(s: &str, n: usize, form: &str) -> Result<Vec<f64>, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != n {
         return Err(format!(
-            "'{s}' has {} number(s); expected {n}, as {form}",
+            "'{}' has {} number(s); expected {n}, as {form}",
+            quoted(s),
             parts.len()
         ));
     }
     parts
         .iter()
         .map(|p| {
-            p.parse::<f64>()
-                .map_err(|_| format!("'{p}' in '{s}' is not a number (expected {form})"))
+            p.parse::<f64>().map_err(|_| {
+                format!(
+                    "'{}' in '{}' is not a number (expected {form})",
+                    quoted(p),
+                    quoted(s)
+                )
+            })
         })
         .collect()
 }
@@ -311,15 +332,19 @@ fn parse_list(s: &str, n: usize, form: &str) -> Result<Vec<f64>, String> {
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
-        .ok_or_else(|| format!("'{s}' is not a size: expected WxH, e.g. 800x600"))?;
+        .ok_or_else(|| format!("'{}' is not a size: expected WxH, e.g. 800x600", quoted(s)))?;
     let parse = |t: &str| -> Result<u32, String> {
-        let v: i64 = t
-            .trim()
-            .parse()
-            .map_err(|_| format!("'{t}' in '{s}' is not a whole number of pixels"))?;
+        let v: i64 = t.trim().parse().map_err(|_| {
+            format!(
+                "'{}' in '{}' is not a whole number of pixels",
+                quoted(t),
+                quoted(s)
+            )
+        })?;
         if !(1..=16384).contains(&v) {
             return Err(format!(
-                "size '{s}': each side must be between 1 and 16384 pixels, got {v}"
+                "size '{}': each side must be between 1 and 16384 pixels, got {v}",
+                quoted(s)
             ));
         }
         Ok(v as u32)

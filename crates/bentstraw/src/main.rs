@@ -12,13 +12,17 @@ mod model_plots;
 mod pictures;
 mod plot;
 mod progress;
+mod ray_diagram;
 mod report;
+mod validation;
 mod writers;
 
+use bentstraw_optics::scene::clip_text;
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::Parser;
 
 fn main() {
+    files::remove_temporaries_on_interrupt();
     let cli = match cli::Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => match e.kind() {
@@ -27,19 +31,33 @@ fn main() {
             | ErrorKind::DisplayVersion
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
             _ => {
-                eprintln!("{}", one_line(&e));
+                progress::tell(&format!("{}\n", one_line(&e)));
                 std::process::exit(2);
             }
         },
     };
     if let Err(e) = commands::run(cli) {
-        eprintln!("error: {e}");
+        progress::tell(&format!("error: {e}\n"));
         std::process::exit(2);
     }
 }
 
-/// A clap error as one line: its first line, with the missing arguments or clap's tip folded in.
+/// A clap error as one line: its first line, with the missing arguments or clap's tip folded in,
+/// and the user's values clipped.
 fn one_line(e: &clap::Error) -> String {
+    let mut line = first_line(e);
+    for kind in [ContextKind::InvalidValue, ContextKind::InvalidArg] {
+        if let Some(ContextValue::String(value)) = e.get(kind) {
+            if value.chars().count() > cli::QUOTED_MAX {
+                line = line.replace(value.as_str(), &clip_text(value, cli::QUOTED_MAX));
+            }
+        }
+    }
+    line
+}
+
+/// A clap error's first line with the missing arguments or clap's tip folded in.
+fn first_line(e: &clap::Error) -> String {
     if e.kind() == ErrorKind::MissingRequiredArgument {
         if let Some(ContextValue::Strings(args)) = e.get(ContextKind::InvalidArg) {
             return format!(

@@ -32,7 +32,7 @@ use crate::plot::{
 /// One model's image cloud, for the comparison figure.
 #[derive(Clone, Copy, Debug)]
 pub struct ModelCloud<'a> {
-    /// The model's name, e.g. "course (SPEC §4)".
+    /// The model's name, e.g. "course (P = O + L·u0)".
     pub name: &'a str,
     /// Its placed points (position = where this model puts the image).
     pub points: &'a [ImagePoint],

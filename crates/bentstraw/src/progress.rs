@@ -1,7 +1,7 @@
 //! Progress on stderr, shown only when the work takes over a second and stderr is a terminal, so
 //! that quick runs, pipes and tests see nothing.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
 
@@ -40,4 +40,10 @@ pub fn with_progress<T>(
     });
     bar.finish_and_clear();
     out
+}
+
+/// Writes `text` to stderr as it is; a closed or full stderr is ignored (the files are what
+/// matters, and a message that cannot be shown is no reason to fail).
+pub fn tell(text: &str) {
+    let _ = std::io::stderr().write_all(text.as_bytes());
 }

@@ -31,13 +31,14 @@ use std::path::Path;
 use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::sampling::ImageCloud;
-use bentstraw_optics::scene::{Scene, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
+use bentstraw_optics::scene::{clip_text, Scene, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::cli::QUOTED_MAX;
 use crate::error::{CliError, CliResult};
-use crate::files::write_atomically;
+use crate::files::{shown, write_atomically};
 
 /// A file format for image points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -61,12 +62,13 @@ impl PointFormat {
             Some("json") => Ok(PointFormat::Json),
             Some("ply") => Ok(PointFormat::Ply),
             Some(other) => Err(CliError(format!(
-                "output file {} has extension '.{other}': expected .csv, .json or .ply",
-                path.display()
+                "output file {} has extension '.{}': expected .csv, .json or .ply",
+                shown(path),
+                clip_text(other, QUOTED_MAX)
             ))),
             None => Err(CliError(format!(
                 "output file {} has no extension: expected .csv, .json or .ply",
-                path.display()
+                shown(path)
             ))),
         }
     }

@@ -24,6 +24,13 @@ fn bench_refuses_bad_input() {
     assert_refused(&["--fov", "0"], "fov");
     assert_refused(&["--fov", "180"], "fov");
     assert_refused(&["--repeat", "0"], "repeat");
+    // The same pixel limit as render, and bounded work whatever the repeats.
+    assert_refused(&["--size", "6000x4200"], "at most 25000000 pixels");
+    assert_refused(&["--repeat", "1001"], "at most 1000");
+    assert_refused(
+        &["--repeat", "1000", "--size", "2000x1000"],
+        "at most 1000000000",
+    );
     assert_refused(&["--threads", "0"], "threads");
     assert_refused(&["--straw", "0.02,0.01"], "--observer");
     assert_refused(

@@ -323,7 +323,7 @@ fn malformed_files_are_refused_with_the_line_number_and_no_figure() {
             "0.1 0 0.1 1\n0.1 0 zero 1\n",
             "line 2: 'zero' is not a number",
         ),
-        ("0.1 0 0.1 7\n", "line 1: colour 7"),
+        ("0.1 0 0.1 7\n", "line 1: colour 7 is not a colour code"),
         (
             "NaN,NaN,NaN,NaN\nNaN,NaN,NaN,NaN\n",
             "line 1: x = NaN is not a finite number",

@@ -313,8 +313,7 @@ fn boundary_inputs_are_accepted() {
 }
 
 #[test]
-fn figures_are_written_or_refused_without_leftovers() {
-    // The plot and 3D-view writers are built separately; until then they refuse cleanly.
+fn figures_are_written_without_leftovers() {
     let dir = tempfile::tempdir().unwrap();
     let out = simulate(
         dir.path(),
@@ -322,23 +321,19 @@ fn figures_are_written_or_refused_without_leftovers() {
         1000,
         &["--output", "f.csv", "--plot", "f.png", "--html", "f.html"],
     );
+    assert!(out.status.success(), "{}", stderr(&out));
     let (png, page) = (dir.path().join("f.png"), dir.path().join("f.html"));
-    if out.status.success() {
-        assert!(fs::read(&png).unwrap().starts_with(b"\x89PNG\r\n\x1a\n"));
-        let html = fs::read_to_string(&page).unwrap();
-        assert!(html.to_lowercase().contains("<html"));
-    } else {
-        let err = stderr(&out);
-        assert_eq!(out.status.code(), Some(2));
-        assert!(err.contains("not implemented yet"), "{err}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-    }
+    assert!(fs::read(&png).unwrap().starts_with(b"\x89PNG\r\n\x1a\n"));
+    let html = fs::read_to_string(&page).unwrap();
+    assert!(html.to_lowercase().contains("<html"));
     assert!(read_csv(&dir.path().join("f.csv")).len() >= 1000);
-    // Never a scratch file left behind.
-    for e in fs::read_dir(dir.path()).unwrap() {
-        let name = e.unwrap().file_name().to_string_lossy().into_owned();
-        assert!(!name.ends_with(".partial"), "{name} left behind");
-    }
+    // The three files and nothing else: no temporary left behind.
+    let mut names: Vec<String> = fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["f.csv", "f.html", "f.png"]);
 }
 
 #[test]
@@ -391,32 +386,25 @@ fn table_writes_every_simulation_and_the_report() {
         "four n_water = 1 checks"
     );
     assert!(!index.contains("https://") && !index.contains("http://"));
-    // Figures: all written and the run succeeds, or (while the writers are still stubs) each
-    // missing one is named in the report and the run fails with one line.
-    let stubbed = err.contains("not implemented yet");
+    // Every figure written, the run succeeds, and the folder holds the table's files only.
+    assert!(out.status.success(), "{err}");
     for stem in &stems {
         for ext in ["png", "html"] {
             let f = folder.join(format!("{stem}.{ext}"));
-            assert_eq!(f.exists(), !stubbed, "{}", f.display());
-        }
-        if stubbed {
-            assert!(index.contains(&format!("{stem}.png could not be written")));
+            assert!(f.is_file(), "{}", f.display());
         }
     }
-    if stubbed {
-        assert_eq!(out.status.code(), Some(2));
-        assert!(err
-            .trim_end()
-            .lines()
-            .last()
-            .unwrap()
-            .starts_with("error: 24 file(s) could not be written"));
-    } else {
-        assert!(out.status.success(), "{err}");
-        assert!(fs::read(folder.join("sim1.png"))
-            .unwrap()
-            .starts_with(b"\x89PNG"));
-    }
+    assert!(fs::read(folder.join("sim1.png"))
+        .unwrap()
+        .starts_with(b"\x89PNG"));
+    let files = fs::read_dir(&folder).unwrap().count();
+    // 12 × (csv, png, html), 4 × 8 pictures and model files, the report.
+    assert_eq!(
+        files,
+        12 * 3 + 4 * 8 + 1,
+        "unexpected files in the table's folder"
+    );
+    assert!(!err.contains("could not be written"), "{err}");
 }
 
 // ---- Rejections ------------------------------------------------------------------------------
@@ -522,6 +510,11 @@ fn straw_outside_the_glass_is_rejected() {
         &["0.03", "-0.03"],
     );
     assert_rejected(&simulate_args("0,0.1,0.1", "1,1", "0.15", &[]), &["(1, 1)"]);
+    // Just outside: the message gives the digits that show it does not fit.
+    assert_rejected(
+        &simulate_args("0,0.1,0.1", "0.0350000001,0", "0.15", &[]),
+        &["0.0350000001", "0.04000000"],
+    );
 }
 
 #[test]
@@ -534,7 +527,8 @@ fn observer_in_or_on_the_glass_is_rejected() {
         "0,-0.04,0.2",
         "0.01,0.01,0.05",
     ] {
-        let shown = format!("({})", o.replace(',', ", "));
+        // The numbers as the user wrote them.
+        let shown = format!("({})", o.split(',').collect::<Vec<_>>().join(", "));
         assert_rejected(
             &simulate_args(o, "0.02,0.01", "0.15", &[]),
             &[&shown, "glass"],
@@ -834,5 +828,5 @@ fn no_arguments_runs_the_table_into_out() {
     for k in 1..=4 {
         assert!(read_csv(&folder.join(format!("sim{k}.csv"))).len() >= 20000);
     }
-    assert!(out.status.success() || stderr(&out).contains("not implemented yet"));
+    assert!(out.status.success(), "{}", stderr(&out));
 }

@@ -738,9 +738,9 @@ mod tests {
                 "line 2: 'abc' is not a number (column 3)",
             ),
             ("1,2,3,1\n\n1,,3,1\n", "line 3: empty value in column 2"),
-            ("1,2,3,6\n", "line 1: colour 6"),
+            ("1,2,3,6\n", "line 1: colour 6 is not a colour code"),
             ("1,2,3,2.5\n", "line 1: colour 2.5 is not a colour code"),
-            ("1,2,3,0\n", "line 1: colour 0"),
+            ("1,2,3,0\n", "line 1: colour 0 is not a colour code"),
             (
                 "NaN NaN NaN NaN\n",
                 "line 1: x = NaN is not a finite number",

@@ -6,13 +6,13 @@ use std::time::Instant;
 
 use bentstraw_optics::camera::{framing_fov, Camera};
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
-use bentstraw_optics::scene::{Scene, SCENE_CENTRE};
+use bentstraw_optics::scene::{number_text, Scene, SCENE_CENTRE};
 use bentstraw_optics::shading::{shaded_picture, Backdrop, ShadingMode, ShadingOptions};
 use bentstraw_optics::Vec3;
 
 use crate::cli::{BackdropArg, CameraArgs, ModeArg, RenderArgs};
 use crate::error::{fail, CliResult};
-use crate::files;
+use crate::files::{self, Output, OutputSet};
 use crate::pictures::png_bytes;
 use crate::progress;
 
@@ -27,40 +27,63 @@ pub const MAX_PIXELS: u64 = 25_000_000;
 /// away from the observer, field of view in (0°, 180°) (default: framing the glass and straw).
 pub fn camera_from_args(args: &CameraArgs, observer: Vec3) -> CliResult<Camera> {
     let target = match args.target {
-        Some(t) => {
-            for (name, v) in ["X", "Y", "Z"].iter().zip(t) {
-                if !v.is_finite() {
-                    return fail(format!("--target {name} = {v} is not a finite number"));
-                }
-            }
-            Vec3::from_array(t)
-        }
+        Some(t) => checked_target(t)?,
         None => SCENE_CENTRE,
     };
+    check_target_away(target, observer)?;
+    let (width, height) = checked_size(args.size.unwrap_or(DEFAULT_SIZE))?;
+    let fov = match args.fov {
+        Some(deg) => checked_fov_deg(deg)?.to_radians(),
+        None => framing_fov(observer, target, width as f64 / height as f64),
+    };
+    Ok(Camera::new(observer, target, width, height, fov))
+}
+
+/// `--target` as a point, if every coordinate is finite.
+pub fn checked_target(t: [f64; 3]) -> CliResult<Vec3> {
+    for (name, v) in ["X", "Y", "Z"].iter().zip(t) {
+        if !v.is_finite() {
+            return fail(format!(
+                "--target {name} = {} is not a finite number",
+                number_text(v)
+            ));
+        }
+    }
+    Ok(Vec3::from_array(t))
+}
+
+/// Refuses a camera target at the observer's position (the camera would look nowhere).
+pub fn check_target_away(target: Vec3, observer: Vec3) -> CliResult {
     if (target - observer).length() < 1e-9 {
         return fail(format!(
             "--target ({}, {}, {}) is the observer's position: the camera must look somewhere else",
-            target.x, target.y, target.z
+            number_text(target.x),
+            number_text(target.y),
+            number_text(target.z)
         ));
     }
-    let (width, height) = args.size.unwrap_or(DEFAULT_SIZE);
+    Ok(())
+}
+
+/// A picture size within [`MAX_PIXELS`] (the sides are checked by the `WxH` parser).
+pub fn checked_size((width, height): (u32, u32)) -> CliResult<(u32, u32)> {
     if width as u64 * height as u64 > MAX_PIXELS {
         return fail(format!(
             "--size {width}x{height} is too large: a picture may have at most {MAX_PIXELS} pixels (e.g. 6000x4000)"
         ));
     }
-    let fov = match args.fov {
-        Some(deg) => {
-            if !deg.is_finite() || deg <= 0.0 || deg >= 180.0 {
-                return fail(format!(
-                    "--fov {deg} is not allowed: the field of view must be a number of degrees with 0 < FOV < 180"
-                ));
-            }
-            deg.to_radians()
-        }
-        None => framing_fov(observer, target, width as f64 / height as f64),
-    };
-    Ok(Camera::new(observer, target, width, height, fov))
+    Ok((width, height))
+}
+
+/// A vertical field of view in degrees, `0 < FOV < 180`.
+pub fn checked_fov_deg(deg: f64) -> CliResult<f64> {
+    if !deg.is_finite() || deg <= 0.0 || deg >= 180.0 {
+        return fail(format!(
+            "--fov {} is not allowed: the field of view must be a number of degrees with 0 < FOV < 180",
+            number_text(deg)
+        ));
+    }
+    Ok(deg)
 }
 
 /// Runs `render`.
@@ -72,7 +95,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
     if !args.prune.is_finite() || !(0.0..1.0).contains(&args.prune) {
         return fail(format!(
             "--prune {} is not allowed: the pruning weight must satisfy 0 <= W < 1",
-            args.prune
+            number_text(args.prune)
         ));
     }
     if !(1..=MAX_SAMPLES).contains(&args.samples) {
@@ -81,16 +104,20 @@ pub fn run(args: &RenderArgs) -> CliResult {
             args.samples
         ));
     }
-    files::check_writable(&args.output)?;
+    let mut outputs = vec![Output {
+        flag: "--output",
+        path: &args.output,
+        extensions: &["png"],
+    }];
     if let Some(raw) = &args.raw {
-        if raw == &args.output {
-            return fail(format!(
-                "--raw {} is the same file as --output: give two different files",
-                raw.display()
-            ));
-        }
-        files::check_writable(raw)?;
+        outputs.push(Output {
+            flag: "--raw",
+            path: raw,
+            extensions: &["csv"],
+        });
     }
+    // The previous picture and raw file stay until both new ones are complete.
+    let outputs = OutputSet::reserve(&outputs)?;
 
     let mode = match args.mode {
         ModeArg::Course => ShadingMode::Course,
@@ -113,15 +140,12 @@ pub fn run(args: &RenderArgs) -> CliResult {
     let png = png_bytes(&picture)?;
     files::write_bytes(&args.output, &png)?;
     if let Some(raw) = &args.raw {
-        if let Err(e) = write_raw(raw, &scene, &camera, args.mode, args.prune) {
-            // All or nothing: no picture without the raw file that was asked for.
-            let _ = std::fs::remove_file(&args.output);
-            return Err(e);
-        }
+        write_raw(raw, &scene, &camera, args.mode, args.prune)?;
     }
+    outputs.commit()?;
     let fov_deg = 2.0 * camera.tan_half_fov.atan().to_degrees();
-    eprintln!(
-        "render: {} mode, {}x{} pixels, {n}x{n} samples per pixel, fov {fov_deg:.2}°: wrote {}{} in {:.2} s",
+    progress::tell(&format!(
+        "render: {} mode, {}x{} pixels, {n}x{n} samples per pixel, fov {fov_deg:.2}°: wrote {}{} in {:.2} s\n",
         match args.mode {
             ModeArg::Course => "course",
             ModeArg::Fresnel => "fresnel",
@@ -135,12 +159,12 @@ pub fn run(args: &RenderArgs) -> CliResult {
             .unwrap_or_default(),
         start.elapsed().as_secs_f64(),
         n = args.samples,
-    );
+    ));
     Ok(())
 }
 
 /// Writes one ray per pixel centre, row-major: `row,col,color` (course) or `row,col,w1..w5`
-/// (fresnel, 7 significant digits; exact zeros as `0`).
+/// (fresnel, each weight in the shortest form that reads back as the same `f64`; exact zeros as `0`).
 ///
 /// Traced in double precision: a data file is for checking, where the last edge pixel matters
 /// more than the milliseconds the single-precision picture path saves.
@@ -159,6 +183,7 @@ fn write_raw(path: &Path, scene: &Scene, camera: &Camera, mode: ModeArg, prune: 
         }
         ModeArg::Fresnel => {
             let weights = fresnel_picture_exact(scene, camera, prune);
+            let mut digits = ryu::Buffer::new();
             files::write_atomically(path, |out| {
                 writeln!(out, "row,col,w1,w2,w3,w4,w5")?;
                 for (k, px) in weights.iter().enumerate() {
@@ -167,7 +192,7 @@ fn write_raw(path: &Path, scene: &Scene, camera: &Camera, mode: ModeArg, prune: 
                         if *v == 0.0 {
                             write!(out, ",0")?;
                         } else {
-                            write!(out, ",{v:.6e}")?;
+                            write!(out, ",{}", digits.format_finite(*v))?;
                         }
                     }
                     writeln!(out)?;

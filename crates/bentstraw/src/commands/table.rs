@@ -3,8 +3,7 @@
 //! CSV, PNG and HTML into one folder with an `index.html` report.
 
 use std::fmt::Write as _;
-use std::fs;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
@@ -15,12 +14,20 @@ use rayon::prelude::*;
 
 use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
-use crate::error::{fail, CliError, CliResult};
-use crate::files::check_writable;
+use crate::error::{fail, CliResult};
+use crate::files::{self, Output, OutputSet};
 use crate::model_plots::{write_gap_plot, write_model_comparison, GapSeries, ModelCloud};
 use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
 use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use crate::{html, pictures, plot, progress};
+
+/// Most image points per simulation: the table traces twelve, and runs the eye and stereo models
+/// on four (measured on two cores: 16 s and 270 MB for 100 000 points, 35–80 s and 490 MB for
+/// 200 000, depending on the load).
+pub const MAX_POINTS: usize = 200_000;
+
+/// The report's file name in the folder.
+const REPORT_FILE: &str = "index.html";
 
 /// Largest distance (m) from the straw's surface an `n_water = 1` image point may have.
 pub const ON_STRAW_TOLERANCE: f64 = 1e-9;
@@ -42,22 +49,64 @@ struct Job {
     stem: String,
 }
 
+impl Job {
+    /// The names of every file this simulation writes, so that all are reserved before the work.
+    fn outputs(&self) -> Vec<String> {
+        let stem = &self.stem;
+        let mut names = vec![
+            format!("{stem}.csv"),
+            format!("{stem}.png"),
+            format!("{stem}.html"),
+        ];
+        if self.scene.n_water == WATER_INDEX {
+            for suffix in [
+                "_observer.png",
+                "_cloud.png",
+                "_eye.csv",
+                "_eye.html",
+                "_stereo.csv",
+                "_stereo.html",
+                "_models.png",
+                "_gap.png",
+            ] {
+                names.push(format!("{stem}{suffix}"));
+            }
+        }
+        names
+    }
+}
+
 /// Runs `table`.
 pub fn run(args: &TableArgs) -> CliResult {
     if args.points == 0 {
         return fail("--points 0 is not allowed: ask for at least 1 image point per simulation");
     }
+    if args.points > MAX_POINTS {
+        return fail(format!(
+            "--points {} is too many for the table: at most {MAX_POINTS} image points per \
+             simulation (twelve simulations, four with the eye and stereo models: about 500 MB and \
+             a minute at the limit); use simulate for one large simulation",
+            args.points
+        ));
+    }
     let out = &args.out;
     if out.exists() && !out.is_dir() {
         return fail(format!(
             "--out {}: it exists and is not a folder",
-            out.display()
+            files::shown(out)
         ));
     }
-    fs::create_dir_all(out)
-        .map_err(|e| CliError(format!("cannot create folder {}: {e}", out.display())))?;
-    check_writable(&out.join("index.html"))?;
+    let made = files::make_folder(out)?;
+    let result = run_into(args, out);
+    if result.is_err() {
+        // A failed run leaves no folder it made (the set removed its temporaries).
+        files::remove_made_folders(&made);
+    }
+    result
+}
 
+/// Runs the table into the existing folder `out`; every file is replaced, or none.
+fn run_into(args: &TableArgs, out: &Path) -> CliResult {
     let jobs: Vec<Job> = REFERENCES
         .iter()
         .flat_map(|r| {
@@ -68,11 +117,26 @@ pub fn run(args: &TableArgs) -> CliResult {
             })
         })
         .collect();
+    let paths: Vec<PathBuf> = jobs
+        .iter()
+        .flat_map(|job| job.outputs())
+        .chain([REPORT_FILE.to_string()])
+        .map(|name| out.join(name))
+        .collect();
+    let outputs: Vec<Output> = paths
+        .iter()
+        .map(|path| Output {
+            flag: "--out",
+            path,
+            extensions: &[],
+        })
+        .collect();
+    let outputs = OutputSet::reserve_folder(out, &outputs)?;
 
     let started = Instant::now();
     let entries: Vec<SimulationEntry> = progress::with_progress(
         Some(jobs.len() as u64),
-        "simulating {bar:30} {pos}/{len}  [{elapsed}]",
+        "simulating {bar:30} {pos}/{len}  [{elapsed}, about {eta} left]",
         |bar| {
             // In parallel: the figures are drawn on one thread each, so this is where cores help.
             jobs.par_iter()
@@ -89,17 +153,16 @@ pub fn run(args: &TableArgs) -> CliResult {
     let report = Report {
         title: "bentstraw: the straw's virtual image".into(),
         subtitle: format!(
-            "The four reference simulations of the specification (§5), each also with n_water = 1 \
-             and n_water = 1.05 as checks; at least {} image points each.",
+            "The four reference simulations of the straw in a glass of water, each also with water of \
+             index 1 (the image must then lie on the straw) and 1.05; at least {} image points each.",
             args.points
         ),
         simulations: entries,
         total: elapsed,
     };
-    report::write_report(&out.join("index.html"), &report)?;
-    eprint!("{}", summary(&report, out));
+    report::write_report(&out.join(REPORT_FILE), &report)?;
 
-    // Failures are reported after the report is written, so that it shows what went wrong.
+    // Any file that could not be written: nothing is replaced, the previous table stays whole.
     let failed: Vec<(&str, &str)> = report
         .simulations
         .iter()
@@ -116,11 +179,15 @@ pub fn run(args: &TableArgs) -> CliResult {
         .collect();
     if let Some((file, error)) = failed.first() {
         return fail(format!(
-            "{} file(s) could not be written (first: {file}: {error}); see {}",
+            "{} file(s) could not be written (first: {file}: {error}); no file in {} was replaced",
             failed.len(),
-            out.join("index.html").display()
+            files::shown(out)
         ));
     }
+    outputs.commit()?;
+    progress::tell(&summary(&report, out));
+
+    // A failed check is reported after the files are in place, so that the report shows it.
     let off: Vec<&SimulationEntry> = report
         .simulations
         .iter()
@@ -240,7 +307,7 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     );
     points.error = error;
     Section {
-        title: "What the observer sees (SPEC §6)".into(),
+        title: "What the observer sees (Fresnel picture)".into(),
         figures: vec![picture, points],
         notes: vec![],
         side_by_side: true,
@@ -293,7 +360,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         placed.push(points);
     }
     let names = [
-        "course (SPEC §4)",
+        "course (P = O + L·u0)",
         "eye (small pupil)",
         "stereo (two eyes, 65 mm)",
     ];
@@ -486,6 +553,6 @@ fn summary(report: &Report, out: &Path) -> String {
         let check = s.check.as_ref().map(|c| c.short.as_str()).unwrap_or("");
         let _ = writeln!(t, " {:>8.2}  {check}", secs.as_secs_f64());
     }
-    let _ = writeln!(t, "  report: {}", out.join("index.html").display());
+    let _ = writeln!(t, "  report: {}", out.join(REPORT_FILE).display());
     t
 }

@@ -1,0 +1,2 @@
+//! Shared test helpers: an independent high-precision tracer.
+pub mod reference;

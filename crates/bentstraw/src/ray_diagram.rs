@@ -1,0 +1,532 @@
+//! The ray diagram: side and top views of a sample of rays, each drawn as its broken path from the
+//! eye through the water's faces to the straw, with its events marked (a ring for a refraction, a
+//! cross for a total reflection) and the dashed straight line from the eye to its image point; the
+//! glass, the water and the straw to scale; the kinds of light path coloured and named in a legend
+//! with the share of the image points each makes. PNG or SVG, by the file's extension.
+//!
+//! Sized for print: the figure is 1000 px wide and every text at least 30 px, so printed 8.5 cm
+//! wide (a report's column) the smallest text is 7.2 pt.
+
+use std::path::Path;
+
+use bentstraw_optics::image::ImagePoint;
+use bentstraw_optics::light_path_type::LightPathType;
+use bentstraw_optics::ray_diagram::{diagram_rays, path_type_counts, DiagramRay};
+use bentstraw_optics::scene::{
+    Scene, GLASS_HEIGHT, GLASS_RADIUS, SECTION_HEIGHT, SECTION_RGB, STRAW_HEIGHT, STRAW_RADIUS,
+};
+use bentstraw_optics::Vec3;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::error::{CliError, CliResult};
+use crate::files;
+use crate::plot::{encode_png, font, register_font};
+
+/// Width of the diagram (px).
+pub const DIAGRAM_WIDTH: u32 = 1000;
+/// Height of the diagram (px).
+pub const DIAGRAM_HEIGHT: u32 = 860;
+/// Rays drawn, about.
+pub const DIAGRAM_RAYS: usize = 40;
+/// Size of the smallest text (px): 7.2 pt when the figure is printed 8.5 cm wide.
+pub const SMALL_TEXT: f64 = 30.0;
+
+/// Colours of the kinds of light path, in the order of the legend (most common first).
+const KIND_RGB: [(u8, u8, u8); 8] = [
+    (31, 119, 180),
+    (214, 39, 40),
+    (44, 160, 44),
+    (148, 103, 189),
+    (255, 127, 14),
+    (23, 190, 207),
+    (140, 86, 75),
+    (227, 119, 194),
+];
+
+/// What a diagram shows: the rays drawn, and the image points per kind of light path.
+pub struct Diagram {
+    /// The observer.
+    pub observer: Vec3,
+    /// The rays drawn.
+    pub rays: Vec<DiagramRay>,
+    /// Image points per kind of light path, most common first.
+    pub counts: Vec<(LightPathType, usize)>,
+}
+
+impl Diagram {
+    /// The diagram of `points` (an image seen from `observer`): about [`DIAGRAM_RAYS`] rays.
+    pub fn new(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> Diagram {
+        Diagram {
+            observer,
+            rays: diagram_rays(scene, observer, points, DIAGRAM_RAYS),
+            counts: path_type_counts(scene, observer, points),
+        }
+    }
+
+    /// The colour of kind `k` (by its rank in the legend).
+    fn color_of(&self, kind: LightPathType) -> RGBColor {
+        let rank = self
+            .counts
+            .iter()
+            .position(|(k, _)| *k == kind)
+            .unwrap_or(0);
+        let (r, g, b) = KIND_RGB[rank % KIND_RGB.len()];
+        RGBColor(r, g, b)
+    }
+}
+
+/// Writes the diagram to `path`, `.png` or `.svg` by its extension.
+pub fn write_ray_diagram(path: &Path, scene: &Scene, diagram: &Diagram, title: &str) -> CliResult {
+    let bytes = render(path, scene, diagram, title)?;
+    files::write_bytes(path, &bytes)
+}
+
+/// The diagram as the bytes of a PNG or SVG file, by `path`'s extension.
+pub fn render(path: &Path, scene: &Scene, diagram: &Diagram, title: &str) -> CliResult<Vec<u8>> {
+    register_font();
+    let size = (DIAGRAM_WIDTH, DIAGRAM_HEIGHT);
+    let fail = |e: String| CliError(format!("cannot draw {}: {e}", path.display()));
+    let svg = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+    if svg {
+        let mut text = String::new();
+        {
+            let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
+            draw(&root, scene, diagram, title).map_err(fail)?;
+            root.present().map_err(|e| fail(e.to_string()))?;
+        }
+        Ok(text.into_bytes())
+    } else {
+        let mut buf = vec![255u8; (size.0 * size.1 * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut buf, size).into_drawing_area();
+            draw(&root, scene, diagram, title).map_err(fail)?;
+            root.present().map_err(|e| fail(e.to_string()))?;
+        }
+        encode_png(&buf, size.0, size.1).map_err(fail)
+    }
+}
+
+/// The horizontal unit vector from the glass's axis towards the observer (the side view's axis).
+fn side_axis(observer: Vec3) -> Vec3 {
+    let h = Vec3::new(observer.x, observer.y, 0.0);
+    if h.length() < 1e-9 {
+        Vec3::X
+    } else {
+        h.normalize()
+    }
+}
+
+/// A view: how a point of space lands on the panel's plane.
+#[derive(Clone, Copy)]
+enum View {
+    /// Side view: the horizontal distance along the axis towards the observer, and the height.
+    Side(Vec3),
+    /// Top view: x to the right, y up.
+    Top,
+}
+
+impl View {
+    fn project(self, p: Vec3) -> (f64, f64) {
+        match self {
+            View::Side(e) => (p.x * e.x + p.y * e.y, p.z),
+            View::Top => (p.x, p.y),
+        }
+    }
+}
+
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    scene: &Scene,
+    diagram: &Diagram,
+    title: &str,
+) -> Result<(), String> {
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let (w, h) = (DIAGRAM_WIDTH as i32, DIAGRAM_HEIGHT as i32);
+    // The title's first part in large type, the rest (the inputs) wrapped below it.
+    let (head, rest) = title.split_once(": ").unwrap_or((title, ""));
+    root.draw(&Text::new(head.to_string(), (20, 10), font(36.0)))
+        .map_err(e)?;
+    let mut top = 54;
+    for line in wrap(rest, 56) {
+        root.draw(&Text::new(line, (20, top), font(SMALL_TEXT)))
+            .map_err(e)?;
+        top += 36;
+    }
+    let legend_h = 60 + 40 * diagram.counts.len().min(6) as i32;
+    let panels_area = root.margin(top + 6, legend_h, 0, 0);
+    let (left, right) = panels_area.split_horizontally(w / 2);
+    let e_side = side_axis(diagram.observer);
+    draw_panel(
+        &left,
+        scene,
+        diagram,
+        View::Side(e_side),
+        "side view (observer to the right)",
+        "towards the observer (m)",
+        "z (m), up",
+    )?;
+    draw_panel(
+        &right,
+        scene,
+        diagram,
+        View::Top,
+        "top view (from above)",
+        "x (m), to the right",
+        "y (m), up",
+    )?;
+    // Legend: one line per kind of path, with its share of the image points.
+    let total: usize = diagram.counts.iter().map(|c| c.1).sum::<usize>().max(1);
+    let mut y = h - legend_h + 14;
+    root.draw(&Text::new(
+        "o refraction    x total reflection    dashed: line of sight".to_string(),
+        (20, y),
+        font(SMALL_TEXT),
+    ))
+    .map_err(e)?;
+    for (kind, n) in diagram.counts.iter().take(6) {
+        y += 40;
+        let c = diagram.color_of(*kind);
+        root.draw(&PathElement::new(
+            vec![(20, y + 15), (70, y + 15)],
+            c.stroke_width(5),
+        ))
+        .map_err(e)?;
+        root.draw(&Text::new(
+            format!("{:4.1} %  {kind}", 100.0 * *n as f64 / total as f64),
+            (85, y),
+            font(SMALL_TEXT),
+        ))
+        .map_err(e)?;
+    }
+    Ok(())
+}
+
+/// Range of a panel: the glass, the straw, the observer, every ray vertex and image point, with a
+/// margin; widened so that one metre is as long across as up.
+fn ranges(scene: &Scene, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f64), (f64, f64)) {
+    let mut pts: Vec<(f64, f64)> = Vec::new();
+    for z in [0.0, STRAW_HEIGHT] {
+        for (x, y) in [(-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)] {
+            pts.push(view.project(Vec3::new(x * GLASS_RADIUS, y * GLASS_RADIUS, z)));
+        }
+    }
+    pts.push(view.project(Vec3::new(scene.straw_x, scene.straw_y, 0.0)));
+    pts.push(view.project(diagram.observer));
+    for r in &diagram.rays {
+        pts.push(view.project(r.image.position));
+        for v in r.vertices(diagram.observer) {
+            pts.push(view.project(v));
+        }
+    }
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for (x, y) in pts {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    let pad = 0.06 * (x1 - x0).max(y1 - y0);
+    let (mut x0, mut x1, mut y0, mut y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
+    // Equal scales: widen the narrower side to the panel's aspect (width / height in pixels).
+    let (dx, dy) = (x1 - x0, y1 - y0);
+    if dx / dy < aspect {
+        let grow = (dy * aspect - dx) / 2.0;
+        x0 -= grow;
+        x1 += grow;
+    } else {
+        let grow = (dx / aspect - dy) / 2.0;
+        y0 -= grow;
+        y1 += grow;
+    }
+    ((x0, x1), (y0, y1))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    scene: &Scene,
+    diagram: &Diagram,
+    view: View,
+    caption: &str,
+    x_label: &str,
+    y_label: &str,
+) -> Result<(), String> {
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let (pw, ph) = area.dim_in_pixel();
+    // The plotting area's size once labels take their room (as set below).
+    let (plot_w, plot_h) = (pw as f64 - 150.0 - 40.0, ph as f64 - 50.0 - 100.0);
+    let ((x0, x1), (y0, y1)) = ranges(scene, diagram, view, plot_w / plot_h);
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, font(SMALL_TEXT + 2.0))
+        .margin_right(40)
+        .x_label_area_size(100)
+        .y_label_area_size(150)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_labels(4)
+        .y_labels(5)
+        .label_style(font(SMALL_TEXT))
+        .axis_desc_style(font(SMALL_TEXT))
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
+        .draw()
+        .map_err(e)?;
+
+    let water = RGBColor(200, 225, 250);
+    let glass = RGBColor(120, 120, 120);
+    let circle = |cx: f64, cy: f64, r: f64| -> Vec<(f64, f64)> {
+        (0..=96)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 96.0;
+                (cx + r * a.cos(), cy + r * a.sin())
+            })
+            .collect()
+    };
+    match view {
+        View::Side(axis) => {
+            let rv = GLASS_RADIUS;
+            if scene.has_water() {
+                chart
+                    .draw_series(std::iter::once(Rectangle::new(
+                        [(-rv, 0.0), (rv, scene.water_height)],
+                        water.filled(),
+                    )))
+                    .map_err(e)?;
+            }
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![
+                        (-rv, GLASS_HEIGHT),
+                        (-rv, 0.0),
+                        (rv, 0.0),
+                        (rv, GLASS_HEIGHT),
+                    ],
+                    glass.stroke_width(3),
+                )))
+                .map_err(e)?;
+            // The straw as seen from the side, its five bands in their colours.
+            let c = scene.straw_x * axis.x + scene.straw_y * axis.y;
+            for (k, rgb) in SECTION_RGB.iter().enumerate() {
+                let [r, g, b] = rgb.map(|v| (v * 255.0).round() as u8);
+                chart
+                    .draw_series(std::iter::once(Rectangle::new(
+                        [
+                            (c - STRAW_RADIUS, k as f64 * SECTION_HEIGHT),
+                            (c + STRAW_RADIUS, (k + 1) as f64 * SECTION_HEIGHT),
+                        ],
+                        RGBColor(r, g, b).mix(0.55).filled(),
+                    )))
+                    .map_err(e)?;
+            }
+        }
+        View::Top => {
+            if scene.has_water() {
+                chart
+                    .draw_series(std::iter::once(Polygon::new(
+                        circle(0.0, 0.0, GLASS_RADIUS),
+                        water.filled(),
+                    )))
+                    .map_err(e)?;
+            }
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    circle(0.0, 0.0, GLASS_RADIUS),
+                    glass.stroke_width(3),
+                )))
+                .map_err(e)?;
+            chart
+                .draw_series(std::iter::once(Polygon::new(
+                    circle(scene.straw_x, scene.straw_y, STRAW_RADIUS),
+                    RGBColor(150, 150, 150).mix(0.6).filled(),
+                )))
+                .map_err(e)?;
+        }
+    }
+
+    // The rays: the dashed line of sight to the image point, the broken path, the events.
+    for r in &diagram.rays {
+        let color = diagram.color_of(r.kind);
+        let eye = view.project(diagram.observer);
+        let image = view.project(r.image.position);
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![eye, image],
+                8,
+                6,
+                color.mix(0.7).stroke_width(2),
+            ))
+            .map_err(e)?;
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                r.vertices(diagram.observer)
+                    .into_iter()
+                    .map(|v| view.project(v))
+                    .collect::<Vec<_>>(),
+                color.stroke_width(3),
+            )))
+            .map_err(e)?;
+        for ev in &r.events {
+            let p = view.project(ev.point);
+            if ev.totally_reflected {
+                chart
+                    .draw_series(std::iter::once(Cross::new(p, 7, color.stroke_width(3))))
+                    .map_err(e)?;
+            } else {
+                chart
+                    .draw_series(std::iter::once(Circle::new(p, 5, color.stroke_width(2))))
+                    .map_err(e)?;
+            }
+        }
+        let [cr, cg, cb] =
+            SECTION_RGB[r.image.color as usize - 1].map(|v| (v * 255.0).round() as u8);
+        chart
+            .draw_series(std::iter::once(Circle::new(
+                image,
+                5,
+                RGBColor(cr, cg, cb).filled(),
+            )))
+            .map_err(e)?;
+    }
+    // The observer.
+    let eye = view.project(diagram.observer);
+    chart
+        .draw_series(std::iter::once(Circle::new(eye, 8, BLACK.filled())))
+        .map_err(e)?;
+    let label = EmptyElement::at(eye) + Text::new("eye", (-20, 12), font(SMALL_TEXT));
+    chart.draw_series(std::iter::once(label)).map_err(e)?;
+    Ok(())
+}
+
+/// `text` broken at ", " into lines of at most about `width` characters.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for part in text.split(", ") {
+        match lines.last_mut() {
+            Some(l) if l.len() + 2 + part.len() <= width => {
+                l.push_str(", ");
+                l.push_str(part);
+            }
+            _ if !part.is_empty() => lines.push(part.to_string()),
+            _ => {}
+        }
+    }
+    lines
+}
+
+/// A tick label in metres, two decimals, without a minus sign on zero.
+fn tick(v: f64) -> String {
+    let t = format!("{v:.2}");
+    if t == "-0.00" {
+        "0.00".into()
+    } else {
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bentstraw_optics::sampling::sample_image;
+    use bentstraw_optics::scene::REFERENCES;
+
+    fn diagram_of(number: usize) -> (Scene, Diagram) {
+        let r = REFERENCES[number - 1];
+        let scene = r.scene(1.333);
+        let cloud = sample_image(&scene, r.observer, 5000, &|_| {});
+        let d = Diagram::new(&scene, r.observer, &cloud.points);
+        (scene, d)
+    }
+
+    /// The rays drawn are the library's: each vertex is a traced event, in order.
+    #[test]
+    fn the_rays_drawn_are_the_traced_paths() {
+        let (scene, d) = diagram_of(3);
+        assert!((30..=60).contains(&d.rays.len()), "{} rays", d.rays.len());
+        for r in &d.rays {
+            let mut points = vec![d.observer];
+            let outcome = scene.trace_with(
+                bentstraw_optics::geometry::Ray {
+                    origin: d.observer,
+                    direction: r.image.direction,
+                },
+                |e| points.push(e.point),
+            );
+            points.push(r.image.straw_point);
+            assert_eq!(r.vertices(d.observer), points);
+            assert_eq!(outcome.color(), r.image.color);
+        }
+        // Simulation 3 has pieces of the image outside the glass: the diagram draws the light
+        // paths that make them, and they are totally reflected at least once.
+        let outside: Vec<_> = d
+            .rays
+            .iter()
+            .filter(|r| r.image.position.truncate().length() > GLASS_RADIUS)
+            .collect();
+        assert!(
+            !outside.is_empty(),
+            "no ray to the pieces outside the glass"
+        );
+        assert!(outside.iter().any(|r| r.kind.total_reflections > 0));
+    }
+
+    /// The SVG is well-formed XML, names every kind of path in its legend, and holds one solid
+    /// path per ray drawn in each view.
+    #[test]
+    fn the_svg_names_the_paths_and_draws_every_ray() {
+        let (scene, d) = diagram_of(3);
+        let svg = render(Path::new("d.svg"), &scene, &d, "simulation 3").unwrap();
+        let text = String::from_utf8(svg).unwrap();
+        let doc = roxmltree::Document::parse(&text).expect("well-formed SVG");
+        let texts: Vec<String> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .map(|n| n.text().unwrap_or("").to_string())
+            .collect();
+        for (kind, _) in &d.counts[..d.counts.len().min(6)] {
+            let want = kind.to_string();
+            assert!(
+                texts.iter().any(|t| t.contains(&want)),
+                "legend lacks {want}"
+            );
+        }
+        assert!(texts.iter().any(|t| t.contains("side view")));
+        assert!(texts.iter().any(|t| t.contains("top view")));
+        // Solid ray paths: width 3 polylines in a kind's colour, one per ray and view.
+        let colours: Vec<String> = KIND_RGB
+            .iter()
+            .map(|(r, g, b)| format!("#{r:02X}{g:02X}{b:02X}"))
+            .collect();
+        let solid = doc
+            .descendants()
+            .filter(|n| {
+                n.has_tag_name("polyline")
+                    && n.attribute("stroke-width") == Some("3")
+                    && n.attribute("stroke")
+                        .is_some_and(|s| colours.iter().any(|c| c == s))
+            })
+            .count();
+        assert_eq!(solid, 2 * d.rays.len());
+    }
+
+    #[test]
+    fn png_and_view_for_the_eye() {
+        let (scene, d) = diagram_of(3);
+        let png = render(Path::new("d.png"), &scene, &d, "simulation 3").unwrap();
+        let img = image::load_from_memory(&png).unwrap();
+        assert_eq!((img.width(), img.height()), (DIAGRAM_WIDTH, DIAGRAM_HEIGHT));
+        if let Ok(dir) = std::env::var("BENTSTRAW_LOOK") {
+            std::fs::write(Path::new(&dir).join("diagram3.png"), &png).unwrap();
+            let svg = render(Path::new("d.svg"), &scene, &d, "simulation 3").unwrap();
+            std::fs::write(Path::new(&dir).join("diagram3.svg"), &svg).unwrap();
+        }
+    }
+}

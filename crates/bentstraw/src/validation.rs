@@ -1,0 +1,268 @@
+//! The validation figure: as the water's index goes from 1 to 1.333, how far the image points seen
+//! through the water lie from the straw's surface (those seen straight through air lie on it
+//! whatever the water). With index 1 the water bends nothing, so every image point must lie on
+//! the straw (to rounding, ~1e-16 m); as soon as the index grows the image leaves the straw, by
+//! millimetres to centimetres. One curve of the largest and one of the median distance per
+//! simulation.
+
+use std::path::Path;
+
+use bentstraw_optics::sampling::sample_image;
+use bentstraw_optics::scene::{Scene, WATER_INDEX};
+use bentstraw_optics::Vec3;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::error::{CliError, CliResult};
+use crate::files;
+use crate::plot::{encode_png, font, register_font};
+
+/// Indices of the water the figure is made for: 8 values from 1 to 1.333.
+pub fn indices() -> Vec<f64> {
+    (0..8)
+        .map(|k| 1.0 + (WATER_INDEX - 1.0) * k as f64 / 7.0)
+        .collect()
+}
+
+/// Image points per index (enough for a stable median and largest distance).
+pub const VALIDATION_POINTS: usize = 4000;
+
+/// The distances of one simulation's image points from the straw, for each index.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValidationSeries {
+    /// Label of the simulation, e.g. "simulation 1".
+    pub label: String,
+    /// `(index, largest distance, median distance)` (m), in increasing index.
+    pub rows: Vec<(f64, f64, f64)>,
+}
+
+/// Largest and median distance (m) from `points` to the straw's surface.
+pub fn distance_stats(scene: &Scene, points: &[Vec3]) -> (f64, f64) {
+    let mut d: Vec<f64> = points
+        .iter()
+        .map(|p| scene.distance_to_straw_surface(*p))
+        .collect();
+    if d.is_empty() {
+        return (f64::NAN, f64::NAN);
+    }
+    d.sort_by(f64::total_cmp);
+    let median = if d.len() % 2 == 1 {
+        d[d.len() / 2]
+    } else {
+        0.5 * (d[d.len() / 2 - 1] + d[d.len() / 2])
+    };
+    (d[d.len() - 1], median)
+}
+
+/// The series of one simulation (`scene` with its own index replaced by each of [`indices`]).
+pub fn series(label: &str, scene: &Scene, observer: Vec3) -> ValidationSeries {
+    let rows = indices()
+        .into_iter()
+        .map(|n| {
+            let s = scene.with_n_water(n).expect("indices are >= 1");
+            let cloud = sample_image(&s, observer, VALIDATION_POINTS, &|_| {});
+            // The points seen straight through air lie on the straw whatever the water: only
+            // those whose light crossed the water tell.
+            let points: Vec<Vec3> = cloud
+                .points
+                .iter()
+                .filter(|p| p.events > 0)
+                .map(|p| p.position)
+                .collect();
+            let (max, median) = distance_stats(&s, &points);
+            (n, max, median)
+        })
+        .collect();
+    ValidationSeries {
+        label: label.to_string(),
+        rows,
+    }
+}
+
+/// Figure size (px); every text at least 30 px, 7.2 pt when printed 8.5 cm wide.
+const SIZE: (u32, u32) = (1000, 760);
+/// Colours of the four simulations.
+const RGB: [RGBColor; 4] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+];
+/// Distances below this are drawn at it (the plot's floor, below any rounding of a centimetre).
+const FLOOR: f64 = 1e-18;
+
+/// Writes the figure to `path` (PNG or SVG by its extension).
+pub fn write_validation_figure(path: &Path, series: &[ValidationSeries]) -> CliResult {
+    register_font();
+    let fail = |e: String| CliError(format!("cannot draw {}: {e}", files::shown(path)));
+    let svg = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+    let bytes = if svg {
+        let mut text = String::new();
+        {
+            let root = SVGBackend::with_string(&mut text, SIZE).into_drawing_area();
+            draw(&root, series).map_err(fail)?;
+            root.present().map_err(|e| fail(e.to_string()))?;
+        }
+        text.into_bytes()
+    } else {
+        let mut buf = vec![255u8; (SIZE.0 * SIZE.1 * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut buf, SIZE).into_drawing_area();
+            draw(&root, series).map_err(fail)?;
+            root.present().map_err(|e| fail(e.to_string()))?;
+        }
+        encode_png(&buf, SIZE.0, SIZE.1).map_err(fail)?
+    };
+    files::write_bytes(path, &bytes)
+}
+
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    series: &[ValidationSeries],
+) -> Result<(), String> {
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let top = series
+        .iter()
+        .flat_map(|s| s.rows.iter().map(|r| r.1))
+        .filter(|v| v.is_finite())
+        .fold(1e-3, f64::max)
+        * 3.0;
+    let area = root.margin(0, 50, 0, 0);
+    let mut chart = ChartBuilder::on(&area)
+        .caption(
+            "Image points seen through the water: distance from the straw",
+            font(36.0),
+        )
+        .margin(20)
+        .margin_right(40)
+        .x_label_area_size(90)
+        .y_label_area_size(150)
+        .build_cartesian_2d(1.0..WATER_INDEX + 0.005, (FLOOR..top).log_scale())
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_labels(6)
+        .y_labels(8)
+        .label_style(font(30.0))
+        .axis_desc_style(font(30.0))
+        .x_desc("index of the water n")
+        .y_desc("distance (m), log scale")
+        .x_label_formatter(&|v| format!("{v:.2}"))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .light_line_style(WHITE)
+        .draw()
+        .map_err(e)?;
+    for (k, s) in series.iter().enumerate() {
+        let c = RGB[k % RGB.len()];
+        let at = |v: f64| v.max(FLOOR);
+        let largest: Vec<(f64, f64)> = s.rows.iter().map(|r| (r.0, at(r.1))).collect();
+        let median: Vec<(f64, f64)> = s.rows.iter().map(|r| (r.0, at(r.2))).collect();
+        chart
+            .draw_series(LineSeries::new(largest.clone(), c.stroke_width(4)))
+            .map_err(e)?
+            .label(s.label.clone())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x - 5, y), (x + 15, y)], c.stroke_width(4))
+            });
+        chart
+            .draw_series(largest.iter().map(|p| Circle::new(*p, 6, c.filled())))
+            .map_err(e)?;
+        chart
+            .draw_series(DashedLineSeries::new(median, 10, 8, c.stroke_width(3)))
+            .map_err(e)?;
+    }
+    chart
+        .configure_series_labels()
+        .label_font(font(30.0))
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    root.draw(&Text::new(
+        "solid: largest distance; dashed: median",
+        (170, SIZE.1 as i32 - 44),
+        font(30.0),
+    ))
+    .map_err(e)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bentstraw_optics::scene::REFERENCES;
+
+    /// Zero at n = 1 (to rounding), and growing with n, for every reference simulation.
+    #[test]
+    fn the_image_leaves_the_straw_as_the_index_grows() {
+        for r in REFERENCES {
+            let s = series(
+                &format!("simulation {}", r.number),
+                &r.scene(1.333),
+                r.observer,
+            );
+            assert_eq!(s.rows.len(), 8);
+            assert_eq!(s.rows[0].0, 1.0);
+            assert!((s.rows[7].0 - WATER_INDEX).abs() < 1e-15);
+            assert!(
+                s.rows[0].1 < 1e-12,
+                "{}: {:e} at n = 1",
+                r.number,
+                s.rows[0].1
+            );
+            // Any water that bends light moves the image off the straw, far above rounding
+            // (the median need not grow steadily: the mix of light paths changes with n).
+            for row in &s.rows[1..] {
+                assert!(row.1 > 1e-5 && row.2 > 1e-7, "{}: {row:?}", r.number);
+            }
+            assert!(s.rows[7].1 > s.rows[1].1, "{}: {:?}", r.number, s.rows);
+            assert!(
+                s.rows[7].2 > 1e-4,
+                "{}: median {:e} at n = 1.333",
+                r.number,
+                s.rows[7].2
+            );
+        }
+    }
+
+    /// The numbers are the points' own: the statistics of a known set.
+    #[test]
+    fn largest_and_median_of_known_distances() {
+        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        // Points straight out from the side at 0.1, 0.2 and 0.4 m from the surface.
+        let pts: Vec<Vec3> = [0.1, 0.2, 0.4]
+            .iter()
+            .map(|d| Vec3::new(0.005 + d, 0.0, 0.1))
+            .collect();
+        let (max, median) = distance_stats(&scene, &pts);
+        assert!((max - 0.4).abs() < 1e-15 && (median - 0.2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_figure_is_drawn_in_png_and_svg() {
+        let dir = tempfile::tempdir().unwrap();
+        let r = REFERENCES[1];
+        let s = vec![series("simulation 2", &r.scene(1.333), r.observer)];
+        for name in ["v.png", "v.svg"] {
+            let path = dir.path().join(name);
+            write_validation_figure(&path, &s).unwrap();
+            assert!(std::fs::metadata(&path).unwrap().len() > 1000);
+        }
+        let svg = std::fs::read_to_string(dir.path().join("v.svg")).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        assert!(doc
+            .descendants()
+            .any(|n| n.text().is_some_and(|t| t.contains("index of the water"))));
+        if let Ok(look) = std::env::var("BENTSTRAW_LOOK") {
+            std::fs::copy(
+                dir.path().join("v.png"),
+                Path::new(&look).join("validation.png"),
+            )
+            .unwrap();
+        }
+    }
+}
