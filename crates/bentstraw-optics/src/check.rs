@@ -16,9 +16,8 @@
 //! a solution of `N` points) and at most that of a good image of [`GOOD_IMAGE_POINTS`] points (a
 //! sparser solution is judged as if it had that many). So a solution that samples some directions
 //! more sparsely than others is judged at its own density there, and only holes larger than that
-//! count as missing. The true samples
-//! left unreached, grouped by colour, by kind of light path and by adjacency on the sampling grid, are
-//! the missing regions.
+//! count as missing. The true samples left unreached, grouped by colour, by kind of light path and
+//! by adjacency on the sampling grid, are the missing regions.
 
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -38,7 +37,7 @@ use crate::Vec3;
 pub const DEFAULT_TOLERANCE: f64 = 1e-6;
 /// Default share of each colour's image a complete solution must cover.
 pub const DEFAULT_MIN_COVERAGE: f64 = 0.98;
-/// How far a solution point reaches on the direction map, in its own cell widths.
+/// How far a solution point reaches on the direction map, in its own point spacings.
 pub const REACH_CELLS: f64 = 2.0;
 /// True-image samples per solution point: the true image is sampled more densely than the solution.
 pub const TRUE_SAMPLES_PER_POINT: usize = 4;
@@ -79,7 +78,8 @@ pub enum Verdict {
         /// `|P − O| − L` (m): positive when the point is too far away.
         length_error: f64,
     },
-    /// The ray never reaches the straw: it escapes (or the point is the observer itself).
+    /// The ray never reaches the straw: it escapes, is still going after the largest event limit
+    /// allowed, or has no direction (the point is the observer itself).
     NoStraw,
     /// The ray reaches the straw only after more events than the limit allows.
     TooManyEvents {

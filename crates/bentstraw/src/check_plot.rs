@@ -262,10 +262,10 @@ fn marker<DB: DrawingBackend>(
     match kind {
         VerdictKind::WrongColour | VerdictKind::WrongLength => {
             let s = c.stroke_width(2);
-            root.draw(&PathElement::new(vec![(x - 4, y - 4), (x + 4, y + 4)], s))?;
-            root.draw(&PathElement::new(vec![(x - 4, y + 4), (x + 4, y - 4)], s))
+            root.draw(&PathElement::new(vec![(x - 3, y - 3), (x + 3, y + 3)], s))?;
+            root.draw(&PathElement::new(vec![(x - 3, y + 3), (x + 3, y - 3)], s))
         }
-        _ => root.draw(&Circle::new((x, y), 4, c.stroke_width(2))),
+        _ => root.draw(&Circle::new((x, y), 3, c.stroke_width(2))),
     }
 }
 
@@ -357,6 +357,60 @@ fn convex_hull(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plot::tests::decode;
+    use crate::plot::TITLE_BAND;
+    use bentstraw_optics::check::{check_solution, DEFAULT_TOLERANCE};
+    use bentstraw_optics::sampling::sample_image;
+    use bentstraw_optics::scene::REFERENCES;
+
+    /// The figure of reference 2's own points, changed by `change`, as decoded pixels.
+    fn figure(change: impl Fn(usize, &mut ClaimedPoint) -> bool) -> image::RgbImage {
+        let r = &REFERENCES[1];
+        let scene = r.scene(1.333);
+        let cloud = sample_image(&scene, r.observer, 3000, &|_| {});
+        let mut points = Vec::new();
+        for (i, p) in cloud.points.iter().enumerate() {
+            let mut c = ClaimedPoint {
+                position: p.position,
+                color: p.color,
+            };
+            if change(i, &mut c) {
+                points.push(c);
+            }
+        }
+        let report = check_solution(&scene, r.observer, &points, DEFAULT_TOLERANCE, 0.98);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.png");
+        write_check_figure(&path, &scene, r.observer, &points, &report, "t").unwrap();
+        decode(&std::fs::read(path).unwrap())
+    }
+
+    /// Whether colour `c` appears in the panels (not the title or the legend).
+    fn in_panels(img: &image::RgbImage, c: RGBColor) -> bool {
+        let bottom = FIGURE_HEIGHT - LEGEND_BAND as u32;
+        img.enumerate_pixels()
+            .any(|(_, y, p)| y >= TITLE_BAND as u32 && y < bottom && p.0 == [c.0, c.1, c.2])
+    }
+
+    #[test]
+    fn figure_shows_the_true_image_pale_the_points_full_and_wrong_lengths_marked() {
+        let magenta = section_rgb8(3);
+        let full = RGBColor(magenta[0], magenta[1], magenta[2]);
+        // Magenta removed: its true image shows pale, no magenta point in full colour.
+        let img = figure(|_, p| p.color != 3);
+        assert!(in_panels(&img, pale(3)) && !in_panels(&img, full));
+        assert!(!in_panels(&img, kind_rgb(VerdictKind::WrongLength)));
+        // Every 50th point 1 mm too far: marked in the wrong-length colour; magenta back in full.
+        let img = figure(|i, p| {
+            if i % 50 == 0 {
+                let o = REFERENCES[1].observer;
+                p.position += 1e-3 * (p.position - o).normalize();
+            }
+            true
+        });
+        assert!(in_panels(&img, kind_rgb(VerdictKind::WrongLength)));
+        assert!(in_panels(&img, full));
+    }
 
     #[test]
     fn hull_of_a_square_with_inner_points_is_its_corners() {

@@ -396,3 +396,30 @@ fn points_in_millimetres_get_a_hint() {
         "{text}"
     );
 }
+
+#[test]
+fn a_file_saved_with_five_digits_gets_a_hint_about_precision() {
+    // MATLAB's csvwrite keeps five significant digits: rounding alone moves points by micrometres.
+    let dir = tempfile::tempdir().unwrap();
+    let (_, pts) = own_points(2, 3000);
+    let text: String = rows(&pts)
+        .iter()
+        .map(|(x, y, z, c)| format!("{x:.4e},{y:.4e},{z:.4e},{c}\n"))
+        .collect();
+    let file = dir.path().join("short.csv");
+    fs::write(&file, text).unwrap();
+    let (code, v) = check_json(dir.path(), &file, 2, &[]);
+    assert_eq!(code, 1);
+    assert!(v["wrong_length"].as_u64().unwrap() > 0, "{v}");
+    assert_eq!(v["digits"].as_u64(), Some(5));
+    let hints = v["hints"].as_array().unwrap();
+    assert!(
+        hints
+            .iter()
+            .any(|h| h.as_str().unwrap().contains("at most 5 significant digits")),
+        "{hints:?}"
+    );
+    // With a tolerance to match, no length is wrong (a colour may still flip at a section edge).
+    let (_, v) = check_json(dir.path(), &file, 2, &["--tolerance", "3e-5"]);
+    assert_eq!(v["wrong_length"].as_u64(), Some(0), "{v}");
+}

@@ -37,6 +37,28 @@ pub struct Solution {
     pub lines: Vec<usize>,
     /// A note on how the header was read, if there was one.
     pub header: Option<String>,
+    /// Most significant digits written in any coordinate (how precisely the file was saved).
+    pub digits: usize,
+    /// Largest coordinate's magnitude (m).
+    pub largest: f64,
+}
+
+/// Fewest significant digits with which a micrometre tolerance is safe at the scene's size.
+const SAFE_DIGITS: usize = 7;
+
+/// The significant digits written in a number: `0.0012300` has 5, `1.5e2` has 2.
+fn significant_digits(field: &str) -> usize {
+    let mantissa = field.split(['e', 'E']).next().unwrap_or("");
+    let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+    digits.trim_start_matches('0').len()
+}
+
+/// How far rounding to `digits` significant digits can move a coordinate of magnitude `largest`.
+fn rounding_error(digits: usize, largest: f64) -> f64 {
+    if largest <= 0.0 || digits == 0 {
+        return 0.0;
+    }
+    0.5 * 10f64.powf(largest.log10().floor() - digits as f64 + 1.0)
 }
 
 /// Runs `check`; `Ok(true)` for a pass, `Ok(false)` for a fail.
@@ -172,6 +194,10 @@ pub fn parse_solution(bytes: &[u8]) -> Result<Solution, String> {
             })?;
             *slot = x;
         }
+        for &c in &cols[..3] {
+            solution.digits = solution.digits.max(significant_digits(fields[c]));
+        }
+        solution.largest = v[..3].iter().fold(solution.largest, |m, x| m.max(x.abs()));
         for (name, x) in ["x", "y", "z", "color"].iter().zip(v) {
             if !x.is_finite() {
                 return Err(format!(
@@ -313,17 +339,17 @@ fn point_words(p: &ClaimedPoint, v: &Verdict, path: &str) -> String {
     match v {
         Verdict::Correct { .. } => format!("{at}: correct"),
         Verdict::WrongColour { actual } => format!(
-            "{at}: wrong colour, the ray meets {} ({path})",
+            "{at}: wrong colour, the ray meets {}, seen {path}",
             colour_words(*actual)
         ),
         Verdict::WrongLength { length_error } => format!(
-            "{at}: wrong length, {} too {} ({path})",
+            "{at}: wrong length, {} too {}, seen {path}",
             length_words(length_error.abs()),
             if *length_error > 0.0 { "far" } else { "near" }
         ),
         Verdict::NoStraw => format!("{at}: no straw in that direction (the ray escapes)"),
         Verdict::TooManyEvents { events, actual } => format!(
-            "{at}: the ray meets {} only after {events} events ({path})",
+            "{at}: the ray meets {} only after {events} events, seen {path}",
             colour_words(*actual)
         ),
     }
@@ -343,6 +369,22 @@ pub fn region_words(m: &MissingRegion) -> String {
         1e3 * z1,
         m.path
     )
+}
+
+/// The library's hints, and one about the file's precision when points have wrong lengths and the
+/// file was written with too few digits for the tolerance.
+fn all_hints(solution: &Solution, r: &CheckReport) -> Vec<String> {
+    let mut hints: Vec<String> = r.hints.iter().map(|h| h.to_string()).collect();
+    if r.tally.wrong_length > 0 && solution.digits < SAFE_DIGITS {
+        hints.push(format!(
+            "the file's coordinates have at most {} significant digits: rounding alone moves a point \
+             by up to {} m; save with more digits (writematrix, or dlmwrite with 'precision', '%.15g') \
+             or widen --tolerance",
+            solution.digits,
+            number_text(rounding_error(solution.digits, solution.largest))
+        ));
+    }
+    hints
 }
 
 /// The one-screen summary.
@@ -444,7 +486,7 @@ fn summary(
             cov_text
         );
     }
-    for h in &r.hints {
+    for h in all_hints(solution, r) {
         let _ = writeln!(t);
         let _ = writeln!(t, "  hint            {h}");
     }
@@ -628,7 +670,8 @@ fn json_report(
         "per_colour": per_colour,
         "missing": missing,
         "worst": worst,
-        "hints": r.hints.iter().map(|h| h.to_string()).collect::<Vec<_>>(),
+        "hints": all_hints(solution, r),
+        "digits": solution.digits,
         "true_samples": r.truth.points.len(),
         "seconds": seconds,
     })
@@ -671,6 +714,19 @@ mod tests {
         }
         let s = parse("# c\nx y z color\n1 2 3 4\n").unwrap();
         assert_eq!(s.lines, vec![3]);
+    }
+
+    #[test]
+    fn digits_written_are_counted() {
+        assert_eq!(significant_digits("0.0012300"), 5);
+        assert_eq!(significant_digits("-1.5e2"), 2);
+        assert_eq!(significant_digits("1.00000000e-03"), 9);
+        assert_eq!(significant_digits("0.1"), 1);
+        assert_eq!(significant_digits("0"), 0);
+        let s = parse("0.12346 -0.0012 1e-3 1\n0.1 0.2 0.3 2\n").unwrap();
+        assert_eq!((s.digits, s.largest), (5, 0.3));
+        // Five digits at 0.1 m: up to 5e-6 m.
+        assert!((rounding_error(5, 0.3) - 5e-6).abs() < 1e-18);
     }
 
     #[test]
