@@ -36,13 +36,18 @@ pub fn png_bytes(picture: &RgbPicture) -> CliResult<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Writes `path`: what `observer` sees (Fresnel mode with the checker backdrop, camera aimed at
-/// the glass, a moderate field of view framing glass and straw), [`REPORT_SIZE`].
-pub fn write_view_picture(path: &Path, scene: &Scene, observer: Vec3) -> CliResult {
+/// The report's camera at `observer`: [`REPORT_SIZE`], aimed at the glass (not at its box's
+/// centre, which close observers see off-centre), the field of view framing glass and straw.
+fn report_camera(observer: Vec3) -> Camera {
     let (w, h) = REPORT_SIZE;
     let target = framing_target(observer);
     let fov = framing_fov(observer, target, w as f64 / h as f64);
-    let camera = Camera::new(observer, target, w, h, fov);
+    Camera::new(observer, target, w, h, fov)
+}
+
+/// What `camera` sees of `scene` (Fresnel mode, checker backdrop) as PNG bytes, through the
+/// explorer's frame call (picture only).
+fn seen_png(scene: &Scene, camera: Camera) -> CliResult<Vec<u8>> {
     let options = ShadingOptions {
         mode: ShadingMode::Fresnel {
             prune_below: REPORT_PRUNE,
@@ -51,7 +56,19 @@ pub fn write_view_picture(path: &Path, scene: &Scene, observer: Vec3) -> CliResu
         samples: 3,
         outline: true,
     };
-    files::write_bytes(path, &png_bytes(&shaded_picture(scene, &camera, &options))?)
+    let mut frame = Frame::default();
+    let request = FrameRequest {
+        camera,
+        shading: options,
+        min_points: 0,
+    };
+    draw_frame(scene, &request, &mut frame);
+    png_bytes(&frame.picture)
+}
+
+/// Writes `path`: what `observer` sees through the report's camera.
+pub fn write_view_picture(path: &Path, scene: &Scene, observer: Vec3) -> CliResult {
+    files::write_bytes(path, &seen_png(scene, report_camera(observer))?)
 }
 
 /// Writes `<dir>/<stem>_observer.png` (what `observer` sees, Fresnel mode, camera framing the glass) and
@@ -64,33 +81,12 @@ pub fn write_observer_pictures(
     observer: Vec3,
     points: &[ImagePoint],
 ) -> CliResult<(PathBuf, PathBuf)> {
-    let (w, h) = REPORT_SIZE;
-    // Centred on the glass (not on its box's centre, which close observers see off-centre), so
-    // that the straw is as large as the frame allows; both pictures share this camera.
-    let target = framing_target(observer);
-    let fov = framing_fov(observer, target, w as f64 / h as f64);
-    let camera = Camera::new(observer, target, w, h, fov);
+    let camera = report_camera(observer);
     let view = dir.join(format!("{stem}_observer.png"));
     let cloud = dir.join(format!("{stem}_cloud.png"));
     files::check_writable(&view)?;
     files::check_writable(&cloud)?;
-    let options = ShadingOptions {
-        mode: ShadingMode::Fresnel {
-            prune_below: REPORT_PRUNE,
-        },
-        backdrop: Backdrop::Checker,
-        samples: 3,
-        outline: true,
-    };
-    // The explorer's frame call, picture only (the points are the caller's).
-    let mut frame = Frame::default();
-    let request = FrameRequest {
-        camera,
-        shading: options,
-        min_points: 0,
-    };
-    draw_frame(scene, &request, &mut frame);
-    let seen = png_bytes(&frame.picture)?;
+    let seen = seen_png(scene, camera)?;
     let splat = png_bytes(&cloud_picture(
         &camera,
         points,
