@@ -41,6 +41,12 @@ pub struct Frame {
 }
 
 impl Frame {
+    /// A counter of the rows of the picture drawn so far, out of twice its height (see
+    /// [`ShadingBuffers::progress`]).
+    pub fn picture_progress(&self) -> std::sync::Arc<std::sync::atomic::AtomicU64> {
+        self.shading.progress()
+    }
+
     /// Points per kind of light path, sorted by kind (direct first, then by entry face and
     /// number of total reflections).
     pub fn path_counts(&self) -> Vec<(LightPathType, usize)> {
@@ -167,5 +173,38 @@ mod tests {
         draw_frame(&r.scene(WATER_INDEX), &request(r.observer, 0), &mut frame);
         assert!(frame.points.is_empty() && frame.paths.is_empty());
         assert_eq!(frame.picture.pixels.len(), 48 * 36 * 3);
+    }
+}
+
+#[cfg(test)]
+mod progress_tests {
+    use super::*;
+    use crate::camera::Camera;
+    use crate::scene::REFERENCES;
+    use crate::shading::{Backdrop, ShadingMode};
+    use std::sync::atomic::Ordering;
+
+    /// The picture's progress counter ends at twice its height (centres, then edges), every time.
+    #[test]
+    fn the_progress_counter_counts_the_rows() {
+        let r = REFERENCES[1];
+        let scene = r.scene(1.333);
+        let camera = Camera::new(r.observer, crate::scene::SCENE_CENTRE, 64, 48, 1.2);
+        let mut frame = Frame::default();
+        let counter = frame.picture_progress();
+        for samples in [1, 3] {
+            let request = FrameRequest {
+                camera,
+                shading: ShadingOptions {
+                    mode: ShadingMode::Fresnel { prune_below: 1e-4 },
+                    backdrop: Backdrop::Checker,
+                    samples,
+                    outline: true,
+                },
+                min_points: 0,
+            };
+            draw_frame(&scene, &request, &mut frame);
+            assert_eq!(counter.load(Ordering::Relaxed), 2 * 48);
+        }
     }
 }

@@ -20,6 +20,9 @@
 //! faintly by what they reflect. The glass (index 1, invisible) is drawn as an outline: its rim and
 //! base circles and its two silhouette lines, straight projections, the far side fainter.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+
 use rayon::prelude::*;
 
 use crate::camera::Camera;
@@ -419,6 +422,16 @@ pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) 
 pub struct ShadingBuffers {
     centre: Vec<[f64; 3]>,
     display: Vec<[f64; 3]>,
+    /// Rows done of the picture being drawn, out of twice its height (centres, then edges).
+    rows_done: Arc<AtomicU64>,
+}
+
+impl ShadingBuffers {
+    /// A counter of the rows done of the picture being drawn, out of twice its height (the
+    /// pixel centres, then the edges' samples): another thread may read it to show progress.
+    pub fn progress(&self) -> Arc<AtomicU64> {
+        Arc::clone(&self.rows_done)
+    }
 }
 
 /// [`shaded_picture`] into `picture`, reusing its pixels and `buffers` (an interactive view
@@ -434,6 +447,8 @@ pub fn shaded_picture_into(
     let surroundings = Surroundings::new(options.backdrop, camera.eye);
     let light = light_direction(&surroundings);
     let n = options.samples.max(1) as usize;
+    let rows_done = &*buffers.rows_done;
+    rows_done.store(0, Ordering::Relaxed);
     let centre = &mut buffers.centre;
     centre.resize(w * h, [0.0; 3]);
     // Pixel centres: the single-precision packet tracer, eight rays at a time (most of a
@@ -492,6 +507,7 @@ pub fn shaded_picture_into(
             for px in row.iter_mut() {
                 *px = px.map(linear_to_srgb_fast);
             }
+            rows_done.fetch_add(1, Ordering::Relaxed);
         });
     let centre = &buffers.centre;
     let display = &mut buffers.display;
@@ -535,6 +551,7 @@ pub fn shaded_picture_into(
                     }
                 }
                 if edges.is_empty() {
+                    rows_done.fetch_add(1, Ordering::Relaxed);
                     return;
                 }
                 acc.clear();
@@ -559,9 +576,11 @@ pub fn shaded_picture_into(
                 for (&j, sum) in edges.iter().zip(acc.iter()) {
                     row[j] = sum.map(|c| linear_to_srgb_fast(c * inv));
                 }
+                rows_done.fetch_add(1, Ordering::Relaxed);
             },
         );
     }
+    rows_done.store(2 * h as u64, Ordering::Relaxed);
     if options.outline {
         draw_glass_outline(display, camera);
     }

@@ -136,16 +136,33 @@ pub fn run(args: &RenderArgs) -> CliResult {
         outline: true,
     };
     // The explorer's frame call, picture only: the command line draws as fast as the live view.
-    let picture = progress::with_progress(None, "{spinner} rendering  [{elapsed}]", |_| {
-        let mut frame = Frame::default();
-        let request = FrameRequest {
-            camera,
-            shading: options,
-            min_points: 0,
-        };
-        draw_frame(&scene, &request, &mut frame);
-        frame.picture
-    });
+    // The frame call, with a bar (after a second) whose estimate follows the rows drawn.
+    let mut frame = Frame::default();
+    let rows = frame.picture_progress();
+    let total = 2 * camera.height as u64;
+    let picture = progress::with_progress(
+        Some(total),
+        "rendering {bar:30} {percent}%  [{elapsed}, about {eta} left]",
+        |bar| {
+            let done = std::sync::atomic::AtomicBool::new(false);
+            std::thread::scope(|s| {
+                s.spawn(|| {
+                    while !done.load(std::sync::atomic::Ordering::Relaxed) {
+                        bar.set_position(rows.load(std::sync::atomic::Ordering::Relaxed));
+                        std::thread::sleep(std::time::Duration::from_millis(100));
+                    }
+                });
+                let request = FrameRequest {
+                    camera,
+                    shading: options,
+                    min_points: 0,
+                };
+                draw_frame(&scene, &request, &mut frame);
+                done.store(true, std::sync::atomic::Ordering::Relaxed);
+            });
+            std::mem::take(&mut frame.picture)
+        },
+    );
     let png = png_bytes(&picture)?;
     files::write_bytes(&args.output, &png)?;
     if let Some(raw) = &args.raw {
