@@ -8,8 +8,10 @@ const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff"];
 const SECTION_NAMES = ["red", "orange", "magenta", "green", "blue"];
 // Colours of the kinds of light path, in the server's order of kinds (direct, top, wall, bottom…).
 const PATH_COLORS = ["#222222", "#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
-// Quick frames (while dragging) have this many times fewer pixels along each side.
+// Quick frames (while dragging) have this many times fewer pixels along each side, and this many
+// times fewer image points (the full frame, when the input stops, has them all).
 const QUICK = 2.5;
+const QUICK_POINTS = 4;
 // The centre the eye orbits round: the middle of the glass.
 const ORBIT = [0, 0, 0.1];
 
@@ -175,7 +177,9 @@ function requestFrame(quick) {
 async function sendFrame(quick) {
   const [w, h] = pictureSize();
   const size = quick ? [Math.max(40, Math.round(w / QUICK)), Math.max(30, Math.round(h / QUICK))] : [w, h];
-  const query = viewQuery(state, { size: `${size[0]}x${size[1]}`, samples: quick ? 1 : 3 });
+  const extra = { size: `${size[0]}x${size[1]}`, samples: quick ? 1 : 3 };
+  if (quick) extra.points = Math.max(1000, Math.round(state.points / QUICK_POINTS));
+  const query = viewQuery(state, extra);
   // This request is the first to show the inputs since `since`: its paint ends their wait.
   const since = inputSince;
   inputSince = null;
