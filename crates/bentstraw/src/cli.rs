@@ -251,6 +251,10 @@ pub struct BenchArgs {
     /// Mode of a single view (default: both)
     #[arg(long, value_enum)]
     pub mode: Option<ModeArg>,
+    /// Time the pictures as render and the explorer draw them (shaded, checkerboard backdrop,
+    /// 3x3 samples at edges, through the frame call) instead of one ray per pixel centre
+    #[arg(long)]
+    pub frame: bool,
 }
 
 /// Arguments of `check`.

@@ -140,3 +140,53 @@ fn bench_times_one_given_view() {
     );
     assert!(lines[2].starts_with("average:"), "{text}");
 }
+
+/// `--frame` times the pictures as `render` draws them: slower than one ray per pixel (shading,
+/// the backdrop and the edges' samples come on top), for both modes.
+#[test]
+fn frame_times_the_shaded_pictures() {
+    let args = |frame: bool| {
+        let mut a = vec![
+            "--json",
+            "--size",
+            "96x72",
+            "--repeat",
+            "3",
+            "--threads",
+            "1",
+            "--observer",
+            "0.1,0,0.1",
+            "--straw",
+            "0.02,0.01",
+            "--water-height",
+            "0.15",
+        ];
+        if frame {
+            a.push("--frame");
+        }
+        let out = bench(&a);
+        assert_eq!(out.status.code(), Some(0));
+        let text = String::from_utf8(out.stdout).unwrap();
+        text.lines()
+            .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+            .filter(|v| v["simulation"].is_null())
+            .map(|v| {
+                (
+                    v["mode"].as_str().unwrap().to_string(),
+                    v["seconds"].as_f64().unwrap(),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let rays = args(false);
+    let frames = args(true);
+    assert_eq!(rays.len(), 2);
+    assert_eq!(frames.len(), 2);
+    for ((m1, t_rays), (m2, t_frame)) in rays.iter().zip(&frames) {
+        assert_eq!(m1, m2);
+        assert!(
+            t_frame > t_rays,
+            "{m1}: frame {t_frame} s vs rays {t_rays} s"
+        );
+    }
+}

@@ -7,9 +7,11 @@
 use std::time::Instant;
 
 use bentstraw_optics::camera::Camera;
+use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
 use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE};
+use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
 use bentstraw_optics::Vec3;
 
 use crate::cli::{BenchArgs, ModeArg, SceneArgs};
@@ -109,7 +111,13 @@ pub fn run(args: &BenchArgs) -> CliResult {
     for view in &views {
         for &mode in &modes {
             for (&n, pool) in counts.iter().zip(&pools) {
-                let seconds = pool.install(|| time_picture(view, mode, args.repeat));
+                let seconds = pool.install(|| {
+                    if args.frame {
+                        time_frame(view, mode, args.repeat)
+                    } else {
+                        time_picture(view, mode, args.repeat)
+                    }
+                });
                 let m = Measure {
                     simulation: view.simulation,
                     mode,
@@ -216,7 +224,41 @@ fn time_picture(view: &View, mode: ModeArg, repeat: usize) -> f64 {
         start.elapsed().as_secs_f64()
     };
     once();
-    let mut times: Vec<f64> = (0..repeat).map(|_| once()).collect();
+    median((0..repeat).map(|_| once()).collect())
+}
+
+/// Median time (s) of `repeat` frames of `view` in `mode` as `render` draws them (the frame call,
+/// picture only: shaded, checkerboard backdrop, 3x3 samples at edges), after one warm-up, into
+/// one frame reused from run to run as the explorer does.
+fn time_frame(view: &View, mode: ModeArg, repeat: usize) -> f64 {
+    let request = FrameRequest {
+        camera: view.camera,
+        shading: ShadingOptions {
+            mode: match mode {
+                ModeArg::Course => ShadingMode::Course,
+                ModeArg::Fresnel => ShadingMode::Fresnel {
+                    prune_below: BENCH_PRUNE,
+                },
+            },
+            backdrop: Backdrop::Checker,
+            samples: 3,
+            outline: true,
+        },
+        min_points: 0,
+    };
+    let mut frame = Frame::default();
+    let mut once = || -> f64 {
+        let start = Instant::now();
+        draw_frame(&view.scene, &request, &mut frame);
+        std::hint::black_box(&frame.picture);
+        start.elapsed().as_secs_f64()
+    };
+    once();
+    median((0..repeat).map(|_| once()).collect())
+}
+
+/// The median of `times`.
+fn median(mut times: Vec<f64>) -> f64 {
     times.sort_by(f64::total_cmp);
     let mid = times.len() / 2;
     if times.len() % 2 == 1 {
