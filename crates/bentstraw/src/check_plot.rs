@@ -13,8 +13,8 @@ use crate::error::{CliError, CliResult};
 use crate::files;
 use crate::plot::{
     axis_box, dashed, draw_axis_labels, draw_observer, draw_panes, draw_straw_outline, draw_water,
-    encode_png, figure_views, font, layout, register_font, section_rgb8, text_width, AreaOn,
-    DrawResultOn, Panel, FIGURE_HEIGHT, FIGURE_WIDTH, LEGEND_BAND,
+    figure_bytes, figure_views, font, layout, section_rgb8, text_width, AreaOn, DrawResultOn,
+    Panel, FIGURE_HEIGHT, FIGURE_WIDTH, LEGEND_BAND,
 };
 
 /// The figure's file format, by extension.
@@ -81,32 +81,20 @@ pub fn write_check_figure(
     title: &str,
 ) -> CliResult {
     let format = PlotFormat::from_path(path)?;
-    register_font();
-    let (w, h) = (FIGURE_WIDTH, FIGURE_HEIGHT);
-    let err = |e: String| CliError(format!("cannot draw {}: {e}", path.display()));
-    let bytes = match format {
-        PlotFormat::Png => {
-            let mut buf = vec![255u8; (w * h * 3) as usize];
-            {
-                let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-                draw_check(&root, scene, observer, points, report, title, MAX_DRAWN_PNG)
-                    .map_err(|e| err(e.to_string()))?;
-                root.present().map_err(|e| err(e.to_string()))?;
-            }
-            encode_png(&buf, w, h).map_err(err)?
-        }
-        PlotFormat::Svg => {
-            let mut svg = String::new();
-            {
-                let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
-                root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-                draw_check(&root, scene, observer, points, report, title, MAX_DRAWN_SVG)
-                    .map_err(|e| err(e.to_string()))?;
-                root.present().map_err(|e| err(e.to_string()))?;
-            }
-            svg.into_bytes()
-        }
-    };
+    let bytes = figure_bytes(
+        path,
+        format == PlotFormat::Svg,
+        (FIGURE_WIDTH, FIGURE_HEIGHT),
+        |root| {
+            draw_check(root, scene, observer, points, report, title, MAX_DRAWN_PNG)
+                .map_err(|x| x.to_string())
+        },
+        |root| {
+            root.fill(&WHITE).map_err(|x| x.to_string())?;
+            draw_check(root, scene, observer, points, report, title, MAX_DRAWN_SVG)
+                .map_err(|x| x.to_string())
+        },
+    )?;
     files::write_bytes(path, &bytes)
 }
 

@@ -542,6 +542,42 @@ fn render_cloud_figure(
     encode_png(&buf, w, h)
 }
 
+/// Whether `path` names an SVG file (by its extension); figures are PNG otherwise.
+pub(crate) fn is_svg(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
+}
+
+/// A figure of `size` pixels as the bytes of its file, SVG or PNG: the one drawing code, generic
+/// over the backend, is passed twice (`png` and `svg` call it on each backend); errors name `path`.
+pub(crate) fn figure_bytes(
+    path: &Path,
+    svg: bool,
+    size: (u32, u32),
+    png_draw: impl FnOnce(&DrawingArea<BitMapBackend, plotters::coord::Shift>) -> Result<(), String>,
+    svg_draw: impl FnOnce(&DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), String>,
+) -> CliResult<Vec<u8>> {
+    register_font();
+    let fail = |e: String| CliError(format!("cannot draw {}: {e}", files::shown(path)));
+    if svg {
+        let mut text = String::new();
+        {
+            let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
+            svg_draw(&root).map_err(fail)?;
+            root.present().map_err(|e| fail(e.to_string()))?;
+        }
+        Ok(text.into_bytes())
+    } else {
+        let mut buf = vec![255u8; (size.0 * size.1 * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut buf, size).into_drawing_area();
+            png_draw(&root).map_err(fail)?;
+            root.present().map_err(|e| fail(e.to_string()))?;
+        }
+        encode_png(&buf, size.0, size.1).map_err(fail)
+    }
+}
+
 /// An RGB pixel buffer of `w` × `h` as PNG bytes.
 pub(crate) fn encode_png(buf: &[u8], w: u32, h: u32) -> Result<Vec<u8>, String> {
     let mut png = Vec::new();

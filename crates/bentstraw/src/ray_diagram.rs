@@ -19,9 +19,9 @@ use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::error::{CliError, CliResult};
+use crate::error::CliResult;
 use crate::files;
-use crate::plot::{encode_png, font, register_font};
+use crate::plot::{figure_bytes, font, is_svg};
 
 /// Width of the diagram (px).
 pub const DIAGRAM_WIDTH: u32 = 1000;
@@ -84,29 +84,13 @@ pub fn write_ray_diagram(path: &Path, scene: &Scene, diagram: &Diagram, title: &
 
 /// The diagram as the bytes of a PNG or SVG file, by `path`'s extension.
 pub fn render(path: &Path, scene: &Scene, diagram: &Diagram, title: &str) -> CliResult<Vec<u8>> {
-    register_font();
-    let size = (DIAGRAM_WIDTH, DIAGRAM_HEIGHT);
-    let fail = |e: String| CliError(format!("cannot draw {}: {e}", path.display()));
-    let svg = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
-    if svg {
-        let mut text = String::new();
-        {
-            let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-            draw(&root, scene, diagram, title).map_err(fail)?;
-            root.present().map_err(|e| fail(e.to_string()))?;
-        }
-        Ok(text.into_bytes())
-    } else {
-        let mut buf = vec![255u8; (size.0 * size.1 * 3) as usize];
-        {
-            let root = BitMapBackend::with_buffer(&mut buf, size).into_drawing_area();
-            draw(&root, scene, diagram, title).map_err(fail)?;
-            root.present().map_err(|e| fail(e.to_string()))?;
-        }
-        encode_png(&buf, size.0, size.1).map_err(fail)
-    }
+    figure_bytes(
+        path,
+        is_svg(path),
+        (DIAGRAM_WIDTH, DIAGRAM_HEIGHT),
+        |root| draw(root, scene, diagram, title),
+        |root| draw(root, scene, diagram, title),
+    )
 }
 
 /// The horizontal unit vector from the glass's axis towards the observer (the side view's axis).

@@ -13,9 +13,9 @@ use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::error::{CliError, CliResult};
+use crate::error::CliResult;
 use crate::files;
-use crate::plot::{encode_png, font, register_font};
+use crate::plot::{figure_bytes, font, is_svg};
 
 /// Indices of the water the figure is made for: 8 values from 1 to 1.333.
 pub fn indices() -> Vec<f64> {
@@ -93,28 +93,13 @@ const FLOOR: f64 = 1e-18;
 
 /// Writes the figure to `path` (PNG or SVG by its extension).
 pub fn write_validation_figure(path: &Path, series: &[ValidationSeries]) -> CliResult {
-    register_font();
-    let fail = |e: String| CliError(format!("cannot draw {}: {e}", files::shown(path)));
-    let svg = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
-    let bytes = if svg {
-        let mut text = String::new();
-        {
-            let root = SVGBackend::with_string(&mut text, SIZE).into_drawing_area();
-            draw(&root, series).map_err(fail)?;
-            root.present().map_err(|e| fail(e.to_string()))?;
-        }
-        text.into_bytes()
-    } else {
-        let mut buf = vec![255u8; (SIZE.0 * SIZE.1 * 3) as usize];
-        {
-            let root = BitMapBackend::with_buffer(&mut buf, SIZE).into_drawing_area();
-            draw(&root, series).map_err(fail)?;
-            root.present().map_err(|e| fail(e.to_string()))?;
-        }
-        encode_png(&buf, SIZE.0, SIZE.1).map_err(fail)?
-    };
+    let bytes = figure_bytes(
+        path,
+        is_svg(path),
+        SIZE,
+        |root| draw(root, series),
+        |root| draw(root, series),
+    )?;
     files::write_bytes(path, &bytes)
 }
 
