@@ -47,6 +47,13 @@ impl Frame {
         self.shading.progress()
     }
 
+    /// A flag another thread may set to abandon the frame being drawn (its input has moved on):
+    /// the picture's remaining rows are skipped, so a frame drawn while it was set is incomplete
+    /// and must be thrown away. Drawing does not clear it (see [`ShadingBuffers::stop_flag`]).
+    pub fn stop_flag(&self) -> std::sync::Arc<std::sync::atomic::AtomicBool> {
+        self.shading.stop_flag()
+    }
+
     /// Points per kind of light path, sorted by kind (direct first, then by entry face and
     /// number of total reflections).
     pub fn path_counts(&self) -> Vec<(LightPathType, usize)> {
@@ -163,6 +170,37 @@ mod tests {
             .iter()
             .any(|(k, _)| k.entry == Entry::Top && k.total_reflections == 0));
         assert!(counts.iter().any(|(k, _)| k.total_reflections > 0));
+    }
+
+    /// A frame whose stop flag is set draws no row of its picture (the live view abandons it);
+    /// once cleared, the same buffers draw the whole picture again.
+    #[test]
+    fn a_stopped_frame_skips_its_picture() {
+        let r = REFERENCES[1];
+        let scene = r.scene(WATER_INDEX);
+        let mut frame = Frame::default();
+        frame
+            .stop_flag()
+            .store(true, std::sync::atomic::Ordering::Relaxed);
+        draw_frame(&scene, &request(r.observer, 0), &mut frame);
+        let black = |f: &Frame| {
+            f.picture
+                .pixels
+                .chunks(3)
+                .filter(|c| c == &[0, 0, 0])
+                .count()
+        };
+        // Only the glass outline's ink is drawn over the untouched rows.
+        assert!(
+            black(&frame) > 48 * 36 / 2,
+            "{} black pixels",
+            black(&frame)
+        );
+        frame
+            .stop_flag()
+            .store(false, std::sync::atomic::Ordering::Relaxed);
+        draw_frame(&scene, &request(r.observer, 0), &mut frame);
+        assert_eq!(black(&frame), 0);
     }
 
     /// No points asked: none given, and the picture is still drawn.

@@ -20,7 +20,7 @@
 //! faintly by what they reflect. The glass (index 1, invisible) is drawn as an outline: its rim and
 //! base circles and its two silhouette lines, straight projections, the far side fainter.
 
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 
 use rayon::prelude::*;
@@ -172,6 +172,17 @@ fn mix(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
     ]
 }
 
+/// Square of the distance (m) over which the checkerboards' contrast halves.
+const FADE2: f64 = 0.6 * 0.6;
+
+/// `x.floor()` as an integer, inline (`f64::floor` is a call into libm on the baseline target);
+/// `x` is a plane coordinate in squares, far inside `i64`.
+#[inline]
+fn floor(x: f64) -> i64 {
+    let t = x as i64;
+    t - i64::from(x < t as f64)
+}
+
 /// The wall, floor and sky around the scene, placed for one observer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surroundings {
@@ -215,7 +226,7 @@ impl Checker {
     /// shrinks by `fade` (far squares would only alias).
     #[inline]
     fn at(&self, a: f64, b: f64, fade: f64) -> [f64; 3] {
-        let parity = ((a / CHECKER_SIDE).floor() as i64 + (b / CHECKER_SIDE).floor() as i64) & 1;
+        let parity = (floor(a / CHECKER_SIDE) + floor(b / CHECKER_SIDE)) & 1;
         let square = if parity == 0 { self.light } else { self.dark };
         mix(self.average, square, fade)
     }
@@ -263,34 +274,39 @@ impl Surroundings {
             let [down, up] = self.plain;
             return [down + (up - down) * (0.5 + 0.5 * d.z); 3];
         }
+        // The nearer of the floor and the wall is found first; only its colour is worked out.
         let mut best = f64::INFINITY;
-        let mut colour = None;
+        let mut on_floor = false;
         // A ray leaving the water's bottom starts on z = 0 to rounding (a hair below it in single
         // precision): it still meets the floor there.
         if self.floor && d.z < 0.0 && o.z >= -FLOOR_TOLERANCE {
             let t = (-o.z / d.z).max(0.0);
-            let p = o + t * d;
             // The floor ends at the wall.
-            if p.dot(self.toward_eye) >= -WALL_DISTANCE {
+            if (o + t * d).dot(self.toward_eye) >= -WALL_DISTANCE {
                 best = t;
-                let fade = 1.0 / (1.0 + (p.truncate().length() / 0.6).powi(2));
-                colour = Some(self.floor_squares.at(p.x, p.y, fade));
+                on_floor = true;
             }
         }
         let s = d.dot(self.toward_eye);
         if s < 0.0 {
             let t = (-WALL_DISTANCE - o.dot(self.toward_eye)) / s;
             if t >= 0.0 && t < best {
-                let p = o + t * d;
+                let z = o.z + t * d.z;
                 let bottom = if self.floor { 0.0 } else { -WALL_TOP };
-                if p.z >= bottom && p.z <= WALL_TOP {
-                    let u = p.dot(self.along_wall);
-                    let fade = 1.0 / (1.0 + (u / 0.6).powi(2));
-                    colour = Some(self.wall_squares.at(u, p.z, fade));
+                if z >= bottom && z <= WALL_TOP {
+                    let u = (o + t * d).dot(self.along_wall);
+                    // Fading as 1 / (1 + (u / 0.6)²), written with one division.
+                    let fade = FADE2 / (FADE2 + u * u);
+                    return self.wall_squares.at(u, z, fade);
                 }
             }
         }
-        colour.unwrap_or_else(|| mix(self.sky[0], self.sky[1], d.z.max(0.0)))
+        if on_floor {
+            let p = o + best * d;
+            let fade = FADE2 / (FADE2 + p.x * p.x + p.y * p.y);
+            return self.floor_squares.at(p.x, p.y, fade);
+        }
+        mix(self.sky[0], self.sky[1], d.z.max(0.0))
     }
 }
 
@@ -422,8 +438,12 @@ pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) 
 pub struct ShadingBuffers {
     centre: Vec<[f64; 3]>,
     display: Vec<[f64; 3]>,
+    /// The glass outline's coverage per pixel.
+    mask: Vec<f64>,
     /// Rows done of the picture being drawn, out of twice its height (centres, then edges).
     rows_done: Arc<AtomicU64>,
+    /// Set by another thread to abandon the picture being drawn.
+    stop: Arc<AtomicBool>,
 }
 
 impl ShadingBuffers {
@@ -431,6 +451,13 @@ impl ShadingBuffers {
     /// pixel centres, then the edges' samples): another thread may read it to show progress.
     pub fn progress(&self) -> Arc<AtomicU64> {
         Arc::clone(&self.rows_done)
+    }
+
+    /// A flag another thread may set to abandon the picture being drawn (a live view whose input
+    /// has moved on): the rows not yet started are left as they were, so a picture drawn while it
+    /// was set must be thrown away. Drawing does not clear it.
+    pub fn stop_flag(&self) -> Arc<AtomicBool> {
+        Arc::clone(&self.stop)
     }
 }
 
@@ -449,6 +476,8 @@ pub fn shaded_picture_into(
     let n = options.samples.max(1) as usize;
     let rows_done = &*buffers.rows_done;
     rows_done.store(0, Ordering::Relaxed);
+    let stop = &*buffers.stop;
+    let stopped = || stop.load(Ordering::Relaxed);
     let centre = &mut buffers.centre;
     centre.resize(w * h, [0.0; 3]);
     // Pixel centres: the single-precision packet tracer, eight rays at a time (most of a
@@ -494,6 +523,9 @@ pub fn shaded_picture_into(
         .par_chunks_mut(w)
         .enumerate()
         .for_each_init(FresnelWave::default, |wave, (i, row)| {
+            if stopped() {
+                return;
+            }
             row.fill([0.0; 3]);
             let mut on_end = |j: usize, end: BranchEnd| {
                 if let Some((colour, weight)) = shade_end(end) {
@@ -534,6 +566,9 @@ pub fn shaded_picture_into(
         display.par_chunks_mut(w).enumerate().for_each_init(
             || (FresnelWave::default(), Vec::new(), Vec::new(), Vec::new()),
             |(wave, edges, dirs, acc), (i, row)| {
+                if stopped() {
+                    return;
+                }
                 edges.clear();
                 dirs.clear();
                 for j in 0..w {
@@ -582,7 +617,7 @@ pub fn shaded_picture_into(
     }
     rows_done.store(2 * h as u64, Ordering::Relaxed);
     if options.outline {
-        draw_glass_outline(display, camera);
+        draw_glass_outline(display, &mut buffers.mask, camera);
     }
     encode_into(camera, display, picture);
 }
@@ -621,7 +656,7 @@ pub fn cloud_picture(camera: &Camera, points: &[ImagePoint], radius: f64) -> Rgb
             }
         }
     }
-    draw_glass_outline(&mut display, camera);
+    draw_glass_outline(&mut display, &mut Vec::new(), camera);
     encode(camera, &display)
 }
 
@@ -634,27 +669,30 @@ fn encode(camera: &Camera, display: &[[f64; 3]]) -> RgbPicture {
 fn encode_into(camera: &Camera, display: &[[f64; 3]], picture: &mut RgbPicture) {
     picture.width = camera.width;
     picture.height = camera.height;
-    picture.pixels.clear();
-    picture.pixels.reserve(display.len() * 3);
-    for px in display {
-        for c in px {
-            picture
-                .pixels
-                .push((c.clamp(0.0, 1.0) * 255.0).round() as u8);
-        }
-    }
+    picture.pixels.resize(display.len() * 3, 0);
+    // `x + 0.5` truncated is `x.round()` for x ≥ 0, without a call into libm per channel.
+    picture
+        .pixels
+        .par_chunks_mut(3 * 4096)
+        .zip(display.par_chunks(4096))
+        .for_each(|(out, px)| {
+            for (o, c) in out.iter_mut().zip(px.iter().flatten()) {
+                *o = (c.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+            }
+        });
 }
 
 /// Draws the glass's outline over `display` (sRGB values): rim and base circles (the part on the
 /// observer's side stronger, the far side fainter; a circle seen from its open side wholly strong)
 /// and the two vertical silhouette lines.
-fn draw_glass_outline(display: &mut [[f64; 3]], camera: &Camera) {
+fn draw_glass_outline(display: &mut [[f64; 3]], mask: &mut Vec<f64>, camera: &Camera) {
     const STRONG: f64 = 0.75;
     const FAINT: f64 = 0.3;
     const STEPS: usize = 720;
     let (w, h) = (camera.width as usize, camera.height as usize);
     let width = (camera.height as f64 / 400.0).clamp(1.0, 4.0);
-    let mut mask = vec![0.0f64; w * h];
+    mask.clear();
+    mask.resize(w * h, 0.0);
     let eye = camera.eye;
     let eye_r = (eye.x * eye.x + eye.y * eye.y).sqrt();
     let circle = |a: f64, z: f64| Vec3::new(GLASS_RADIUS * a.cos(), GLASS_RADIUS * a.sin(), z);
@@ -669,14 +707,7 @@ fn draw_glass_outline(display: &mut [[f64; 3]], camera: &Camera) {
             } else {
                 FAINT
             };
-            stroke(
-                &mut mask,
-                camera,
-                circle(a0, z),
-                circle(a1, z),
-                width,
-                alpha,
-            );
+            stroke(mask, camera, circle(a0, z), circle(a1, z), width, alpha);
         }
     }
     if eye_r > GLASS_RADIUS {
@@ -684,7 +715,7 @@ fn draw_glass_outline(display: &mut [[f64; 3]], camera: &Camera) {
         let half = (GLASS_RADIUS / eye_r).acos();
         for a in [towards - half, towards + half] {
             stroke(
-                &mut mask,
+                mask,
                 camera,
                 circle(a, 0.0),
                 circle(a, GLASS_HEIGHT),
@@ -694,7 +725,7 @@ fn draw_glass_outline(display: &mut [[f64; 3]], camera: &Camera) {
         }
     }
     let ink = [0.16, 0.18, 0.24];
-    for (px, m) in display.iter_mut().zip(mask) {
+    for (px, &m) in display.iter_mut().zip(mask.iter()) {
         if m > 0.0 {
             *px = mix(*px, ink, m);
         }
