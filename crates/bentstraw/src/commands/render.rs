@@ -146,10 +146,11 @@ pub fn run(args: &RenderArgs) -> CliResult {
         |bar| {
             let done = std::sync::atomic::AtomicBool::new(false);
             std::thread::scope(|s| {
-                s.spawn(|| {
+                let watcher = s.spawn(|| {
                     while !done.load(std::sync::atomic::Ordering::Relaxed) {
                         bar.set_position(rows.load(std::sync::atomic::Ordering::Relaxed));
-                        std::thread::sleep(std::time::Duration::from_millis(100));
+                        // Woken at once when the picture is done (a sleep would add its rest).
+                        std::thread::park_timeout(std::time::Duration::from_millis(100));
                     }
                 });
                 let request = FrameRequest {
@@ -159,6 +160,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
                 };
                 draw_frame(&scene, &request, &mut frame);
                 done.store(true, std::sync::atomic::Ordering::Relaxed);
+                watcher.thread().unpark();
             });
             std::mem::take(&mut frame.picture)
         },
