@@ -5,6 +5,7 @@
 //! physics is the library's: this module only turns numbers into bytes.
 
 use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
 
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, Focus};
 use bentstraw_optics::camera::Camera;
@@ -337,6 +338,10 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
     let started = std::time::Instant::now();
     draw_frame(&view.scene, &request, frame);
     let ms = started.elapsed().as_secs_f64() * 1e3;
+    *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) = Some((
+        view.simulate_command("course"),
+        Arc::new(frame.points.clone()),
+    ));
     let counts = frame.path_counts();
     let kinds: Vec<LightPathType> = counts.iter().map(|c| c.0).collect();
     let mut per_color = [0usize; 5];
@@ -382,16 +387,39 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
     Reply::bytes("application/octet-stream", body)
 }
 
-/// `GET /api/model?model=eye|stereo`: the model's points as `u32` count, `3n` `f32`, `n` colours
-/// (the points the model places; the others are left out).
-pub fn model_reply(view: &View, model: &str) -> Reply {
+/// The course points of the last frame drawn, with the `simulate` command that gives them: a
+/// model asked for the view just drawn starts from them instead of tracing them again.
+static LAST_POINTS: Mutex<Option<(String, Arc<Vec<ImagePoint>>)>> = Mutex::new(None);
+
+/// Most points skipped between two a model places (`every`).
+pub const MAX_EVERY: usize = 64;
+
+/// The course image points of `view`: the last frame's when it was this view's.
+fn course_points(view: &View) -> Arc<Vec<ImagePoint>> {
+    let key = view.simulate_command("course");
+    let last = LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((k, points)) = last.as_ref() {
+        if *k == key {
+            return Arc::clone(points);
+        }
+    }
+    drop(last);
     let cloud = sample_image(&view.scene, view.observer, view.points.max(1), &|_| {});
+    Arc::new(cloud.points)
+}
+
+/// `GET /api/model?model=eye|stereo[&every=K]`: the model's points as `u32` count, `3n` `f32`, `n`
+/// colours (the points the model places; the others are left out). With `every=K`, only every
+/// K-th course point is placed: a quick first answer the page refines.
+pub fn model_reply(view: &View, model: &str, every: usize) -> Reply {
+    let all = course_points(view);
+    let points: Vec<ImagePoint> = all.iter().step_by(every.max(1)).copied().collect();
     let placed: Vec<(Vec3, u8)> = match model {
-        "eye" => eye_model_points(&view.scene, view.observer, &cloud.points)
+        "eye" => eye_model_points(&view.scene, view.observer, &points)
             .iter()
             .filter_map(|p| Some((p.position?, p.image.color)))
             .collect(),
-        "stereo" => stereo_points(&view.scene, view.observer, &cloud.points)
+        "stereo" => stereo_points(&view.scene, view.observer, &points)
             .points
             .iter()
             .filter_map(|p| Some((p.position?, p.image.color)))
@@ -600,7 +628,15 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
     };
     let result = match path {
         "/api/frame" => Ok(frame_reply(&view, frame)),
-        "/api/model" => Ok(model_reply(&view, get(&q, "model").unwrap_or("eye"))),
+        "/api/model" => match get(&q, "every").map_or(Ok(1), |t| number::<usize>(t, "every")) {
+            Ok(k) if (1..=MAX_EVERY).contains(&k) => {
+                Ok(model_reply(&view, get(&q, "model").unwrap_or("eye"), k))
+            }
+            Ok(k) => Err(format!(
+                "every={k} is not allowed: a model places every K-th point, 1 <= K <= {MAX_EVERY}"
+            )),
+            Err(e) => Err(e),
+        },
         "/api/ray" => ray_reply(&view, &q),
         "/api/export" => export_reply(&view, &q),
         _ => return Reply::text(404, format!("no such route: {}", clip_text(path, 60))),
@@ -662,6 +698,58 @@ mod tests {
     }
 
     /// The frame's binary layout: header, RGBA picture, points; the points are `simulate`'s.
+    /// The model's answer places the points of the course cloud `simulate` computes (from the last
+    /// frame or traced afresh), every K-th of them when asked.
+    #[test]
+    fn models_place_every_kth_course_point() {
+        let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=800"))).unwrap();
+        let cloud = sample_image(&view.scene, view.observer, 800, &|_| {}).points;
+        let decode = |r: Reply| -> Vec<[f32; 3]> {
+            assert_eq!(r.status, 200);
+            let n = u32::from_le_bytes(r.body[0..4].try_into().unwrap()) as usize;
+            assert_eq!(r.body.len(), 4 + 13 * n);
+            (0..n)
+                .map(|i| {
+                    let f = |k: usize| {
+                        let at = 4 + 12 * i + 4 * k;
+                        f32::from_le_bytes(r.body[at..at + 4].try_into().unwrap())
+                    };
+                    [f(0), f(1), f(2)]
+                })
+                .collect()
+        };
+        let expect = |every: usize| -> Vec<[f32; 3]> {
+            let some: Vec<ImagePoint> = cloud.iter().step_by(every).copied().collect();
+            eye_model_points(&view.scene, view.observer, &some)
+                .iter()
+                .filter_map(|p| p.position)
+                .map(|q| [q.x as f32, q.y as f32, q.z as f32])
+                .collect()
+        };
+        // Before any frame (traced afresh) and after this view's frame (its points reused).
+        for with_frame in [false, true] {
+            if with_frame {
+                frame_reply(&view, &mut Frame::default());
+            }
+            for every in [1, 4] {
+                let got = decode(model_reply(&view, "eye", every));
+                assert!(got.len() > 800 / every / 2);
+                assert_eq!(
+                    got,
+                    expect(every),
+                    "every {every}, after a frame: {with_frame}"
+                );
+            }
+        }
+        let bad = handle(
+            "/api/model",
+            &format!("{REF2}&model=eye&every=0"),
+            &mut Frame::default(),
+        );
+        assert_eq!(bad.status, 400);
+        assert!(String::from_utf8_lossy(&bad.body).contains("1 <= K <= 64"));
+    }
+
     #[test]
     fn frame_reply_layout_and_points() {
         let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=1500"))).unwrap();

@@ -17,22 +17,22 @@ pub fn run(args: &ExploreArgs) -> CliResult {
     let q = api::parse_query(&initial).map_err(crate::error::CliError)?;
     api::View::from_query(&q).map_err(crate::error::CliError)?;
     let address = format!("{}:{}", args.host, args.port);
-    let server = match tiny_http::Server::http(&address) {
-        Ok(s) => s,
-        Err(e) => {
-            let busy = e
-                .downcast_ref::<std::io::Error>()
-                .is_some_and(|io| io.kind() == std::io::ErrorKind::AddrInUse);
-            return if busy {
-                fail(format!(
-                    "port {} on {} is busy (another program listens there): choose another with --port, or --port 0 for any free port",
-                    args.port, args.host
-                ))
-            } else {
-                fail(format!("cannot listen on {address}: {e}"))
-            };
+    let listener = match std::net::TcpListener::bind(&address) {
+        Ok(l) => l,
+        Err(e) if e.kind() == std::io::ErrorKind::AddrInUse => {
+            return fail(format!(
+                "port {} on {} is busy (another program listens there): choose another with --port, or --port 0 for any free port",
+                args.port, args.host
+            ))
         }
+        Err(e) => return fail(format!("cannot listen on {address}: {e}")),
     };
+    // Frames go out as soon as they are written: without this, a frame's last pieces wait for
+    // the browser's delayed acknowledgement (Nagle's algorithm), up to 40 ms a frame. Connections
+    // accepted from the listener inherit it.
+    let _ = socket2::SockRef::from(&listener).set_tcp_nodelay(true);
+    let server = tiny_http::Server::from_listener(listener, None)
+        .map_err(|e| crate::error::CliError(format!("cannot listen on {address}: {e}")))?;
     let port = server
         .server_addr()
         .to_ip()

@@ -1,10 +1,12 @@
 //! The explorer's web server: one thread takes requests and answers the cheap ones (the page, its
 //! script, refusals); a fixed pool of workers computes frames from a short queue. A full queue
 //! answers 503 at once, and work superseded by a newer request of the same page (its sequence
-//! number) answers 409 without being computed, so a fast drag never piles up work.
+//! number) answers 409 without being computed; a frame already being drawn when it is superseded
+//! is abandoned, so a fast drag never piles up work nor waits for a view it has left.
 
 use std::collections::HashMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, TrySendError};
 use std::sync::{Arc, Mutex};
 
@@ -25,8 +27,16 @@ const PAGE: &str = include_str!("../../assets/explorer.html");
 const SCRIPT: &str = include_str!("../../assets/explorer.js");
 const STYLE: &str = include_str!("../../assets/explorer.css");
 
-/// Latest sequence number seen per channel.
-type Latest = Arc<Mutex<HashMap<String, u64>>>;
+/// Per channel: the latest sequence number seen, and the job being computed (its number and its
+/// frame's stop flag).
+#[derive(Default)]
+struct Channel {
+    newest: u64,
+    running: Option<(u64, Arc<AtomicBool>)>,
+}
+
+/// The channels, by name.
+type Latest = Arc<Mutex<HashMap<String, Channel>>>;
 
 struct Job {
     request: Request,
@@ -84,8 +94,14 @@ pub fn serve(server: Server, initial: &str) {
             if map.len() >= MAX_CHANNELS && !map.contains_key(chan) {
                 map.clear();
             }
-            let entry = map.entry(chan.clone()).or_insert(*seq);
-            *entry = (*entry).max(*seq);
+            let entry = map.entry(chan.clone()).or_default();
+            entry.newest = entry.newest.max(*seq);
+            // The view being drawn for this page is no longer wanted: stop drawing it.
+            if let Some((running, stop)) = &entry.running {
+                if *running < entry.newest {
+                    stop.store(true, Ordering::Relaxed);
+                }
+            }
         }
         let job = Job {
             request,
@@ -121,20 +137,18 @@ fn worker(rx: &Mutex<Receiver<Job>>, latest: &Latest) {
                 Err(_) => return,
             }
         };
+        let stop = frame.stop_flag();
         if let Some((chan, seq)) = &job.ticket {
-            let newest = latest
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .get(chan)
-                .copied()
-                .unwrap_or(0);
-            if newest > *seq {
-                respond(
-                    job.request,
-                    Reply::text(409, "stale: a newer request replaced this one"),
-                );
+            let mut map = latest.lock().unwrap_or_else(|e| e.into_inner());
+            let entry = map.entry(chan.clone()).or_default();
+            if entry.newest > *seq {
+                drop(map);
+                respond(job.request, stale());
                 continue;
             }
+            // Cleared under the lock: a newer request can only set it from now on.
+            stop.store(false, Ordering::Relaxed);
+            entry.running = Some((*seq, Arc::clone(&stop)));
         }
         let reply = catch_unwind(AssertUnwindSafe(|| {
             api::handle(&job.path, &job.query, &mut frame)
@@ -143,8 +157,26 @@ fn worker(rx: &Mutex<Receiver<Job>>, latest: &Latest) {
             frame = Frame::default();
             Reply::text(500, "internal error while computing this view")
         });
+        if let Some((chan, seq)) = &job.ticket {
+            let mut map = latest.lock().unwrap_or_else(|e| e.into_inner());
+            if let Some(entry) = map.get_mut(chan) {
+                if entry.running.as_ref().is_some_and(|r| r.0 == *seq) {
+                    entry.running = None;
+                }
+            }
+        }
+        // Abandoned half-way: what was drawn is not the view asked for.
+        let reply = if stop.swap(false, Ordering::Relaxed) {
+            stale()
+        } else {
+            reply
+        };
         respond(job.request, reply);
     }
+}
+
+fn stale() -> Reply {
+    Reply::text(409, "stale: a newer request replaced this one")
 }
 
 fn asset(content_type: &'static str, text: &str) -> Reply {
@@ -161,7 +193,11 @@ fn header(name: &str, value: &str) -> Header {
 }
 
 fn respond(request: Request, reply: Reply) {
+    // Sent whole with its length: tiny_http's chunked encoding (its default above 32 KB) writes
+    // small pieces, which stall for the peer's delayed acknowledgement (tens of ms a frame).
+    let length = reply.body.len();
     let mut response = Response::from_data(reply.body)
+        .with_chunked_threshold(length + 1)
         .with_status_code(reply.status)
         .with_header(header("Content-Type", reply.content_type))
         .with_header(header("Cache-Control", "no-store"))
