@@ -93,6 +93,38 @@ test("a preset loads a reference simulation whose points are simulate's", async 
   await context.close();
 });
 
+test("the eye and stereo models come quickly, then whole, and are simulate's", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=6000");
+  await waitReady(page);
+  const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-"));
+  for (const m of ["eye", "stereo"]) {
+    // Seen first with every 4th point, then with all of them.
+    const sizes = await page.evaluate(async (m) => {
+      const seen = [];
+      document.getElementById("show-" + m).click();
+      for (;;) {
+        const x = window.bentstraw.models[m];
+        if (x && !x.pending && seen[seen.length - 1] !== x.color.length) seen.push(x.color.length);
+        if (x && x.all) return seen;
+        await new Promise((r) => setTimeout(r, 1));
+      }
+    }, m);
+    const csv = path.join(dir, m + ".csv");
+    const r = await runCli(["simulate", "--observer", "0.1,0,0.1", "--straw", "0.02,0.01", "--water-height", "0.15", "--points", "6000", "--image-model", m, "--output", csv]);
+    assert.equal(r.code, 0, r.stderr);
+    // The points the model places (a row without a position has empty coordinates).
+    const placed = readFileSync(csv, "utf8").trim().split("\n").slice(1).map((l) => l.split(",")).filter((c) => c[0] !== "").map((c) => c.slice(0, 3).map(Number));
+    assert.ok(placed.length > 1000, `${m}: ${placed.length} points placed`);
+    const got = await page.evaluate((m) => Array.from(window.bentstraw.models[m].xyz), m);
+    assert.equal(got.length, 3 * placed.length, `${m}: ${got.length / 3} points in the page, ${placed.length} in the file`);
+    placed.forEach((q, i) => assert.deepEqual(got.slice(3 * i, 3 * i + 3), q.map(Math.fround)));
+    assert.ok(sizes.length >= 2 && sizes[0] < sizes[sizes.length - 1], `${m}: sizes ${sizes}`);
+  }
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("clicking a point of the cloud shows its path with simulate's numbers", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=20000&view=-60,12,1.25");

@@ -5,13 +5,15 @@ import os from "node:os";
 import { startServer, launch, openPage, waitReady, percentile } from "./harness.mjs";
 
 const MOVES = Number(process.env.MOVES || 120); // pointer moves, one every 16 ms (60 Hz)
+// The window: its picture panel is about 800x600 CSS pixels.
+const VIEWPORT = { width: Number(process.env.WIDTH || 1500), height: Number(process.env.HEIGHT || 1180) };
 const server = await startServer();
 const browser = await launch();
 console.log(`machine: ${os.cpus()[0].model}, ${os.cpus().length} cores, load ${os.loadavg().map((x) => x.toFixed(1)).join(" ")}`);
 console.log("mode     picture  points  frames  p50 ms  p95 ms  max ms  fps   (quick frames while dragging)");
 for (const mode of ["course", "fresnel"]) {
   // 1000x750 CSS pixels for the picture's panel: quick frames of about 500x375, full ones about 1000x750.
-  const { page, context } = await openPage(browser, server.url, { width: 1900, height: 1500 });
+  const { page, context } = await openPage(browser, server.url, VIEWPORT);
   await page.goto(server.url + `#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&mode=${mode}&points=20000`);
   await waitReady(page);
   const size = await page.evaluate(() => `${window.bentstraw.frame.header.width}x${window.bentstraw.frame.header.height}`);
@@ -31,19 +33,29 @@ for (const mode of ["course", "fresnel"]) {
   await page.mouse.up();
   const all = await page.evaluate(() => window.bentstraw.latencies.filter((l) => l.quick));
   const lat = all.map((l) => l.ms);
-  if (process.env.VERBOSE) console.log(all.map((l) => `${l.ms.toFixed(0)}/${l.server.toFixed(0)}/${l.paint.toFixed(0)}`).join(" "));
+  if (process.env.VERBOSE) {
+    const mean = (k) => (all.reduce((a, l) => a + l[k], 0) / all.length).toFixed(1);
+    const worst = [...all].sort((a, b) => b.ms - a.ms).slice(0, Math.ceil(all.length / 10));
+    console.log("  worst tenth (total/wait/request/server/body/paint): " + worst.map((l) => [l.ms, l.wait, l.request, l.server, l.body, l.paint].map((x) => x.toFixed(0)).join("/")).join(" "));
+    console.log(`  mean ms: total ${mean("ms")} = waiting to be sent ${mean("wait")} + request ${mean("request")} (server ${mean("server")}) + body ${mean("body")} + paint ${mean("paint")} + to the screen`);
+  }
   await waitReady(page);
   const points = await page.evaluate(() => window.bentstraw.frame.header.n);
   console.log(`${mode.padEnd(8)} ${size.padEnd(8)} ${String(points).padStart(6)}  ${String(lat.length).padStart(6)}  ${percentile(lat, 50).toFixed(0).padStart(6)}  ${percentile(lat, 95).toFixed(0).padStart(6)}  ${Math.max(...lat).toFixed(0).padStart(6)}  ${(frames / seconds).toFixed(1).padStart(4)}`);
-  // The eye and stereo models after the drag: time from switching them on to their points drawn.
+  // The eye and stereo models after the drag: time from switching each on to its first points
+  // (every 4th) and to all of them.
   for (const model of ["eye", "stereo"]) {
-    const t = await page.evaluate(async (m) => {
+    const [first, all] = await page.evaluate(async (m) => {
       const t1 = performance.now();
       document.getElementById("show-" + m).click();
-      while (!window.bentstraw.models[m]) await new Promise((r) => setTimeout(r, 5));
-      return performance.now() - t1;
+      const shown = (full) => { const x = window.bentstraw.models[m]; return x && !x.pending && (!full || x.all); };
+      while (!shown(false)) await new Promise((r) => setTimeout(r, 2));
+      const t2 = performance.now();
+      while (!shown(true)) await new Promise((r) => setTimeout(r, 2));
+      return [t2 - t1, performance.now() - t1];
     }, model);
-    console.log(`         ${model} model: ${t.toFixed(0)} ms from switching it on to its points`);
+    const n = await page.evaluate((m) => window.bentstraw.models[m].color.length, model);
+    console.log(`         ${model} model: ${first.toFixed(0)} ms from switching it on to its first points, ${all.toFixed(0)} ms to all ${n}`);
   }
   await context.close();
 }

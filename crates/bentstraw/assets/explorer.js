@@ -10,8 +10,8 @@ const SECTION_NAMES = ["red", "orange", "magenta", "green", "blue"];
 const PATH_COLORS = ["#222222", "#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
 // Quick frames (while dragging) have this many times fewer pixels along each side, and this many
 // times fewer image points (the full frame, when the input stops, has them all).
-const QUICK = 2.5;
-const QUICK_POINTS = 4;
+const QUICK = 4;
+const QUICK_POINTS = 6;
 // The centre the eye orbits round: the middle of the glass.
 const ORBIT = [0, 0, 0.1];
 
@@ -185,6 +185,7 @@ async function sendFrame(quick) {
   inputSince = null;
   inFlight = { quick, since };
   dirty = false;
+  const sent = performance.now();
   let r;
   try { r = await ask("frame", "/api/frame", query); } catch (e) { showError("the server does not answer: " + e.message); inFlight = null; return; }
   // Not painted: its inputs still wait (for the request that replaced it, or the retry).
@@ -199,7 +200,9 @@ async function sendFrame(quick) {
     document.body.dataset.refused = String(Number(document.body.dataset.refused || 0) + 1);
     return;
   }
+  const answered = performance.now();
   const bytes = await r.arrayBuffer();
+  const received = performance.now();
   frame = decodeFrame(bytes, quick);
   frame.query = query;
   showError("");
@@ -207,7 +210,8 @@ async function sendFrame(quick) {
   paintAll();
   const paintMs = performance.now() - t;
   requestAnimationFrame(() => {
-    if (since !== null) latencies.push({ ms: performance.now() - since, quick, mode: state.mode, server: frame.header.ms, paint: paintMs });
+    // Where the time went: waiting to be sent, the request (server included), the body, painting.
+    if (since !== null) latencies.push({ ms: performance.now() - since, quick, mode: state.mode, server: frame.header.ms, paint: paintMs, wait: sent - since, request: answered - sent, body: received - answered });
     window.bentstraw.frames += 1;
     document.body.dataset.frames = String(window.bentstraw.frames);
   });
@@ -235,14 +239,27 @@ function decodeFrame(buffer, quick) {
   return { header, rgba, xyz, color, kind, quick };
 }
 
-async function requestModels() {
+/** Asks for the eye and stereo models switched on and not yet shown for this view, both at once
+ * (each on its own channel): first every 4th point, painted at once, then all of them. */
+function requestModels() {
   for (const m of ["eye", "stereo"]) {
     if (!state.models.includes(m)) { models[m] = null; continue; }
-    const r = await ask("model-" + m, "/api/model", viewQuery(state, { model: m }));
-    if (!r || !r.ok) continue;
+    if (models[m] && models[m].query === viewQuery(state)) continue; // shown, or on its way
+    requestModel(m);
+  }
+}
+
+async function requestModel(m) {
+  const query = viewQuery(state);
+  models[m] = { xyz: new Float32Array(0), color: new Uint8Array(0), query, pending: true, all: false };
+  const steps = state.points >= 4000 ? [4, 1] : [1];
+  for (const every of steps) {
+    const r = await ask("model-" + m, "/api/model", viewQuery(state, { model: m, every }));
+    if (!r || !r.ok || !models[m] || models[m].query !== query) return; // superseded or refused
     const b = await r.arrayBuffer();
+    if (!models[m] || models[m].query !== query) return;
     const n = new DataView(b).getUint32(0, true);
-    models[m] = { xyz: new Float32Array(b.slice(4, 4 + 12 * n)), color: new Uint8Array(b, 4 + 12 * n, n), query: viewQuery(state) };
+    models[m] = { xyz: new Float32Array(b.slice(4, 4 + 12 * n)), color: new Uint8Array(b, 4 + 12 * n, n), query, pending: false, all: every === 1 };
     drawCloud(); drawLegend();
     document.body.dataset.models = state.models.join(",");
   }
@@ -399,8 +416,9 @@ function drawLegend() {
   if (!frame) return;
   if (state.color === "path") frame.header.paths.forEach((p, i) => item(PATH_COLORS[i % PATH_COLORS.length], p.words, p.count));
   else frame.header.points_per_color.forEach((c, i) => item(SECTION_RGB[i], `${i + 1} ${SECTION_NAMES[i]}`, c));
-  if (state.models.includes("eye")) item("rgba(0,0,0,.3)", "eye model: faint, smaller", models.eye ? models.eye.color.length : "…");
-  if (state.models.includes("stereo")) item("rgba(0,0,0,.3)", "stereo model: faint, smaller", models.stereo ? models.stereo.color.length : "…");
+  const modelCount = (m) => (!m || m.pending ? "…" : m.all ? m.color.length : `${m.color.length}, more coming`);
+  if (state.models.includes("eye")) item("rgba(0,0,0,.3)", "eye model: faint, smaller", modelCount(models.eye));
+  if (state.models.includes("stereo")) item("rgba(0,0,0,.3)", "stereo model: faint, smaller", modelCount(models.stereo));
 }
 
 // ---- the map: side (plane through the axis and the eye) and top ----
