@@ -54,7 +54,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         outputs.push(Output {
             flag: "--plot",
             path: p,
-            extensions: &["png"],
+            extensions: plot::FIGURE_EXTENSIONS,
         });
     }
     if let Some(h) = &args.html {
@@ -68,7 +68,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         outputs.push(Output {
             flag: "--rays",
             path: r,
-            extensions: &["svg", "png"],
+            extensions: plot::FIGURE_EXTENSIONS,
         });
     }
     // The previous files stay until every new one is complete.

@@ -39,7 +39,8 @@ const VARIANTS: [(f64, &str); 3] = [(WATER_INDEX, ""), (1.0, "_n1"), (1.05, "_n1
 
 /// What the classic figure shows.
 const CLOUD_CAPTION: &str = "The image points in their section colours, the water as a wireframe \
-                             and the observer (black circle), seen from three sides.";
+                             and the observer (black dot): a front view from the observer's side, \
+                             a side view with the observer to the right, and the view from above.";
 
 /// One simulation of the table.
 struct Job {
@@ -58,6 +59,7 @@ impl Job {
         let mut names = vec![
             format!("{stem}.csv"),
             format!("{stem}.png"),
+            format!("{stem}.svg"),
             format!("{stem}.html"),
         ];
         if self.scene.n_water == WATER_INDEX {
@@ -69,7 +71,9 @@ impl Job {
                 "_stereo.csv",
                 "_stereo.html",
                 "_models.png",
+                "_models.svg",
                 "_gap.png",
+                "_gap.svg",
                 "_rays.svg",
             ] {
                 names.push(format!("{stem}{suffix}"));
@@ -246,6 +250,10 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     let data_error = write_points(&out.join(&csv), PointFormat::Csv, &set).err();
     let plot_error =
         plot::write_cloud_figure(&out.join(&png), scene, observer, &cloud.points, &title).err();
+    // The same figure as a vector drawing, for print.
+    let svg = format!("{}.svg", job.stem);
+    let svg_error =
+        plot::write_cloud_figure(&out.join(&svg), scene, observer, &cloud.points, &title).err();
     let page_error =
         html::write_cloud_viewer(&out.join(&page), scene, observer, &cloud.points, &title).err();
     let written = t1.elapsed();
@@ -255,6 +263,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     figure.links = vec![
         Link::new(&page, "rotatable 3D view", page_error.map(|e| e.0)),
         Link::new(&csv, "points (CSV)", data_error.map(|e| e.0)),
+        Link::new(&svg, "figure as SVG", svg_error.map(|e| e.0)),
     ];
 
     let mut timings = vec![
@@ -581,6 +590,14 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     figure.error = write_model_comparison(&out.join(&compare), scene, observer, &clouds, &title)
         .err()
         .map(|e| e.0);
+    let compare_svg = format!("{}_models.svg", job.stem);
+    let svg_error =
+        write_model_comparison(&out.join(&compare_svg), scene, observer, &clouds, &title).err();
+    links.push(Link::new(
+        &compare_svg,
+        "figure as SVG",
+        svg_error.map(|e| e.0),
+    ));
     figure.links = links;
     figures.push(figure);
 
@@ -616,6 +633,14 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     figure.error = write_gap_plot(&out.join(&gap), &series, &gap_title)
         .err()
         .map(|e| e.0);
+    let gap_svg = format!("{}_gap.svg", job.stem);
+    figure.links = vec![Link::new(
+        &gap_svg,
+        "figure as SVG",
+        write_gap_plot(&out.join(&gap_svg), &series, &gap_title)
+            .err()
+            .map(|e| e.0),
+    )];
     figures.push(figure);
 
     let unplaced = eye.iter().filter(|p| p.position.is_none()).count();
