@@ -4,8 +4,8 @@
 //!
 //! The comparison figure shows every model from the same two viewpoints, one model a row, with one
 //! box and one scale per column, so that a point's shift from one panel to the one below is the
-//! models' difference: a level view from the side (perpendicular to the observer's horizontal
-//! direction) and a view from above. The models differ mostly along the lines of sight, which both
+//! models' difference: a level view from the side (along the axis nearest the perpendicular to the
+//! observer's horizontal direction) and a view from above. The models differ mostly along the lines of sight, which both
 //! views show at full length when the observer looks roughly horizontally; a view from the
 //! observer would show none of it.
 
@@ -239,7 +239,7 @@ fn draw_comparison<DB: DrawingBackend>(
     }
     others.push((
         LegendMark::None,
-        format!("not shown: beyond {} m", num(FAR_POINT_LIMIT)),
+        format!("not shown: beyond {FAR_POINT_LIMIT:.1} m"),
     ));
     draw_legend_cell(
         root,
@@ -617,9 +617,14 @@ mod tests {
                 observer.y - SCENE_CENTRE.y,
                 0.0,
             );
-            // Perpendicular to the observer's horizontal direction, and level: depth along the
-            // lines of sight runs across the panel.
-            assert!(t.dot(horizontal.normalize()).abs() < 1e-12, "{observer}");
+            // Within 45° of perpendicular to the observer's horizontal direction (along the
+            // nearest axis), and level: depth along the lines of sight runs across the panel.
+            assert!(
+                t.dot(horizontal.normalize()).abs() <= 0.5f64.sqrt() + 1e-12,
+                "{observer}"
+            );
+            let ideal = Vec3::new(-horizontal.y, horizontal.x, 0.0).normalize();
+            assert!(t.dot(ideal).abs() >= 0.5f64.sqrt() - 1e-12, "{observer}");
             assert!(t.z.abs() < 1e-12);
             assert!((above.toward_viewer() - Vec3::Z).length() < 1e-12);
         }

