@@ -15,7 +15,7 @@ use crate::plot::{
     axis_box, dashed, draw_axis_labels, draw_legend_cell, draw_observer, draw_panes,
     draw_straw_outline, draw_water, figure_bytes, figure_views, font, layout, legend_cell,
     section_rgb8, three_view_size, AreaOn, DrawResultOn, FigureFormat, Heading, LegendMark, Panel,
-    CAPTION_LINE, LEGEND_LINE, TEXT,
+    TEXT,
 };
 
 /// Most true-image samples and correct points drawn per panel in a PNG (an even subset beyond that).
@@ -246,10 +246,8 @@ fn draw_check_legend<DB: DrawingBackend>(
     report: &CheckReport,
     cell: (i32, i32, i32, i32),
 ) -> DrawResultOn<DB> {
-    let mut items: Vec<(LegendMark, String)> = vec![(
-        LegendMark::None,
-        "pale: true image; full: correct".to_string(),
-    )];
+    let mut items: Vec<(LegendMark, String)> =
+        vec![(LegendMark::None, "pale: true, full: correct".to_string())];
     for (k, name) in SECTION_NAMES.iter().enumerate() {
         let full = section_rgb8(k as u8 + 1);
         let p = pale(k as u8 + 1);
@@ -265,21 +263,25 @@ fn draw_check_legend<DB: DrawingBackend>(
         VerdictKind::TooManyEvents,
     ];
     let first_kind = items.len();
-    for kind in kinds {
+    for (kind, short) in kinds.iter().zip([
+        "wrong colour",
+        "wrong length",
+        "no straw",
+        "too many events",
+    ]) {
         items.push((
             LegendMark::Room,
-            format!("{}: {}", kind.words(), report.tally.count(kind)),
+            format!("{short}: {}", report.tally.count(*kind)),
         ));
     }
     items.push((
         LegendMark::Dashed((0, 0, 0)),
         "missing (numbered)".to_string(),
     ));
-    draw_legend_cell(root, cell, &items)?;
+    let rows = draw_legend_cell(root, cell, &items)?;
     // The wrong points' marks, where the cell left room before their lines.
     for (k, kind) in kinds.iter().enumerate() {
-        let y = cell.1 + CAPTION_LINE + LEGEND_LINE / 2 + (first_kind + k) as i32 * LEGEND_LINE;
-        marker(root, (cell.0 + 46, y), *kind)?;
+        marker(root, (cell.0 + 46, rows[first_kind + k]), *kind)?;
     }
     Ok(())
 }

@@ -252,7 +252,8 @@ fn draw_comparison<DB: DrawingBackend>(
         (half, top - CAPTION_LINE / 2, half, LEGEND_HEIGHT),
         &others,
     )
-    .map_err(e)
+    .map_err(e)?;
+    Ok(())
 }
 
 /// A model's name without its explanation in brackets: "course (P = O + L·u0)" → "course".

@@ -608,7 +608,8 @@ fn draw_cloud_figure<DB: DrawingBackend>(
         )
     }));
     items.extend(common_legend(bx.observer_inside));
-    draw_legend_cell(root, legend_cell(heading.height()), &items).map_err(e)
+    draw_legend_cell(root, legend_cell(heading.height()), &items).map_err(e)?;
+    Ok(())
 }
 
 /// The colour code, name and heights of section `k` (0-based), for legends.
@@ -663,29 +664,35 @@ pub(crate) enum LegendMark {
 /// Height of a legend's line (px).
 pub(crate) const LEGEND_LINE: i32 = 44;
 
-/// A legend as a column of entries in the cell `(left, top, width, height)`.
+/// A legend as a column of entries in the cell `(left, top, width, height)`, each wrapped to the
+/// cell's width; returns the row (px) of each entry's mark.
 pub(crate) fn draw_legend_cell<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    (left, top, _w, _h): (i32, i32, i32, i32),
+    (left, top, width, _h): (i32, i32, i32, i32),
     items: &[(LegendMark, String)],
-) -> DrawResultOn<DB> {
+) -> Result<Vec<i32>, DrawingAreaErrorKind<DB::ErrorType>> {
     let x = left + 30;
     let mut y = top + CAPTION_LINE + LEGEND_LINE / 2;
+    let mut rows = Vec::new();
     for (mark, text) in items {
         draw_legend_mark(root, *mark, x, y)?;
+        rows.push(y);
         let indent = if matches!(mark, LegendMark::None) {
             0
         } else {
             44
         };
-        root.draw(&Text::new(
-            text.clone(),
-            (x + indent, y),
-            font(TEXT).pos(Pos::new(HPos::Left, VPos::Center)),
-        ))?;
-        y += LEGEND_LINE;
+        for line in wrap(text, TEXT, width - 40 - indent) {
+            root.draw(&Text::new(
+                line,
+                (x + indent, y),
+                font(TEXT).pos(Pos::new(HPos::Left, VPos::Center)),
+            ))?;
+            y += (1.2 * TEXT) as i32;
+        }
+        y += LEGEND_LINE - (1.2 * TEXT) as i32;
     }
-    Ok(())
+    Ok(rows)
 }
 
 /// A legend's mark, 32 px wide, starting at `x`, centred on `y`.
@@ -1348,11 +1355,11 @@ pub(crate) fn draw_observer<DB: DrawingBackend>(
     let proj = &panel.proj;
     if bx.observer_inside {
         let (x, y) = proj.at(observer);
-        // Seen from the observer's own direction the marker sits on the image: a ring hides less.
+        // Seen from about the observer's side the marker sits on the image: a ring hides less.
         let head_on = proj
             .toward
             .dot((observer - SCENE_CENTRE).normalize_or_zero())
-            > 0.999;
+            > 0.5f64.sqrt();
         if head_on {
             root.draw(&Circle::new((x, y), 8, BLACK.stroke_width(3)))?;
         } else {
