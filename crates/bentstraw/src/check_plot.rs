@@ -217,7 +217,7 @@ fn draw_check<DB: DrawingBackend>(
         }
         draw_water(root, proj, scene, true)?;
         draw_axis_labels(root, panel, &bx)?;
-        draw_observer(root, panel, &bx, observer)?;
+        draw_observer(root, panel, &bx, observer, &[])?;
     }
     draw_check_legend(root, report, legend_cell(heading.height()))
 }

@@ -203,10 +203,12 @@ fn draw_comparison<DB: DrawingBackend>(
         draw_panes(root, p, &bx).map_err(e)?;
         draw_water(root, &p.proj, scene, false).map_err(e)?;
         draw_straw_outline(root, &p.proj, scene).map_err(e)?;
+        let mut dots = Vec::new();
         if let Some(points) = drawn.get(i) {
             // The first model's points, pale, behind each other model's: the shift is the difference.
             let behind: &[(ImagePoint, [u8; 3])] = if i > 0 { &ghost } else { &[] };
-            draw_dots(root, &visible_dots(p, behind, points)).map_err(e)?;
+            dots = visible_dots(p, behind, points);
+            draw_dots(root, &dots).map_err(e)?;
         } else {
             root.draw(&Text::new(
                 "no model to show",
@@ -217,7 +219,7 @@ fn draw_comparison<DB: DrawingBackend>(
         }
         draw_water(root, &p.proj, scene, true).map_err(e)?;
         draw_axis_labels(root, p, &bx).map_err(e)?;
-        draw_observer(root, p, &bx, observer).map_err(e)?;
+        draw_observer(root, p, &bx, observer, &dots).map_err(e)?;
     }
     // The legend under the panels, in two columns.
     let top = heading.height() + models.len().max(1) as i32 * ROW_HEIGHT;

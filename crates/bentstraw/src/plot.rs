@@ -593,10 +593,11 @@ fn draw_cloud_figure<DB: DrawingBackend>(
         draw_panes(root, p, &bx).map_err(e)?;
         draw_water(root, &p.proj, scene, false).map_err(e)?;
         draw_straw_outline(root, &p.proj, scene).map_err(e)?;
-        draw_dots(root, &visible_dots(p, &[], points)).map_err(e)?;
+        let dots = visible_dots(p, &[], points);
+        draw_dots(root, &dots).map_err(e)?;
         draw_water(root, &p.proj, scene, true).map_err(e)?;
         draw_axis_labels(root, p, &bx).map_err(e)?;
-        draw_observer(root, p, &bx, observer).map_err(e)?;
+        draw_observer(root, p, &bx, observer, &dots).map_err(e)?;
     }
     let n = counts(points);
     let mut items: Vec<(LegendMark, String)> =
@@ -1310,47 +1311,72 @@ pub(crate) fn draw_axis_labels<DB: DrawingBackend>(
     Ok(())
 }
 
-/// A label beside a marker at `(x, y)`, on a pale backing: right of it, or left when it would
-/// leave the panel.
+/// A label beside a marker at `(x, y)`, on a pale backing, kept inside the frame: right of it,
+/// left, above or below, wherever it hides the fewest of the panel's `dots`.
 fn marker_label<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     panel: &Panel,
     (x, y): (i32, i32),
     text: &str,
+    dots: &[Dot],
 ) -> DrawResultOn<DB> {
     let tw = text_width(text, TEXT);
-    // Right of the marker; or above it (below when at the top), kept inside the panel.
-    let (l, y) = if x + 14 + tw <= panel.left + panel.width {
-        (x + 12, y)
-    } else {
-        let l = (x - tw / 2).clamp(panel.left + 4, panel.left + panel.width - tw - 4);
-        let above = y - 30;
+    let fit = |(l, cy): (i32, i32)| {
         (
-            l,
-            if above - 18 > panel.frame[2] as i32 {
-                above
-            } else {
-                y + 30
-            },
+            // Inside the frame, off the scales' labels (beyond its right edge if need be).
+            l.clamp(
+                panel.frame[0] as i32 + 4,
+                (panel.frame[1] as i32 - tw - 6).max(panel.frame[0] as i32 + 4),
+            ),
+            cy.clamp(panel.frame[2] as i32 + 18, panel.frame[3] as i32 - 18),
         )
     };
+    let candidates = [
+        (x + 14, y),
+        (x - 18 - tw, y),
+        (x - tw / 2, y - 32),
+        (x - tw / 2, y + 32),
+    ]
+    .map(fit);
+    let hidden = |(l, cy): (i32, i32)| {
+        // Never over the marker itself (a label pushed back into the panel might be).
+        let on_marker = l < x + 9 && l + tw + 4 > x - 9 && cy - 18 < y + 9 && cy + 18 > y - 9;
+        usize::from(on_marker) * usize::MAX / 2
+            + dots
+                .iter()
+                .filter(|d| {
+                    d.x < l + tw + 4
+                        && d.x + d.size.0 > l - 2
+                        && d.y < cy + 18
+                        && d.y + d.size.1 > cy - 18
+                })
+                .count()
+    };
+    // The first of the least hiding, so that an empty neighbourhood keeps the label on the right.
+    let (l, cy) = candidates
+        .iter()
+        .copied()
+        .min_by_key(|&c| hidden(c))
+        .unwrap_or(candidates[0]);
     root.draw(&Rectangle::new(
-        [(l - 2, y - 18), (l + tw + 4, y + 18)],
+        [(l - 2, cy - 18), (l + tw + 4, cy + 18)],
         WHITE.mix(0.75).filled(),
     ))?;
     root.draw(&Text::new(
         text.to_string(),
-        (l, y),
+        (l, cy),
         font(TEXT).pos(Pos::new(HPos::Left, VPos::Center)),
     ))
 }
 
-/// The observer as a black dot, or, when too far away to draw to scale, an arrow pointing to it.
+/// The observer as a black dot, or, when too far away to draw to scale, an arrow pointing to it;
+/// its label placed where it hides the fewest of `dots`.
 pub(crate) fn draw_observer<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     panel: &Panel,
     bx: &AxisBox,
     observer: Vec3,
+    dots: &[Dot],
 ) -> DrawResultOn<DB> {
     let proj = &panel.proj;
     if bx.observer_inside {
@@ -1365,7 +1391,7 @@ pub(crate) fn draw_observer<DB: DrawingBackend>(
         } else {
             root.draw(&Circle::new((x, y), 8, BLACK.filled()))?;
         }
-        return marker_label(root, panel, (x, y), "observer");
+        return marker_label(root, panel, (x, y), "observer", dots);
     }
     let Some((tail, tip)) = bx.observer_arrow else {
         return Ok(());
@@ -1383,7 +1409,7 @@ pub(crate) fn draw_observer<DB: DrawingBackend>(
         } else {
             "observer, far behind"
         };
-        return marker_label(root, panel, at, words);
+        return marker_label(root, panel, at, words, dots);
     }
     let (ux, uy) = (dx / len, dy / len);
     root.draw(&PathElement::new(
@@ -1412,7 +1438,7 @@ pub(crate) fn draw_observer<DB: DrawingBackend>(
             font(TEXT).pos(Pos::new(HPos::Center, VPos::Bottom)),
         ))
     } else {
-        marker_label(root, panel, (mx as i32, my as i32), "observer")
+        marker_label(root, panel, (mx as i32, my as i32), "observer", dots)
     }
 }
 
