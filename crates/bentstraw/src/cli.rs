@@ -128,6 +128,14 @@ pub struct SimulateArgs {
     /// How the apparent position is judged
     #[arg(long, value_enum, default_value_t = ImageModelArg::Course)]
     pub image_model: ImageModelArg,
+    /// Also draw the course's, the eye's and the stereo image one above the other, same views and
+    /// scales, into this file: .png, .svg or .pdf (runs the eye and stereo models)
+    #[arg(long, value_name = "FILE.png|.svg|.pdf")]
+    pub models_plot: Option<PathBuf>,
+    /// Also plot the gap from each course point to the eye's and the stereo model's point against
+    /// the straw point's height, into this file: .png, .svg or .pdf (runs both models)
+    #[arg(long, value_name = "FILE.png|.svg|.pdf")]
+    pub gap_plot: Option<PathBuf>,
 }
 
 /// Arguments of `table`.

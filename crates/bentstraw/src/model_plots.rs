@@ -12,6 +12,7 @@
 use std::collections::HashSet;
 use std::path::Path;
 
+use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{
     Scene, GLASS_HEIGHT, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT,
@@ -29,6 +30,30 @@ use crate::plot::{
     section_rgb8, section_words, triple, visible_dots, AreaOn, AxisBox, FigureFormat, Heading,
     LegendMark, Panel, ViewDirection, CAPTION_LINE, FIGURE_WIDTH, LEGEND_LINE, TEXT, TITLE,
 };
+
+/// The three models' names in the comparison figure, in the order course, eye, stereo.
+pub const MODEL_NAMES: [&str; 3] = [
+    "course (P = O + L·u0)",
+    "eye (small pupil)",
+    "stereo (two eyes, 65 mm)",
+];
+
+/// The gap plot's samples of the eye model: `(z of the straw point, gap to the course's point,
+/// colour code)` for each point the model places.
+pub fn eye_gap_samples(eye: &[ApparentPoint]) -> Vec<(f64, f64, u8)> {
+    eye.iter()
+        .filter_map(|p| Some((p.image.straw_point.z, p.gap_to_course()?, p.image.color)))
+        .collect()
+}
+
+/// The gap plot's samples of the stereo model, as [`eye_gap_samples`].
+pub fn stereo_gap_samples(stereo: &StereoImage) -> Vec<(f64, f64, u8)> {
+    stereo
+        .points
+        .iter()
+        .filter_map(|p| Some((p.image.straw_point.z, p.gap_to_course()?, p.image.color)))
+        .collect()
+}
 
 /// One model's image cloud, for the comparison figure.
 #[derive(Clone, Copy, Debug)]

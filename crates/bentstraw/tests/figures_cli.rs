@@ -404,7 +404,7 @@ fn pdf_figures_open_at_the_figures_shape() {
 /// exit code 2, nothing written, the previous file kept.
 #[test]
 fn unknown_figure_extensions_are_refused_before_any_work() {
-    for flag in ["--plot", "--rays"] {
+    for flag in ["--plot", "--rays", "--models-plot", "--gap-plot"] {
         let dir = tempfile::tempdir().unwrap();
         fs::write(dir.path().join("points.csv"), "old").unwrap();
         let r = &REFERENCES[1];
@@ -497,4 +497,81 @@ fn the_reports_figures_come_as_svg_too_and_are_legible() {
             );
         }
     }
+}
+
+/// `simulate` draws the model comparison and the gap plot too, in any of the formats; they need
+/// both models, so their point limit applies.
+#[test]
+fn simulate_draws_the_model_comparison_and_the_gap_plot() {
+    let dir = tempfile::tempdir().unwrap();
+    simulate(
+        dir.path(),
+        1,
+        1500,
+        &["--models-plot", "m.svg", "--gap-plot", "g.svg"],
+    );
+    let m = read_svg(&dir.path().join("m.svg"));
+    m.assert_legible("m.svg");
+    m.assert_has(
+        "m.svg",
+        &[
+            "Where the straw appears",
+            "course",
+            "eye (small pupil)",
+            "stereo",
+            "top view",
+        ],
+    );
+    let names = m.axis_names();
+    assert_eq!(names.iter().filter(|n| n.1).count(), 6, "{names:?}");
+    assert_eq!(names.iter().filter(|n| !n.1).count(), 6, "{names:?}");
+    let g = read_svg(&dir.path().join("g.svg"));
+    g.assert_legible("g.svg");
+    g.assert_has(
+        "g.svg",
+        &[
+            "eye model",
+            "stereo model",
+            "height z of the straw point (m) →",
+        ],
+    );
+    simulate(
+        dir.path(),
+        1,
+        500,
+        &["--models-plot", "m.pdf", "--gap-plot", "g.png"],
+    );
+    assert!(fs::read(dir.path().join("m.pdf"))
+        .unwrap()
+        .starts_with(b"%PDF"));
+    assert!(fs::read(dir.path().join("g.png"))
+        .unwrap()
+        .starts_with(b"\x89PNG"));
+    // Over the models' limit: refused before any work, nothing written.
+    let before = fs::read_dir(dir.path()).unwrap().count();
+    let out = bentstraw(
+        dir.path(),
+        &[
+            "simulate",
+            "--observer",
+            "0,0.1,0.1",
+            "--straw",
+            "0.02,0.01",
+            "--water-height",
+            "0.15",
+            "--points",
+            "3000000",
+            "--output",
+            "big.csv",
+            "--gap-plot",
+            "big.svg",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("--points 3000000"),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(fs::read_dir(dir.path()).unwrap().count(), before);
 }

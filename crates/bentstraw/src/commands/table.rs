@@ -16,7 +16,10 @@ use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
 use crate::files::{self, Output, OutputSet};
-use crate::model_plots::{write_gap_plot, write_model_comparison, GapSeries, ModelCloud};
+use crate::model_plots::{
+    eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
+    ModelCloud, MODEL_NAMES,
+};
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
 use crate::validation::{self, write_validation_figure, ValidationSeries};
@@ -571,12 +574,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         }
         placed.push(points);
     }
-    let names = [
-        "course (P = O + L·u0)",
-        "eye (small pupil)",
-        "stereo (two eyes, 65 mm)",
-    ];
-    let clouds: Vec<ModelCloud> = names
+    let clouds: Vec<ModelCloud> = MODEL_NAMES
         .iter()
         .zip(&placed)
         .map(|(name, points)| ModelCloud { name, points })
@@ -601,15 +599,8 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     figure.links = links;
     figures.push(figure);
 
-    let eye_gaps: Vec<(f64, f64, u8)> = eye
-        .iter()
-        .filter_map(|p| Some((p.image.straw_point.z, p.gap_to_course()?, p.image.color)))
-        .collect();
-    let stereo_gaps: Vec<(f64, f64, u8)> = stereo
-        .points
-        .iter()
-        .filter_map(|p| Some((p.image.straw_point.z, p.gap_to_course()?, p.image.color)))
-        .collect();
+    let eye_gaps = eye_gap_samples(&eye);
+    let stereo_gaps = stereo_gap_samples(&stereo);
     let gap = format!("{}_gap.png", job.stem);
     let series = [
         GapSeries {
