@@ -575,3 +575,107 @@ fn simulate_draws_the_model_comparison_and_the_gap_plot() {
     );
     assert_eq!(fs::read_dir(dir.path()).unwrap().count(), before);
 }
+
+/// A value read off a scale: the tick labels along one edge, fitted as value = a + b·pixel.
+struct Scale {
+    a: f64,
+    b: f64,
+}
+
+impl Scale {
+    /// The fit of `(pixel, value)` pairs; every label must lie on it within a pixel.
+    fn fit(ticks: &[(f64, f64)], what: &str) -> Scale {
+        assert!(ticks.len() >= 2, "{what}: {} tick labels", ticks.len());
+        let n = ticks.len() as f64;
+        let (mp, mv) = (
+            ticks.iter().map(|t| t.0).sum::<f64>() / n,
+            ticks.iter().map(|t| t.1).sum::<f64>() / n,
+        );
+        let b = ticks.iter().map(|t| (t.0 - mp) * (t.1 - mv)).sum::<f64>()
+            / ticks.iter().map(|t| (t.0 - mp).powi(2)).sum::<f64>();
+        let a = mv - b * mp;
+        for &(p, v) in ticks {
+            assert!(
+                ((a + b * p - v) / b).abs() <= 1.0,
+                "{what}: the label {v} is off its place ({p} px)"
+            );
+        }
+        Scale { a, b }
+    }
+
+    fn at(&self, pixel: f64) -> f64 {
+        self.a + self.b * pixel
+    }
+}
+
+/// The scales of the front and side views are true: labels evenly placed, one metre as long
+/// across as up, values increasing to the right and upwards, and the observer's marker where its
+/// coordinates are.
+#[test]
+fn the_scales_read_the_observers_coordinates_at_its_marker() {
+    let dir = tempfile::tempdir().unwrap();
+    simulate(dir.path(), 2, 1000, &["--plot", "fig.svg"]);
+    let svg = read_svg(&dir.path().join("fig.svg"));
+    let doc = roxmltree::Document::parse(&svg.source).unwrap();
+    let attr = |n: &roxmltree::Node, a: &str| -> f64 { n.attribute(a).unwrap().parse().unwrap() };
+    // Tick labels: numbers in the scales' grey.
+    let labels: Vec<(f64, f64, f64, bool)> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("text") && n.attribute("fill") == Some("#46464C"))
+        .filter_map(|n| {
+            let v: f64 = n.text()?.trim().parse().ok()?;
+            let across = n.attribute("text-anchor") == Some("middle");
+            Some((attr(&n, "x"), attr(&n, "y"), v, across))
+        })
+        .collect();
+    let markers: Vec<(f64, f64)> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("circle") && n.attribute("r") == Some("8"))
+        .map(|n| (attr(&n, "cx"), attr(&n, "cy")))
+        .collect();
+    let o = REFERENCES[1].observer;
+    // Front view from +x: y across, z up; side view from −y: x across, z up.
+    for (col, across_value) in [(0.0, o.y), (1.0, o.x)] {
+        let in_col = |x: f64| x >= 500.0 * col && x < 500.0 * (col + 1.0);
+        // The top row's labels across: the highest row of them in this column.
+        let row_y = labels
+            .iter()
+            .filter(|l| l.3 && in_col(l.0))
+            .map(|l| l.1)
+            .fold(f64::MAX, f64::min);
+        let across: Vec<(f64, f64)> = labels
+            .iter()
+            .filter(|l| l.3 && in_col(l.0) && l.1 == row_y)
+            .map(|l| (l.0, l.2))
+            .collect();
+        let up: Vec<(f64, f64)> = labels
+            .iter()
+            .filter(|l| !l.3 && in_col(l.0) && l.1 < row_y)
+            .map(|l| (l.1, l.2))
+            .collect();
+        let (h, v) = (Scale::fit(&across, "across"), Scale::fit(&up, "up"));
+        assert!(h.b > 0.0, "column {col}: values must increase to the right");
+        assert!(v.b < 0.0, "column {col}: values must increase upwards");
+        assert!(
+            (h.b + v.b).abs() < 0.01 * h.b,
+            "column {col}: {} m per px across, {} up",
+            h.b,
+            -v.b
+        );
+        let (mx, my) = *markers
+            .iter()
+            .find(|m| in_col(m.0) && m.1 < row_y)
+            .expect("the observer's marker");
+        let px_m = 1.0 / h.b;
+        assert!(
+            (h.at(mx) - across_value).abs() * px_m <= 1.5,
+            "column {col}: the marker reads {} across",
+            h.at(mx)
+        );
+        assert!(
+            (v.at(my) - o.z).abs() * px_m <= 1.5,
+            "column {col}: the marker reads {} up",
+            v.at(my)
+        );
+    }
+}
