@@ -1,5 +1,5 @@
 //! The figure of `bentstraw check`: the true image pale, the solution's points over it, wrong points
-//! marked by kind, missing regions outlined; PNG or SVG from the same drawing code.
+//! marked by kind, missing regions outlined; PNG, SVG or PDF from the same drawing code.
 
 use std::path::Path;
 
@@ -9,40 +9,14 @@ use bentstraw_optics::Vec3;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::error::{CliError, CliResult};
+use crate::error::CliResult;
 use crate::files;
 use crate::plot::{
-    axis_box, dashed, draw_axis_labels, draw_observer, draw_panes, draw_straw_outline, draw_water,
-    figure_bytes, figure_views, font, layout, section_rgb8, text_width, AreaOn, DrawResultOn,
-    Panel, FIGURE_HEIGHT, FIGURE_WIDTH, LEGEND_BAND,
+    axis_box, dashed, draw_axis_labels, draw_legend_cell, draw_observer, draw_panes,
+    draw_straw_outline, draw_water, figure_bytes, figure_views, font, layout, legend_cell,
+    section_rgb8, three_view_size, AreaOn, DrawResultOn, FigureFormat, Heading, LegendMark, Panel,
+    TEXT,
 };
-
-/// The figure's file format, by extension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PlotFormat {
-    /// A bitmap.
-    Png,
-    /// A vector drawing.
-    Svg,
-}
-
-impl PlotFormat {
-    /// The format of `path` by its extension, or an error naming the accepted ones.
-    pub fn from_path(path: &Path) -> CliResult<PlotFormat> {
-        match path
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase())
-            .as_deref()
-        {
-            Some("png") => Ok(PlotFormat::Png),
-            Some("svg") => Ok(PlotFormat::Svg),
-            _ => Err(CliError(format!(
-                "--plot {}: the file name must end in .png or .svg",
-                path.display()
-            ))),
-        }
-    }
-}
 
 /// Most true-image samples and correct points drawn per panel in a PNG (an even subset beyond that).
 const MAX_DRAWN_PNG: (usize, usize) = (30_000, 40_000);
@@ -71,7 +45,7 @@ fn pale(code: u8) -> RGBColor {
     RGBColor(f(c[0]), f(c[1]), f(c[2]))
 }
 
-/// Draws the check figure of `points` (the solution) and `report` into `path` (.png or .svg).
+/// Draws the check figure of `points` (the solution) and `report` into `path` (.png, .svg or .pdf).
 pub fn write_check_figure(
     path: &Path,
     scene: &Scene,
@@ -80,22 +54,58 @@ pub fn write_check_figure(
     report: &CheckReport,
     title: &str,
 ) -> CliResult {
-    let format = PlotFormat::from_path(path)?;
+    let format = FigureFormat::of(path)?;
+    let heading = check_heading(report, title);
     let bytes = figure_bytes(
         path,
-        format == PlotFormat::Svg,
-        (FIGURE_WIDTH, FIGURE_HEIGHT),
+        format,
+        three_view_size(&heading),
         |root| {
-            draw_check(root, scene, observer, points, report, title, MAX_DRAWN_PNG)
-                .map_err(|x| x.to_string())
+            draw_check(
+                root,
+                scene,
+                observer,
+                points,
+                report,
+                &heading,
+                MAX_DRAWN_PNG,
+            )
+            .map_err(|x| x.to_string())
         },
         |root| {
-            root.fill(&WHITE).map_err(|x| x.to_string())?;
-            draw_check(root, scene, observer, points, report, title, MAX_DRAWN_SVG)
-                .map_err(|x| x.to_string())
+            draw_check(
+                root,
+                scene,
+                observer,
+                points,
+                report,
+                &heading,
+                MAX_DRAWN_SVG,
+            )
+            .map_err(|x| x.to_string())
         },
     )?;
     files::write_bytes(path, &bytes)
+}
+
+/// The check figure's heading: `title`, then the tally and the coverage.
+fn check_heading(report: &CheckReport, title: &str) -> Heading {
+    let t = &report.tally;
+    let cov: Vec<String> = (0..SECTION_COUNT)
+        .map(|k| format!("{:.0} %", 100.0 * report.coverage.per_colour[k].share()))
+        .collect();
+    let sub = format!(
+        "{} points: {} correct, {} wrong colour, {} wrong length, {} no straw, {} need more events · \
+         coverage per colour 1–5: {} · lengths in metres, one scale for both axes of a panel",
+        t.points,
+        t.correct,
+        t.wrong_colour,
+        t.wrong_length,
+        t.no_straw,
+        t.too_many_events,
+        cov.join(", ")
+    );
+    Heading::new(title, &sub)
 }
 
 /// Whether pixel `(x, y)` lies inside `panel`.
@@ -118,41 +128,14 @@ fn draw_check<DB: DrawingBackend>(
     observer: Vec3,
     points: &[ClaimedPoint],
     report: &CheckReport,
-    title: &str,
+    heading: &Heading,
     (max_background, max_correct): (usize, usize),
 ) -> DrawResultOn<DB> {
+    root.fill(&WHITE)?;
+    heading.draw(root)?;
     let truth = &report.truth.points;
     let bx = axis_box(scene, observer, truth);
-    let panels = layout(&bx, &figure_views(observer));
-    let w = FIGURE_WIDTH as i32;
-    root.draw(&Text::new(
-        title.to_string(),
-        (w / 2, 20),
-        font(24.0).pos(Pos::new(HPos::Center, VPos::Center)),
-    ))?;
-    let t = &report.tally;
-    let cov: Vec<String> = (0..SECTION_COUNT)
-        .map(|k| format!("{:.0} %", 100.0 * report.coverage.per_colour[k].share()))
-        .collect();
-    let sub = format!(
-        "{} points: {} correct, {} wrong colour, {} wrong length, {} no straw, {} need more events · \
-         coverage per colour 1–5: {} · lengths in metres, same scale on every axis",
-        t.points,
-        t.correct,
-        t.wrong_colour,
-        t.wrong_length,
-        t.no_straw,
-        t.too_many_events,
-        cov.join(", ")
-    );
-    root.draw(&Text::new(
-        sub,
-        (w / 2, 48),
-        font(15.0)
-            .color(&RGBColor(60, 60, 60))
-            .pos(Pos::new(HPos::Center, VPos::Center)),
-    ))?;
-
+    let panels = layout(&bx, &figure_views(observer), heading.height());
     for panel in &panels {
         let proj = &panel.proj;
         draw_panes(root, panel, &bx)?;
@@ -216,7 +199,7 @@ fn draw_check<DB: DrawingBackend>(
                     root.draw(&Text::new(
                         (n + 1).to_string(),
                         (top.0.round() as i32, top.1.round() as i32 - 4),
-                        font(14.0).pos(Pos::new(HPos::Center, VPos::Bottom)),
+                        font(TEXT).pos(Pos::new(HPos::Center, VPos::Bottom)),
                     ))?;
                 }
             }
@@ -234,9 +217,9 @@ fn draw_check<DB: DrawingBackend>(
         }
         draw_water(root, proj, scene, true)?;
         draw_axis_labels(root, panel, &bx)?;
-        draw_observer(root, panel, &bx, observer)?;
+        draw_observer(root, panel, &bx, observer, &[])?;
     }
-    draw_check_legend(root, report)
+    draw_check_legend(root, report, legend_cell(heading.height()))
 }
 
 /// The mark of a wrong point: a cross for a wrong colour or length, a ring for no straw or too
@@ -261,48 +244,45 @@ fn marker<DB: DrawingBackend>(
 fn draw_check_legend<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     report: &CheckReport,
+    cell: (i32, i32, i32, i32),
 ) -> DrawResultOn<DB> {
-    let y = FIGURE_HEIGHT as i32 - LEGEND_BAND / 2;
-    let mut x = 24;
-    let style = font(14.0).pos(Pos::new(HPos::Left, VPos::Center));
+    let mut items: Vec<(LegendMark, String)> =
+        vec![(LegendMark::None, "pale: true, full: correct".to_string())];
     for (k, name) in SECTION_NAMES.iter().enumerate() {
-        let c = section_rgb8(k as u8 + 1);
-        root.draw(&Rectangle::new(
-            [(x, y - 7), (x + 7, y + 7)],
-            pale(k as u8 + 1).filled(),
-        ))?;
-        root.draw(&Rectangle::new(
-            [(x + 7, y - 7), (x + 14, y + 7)],
-            RGBColor(c[0], c[1], c[2]).filled(),
-        ))?;
-        let s = format!("{} {name}", k + 1);
-        root.draw(&Text::new(s.clone(), (x + 20, y), style.clone()))?;
-        x += 20 + text_width(&s, 14.0) + 16;
+        let full = section_rgb8(k as u8 + 1);
+        let p = pale(k as u8 + 1);
+        items.push((
+            LegendMark::TwoSwatches([p.0, p.1, p.2], full),
+            format!("{} {name}", k + 1),
+        ));
     }
-    let s = "(pale: true image; full: correct points)";
-    root.draw(&Text::new(s, (x, y), style.clone()))?;
-    x += text_width(s, 14.0) + 26;
-    for kind in [
+    let kinds = [
         VerdictKind::WrongColour,
         VerdictKind::WrongLength,
         VerdictKind::NoStraw,
         VerdictKind::TooManyEvents,
-    ] {
-        marker(root, (x + 5, y), kind)?;
-        let s = format!("{}: {}", kind.words(), report.tally.count(kind));
-        root.draw(&Text::new(s.clone(), (x + 16, y), style.clone()))?;
-        x += 16 + text_width(&s, 14.0) + 22;
+    ];
+    let first_kind = items.len();
+    for (kind, short) in kinds.iter().zip([
+        "wrong colour",
+        "wrong length",
+        "no straw",
+        "too many events",
+    ]) {
+        items.push((
+            LegendMark::Room,
+            format!("{short}: {}", report.tally.count(*kind)),
+        ));
     }
-    dashed(
-        root,
-        &[(x as f64, y as f64), (x as f64 + 24.0, y as f64)],
-        BLACK,
-    )?;
-    root.draw(&Text::new(
-        "missing (numbered as listed)",
-        (x + 30, y),
-        style,
-    ))?;
+    items.push((
+        LegendMark::Dashed((0, 0, 0)),
+        "missing (numbered)".to_string(),
+    ));
+    let rows = draw_legend_cell(root, cell, &items)?;
+    // The wrong points' marks, where the cell left room before their lines.
+    for (k, kind) in kinds.iter().enumerate() {
+        marker(root, (cell.0 + 46, rows[first_kind + k]), *kind)?;
+    }
     Ok(())
 }
 
@@ -346,13 +326,13 @@ fn convex_hull(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
 mod tests {
     use super::*;
     use crate::plot::tests::decode;
-    use crate::plot::TITLE_BAND;
+    use crate::plot::{CELL_HEIGHT, FIGURE_WIDTH};
     use bentstraw_optics::check::{check_solution, DEFAULT_TOLERANCE};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
 
     /// The figure of reference 2's own points, changed by `change`, as decoded pixels.
-    fn figure(change: impl Fn(usize, &mut ClaimedPoint) -> bool) -> image::RgbImage {
+    fn figure(change: impl Fn(usize, &mut ClaimedPoint) -> bool) -> (image::RgbImage, i32) {
         let r = &REFERENCES[1];
         let scene = r.scene(1.333);
         let cloud = sample_image(&scene, r.observer, 3000, &|_| {});
@@ -370,14 +350,17 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("f.png");
         write_check_figure(&path, &scene, r.observer, &points, &report, "t").unwrap();
-        decode(&std::fs::read(path).unwrap())
+        let top = check_heading(&report, "t").height();
+        (decode(&std::fs::read(path).unwrap()), top)
     }
 
-    /// Whether colour `c` appears in the panels (not the title or the legend).
-    fn in_panels(img: &image::RgbImage, c: RGBColor) -> bool {
-        let bottom = FIGURE_HEIGHT - LEGEND_BAND as u32;
-        img.enumerate_pixels()
-            .any(|(_, y, p)| y >= TITLE_BAND as u32 && y < bottom && p.0 == [c.0, c.1, c.2])
+    /// Whether colour `c` appears in the panels (not the heading or the legend's cell).
+    fn in_panels((img, top): &(image::RgbImage, i32), c: RGBColor) -> bool {
+        let (top, cell) = (*top as u32, CELL_HEIGHT as u32);
+        img.enumerate_pixels().any(|(x, y, p)| {
+            let legend = x >= FIGURE_WIDTH / 2 && y >= top + cell;
+            y >= top && y < top + 2 * cell && !legend && p.0 == [c.0, c.1, c.2]
+        })
     }
 
     #[test]
@@ -414,19 +397,5 @@ mod tests {
         h.sort_by(|a, b| a.partial_cmp(b).unwrap());
         assert_eq!(h, vec![(0.0, 0.0), (0.0, 2.0), (2.0, 0.0), (2.0, 2.0)]);
         assert_eq!(convex_hull(&[(1.0, 1.0)]), vec![(1.0, 1.0)]);
-    }
-
-    #[test]
-    fn only_png_and_svg_are_figures() {
-        assert_eq!(
-            PlotFormat::from_path(Path::new("a.PNG")).unwrap(),
-            PlotFormat::Png
-        );
-        assert_eq!(
-            PlotFormat::from_path(Path::new("a.svg")).unwrap(),
-            PlotFormat::Svg
-        );
-        assert!(PlotFormat::from_path(Path::new("a.jpg")).is_err());
-        assert!(PlotFormat::from_path(Path::new("a")).is_err());
     }
 }

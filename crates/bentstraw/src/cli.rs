@@ -114,19 +114,28 @@ pub struct SimulateArgs {
     /// Where to write the points: .csv, .json or .ply (by extension)
     #[arg(long, value_name = "FILE")]
     pub output: PathBuf,
-    /// Also draw the classic figure (three views) into this PNG
-    #[arg(long, value_name = "FILE.png")]
+    /// Also draw the classic figure (front, side and top views) into this file: .png, .svg or
+    /// .pdf (by extension)
+    #[arg(long, value_name = "FILE.png|.svg|.pdf")]
     pub plot: Option<PathBuf>,
     /// Also write a self-contained, rotatable 3D view into this HTML file
     #[arg(long, value_name = "FILE.html")]
     pub html: Option<PathBuf>,
     /// Also draw a ray diagram (side and top views of about 40 broken light paths, coloured by
-    /// path type) into this PNG or SVG
-    #[arg(long, value_name = "FILE.svg|.png")]
+    /// path type) into this file: .svg, .png or .pdf (by extension)
+    #[arg(long, value_name = "FILE.svg|.png|.pdf")]
     pub rays: Option<PathBuf>,
     /// How the apparent position is judged
     #[arg(long, value_enum, default_value_t = ImageModelArg::Course)]
     pub image_model: ImageModelArg,
+    /// Also draw the course's, the eye's and the stereo image one above the other, same views and
+    /// scales, into this file: .png, .svg or .pdf (runs the eye and stereo models)
+    #[arg(long, value_name = "FILE.png|.svg|.pdf")]
+    pub models_plot: Option<PathBuf>,
+    /// Also plot the gap from each course point to the eye's and the stereo model's point against
+    /// the straw point's height, into this file: .png, .svg or .pdf (runs both models)
+    #[arg(long, value_name = "FILE.png|.svg|.pdf")]
+    pub gap_plot: Option<PathBuf>,
 }
 
 /// Arguments of `table`.
@@ -286,8 +295,9 @@ pub struct CheckArgs {
     /// Print one JSON object (for graders' scripts) instead of the summary
     #[arg(long)]
     pub json: bool,
-    /// Also draw a figure: the true image, the solution's points and what is missing (.png or .svg)
-    #[arg(long, value_name = "FILE.png|FILE.svg")]
+    /// Also draw a figure: the true image, the solution's points and what is missing (.png, .svg
+    /// or .pdf)
+    #[arg(long, value_name = "FILE.png|.svg|.pdf")]
     pub plot: Option<PathBuf>,
     /// How many of the worst points to list
     #[arg(long, value_name = "N", default_value_t = 10)]

@@ -509,12 +509,12 @@ fn check_extension(out: &Output) -> CliResult {
     if ext.as_deref().is_some_and(|e| out.extensions.contains(&e)) {
         return Ok(());
     }
-    let expected = out
-        .extensions
-        .iter()
-        .map(|a| format!(".{a}"))
-        .collect::<Vec<_>>()
-        .join(" or ");
+    let names: Vec<String> = out.extensions.iter().map(|a| format!(".{a}")).collect();
+    // ".png", ".png or .svg", ".png, .svg or .pdf".
+    let expected = match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.join(""),
+    };
     Err(CliError(format!(
         "{}: the file name must end in {expected}",
         named(out)

@@ -16,7 +16,10 @@ use serde_json::json;
 
 use crate::error::CliResult;
 use crate::files;
-use crate::plot::{axis_box, counts, figure_views, section_rgb8, WIRE_VERTICALS};
+use crate::plot::{
+    axis_box, counts, degrees, figure_views, observer_direction, section_rgb8, whole,
+    WIRE_VERTICALS,
+};
 
 /// The viewer's script, kept in its own file so it stays readable and lintable.
 const VIEWER_JS: &str = include_str!("../assets/viewer.js");
@@ -154,33 +157,41 @@ fn viewer_data(
             })
         })
         .collect();
-    let figure = figure_views(observer);
+    let o = observer_direction(observer);
+    let [_, side, top] = figure_views(observer);
     // First, and shown on opening: a three-quarter view that makes the page look 3D at once.
-    let o = figure[0].0;
     let three_quarter = json!({
         "name": "3D view",
         "caption": "three-quarter view: 35° round from the observer's azimuth, 20° from above",
         "az": o.azimuth.to_degrees() - 35.0,
         "el": 20.0,
     });
+    // Then the observer's own direction, and the figure's side and top views.
+    let observer_view = (
+        o,
+        format!(
+            "from the observer's direction (azimuth {}°, elevation {}°)",
+            whole(degrees(o.azimuth)),
+            whole(o.elevation.to_degrees())
+        ),
+    );
     let views: Vec<_> = std::iter::once(three_quarter)
         .chain(
-            figure
-                .iter()
-                .zip(["observer", "side", "top"])
-                .map(|((v, caption), name)| {
-                    let name = if name == "top" && v.elevation.abs() < 1.0 {
-                        "level"
-                    } else {
-                        name
-                    };
-                    json!({
-                        "name": format!("{name} view"),
-                        "caption": caption,
-                        "az": v.azimuth.to_degrees(),
-                        "el": v.elevation.to_degrees(),
-                    })
-                }),
+            [
+                observer_view,
+                (side.0, side.1.join(" ")),
+                (top.0, top.1.join(" ")),
+            ]
+            .iter()
+            .zip(["observer", "side", "top"])
+            .map(|((v, caption), name)| {
+                json!({
+                    "name": format!("{name} view"),
+                    "caption": caption,
+                    "az": v.azimuth.to_degrees(),
+                    "el": v.elevation.to_degrees(),
+                })
+            }),
         )
         .collect();
     let v3 = |v: Vec3| [v.x, v.y, v.z];
@@ -395,7 +406,9 @@ mod tests {
         let data = embedded_data(&viewer_page(&scene, observer, &[], "v", "x"));
         let views = data["views"].as_array().unwrap();
         assert_eq!(views.len(), 4);
-        for ((v, _), page) in figure_views(observer).iter().zip(&views[1..]) {
+        let [_, side, top] = figure_views(observer);
+        let o = observer_direction(observer);
+        for (v, page) in [o, side.0, top.0].iter().zip(&views[1..]) {
             assert!((page["az"].as_f64().unwrap() - v.azimuth.to_degrees()).abs() < 1e-9);
             assert!((page["el"].as_f64().unwrap() - v.elevation.to_degrees()).abs() < 1e-9);
         }

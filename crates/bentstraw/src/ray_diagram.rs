@@ -2,10 +2,10 @@
 //! eye through the water's faces to the straw, with its events marked (a ring for a refraction, a
 //! cross for a total reflection) and the dashed straight line from the eye to its image point; the
 //! glass, the water and the straw to scale; the kinds of light path coloured and named in a legend
-//! with the share of the image points each makes. PNG or SVG, by the file's extension.
+//! with the share of the image points each makes. PNG, SVG or PDF, by the file's extension.
 //!
-//! Sized for print: the figure is 1000 px wide and every text at least 30 px, so printed 8.5 cm
-//! wide (a report's column) the smallest text is 7.2 pt.
+//! Sized for print: the figure is 1000 px wide and every text at least 30 px (the font's size
+//! proper), so printed 8.5 cm wide (a report's column) the smallest text is 7.2 pt.
 
 use std::path::Path;
 
@@ -18,19 +18,22 @@ use bentstraw_optics::scene::{
 use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::error::CliResult;
 use crate::files;
-use crate::plot::{figure_bytes, font, is_svg};
+use crate::plot::{figure_bytes, font, wrap, FigureFormat, CAPTION, CAPTION_LINE, TEXT, TITLE};
 
 /// Width of the diagram (px).
 pub const DIAGRAM_WIDTH: u32 = 1000;
 /// Height of the diagram (px).
-pub const DIAGRAM_HEIGHT: u32 = 860;
+pub const DIAGRAM_HEIGHT: u32 = 1160;
 /// Rays drawn, about.
 pub const DIAGRAM_RAYS: usize = 40;
 /// Size of the smallest text (px): 7.2 pt when the figure is printed 8.5 cm wide.
-pub const SMALL_TEXT: f64 = 30.0;
+const SMALL_TEXT: f64 = TEXT;
+/// Height of a line of the legend (px).
+const LEGEND_LINE: i32 = 42;
 
 /// Colours of the kinds of light path, in the order of the legend (most common first).
 const KIND_RGB: [(u8, u8, u8); 8] = [
@@ -76,17 +79,17 @@ impl Diagram {
     }
 }
 
-/// Writes the diagram to `path`, `.png` or `.svg` by its extension.
+/// Writes the diagram to `path`, `.png`, `.svg` or `.pdf` by its extension.
 pub fn write_ray_diagram(path: &Path, scene: &Scene, diagram: &Diagram, title: &str) -> CliResult {
     let bytes = render(path, scene, diagram, title)?;
     files::write_bytes(path, &bytes)
 }
 
-/// The diagram as the bytes of a PNG or SVG file, by `path`'s extension.
+/// The diagram as the bytes of a PNG, SVG or PDF file, by `path`'s extension.
 pub fn render(path: &Path, scene: &Scene, diagram: &Diagram, title: &str) -> CliResult<Vec<u8>> {
     figure_bytes(
         path,
-        is_svg(path),
+        FigureFormat::of(path)?,
         (DIAGRAM_WIDTH, DIAGRAM_HEIGHT),
         |root| draw(root, scene, diagram, title),
         |root| draw(root, scene, diagram, title),
@@ -132,15 +135,15 @@ fn draw<DB: DrawingBackend>(
     let (w, h) = (DIAGRAM_WIDTH as i32, DIAGRAM_HEIGHT as i32);
     // The title's first part in large type, the rest (the inputs) wrapped below it.
     let (head, rest) = title.split_once(": ").unwrap_or((title, ""));
-    root.draw(&Text::new(head.to_string(), (20, 10), font(36.0)))
+    root.draw(&Text::new(head.to_string(), (20, 10), font(TITLE)))
         .map_err(e)?;
-    let mut top = 54;
-    for line in wrap(rest, 56) {
+    let mut top = 64;
+    for line in wrap(rest, SMALL_TEXT, w - 40) {
         root.draw(&Text::new(line, (20, top), font(SMALL_TEXT)))
             .map_err(e)?;
-        top += 36;
+        top += 40;
     }
-    let legend_h = 60 + 40 * diagram.counts.len().min(6) as i32;
+    let legend_h = 2 * LEGEND_LINE + 24 + LEGEND_LINE * diagram.counts.len().min(6) as i32;
     let panels_area = root.margin(top + 6, legend_h, 0, 0);
     let (left, right) = panels_area.split_horizontally(w / 2);
     let e_side = side_axis(diagram.observer);
@@ -149,30 +152,33 @@ fn draw<DB: DrawingBackend>(
         scene,
         diagram,
         View::Side(e_side),
-        "side view (observer to the right)",
-        "towards the observer (m)",
-        "z (m), up",
+        ["side view", "(observer to the right)"],
+        "towards observer (m) →",
+        "z (m) →",
     )?;
     draw_panel(
         &right,
         scene,
         diagram,
         View::Top,
-        "top view (from above)",
-        "x (m), to the right",
-        "y (m), up",
+        ["top view", "(from above)"],
+        "x (m) →",
+        "y (m) →",
     )?;
     // Legend: one line per kind of path, with its share of the image points.
     let total: usize = diagram.counts.iter().map(|c| c.1).sum::<usize>().max(1);
     let mut y = h - legend_h + 14;
-    root.draw(&Text::new(
-        "o refraction    x total reflection    dashed: line of sight".to_string(),
-        (20, y),
-        font(SMALL_TEXT),
-    ))
-    .map_err(e)?;
+    for line in [
+        "o refraction    x total reflection",
+        "dashed: the line of sight",
+    ] {
+        root.draw(&Text::new(line.to_string(), (20, y), font(SMALL_TEXT)))
+            .map_err(e)?;
+        y += LEGEND_LINE;
+    }
+    y -= LEGEND_LINE;
     for (kind, n) in diagram.counts.iter().take(6) {
-        y += 40;
+        y += LEGEND_LINE;
         let c = diagram.color_of(*kind);
         root.draw(&PathElement::new(
             vec![(20, y + 15), (70, y + 15)],
@@ -235,19 +241,31 @@ fn draw_panel<DB: DrawingBackend>(
     scene: &Scene,
     diagram: &Diagram,
     view: View,
-    caption: &str,
+    caption: [&str; 2],
     x_label: &str,
     y_label: &str,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     let (pw, ph) = area.dim_in_pixel();
+    for (k, line) in caption.iter().enumerate() {
+        area.draw(&Text::new(
+            line.to_string(),
+            (pw as i32 / 2, k as i32 * CAPTION_LINE),
+            font(CAPTION).pos(Pos::new(HPos::Center, VPos::Top)),
+        ))
+        .map_err(e)?;
+    }
+    let caption_h = 2 * CAPTION_LINE + 10;
+    let area = area.margin(caption_h, 0, 0, 0);
     // The plotting area's size once labels take their room (as set below).
-    let (plot_w, plot_h) = (pw as f64 - 150.0 - 40.0, ph as f64 - 50.0 - 100.0);
+    let (plot_w, plot_h) = (
+        pw as f64 - 150.0 - 40.0,
+        ph as f64 - caption_h as f64 - 110.0,
+    );
     let ((x0, x1), (y0, y1)) = ranges(scene, diagram, view, plot_w / plot_h);
-    let mut chart = ChartBuilder::on(area)
-        .caption(caption, font(SMALL_TEXT + 2.0))
+    let mut chart = ChartBuilder::on(&area)
         .margin_right(40)
-        .x_label_area_size(100)
+        .x_label_area_size(110)
         .y_label_area_size(150)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(e)?;
@@ -388,22 +406,6 @@ fn draw_panel<DB: DrawingBackend>(
     let label = EmptyElement::at(eye) + Text::new("eye", (-20, 12), font(SMALL_TEXT));
     chart.draw_series(std::iter::once(label)).map_err(e)?;
     Ok(())
-}
-
-/// `text` broken at ", " into lines of at most about `width` characters.
-fn wrap(text: &str, width: usize) -> Vec<String> {
-    let mut lines: Vec<String> = Vec::new();
-    for part in text.split(", ") {
-        match lines.last_mut() {
-            Some(l) if l.len() + 2 + part.len() <= width => {
-                l.push_str(", ");
-                l.push_str(part);
-            }
-            _ if !part.is_empty() => lines.push(part.to_string()),
-            _ => {}
-        }
-    }
-    lines
 }
 
 /// A tick label in metres, two decimals, without a minus sign on zero.

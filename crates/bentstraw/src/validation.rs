@@ -15,7 +15,7 @@ use plotters::prelude::*;
 
 use crate::error::CliResult;
 use crate::files;
-use crate::plot::{figure_bytes, font, is_svg};
+use crate::plot::{figure_bytes, font, FigureFormat, Heading, FIGURE_WIDTH, TEXT};
 
 /// Indices of the water the figure is made for: 8 values from 1 to 1.333.
 pub fn indices() -> Vec<f64> {
@@ -79,8 +79,9 @@ pub fn series(label: &str, scene: &Scene, observer: Vec3) -> ValidationSeries {
     }
 }
 
-/// Figure size (px); every text at least 30 px, 7.2 pt when printed 8.5 cm wide.
-const SIZE: (u32, u32) = (1000, 760);
+/// Size of the chart under the heading (px); every text at least 30 px, 7.2 pt when printed
+/// 8.5 cm wide.
+const CHART: (u32, u32) = (FIGURE_WIDTH, 760);
 /// Colours of the four simulations.
 const RGB: [RGBColor; 4] = [
     RGBColor(31, 119, 180),
@@ -91,14 +92,18 @@ const RGB: [RGBColor; 4] = [
 /// Distances below this are drawn at it (the plot's floor, below any rounding of a centimetre).
 const FLOOR: f64 = 1e-18;
 
-/// Writes the figure to `path` (PNG or SVG by its extension).
+/// Writes the figure to `path` (PNG, SVG or PDF by its extension).
 pub fn write_validation_figure(path: &Path, series: &[ValidationSeries]) -> CliResult {
+    let heading = Heading::new(
+        "Image points seen through the water: distance from the straw",
+        "",
+    );
     let bytes = figure_bytes(
         path,
-        is_svg(path),
-        SIZE,
-        |root| draw(root, series),
-        |root| draw(root, series),
+        FigureFormat::of(path)?,
+        (CHART.0, CHART.1 + heading.height() as u32),
+        |root| draw(root, series, &heading),
+        |root| draw(root, series, &heading),
     )?;
     files::write_bytes(path, &bytes)
 }
@@ -106,21 +111,19 @@ pub fn write_validation_figure(path: &Path, series: &[ValidationSeries]) -> CliR
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     series: &[ValidationSeries],
+    heading: &Heading,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     root.fill(&WHITE).map_err(e)?;
+    heading.draw(root).map_err(e)?;
     let top = series
         .iter()
         .flat_map(|s| s.rows.iter().map(|r| r.1))
         .filter(|v| v.is_finite())
         .fold(1e-3, f64::max)
         * 3.0;
-    let area = root.margin(0, 50, 0, 0);
+    let area = root.margin(heading.height() as u32, 50, 0, 0);
     let mut chart = ChartBuilder::on(&area)
-        .caption(
-            "Image points seen through the water: distance from the straw",
-            font(36.0),
-        )
         .margin(20)
         .margin_right(40)
         .x_label_area_size(90)
@@ -131,10 +134,10 @@ fn draw<DB: DrawingBackend>(
         .configure_mesh()
         .x_labels(6)
         .y_labels(8)
-        .label_style(font(30.0))
-        .axis_desc_style(font(30.0))
-        .x_desc("index of the water n")
-        .y_desc("distance (m), log scale")
+        .label_style(font(TEXT))
+        .axis_desc_style(font(TEXT))
+        .x_desc("index of the water n →")
+        .y_desc("distance (m), log scale →")
         .x_label_formatter(&|v| format!("{v:.2}"))
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .light_line_style(WHITE)
@@ -161,7 +164,7 @@ fn draw<DB: DrawingBackend>(
     }
     chart
         .configure_series_labels()
-        .label_font(font(30.0))
+        .label_font(font(TEXT))
         .position(SeriesLabelPosition::LowerRight)
         .background_style(WHITE.mix(0.9))
         .border_style(BLACK)
@@ -169,8 +172,8 @@ fn draw<DB: DrawingBackend>(
         .map_err(e)?;
     root.draw(&Text::new(
         "solid: largest distance; dashed: median",
-        (170, SIZE.1 as i32 - 44),
-        font(30.0),
+        (170, root.dim_in_pixel().1 as i32 - 44),
+        font(TEXT),
     ))
     .map_err(e)?;
     Ok(())

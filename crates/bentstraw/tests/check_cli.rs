@@ -356,22 +356,45 @@ fn malformed_files_are_refused_with_the_line_number_and_no_figure() {
 }
 
 #[test]
-fn the_figure_is_written_as_png_or_svg() {
+fn the_figure_is_written_as_png_svg_or_pdf() {
     let dir = tempfile::tempdir().unwrap();
     let (_, pts) = own_points(2, 3000);
     let kept: Vec<ImagePoint> = pts.iter().copied().filter(|p| p.color != 2).collect();
     let mut r = rows(&kept);
     r[5].3 = r[5].3 % 5 + 1;
     let file = write(dir.path(), "s.csv", &r, ",", true);
-    for name in ["fig.png", "fig.svg"] {
+    for name in ["fig.png", "fig.svg", "fig.pdf"] {
         let o = check(dir.path(), &file, 2, &["--plot", name]);
         assert_eq!(o.status.code(), Some(1));
         let bytes = fs::read(dir.path().join(name)).unwrap();
         if name.ends_with(".png") {
             assert!(bytes.starts_with(b"\x89PNG"));
+        } else if name.ends_with(".pdf") {
+            assert!(bytes.starts_with(b"%PDF"));
         } else {
             let s = String::from_utf8(bytes).unwrap();
-            assert!(s.starts_with("<svg") && s.trim_end().ends_with("</svg>"));
+            let doc = roxmltree::Document::parse(&s).expect("well-formed SVG");
+            let width: f64 = doc
+                .root_element()
+                .attribute("width")
+                .unwrap()
+                .parse()
+                .unwrap();
+            let texts: Vec<(String, f64)> = doc
+                .descendants()
+                .filter(|n| n.has_tag_name("text"))
+                .map(|n| {
+                    let size = n.attribute("font-size").unwrap().parse().unwrap();
+                    (n.text().unwrap_or("").trim().to_string(), size)
+                })
+                .collect();
+            // 7 pt when printed 8.5 cm wide, for every text.
+            for (t, size) in &texts {
+                assert!(*size >= width * 7.0 / 72.0 * 2.54 / 8.5, "'{t}': {size} px");
+            }
+            for want in ["front view", "wrong colour: 1", "missing (numbered)"] {
+                assert!(texts.iter().any(|t| t.0.contains(want)), "no '{want}'");
+            }
         }
     }
 }

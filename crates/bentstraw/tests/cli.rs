@@ -398,8 +398,8 @@ fn table_writes_every_simulation_and_the_report() {
         .unwrap()
         .starts_with(b"\x89PNG"));
     let files = fs::read_dir(&folder).unwrap().count();
-    // 12 × (csv, png, html), 4 × 9 pictures, model files and ray diagrams, the opening view and
-    // its ray diagram, the validation figure, the report.
+    // 12 × (csv, png, svg, html), 4 × 11 pictures, model files and ray diagrams, the opening
+    // view and its ray diagram, the validation figure, the report.
     for f in [
         "classic_view.png",
         "classic_rays.svg",
@@ -411,7 +411,7 @@ fn table_writes_every_simulation_and_the_report() {
     }
     assert_eq!(
         files,
-        12 * 3 + 4 * 9 + 2 + 1 + 1,
+        12 * 4 + 4 * 11 + 2 + 1 + 1,
         "unexpected files in the table's folder"
     );
     assert!(!err.contains("could not be written"), "{err}");

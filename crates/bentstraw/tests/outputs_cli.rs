@@ -163,7 +163,8 @@ fn a_failed_table_replaces_none_of_the_previous_table() {
     fs::create_dir(&folder).unwrap();
     fs::write(folder.join("index.html"), b"previous report").unwrap();
     fs::write(folder.join("sim1.csv"), b"previous points").unwrap();
-    let out = run_limited(d, 100, &["table", "--out", "t", "--points", "3000"]);
+    // 100 to 200 kB: under every figure, over the report (about 60 kB).
+    let out = run_limited(d, 200, &["table", "--out", "t", "--points", "3000"]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(
         stderr(&out).contains("no file in t was replaced"),

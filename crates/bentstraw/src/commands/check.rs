@@ -77,7 +77,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
         )));
     }
     if let Some(p) = &args.plot {
-        crate::check_plot::PlotFormat::from_path(p)?;
+        crate::plot::FigureFormat::of(p).map_err(|e| CliError(format!("--plot {}", e.0)))?;
         check_writable(p)?;
     }
     let started = Instant::now();

@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
-use bentstraw_optics::apparent::{eye_model_points, stereo_points};
+use bentstraw_optics::apparent::{eye_model_points, stereo_points, ApparentPoint, StereoImage};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Scene, SECTION_NAMES};
 use bentstraw_optics::Vec3;
@@ -14,6 +14,10 @@ use bentstraw_optics::Vec3;
 use crate::cli::{ImageModelArg, SimulateArgs};
 use crate::error::{fail, CliResult};
 use crate::files::{Output, OutputSet};
+use crate::model_plots::{
+    eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
+    ModelCloud, MODEL_NAMES,
+};
 use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use crate::{html, plot, progress, ray_diagram};
 
@@ -32,7 +36,14 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     if args.points == 0 {
         return fail("--points 0 is not allowed: ask for at least 1 image point");
     }
+    // The model comparison and the gap plot need both the eye and the stereo model.
+    let both_models = args.models_plot.is_some() || args.gap_plot.is_some();
     let (most, per_point, model_name) = match args.image_model {
+        _ if both_models => (
+            MAX_MODEL_POINTS,
+            "about 600 bytes",
+            "eye and stereo (--models-plot, --gap-plot)",
+        ),
         ImageModelArg::Course => (MAX_POINTS, "about 300 bytes", "course"),
         ImageModelArg::Eye => (MAX_MODEL_POINTS, "about 600 bytes", "eye"),
         ImageModelArg::Stereo => (MAX_MODEL_POINTS, "about 600 bytes", "stereo"),
@@ -54,7 +65,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         outputs.push(Output {
             flag: "--plot",
             path: p,
-            extensions: &["png"],
+            extensions: plot::FIGURE_EXTENSIONS,
         });
     }
     if let Some(h) = &args.html {
@@ -68,8 +79,20 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         outputs.push(Output {
             flag: "--rays",
             path: r,
-            extensions: &["svg", "png"],
+            extensions: plot::FIGURE_EXTENSIONS,
         });
+    }
+    for (flag, path) in [
+        ("--models-plot", &args.models_plot),
+        ("--gap-plot", &args.gap_plot),
+    ] {
+        if let Some(path) = path {
+            outputs.push(Output {
+                flag,
+                path,
+                extensions: plot::FIGURE_EXTENSIONS,
+            });
+        }
     }
     // The previous files stay until every new one is complete.
     let outputs = OutputSet::reserve(&outputs)?;
@@ -81,22 +104,20 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 
     // 3. The apparent-position model, if not the course's.
     let modelled = Instant::now();
-    let eye;
-    let stereo;
-    let model = match args.image_model {
-        ImageModelArg::Course => ModelPoints::Course,
-        ImageModelArg::Eye => {
-            eye = with_spinner("eye model", || {
-                eye_model_points(&scene, observer, &cloud.points)
-            });
-            ModelPoints::Eye(&eye)
-        }
-        ImageModelArg::Stereo => {
-            stereo = with_spinner("stereo model", || {
-                stereo_points(&scene, observer, &cloud.points)
-            });
-            ModelPoints::Stereo(&stereo)
-        }
+    let eye = (both_models || args.image_model == ImageModelArg::Eye).then(|| {
+        with_spinner("eye model", || {
+            eye_model_points(&scene, observer, &cloud.points)
+        })
+    });
+    let stereo = (both_models || args.image_model == ImageModelArg::Stereo).then(|| {
+        with_spinner("stereo model", || {
+            stereo_points(&scene, observer, &cloud.points)
+        })
+    });
+    let model = match (args.image_model, &eye, &stereo) {
+        (ImageModelArg::Eye, Some(eye), _) => ModelPoints::Eye(eye),
+        (ImageModelArg::Stereo, _, Some(stereo)) => ModelPoints::Stereo(stereo),
+        _ => ModelPoints::Course,
     };
     let modelled = modelled.elapsed();
 
@@ -128,6 +149,9 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         let title = format!("Ray diagram: {}", simulation_title(&scene, observer));
         ray_diagram::write_ray_diagram(r, &scene, &diagram, &title)?;
     }
+    if let (Some(eye), Some(stereo)) = (&eye, &stereo) {
+        write_model_figures(args, &set, eye, stereo)?;
+    }
     outputs.commit()?;
     let total = started.elapsed();
 
@@ -145,9 +169,58 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     if let Some(r) = &args.rays {
         written.push(format!("{} (ray diagram)", r.display()));
     }
+    if let Some(m) = &args.models_plot {
+        written.push(format!("{} (the three models compared)", m.display()));
+    }
+    if let Some(g) = &args.gap_plot {
+        written.push(format!("{} (gap to the course's points)", g.display()));
+    }
     progress::tell(&summary(&set, traced, total, &written));
     if !matches!(model, ModelPoints::Course) {
         progress::tell(&model_summary(&set, modelled));
+    }
+    Ok(())
+}
+
+/// The model comparison and the gap plot, if asked for: the course's, the eye's and the stereo
+/// points of `set`'s cloud.
+fn write_model_figures(
+    args: &SimulateArgs,
+    set: &PointSet,
+    eye: &[ApparentPoint],
+    stereo: &StereoImage,
+) -> CliResult {
+    let inputs = simulation_title(set.scene, set.observer);
+    if let Some(path) = &args.models_plot {
+        let placed = [
+            ModelPoints::Course,
+            ModelPoints::Eye(eye),
+            ModelPoints::Stereo(stereo),
+        ]
+        .map(|model| PointSet { model, ..*set }.placed_points());
+        let clouds: Vec<ModelCloud> = MODEL_NAMES
+            .iter()
+            .zip(&placed)
+            .map(|(name, points)| ModelCloud { name, points })
+            .collect();
+        let title = format!("Where the straw appears: {inputs}");
+        write_model_comparison(path, set.scene, set.observer, &clouds, &title)?;
+    }
+    if let Some(path) = &args.gap_plot {
+        let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
+        let series = [
+            GapSeries {
+                name: "eye model",
+                samples: &eye_gaps,
+            },
+            GapSeries {
+                name: "stereo model",
+                samples: &stereo_gaps,
+            },
+        ];
+        let title =
+            format!("Gap from the course's point to the eye's and the stereo point: {inputs}");
+        write_gap_plot(path, &series, &title)?;
     }
     Ok(())
 }

@@ -16,7 +16,10 @@ use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
 use crate::files::{self, Output, OutputSet};
-use crate::model_plots::{write_gap_plot, write_model_comparison, GapSeries, ModelCloud};
+use crate::model_plots::{
+    eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
+    ModelCloud, MODEL_NAMES,
+};
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
 use crate::validation::{self, write_validation_figure, ValidationSeries};
@@ -39,7 +42,8 @@ const VARIANTS: [(f64, &str); 3] = [(WATER_INDEX, ""), (1.0, "_n1"), (1.05, "_n1
 
 /// What the classic figure shows.
 const CLOUD_CAPTION: &str = "The image points in their section colours, the water as a wireframe \
-                             and the observer (black circle), seen from three sides.";
+                             and the observer (black dot): a front view from the observer's side, \
+                             a side view with the observer to the right, and the view from above.";
 
 /// One simulation of the table.
 struct Job {
@@ -58,6 +62,7 @@ impl Job {
         let mut names = vec![
             format!("{stem}.csv"),
             format!("{stem}.png"),
+            format!("{stem}.svg"),
             format!("{stem}.html"),
         ];
         if self.scene.n_water == WATER_INDEX {
@@ -69,7 +74,9 @@ impl Job {
                 "_stereo.csv",
                 "_stereo.html",
                 "_models.png",
+                "_models.svg",
                 "_gap.png",
+                "_gap.svg",
                 "_rays.svg",
             ] {
                 names.push(format!("{stem}{suffix}"));
@@ -246,6 +253,10 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     let data_error = write_points(&out.join(&csv), PointFormat::Csv, &set).err();
     let plot_error =
         plot::write_cloud_figure(&out.join(&png), scene, observer, &cloud.points, &title).err();
+    // The same figure as a vector drawing, for print.
+    let svg = format!("{}.svg", job.stem);
+    let svg_error =
+        plot::write_cloud_figure(&out.join(&svg), scene, observer, &cloud.points, &title).err();
     let page_error =
         html::write_cloud_viewer(&out.join(&page), scene, observer, &cloud.points, &title).err();
     let written = t1.elapsed();
@@ -255,6 +266,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     figure.links = vec![
         Link::new(&page, "rotatable 3D view", page_error.map(|e| e.0)),
         Link::new(&csv, "points (CSV)", data_error.map(|e| e.0)),
+        Link::new(&svg, "figure as SVG", svg_error.map(|e| e.0)),
     ];
 
     let mut timings = vec![
@@ -562,12 +574,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         }
         placed.push(points);
     }
-    let names = [
-        "course (P = O + L·u0)",
-        "eye (small pupil)",
-        "stereo (two eyes, 65 mm)",
-    ];
-    let clouds: Vec<ModelCloud> = names
+    let clouds: Vec<ModelCloud> = MODEL_NAMES
         .iter()
         .zip(&placed)
         .map(|(name, points)| ModelCloud { name, points })
@@ -581,18 +588,19 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     figure.error = write_model_comparison(&out.join(&compare), scene, observer, &clouds, &title)
         .err()
         .map(|e| e.0);
+    let compare_svg = format!("{}_models.svg", job.stem);
+    let svg_error =
+        write_model_comparison(&out.join(&compare_svg), scene, observer, &clouds, &title).err();
+    links.push(Link::new(
+        &compare_svg,
+        "figure as SVG",
+        svg_error.map(|e| e.0),
+    ));
     figure.links = links;
     figures.push(figure);
 
-    let eye_gaps: Vec<(f64, f64, u8)> = eye
-        .iter()
-        .filter_map(|p| Some((p.image.straw_point.z, p.gap_to_course()?, p.image.color)))
-        .collect();
-    let stereo_gaps: Vec<(f64, f64, u8)> = stereo
-        .points
-        .iter()
-        .filter_map(|p| Some((p.image.straw_point.z, p.gap_to_course()?, p.image.color)))
-        .collect();
+    let eye_gaps = eye_gap_samples(&eye);
+    let stereo_gaps = stereo_gap_samples(&stereo);
     let gap = format!("{}_gap.png", job.stem);
     let series = [
         GapSeries {
@@ -616,6 +624,14 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     figure.error = write_gap_plot(&out.join(&gap), &series, &gap_title)
         .err()
         .map(|e| e.0);
+    let gap_svg = format!("{}_gap.svg", job.stem);
+    figure.links = vec![Link::new(
+        &gap_svg,
+        "figure as SVG",
+        write_gap_plot(&out.join(&gap_svg), &series, &gap_title)
+            .err()
+            .map(|e| e.0),
+    )];
     figures.push(figure);
 
     let unplaced = eye.iter().filter(|p| p.position.is_none()).count();
