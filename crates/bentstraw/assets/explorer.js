@@ -2,7 +2,7 @@
 // script only keeps the state (in the address), asks for frames and draws them.
 "use strict";
 
-// ---- the scene's fixed sizes (SPEC §1), for drawing outlines only ----
+// ---- the scene's fixed sizes (the glass and the straw), for drawing outlines only ----
 const GLASS_R = 0.04, GLASS_H = 0.20, STRAW_R = 0.005, STRAW_H = 0.25;
 const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff"];
 const SECTION_NAMES = ["red", "orange", "magenta", "green", "blue"];
