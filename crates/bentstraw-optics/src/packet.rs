@@ -268,122 +268,16 @@ impl PacketTracer {
         wave: &mut FresnelWave,
         weights: &mut [[f64; SECTION_COUNT]],
     ) {
-        let prune = prune_below as f32;
-        let n_water = self.eta_into_air;
+        debug_assert_eq!(weights.len(), camera.width as usize);
         for w in weights.iter_mut() {
             *w = [0.0; SECTION_COUNT];
         }
-        let (cur, next) = (&mut wave.current, &mut wave.next);
-        let segments = &mut wave.segments;
-        segments.clear();
-        segments.resize(weights.len(), 1);
-        cur.clear();
-        cur.reserve_total(weights.len());
-        let rays = row_rays(camera, row);
-        for (p, chunk_start) in (0..weights.len()).step_by(LANES).enumerate() {
-            let ([ox, oy, oz], [dx, dy, dz], alive) = rays(p);
-            for k in 0..LANES.min(weights.len() - chunk_start) {
-                if alive.0[k] == 0 {
-                    continue; // misses the scene
-                }
-                cur.push(
-                    [ox.0[k], oy.0[k], oz.0[k]],
-                    [dx.0[k], dy.0[k], dz.0[k]],
-                    1.0,
-                    false,
-                    (chunk_start + k) as u32,
-                    NO_FACE,
-                );
+        // The picture's breadth-first loop, keeping only the weight that reaches the straw.
+        self.branch_ends_row_generic(camera, row, true, prune_below, wave, &mut |pixel, end| {
+            if let BranchEnd::Straw { code, weight, .. } = end {
+                weights[pixel][code as usize - 1] += weight as f64;
             }
-        }
-        for event in 0..=self.max_events {
-            if cur.len() == 0 {
-                break;
-            }
-            next.clear();
-            // Each branch has at most two children.
-            next.reserve_total(2 * cur.len());
-            for base in (0..cur.len()).step_by(LANES) {
-                let n = LANES.min(cur.len() - base);
-                let alive = M8(std::array::from_fn(|k| if k < n { u32::MAX } else { 0 }));
-                let o = [cur.load(0, base), cur.load(1, base), cur.load(2, base)];
-                let d = [cur.load(3, base), cur.load(4, base), cur.load(5, base)];
-                let left = cur.load_left(base);
-                let Some(hit) = self.hit8(o, d, alive, left) else {
-                    continue; // all escape
-                };
-                let inf = F8::splat(f32::INFINITY);
-                let hits_straw = alive
-                    .and(hit.t_straw.lt(inf))
-                    .and(hit.t_straw.le(hit.t_water));
-                let hits_water = alive.and_not(hits_straw).and(hit.t_water.lt(inf));
-                for k in 0..n {
-                    if hits_straw.0[k] != 0 {
-                        let code = hit.straw_code.0[k] as usize;
-                        weights[cur.pixel[base + k] as usize][code - 1] += cur.w[base + k] as f64;
-                    }
-                }
-                if event == self.max_events || !hits_water.any() {
-                    continue;
-                }
-                let in_water = M8(std::array::from_fn(|k| {
-                    if k < n && cur.in_water[base + k] {
-                        u32::MAX
-                    } else {
-                        0
-                    }
-                }));
-                let b = self.bend8(o, d, hit.t_water, hit.water_face, in_water);
-                // Unpolarised Fresnel reflectance from cos θi and cos θt (1 under total reflection).
-                let one = F8::splat(1.0);
-                let nw = F8::splat(n_water);
-                let (n1, n2) = (in_water.select(nw, one), in_water.select(one, nw));
-                let rs = (n1 * b.cos_i - n2 * b.cos_t) / (n1 * b.cos_i + n2 * b.cos_t);
-                let rp = (n2 * b.cos_i - n1 * b.cos_t) / (n2 * b.cos_i + n1 * b.cos_t);
-                let r = b.total.select(one, F8::splat(0.5) * (rs * rs + rp * rp));
-                for k in 0..n {
-                    if hits_water.0[k] == 0 {
-                        continue;
-                    }
-                    let (w, water, pixel) =
-                        (cur.w[base + k], cur.in_water[base + k], cur.pixel[base + k]);
-                    let mut wr = w * r.0[k];
-                    let mut wt = if b.total.0[k] != 0 { 0.0 } else { w - wr };
-                    if b.is_top.0[k] == 0 {
-                        // Out through the side or bottom, or mirrored off their outside: escapes.
-                        if water {
-                            wt = 0.0;
-                        } else {
-                            wr = 0.0;
-                        }
-                    }
-                    let q = [b.q[0].0[k], b.q[1].0[k], b.q[2].0[k]];
-                    let face = hit.water_face.0[k];
-                    // Each child is one more segment for its pixel; past the bound the light
-                    // still travelling is dropped.
-                    let used = &mut segments[pixel as usize];
-                    if wr >= prune && wr > 0.0 && *used < FRESNEL_SEGMENTS_PER_RAY {
-                        *used += 1;
-                        let l = [
-                            b.reflected[0].0[k],
-                            b.reflected[1].0[k],
-                            b.reflected[2].0[k],
-                        ];
-                        next.push(q, l, wr, water, pixel, face);
-                    }
-                    if wt >= prune && wt > 0.0 && *used < FRESNEL_SEGMENTS_PER_RAY {
-                        *used += 1;
-                        let t = [
-                            b.refracted[0].0[k],
-                            b.refracted[1].0[k],
-                            b.refracted[2].0[k],
-                        ];
-                        next.push(q, t, wt, !water, pixel, face);
-                    }
-                }
-            }
-            std::mem::swap(cur, next);
-        }
+        });
     }
 
     /// How every branch of the rays through the centres of pixel row `row` ends, for a picture
@@ -393,8 +287,8 @@ impl PacketTracer {
     /// reflectance, branches lighter than `prune_below` are abandoned; without it (SPEC §3, course)
     /// each ray is refracted or totally reflected and keeps weight 1. Branches that provably
     /// escape (out of the water through the side or bottom, or mirrored off their outside) are
-    /// reported as escaping from the face at once. Same breadth-first order as
-    /// [`Self::fresnel_row`], so the lanes stay full.
+    /// reported as escaping from the face at once. Traced breadth first, so the lanes stay full
+    /// (see [`Self::fresnel_row`], which is this loop keeping only the straw's weights).
     pub fn branch_ends_row(
         &self,
         camera: &Camera,
@@ -402,7 +296,7 @@ impl PacketTracer {
         split: bool,
         prune_below: f64,
         wave: &mut FresnelWave,
-        on_end: &mut dyn FnMut(usize, BranchEnd),
+        on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
         #[cfg(target_arch = "x86_64")]
         {
@@ -425,7 +319,7 @@ impl PacketTracer {
         split: bool,
         prune_below: f64,
         wave: &mut FresnelWave,
-        on_end: &mut dyn FnMut(usize, BranchEnd),
+        on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
         self.branch_ends_row_generic(camera, row, split, prune_below, wave, on_end);
     }
@@ -438,7 +332,7 @@ impl PacketTracer {
         split: bool,
         prune_below: f64,
         wave: &mut FresnelWave,
-        on_end: &mut dyn FnMut(usize, BranchEnd),
+        on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
         let width = camera.width as usize;
         let eye = [
@@ -498,7 +392,7 @@ impl PacketTracer {
         prune_below: f64,
         max_segments: u32,
         wave: &mut FresnelWave,
-        on_end: &mut dyn FnMut(usize, BranchEnd),
+        on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
         #[cfg(target_arch = "x86_64")]
         {
@@ -541,7 +435,7 @@ impl PacketTracer {
         prune_below: f64,
         max_segments: u32,
         wave: &mut FresnelWave,
-        on_end: &mut dyn FnMut(usize, BranchEnd),
+        on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
         self.branch_ends_generic(
             eye,
@@ -564,7 +458,7 @@ impl PacketTracer {
         prune_below: f64,
         max_segments: u32,
         wave: &mut FresnelWave,
-        on_end: &mut dyn FnMut(usize, BranchEnd),
+        on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
         let v = |x: Vec3| [x.x as f32, x.y as f32, x.z as f32];
         let far = (eye - BOUNDING_CENTRE).length() > FAR_EYE;
@@ -609,14 +503,14 @@ impl PacketTracer {
     /// [`Self::branch_ends_row`]), at most `max_segments` segments for each of the `pixels`
     /// pixels (what still travels then is dropped).
     #[inline(always)]
-    fn follow_branches(
+    fn follow_branches<E: FnMut(usize, BranchEnd)>(
         &self,
         split: bool,
         prune_below: f64,
         max_segments: u32,
         pixels: usize,
         wave: &mut FresnelWave,
-        on_end: &mut dyn FnMut(usize, BranchEnd),
+        on_end: &mut E,
     ) {
         let prune = prune_below as f32;
         let n_water = self.eta_into_air;
@@ -638,7 +532,7 @@ impl PacketTracer {
                 let o = [cur.load(0, base), cur.load(1, base), cur.load(2, base)];
                 let d = [cur.load(3, base), cur.load(4, base), cur.load(5, base)];
                 let left = cur.load_left(base);
-                let escape = |k: usize, on_end: &mut dyn FnMut(usize, BranchEnd)| {
+                let escape = |k: usize, on_end: &mut E| {
                     // A branch that met nothing is the ray from the eye (a far eye's rays start
                     // on the bounding sphere, possibly past the backdrop's floor).
                     let origin = if cur.left[base + k] == NO_FACE {
@@ -718,8 +612,6 @@ impl PacketTracer {
                         (false, false) => (0.0, w),
                     };
                     let q = lane(&b.q, k);
-                    let reflected = lane(&b.reflected, k);
-                    let refracted = lane(&b.refracted, k);
                     // Out through the side or bottom, or mirrored off their outside: escapes.
                     let (reflected_escapes, refracted_escapes) = if b.is_top.0[k] == 0 {
                         (!water, water)
@@ -727,13 +619,14 @@ impl PacketTracer {
                         (false, false)
                     };
                     let face = hit.water_face.0[k];
-                    for (weight, dir, escapes, to_water) in [
-                        (wr, reflected, reflected_escapes, water),
-                        (wt, refracted, refracted_escapes, !water),
+                    for (weight, directions, escapes, to_water) in [
+                        (wr, &b.reflected, reflected_escapes, water),
+                        (wt, &b.refracted, refracted_escapes, !water),
                     ] {
                         if weight <= 0.0 || (split && weight < prune) {
                             continue;
                         }
+                        let dir = lane(directions, k);
                         let used = &mut segments[pixel as usize];
                         if !escapes && *used >= max_segments {
                             // The pixel's work is spent: dropped, like light past the limit.
