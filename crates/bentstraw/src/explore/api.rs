@@ -697,7 +697,6 @@ mod tests {
         assert!(msg(&format!("{REF2}&fov=190")).contains("--fov 190"));
     }
 
-    /// The frame's binary layout: header, RGBA picture, points; the points are `simulate`'s.
     /// The model's answer places the points of the course cloud `simulate` computes (from the last
     /// frame or traced afresh), every K-th of them when asked.
     #[test]
@@ -750,6 +749,7 @@ mod tests {
         assert!(String::from_utf8_lossy(&bad.body).contains("1 <= K <= 64"));
     }
 
+    /// The frame's binary layout: header, RGBA picture, points; the points are `simulate`'s.
     #[test]
     fn frame_reply_layout_and_points() {
         let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=1500"))).unwrap();

@@ -175,6 +175,7 @@ fn worker(rx: &Mutex<Receiver<Job>>, latest: &Latest) {
     }
 }
 
+/// The answer to a request a newer one from the same page has replaced.
 fn stale() -> Reply {
     Reply::text(409, "stale: a newer request replaced this one")
 }
