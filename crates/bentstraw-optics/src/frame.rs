@@ -190,7 +190,7 @@ mod tests {
                 .filter(|c| c == &[0, 0, 0])
                 .count()
         };
-        // Only the glass outline's ink is drawn over the untouched rows.
+        // The untouched rows stay black.
         assert!(
             black(&frame) > 48 * 36 / 2,
             "{} black pixels",

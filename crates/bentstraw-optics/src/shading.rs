@@ -130,23 +130,22 @@ pub fn linear_to_srgb(c: f64) -> f64 {
 const CURVE_STEPS: usize = 4096;
 
 /// `f` sampled at `CURVE_STEPS + 1` evenly spaced points of `[0, 1]`.
-fn curve_table(f: fn(f64) -> f64) -> Vec<f64> {
-    (0..=CURVE_STEPS)
-        .map(|k| f(k as f64 / CURVE_STEPS as f64))
-        .collect()
+fn curve_table(f: fn(f64) -> f64) -> CurveTable {
+    Box::new(std::array::from_fn(|k| f(k as f64 / CURVE_STEPS as f64)))
 }
 
 /// `table`'s curve at `c` (clamped to `[0, 1]`), interpolated linearly.
 #[inline]
-fn lookup(table: &[f64], c: f64) -> f64 {
+fn lookup(table: &[f64; CURVE_STEPS + 1], c: f64) -> f64 {
     let x = c.clamp(0.0, 1.0) * CURVE_STEPS as f64;
     let k = (x as usize).min(CURVE_STEPS - 1);
     let t = x - k as f64;
     table[k] + t * (table[k + 1] - table[k])
 }
 
-static TO_LINEAR: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
-static TO_SRGB: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+type CurveTable = Box<[f64; CURVE_STEPS + 1]>;
+static TO_LINEAR: std::sync::OnceLock<CurveTable> = std::sync::OnceLock::new();
+static TO_SRGB: std::sync::OnceLock<CurveTable> = std::sync::OnceLock::new();
 
 /// [`srgb_to_linear`] by table, for the inner loops.
 #[inline]
@@ -222,14 +221,32 @@ impl Checker {
         }
     }
 
-    /// Linear colour at plane coordinates `(a, b)` (squares of [`CHECKER_SIDE`]); the contrast
-    /// shrinks by `fade` (far squares would only alias).
-    #[inline]
-    fn at(&self, a: f64, b: f64, fade: f64) -> [f64; 3] {
-        let parity = (floor(a / CHECKER_SIDE) + floor(b / CHECKER_SIDE)) & 1;
-        let square = if parity == 0 { self.light } else { self.dark };
+    /// Linear colour at plane coordinates `(a, b)` (metres), averaged over the patch of
+    /// half-widths `(ha, hb)` around it (zero: the square at the point); the contrast shrinks by
+    /// `fade` (far squares would only alias).
+    #[inline(always)]
+    fn at(&self, a: f64, b: f64, ha: f64, hb: f64, fade: f64) -> [f64; 3] {
+        // The light squares are where a·b's square wave (±1 per square along each axis) is +1;
+        // over a patch, the product's mean is the product of the two waves' means.
+        let k = 1.0 / CHECKER_SIDE;
+        let wave = square_wave_mean(a * k, ha * k) * square_wave_mean(b * k, hb * k);
+        let light = 0.5 + 0.5 * wave;
+        let square = mix(self.dark, self.light, light);
         mix(self.average, square, fade)
     }
+}
+
+/// The mean over `[x − h, x + h]` of the square wave that is +1 where `floor(x)` is even and −1
+/// where it is odd: the change of its integral (a triangle wave) over the interval, divided by
+/// the interval's length; the wave's value at `x` for a vanishing interval.
+#[inline(always)]
+fn square_wave_mean(x: f64, h: f64) -> f64 {
+    if h < 1e-6 {
+        return if floor(x) & 1 == 0 { 1.0 } else { -1.0 };
+    }
+    // ∫₀ˣ wave = 1 − |x mod 2 − 1|.
+    let integral = |x: f64| 1.0 - ((x - 2.0 * floor(0.5 * x) as f64) - 1.0).abs();
+    (integral(x + h) - integral(x - h)) / (2.0 * h)
 }
 
 impl Surroundings {
@@ -266,51 +283,126 @@ impl Surroundings {
         self.toward_eye
     }
 
-    /// Linear RGB of what `ray` (in air, leaving the scene) meets.
-    // Inline: a call would store the ray the packet tracer just made and load it back at once,
-    // in wider pieces than it was stored (a stall on every one of millions of calls).
+    /// What a ray from `o` along `d` (in air, leaving the scene; `d` need not be a unit vector)
+    /// meets, and how far along it in units of `d`: the nearer of the floor and the wall, else
+    /// the sky (or the plain backdrop).
     #[inline(always)]
-    pub fn radiance(&self, ray: &Ray) -> [f64; 3] {
-        let (o, d) = (ray.origin, ray.direction);
+    fn meet(&self, o: Vec3, d: Vec3) -> (Region, f64) {
         if self.backdrop == Backdrop::Plain {
-            // A gentle vertical gradient: flat enough to be "plain", enough for the water to show.
-            let [down, up] = self.plain;
-            return [down + (up - down) * (0.5 + 0.5 * d.z); 3];
+            return (Region::Sky, f64::INFINITY);
         }
-        // The nearer of the floor and the wall is found first; only its colour is worked out.
-        let mut best = f64::INFINITY;
-        let mut on_floor = false;
+        let mut best = (Region::Sky, f64::INFINITY);
         // A ray leaving the water's bottom starts on z = 0 to rounding (a hair below it in single
         // precision): it still meets the floor there.
         if self.floor && d.z < 0.0 && o.z >= -FLOOR_TOLERANCE {
             let t = (-o.z / d.z).max(0.0);
             // The floor ends at the wall.
             if (o + t * d).dot(self.toward_eye) >= -WALL_DISTANCE {
-                best = t;
-                on_floor = true;
+                best = (Region::Floor, t);
             }
         }
         let s = d.dot(self.toward_eye);
         if s < 0.0 {
             let t = (-WALL_DISTANCE - o.dot(self.toward_eye)) / s;
-            if t >= 0.0 && t < best {
+            if t >= 0.0 && t < best.1 {
                 let z = o.z + t * d.z;
                 let bottom = if self.floor { 0.0 } else { -WALL_TOP };
                 if z >= bottom && z <= WALL_TOP {
-                    let u = (o + t * d).dot(self.along_wall);
-                    // Fading as 1 / (1 + (u / 0.6)²), written with one division.
-                    let fade = FADE2 / (FADE2 + u * u);
-                    return self.wall_squares.at(u, z, fade);
+                    best = (Region::Wall, t);
                 }
             }
         }
-        if on_floor {
-            let p = o + best * d;
-            let fade = FADE2 / (FADE2 + p.x * p.x + p.y * p.y);
-            return self.floor_squares.at(p.x, p.y, fade);
-        }
-        mix(self.sky[0], self.sky[1], d.z.max(0.0))
+        best
     }
+
+    /// Linear RGB of what `ray` (in air, leaving the scene) meets.
+    // Inline: a call would store the ray the packet tracer just made and load it back at once,
+    // in wider pieces than it was stored (a stall on every one of millions of calls).
+    #[inline(always)]
+    pub fn radiance(&self, ray: &Ray) -> [f64; 3] {
+        let (o, d) = (ray.origin, ray.direction);
+        let (region, t) = self.meet(o, d);
+        self.colour_at(region, o, d, t, 0.0, 0.0, d.z)
+    }
+
+    /// The surroundings seen by a whole pixel from the eye `o`: its centre's direction `d` (any
+    /// length) and the changes `dc`, `dr` of that direction from one pixel column and row to the
+    /// next. On the floor and the wall this is the checkerboard averaged over the patch the pixel
+    /// covers (in closed form, instead of tracing many rays through the pixel).
+    pub fn radiance_over_pixel(&self, o: Vec3, d: Vec3, dc: Vec3, dr: Vec3) -> [f64; 3] {
+        let (region, t) = self.meet(o, d);
+        // The plane's normal; the pixel's corners move along it by d's change, so their points
+        // on the plane move by t·(change − d·(n·change)/(n·d)).
+        let n = match region {
+            Region::Floor => Vec3::Z,
+            Region::Wall => self.toward_eye,
+            Region::Sky | Region::Scene => {
+                return self.colour_at(region, o, d, t, 0.0, 0.0, d.z / d.length())
+            }
+        };
+        let on_plane = |change: Vec3| t * (change - d * (n.dot(change) / n.dot(d)));
+        let (pc, pr) = (on_plane(dc), on_plane(dr));
+        let (axis_a, axis_b) = match region {
+            Region::Floor => (Vec3::X, Vec3::Y),
+            _ => (self.along_wall, Vec3::Z),
+        };
+        let half = |axis: Vec3| 0.5 * (pc.dot(axis).abs() + pr.dot(axis).abs());
+        self.colour_at(region, o, d, t, half(axis_a), half(axis_b), 0.0)
+    }
+
+    /// Linear RGB of `region` where the ray `o + t·d` meets it, its checkerboard averaged over a
+    /// patch of half-widths `(ha, hb)` along the plane's two axes (zero: the colour at the point);
+    /// the sky's colour depends only on `up`, the height of the ray's unit direction.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn colour_at(
+        &self,
+        region: Region,
+        o: Vec3,
+        d: Vec3,
+        t: f64,
+        ha: f64,
+        hb: f64,
+        up: f64,
+    ) -> [f64; 3] {
+        match region {
+            Region::Floor => {
+                let p = o + t * d;
+                let fade = FADE2 / (FADE2 + p.x * p.x + p.y * p.y);
+                self.floor_squares.at(p.x, p.y, ha, hb, fade)
+            }
+            Region::Wall => {
+                let p = o + t * d;
+                let u = p.dot(self.along_wall);
+                // Fading as 1 / (1 + (u / 0.6)²), written with one division.
+                let fade = FADE2 / (FADE2 + u * u);
+                self.wall_squares.at(u, p.z, ha, hb, fade)
+            }
+            Region::Sky | Region::Scene => {
+                if self.backdrop == Backdrop::Plain {
+                    // A gentle vertical gradient: flat enough to be "plain", enough for the water
+                    // to show.
+                    let [down, top] = self.plain;
+                    [down + (top - down) * (0.5 + 0.5 * up); 3]
+                } else {
+                    mix(self.sky[0], self.sky[1], up.max(0.0))
+                }
+            }
+        }
+    }
+}
+
+/// What a pixel's centre ray met, as the picture's second pass needs to know it: the scene
+/// (anything of the glass or straw), or else, straight from the eye, the floor, the wall or the
+/// sky.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(u8)]
+enum Region {
+    #[default]
+    Scene = 0,
+    Floor = 1,
+    Wall = 2,
+    Sky = 3,
 }
 
 /// Unit direction of the light that shades the straw (from the observer's side, above, left).
@@ -421,9 +513,12 @@ pub const SMOOTH_CONTRAST: f64 = 2.0 / 255.0;
 ///
 /// Every pixel centre is traced first. Where a pixel differs from a neighbour by more than
 /// [`SMOOTH_CONTRAST`] (an edge), it is replaced by the average of `samples²` rays, one per cell of
-/// a `samples × samples` grid over the pixel, jittered inside its cell (deterministically). Smooth
-/// pixels keep their centre: the picture is then the same as a full supersampling to within a
-/// few grey levels, several times faster.
+/// a `samples × samples` grid over the pixel, jittered inside its cell (deterministically); but an
+/// edge whose neighbourhood sees only the floor or only the wall, straight from the eye (most of a
+/// picture's edges: the squares past the glass), gets the checkerboard's exact mean over the patch
+/// the pixel covers instead, more accurate than the samples and cheaper. Smooth pixels keep their
+/// centre: the picture is then the same as a full supersampling to within a few grey levels,
+/// several times faster.
 pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) -> RgbPicture {
     let mut picture = RgbPicture::default();
     shaded_picture_into(
@@ -436,13 +531,68 @@ pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) 
     picture
 }
 
+/// How the ends of a picture's branches are shaded.
+struct EndShader<'a> {
+    scene: &'a Scene,
+    surroundings: &'a Surroundings,
+    light: Vec3,
+    /// Whether rays split (Fresnel mode).
+    split: bool,
+    /// The eye, as the packet tracer reports it.
+    eye: [f32; 3],
+}
+
+impl EndShader<'_> {
+    /// The linear colour and weight a branch's end adds to its pixel, and what it met if it is
+    /// the ray from the eye that met nothing of the scene.
+    // Inline: as a call, the end just made would be stored and at once read back.
+    #[inline(always)]
+    fn shade(&self, end: BranchEnd) -> Option<([f64; 3], f64, Region)> {
+        let v = |a: [f32; 3]| Vec3::new(a[0] as f64, a[1] as f64, a[2] as f64);
+        match end {
+            BranchEnd::Straw {
+                code,
+                point,
+                weight,
+            } => {
+                let p = v(point);
+                Some((
+                    straw_radiance(self.scene, self.light, code, straw_face_at(p), p),
+                    weight as f64,
+                    Region::Scene,
+                ))
+            }
+            BranchEnd::Escaped {
+                origin,
+                direction,
+                weight,
+            } => {
+                let (o, d) = (v(origin), v(direction));
+                let (region, t) = self.surroundings.meet(o, d);
+                let colour = self.surroundings.colour_at(region, o, d, t, 0.0, 0.0, d.z);
+                let direct = origin == self.eye && weight == 1.0;
+                let seen = if direct { region } else { Region::Scene };
+                Some((colour, weight as f64, seen))
+            }
+            // Light not followed: dark in course mode (as `sample` shows it), nothing added in
+            // Fresnel mode.
+            BranchEnd::Dropped { weight } if !self.split => {
+                Some(([0.05; 3], weight as f64, Region::Scene))
+            }
+            BranchEnd::Dropped { .. } => None,
+        }
+    }
+}
+
 /// Work space of [`shaded_picture_into`], kept from one picture to the next.
 #[derive(Clone, Debug, Default)]
 pub struct ShadingBuffers {
-    centre: Vec<[f64; 3]>,
-    display: Vec<[f64; 3]>,
+    /// Each pixel centre's sRGB colour.
+    centre: Vec<[f32; 3]>,
+    /// What each pixel centre's ray met.
+    seen: Vec<Region>,
     /// The glass outline's coverage per pixel.
-    mask: Vec<f64>,
+    mask: Vec<f32>,
     /// Rows done of the picture being drawn, out of twice its height (centres, then edges).
     rows_done: Arc<AtomicU64>,
     /// Set by another thread to abandon the picture being drawn.
@@ -464,8 +614,14 @@ impl ShadingBuffers {
     }
 }
 
+/// The colour of the glass's outline (sRGB).
+const INK: [f64; 3] = [0.16, 0.18, 0.24];
+
 /// [`shaded_picture`] into `picture`, reusing its pixels and `buffers` (an interactive view
 /// redraws with no allocation once the size stops changing).
+///
+/// Two passes over the rows: the pixel centres, then each row's edges (supersampled), outline
+/// and encoding at once.
 pub fn shaded_picture_into(
     scene: &Scene,
     camera: &Camera,
@@ -481,148 +637,194 @@ pub fn shaded_picture_into(
     rows_done.store(0, Ordering::Relaxed);
     let stop = &*buffers.stop;
     let stopped = || stop.load(Ordering::Relaxed);
-    let centre = &mut buffers.centre;
+    let ShadingBuffers {
+        centre, seen, mask, ..
+    } = buffers;
     centre.resize(w * h, [0.0; 3]);
+    seen.resize(w * h, Region::Scene);
     // Pixel centres: the single-precision packet tracer, eight rays at a time (most of a
-    // picture's rays); the samples at edges below stay in double precision.
+    // picture's rays); the samples at edges below go through it too.
     let packets = PacketTracer::new(scene);
     let (split, prune) = match options.mode {
         ShadingMode::Course => (false, 0.0),
         ShadingMode::Fresnel { prune_below } => (true, prune_below),
     };
-    // The linear colour and weight a branch's end adds to its pixel.
-    let shade_end = |end: BranchEnd| -> Option<([f64; 3], f64)> {
-        let v = |a: [f32; 3]| Vec3::new(a[0] as f64, a[1] as f64, a[2] as f64);
-        match end {
-            BranchEnd::Straw {
-                code,
-                point,
-                weight,
-            } => {
-                let p = v(point);
-                Some((
-                    straw_radiance(scene, light, code, straw_face_at(p), p),
-                    weight as f64,
-                ))
-            }
-            BranchEnd::Escaped {
-                origin,
-                direction,
-                weight,
-            } => {
-                let ray = Ray {
-                    origin: v(origin),
-                    direction: v(direction),
-                };
-                Some((surroundings.radiance(&ray), weight as f64))
-            }
-            // Light not followed: dark in course mode (as `sample` shows it), nothing added in
-            // Fresnel mode.
-            BranchEnd::Dropped { weight } if !split => Some(([0.05; 3], weight as f64)),
-            BranchEnd::Dropped { .. } => None,
+    let eye = camera.eye;
+    let shader = EndShader {
+        scene,
+        surroundings: &surroundings,
+        light,
+        split,
+        eye: [eye.x as f32, eye.y as f32, eye.z as f32],
+    };
+    let shade_end = |end: BranchEnd| shader.shade(end);
+    let draw_outline = || {
+        if options.outline {
+            outline_mask(mask, camera);
+        } else {
+            mask.clear();
         }
     };
-    centre
-        .par_chunks_mut(w)
-        .enumerate()
-        .for_each_init(FresnelWave::default, |wave, (i, row)| {
-            if stopped() {
-                return;
-            }
-            row.fill([0.0; 3]);
-            let mut on_end = |j: usize, end: BranchEnd| {
-                if let Some((colour, weight)) = shade_end(end) {
-                    let px = &mut row[j];
-                    for k in 0..3 {
-                        px[k] += weight * colour[k];
+    let centres = || {
+        centre
+            .par_chunks_mut(w)
+            .zip(seen.par_chunks_mut(w))
+            .enumerate()
+            .for_each_init(
+                || (FresnelWave::default(), Vec::new(), Vec::new()),
+                |(wave, sum, ends), (i, (row, seen_row))| {
+                    if stopped() {
+                        return;
                     }
-                }
-            };
-            packets.branch_ends_row(camera, i as u32, split, prune, wave, &mut on_end);
-            for px in row.iter_mut() {
-                *px = px.map(linear_to_srgb_fast);
-            }
-            rows_done.fetch_add(1, Ordering::Relaxed);
-        });
-    let centre = &buffers.centre;
-    let display = &mut buffers.display;
-    display.clear();
-    display.extend_from_slice(centre);
-    if n > 1 {
-        let edge = |i: usize, j: usize| {
-            let c = centre[i * w + j];
-            let (i0, i1) = (i.saturating_sub(1), (i + 1).min(h - 1));
-            let (j0, j1) = (j.saturating_sub(1), (j + 1).min(w - 1));
-            (i0..=i1).any(|a| {
-                (j0..=j1).any(|b| {
-                    let d = centre[a * w + b];
-                    (0..3).any(|k| (d[k] - c[k]).abs() > SMOOTH_CONTRAST)
-                })
-            })
-        };
-        // The edges' samples, a row at a time, through the packet tracer as the centres.
-        let eye = camera.eye;
-        let per_pixel = n * n;
-        // A pixel's samples share the pixel's bound on Fresnel work, but each may follow at least
-        // 64 segments (ordinary rays need a few dozen).
-        let max_segments = (FRESNEL_SEGMENTS_PER_PIXEL / per_pixel as u32).max(64);
-        display.par_chunks_mut(w).enumerate().for_each_init(
-            || (FresnelWave::default(), Vec::new(), Vec::new(), Vec::new()),
-            |(wave, edges, dirs, acc), (i, row)| {
+                    sum.clear();
+                    sum.resize(w, [0.0f64; 3]);
+                    seen_row.fill(Region::Scene);
+                    // The ends are kept and shaded after the row is traced: shading inside the
+                    // tracer's loop would read each end back while it is still being written.
+                    ends.clear();
+                    let mut on_end = |j: usize, end: BranchEnd| ends.push((j as u32, end));
+                    packets.branch_ends_row(camera, i as u32, split, prune, wave, &mut on_end);
+                    for &(j, end) in ends.iter() {
+                        if let Some((colour, weight, region)) = shade_end(end) {
+                            let px = &mut sum[j as usize];
+                            for k in 0..3 {
+                                px[k] += weight * colour[k];
+                            }
+                            if region != Region::Scene {
+                                seen_row[j as usize] = region;
+                            }
+                        }
+                    }
+                    for (px, lin) in row.iter_mut().zip(sum.iter()) {
+                        *px = lin.map(|c| linear_to_srgb_fast(c) as f32);
+                    }
+                    rows_done.fetch_add(1, Ordering::Relaxed);
+                },
+            )
+    };
+    rayon::join(centres, draw_outline);
+    let (centre, seen, mask) = (&*centre, &*seen, &*mask);
+    let contrast = SMOOTH_CONTRAST as f32;
+    let neighbours = |i: usize, j: usize| {
+        let (i0, i1) = (i.saturating_sub(1), (i + 1).min(h - 1));
+        let (j0, j1) = (j.saturating_sub(1), (j + 1).min(w - 1));
+        (i0..=i1).flat_map(move |a| (j0..=j1).map(move |b| a * w + b))
+    };
+    let edge = |i: usize, j: usize| {
+        let c = centre[i * w + j];
+        neighbours(i, j).any(|k| {
+            let d = centre[k];
+            (0..3).any(|k| (d[k] - c[k]).abs() > contrast)
+        })
+    };
+    // Whether the whole neighbourhood of a pixel met one plane (or the sky) straight from the
+    // eye: the pixel then sees only that, and its average is worked out without samples.
+    let uniform_backdrop = |i: usize, j: usize| {
+        let g = seen[i * w + j];
+        g != Region::Scene && neighbours(i, j).all(|k| seen[k] == g)
+    };
+    let per_pixel = n * n;
+    // A pixel's samples share the pixel's bound on Fresnel work, but each may follow at least
+    // 64 segments (ordinary rays need a few dozen).
+    let max_segments = (FRESNEL_SEGMENTS_PER_PIXEL / per_pixel as u32).max(64);
+    // One column's and one row's change of a pixel's direction (the camera is linear in both).
+    let dc = camera.direction_at(0.0, 1.0) - camera.direction_at(0.0, 0.0);
+    let dr = camera.direction_at(1.0, 0.0) - camera.direction_at(0.0, 0.0);
+    picture.width = camera.width;
+    picture.height = camera.height;
+    picture.pixels.resize(w * h * 3, 0);
+    picture
+        .pixels
+        .par_chunks_mut(3 * w)
+        .enumerate()
+        .for_each_init(
+            || {
+                (
+                    FresnelWave::default(),
+                    Vec::new(),
+                    Vec::new(),
+                    Vec::new(),
+                    Vec::new(),
+                    Vec::new(),
+                )
+            },
+            |(wave, line, edges, dirs, acc, ends), (i, out)| {
                 if stopped() {
                     return;
                 }
-                edges.clear();
-                dirs.clear();
-                for j in 0..w {
-                    if !edge(i, j) {
-                        continue;
-                    }
-                    edges.push(j);
-                    for a in 0..n {
-                        for b in 0..n {
-                            let key = (((i * w + j) as u64) << 16) ^ (((a * n + b) as u64) << 1);
-                            let r = i as f64 + (a as f64 + jitter(key)) / n as f64;
-                            let c = j as f64 + (b as f64 + jitter(key | 1)) / n as f64;
-                            dirs.push(camera.direction_at(r, c).normalize());
+                line.clear();
+                line.extend(centre[i * w..(i + 1) * w].iter().map(|c| c.map(f64::from)));
+                if n > 1 {
+                    edges.clear();
+                    dirs.clear();
+                    for (j, px) in line.iter_mut().enumerate() {
+                        if !edge(i, j) {
+                            continue;
                         }
-                    }
-                }
-                if edges.is_empty() {
-                    rows_done.fetch_add(1, Ordering::Relaxed);
-                    return;
-                }
-                acc.clear();
-                acc.resize(edges.len(), [0.0f64; 3]);
-                packets.branch_ends(
-                    eye,
-                    dirs,
-                    split,
-                    prune,
-                    max_segments,
-                    wave,
-                    &mut |k, end| {
-                        if let Some((colour, weight)) = shade_end(end) {
-                            let px = &mut acc[k / per_pixel];
-                            for c in 0..3 {
-                                px[c] += weight * colour[c];
+                        // Most edges of a picture are the backdrop's squares seen past the glass.
+                        if uniform_backdrop(i, j) {
+                            let d = camera.direction_at(i as f64 + 0.5, j as f64 + 0.5);
+                            *px = surroundings
+                                .radiance_over_pixel(eye, d, dc, dr)
+                                .map(linear_to_srgb_fast);
+                            continue;
+                        }
+                        edges.push(j);
+                        for a in 0..n {
+                            for b in 0..n {
+                                let key =
+                                    (((i * w + j) as u64) << 16) ^ (((a * n + b) as u64) << 1);
+                                let r = i as f64 + (a as f64 + jitter(key)) / n as f64;
+                                let c = j as f64 + (b as f64 + jitter(key | 1)) / n as f64;
+                                dirs.push(camera.direction_at(r, c).normalize());
                             }
                         }
-                    },
-                );
-                let inv = 1.0 / per_pixel as f64;
-                for (&j, sum) in edges.iter().zip(acc.iter()) {
-                    row[j] = sum.map(|c| linear_to_srgb_fast(c * inv));
+                    }
+                    if !edges.is_empty() {
+                        acc.clear();
+                        acc.resize(edges.len(), [0.0f64; 3]);
+                        ends.clear();
+                        packets.branch_ends(
+                            eye,
+                            dirs,
+                            split,
+                            prune,
+                            max_segments,
+                            wave,
+                            &mut |k, end| ends.push((k as u32, end)),
+                        );
+                        for &(k, end) in ends.iter() {
+                            if let Some((colour, weight, _)) = shade_end(end) {
+                                let px = &mut acc[k as usize / per_pixel];
+                                for c in 0..3 {
+                                    px[c] += weight * colour[c];
+                                }
+                            }
+                        }
+                        let inv = 1.0 / per_pixel as f64;
+                        for (&j, sum) in edges.iter().zip(acc.iter()) {
+                            line[j] = sum.map(|c| linear_to_srgb_fast(c * inv));
+                        }
+                    }
+                }
+                let mask_row = if mask.is_empty() {
+                    &[][..]
+                } else {
+                    &mask[i * w..(i + 1) * w]
+                };
+                for (j, (o, px)) in out.chunks_exact_mut(3).zip(line.iter()).enumerate() {
+                    let px = match mask_row.get(j) {
+                        Some(&m) if m > 0.0 => mix(*px, INK, m as f64),
+                        _ => *px,
+                    };
+                    for k in 0..3 {
+                        // `x + 0.5` truncated is `x.round()` for x ≥ 0, without a call into libm.
+                        o[k] = (px[k].clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+                    }
                 }
                 rows_done.fetch_add(1, Ordering::Relaxed);
             },
         );
-    }
-    rows_done.store(2 * h as u64, Ordering::Relaxed);
-    if options.outline {
-        draw_glass_outline(display, &mut buffers.mask, camera);
-    }
-    encode_into(camera, display, picture);
 }
 
 /// The image points seen through `camera` (its eye should be their observer): each a disc of
@@ -659,36 +861,32 @@ pub fn cloud_picture(camera: &Camera, points: &[ImagePoint], radius: f64) -> Rgb
             }
         }
     }
-    draw_glass_outline(&mut display, &mut Vec::new(), camera);
+    let mut mask = Vec::new();
+    outline_mask(&mut mask, camera);
+    for (px, &m) in display.iter_mut().zip(mask.iter()) {
+        if m > 0.0 {
+            *px = mix(*px, INK, m as f64);
+        }
+    }
     encode(camera, &display)
 }
 
 fn encode(camera: &Camera, display: &[[f64; 3]]) -> RgbPicture {
-    let mut picture = RgbPicture::default();
-    encode_into(camera, display, &mut picture);
-    picture
+    RgbPicture {
+        width: camera.width,
+        height: camera.height,
+        pixels: display
+            .iter()
+            .flatten()
+            .map(|c| (c.clamp(0.0, 1.0) * 255.0 + 0.5) as u8)
+            .collect(),
+    }
 }
 
-fn encode_into(camera: &Camera, display: &[[f64; 3]], picture: &mut RgbPicture) {
-    picture.width = camera.width;
-    picture.height = camera.height;
-    picture.pixels.resize(display.len() * 3, 0);
-    // `x + 0.5` truncated is `x.round()` for x ≥ 0, without a call into libm per channel.
-    picture
-        .pixels
-        .par_chunks_mut(3 * 4096)
-        .zip(display.par_chunks(4096))
-        .for_each(|(out, px)| {
-            for (o, c) in out.iter_mut().zip(px.iter().flatten()) {
-                *o = (c.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
-            }
-        });
-}
-
-/// Draws the glass's outline over `display` (sRGB values): rim and base circles (the part on the
+/// The glass's outline as each pixel's coverage in `mask`: rim and base circles (the part on the
 /// observer's side stronger, the far side fainter; a circle seen from its open side wholly strong)
 /// and the two vertical silhouette lines.
-fn draw_glass_outline(display: &mut [[f64; 3]], mask: &mut Vec<f64>, camera: &Camera) {
+fn outline_mask(mask: &mut Vec<f32>, camera: &Camera) {
     const STRONG: f64 = 0.75;
     const FAINT: f64 = 0.3;
     const STEPS: usize = 720;
@@ -727,18 +925,12 @@ fn draw_glass_outline(display: &mut [[f64; 3]], mask: &mut Vec<f64>, camera: &Ca
             );
         }
     }
-    let ink = [0.16, 0.18, 0.24];
-    for (px, &m) in display.iter_mut().zip(mask.iter()) {
-        if m > 0.0 {
-            *px = mix(*px, ink, m);
-        }
-    }
 }
 
 /// Marks in `mask` (the strongest wins) an anti-aliased line of `width` pixels from the picture
 /// of `p` to that of `q`, at opacity `alpha`; long 3D segments are cut so that their pictures
 /// stay straight enough, and pieces behind the eye are skipped.
-fn stroke(mask: &mut [f64], camera: &Camera, p: Vec3, q: Vec3, width: f64, alpha: f64) {
+fn stroke(mask: &mut [f32], camera: &Camera, p: Vec3, q: Vec3, width: f64, alpha: f64) {
     let (w, h) = (camera.width as usize, camera.height as usize);
     let pieces = match (camera.project(p), camera.project(q)) {
         (Some((r0, c0)), Some((r1, c1))) => {
@@ -770,6 +962,7 @@ fn stroke(mask: &mut [f64], camera: &Camera, p: Vec3, q: Vec3, width: f64, alpha
                 let d = ((pr - t * dr).powi(2) + (pc - t * dc).powi(2)).sqrt();
                 let cover = (width / 2.0 + 0.5 - d).clamp(0.0, 1.0) * alpha;
                 let m = &mut mask[i * w + j];
+                let cover = cover as f32;
                 if cover > *m {
                     *m = cover;
                 }
@@ -1058,5 +1251,153 @@ mod tests {
         let pic = cloud_picture(&cam, &[p], 1.0);
         assert!(has_section_hue(pic.pixel(20, 45), p.color));
         assert_eq!(pic.pixel(5, 5), [247, 247, 247]);
+    }
+
+    /// The square wave's mean over an interval, in closed form, is the mean of many points of it.
+    #[test]
+    fn square_wave_mean_is_the_mean_of_its_points() {
+        let wave = |x: f64| if floor(x) & 1 == 0 { 1.0 } else { -1.0 };
+        for &(x, h) in &[
+            (0.3, 0.1),
+            (0.95, 0.1),
+            (-1.2, 0.5),
+            (3.7, 1.3),
+            (10.0, 2.5),
+            (-0.01, 0.02),
+        ] {
+            let n = 200_000;
+            let mean = (0..n)
+                .map(|k| wave(x - h + 2.0 * h * (k as f64 + 0.5) / n as f64))
+                .sum::<f64>()
+                / n as f64;
+            let closed = square_wave_mean(x, h);
+            assert!(
+                (closed - mean).abs() < 1e-4,
+                "x {x} h {h}: {closed} vs {mean}"
+            );
+        }
+        assert_eq!(square_wave_mean(0.5, 0.0), 1.0);
+        assert_eq!(square_wave_mean(1.5, 0.0), -1.0);
+    }
+
+    /// A pixel that sees only the floor or only the wall gets its checkerboard's mean over the
+    /// pixel: close to the mean of a fine grid of rays through it, much closer than its centre.
+    #[test]
+    fn a_pixel_of_backdrop_is_the_mean_of_the_rays_through_it() {
+        let (mut sum_filtered, mut sum_centre, mut sum_jittered) = (0.0, 0.0, 0.0);
+        let mut compared = 0;
+        for eye in [
+            Vec3::new(0.3, 0.1, 0.15),
+            Vec3::new(-0.5, 0.6, 0.4),
+            Vec3::new(1.5, -0.2, 0.3),
+        ] {
+            let s = Surroundings::new(Backdrop::Checker, eye);
+            let cam = Camera::new(eye, SCENE_CENTRE, 64, 48, 1.2);
+            let dc = cam.direction_at(0.0, 1.0) - cam.direction_at(0.0, 0.0);
+            let dr = cam.direction_at(1.0, 0.0) - cam.direction_at(0.0, 0.0);
+            for i in 0..cam.height {
+                for j in 0..cam.width {
+                    let m = 24;
+                    let mut regions = Vec::new();
+                    let mut mean = [0.0; 3];
+                    for a in 0..m {
+                        for b in 0..m {
+                            let r = i as f64 + (a as f64 + 0.5) / m as f64;
+                            let c = j as f64 + (b as f64 + 0.5) / m as f64;
+                            let ray = Ray::new(eye, cam.direction_at(r, c));
+                            regions.push(s.meet(ray.origin, ray.direction).0);
+                            let colour = s.radiance(&ray);
+                            for k in 0..3 {
+                                mean[k] += colour[k] / (m * m) as f64;
+                            }
+                        }
+                    }
+                    // Only pixels wholly on one plane.
+                    if regions.iter().any(|&g| g != regions[0]) || regions[0] == Region::Sky {
+                        continue;
+                    }
+                    compared += 1;
+                    let d = cam.direction_at(i as f64 + 0.5, j as f64 + 0.5);
+                    let filtered = s.radiance_over_pixel(eye, d, dc, dr);
+                    let centre = s.radiance(&Ray::new(eye, d));
+                    let err =
+                        |x: [f64; 3]| (0..3).map(|k| (x[k] - mean[k]).abs()).fold(0.0, f64::max);
+                    // As the edges were drawn before: nine rays, one jittered in each cell.
+                    let mut jittered = [0.0; 3];
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            let key = (((i * 64 + j) as u64) << 16) ^ (((a * 3 + b) as u64) << 1);
+                            let r = i as f64 + (a as f64 + jitter(key)) / 3.0;
+                            let c = j as f64 + (b as f64 + jitter(key | 1)) / 3.0;
+                            let colour = s.radiance(&Ray::new(eye, cam.direction_at(r, c)));
+                            for k in 0..3 {
+                                jittered[k] += colour[k] / 9.0;
+                            }
+                        }
+                    }
+                    sum_filtered += err(filtered);
+                    sum_centre += err(centre);
+                    sum_jittered += err(jittered);
+                }
+            }
+        }
+        let n = compared as f64;
+        let (filtered, centre, jittered) = (sum_filtered / n, sum_centre / n, sum_jittered / n);
+        assert!(compared > 3000, "{compared} pixels compared");
+        assert!(
+            filtered < 0.3 * centre && filtered < jittered,
+            "mean error: {filtered} averaged over the pixel, {centre} at its centre, {jittered} with nine jittered rays"
+        );
+    }
+
+    /// Anti-aliased pictures are close to a brute-force one: every pixel the mean of 6x6 rays
+    /// traced in double precision.
+    #[test]
+    fn antialiased_pictures_are_close_to_brute_force_supersampling() {
+        for r in [REFERENCES[1], REFERENCES[2]] {
+            let scene = r.scene(WATER_INDEX);
+            let tracer = Tracer::new(&scene);
+            let cam = Camera::new(r.observer, SCENE_CENTRE, 96, 72, 1.0);
+            let s = Surroundings::new(Backdrop::Checker, cam.eye);
+            let light = light_direction(&s);
+            let mode = ShadingMode::Fresnel { prune_below: 1e-4 };
+            let mut opts = options(mode, 3);
+            opts.outline = false;
+            let pic = shaded_picture(&scene, &cam, &opts);
+            let (mut off, mut total_error) = (0, 0.0);
+            for i in 0..cam.height {
+                for j in 0..cam.width {
+                    let m = 6;
+                    let mut mean = [0.0; 3];
+                    for a in 0..m {
+                        for b in 0..m {
+                            let row = i as f64 + (a as f64 + 0.5) / m as f64;
+                            let col = j as f64 + (b as f64 + 0.5) / m as f64;
+                            let ray = Ray::new(cam.eye, cam.direction_at(row, col));
+                            let c = sample(&tracer, &scene, &s, light, mode, ray);
+                            for k in 0..3 {
+                                mean[k] += c[k] / (m * m) as f64;
+                            }
+                        }
+                    }
+                    let exact = mean.map(|c| linear_to_srgb(c) * 255.0);
+                    let got = pic.pixel(i, j);
+                    let e = (0..3)
+                        .map(|k| (exact[k] - got[k] as f64).abs())
+                        .fold(0.0, f64::max);
+                    total_error += e;
+                    if e > 12.0 {
+                        off += 1;
+                    }
+                }
+            }
+            let pixels = (cam.width * cam.height) as f64;
+            let (share, mean_error) = (off as f64 / pixels, total_error / pixels);
+            assert!(
+                share < 0.04 && mean_error < 3.0,
+                "reference {}: {share} of the pixels off by more than 12 levels, mean {mean_error}",
+                r.number
+            );
+        }
     }
 }
