@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use bentstraw_optics::apparent::{eye_model_points, stereo_points, Focus};
+use bentstraw_optics::apparent::{eye_model_points, stereo_point_each, stereo_points, Focus};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::image::ImagePoint;
@@ -408,32 +408,83 @@ fn course_points(view: &View) -> Arc<Vec<ImagePoint>> {
     Arc::new(cloud.points)
 }
 
+/// A model's answers for the last few views asked: the view and model, the step `every`, and
+/// where the model places each of those course points. The page asks for every 4th point first,
+/// then for all: the second answer does not place the first one's points again.
+type ModelAnswer = (String, usize, Arc<Vec<Option<(Vec3, u8)>>>);
+static LAST_MODELS: Mutex<Vec<ModelAnswer>> = Mutex::new(Vec::new());
+
+/// Where `model` places each of `points` (`None`: not placed), or the refusal of an unknown model.
+fn place(
+    view: &View,
+    model: &str,
+    points: &[ImagePoint],
+) -> Result<Vec<Option<(Vec3, u8)>>, Reply> {
+    match model {
+        "eye" => Ok(eye_model_points(&view.scene, view.observer, points)
+            .iter()
+            .map(|p| Some((p.position?, p.image.color)))
+            .collect()),
+        "stereo" => Ok(stereo_point_each(&view.scene, view.observer, points)
+            .iter()
+            .map(|p| {
+                let p = p.as_ref()?;
+                Some((p.position?, p.image.color))
+            })
+            .collect()),
+        other => Err(Reply::text(
+            400,
+            format!(
+                "invalid value '{}' for '--image-model' [possible values: eye, stereo]",
+                clip_text(other, 40)
+            ),
+        )),
+    }
+}
+
 /// `GET /api/model?model=eye|stereo[&every=K]`: the model's points as `u32` count, `3n` `f32`, `n`
 /// colours (the points the model places; the others are left out). With `every=K`, only every
 /// K-th course point is placed: a quick first answer the page refines.
 pub fn model_reply(view: &View, model: &str, every: usize) -> Reply {
     let all = course_points(view);
-    let points: Vec<ImagePoint> = all.iter().step_by(every.max(1)).copied().collect();
-    let placed: Vec<(Vec3, u8)> = match model {
-        "eye" => eye_model_points(&view.scene, view.observer, &points)
-            .iter()
-            .filter_map(|p| Some((p.position?, p.image.color)))
-            .collect(),
-        "stereo" => stereo_points(&view.scene, view.observer, &points)
-            .points
-            .iter()
-            .filter_map(|p| Some((p.position?, p.image.color)))
-            .collect(),
-        other => {
-            return Reply::text(
-                400,
-                format!(
-                    "invalid value '{}' for '--image-model' [possible values: eye, stereo]",
-                    clip_text(other, 40)
-                ),
-            )
-        }
+    let every = every.max(1);
+    let key = format!("{} {model}", view.simulate_command("course"));
+    // A coarser answer for this view, if one was given: its points are taken from it.
+    let coarser = LAST_MODELS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .find(|(k, step, _)| *k == key && *step > every && step.is_multiple_of(every))
+        .map(|(_, step, placed)| (*step, Arc::clone(placed)));
+    let known = |i: usize| coarser.as_ref().is_some_and(|(step, _)| i.is_multiple_of(*step));
+    let wanted: Vec<usize> = (0..all.len()).step_by(every).collect();
+    let todo: Vec<ImagePoint> = wanted
+        .iter()
+        .filter(|&&i| !known(i))
+        .map(|&i| all[i])
+        .collect();
+    let mut fresh = match place(view, model, &todo) {
+        Ok(p) => p.into_iter(),
+        Err(refusal) => return refusal,
     };
+    let placed_each: Vec<Option<(Vec3, u8)>> = wanted
+        .iter()
+        .map(|&i| match &coarser {
+            Some((step, earlier)) if i.is_multiple_of(*step) => earlier[i / step],
+            _ => fresh.next().flatten(),
+        })
+        .collect();
+    let placed_each = Arc::new(placed_each);
+    {
+        let mut last = LAST_MODELS.lock().unwrap_or_else(|e| e.into_inner());
+        last.retain(|(k, step, _)| !(*k == key && *step == every));
+        last.push((key, every, Arc::clone(&placed_each)));
+        // Two models, each a coarse and a whole answer.
+        if last.len() > 4 {
+            last.remove(0);
+        }
+    }
+    let placed: Vec<(Vec3, u8)> = placed_each.iter().flatten().copied().collect();
     let mut body = Vec::with_capacity(4 + 13 * placed.len());
     body.extend_from_slice(&(placed.len() as u32).to_le_bytes());
     for (q, _) in &placed {
@@ -730,7 +781,8 @@ mod tests {
             if with_frame {
                 frame_reply(&view, &mut Frame::default());
             }
-            for every in [1, 4] {
+            // Whole, coarse, then whole again from the coarse answer's points.
+            for every in [1, 4, 1] {
                 let got = decode(model_reply(&view, "eye", every));
                 assert!(got.len() > 800 / every / 2);
                 assert_eq!(
