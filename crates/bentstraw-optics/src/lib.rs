@@ -27,6 +27,7 @@ pub mod picture;
 pub mod ray_diagram;
 pub mod sampling;
 pub mod scene;
+pub mod scene_file;
 pub mod shading;
 pub mod trace;
 pub mod tracer;
