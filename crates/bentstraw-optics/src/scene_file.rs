@@ -502,19 +502,16 @@ fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError 
             } else {
                 format!("{key}.{field}")
             };
-            (full, "is missing: it is required".to_string())
+            (full, " is missing: it is required".to_string())
         }
-        None => (key, what),
+        None if key.is_empty() => (key, what),
+        None => (key, format!(": {what}")),
     };
     let place = match line {
         Some(l) => format!("line {l}: "),
         None => String::new(),
     };
-    let message = if key.is_empty() {
-        format!("{place}{what}")
-    } else {
-        format!("{place}{key}: {what}")
-    };
+    let message = format!("{place}{key}{what}");
     SceneFileError { key, line, message }
 }
 
