@@ -55,33 +55,19 @@ comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit 
     Explore(ExploreArgs),
 }
 
-/// The scene and observer: the inputs of one simulation (SPEC §2).
-#[derive(Args, Debug, Clone)]
+/// The scene and observer as plain values, checked by `scene_and_observer` (the flags of
+/// [`SceneFlags`] and the explorer's queries both end here).
+#[derive(Debug, Clone)]
 pub struct SceneArgs {
-    /// Observer position X,Y,Z in metres, e.g. 0,0.1,0.1
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    /// Observer position X,Y,Z in metres.
     pub observer: [f64; 3],
-    /// Straw axis XP,YP in metres, e.g. 0.02,0.01
-    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true)]
+    /// Straw axis XP,YP in metres.
     pub straw: [f64; 2],
-    /// Water height in metres, 0 <= H <= 0.2
-    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    /// Water height in metres.
     pub water_height: f64,
-    /// Refractive index of the water (>= 1)
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 1.333,
-        allow_hyphen_values = true
-    )]
+    /// Refractive index of the water.
     pub n_water: f64,
-    /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 10,
-        allow_hyphen_values = true
-    )]
+    /// Most events (refractions and total reflections) a ray may undergo.
     pub max_events: u32,
 }
 
