@@ -186,6 +186,30 @@ fn segment_enters_box(a: (f64, f64), b: (f64, f64), hx: f64, hy: f64) -> bool {
     t0 < t1
 }
 
+/// The shortest distance between the segments `p1`–`q1` and `p2`–`q2`, both of positive length
+/// (the closest points' parameters, clamped to the segments in turn).
+fn segment_distance(p1: Vec3, q1: Vec3, p2: Vec3, q2: Vec3) -> f64 {
+    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
+    let (a, b, c) = (d1.dot(d1), d1.dot(d2), d1.dot(r));
+    let (e, f) = (d2.dot(d2), d2.dot(r));
+    let denom = a * e - b * b;
+    // Parallel axes: any point of the first will do before the clamping below.
+    let mut s = if denom > 0.0 {
+        ((b * f - c * e) / denom).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let mut t = (b * s + f) / e;
+    if t < 0.0 {
+        t = 0.0;
+        s = (-c / a).clamp(0.0, 1.0);
+    } else if t > 1.0 {
+        t = 1.0;
+        s = ((b - c) / a).clamp(0.0, 1.0);
+    }
+    ((p1 + s * d1) - (p2 + t * d2)).length()
+}
+
 /// One layer of liquid, filling the inside from the layer below (or the floor) up to `top`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Liquid {
@@ -915,6 +939,31 @@ impl SceneDescription {
                             a.0,
                             number_text(gap),
                             number_text(a.3 + b.3)
+                        ),
+                    ));
+                }
+            }
+        }
+        // Leaning straws can also cross above the floor: each is kept within the capsule about
+        // its axis (a slightly larger body than the straw, rounded past its caps), so two whose
+        // axes pass closer than their radii's sum are refused.
+        let floor = self.container.floor();
+        let axis_of = |s: &Straw| {
+            let c = s.bottom_centre(floor);
+            (c, c + s.length * s.axis())
+        };
+        for (j, b) in self.straws.iter().enumerate() {
+            for (i, a) in self.straws[..j].iter().enumerate() {
+                let ((a0, a1), (b0, b1)) = (axis_of(a), axis_of(b));
+                let gap = segment_distance(a0, a1, b0, b1);
+                if gap < a.radius + b.radius {
+                    return Err(refuse_key(
+                        &format!("straw[{}]", j + 1),
+                        &format!(
+                            "it crosses straw[{}]: their axes pass {} apart, less than their radii's sum {}",
+                            i + 1,
+                            number_text(gap),
+                            number_text(a.radius + b.radius)
                         ),
                     ));
                 }

@@ -170,7 +170,7 @@ pub fn read_scene_file(path: &Path) -> CliResult<SceneDescription> {
     }
     let text = String::from_utf8(bytes).map_err(|e| {
         CliError(format!(
-            "the scene file {name} is not text (UTF-8): byte {} is not",
+            "the scene file {name} is not UTF-8 text: byte {} is not valid UTF-8",
             e.utf8_error().valid_up_to() + 1
         ))
     })?;

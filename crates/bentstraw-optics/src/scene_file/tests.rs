@@ -411,6 +411,66 @@ fn straws_and_coins_must_not_overlap_on_the_floor() {
 }
 
 #[test]
+fn straws_leaning_into_each_other_cross_and_are_refused() {
+    // Feet 24 mm apart (footprints clear), leaning 5° towards each other: their axes meet at
+    // z ≈ 0.137, inside the straws' length.
+    let m = refused(
+        &glass_with(
+            "[[straw]]\nx = -0.012\ny = 0\ntilt = 5\n[[straw]]\nx = 0.012\ny = 0\ntilt = 5\nazimuth = 180\n",
+        ),
+        "straw[2]",
+        "crosses straw[1]",
+    );
+    assert!(m.contains("0.01"), "{m}");
+    // Leaning away from each other they are clear.
+    parsed(&glass_with(
+        "[[straw]]\nx = -0.012\ny = 0\ntilt = 5\nazimuth = 180\n[[straw]]\nx = 0.012\ny = 0\ntilt = 5\n",
+    ));
+}
+
+#[test]
+fn the_distance_between_segments_is_exact_in_known_cases() {
+    let v = Vec3::new;
+    // Crossing at right angles 0.3 apart; parallel and overlapping 0.2 apart; end to end 0.5.
+    let cases = [
+        (
+            v(-1.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.0, -1.0, 0.3),
+            v(0.0, 1.0, 0.3),
+            0.3,
+        ),
+        (
+            v(0.0, 0.0, 0.0),
+            v(0.0, 0.0, 1.0),
+            v(0.2, 0.0, 0.5),
+            v(0.2, 0.0, 2.0),
+            0.2,
+        ),
+        (
+            v(0.0, 0.0, 0.0),
+            v(0.0, 0.0, 1.0),
+            v(0.0, 0.0, 1.5),
+            v(0.0, 0.0, 2.0),
+            0.5,
+        ),
+        (
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(2.0, 1.0, 0.0),
+            v(3.0, 5.0, 0.0),
+            2f64.sqrt(),
+        ),
+    ];
+    for (p1, q1, p2, q2, want) in cases {
+        for (a, b, c, d) in [(p1, q1, p2, q2), (q2, p2, q1, p1)] {
+            let got = segment_distance(a, b, c, d);
+            assert!((got - want).abs() < 1e-15, "{got} != {want}");
+        }
+    }
+}
+
+#[test]
 fn a_coin_must_lie_inside_the_walls() {
     refused(
         &glass_with("[[coin]]\nx = 0.03\ny = 0\n"),
