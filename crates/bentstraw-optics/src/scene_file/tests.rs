@@ -109,6 +109,9 @@ fn a_wrong_type_is_refused_with_its_line_and_key() {
         "\"15\"",
     );
     assert!(m.contains("line 13"), "{m}");
+    let e = SceneDescription::from_toml(&glass_with("[[straw]]\nx = 0\ny = 0\ntilt = \"15\"\n"))
+        .unwrap_err();
+    assert_eq!((e.key.as_str(), e.line), ("straw[1].tilt", Some(13)));
     refused(
         &glass_with("[observer]\nposition = [1, 0]\ntarget = [0, 0, 0]\n"),
         "observer.position",
@@ -314,6 +317,32 @@ fn an_upright_straw_touching_the_wall_fits_and_one_past_it_pierces_it() {
         "0.036",
     );
     assert!(m.contains("pierces"), "{m}");
+}
+
+#[test]
+fn a_straw_in_a_tank_must_not_pierce_its_walls() {
+    let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n";
+    parsed(&format!("{tank}[[straw]]\nx = 0.095\ny = -0.045\n"));
+    refused(
+        &format!("{tank}[[straw]]\nx = 0.095\ny = 0.046\n"),
+        "straw[1]",
+        "pierces",
+    );
+    // Leaning 30° towards +x from x = 0.05, a 0.22 m pencil reaches x ≈ 0.16 at z ≈ 0.19,
+    // below the rim: through the wall. Leaning towards +y it hits the near wall sooner.
+    refused(
+        &format!("{tank}[[straw]]\nx = 0.05\ny = 0\ntilt = 30\nlength = 0.22\nradius = 0.0035\n"),
+        "straw[1]",
+        "pierces",
+    );
+    refused(
+        &format!("{tank}[[straw]]\nx = -0.06\ny = 0\ntilt = 30\nazimuth = 90\nlength = 0.22\nradius = 0.0035\n"),
+        "straw[1]",
+        "pierces",
+    );
+    parsed(&format!(
+        "{tank}[[straw]]\nx = -0.06\ny = 0\ntilt = 30\nlength = 0.22\nradius = 0.0035\n"
+    ));
 }
 
 /// Where a straw's side is farthest out at height `z` along its lean, when its whole
