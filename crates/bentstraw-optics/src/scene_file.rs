@@ -1010,8 +1010,8 @@ impl SceneDescription {
         Ok(())
     }
 
-    /// What this scene has that the assignment's scene has not, in words ("a straw tilted 15°");
-    /// empty when it is exactly the assignment's kind.
+    /// What this scene has that the assignment's scene has not, in words ("a straw tilted 15°"),
+    /// each said once; empty when it is exactly the assignment's kind.
     pub fn unsupported(&self) -> Vec<String> {
         let mut out = Vec::new();
         let m = |x: f64| format!("{} m", number_text(x));
@@ -1061,6 +1061,9 @@ impl SceneDescription {
             1 => out.push("a card".to_string()),
             n => out.push(format!("{n} cards")),
         }
+        // Many straws alike are one reason, said once.
+        let mut seen = std::collections::HashSet::new();
+        out.retain(|w| seen.insert(w.clone()));
         out
     }
 

@@ -16,6 +16,9 @@ use crate::files::shown;
 /// Largest scene file read (1 MB): a scene is a few dozen lines.
 pub const MAX_SCENE_FILE_BYTES: u64 = 1 << 20;
 
+/// Most reasons an unsupported scene's refusal names.
+const MAX_REASONS: usize = 5;
+
 /// The scene and observer of one run, with the target a scene file suggests.
 #[derive(Clone, Copy, Debug)]
 pub struct Resolved {
@@ -114,11 +117,17 @@ impl SceneSource {
             ));
         }
         let Some(spec) = description.spec_scene() else {
+            // The first few reasons: a file of a thousand different straws must not flood the
+            // terminal.
+            let reasons = description.unsupported();
+            let mut said = reasons[..reasons.len().min(MAX_REASONS)].join(", ");
+            if reasons.len() > MAX_REASONS {
+                said.push_str(&format!(" and {} more", reasons.len() - MAX_REASONS));
+            }
             return fail(format!(
                 "{name} is a valid scene, but this version traces only scenes of the assignment's kind \
                  (a glass of radius 0.04 m and height 0.2 m with walls of no thickness, at most one liquid, \
-                 one upright straw of radius 0.005 m and length 0.25 m, nothing else): it has {}",
-                description.unsupported().join(", ")
+                 one upright straw of radius 0.005 m and length 0.25 m, nothing else): it has {said}"
             ));
         };
         let observer = match (self.observer, description.observer) {

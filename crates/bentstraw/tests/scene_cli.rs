@@ -297,6 +297,34 @@ fn a_valid_scene_this_version_cannot_trace_is_refused_honestly() {
 }
 
 #[test]
+fn a_scene_of_many_unsupported_straws_is_refused_in_a_short_line() {
+    let mut text =
+        String::from("[container]\nshape = \"tank\"\nhalf_x = 10.0\nhalf_y = 10.0\nheight = 0.2\n");
+    for i in 0..400 {
+        text.push_str(&format!(
+            "[[straw]]\nx = {}\ny = {}\ntilt = {}\n",
+            -9.0 + (i % 20) as f64 * 0.5,
+            -9.0 + (i / 20) as f64 * 0.5,
+            1.0 + i as f64 * 0.1
+        ));
+    }
+    let m = assert_refused(
+        &[("many.toml", &text)],
+        &[
+            "simulate",
+            "--scene",
+            "many.toml",
+            "--observer",
+            "30,0,1",
+            "--output",
+            "old.csv",
+        ],
+        &["400 straws", "more"],
+    );
+    assert!(m.len() < 600, "{m}");
+}
+
+#[test]
 fn overrides_need_one_straw_and_one_liquid_and_a_file_without_observer_needs_the_flag() {
     assert_refused(
         &[],

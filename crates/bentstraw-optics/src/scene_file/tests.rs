@@ -627,6 +627,14 @@ fn the_assignment_scene_is_recognised_and_anything_else_is_named() {
         assert_eq!(d.spec_scene(), None, "{extra}");
         assert!(d.unsupported().iter().any(|w| w == words), "{:?}", d.unsupported());
     }
+    // Alike straws are one reason, said once.
+    let twins = glass_with(
+        "[[straw]]\nx = -0.02\ny = 0\nlength = 0.2\n[[straw]]\nx = 0.02\ny = 0\nlength = 0.2\n",
+    );
+    assert_eq!(
+        parsed(&twins).unsupported(),
+        vec!["2 straws", "a straw 0.2 m long"]
+    );
     let thick = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\nwall = 0.002\n[[straw]]\nx = 0\ny = 0\n";
     assert_eq!(parsed(thick).unsupported(), vec!["walls 0.002 m thick"]);
     let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n[[straw]]\nx = 0\ny = 0\n";
