@@ -124,7 +124,7 @@ impl Container {
     /// Whether the horizontal point `(x, y)` lies on or inside the walls' inner face.
     fn holds(&self, x: f64, y: f64) -> bool {
         match self {
-            Container::Glass(g) => x.hypot(y) <= g.radius - g.wall,
+            Container::Glass(g) => (x * x + y * y).sqrt() <= g.radius - g.wall,
             Container::Tank(t) => x.abs() <= t.half_x && y.abs() <= t.half_y,
         }
     }
@@ -132,7 +132,9 @@ impl Container {
     /// Whether a horizontal disk of `radius` about `(x, y)` lies inside the walls' inner face.
     fn holds_disk(&self, x: f64, y: f64, radius: f64) -> bool {
         match self {
-            Container::Glass(g) => x.hypot(y) + radius <= g.radius - g.wall,
+            // Computed as the assignment's scene computes its straw's fit, so that the two
+            // agree to the last bit on its glass.
+            Container::Glass(g) => (x * x + y * y).sqrt() + radius <= g.radius - g.wall,
             Container::Tank(t) => x.abs() + radius <= t.half_x && y.abs() + radius <= t.half_y,
         }
     }
@@ -142,7 +144,7 @@ impl Container {
         let within_height = (0.0..=self.height()).contains(&p.z);
         within_height
             && match self {
-                Container::Glass(g) => p.x.hypot(p.y) <= g.radius,
+                Container::Glass(g) => p.x * p.x + p.y * p.y <= g.radius * g.radius,
                 Container::Tank(t) => p.x.abs() <= t.half_x && p.y.abs() <= t.half_y,
             }
     }

@@ -663,3 +663,22 @@ fn writing_a_description_and_reading_it_back_gives_it_again() {
     let tank = parsed("[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n");
     assert_eq!(parsed(&tank.to_toml()), tank);
 }
+
+proptest::proptest! {
+    /// On the assignment's glass a file accepts exactly the straws and water heights the
+    /// assignment's own rules accept, even at the wall's edge, and gives the same scene.
+    #[test]
+    fn the_file_and_the_assignment_rules_agree_on_the_assignment_glass(
+        rho in 0.0345f64..0.0355,
+        theta in 0.0f64..std::f64::consts::TAU,
+        top in 1e-6f64..0.2002,
+    ) {
+        let (x, y) = (rho * theta.cos(), rho * theta.sin());
+        let text = glass_with("")
+            .replace("top = 0.15", &format!("top = {top:?}"))
+            + &format!("[[straw]]\nx = {x:?}\ny = {y:?}\n");
+        let by_file = SceneDescription::from_toml(&text).ok().and_then(|d| d.spec_scene());
+        let by_rules = Scene::with_defaults(x, y, top).ok();
+        proptest::prop_assert_eq!(by_file, by_rules);
+    }
+}
