@@ -212,6 +212,57 @@ fn segment_distance(p1: Vec3, q1: Vec3, p2: Vec3, q2: Vec3) -> f64 {
     ((p1 + s * d1) - (p2 + t * d2)).length()
 }
 
+/// Distance from `p` to the convex hull of `points` in the plane (0 inside it).
+fn distance_to_hull(p: (f64, f64), points: &[(f64, f64)]) -> f64 {
+    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    // Andrew's monotone chain: the hull counter-clockwise.
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a.partial_cmp(b).expect("finite points"));
+    sorted.dedup();
+    if sorted.is_empty() {
+        return f64::INFINITY;
+    }
+    let mut hull: Vec<(f64, f64)> = Vec::with_capacity(sorted.len() + 1);
+    for pass in 0..2 {
+        let start = hull.len();
+        let ordered: Box<dyn Iterator<Item = &(f64, f64)>> = if pass == 0 {
+            Box::new(sorted.iter())
+        } else {
+            Box::new(sorted.iter().rev())
+        };
+        for &q in ordered {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        hull.pop();
+    }
+    if hull.is_empty() {
+        hull.push(sorted[0]);
+    }
+    let n = hull.len();
+    let edge = |k: usize| (hull[k], hull[(k + 1) % n]);
+    if n >= 3
+        && (0..n).all(|k| {
+            let (a, b) = edge(k);
+            cross(a, b, p) >= 0.0
+        })
+    {
+        return 0.0;
+    }
+    (0..n)
+        .map(|k| {
+            let (a, b) = edge(k);
+            segment_distance_to_origin((a.0 - p.0, a.1 - p.1), (b.0 - p.0, b.1 - p.1))
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// One layer of liquid, filling the inside from the layer below (or the floor) up to `top`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Liquid {
@@ -941,6 +992,31 @@ impl SceneDescription {
                             a.0,
                             number_text(gap),
                             number_text(a.3 + b.3)
+                        ),
+                    ));
+                }
+            }
+        }
+        // A leaning straw's body, low near its foot, may also lie over a coin beside its cap:
+        // within the coin's height the coin holds every point above its disk, so they overlap
+        // exactly when the coin's disk meets the shadow of the straw's part below the coin's top.
+        for (j, c) in self.coins.iter().enumerate() {
+            for (i, s) in self.straws.iter().enumerate() {
+                if s.tilt_deg == 0.0 {
+                    continue; // upright, its shadow is its footprint, checked above
+                }
+                let low: Vec<(f64, f64)> = s
+                    .outline_below(self.container.floor(), self.container.floor() + c.thickness)
+                    .collect();
+                let gap = distance_to_hull((c.x, c.y), &low);
+                if gap < c.radius {
+                    return Err(refuse_key(
+                        &format!("coin[{}]", j + 1),
+                        &format!(
+                            "straw[{}] leans on it: within the coin's thickness the straw comes {} from the coin's centre, less than its radius {}",
+                            i + 1,
+                            number_text(gap),
+                            number_text(c.radius)
                         ),
                     ));
                 }

@@ -500,6 +500,50 @@ fn the_distance_between_segments_is_exact_in_known_cases() {
 }
 
 #[test]
+fn a_straw_leaning_low_over_a_coin_is_refused() {
+    // Leaning 80° towards +x from x = -0.03 (in a wide tank), its underside rises from the foot
+    // at x ≈ -0.0291 by 1 mm per 5.67 mm (tan 80°): it is below the coin's top (1.9 mm) until
+    // x ≈ -0.0184. A coin whose edge is 3 mm before that is under it; 2 mm after, it is clear.
+    // Their footprints (circles about the cap's centre and the coin's) are clear in both.
+    let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.5\nhalf_y = 0.5\nheight = 0.2\n";
+    let straw = "[[straw]]\nx = -0.03\ny = 0\ntilt = 80\nlength = 0.1\n";
+    let t = f64::to_radians(80.0);
+    let foot = -0.03 + 0.005 * t.cos();
+    let clear_of_coin_top = foot + 0.0019 * t.tan();
+    for (edge, fits) in [
+        (clear_of_coin_top - 3e-3, false),
+        (clear_of_coin_top + 2e-3, true),
+    ] {
+        let text = format!("{tank}{straw}[[coin]]\nx = {}\ny = 0\n", edge + 0.0115);
+        let result = SceneDescription::from_toml(&text);
+        assert_eq!(result.is_ok(), fits, "coin edge at {edge}: {result:?}");
+        if !fits {
+            let m = result.unwrap_err().message;
+            assert!(
+                m.contains("coin[1]") && m.contains("straw[1] leans on it"),
+                "{m}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_distance_to_a_convex_hull_is_exact_in_known_cases() {
+    let square = [
+        (0.0, 0.0),
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (0.0, 1.0),
+        (0.5, 0.5),
+        (0.2, 0.9),
+    ];
+    assert_eq!(distance_to_hull((0.5, 0.5), &square), 0.0);
+    assert_eq!(distance_to_hull((0.5, 2.0), &square), 1.0);
+    assert_eq!(distance_to_hull((-3.0, -4.0), &square), 5.0);
+    assert_eq!(distance_to_hull((3.0, 0.5), &square[..2]), 2f64.hypot(0.5));
+}
+
+#[test]
 fn a_coin_must_lie_inside_the_walls() {
     refused(
         &glass_with("[[coin]]\nx = 0.03\ny = 0\n"),
