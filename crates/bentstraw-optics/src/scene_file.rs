@@ -965,9 +965,10 @@ impl SceneDescription {
         Ok(())
     }
 
-    /// Straws and coins may not share floor: a straw's footprint is taken as the disk of its
-    /// radius about the point below its bottom cap's centre, which holds the cap's shadow (an
-    /// ellipse `radius·cos(tilt)` by `radius`) whatever its tilt.
+    /// Straws and coins may not share floor, a leaning straw may not lie on a coin, and straws
+    /// may not cross. A straw's footprint is taken as the disk of its radius about the point
+    /// below its bottom cap's centre, which holds the cap's shadow (an ellipse
+    /// `radius·cos(tilt)` by `radius`) whatever its tilt.
     fn validate_overlaps(&self) -> Result<(), SceneFileError> {
         let footprints: Vec<(String, f64, f64, f64)> = self
             .straws
