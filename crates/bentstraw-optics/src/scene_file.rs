@@ -556,9 +556,10 @@ fn toml_path(path: &serde_path_to_error::Path) -> String {
 
 /// TOML's error as one line: where (line, column), which key, and what is wrong.
 fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError {
-    let line = e
-        .span()
-        .map(|span| text[..span.start.min(text.len())].matches('\n').count() + 1);
+    let line = e.span().map(|span| {
+        let before = &text.as_bytes()[..span.start.min(text.len())];
+        before.iter().filter(|&&b| b == b'\n').count() + 1
+    });
     // TOML's messages can span lines (an expectation below the error): one line, clipped.
     let what: String = e
         .message()
