@@ -11,6 +11,9 @@
 //! useless tests skipped (same results to the bit), and [`packet`] traces course-mode pictures eight
 //! rays at a time in single precision (same pixels but for rare ones on colour boundaries).
 //!
+//! A scene can also be read from a scene file's text ([`scene_file`]): the TOML format, checked
+//! rule by rule into a plain description.
+//!
 //! The conventions are those of the project's specification (`shared/SPEC.md`): SI units (metres),
 //! origin at the centre of the glass's base, `z` up.
 
@@ -27,6 +30,7 @@ pub mod picture;
 pub mod ray_diagram;
 pub mod sampling;
 pub mod scene;
+pub mod scene_file;
 pub mod shading;
 pub mod trace;
 pub mod tracer;

@@ -55,26 +55,47 @@ comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit 
     Explore(ExploreArgs),
 }
 
-/// The scene and observer: the inputs of one simulation (SPEC §2).
-#[derive(Args, Debug, Clone)]
+/// The scene and observer as plain values, checked by `scene_and_observer` (the flags of
+/// [`SceneFlags`] and the explorer's queries both end here).
+#[derive(Debug, Clone)]
 pub struct SceneArgs {
-    /// Observer position X,Y,Z in metres, e.g. 0,0.1,0.1
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    /// Observer position X,Y,Z in metres.
     pub observer: [f64; 3],
-    /// Straw axis XP,YP in metres, e.g. 0.02,0.01
-    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true)]
+    /// Straw axis XP,YP in metres.
     pub straw: [f64; 2],
-    /// Water height in metres, 0 <= H <= 0.2
-    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    /// Water height in metres.
     pub water_height: f64,
-    /// Refractive index of the water (>= 1)
+    /// Refractive index of the water.
+    pub n_water: f64,
+    /// Most events (refractions and total reflections) a ray may undergo.
+    pub max_events: u32,
+}
+
+/// The scene and observer flags of `simulate`, `render` and `check`: the values, or a scene file
+/// that the values override.
+#[derive(Args, Debug, Clone)]
+pub struct SceneFlags {
+    /// A scene file (TOML, see scenes/): its [observer] is used when --observer is absent, and
+    /// --straw, --water-height and --n-water change its one straw and one liquid
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
+    /// Observer position X,Y,Z in metres, e.g. 0,0.1,0.1
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, required_unless_present = "scene")]
+    pub observer: Option<[f64; 3]>,
+    /// Straw axis XP,YP in metres, e.g. 0.02,0.01
+    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true, required_unless_present = "scene")]
+    pub straw: Option<[f64; 2]>,
+    /// Water height in metres, 0 <= H <= 0.2
     #[arg(
         long,
-        value_name = "N",
-        default_value_t = 1.333,
-        allow_hyphen_values = true
+        value_name = "H",
+        allow_hyphen_values = true,
+        required_unless_present = "scene"
     )]
-    pub n_water: f64,
+    pub water_height: Option<f64>,
+    /// Refractive index of the water (>= 1) [default: 1.333, or the scene file's]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub n_water: Option<f64>,
     /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
     #[arg(
         long,
@@ -102,7 +123,7 @@ pub enum ImageModelArg {
 pub struct SimulateArgs {
     /// The scene and the observer.
     #[command(flatten)]
-    pub scene: SceneArgs,
+    pub scene: SceneFlags,
     /// At least this many image points (at most 10000000; 2000000 with the eye or stereo model)
     #[arg(
         long,
@@ -177,7 +198,7 @@ pub enum BackdropArg {
 /// Camera options shared by `render` and `bench`.
 #[derive(Args, Debug, Clone)]
 pub struct CameraArgs {
-    /// Point the camera looks at (default 0,0,0.125)
+    /// Point the camera looks at (default: the scene file's target, else 0,0,0.125)
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub target: Option<[f64; 3]>,
     /// Vertical field of view in degrees, 0 < FOV < 180 (default: frames the glass and straw)
@@ -193,7 +214,7 @@ pub struct CameraArgs {
 pub struct RenderArgs {
     /// The scene and the observer.
     #[command(flatten)]
-    pub scene: SceneArgs,
+    pub scene: SceneFlags,
     /// The camera.
     #[command(flatten)]
     pub camera: CameraArgs,
@@ -234,6 +255,9 @@ pub struct BenchArgs {
     /// One JSON object per line instead of a table
     #[arg(long)]
     pub json: bool,
+    /// A scene file of a single view to time (TOML, see scenes/)
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
     /// Observer of a single view to time (with --straw and --water-height)
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub observer: Option<[f64; 3]>,
@@ -243,14 +267,9 @@ pub struct BenchArgs {
     /// Water height of a single view
     #[arg(long, value_name = "H", allow_hyphen_values = true)]
     pub water_height: Option<f64>,
-    /// Refractive index of the water
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 1.333,
-        allow_hyphen_values = true
-    )]
-    pub n_water: f64,
+    /// Refractive index of the water [default: 1.333, or the scene file's]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub n_water: Option<f64>,
     /// Event limit
     #[arg(long, value_name = "N", default_value_t = 10)]
     pub max_events: u32,
@@ -274,7 +293,7 @@ pub struct CheckArgs {
     pub file: PathBuf,
     /// The scene and the observer the solution was computed for.
     #[command(flatten)]
-    pub scene: SceneArgs,
+    pub scene: SceneFlags,
     /// Largest allowed difference between a point's distance from the observer and its ray's path
     /// length, in metres (> 0)
     #[arg(

@@ -15,6 +15,7 @@ mod plot;
 mod progress;
 mod ray_diagram;
 mod report;
+mod scene_input;
 mod validation;
 mod writers;
 

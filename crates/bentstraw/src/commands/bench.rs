@@ -10,13 +10,14 @@ use bentstraw_optics::camera::Camera;
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
 use bentstraw_optics::scene::SECTION_COUNT;
-use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE};
+use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE, WATER_INDEX};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
 use bentstraw_optics::Vec3;
 
-use crate::cli::{BenchArgs, ModeArg, SceneArgs};
+use crate::cli::{BenchArgs, ModeArg};
 use crate::commands::render;
 use crate::error::{fail, CliError, CliResult};
+use crate::scene_input::SceneSource;
 
 /// Vertical field of view of the benchmark views (degrees).
 const BENCH_FOV_DEG: f64 = 50.0;
@@ -149,26 +150,26 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
         args.straw.is_some(),
         args.water_height.is_some(),
     ];
-    if given.iter().any(|&g| g) {
-        let (Some(observer), Some(straw), Some(water_height)) =
-            (args.observer, args.straw, args.water_height)
-        else {
+    if args.scene.is_some() || given.iter().any(|&g| g) {
+        if args.scene.is_none() && !given.iter().all(|&g| g) {
             return fail(
-                "a single view needs all three of --observer, --straw and --water-height (give none to time the four reference views)",
+                "a single view needs all three of --observer, --straw and --water-height, or a --scene file (give none to time the four reference views)",
             );
-        };
-        let (scene, eye) = SceneArgs {
-            observer,
-            straw,
-            water_height,
+        }
+        let resolved = SceneSource {
+            file: args.scene.clone(),
+            observer: args.observer,
+            straw: args.straw,
+            water_height: args.water_height,
             n_water: args.n_water,
             max_events: args.max_events,
         }
-        .scene_and_observer()?;
-        let camera = camera_for(eye, target_flag.unwrap_or(SCENE_CENTRE))?;
+        .resolve()?;
+        let target = target_flag.or(resolved.target).unwrap_or(SCENE_CENTRE);
+        let camera = camera_for(resolved.observer, target)?;
         return Ok(vec![View {
             simulation: None,
-            scene,
+            scene: resolved.scene,
             camera,
         }]);
     }
@@ -179,7 +180,7 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
                 r.straw.0,
                 r.straw.1,
                 r.water_height,
-                args.n_water,
+                args.n_water.unwrap_or(WATER_INDEX),
                 args.max_events,
             )?;
             // Zoomed on the straw where it enters the water (the bottom, for an observer below).

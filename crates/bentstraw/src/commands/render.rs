@@ -91,8 +91,14 @@ pub fn checked_fov_deg(deg: f64) -> CliResult<f64> {
 pub fn run(args: &RenderArgs) -> CliResult {
     let start = Instant::now();
     // Everything is checked before any work, so bad input leaves no file.
-    let (scene, observer) = args.scene.scene_and_observer()?;
-    let camera = camera_from_args(&args.camera, observer)?;
+    let resolved = args.scene.resolve()?;
+    let (scene, observer) = (resolved.scene, resolved.observer);
+    // A scene file's target stands in for an absent --target.
+    let camera_args = CameraArgs {
+        target: args.camera.target.or(resolved.target.map(|t| t.to_array())),
+        ..args.camera.clone()
+    };
+    let camera = camera_from_args(&camera_args, observer)?;
     if !args.prune.is_finite() || !(0.0..1.0).contains(&args.prune) {
         return fail(format!(
             "--prune {} is not allowed: the pruning weight must satisfy 0 <= W < 1",

@@ -1,0 +1,1271 @@
+//! Scene files: a scene written as data (TOML), read into a plain description and checked against
+//! every rule before anything is traced.
+//!
+//! The format (lengths in metres, angles in degrees): a `[container]` (a glass, an upright
+//! cylinder, or a tank, a rectangular box), `[[liquid]]` layers bottom first, `[[straw]]`s,
+//! `[[coin]]`s lying on the floor, upright `[[card]]`s, and an optional `[observer]`. The module
+//! takes the file's text and does no I/O. Every refusal names the key as a TOML path (`straw[2].tilt`,
+//! counting from 1 as the file lists them), the value, and the rule.
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+use crate::scene::{
+    clip_text, number_text, Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT,
+    STRAW_RADIUS, WATER_INDEX,
+};
+use crate::Vec3;
+
+/// A container's index when the file gives none (ordinary glass).
+pub const DEFAULT_CONTAINER_INDEX: f64 = 1.5;
+/// A coin's radius when the file gives none (a one-euro coin).
+pub const DEFAULT_COIN_RADIUS: f64 = 0.0115;
+/// A coin's thickness when the file gives none.
+pub const DEFAULT_COIN_THICKNESS: f64 = 0.0019;
+/// Most entries of one kind (liquids, straws, coins or cards) a file may list: the overlap checks
+/// compare every pair, so this bounds the time a file can take to check.
+pub const MAX_ENTRIES: usize = 1000;
+/// Longest user text (a name, a shape) quoted whole in a message, in characters.
+const QUOTED_MAX: usize = 40;
+/// Points around a tilted straw's circumference where its extent is measured: the extent found
+/// is short of the true one by at most `radius·(1 − cos(π/N))`, about 1.5 nm for a 5 mm straw.
+const RIM_SAMPLES: usize = 4096;
+
+/// Why a scene file is not valid: one line naming the key, the value and the rule.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneFileError {
+    /// The key as a TOML path (`straw[2].tilt`), empty when the text is not TOML at all.
+    pub key: String,
+    /// The line of the file where TOML's parser stopped, for errors of syntax and type.
+    pub line: Option<usize>,
+    /// The whole message.
+    pub message: String,
+}
+
+impl fmt::Display for SceneFileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for SceneFileError {}
+
+/// The refusal of `key = value` by `rule`.
+fn refuse(key: &str, value: f64, rule: &str) -> SceneFileError {
+    SceneFileError {
+        key: key.to_string(),
+        line: None,
+        message: format!("{key} = {}: {rule}", number_text(value)),
+    }
+}
+
+/// The refusal of `key` without a single number to quote.
+fn refuse_key(key: &str, rule: &str) -> SceneFileError {
+    SceneFileError {
+        key: key.to_string(),
+        line: None,
+        message: format!("{key}: {rule}"),
+    }
+}
+
+/// The container: a glass or a tank.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Container {
+    /// An upright cylinder.
+    Glass(Glass),
+    /// A rectangular box with walls of zero thickness.
+    Tank(Tank),
+}
+
+/// An upright cylindrical glass standing with its outer base on `z = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Glass {
+    /// Outer radius (m).
+    pub radius: f64,
+    /// The walls' height above the outer base (m).
+    pub height: f64,
+    /// Wall thickness (m).
+    pub wall: f64,
+    /// Bottom thickness (m): the floor inside is at `z = bottom`.
+    pub bottom: f64,
+    /// Refractive index of the glass itself.
+    pub index: f64,
+}
+
+/// A rectangular tank centred on the `z` axis, its floor on `z = 0`, walls of zero thickness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tank {
+    /// Half width along `x` (m).
+    pub half_x: f64,
+    /// Half width along `y` (m).
+    pub half_y: f64,
+    /// The walls' height (m).
+    pub height: f64,
+}
+
+impl Container {
+    /// Height of the floor inside, where liquids start and objects rest (m).
+    pub fn floor(&self) -> f64 {
+        match self {
+            Container::Glass(g) => g.bottom,
+            Container::Tank(_) => 0.0,
+        }
+    }
+
+    /// The walls' height (m).
+    pub fn height(&self) -> f64 {
+        match self {
+            Container::Glass(g) => g.height,
+            Container::Tank(t) => t.height,
+        }
+    }
+
+    /// Whether the horizontal point `(x, y)` lies on or inside the walls' inner face.
+    fn holds(&self, x: f64, y: f64) -> bool {
+        match self {
+            Container::Glass(g) => (x * x + y * y).sqrt() <= g.radius - g.wall,
+            Container::Tank(t) => x.abs() <= t.half_x && y.abs() <= t.half_y,
+        }
+    }
+
+    /// Whether a horizontal disk of `radius` about `(x, y)` lies inside the walls' inner face.
+    fn holds_disk(&self, x: f64, y: f64, radius: f64) -> bool {
+        match self {
+            // Computed as the assignment's scene computes its straw's fit, so that the two
+            // agree to the last bit on its glass.
+            Container::Glass(g) => (x * x + y * y).sqrt() + radius <= g.radius - g.wall,
+            Container::Tank(t) => x.abs() + radius <= t.half_x && y.abs() + radius <= t.half_y,
+        }
+    }
+
+    /// Whether the point `p` is inside or on the container's outer surface.
+    fn encloses(&self, p: Vec3) -> bool {
+        let within_height = (0.0..=self.height()).contains(&p.z);
+        within_height
+            && match self {
+                Container::Glass(g) => p.x * p.x + p.y * p.y <= g.radius * g.radius,
+                Container::Tank(t) => p.x.abs() <= t.half_x && p.y.abs() <= t.half_y,
+            }
+    }
+
+    /// Whether the horizontal segment from `a` to `b` passes through the container's outline
+    /// seen from above (touching it is allowed).
+    fn crossed_by(&self, a: (f64, f64), b: (f64, f64)) -> bool {
+        match self {
+            Container::Glass(g) => segment_distance_to_origin(a, b) < g.radius,
+            Container::Tank(t) => segment_enters_box(a, b, t.half_x, t.half_y),
+        }
+    }
+}
+
+/// Distance from the origin to the segment `a`–`b` in the plane.
+fn segment_distance_to_origin(a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let s = if len2 > 0.0 {
+        (-(a.0 * dx + a.1 * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a.0 + s * dx).hypot(a.1 + s * dy)
+}
+
+/// Whether the segment `a`–`b` has points strictly inside `|x| < hx, |y| < hy` (Liang–Barsky).
+fn segment_enters_box(a: (f64, f64), b: (f64, f64), hx: f64, hy: f64) -> bool {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, d, h) in [(a.0, b.0 - a.0, hx), (a.1, b.1 - a.1, hy)] {
+        if d == 0.0 {
+            if p.abs() >= h {
+                return false;
+            }
+        } else {
+            let (u, v) = ((-h - p) / d, (h - p) / d);
+            t0 = t0.max(u.min(v));
+            t1 = t1.min(u.max(v));
+        }
+    }
+    t0 < t1
+}
+
+/// The shortest distance between the segments `p1`–`q1` and `p2`–`q2`, both of positive length
+/// (the closest points' parameters, clamped to the segments in turn).
+fn segment_distance(p1: Vec3, q1: Vec3, p2: Vec3, q2: Vec3) -> f64 {
+    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
+    let (a, b, c) = (d1.dot(d1), d1.dot(d2), d1.dot(r));
+    let (e, f) = (d2.dot(d2), d2.dot(r));
+    let denom = a * e - b * b;
+    // Parallel axes: any point of the first will do before the clamping below.
+    let mut s = if denom > 0.0 {
+        ((b * f - c * e) / denom).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let mut t = (b * s + f) / e;
+    if t < 0.0 {
+        t = 0.0;
+        s = (-c / a).clamp(0.0, 1.0);
+    } else if t > 1.0 {
+        t = 1.0;
+        s = ((b - c) / a).clamp(0.0, 1.0);
+    }
+    ((p1 + s * d1) - (p2 + t * d2)).length()
+}
+
+/// Distance from `p` to the convex hull of `points` in the plane (0 inside it).
+fn distance_to_hull(p: (f64, f64), points: &[(f64, f64)]) -> f64 {
+    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    // Andrew's monotone chain: the hull counter-clockwise.
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a.partial_cmp(b).expect("finite points"));
+    sorted.dedup();
+    if sorted.is_empty() {
+        return f64::INFINITY;
+    }
+    let mut hull: Vec<(f64, f64)> = Vec::with_capacity(sorted.len() + 1);
+    for pass in 0..2 {
+        let start = hull.len();
+        let ordered: Box<dyn Iterator<Item = &(f64, f64)>> = if pass == 0 {
+            Box::new(sorted.iter())
+        } else {
+            Box::new(sorted.iter().rev())
+        };
+        for &q in ordered {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        hull.pop();
+    }
+    if hull.is_empty() {
+        hull.push(sorted[0]);
+    }
+    let n = hull.len();
+    let edge = |k: usize| (hull[k], hull[(k + 1) % n]);
+    if n >= 3
+        && (0..n).all(|k| {
+            let (a, b) = edge(k);
+            cross(a, b, p) >= 0.0
+        })
+    {
+        return 0.0;
+    }
+    (0..n)
+        .map(|k| {
+            let (a, b) = edge(k);
+            segment_distance_to_origin((a.0 - p.0, a.1 - p.1), (b.0 - p.0, b.1 - p.1))
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// One layer of liquid, filling the inside from the layer below (or the floor) up to `top`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Liquid {
+    /// What it is, for people ("water", "oil").
+    pub name: String,
+    /// Its refractive index.
+    pub index: f64,
+    /// Height of its free surface above `z = 0` (m).
+    pub top: f64,
+}
+
+/// A five-colour straw resting on the floor, possibly leaning.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Straw {
+    /// Its bottom cap's centre stands above this `x` (m).
+    pub x: f64,
+    /// Its bottom cap's centre stands above this `y` (m).
+    pub y: f64,
+    /// Angle of its axis from the vertical (degrees).
+    pub tilt_deg: f64,
+    /// Direction its top leans toward, from `+x` towards `+y` (degrees).
+    pub azimuth_deg: f64,
+    /// Radius (m).
+    pub radius: f64,
+    /// Length along its axis (m).
+    pub length: f64,
+}
+
+impl Straw {
+    /// Unit vector along its axis, bottom to top: `(sin t cos a, sin t sin a, cos t)`.
+    pub fn axis(&self) -> Vec3 {
+        let (t, a) = (self.tilt_deg.to_radians(), self.azimuth_deg.to_radians());
+        Vec3::new(t.sin() * a.cos(), t.sin() * a.sin(), t.cos())
+    }
+
+    /// Its bottom cap's centre when it rests on a floor at height `floor`: the cap's rim touches
+    /// the floor at its lowest point, so the centre is `radius·sin(tilt)` above it.
+    pub fn bottom_centre(&self, floor: f64) -> Vec3 {
+        let t = self.tilt_deg.to_radians();
+        Vec3::new(self.x, self.y, floor + self.radius * t.sin())
+    }
+
+    /// The unit vector in the bottom cap's plane pointing most steeply down (towards the lean).
+    fn downhill(&self) -> Vec3 {
+        let (t, a) = (self.tilt_deg.to_radians(), self.azimuth_deg.to_radians());
+        Vec3::new(t.cos() * a.cos(), t.cos() * a.sin(), -t.sin())
+    }
+
+    /// The point where it touches the floor: the lowest point of its bottom cap's rim.
+    pub fn foot(&self, floor: f64) -> Vec3 {
+        self.bottom_centre(floor) + self.radius * self.downhill()
+    }
+
+    /// Horizontal positions, around its circumference, of its outermost points between the
+    /// floor and the height `z_top`. Along each line of its side the horizontal position moves
+    /// linearly, so any convex measure of extent (a distance from the glass's axis, a
+    /// coordinate) is largest at the ends of the part below `z_top`: at the bottom cap's rim, or
+    /// where the line reaches `z_top` or the top cap's rim.
+    fn outline_below(&self, floor: f64, z_top: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let c = self.bottom_centre(floor);
+        let axis = self.axis();
+        let e1 = self.downhill();
+        let e2 = Vec3::new(
+            -self.azimuth_deg.to_radians().sin(),
+            self.azimuth_deg.to_radians().cos(),
+            0.0,
+        );
+        (0..RIM_SAMPLES).flat_map(move |k| {
+            let phi = std::f64::consts::TAU * k as f64 / RIM_SAMPLES as f64;
+            let rim = c + self.radius * (phi.cos() * e1 + phi.sin() * e2);
+            let s_top = ((z_top - rim.z) / axis.z).min(self.length);
+            let ends = if rim.z > z_top {
+                [None, None]
+            } else {
+                let top = rim + s_top * axis;
+                [Some((rim.x, rim.y)), Some((top.x, top.y))]
+            };
+            ends.into_iter().flatten()
+        })
+    }
+
+    /// Whether the point `p` is inside or on the straw resting on `floor`.
+    fn contains(&self, floor: f64, p: Vec3) -> bool {
+        let d = p - self.bottom_centre(floor);
+        let s = d.dot(self.axis());
+        (0.0..=self.length).contains(&s) && (d - s * self.axis()).length() <= self.radius
+    }
+}
+
+/// A coin lying flat on the floor (colour code 6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coin {
+    /// Centre, `x` (m).
+    pub x: f64,
+    /// Centre, `y` (m).
+    pub y: f64,
+    /// Radius (m).
+    pub radius: f64,
+    /// Thickness (m).
+    pub thickness: f64,
+}
+
+/// What is drawn on a card's front.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Picture {
+    /// An arrow pointing to the card's right (colour code 8).
+    Arrow,
+    /// Nothing: a plain card.
+    None,
+}
+
+impl Picture {
+    /// The word the file uses for it.
+    pub fn word(&self) -> &'static str {
+        match self {
+            Picture::Arrow => "arrow",
+            Picture::None => "none",
+        }
+    }
+}
+
+/// An upright opaque card (colour code 7), a rectangle in a vertical plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Card {
+    /// Its centre (m).
+    pub center: Vec3,
+    /// Azimuth of the direction its front faces (degrees).
+    pub facing_deg: f64,
+    /// Width (m).
+    pub width: f64,
+    /// Height (m).
+    pub height: f64,
+    /// What its front shows.
+    pub picture: Picture,
+}
+
+impl Card {
+    /// The horizontal ends of its bottom edge: left and right as seen from its front.
+    fn ends(&self) -> ((f64, f64), (f64, f64)) {
+        let f = self.facing_deg.to_radians();
+        // To the right of someone facing the card's front, who looks along −(cos f, sin f).
+        let (ux, uy) = (-f.sin(), f.cos());
+        let h = self.width / 2.0;
+        (
+            (self.center.x - h * ux, self.center.y - h * uy),
+            (self.center.x + h * ux, self.center.y + h * uy),
+        )
+    }
+}
+
+/// The view a scene is meant for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Observer {
+    /// The eye (m).
+    pub position: Vec3,
+    /// The point it looks at (m).
+    pub target: Vec3,
+}
+
+/// A whole scene as a file describes it, defaults applied.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneDescription {
+    /// The glass or the tank.
+    pub container: Container,
+    /// The liquid layers, bottom first (none: an empty container).
+    pub liquids: Vec<Liquid>,
+    /// The straws.
+    pub straws: Vec<Straw>,
+    /// The coins.
+    pub coins: Vec<Coin>,
+    /// The cards.
+    pub cards: Vec<Card>,
+    /// The view it is meant for, if the file gives one.
+    pub observer: Option<Observer>,
+}
+
+// The file's form: what TOML may say, every optional key an `Option`, nothing else accepted.
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileScene {
+    container: FileContainer,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    liquid: Vec<FileLiquid>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    straw: Vec<FileStraw>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    coin: Vec<FileCoin>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    card: Vec<FileCard>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    observer: Option<FileObserver>,
+}
+
+#[derive(Deserialize, Serialize, Default)]
+#[serde(deny_unknown_fields)]
+struct FileContainer {
+    shape: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    half_x: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    half_y: Option<f64>,
+    height: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    wall: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    bottom: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    index: Option<f64>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileLiquid {
+    name: String,
+    index: f64,
+    top: f64,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileStraw {
+    x: f64,
+    y: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    tilt: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    azimuth: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    length: Option<f64>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileCoin {
+    x: f64,
+    y: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    thickness: Option<f64>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileCard {
+    center: [f64; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    facing: Option<f64>,
+    width: f64,
+    height: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    picture: Option<String>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileObserver {
+    position: [f64; 3],
+    target: [f64; 3],
+}
+
+/// `path` (serde's, counting from 0) as the messages write it, counting entries from 1.
+fn toml_path(path: &serde_path_to_error::Path) -> String {
+    use serde_path_to_error::Segment;
+    let mut out = String::new();
+    for segment in path.iter() {
+        match segment {
+            Segment::Seq { index } => out.push_str(&format!("[{}]", index + 1)),
+            Segment::Map { key } => {
+                if !out.is_empty() {
+                    out.push('.');
+                }
+                out.push_str(&clip_text(key, QUOTED_MAX));
+            }
+            Segment::Enum { variant } => {
+                if !out.is_empty() {
+                    out.push('.');
+                }
+                out.push_str(variant);
+            }
+            Segment::Unknown => {}
+        }
+    }
+    out
+}
+
+/// TOML's error as one line: where (line, column), which key, and what is wrong.
+fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError {
+    let line = e.span().map(|span| {
+        let before = &text.as_bytes()[..span.start.min(text.len())];
+        before.iter().filter(|&&b| b == b'\n').count() + 1
+    });
+    // TOML's messages can span lines (an expectation below the error): one line, clipped.
+    let what: String = e
+        .message()
+        .split('\n')
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
+    let what = clip_text(&what, 200);
+    // serde names a missing field from the table that lacks it: say the key's whole path.
+    let (key, what) = match what
+        .strip_prefix("missing field `")
+        .and_then(|rest| rest.strip_suffix('`'))
+    {
+        Some(field) => {
+            let full = if key.is_empty() {
+                field.to_string()
+            } else {
+                format!("{key}.{field}")
+            };
+            (full, " is missing: it is required".to_string())
+        }
+        None if key.is_empty() => (key, what),
+        None => (key, format!(": {what}")),
+    };
+    let place = match line {
+        Some(l) => format!("line {l}: "),
+        None => String::new(),
+    };
+    let message = format!("{place}{key}{what}");
+    SceneFileError { key, line, message }
+}
+
+impl SceneDescription {
+    /// Reads a scene file's text: TOML of the scene-file format, defaults applied, every rule
+    /// checked ([`SceneDescription::validate`]).
+    pub fn from_toml(text: &str) -> Result<SceneDescription, SceneFileError> {
+        let de =
+            toml::Deserializer::parse(text).map_err(|e| syntax_error(text, String::new(), &e))?;
+        let file: FileScene = serde_path_to_error::deserialize(de).map_err(|e| {
+            let key = toml_path(e.path());
+            syntax_error(text, key, e.inner())
+        })?;
+        let description = SceneDescription::from_file(file)?;
+        description.validate()?;
+        Ok(description)
+    }
+
+    /// The file's form with its defaults filled in; the keys of the other shape are refused here,
+    /// as the description has no place for them.
+    fn from_file(file: FileScene) -> Result<SceneDescription, SceneFileError> {
+        let c = &file.container;
+        let given = |key: &str, value: Option<f64>, rule: &str| match value {
+            Some(v) => Err(refuse(&format!("container.{key}"), v, rule)),
+            None => Ok(()),
+        };
+        let need = |key: &str, value: Option<f64>, shape: &str| {
+            value.ok_or_else(|| {
+                refuse_key(
+                    &format!("container.{key}"),
+                    &format!("is missing: a {shape} needs it"),
+                )
+            })
+        };
+        let container = match c.shape.as_str() {
+            "glass" => {
+                let not_glass = "a glass has no half widths (they are a tank's): give its radius";
+                given("half_x", c.half_x, not_glass)?;
+                given("half_y", c.half_y, not_glass)?;
+                Container::Glass(Glass {
+                    radius: need("radius", c.radius, "glass")?,
+                    height: c.height,
+                    wall: c.wall.unwrap_or(0.0),
+                    bottom: c.bottom.unwrap_or(0.0),
+                    index: c.index.unwrap_or(DEFAULT_CONTAINER_INDEX),
+                })
+            }
+            "tank" => {
+                given(
+                    "radius",
+                    c.radius,
+                    "a tank has no radius (a glass has): give its half widths half_x and half_y",
+                )?;
+                let thin =
+                    "a tank's walls and bottom have zero thickness (only a glass's may be thick)";
+                given("wall", c.wall, thin)?;
+                given("bottom", c.bottom, thin)?;
+                given(
+                    "index",
+                    c.index,
+                    "a tank's walls have zero thickness, so it has no index of its own",
+                )?;
+                Container::Tank(Tank {
+                    half_x: need("half_x", c.half_x, "tank")?,
+                    half_y: need("half_y", c.half_y, "tank")?,
+                    height: c.height,
+                })
+            }
+            other => {
+                return Err(refuse_key(
+                    "container.shape",
+                    &format!(
+                        "\"{}\" is not a shape: it must be \"glass\" or \"tank\"",
+                        clip_text(other, QUOTED_MAX)
+                    ),
+                ))
+            }
+        };
+        let cards = file
+            .card
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let picture = match c.picture.as_deref().unwrap_or("arrow") {
+                    "arrow" => Picture::Arrow,
+                    "none" => Picture::None,
+                    other => {
+                        return Err(refuse_key(
+                            &format!("card[{}].picture", i + 1),
+                            &format!(
+                                "\"{}\" is not a picture: it must be \"arrow\" or \"none\"",
+                                clip_text(other, QUOTED_MAX)
+                            ),
+                        ))
+                    }
+                };
+                Ok(Card {
+                    center: Vec3::from_array(c.center),
+                    facing_deg: c.facing.unwrap_or(0.0),
+                    width: c.width,
+                    height: c.height,
+                    picture,
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(SceneDescription {
+            container,
+            liquids: file
+                .liquid
+                .into_iter()
+                .map(|l| Liquid {
+                    name: l.name,
+                    index: l.index,
+                    top: l.top,
+                })
+                .collect(),
+            straws: file
+                .straw
+                .iter()
+                .map(|s| Straw {
+                    x: s.x,
+                    y: s.y,
+                    tilt_deg: s.tilt.unwrap_or(0.0),
+                    azimuth_deg: s.azimuth.unwrap_or(0.0),
+                    radius: s.radius.unwrap_or(STRAW_RADIUS),
+                    length: s.length.unwrap_or(STRAW_HEIGHT),
+                })
+                .collect(),
+            coins: file
+                .coin
+                .iter()
+                .map(|c| Coin {
+                    x: c.x,
+                    y: c.y,
+                    radius: c.radius.unwrap_or(DEFAULT_COIN_RADIUS),
+                    thickness: c.thickness.unwrap_or(DEFAULT_COIN_THICKNESS),
+                })
+                .collect(),
+            cards,
+            observer: file.observer.map(|o| Observer {
+                position: Vec3::from_array(o.position),
+                target: Vec3::from_array(o.target),
+            }),
+        })
+    }
+
+    /// Checks every rule of a scene: finite numbers, positive sizes, liquids stacked inside the
+    /// walls, straws and coins on the floor inside the walls and not overlapping, cards clear of
+    /// the container, the observer outside the container and the objects.
+    pub fn validate(&self) -> Result<(), SceneFileError> {
+        self.validate_container()?;
+        for (kind, count) in [
+            ("liquid", self.liquids.len()),
+            ("straw", self.straws.len()),
+            ("coin", self.coins.len()),
+            ("card", self.cards.len()),
+        ] {
+            if count > MAX_ENTRIES {
+                return Err(refuse_key(
+                    kind,
+                    &format!("the file lists {count} of them: at most {MAX_ENTRIES} are allowed"),
+                ));
+            }
+        }
+        self.validate_liquids()?;
+        self.validate_straws()?;
+        self.validate_coins()?;
+        self.validate_cards()?;
+        self.validate_overlaps()?;
+        self.validate_observer()
+    }
+
+    fn validate_container(&self) -> Result<(), SceneFileError> {
+        match &self.container {
+            Container::Glass(g) => {
+                positive("container.radius", g.radius)?;
+                positive("container.height", g.height)?;
+                at_least_zero("container.wall", g.wall)?;
+                at_least_zero("container.bottom", g.bottom)?;
+                finite("container.index", g.index)?;
+                if g.wall >= g.radius {
+                    return Err(refuse(
+                        "container.wall",
+                        g.wall,
+                        &format!(
+                            "the wall must be thinner than the glass's radius {} (something must fit inside)",
+                            number_text(g.radius)
+                        ),
+                    ));
+                }
+                if g.bottom >= g.height {
+                    return Err(refuse(
+                        "container.bottom",
+                        g.bottom,
+                        &format!(
+                            "the bottom must be thinner than the glass's height {}",
+                            number_text(g.height)
+                        ),
+                    ));
+                }
+                if g.index < 1.0 {
+                    return Err(refuse(
+                        "container.index",
+                        g.index,
+                        "a refractive index must be >= 1",
+                    ));
+                }
+            }
+            Container::Tank(t) => {
+                positive("container.half_x", t.half_x)?;
+                positive("container.half_y", t.half_y)?;
+                positive("container.height", t.height)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_liquids(&self) -> Result<(), SceneFileError> {
+        let floor = self.container.floor();
+        let height = self.container.height();
+        let mut below = floor;
+        for (i, l) in self.liquids.iter().enumerate() {
+            let key = |k: &str| format!("liquid[{}].{k}", i + 1);
+            finite(&key("index"), l.index)?;
+            if l.index < 1.0 {
+                return Err(refuse(
+                    &key("index"),
+                    l.index,
+                    "a refractive index must be >= 1",
+                ));
+            }
+            finite(&key("top"), l.top)?;
+            if l.top <= below {
+                let rule = if i == 0 {
+                    format!(
+                        "the liquid's top must be above the floor at z = {}",
+                        number_text(floor)
+                    )
+                } else {
+                    format!(
+                        "each liquid's top must be above the top of the layer below it ({})",
+                        number_text(below)
+                    )
+                };
+                return Err(refuse(&key("top"), l.top, &rule));
+            }
+            if l.top > height {
+                return Err(refuse(
+                    &key("top"),
+                    l.top,
+                    &format!(
+                        "the liquid's top must not be above the walls' height {}",
+                        number_text(height)
+                    ),
+                ));
+            }
+            below = l.top;
+        }
+        Ok(())
+    }
+
+    fn validate_straws(&self) -> Result<(), SceneFileError> {
+        let floor = self.container.floor();
+        for (i, s) in self.straws.iter().enumerate() {
+            let key = |k: &str| format!("straw[{}].{k}", i + 1);
+            finite(&key("x"), s.x)?;
+            finite(&key("y"), s.y)?;
+            finite(&key("tilt"), s.tilt_deg)?;
+            finite(&key("azimuth"), s.azimuth_deg)?;
+            positive(&key("radius"), s.radius)?;
+            positive(&key("length"), s.length)?;
+            if !(0.0..90.0).contains(&s.tilt_deg) {
+                return Err(refuse(
+                    &key("tilt"),
+                    s.tilt_deg,
+                    "the tilt from the vertical must satisfy 0 <= tilt < 90 (degrees)",
+                ));
+            }
+            // Upright, it stands on its whole cap: the cap's centre must be on the floor (its
+            // rim's fit is the wall's rule below); leaning, on the one lowest point of the rim.
+            let foot = if s.tilt_deg == 0.0 {
+                s.bottom_centre(floor)
+            } else {
+                s.foot(floor)
+            };
+            if !self.container.holds(foot.x, foot.y) {
+                return Err(refuse_key(
+                    &format!("straw[{}]", i + 1),
+                    &format!(
+                        "its foot, where its bottom rim rests, at ({}, {}) is not on the floor inside the walls",
+                        number_text(foot.x),
+                        number_text(foot.y)
+                    ),
+                ));
+            }
+            let inside = if s.tilt_deg == 0.0 {
+                // Upright: its cross-section is its own disk at every height.
+                self.container.holds_disk(s.x, s.y, s.radius)
+            } else {
+                s.outline_below(floor, self.container.height())
+                    .all(|(x, y)| self.container.holds(x, y))
+            };
+            if !inside {
+                return Err(refuse_key(
+                    &format!("straw[{}]", i + 1),
+                    &format!(
+                        "standing at ({}, {}) with radius {} and tilt {}°, it pierces the container's wall below the rim",
+                        number_text(s.x),
+                        number_text(s.y),
+                        number_text(s.radius),
+                        number_text(s.tilt_deg)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_coins(&self) -> Result<(), SceneFileError> {
+        let floor = self.container.floor();
+        for (i, c) in self.coins.iter().enumerate() {
+            let key = |k: &str| format!("coin[{}].{k}", i + 1);
+            finite(&key("x"), c.x)?;
+            finite(&key("y"), c.y)?;
+            positive(&key("radius"), c.radius)?;
+            positive(&key("thickness"), c.thickness)?;
+            if !self.container.holds_disk(c.x, c.y, c.radius) {
+                return Err(refuse_key(
+                    &format!("coin[{}]", i + 1),
+                    &format!(
+                        "at ({}, {}) with radius {} it does not lie on the floor inside the walls",
+                        number_text(c.x),
+                        number_text(c.y),
+                        number_text(c.radius)
+                    ),
+                ));
+            }
+            if floor + c.thickness > self.container.height() {
+                return Err(refuse(
+                    &key("thickness"),
+                    c.thickness,
+                    "the coin must not stand higher than the walls",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_cards(&self) -> Result<(), SceneFileError> {
+        for (i, c) in self.cards.iter().enumerate() {
+            let key = |k: &str| format!("card[{}].{k}", i + 1);
+            for v in c.center.to_array() {
+                finite(&key("center"), v)?;
+            }
+            finite(&key("facing"), c.facing_deg)?;
+            positive(&key("width"), c.width)?;
+            positive(&key("height"), c.height)?;
+            let (low, high) = (c.center.z - c.height / 2.0, c.center.z + c.height / 2.0);
+            let (a, b) = c.ends();
+            if high > 0.0 && low < self.container.height() && self.container.crossed_by(a, b) {
+                return Err(refuse_key(
+                    &format!("card[{}]", i + 1),
+                    &format!(
+                        "centred at ({}, {}, {}), {} wide and {} high, it cuts through the container",
+                        number_text(c.center.x),
+                        number_text(c.center.y),
+                        number_text(c.center.z),
+                        number_text(c.width),
+                        number_text(c.height)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Straws and coins may not share floor, a leaning straw may not lie on a coin, and straws
+    /// may not cross. A straw's footprint is taken as the disk of its radius about the point
+    /// below its bottom cap's centre, which holds the cap's shadow (an ellipse
+    /// `radius·cos(tilt)` by `radius`) whatever its tilt.
+    fn validate_overlaps(&self) -> Result<(), SceneFileError> {
+        let footprints: Vec<(String, f64, f64, f64)> = self
+            .straws
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (format!("straw[{}]", i + 1), s.x, s.y, s.radius))
+            .chain(
+                self.coins
+                    .iter()
+                    .enumerate()
+                    .map(|(i, c)| (format!("coin[{}]", i + 1), c.x, c.y, c.radius)),
+            )
+            .collect();
+        for (j, b) in footprints.iter().enumerate() {
+            for a in &footprints[..j] {
+                let gap = (a.1 - b.1).hypot(a.2 - b.2);
+                if gap < a.3 + b.3 {
+                    return Err(refuse_key(
+                        &b.0,
+                        &format!(
+                            "it overlaps {} on the floor: their centres are {} apart, less than their radii's sum {}",
+                            a.0,
+                            number_text(gap),
+                            number_text(a.3 + b.3)
+                        ),
+                    ));
+                }
+            }
+        }
+        // A leaning straw's body, low near its foot, may also lie over a coin beside its cap:
+        // within the coin's height the coin holds every point above its disk, so they overlap
+        // exactly when the coin's disk meets the shadow of the straw's part below the coin's top.
+        for (j, c) in self.coins.iter().enumerate() {
+            for (i, s) in self.straws.iter().enumerate() {
+                if s.tilt_deg == 0.0 {
+                    continue; // upright, its shadow is its footprint, checked above
+                }
+                let low: Vec<(f64, f64)> = s
+                    .outline_below(self.container.floor(), self.container.floor() + c.thickness)
+                    .collect();
+                let gap = distance_to_hull((c.x, c.y), &low);
+                if gap < c.radius {
+                    return Err(refuse_key(
+                        &format!("coin[{}]", j + 1),
+                        &format!(
+                            "straw[{}] leans on it: within the coin's thickness the straw comes {} from the coin's centre, less than its radius {}",
+                            i + 1,
+                            number_text(gap),
+                            number_text(c.radius)
+                        ),
+                    ));
+                }
+            }
+        }
+        // Leaning straws can also cross above the floor: each is kept within the capsule about
+        // its axis (a slightly larger body than the straw, rounded past its caps), so two whose
+        // axes pass closer than their radii's sum are refused.
+        let floor = self.container.floor();
+        let axis_of = |s: &Straw| {
+            let c = s.bottom_centre(floor);
+            (c, c + s.length * s.axis())
+        };
+        for (j, b) in self.straws.iter().enumerate() {
+            for (i, a) in self.straws[..j].iter().enumerate() {
+                let ((a0, a1), (b0, b1)) = (axis_of(a), axis_of(b));
+                let gap = segment_distance(a0, a1, b0, b1);
+                if gap < a.radius + b.radius {
+                    return Err(refuse_key(
+                        &format!("straw[{}]", j + 1),
+                        &format!(
+                            "it crosses straw[{}]: their axes pass {} apart, less than their radii's sum {}",
+                            i + 1,
+                            number_text(gap),
+                            number_text(a.radius + b.radius)
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_observer(&self) -> Result<(), SceneFileError> {
+        let Some(o) = &self.observer else {
+            return Ok(());
+        };
+        for (name, p) in [("position", o.position), ("target", o.target)] {
+            for v in p.to_array() {
+                finite(&format!("observer.{name}"), v)?;
+            }
+        }
+        let p = o.position;
+        let at = format!(
+            "({}, {}, {})",
+            number_text(p.x),
+            number_text(p.y),
+            number_text(p.z)
+        );
+        if self.container.encloses(p) {
+            return Err(refuse_key(
+                "observer.position",
+                &format!("{at} is inside or on the container: the eye must be outside it"),
+            ));
+        }
+        let floor = self.container.floor();
+        if let Some(i) = self.straws.iter().position(|s| s.contains(floor, p)) {
+            return Err(refuse_key(
+                "observer.position",
+                &format!("{at} is inside straw[{}]", i + 1),
+            ));
+        }
+        if o.target == p {
+            return Err(refuse_key(
+                "observer.target",
+                &format!("{at} is the observer's own position: it must look somewhere else"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// What this scene has that the assignment's scene has not, in words ("a straw tilted 15°"),
+    /// each said once; empty when it is exactly the assignment's kind.
+    pub fn unsupported(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let m = |x: f64| format!("{} m", number_text(x));
+        match &self.container {
+            Container::Tank(_) => out.push("a rectangular tank".to_string()),
+            Container::Glass(g) => {
+                if g.radius != GLASS_RADIUS {
+                    out.push(format!("a glass of radius {}", m(g.radius)));
+                }
+                if g.height != GLASS_HEIGHT {
+                    out.push(format!("a glass {} high", m(g.height)));
+                }
+                if g.wall != 0.0 {
+                    out.push(format!("walls {} thick", m(g.wall)));
+                }
+                if g.bottom != 0.0 {
+                    out.push(format!("a bottom {} thick", m(g.bottom)));
+                }
+            }
+        }
+        if self.liquids.len() > 1 {
+            out.push(format!("{} liquid layers", self.liquids.len()));
+        }
+        match self.straws.len() {
+            0 => out.push("no straw".to_string()),
+            1 => {}
+            n => out.push(format!("{n} straws")),
+        }
+        for s in &self.straws {
+            if s.tilt_deg != 0.0 {
+                out.push(format!("a straw tilted {}°", number_text(s.tilt_deg)));
+            }
+            if s.radius != STRAW_RADIUS {
+                out.push(format!("a straw of radius {}", m(s.radius)));
+            }
+            if s.length != STRAW_HEIGHT {
+                out.push(format!("a straw {} long", m(s.length)));
+            }
+        }
+        match self.coins.len() {
+            0 => {}
+            1 => out.push("a coin".to_string()),
+            n => out.push(format!("{n} coins")),
+        }
+        match self.cards.len() {
+            0 => {}
+            1 => out.push("a card".to_string()),
+            n => out.push(format!("{n} cards")),
+        }
+        // Many straws alike are one reason, said once.
+        let mut seen = std::collections::HashSet::new();
+        out.retain(|w| seen.insert(w.clone()));
+        out
+    }
+
+    /// The assignment's scene when this is exactly its kind (a glass of radius 0.04 m and height
+    /// 0.2 m with zero-thickness walls and bottom, at most one liquid, one upright straw of radius
+    /// 0.005 m and length 0.25 m, no coin, no card), with the default event limit; else `None`.
+    /// An empty glass is water of height 0.
+    pub fn spec_scene(&self) -> Option<Scene> {
+        if !self.unsupported().is_empty() {
+            return None;
+        }
+        let straw = self.straws.first()?;
+        let (top, index) = match self.liquids.first() {
+            Some(l) => (l.top, l.index),
+            None => (0.0, WATER_INDEX),
+        };
+        Scene::new(straw.x, straw.y, top, index, DEFAULT_MAX_EVENTS).ok()
+    }
+
+    /// The description as a scene file's TOML, every value written out (defaults too), so that
+    /// reading it back gives the same description.
+    pub fn to_toml(&self) -> String {
+        let container = match &self.container {
+            Container::Glass(g) => FileContainer {
+                shape: "glass".into(),
+                radius: Some(g.radius),
+                height: g.height,
+                wall: Some(g.wall),
+                bottom: Some(g.bottom),
+                index: Some(g.index),
+                ..FileContainer::default()
+            },
+            Container::Tank(t) => FileContainer {
+                shape: "tank".into(),
+                half_x: Some(t.half_x),
+                half_y: Some(t.half_y),
+                height: t.height,
+                ..FileContainer::default()
+            },
+        };
+        let file = FileScene {
+            container,
+            liquid: self
+                .liquids
+                .iter()
+                .map(|l| FileLiquid {
+                    name: l.name.clone(),
+                    index: l.index,
+                    top: l.top,
+                })
+                .collect(),
+            straw: self
+                .straws
+                .iter()
+                .map(|s| FileStraw {
+                    x: s.x,
+                    y: s.y,
+                    tilt: Some(s.tilt_deg),
+                    azimuth: Some(s.azimuth_deg),
+                    radius: Some(s.radius),
+                    length: Some(s.length),
+                })
+                .collect(),
+            coin: self
+                .coins
+                .iter()
+                .map(|c| FileCoin {
+                    x: c.x,
+                    y: c.y,
+                    radius: Some(c.radius),
+                    thickness: Some(c.thickness),
+                })
+                .collect(),
+            card: self
+                .cards
+                .iter()
+                .map(|c| FileCard {
+                    center: c.center.to_array(),
+                    facing: Some(c.facing_deg),
+                    width: c.width,
+                    height: c.height,
+                    picture: Some(c.picture.word().to_string()),
+                })
+                .collect(),
+            observer: self.observer.map(|o| FileObserver {
+                position: o.position.to_array(),
+                target: o.target.to_array(),
+            }),
+        };
+        // Tables of numbers and strings always have a TOML form.
+        toml::to_string(&file).expect("a scene description is plain TOML data")
+    }
+}
+
+/// Checks that `value` is finite.
+fn finite(key: &str, value: f64) -> Result<(), SceneFileError> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(refuse(key, value, "it must be a finite number"))
+    }
+}
+
+/// Checks that a size is finite and > 0.
+fn positive(key: &str, value: f64) -> Result<(), SceneFileError> {
+    finite(key, value)?;
+    if value > 0.0 {
+        Ok(())
+    } else {
+        Err(refuse(key, value, "a size must be > 0 (metres)"))
+    }
+}
+
+/// Checks that a thickness is finite and >= 0.
+fn at_least_zero(key: &str, value: f64) -> Result<(), SceneFileError> {
+    finite(key, value)?;
+    if value >= 0.0 {
+        Ok(())
+    } else {
+        Err(refuse(key, value, "a thickness must be >= 0 (metres)"))
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,728 @@
+//! Every rule of a scene file refused with its key and value, the defaults, the straw's foot, and
+//! the round trip through TOML.
+
+use super::*;
+
+/// The assignment's glass with water to 0.15 and `rest` appended.
+fn glass_with(rest: &str) -> String {
+    format!(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n\n[[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.15\n{rest}"
+    )
+}
+
+/// The message refusing `text`, after checking that it names `key` and quotes `value`.
+fn refused(text: &str, key: &str, value: &str) -> String {
+    let e = SceneDescription::from_toml(text).expect_err("the file must be refused");
+    assert!(
+        e.message.contains(key),
+        "the message should name {key}: {}",
+        e.message
+    );
+    assert!(
+        e.message.contains(value),
+        "the message should quote {value}: {}",
+        e.message
+    );
+    assert!(!e.message.contains('\n'), "one line: {}", e.message);
+    e.message
+}
+
+fn parsed(text: &str) -> SceneDescription {
+    SceneDescription::from_toml(text).unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+#[test]
+fn defaults_are_applied_to_the_optional_keys() {
+    let d = parsed(&glass_with(
+        "[[straw]]\nx = 0.0\ny = 0.0\n[[coin]]\nx = 0.02\ny = 0.0\n[[card]]\ncenter = [-0.2, 0, 0.1]\nwidth = 0.1\nheight = 0.05\n",
+    ));
+    let Container::Glass(g) = d.container else {
+        panic!("a glass")
+    };
+    assert_eq!((g.wall, g.bottom, g.index), (0.0, 0.0, 1.5));
+    let s = d.straws[0];
+    assert_eq!(
+        (s.tilt_deg, s.azimuth_deg, s.radius, s.length),
+        (0.0, 0.0, 0.005, 0.25)
+    );
+    assert_eq!((d.coins[0].radius, d.coins[0].thickness), (0.0115, 0.0019));
+    assert_eq!(d.cards[0].facing_deg, 0.0);
+    assert_eq!(d.cards[0].picture, Picture::Arrow);
+    assert_eq!(d.observer, None);
+}
+
+#[test]
+fn an_empty_glass_is_allowed_and_is_the_assignment_scene_without_water() {
+    let d = parsed(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n[[straw]]\nx = 0.01\ny = 0.0\n",
+    );
+    assert!(d.liquids.is_empty());
+    let scene = d
+        .spec_scene()
+        .expect("an empty glass of the assignment's size");
+    assert_eq!(scene.water_height, 0.0);
+    assert_eq!((scene.straw_x, scene.straw_y), (0.01, 0.0));
+}
+
+#[test]
+fn an_unknown_key_is_refused_with_its_table_and_line() {
+    let m = refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\ncolour = 3\n",
+        "container",
+        "colour",
+    );
+    assert!(m.contains("line 5"), "{m}");
+    refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\nlean = 3\n"),
+        "straw[1]",
+        "lean",
+    );
+    refused(&glass_with("[lid]\nheight = 1\n"), "", "lid");
+}
+
+#[test]
+fn a_missing_required_value_is_named_by_its_path() {
+    let m = refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\n[[straw]]\nx = 0.02\n"),
+        "straw[2].y",
+        "missing",
+    );
+    assert!(m.contains("required"), "{m}");
+    refused("[[straw]]\nx = 0\ny = 0\n", "container", "missing");
+    refused(
+        "[container]\nshape = \"glass\"\nheight = 0.2\n",
+        "container.radius",
+        "missing",
+    );
+    refused(
+        "[container]\nshape = \"tank\"\nhalf_x = 0.1\nheight = 0.2\n",
+        "container.half_y",
+        "missing",
+    );
+}
+
+#[test]
+fn a_wrong_type_is_refused_with_its_line_and_key() {
+    let m = refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\ntilt = \"15\"\n"),
+        "straw[1].tilt",
+        "\"15\"",
+    );
+    assert!(m.contains("line 13"), "{m}");
+    let e = SceneDescription::from_toml(&glass_with("[[straw]]\nx = 0\ny = 0\ntilt = \"15\"\n"))
+        .unwrap_err();
+    assert_eq!((e.key.as_str(), e.line), ("straw[1].tilt", Some(13)));
+    refused(
+        &glass_with("[observer]\nposition = [1, 0]\ntarget = [0, 0, 0]\n"),
+        "observer.position",
+        "2",
+    );
+}
+
+#[test]
+fn a_syntax_error_is_one_line_with_its_line_number() {
+    let m = refused(
+        "[container]\nshape = \"glass\"\nradius = \nheight = 0.2\n",
+        "line 3",
+        "",
+    );
+    assert!(!m.contains('\n'));
+}
+
+#[test]
+fn non_finite_numbers_are_refused() {
+    refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\ntilt = nan\n"),
+        "straw[1].tilt",
+        "NaN",
+    );
+    refused(
+        &glass_with("[[straw]]\nx = inf\ny = 0\n"),
+        "straw[1].x",
+        "inf",
+    );
+    refused(
+        &glass_with("[observer]\nposition = [1, 0, -inf]\ntarget = [0, 0, 0]\n"),
+        "observer.position",
+        "-inf",
+    );
+    refused(
+        &glass_with("[[card]]\ncenter = [nan, 0, 0]\nwidth = 1\nheight = 1\n"),
+        "card[1].center",
+        "NaN",
+    );
+}
+
+#[test]
+fn sizes_must_be_positive() {
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0\nheight = 0.2\n",
+        "container.radius",
+        "= 0",
+    );
+    refused(
+        "[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = -0.05\nheight = 0.2\n",
+        "container.half_y",
+        "-0.05",
+    );
+    refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\nradius = -0.001\n"),
+        "straw[1].radius",
+        "-0.001",
+    );
+    refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\nlength = 0\n"),
+        "straw[1].length",
+        "0",
+    );
+    refused(
+        &glass_with("[[coin]]\nx = 0\ny = 0\nthickness = 0\n"),
+        "coin[1].thickness",
+        "0",
+    );
+    refused(
+        &glass_with("[[card]]\ncenter = [-0.2, 0, 0]\nwidth = 0\nheight = 1\n"),
+        "card[1].width",
+        "0",
+    );
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\nwall = -0.001\n",
+        "container.wall",
+        "-0.001",
+    );
+}
+
+#[test]
+fn a_wall_as_thick_as_the_radius_or_a_bottom_as_high_as_the_walls_is_refused() {
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\nwall = 0.04\n",
+        "container.wall",
+        "0.04",
+    );
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\nbottom = 0.2\n",
+        "container.bottom",
+        "0.2",
+    );
+}
+
+#[test]
+fn the_shape_must_be_glass_or_tank() {
+    let m = refused(
+        "[container]\nshape = \"cube\"\nradius = 0.04\nheight = 0.2\n",
+        "container.shape",
+        "\"cube\"",
+    );
+    assert!(m.contains("\"glass\" or \"tank\""), "{m}");
+}
+
+#[test]
+fn the_keys_of_the_other_shape_are_refused() {
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nhalf_x = 0.1\nheight = 0.2\n",
+        "container.half_x",
+        "0.1",
+    );
+    refused(
+        "[container]\nshape = \"tank\"\nradius = 0.04\nhalf_x = 0.1\nhalf_y = 0.1\nheight = 0.2\n",
+        "container.radius",
+        "0.04",
+    );
+}
+
+#[test]
+fn a_tank_has_no_wall_bottom_or_index() {
+    let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n";
+    refused(&format!("{tank}wall = 0.003\n"), "container.wall", "0.003");
+    refused(
+        &format!("{tank}bottom = 0.01\n"),
+        "container.bottom",
+        "0.01",
+    );
+    refused(&format!("{tank}index = 1.5\n"), "container.index", "1.5");
+}
+
+#[test]
+fn indices_below_one_are_refused() {
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n[[liquid]]\nname = \"w\"\nindex = 0.9\ntop = 0.1\n",
+        "liquid[1].index",
+        "0.9",
+    );
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\nindex = 0.5\n",
+        "container.index",
+        "0.5",
+    );
+}
+
+#[test]
+fn liquid_tops_must_rise_strictly_above_the_floor_and_not_above_the_walls() {
+    let m = refused(
+        &glass_with("[[liquid]]\nname = \"oil\"\nindex = 1.47\ntop = 0.15\n"),
+        "liquid[2].top",
+        "0.15",
+    );
+    assert!(m.contains("layer below"), "{m}");
+    refused(
+        &glass_with("[[liquid]]\nname = \"oil\"\nindex = 1.47\ntop = 0.12\n"),
+        "liquid[2].top",
+        "0.12",
+    );
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n[[liquid]]\nname = \"w\"\nindex = 1.3\ntop = 0.25\n",
+        "liquid[1].top",
+        "0.25",
+    );
+    // The floor of a glass with a thick bottom is at z = bottom: a top there holds no liquid.
+    let m = refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\nbottom = 0.01\n[[liquid]]\nname = \"w\"\nindex = 1.3\ntop = 0.01\n",
+        "liquid[1].top",
+        "0.01",
+    );
+    assert!(m.contains("floor"), "{m}");
+}
+
+#[test]
+fn the_tilt_must_be_in_0_to_90_degrees() {
+    refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\ntilt = 90\n"),
+        "straw[1].tilt",
+        "90",
+    );
+    refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\ntilt = -1\n"),
+        "straw[1].tilt",
+        "-1",
+    );
+}
+
+#[test]
+fn a_straw_whose_foot_is_off_the_floor_is_refused() {
+    let m = refused(
+        &glass_with("[[straw]]\nx = 0.05\ny = 0\n"),
+        "straw[1]",
+        "0.05",
+    );
+    assert!(m.contains("foot"), "{m}");
+}
+
+#[test]
+fn an_upright_straw_touching_the_wall_fits_and_one_past_it_pierces_it() {
+    // The assignment's own rule, sqrt(x² + y²) + radius <= glass radius, at its edge.
+    parsed(&glass_with("[[straw]]\nx = 0.035\ny = 0\n"));
+    let m = refused(
+        &glass_with("[[straw]]\nx = 0.036\ny = 0\n"),
+        "straw[1]",
+        "0.036",
+    );
+    assert!(m.contains("pierces"), "{m}");
+}
+
+#[test]
+fn a_straw_in_a_tank_must_not_pierce_its_walls() {
+    let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n";
+    parsed(&format!("{tank}[[straw]]\nx = 0.095\ny = -0.045\n"));
+    refused(
+        &format!("{tank}[[straw]]\nx = 0.095\ny = 0.046\n"),
+        "straw[1]",
+        "pierces",
+    );
+    // Leaning 30° towards +x from x = 0.05, a 0.22 m pencil reaches x ≈ 0.16 at z ≈ 0.19,
+    // below the rim: through the wall. Leaning towards +y it hits the near wall sooner.
+    refused(
+        &format!("{tank}[[straw]]\nx = 0.05\ny = 0\ntilt = 30\nlength = 0.22\nradius = 0.0035\n"),
+        "straw[1]",
+        "pierces",
+    );
+    refused(
+        &format!("{tank}[[straw]]\nx = -0.06\ny = 0\ntilt = 30\nazimuth = 90\nlength = 0.22\nradius = 0.0035\n"),
+        "straw[1]",
+        "pierces",
+    );
+    parsed(&format!(
+        "{tank}[[straw]]\nx = -0.06\ny = 0\ntilt = 30\nlength = 0.22\nradius = 0.0035\n"
+    ));
+}
+
+/// Where a straw's side is farthest out at height `z` along its lean, when its whole
+/// cross-section there is an ellipse: the axis's point plus the semi-axis `radius / cos(tilt)`.
+fn outermost_at(x: f64, tilt_deg: f64, radius: f64, floor: f64, z: f64) -> f64 {
+    let t = tilt_deg.to_radians();
+    x + (z - floor - radius * t.sin()) * t.tan() + radius / t.cos()
+}
+
+#[test]
+fn a_leaning_straw_fits_just_below_the_rim_and_pierces_just_past_it() {
+    // Leaning towards +x, its side reaches the rim's height at x = outermost_at(...): place it
+    // 1 µm inside the wall and 1 µm through it.
+    for (tilt, azimuth) in [(15.0, 0.0), (10.0, 45.0), (15.0, 90.0), (15.0, 180.0)] {
+        let reach = outermost_at(0.0, tilt, 0.005, 0.0, 0.2);
+        let (c, s) = (
+            f64::to_radians(azimuth).cos(),
+            f64::to_radians(azimuth).sin(),
+        );
+        for (offset, fits) in [(-1e-6, true), (1e-6, false)] {
+            let along = 0.04 - reach + offset;
+            let text = glass_with(&format!(
+                "[[straw]]\nx = {}\ny = {}\ntilt = {tilt}\nazimuth = {azimuth}\n",
+                along * c,
+                along * s
+            ));
+            let result = SceneDescription::from_toml(&text);
+            assert_eq!(
+                result.is_ok(),
+                fits,
+                "tilt {tilt} azimuth {azimuth} offset {offset}: {result:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_tilted_straw_rests_on_the_floor_at_its_lowest_rim_point() {
+    for (tilt, azimuth, floor) in [(0.0, 0.0, 0.0), (15.0, 30.0, 0.008), (60.0, 200.0, 0.002)] {
+        let s = Straw {
+            x: 0.01,
+            y: -0.02,
+            tilt_deg: tilt,
+            azimuth_deg: azimuth,
+            radius: 0.005,
+            length: 0.25,
+        };
+        let (t, a) = (f64::to_radians(tilt), f64::to_radians(azimuth));
+        let c = s.bottom_centre(floor);
+        assert!((c.z - (floor + 0.005 * t.sin())).abs() < 1e-15, "{c}");
+        assert_eq!((c.x, c.y), (0.01, -0.02));
+        // The foot is on the floor, displaced towards the lean by radius·cos(tilt).
+        let foot = s.foot(floor);
+        assert!((foot.z - floor).abs() < 1e-15, "{foot}");
+        assert!((foot.x - (0.01 + 0.005 * t.cos() * a.cos())).abs() < 1e-15);
+        assert!((foot.y - (-0.02 + 0.005 * t.cos() * a.sin())).abs() < 1e-15);
+        // No point of the rim is below the floor: the rim is the circle about the axis.
+        let axis = s.axis();
+        assert!((axis.length() - 1.0).abs() < 1e-15);
+        let helper = if axis.x.abs() < 0.9 { Vec3::X } else { Vec3::Y };
+        let e1 = axis.cross(helper).normalize();
+        let e2 = axis.cross(e1);
+        for k in 0..360 {
+            let phi = f64::to_radians(k as f64);
+            let p = c + 0.005 * (phi.cos() * e1 + phi.sin() * e2);
+            assert!(
+                p.z >= floor - 1e-15,
+                "rim point {p} below the floor {floor}"
+            );
+        }
+    }
+}
+
+#[test]
+fn straws_and_coins_must_not_overlap_on_the_floor() {
+    let m = refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\n[[straw]]\nx = 0.009\ny = 0\n"),
+        "straw[2]",
+        "0.009",
+    );
+    assert!(m.contains("straw[1]"), "{m}");
+    parsed(&glass_with(
+        "[[straw]]\nx = 0\ny = 0\n[[straw]]\nx = 0.01\ny = 0\n",
+    ));
+    refused(
+        &glass_with("[[straw]]\nx = 0.015\ny = 0\n[[coin]]\nx = 0\ny = 0\n"),
+        "coin[1]",
+        "0.015",
+    );
+    refused(
+        &glass_with("[[coin]]\nx = -0.012\ny = 0\n[[coin]]\nx = 0.01\ny = 0\n"),
+        "coin[2]",
+        "0.022",
+    );
+}
+
+#[test]
+fn straws_leaning_into_each_other_cross_and_are_refused() {
+    // Feet 24 mm apart (footprints clear), leaning 5° towards each other: their axes meet at
+    // z ≈ 0.137, inside the straws' length.
+    let m = refused(
+        &glass_with(
+            "[[straw]]\nx = -0.012\ny = 0\ntilt = 5\n[[straw]]\nx = 0.012\ny = 0\ntilt = 5\nazimuth = 180\n",
+        ),
+        "straw[2]",
+        "crosses straw[1]",
+    );
+    assert!(m.contains("0.01"), "{m}");
+    // Leaning away from each other they are clear.
+    parsed(&glass_with(
+        "[[straw]]\nx = -0.012\ny = 0\ntilt = 5\nazimuth = 180\n[[straw]]\nx = 0.012\ny = 0\ntilt = 5\n",
+    ));
+}
+
+#[test]
+fn the_distance_between_segments_is_exact_in_known_cases() {
+    let v = Vec3::new;
+    // Crossing at right angles 0.3 apart; parallel and overlapping 0.2 apart; end to end 0.5.
+    let cases = [
+        (
+            v(-1.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.0, -1.0, 0.3),
+            v(0.0, 1.0, 0.3),
+            0.3,
+        ),
+        (
+            v(0.0, 0.0, 0.0),
+            v(0.0, 0.0, 1.0),
+            v(0.2, 0.0, 0.5),
+            v(0.2, 0.0, 2.0),
+            0.2,
+        ),
+        (
+            v(0.0, 0.0, 0.0),
+            v(0.0, 0.0, 1.0),
+            v(0.0, 0.0, 1.5),
+            v(0.0, 0.0, 2.0),
+            0.5,
+        ),
+        (
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(2.0, 1.0, 0.0),
+            v(3.0, 5.0, 0.0),
+            2f64.sqrt(),
+        ),
+    ];
+    for (p1, q1, p2, q2, want) in cases {
+        for (a, b, c, d) in [(p1, q1, p2, q2), (q2, p2, q1, p1)] {
+            let got = segment_distance(a, b, c, d);
+            assert!((got - want).abs() < 1e-15, "{got} != {want}");
+        }
+    }
+}
+
+#[test]
+fn a_straw_leaning_low_over_a_coin_is_refused() {
+    // Leaning 80° towards +x from x = -0.03 (in a wide tank), its underside rises from the foot
+    // at x ≈ -0.0291 by 1 mm per 5.67 mm (tan 80°): it is below the coin's top (1.9 mm) until
+    // x ≈ -0.0184. A coin whose edge is 3 mm before that is under it; 2 mm after, it is clear.
+    // Their footprints (circles about the cap's centre and the coin's) are clear in both.
+    let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.5\nhalf_y = 0.5\nheight = 0.2\n";
+    let straw = "[[straw]]\nx = -0.03\ny = 0\ntilt = 80\nlength = 0.1\n";
+    let t = f64::to_radians(80.0);
+    let foot = -0.03 + 0.005 * t.cos();
+    let clear_of_coin_top = foot + 0.0019 * t.tan();
+    for (edge, fits) in [
+        (clear_of_coin_top - 3e-3, false),
+        (clear_of_coin_top + 2e-3, true),
+    ] {
+        let text = format!("{tank}{straw}[[coin]]\nx = {}\ny = 0\n", edge + 0.0115);
+        let result = SceneDescription::from_toml(&text);
+        assert_eq!(result.is_ok(), fits, "coin edge at {edge}: {result:?}");
+        if !fits {
+            let m = result.unwrap_err().message;
+            assert!(
+                m.contains("coin[1]") && m.contains("straw[1] leans on it"),
+                "{m}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_distance_to_a_convex_hull_is_exact_in_known_cases() {
+    let square = [
+        (0.0, 0.0),
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (0.0, 1.0),
+        (0.5, 0.5),
+        (0.2, 0.9),
+    ];
+    assert_eq!(distance_to_hull((0.5, 0.5), &square), 0.0);
+    assert_eq!(distance_to_hull((0.5, 2.0), &square), 1.0);
+    assert_eq!(distance_to_hull((-3.0, -4.0), &square), 5.0);
+    assert_eq!(distance_to_hull((3.0, 0.5), &square[..2]), 2f64.hypot(0.5));
+}
+
+#[test]
+fn a_coin_must_lie_inside_the_walls() {
+    refused(
+        &glass_with("[[coin]]\nx = 0.03\ny = 0\n"),
+        "coin[1]",
+        "0.03",
+    );
+}
+
+#[test]
+fn a_card_must_not_cut_through_the_container() {
+    refused(
+        &glass_with(
+            "[[card]]\ncenter = [-0.03, 0, 0.1]\nfacing = 0\nwidth = 0.12\nheight = 0.06\n",
+        ),
+        "card[1]",
+        "-0.03",
+    );
+    // Facing +y, it spans x from -0.11 to 0.01 at y = 0.035: within the glass's radius.
+    refused(
+        &glass_with(
+            "[[card]]\ncenter = [-0.05, 0.035, 0.1]\nfacing = 90\nwidth = 0.12\nheight = 0.06\n",
+        ),
+        "card[1]",
+        "0.035",
+    );
+    // The same card 1 cm farther out, or wholly above the rim, is clear.
+    parsed(&glass_with(
+        "[[card]]\ncenter = [-0.05, 0.045, 0.1]\nfacing = 90\nwidth = 0.12\nheight = 0.06\n",
+    ));
+    parsed(&glass_with(
+        "[[card]]\ncenter = [0, 0, 0.3]\nwidth = 0.12\nheight = 0.06\n",
+    ));
+    let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n";
+    refused(
+        &format!(
+            "{tank}[[card]]\ncenter = [0, 0.06, 0.1]\nfacing = 45\nwidth = 0.1\nheight = 0.06\n"
+        ),
+        "card[1]",
+        "0.06",
+    );
+    parsed(&format!(
+        "{tank}[[card]]\ncenter = [0, 0.06, 0.1]\nfacing = 90\nwidth = 0.1\nheight = 0.06\n"
+    ));
+}
+
+#[test]
+fn the_picture_must_be_arrow_or_none() {
+    refused(
+        &glass_with(
+            "[[card]]\ncenter = [-0.2, 0, 0.1]\nwidth = 0.1\nheight = 0.05\npicture = \"circle\"\n",
+        ),
+        "card[1].picture",
+        "\"circle\"",
+    );
+}
+
+#[test]
+fn the_observer_must_be_outside_the_container_and_the_straws() {
+    refused(
+        &glass_with("[observer]\nposition = [0.01, 0, 0.1]\ntarget = [0, 0, 0]\n"),
+        "observer.position",
+        "0.01",
+    );
+    let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n";
+    refused(
+        &format!("{tank}[observer]\nposition = [0.09, 0.04, 0.0]\ntarget = [0, 0, 0]\n"),
+        "observer.position",
+        "0.09",
+    );
+    // In the straw where it sticks out above the rim, leaning or not.
+    let m = refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\n[observer]\nposition = [0.001, 0, 0.22]\ntarget = [0, 0, 0]\n"),
+        "observer.position",
+        "0.22",
+    );
+    assert!(m.contains("straw[1]"), "{m}");
+    let reach = 0.21 * f64::to_radians(15.0).tan();
+    refused(
+        &glass_with(&format!(
+            "[[straw]]\nx = -0.019\ny = 0\ntilt = 15\n[observer]\nposition = [{}, 0, 0.21]\ntarget = [0, 0, 0]\n",
+            -0.019 + reach
+        )),
+        "observer.position",
+        "straw[1]",
+    );
+    refused(
+        &glass_with("[observer]\nposition = [0.1, 0, 0.1]\ntarget = [0.1, 0, 0.1]\n"),
+        "observer.target",
+        "0.1",
+    );
+}
+
+#[test]
+fn too_many_entries_are_refused() {
+    let coins: String = (0..=MAX_ENTRIES)
+        .map(|_| "[[coin]]\nx = 0\ny = 0\n")
+        .collect();
+    refused(&glass_with(&coins), "coin", "1001");
+}
+
+#[test]
+fn the_assignment_scene_is_recognised_and_anything_else_is_named() {
+    let spec = glass_with("[[straw]]\nx = 0.02\ny = 0.01\n");
+    assert_eq!(
+        parsed(&spec).spec_scene(),
+        Some(Scene::with_defaults(0.02, 0.01, 0.15).unwrap())
+    );
+    for (extra, words) in [
+        ("[[straw]]\nx = -0.019\ny = 0\ntilt = 15\n", "a straw tilted 15°"),
+        ("[[straw]]\nx = 0.02\ny = 0.01\nradius = 0.004\n", "a straw of radius 0.004 m"),
+        ("[[straw]]\nx = 0.02\ny = 0.01\nlength = 0.2\n", "a straw 0.2 m long"),
+        ("[[straw]]\nx = 0.02\ny = 0.01\n[[straw]]\nx = -0.02\ny = 0\n", "2 straws"),
+        ("[[straw]]\nx = 0.02\ny = 0.01\n[[coin]]\nx = -0.02\ny = 0\n", "a coin"),
+        (
+            "[[straw]]\nx = 0.02\ny = 0.01\n[[card]]\ncenter = [-0.2, 0, 0.1]\nwidth = 0.1\nheight = 0.05\n",
+            "a card",
+        ),
+        (
+            "[[liquid]]\nname = \"oil\"\nindex = 1.47\ntop = 0.18\n[[straw]]\nx = 0.02\ny = 0.01\n",
+            "2 liquid layers",
+        ),
+        ("", "no straw"),
+    ] {
+        let d = parsed(&glass_with(extra));
+        assert_eq!(d.spec_scene(), None, "{extra}");
+        assert!(d.unsupported().iter().any(|w| w == words), "{:?}", d.unsupported());
+    }
+    // Alike straws are one reason, said once.
+    let twins = glass_with(
+        "[[straw]]\nx = -0.02\ny = 0\nlength = 0.2\n[[straw]]\nx = 0.02\ny = 0\nlength = 0.2\n",
+    );
+    assert_eq!(
+        parsed(&twins).unsupported(),
+        vec!["2 straws", "a straw 0.2 m long"]
+    );
+    let thick = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\nwall = 0.002\n[[straw]]\nx = 0\ny = 0\n";
+    assert_eq!(parsed(thick).unsupported(), vec!["walls 0.002 m thick"]);
+    let tank = "[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n[[straw]]\nx = 0\ny = 0\n";
+    assert_eq!(parsed(tank).unsupported(), vec!["a rectangular tank"]);
+    let small =
+        "[container]\nshape = \"glass\"\nradius = 0.05\nheight = 0.1\n[[straw]]\nx = 0\ny = 0\n";
+    assert_eq!(
+        parsed(small).unsupported(),
+        vec!["a glass of radius 0.05 m", "a glass 0.1 m high"]
+    );
+}
+
+#[test]
+fn writing_a_description_and_reading_it_back_gives_it_again() {
+    let text = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.12\nwall = 0.003\nbottom = 0.008\nindex = 1.52\n\
+        [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.06\n[[liquid]]\nname = \"oil \\\"extra\\\"\"\nindex = 1.47\ntop = 0.0900000000000001\n\
+        [[straw]]\nx = -0.012\ny = 0.003\ntilt = 12.5\nazimuth = -33\nradius = 0.004\nlength = 0.2\n\
+        [[coin]]\nx = 0.02\ny = 0.0\n\
+        [[card]]\ncenter = [-0.15, 0.01, 0.08]\nfacing = 10\nwidth = 0.12\nheight = 0.06\npicture = \"none\"\n\
+        [observer]\nposition = [0.3, 1e-7, 0.25]\ntarget = [0.0, 0.0, 0.1]\n";
+    let first = parsed(text);
+    let written = first.to_toml();
+    let again = parsed(&written);
+    assert_eq!(first, again, "{written}");
+    // A tank too, and an empty one.
+    let tank = parsed("[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n");
+    assert_eq!(parsed(&tank.to_toml()), tank);
+}
+
+proptest::proptest! {
+    /// On the assignment's glass a file accepts exactly the straws and water heights the
+    /// assignment's own rules accept, even at the wall's edge, and gives the same scene.
+    #[test]
+    fn the_file_and_the_assignment_rules_agree_on_the_assignment_glass(
+        rho in 0.0345f64..0.0355,
+        theta in 0.0f64..std::f64::consts::TAU,
+        top in 1e-6f64..0.2002,
+    ) {
+        let (x, y) = (rho * theta.cos(), rho * theta.sin());
+        let text = glass_with("")
+            .replace("top = 0.15", &format!("top = {top:?}"))
+            + &format!("[[straw]]\nx = {x:?}\ny = {y:?}\n");
+        let by_file = SceneDescription::from_toml(&text).ok().and_then(|d| d.spec_scene());
+        let by_rules = Scene::with_defaults(x, y, top).ok();
+        proptest::prop_assert_eq!(by_file, by_rules);
+    }
+}

@@ -1,0 +1,363 @@
+//! `--scene FILE.toml` from the outside: the assignment's scene from a file gives the same files
+//! as the same flags; a bad or an unsupported file is refused in one line, exit code 2, with no
+//! file written and the previous ones kept.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn gallery(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+fn run(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("bentstraw runs")
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+fn succeeded(out: &Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Runs `args` in a folder holding only `old.csv` and the given scene files; checks it is refused
+/// in one line naming each of `names`, with exit code 2, and leaves the folder as it was.
+fn assert_refused(scene_files: &[(&str, &str)], args: &[&str], names: &[&str]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("old.csv"), "previous\n").unwrap();
+    for (name, text) in scene_files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    let before = files_in(dir.path());
+    let out = run(dir.path(), args);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+    for name in names {
+        assert!(
+            stderr.contains(name),
+            "{args:?} should name {name}: {stderr}"
+        );
+    }
+    assert_eq!(files_in(dir.path()), before, "no file written: {stderr}");
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("old.csv")).unwrap(),
+        "previous\n"
+    );
+    stderr
+}
+
+#[test]
+fn the_spec_file_gives_the_same_points_as_the_same_flags() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = gallery("spec.toml");
+    succeeded(&run(
+        dir.path(),
+        &["simulate", "--scene", &spec, "--output", "file.csv"],
+    ));
+    succeeded(&run(
+        dir.path(),
+        &[
+            "simulate",
+            "--observer",
+            "0.1,0,0.1",
+            "--straw",
+            "0.02,0.01",
+            "--water-height",
+            "0.15",
+            "--output",
+            "flags.csv",
+        ],
+    ));
+    let file = std::fs::read(dir.path().join("file.csv")).unwrap();
+    let flags = std::fs::read(dir.path().join("flags.csv")).unwrap();
+    assert!(file.len() > 1000);
+    assert!(
+        file == flags,
+        "the file's scene is the flags' scene, byte for byte"
+    );
+}
+
+#[test]
+fn the_flags_override_the_file_and_its_observer() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = gallery("spec.toml");
+    let changes = [
+        "--observer",
+        "0,0.1,0.3",
+        "--straw",
+        "0,0",
+        "--water-height",
+        "0.2",
+        "--n-water",
+        "1.5",
+        "--points",
+        "3000",
+    ];
+    let mut with_file = vec!["simulate", "--scene", &spec, "--output", "file.csv"];
+    with_file.extend(changes);
+    succeeded(&run(dir.path(), &with_file));
+    let mut flags = vec!["simulate", "--output", "flags.csv"];
+    flags.extend(changes);
+    succeeded(&run(dir.path(), &flags));
+    let file = std::fs::read(dir.path().join("file.csv")).unwrap();
+    assert!(file == std::fs::read(dir.path().join("flags.csv")).unwrap());
+    // And they did change something: the file's own scene gives other points.
+    succeeded(&run(
+        dir.path(),
+        &[
+            "simulate", "--scene", &spec, "--points", "3000", "--output", "own.csv",
+        ],
+    ));
+    assert!(file != std::fs::read(dir.path().join("own.csv")).unwrap());
+}
+
+#[test]
+fn render_takes_the_files_target_unless_target_is_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(gallery("spec.toml"))
+        .unwrap()
+        .replace("target = [0.0, 0.0, 0.125]", "target = [0.0, 0.0, 0.05]");
+    assert!(text.contains("0.05]"));
+    std::fs::write(dir.path().join("low.toml"), text).unwrap();
+    let common = [
+        "render", "--mode", "course", "--size", "32x24", "--fov", "60",
+    ];
+    let raw = |name: &str, extra: &[&str]| {
+        let mut args = common.to_vec();
+        args.extend(extra);
+        args.extend(["--output", "v.png", "--raw", name]);
+        succeeded(&run(dir.path(), &args));
+        std::fs::read(dir.path().join(name)).unwrap()
+    };
+    let scene = [
+        "--observer",
+        "0.1,0,0.1",
+        "--straw",
+        "0.02,0.01",
+        "--water-height",
+        "0.15",
+    ];
+    let from_file = raw("file.csv", &["--scene", "low.toml"]);
+    let mut low = scene.to_vec();
+    low.extend(["--target", "0,0,0.05"]);
+    assert!(from_file == raw("low.csv", &low));
+    assert!(from_file != raw("centre.csv", &scene));
+    let overridden = raw(
+        "over.csv",
+        &["--scene", "low.toml", "--target", "0,0,0.125"],
+    );
+    assert!(overridden == raw("centre2.csv", &scene));
+}
+
+#[test]
+fn check_and_bench_take_a_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = gallery("spec.toml");
+    succeeded(&run(
+        dir.path(),
+        &[
+            "simulate", "--scene", &spec, "--points", "2000", "--output", "p.csv",
+        ],
+    ));
+    let out = run(dir.path(), &["check", "p.csv", "--scene", &spec, "--json"]);
+    succeeded(&out);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("\"verdict\":\"pass\""));
+    // Checked against another scene, the same points fail.
+    let out = run(
+        dir.path(),
+        &["check", "p.csv", "--scene", &spec, "--water-height", "0.1"],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    let out = run(
+        dir.path(),
+        &[
+            "bench",
+            "--scene",
+            &spec,
+            "--mode",
+            "course",
+            "--size",
+            "20x10",
+            "--repeat",
+            "1",
+            "--threads",
+            "1",
+        ],
+    );
+    succeeded(&out);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.lines().count(), 3, "one case: {text}");
+}
+
+#[test]
+fn a_bad_scene_file_is_refused_in_one_line_naming_the_file_the_key_and_the_value() {
+    let bad = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n[[straw]]\nx = 0\ny = 0\ntilt = 95\n";
+    for command in [
+        vec![
+            "simulate",
+            "--scene",
+            "bad.toml",
+            "--observer",
+            "0.1,0,0.1",
+            "--output",
+            "old.csv",
+        ],
+        vec![
+            "render",
+            "--scene",
+            "bad.toml",
+            "--observer",
+            "0.1,0,0.1",
+            "--output",
+            "v.png",
+        ],
+        vec![
+            "check",
+            "old.csv",
+            "--scene",
+            "bad.toml",
+            "--observer",
+            "0.1,0,0.1",
+        ],
+        vec!["bench", "--scene", "bad.toml", "--observer", "0.1,0,0.1"],
+    ] {
+        assert_refused(
+            &[("bad.toml", bad)],
+            &command,
+            &["bad.toml", "straw[1].tilt", "95"],
+        );
+    }
+    let syntax = "[container]\nshape = \"glass\"\nradius = 0.04,\nheight = 0.2\n";
+    assert_refused(
+        &[("bad.toml", syntax)],
+        &["simulate", "--scene", "bad.toml", "--output", "old.csv"],
+        &["bad.toml", "line 3"],
+    );
+}
+
+#[test]
+fn an_unreadable_or_huge_scene_file_is_refused() {
+    assert_refused(
+        &[],
+        &["simulate", "--scene", "none.toml", "--output", "old.csv"],
+        &["cannot read", "none.toml"],
+    );
+    let huge = format!("{}\n", "#".repeat(1 << 20));
+    assert_refused(
+        &[("huge.toml", &huge)],
+        &["simulate", "--scene", "huge.toml", "--output", "old.csv"],
+        &["huge.toml", "1 MB"],
+    );
+}
+
+#[test]
+fn a_valid_scene_this_version_cannot_trace_is_refused_honestly() {
+    let m = assert_refused(
+        &[],
+        &[
+            "simulate",
+            "--scene",
+            &gallery("leaning-straw.toml"),
+            "--output",
+            "old.csv",
+        ],
+        &["valid", "assignment", "a straw tilted 15°"],
+    );
+    assert!(m.contains("leaning-straw.toml"), "{m}");
+    assert_refused(
+        &[],
+        &[
+            "render",
+            "--scene",
+            &gallery("oil-on-water.toml"),
+            "--output",
+            "v.png",
+        ],
+        &["2 liquid layers"],
+    );
+}
+
+#[test]
+fn a_scene_of_many_unsupported_straws_is_refused_in_a_short_line() {
+    let mut text =
+        String::from("[container]\nshape = \"tank\"\nhalf_x = 10.0\nhalf_y = 10.0\nheight = 0.2\n");
+    for i in 0..400 {
+        text.push_str(&format!(
+            "[[straw]]\nx = {}\ny = {}\ntilt = {}\n",
+            -9.0 + (i % 20) as f64 * 0.5,
+            -9.0 + (i / 20) as f64 * 0.5,
+            1.0 + i as f64 * 0.1
+        ));
+    }
+    let m = assert_refused(
+        &[("many.toml", &text)],
+        &[
+            "simulate",
+            "--scene",
+            "many.toml",
+            "--observer",
+            "30,0,1",
+            "--output",
+            "old.csv",
+        ],
+        &["400 straws", "more"],
+    );
+    assert!(m.len() < 600, "{m}");
+}
+
+#[test]
+fn overrides_need_one_straw_and_one_liquid_and_a_file_without_observer_needs_the_flag() {
+    assert_refused(
+        &[],
+        &[
+            "simulate",
+            "--scene",
+            &gallery("oil-on-water.toml"),
+            "--n-water",
+            "1.4",
+            "--output",
+            "old.csv",
+        ],
+        &["--n-water", "one straw and one liquid", "2 liquid(s)"],
+    );
+    let no_view =
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n[[straw]]\nx = 0\ny = 0\n";
+    assert_refused(
+        &[("plain.toml", no_view)],
+        &["simulate", "--scene", "plain.toml", "--output", "old.csv"],
+        &["plain.toml", "[observer]", "--observer"],
+    );
+    // The flags' own rules still hold for an override.
+    assert_refused(
+        &[],
+        &[
+            "simulate",
+            "--scene",
+            &gallery("spec.toml"),
+            "--water-height",
+            "0.3",
+            "--output",
+            "old.csv",
+        ],
+        &["water height 0.3"],
+    );
+}
