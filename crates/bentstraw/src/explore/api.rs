@@ -456,7 +456,11 @@ pub fn model_reply(view: &View, model: &str, every: usize) -> Reply {
         .iter()
         .find(|(k, step, _)| *k == key && *step > every && step.is_multiple_of(every))
         .map(|(_, step, placed)| (*step, Arc::clone(placed)));
-    let known = |i: usize| coarser.as_ref().is_some_and(|(step, _)| i.is_multiple_of(*step));
+    let known = |i: usize| {
+        coarser
+            .as_ref()
+            .is_some_and(|(step, _)| i.is_multiple_of(*step))
+    };
     let wanted: Vec<usize> = (0..all.len()).step_by(every).collect();
     let todo: Vec<ImagePoint> = wanted
         .iter()
