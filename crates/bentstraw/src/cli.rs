@@ -335,28 +335,22 @@ pub struct ExploreArgs {
     /// Do not open a browser (print the address only)
     #[arg(long)]
     pub no_open: bool,
-    /// Observer position X,Y,Z in metres to start with
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0.1,0,0.1")]
-    pub observer: [f64; 3],
-    /// Straw axis XP,YP in metres to start with
-    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true, default_value = "0.02,0.01")]
-    pub straw: [f64; 2],
-    /// Water height in metres to start with, 0 <= H <= 0.2
-    #[arg(
-        long,
-        value_name = "H",
-        allow_hyphen_values = true,
-        default_value_t = 0.15
-    )]
-    pub water_height: f64,
-    /// Refractive index of the water (>= 1)
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 1.333,
-        allow_hyphen_values = true
-    )]
-    pub n_water: f64,
+    /// A scene file (TOML, see scenes/) to start with: its [observer] is used when --observer is
+    /// absent, and --straw, --water-height and --n-water change its one straw and one liquid
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
+    /// Observer position X,Y,Z in metres to start with [default: 0.1,0,0.1, or the scene file's]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub observer: Option<[f64; 3]>,
+    /// Straw axis XP,YP in metres to start with [default: 0.02,0.01, or the scene file's]
+    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true)]
+    pub straw: Option<[f64; 2]>,
+    /// Water height in metres to start with, 0 <= H <= 0.2 [default: 0.15, or the scene file's]
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    pub water_height: Option<f64>,
+    /// Refractive index of the water (>= 1) [default: 1.333, or the scene file's]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub n_water: Option<f64>,
     /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
     #[arg(
         long,

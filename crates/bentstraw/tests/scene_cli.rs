@@ -361,3 +361,61 @@ fn overrides_need_one_straw_and_one_liquid_and_a_file_without_observer_needs_the
         &["water height 0.3"],
     );
 }
+
+/// `explore --scene` starts the page on the file's scene and observer, the flags overriding it;
+/// a scene this version cannot trace is refused before anything listens.
+#[test]
+fn explore_starts_on_a_scene_file() {
+    use std::io::{BufRead, BufReader, Read, Write};
+    let page = |extra: &[&str]| -> String {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+            .args(["explore", "--no-open", "--port", "0", "--scene"])
+            .arg(gallery("spec.toml"))
+            .args(extra)
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .expect("bentstraw runs");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().unwrap())
+            .read_line(&mut line)
+            .unwrap();
+        let url = line
+            .split_whitespace()
+            .find(|w| w.starts_with("http://"))
+            .unwrap();
+        let host = url.trim_start_matches("http://").trim_end_matches('/');
+        let mut stream = std::net::TcpStream::connect(host).unwrap();
+        write!(
+            stream,
+            "GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n"
+        )
+        .unwrap();
+        let mut body = String::new();
+        stream.read_to_string(&mut body).unwrap();
+        child.kill().unwrap();
+        child.wait().unwrap();
+        body
+    };
+    // The file's observer, straw and water (spec.toml: the second reference view).
+    let from_file = page(&[]);
+    assert!(from_file.contains("observer=0.1,0,0.1&amp;straw=0.02,0.01&amp;water-height=0.15"));
+    let overridden = page(&["--water-height", "0.1"]);
+    assert!(overridden.contains("straw=0.02,0.01&amp;water-height=0.1&amp;"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "explore",
+            "--no-open",
+            "--port",
+            "0",
+            "--scene",
+            &gallery("tank-pencil.toml"),
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("a rectangular tank"), "{err}");
+    assert!(out.stdout.is_empty());
+}

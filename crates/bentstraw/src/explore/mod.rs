@@ -7,12 +7,16 @@ mod server;
 
 use std::io::Write;
 
+use bentstraw_optics::scene::{Scene, WATER_INDEX};
+use bentstraw_optics::Vec3;
+
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
+use crate::scene_input::SceneSource;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
-    let initial = initial_query(args);
+    let initial = initial_query(args)?;
     // The starting view obeys the same rules as the page's: refuse it before listening.
     let q = api::parse_query(&initial).map_err(crate::error::CliError)?;
     api::View::from_query(&q).map_err(crate::error::CliError)?;
@@ -48,26 +52,49 @@ pub fn run(args: &ExploreArgs) -> CliResult {
     Ok(())
 }
 
-/// The query of the view given on the command line (flags as the page's parameters).
-fn initial_query(a: &ExploreArgs) -> String {
-    let o = a.observer;
-    let s = a.straw;
-    format!(
+/// The query of the view given on the command line (flags as the page's parameters): a scene file
+/// and the flags that override it, or the flags, or the second reference view by default.
+fn initial_query(a: &ExploreArgs) -> CliResult<String> {
+    let (scene, o) = if a.scene.is_some() {
+        SceneSource {
+            file: a.scene.clone(),
+            observer: a.observer,
+            straw: a.straw,
+            water_height: a.water_height,
+            n_water: a.n_water,
+            max_events: a.max_events,
+        }
+        .resolve()
+        .map(|r| (r.scene, r.observer))?
+    } else {
+        let o = a.observer.unwrap_or([0.1, 0.0, 0.1]);
+        let [x, y] = a.straw.unwrap_or([0.02, 0.01]);
+        // Checked with the page's own rules by the caller.
+        let scene = Scene {
+            straw_x: x,
+            straw_y: y,
+            water_height: a.water_height.unwrap_or(0.15),
+            n_water: a.n_water.unwrap_or(WATER_INDEX),
+            max_events: a.max_events,
+        };
+        (scene, Vec3::from_array(o))
+    };
+    Ok(format!(
         "observer={},{},{}&straw={},{}&water-height={}&n-water={}&max-events={}&points={}&mode={}",
-        o[0],
-        o[1],
-        o[2],
-        s[0],
-        s[1],
-        a.water_height,
-        a.n_water,
-        a.max_events,
+        o.x,
+        o.y,
+        o.z,
+        scene.straw_x,
+        scene.straw_y,
+        scene.water_height,
+        scene.n_water,
+        scene.max_events,
         a.points,
         match a.mode {
             crate::cli::ModeArg::Course => "course",
             crate::cli::ModeArg::Fresnel => "fresnel",
         }
-    )
+    ))
 }
 
 /// Opens `url` in the default browser if one can be found; says nothing if none.
