@@ -106,6 +106,37 @@ pub struct SceneFlags {
     pub max_events: u32,
 }
 
+/// The scene flags of a command that has its own view when they are absent (`bench`, `explore`):
+/// every one optional.
+#[derive(Args, Debug, Clone)]
+pub struct OptionalSceneFlags {
+    /// A scene file (TOML, see scenes/): its [observer] is used when --observer is absent, and
+    /// --straw, --water-height and --n-water change its one straw and one liquid
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
+    /// Observer position X,Y,Z in metres [default: the scene file's; without one, reference 2 in explore, the four reference views in bench]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub observer: Option<[f64; 3]>,
+    /// Straw axis XP,YP in metres [default: the scene file's; without one, reference 2 in explore, the four reference views in bench]
+    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true)]
+    pub straw: Option<[f64; 2]>,
+    /// Water height in metres, 0 <= H <= 0.2 [default: the scene file's; without one, reference 2
+    /// in explore, the four reference views in bench]
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    pub water_height: Option<f64>,
+    /// Refractive index of the water (>= 1) [default: 1.333, or the scene file's]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub n_water: Option<f64>,
+    /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 10,
+        allow_hyphen_values = true
+    )]
+    pub max_events: u32,
+}
+
 /// How an image point's position is judged.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ImageModelArg {
@@ -255,24 +286,9 @@ pub struct BenchArgs {
     /// One JSON object per line instead of a table
     #[arg(long)]
     pub json: bool,
-    /// A scene file of a single view to time (TOML, see scenes/)
-    #[arg(long, value_name = "FILE.toml")]
-    pub scene: Option<PathBuf>,
-    /// Observer of a single view to time (with --straw and --water-height)
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub observer: Option<[f64; 3]>,
-    /// Straw axis of a single view
-    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true)]
-    pub straw: Option<[f64; 2]>,
-    /// Water height of a single view
-    #[arg(long, value_name = "H", allow_hyphen_values = true)]
-    pub water_height: Option<f64>,
-    /// Refractive index of the water [default: 1.333, or the scene file's]
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub n_water: Option<f64>,
-    /// Event limit
-    #[arg(long, value_name = "N", default_value_t = 10)]
-    pub max_events: u32,
+    /// A single view to time (the four reference views when none is given).
+    #[command(flatten)]
+    pub view: OptionalSceneFlags,
     /// The camera of a single view.
     #[command(flatten)]
     pub camera: CameraArgs,
@@ -335,30 +351,9 @@ pub struct ExploreArgs {
     /// Do not open a browser (print the address only)
     #[arg(long)]
     pub no_open: bool,
-    /// A scene file (TOML, see scenes/) to start with: its [observer] is used when --observer is
-    /// absent, and --straw, --water-height and --n-water change its one straw and one liquid
-    #[arg(long, value_name = "FILE.toml")]
-    pub scene: Option<PathBuf>,
-    /// Observer position X,Y,Z in metres to start with [default: 0.1,0,0.1, or the scene file's]
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub observer: Option<[f64; 3]>,
-    /// Straw axis XP,YP in metres to start with [default: 0.02,0.01, or the scene file's]
-    #[arg(long, value_name = "XP,YP", value_parser = parse_vec2, allow_hyphen_values = true)]
-    pub straw: Option<[f64; 2]>,
-    /// Water height in metres to start with, 0 <= H <= 0.2 [default: 0.15, or the scene file's]
-    #[arg(long, value_name = "H", allow_hyphen_values = true)]
-    pub water_height: Option<f64>,
-    /// Refractive index of the water (>= 1) [default: 1.333, or the scene file's]
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub n_water: Option<f64>,
-    /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 10,
-        allow_hyphen_values = true
-    )]
-    pub max_events: u32,
+    /// The view to start with (reference 2 when none is given).
+    #[command(flatten)]
+    pub view: OptionalSceneFlags,
     /// At least this many image points in the 3D view
     #[arg(
         long,

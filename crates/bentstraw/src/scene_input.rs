@@ -9,7 +9,7 @@ use bentstraw_optics::scene::{Scene, WATER_INDEX};
 use bentstraw_optics::scene_file::SceneDescription;
 use bentstraw_optics::Vec3;
 
-use crate::cli::{SceneArgs, SceneFlags};
+use crate::cli::{OptionalSceneFlags, SceneArgs, SceneFlags};
 use crate::error::{fail, CliError, CliResult};
 use crate::files::shown;
 
@@ -69,6 +69,20 @@ impl SceneFlags {
     pub fn scene_and_observer(&self) -> CliResult<(Scene, Vec3)> {
         let r = self.resolve()?;
         Ok((r.scene, r.observer))
+    }
+}
+
+impl OptionalSceneFlags {
+    /// The flags as a scene source.
+    pub fn source(&self) -> SceneSource {
+        SceneSource {
+            file: self.scene.clone(),
+            observer: self.observer,
+            straw: self.straw,
+            water_height: self.water_height,
+            n_water: self.n_water,
+            max_events: self.max_events,
+        }
     }
 }
 

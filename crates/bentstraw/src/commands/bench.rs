@@ -17,7 +17,6 @@ use bentstraw_optics::Vec3;
 use crate::cli::{BenchArgs, ModeArg};
 use crate::commands::render;
 use crate::error::{fail, CliError, CliResult};
-use crate::scene_input::SceneSource;
 
 /// Vertical field of view of the benchmark views (degrees).
 const BENCH_FOV_DEG: f64 = 50.0;
@@ -146,25 +145,17 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
         Ok(Camera::new(eye, target, w, h, fov_deg.to_radians()))
     };
     let given = [
-        args.observer.is_some(),
-        args.straw.is_some(),
-        args.water_height.is_some(),
+        args.view.observer.is_some(),
+        args.view.straw.is_some(),
+        args.view.water_height.is_some(),
     ];
-    if args.scene.is_some() || given.iter().any(|&g| g) {
-        if args.scene.is_none() && !given.iter().all(|&g| g) {
+    if args.view.scene.is_some() || given.iter().any(|&g| g) {
+        if args.view.scene.is_none() && !given.iter().all(|&g| g) {
             return fail(
                 "a single view needs all three of --observer, --straw and --water-height, or a --scene file (give none to time the four reference views)",
             );
         }
-        let resolved = SceneSource {
-            file: args.scene.clone(),
-            observer: args.observer,
-            straw: args.straw,
-            water_height: args.water_height,
-            n_water: args.n_water,
-            max_events: args.max_events,
-        }
-        .resolve()?;
+        let resolved = args.view.source().resolve()?;
         let target = target_flag.or(resolved.target).unwrap_or(SCENE_CENTRE);
         let camera = camera_for(resolved.observer, target)?;
         return Ok(vec![View {
@@ -180,8 +171,8 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
                 r.straw.0,
                 r.straw.1,
                 r.water_height,
-                args.n_water.unwrap_or(WATER_INDEX),
-                args.max_events,
+                args.view.n_water.unwrap_or(WATER_INDEX),
+                args.view.max_events,
             )?;
             // Zoomed on the straw where it enters the water (the bottom, for an observer below).
             let zoom = if r.number == 4 {

@@ -12,7 +12,6 @@ use bentstraw_optics::Vec3;
 
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
-use crate::scene_input::SceneSource;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -55,27 +54,19 @@ pub fn run(args: &ExploreArgs) -> CliResult {
 /// The query of the view given on the command line (flags as the page's parameters): a scene file
 /// and the flags that override it, or the flags, or the second reference view by default.
 fn initial_query(a: &ExploreArgs) -> CliResult<String> {
-    let (scene, o) = if a.scene.is_some() {
-        SceneSource {
-            file: a.scene.clone(),
-            observer: a.observer,
-            straw: a.straw,
-            water_height: a.water_height,
-            n_water: a.n_water,
-            max_events: a.max_events,
-        }
-        .resolve()
-        .map(|r| (r.scene, r.observer))?
+    let v = &a.view;
+    let (scene, o) = if v.scene.is_some() {
+        v.source().resolve().map(|r| (r.scene, r.observer))?
     } else {
-        let o = a.observer.unwrap_or([0.1, 0.0, 0.1]);
-        let [x, y] = a.straw.unwrap_or([0.02, 0.01]);
+        let o = v.observer.unwrap_or([0.1, 0.0, 0.1]);
+        let [x, y] = v.straw.unwrap_or([0.02, 0.01]);
         // Checked with the page's own rules by the caller.
         let scene = Scene {
             straw_x: x,
             straw_y: y,
-            water_height: a.water_height.unwrap_or(0.15),
-            n_water: a.n_water.unwrap_or(WATER_INDEX),
-            max_events: a.max_events,
+            water_height: v.water_height.unwrap_or(0.15),
+            n_water: v.n_water.unwrap_or(WATER_INDEX),
+            max_events: v.max_events,
         };
         (scene, Vec3::from_array(o))
     };
