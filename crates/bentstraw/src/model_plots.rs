@@ -73,6 +73,25 @@ pub struct GapSeries<'a> {
     pub samples: &'a [(f64, f64, u8)],
 }
 
+impl<'a> GapSeries<'a> {
+    /// The two curves of the models' gap plot: the eye model's and the stereo model's gaps.
+    pub fn of_models(
+        eye: &'a [(f64, f64, u8)],
+        stereo: &'a [(f64, f64, u8)],
+    ) -> [GapSeries<'a>; 2] {
+        [
+            GapSeries {
+                name: "eye model",
+                samples: eye,
+            },
+            GapSeries {
+                name: "stereo model",
+                samples: stereo,
+            },
+        ]
+    }
+}
+
 /// Height of one row of panels of the comparison figure (px).
 const ROW_HEIGHT: i32 = 620;
 /// Caption lines over each panel: the model, the view, the count.

@@ -208,16 +208,7 @@ fn write_model_figures(
     }
     if let Some(path) = &args.gap_plot {
         let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
-        let series = [
-            GapSeries {
-                name: "eye model",
-                samples: &eye_gaps,
-            },
-            GapSeries {
-                name: "stereo model",
-                samples: &stereo_gaps,
-            },
-        ];
+        let series = GapSeries::of_models(&eye_gaps, &stereo_gaps);
         let title =
             format!("Gap from the course's point to the eye's and the stereo point: {inputs}");
         write_gap_plot(path, &series, &title)?;

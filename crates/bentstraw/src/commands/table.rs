@@ -602,16 +602,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let eye_gaps = eye_gap_samples(&eye);
     let stereo_gaps = stereo_gap_samples(&stereo);
     let gap = format!("{}_gap.png", job.stem);
-    let series = [
-        GapSeries {
-            name: "eye model",
-            samples: &eye_gaps,
-        },
-        GapSeries {
-            name: "stereo model",
-            samples: &stereo_gaps,
-        },
-    ];
+    let series = GapSeries::of_models(&eye_gaps, &stereo_gaps);
     let mut figure = Figure::image(
         &gap,
         "Distance between the course's image point and the eye model's (and the stereo model's) \
