@@ -657,7 +657,6 @@ pub fn shaded_picture_into(
         split,
         eye: [eye.x as f32, eye.y as f32, eye.z as f32],
     };
-    let shade_end = |end: BranchEnd| shader.shade(end);
     let draw_outline = || {
         if options.outline {
             outline_mask(mask, camera);
@@ -685,7 +684,7 @@ pub fn shaded_picture_into(
                     let mut on_end = |j: usize, end: BranchEnd| ends.push((j as u32, end));
                     packets.branch_ends_row(camera, i as u32, split, prune, wave, &mut on_end);
                     for &(j, end) in ends.iter() {
-                        if let Some((colour, weight, region)) = shade_end(end) {
+                        if let Some((colour, weight, region)) = shader.shade(end) {
                             let px = &mut sum[j as usize];
                             for k in 0..3 {
                                 px[k] += weight * colour[k];
@@ -794,7 +793,7 @@ pub fn shaded_picture_into(
                             &mut |k, end| ends.push((k as u32, end)),
                         );
                         for &(k, end) in ends.iter() {
-                            if let Some((colour, weight, _)) = shade_end(end) {
+                            if let Some((colour, weight, _)) = shader.shade(end) {
                                 let px = &mut acc[k as usize / per_pixel];
                                 for c in 0..3 {
                                     px[c] += weight * colour[c];

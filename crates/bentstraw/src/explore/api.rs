@@ -474,7 +474,7 @@ pub fn model_reply(view: &View, model: &str, every: usize) -> Reply {
     let placed_each: Vec<Option<(Vec3, u8)>> = wanted
         .iter()
         .map(|&i| match &coarser {
-            Some((step, earlier)) if i.is_multiple_of(*step) => earlier[i / step],
+            Some((step, earlier)) if known(i) => earlier[i / step],
             _ => fresh.next().flatten(),
         })
         .collect();
