@@ -126,7 +126,7 @@ impl SideQuadratic {
     /// Both roots, smaller first, and `q/a` (the one not near zero when `c` is); `None` if the
     /// line misses or is vertical.
     #[inline(always)]
-    fn roots(&self) -> Option<(f64, f64, f64)> {
+    pub(crate) fn roots(&self) -> Option<(f64, f64, f64)> {
         if self.a == 0.0 || self.disc < 0.0 {
             return None;
         }
@@ -229,8 +229,15 @@ pub const BOUNDING_RADIUS: f64 = 0.15;
 /// away (1e-13 m per km) enters once, in the distance moved, instead of in every quadratic.
 #[inline]
 pub fn enter_bounding_sphere(ray: Ray) -> Option<(Ray, f64)> {
-    let p = ray.origin - BOUNDING_CENTRE;
-    let c = p.length_squared() - BOUNDING_RADIUS * BOUNDING_RADIUS;
+    enter_sphere(ray, BOUNDING_CENTRE, BOUNDING_RADIUS)
+}
+
+/// The ray moved forward to where it enters the sphere of `centre` and `radius` (see
+/// [`enter_bounding_sphere`], the assignment's scene's sphere), and the distance moved.
+#[inline(always)]
+pub fn enter_sphere(ray: Ray, centre: Vec3, radius: f64) -> Option<(Ray, f64)> {
+    let p = ray.origin - centre;
+    let c = p.length_squared() - radius * radius;
     if c <= 0.0 {
         return Some((ray, 0.0));
     }
@@ -240,7 +247,7 @@ pub fn enter_bounding_sphere(ray: Ray) -> Option<(Ray, f64)> {
         return None; // outside and moving away
     }
     // disc = R² − |p × d|² (for unit d), free of the cancellation of half_b² − c.
-    let disc = BOUNDING_RADIUS * BOUNDING_RADIUS - p.cross(d).length_squared();
+    let disc = radius * radius - p.cross(d).length_squared();
     if disc < 0.0 {
         return None;
     }

@@ -34,5 +34,6 @@ pub mod scene_file;
 pub mod shading;
 pub mod trace;
 pub mod tracer;
+pub mod world;
 
 pub use glam::DVec3 as Vec3;

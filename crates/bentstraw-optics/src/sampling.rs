@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use crate::camera::view_basis;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::scene::{Scene, GLASS_RADIUS, SCENE_CENTRE, STRAW_HEIGHT};
+use crate::scene::{Scene, GLASS_RADIUS, STRAW_HEIGHT};
 use crate::tracer::Tracer;
 use crate::Vec3;
 
@@ -80,13 +80,21 @@ impl Frame {
 
 /// The map of the directions from `observer`, cropped to where the glass and straw can appear.
 pub fn frame_for(observer: Vec3) -> Frame {
-    let mut frame = Frame::looking(SCENE_CENTRE - observer);
-    // Project points spread over the box enclosing glass and straw; the box is convex, so its
-    // surface bounds what can be seen.
-    const N: usize = 48;
     let r = GLASS_RADIUS;
-    let lo = Vec3::new(-r, -r, 0.0);
-    let size = Vec3::new(2.0 * r, 2.0 * r, STRAW_HEIGHT);
+    frame_for_box(
+        observer,
+        (Vec3::new(-r, -r, 0.0), Vec3::new(r, r, STRAW_HEIGHT)),
+    )
+}
+
+/// The map of the directions from `observer`, cropped to where the box of corners `lo`, `hi`
+/// (holding everything that can be seen) can appear, looking at its centre.
+pub fn frame_for_box(observer: Vec3, (lo, hi): (Vec3, Vec3)) -> Frame {
+    let mut frame = Frame::looking(0.5 * (lo + hi) - observer);
+    // Project points spread over the box; the box is convex, so its surface bounds what can be
+    // seen.
+    const N: usize = 48;
+    let size = hi - lo;
     let (mut a0, mut a1, mut b0, mut b1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for axis in 0..3 {
         for side in [0.0, 1.0] {
@@ -139,9 +147,20 @@ impl ImageCloud {
         }
     }
 
-    /// Points of each colour, codes 1..=5 at indices 0..=4.
+    /// Points of each straw colour, codes 1..=5 at indices 0..=4 (other objects' not counted).
     pub fn counts_per_color(&self) -> [usize; 5] {
         let mut c = [0; 5];
+        for p in &self.points {
+            if let Some(n) = c.get_mut(p.color as usize - 1) {
+                *n += 1;
+            }
+        }
+        c
+    }
+
+    /// Points of each colour code 1..=8 at indices 0..=7 (straws' bands, coins, cards, pictures).
+    pub fn counts_per_code(&self) -> [usize; crate::world::COLOR_COUNT] {
+        let mut c = [0; crate::world::COLOR_COUNT];
         for p in &self.points {
             c[p.color as usize - 1] += 1;
         }
@@ -157,6 +176,35 @@ const COARSE_CELLS: f64 = 128.0;
 /// Levels of refinement allowed when the coarse grid sees no straw at all.
 const BLIND_LEVELS: u32 = 2;
 
+/// Something that traces the rays of an image: which rays reach an object, and the image point
+/// each makes. The assignment's glass ([`Tracer`]) and any scene file's world
+/// ([`crate::world::World`]) are sampled by the same code.
+pub trait ImageTracer: Sync {
+    /// Whether `ray`, from the observer, reaches an object (by the course's law).
+    fn reaches_object(&self, ray: Ray) -> bool;
+    /// The image point seen from `observer` along unit `u0`, if that ray reaches an object.
+    fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint>;
+    /// The corners of a box holding everything that can be seen.
+    fn scene_box(&self) -> (Vec3, Vec3);
+}
+
+impl ImageTracer for Tracer {
+    #[inline]
+    fn reaches_object(&self, ray: Ray) -> bool {
+        self.color(ray) > 0
+    }
+
+    #[inline]
+    fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
+        Tracer::image_point(self, observer, u0)
+    }
+
+    fn scene_box(&self) -> (Vec3, Vec3) {
+        let r = GLASS_RADIUS;
+        (Vec3::new(-r, -r, 0.0), Vec3::new(r, r, STRAW_HEIGHT))
+    }
+}
+
 /// Traces rays from `observer` and returns at least `min_points` image points of the straw (fewer
 /// only if the straw is all but invisible from there). `progress` is told the rays traced so far.
 pub fn sample_image(
@@ -165,8 +213,17 @@ pub fn sample_image(
     min_points: usize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> ImageCloud {
-    let tracer = Tracer::new(scene);
-    let frame = frame_for(observer);
+    sample_image_of(&Tracer::new(scene), observer, min_points, progress)
+}
+
+/// [`sample_image`] for any [`ImageTracer`]: at least `min_points` image points of its objects.
+pub fn sample_image_of<T: ImageTracer>(
+    tracer: &T,
+    observer: Vec3,
+    min_points: usize,
+    progress: &(dyn Fn(u64) + Sync),
+) -> ImageCloud {
+    let frame = frame_for_box(observer, tracer.scene_box());
     let longest = frame.width.max(frame.height);
     let mut spacing = longest / COARSE_CELLS;
     let mut rays = 0u64;
@@ -182,10 +239,10 @@ pub fn sample_image(
             .map(|&(i, j)| {
                 let a = frame.a_min + (i as f64 + 0.5) * spacing;
                 let b = frame.b_min + (j as f64 + 0.5) * spacing;
-                tracer.color(Ray {
+                tracer.reaches_object(Ray {
                     origin: observer,
                     direction: frame.direction(a, b),
-                }) > 0
+                })
             })
             .collect()
     };
@@ -225,7 +282,7 @@ pub fn sample_image(
         // Final level: a uniform grid of spacing `h`, traced where the last level saw the straw.
         let mut h = target.min(spacing);
         loop {
-            let points = final_level(&tracer, observer, &frame, &active, spacing, h, &mut rays);
+            let points = final_level(tracer, observer, &frame, &active, spacing, h, &mut rays);
             progress(rays);
             if points.len() >= min_points || h < 1e-7 * longest {
                 return ImageCloud {
@@ -289,8 +346,8 @@ fn dilate(hits: &[Cell], frame: &Frame, spacing: f64) -> Vec<Cell> {
 
 /// Traces the points of the uniform grid of spacing `h` whose centres lie in `active` cells (of
 /// size `spacing`), and returns the image points, in cell order.
-fn final_level(
-    tracer: &Tracer,
+fn final_level<T: ImageTracer>(
+    tracer: &T,
     observer: Vec3,
     frame: &Frame,
     active: &[Cell],

@@ -1,0 +1,490 @@
+//! Scenes as data ([`World`]): every shape and interface, closed forms (Snell through flat layers,
+//! slabs and thick bottoms), invariants (Snell at every event, energy in the Fresnel splits, index 1
+//! everywhere puts every image point on its object), the gallery's classic effects (the reversing
+//! arrow), and the assignment's scene written as data against the independent double-double tracer.
+
+mod support;
+
+use std::path::PathBuf;
+
+use bentstraw_optics::geometry::Ray;
+use bentstraw_optics::sampling::sample_image_of;
+use bentstraw_optics::scene::Scene;
+use bentstraw_optics::scene_file::SceneDescription;
+use bentstraw_optics::world::{World, WorldEvent, WorldOutcome, COIN_COLOR, PICTURE_COLOR};
+use bentstraw_optics::Vec3;
+use proptest::prelude::*;
+use support::reference::{RefOutcome, Reference};
+
+fn scene(toml: &str) -> SceneDescription {
+    SceneDescription::from_toml(toml).unwrap_or_else(|e| panic!("{e}\n{toml}"))
+}
+
+fn gallery(name: &str) -> SceneDescription {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(name);
+    scene(&std::fs::read_to_string(path).expect("a gallery file"))
+}
+
+const GALLERY: [&str; 7] = [
+    "spec.toml",
+    "leaning-straw.toml",
+    "real-glass.toml",
+    "oil-on-water.toml",
+    "tank-pencil.toml",
+    "coin-in-glass.toml",
+    "reversing-arrow.toml",
+];
+
+fn ray_to(from: Vec3, to: Vec3) -> Ray {
+    Ray::new(from, to - from)
+}
+
+fn trace_events(world: &World, ray: Ray) -> (WorldOutcome, Vec<WorldEvent>) {
+    let mut events = Vec::new();
+    let outcome = world.trace_with(ray, |e| events.push(*e));
+    (outcome, events)
+}
+
+/// The sine of the angle between unit `d` and the line of unit `n`.
+fn sine(d: Vec3, n: Vec3) -> f64 {
+    d.cross(n).length()
+}
+
+#[test]
+fn flat_layers_shift_a_ray_as_snell_says() {
+    // A tank with water under oil and a wide coin on its floor; a ray from above meets the oil at
+    // incidence θ0 and goes on at θk in layer k, n0 sin θ0 = nk sin θk.
+    let world = World::new(
+        &scene(
+            r#"
+            [container]
+            shape = "tank"
+            half_x = 0.1
+            half_y = 0.05
+            height = 0.2
+            [[liquid]]
+            name = "water"
+            index = 1.333
+            top = 0.1
+            [[liquid]]
+            name = "oil"
+            index = 1.47
+            top = 0.15
+            [[coin]]
+            x = 0.0
+            y = 0.0
+            radius = 0.045
+            thickness = 0.002
+            "#,
+        ),
+        10,
+    );
+    for theta0 in [0.0f64, 0.1, 0.3, 0.6, 0.7] {
+        let entry = Vec3::new(0.04, 0.0, 0.15);
+        let o = entry + 0.1 * Vec3::new(theta0.sin(), 0.0, theta0.cos());
+        let (outcome, events) = trace_events(&world, ray_to(o, entry));
+        let (s_oil, s_water) = (theta0.sin() / 1.47, theta0.sin() / 1.333);
+        let tan = |s: f64| s / (1.0 - s * s).sqrt();
+        let (d_oil, d_water) = (0.05, 0.1 - 0.002);
+        let want_x = 0.04 - d_oil * tan(s_oil) - d_water * tan(s_water);
+        let cos = |s: f64| (1.0 - s * s).sqrt();
+        let want_l = 0.1 + d_oil / cos(s_oil) + d_water / cos(s_water);
+        let WorldOutcome::Object {
+            color,
+            point,
+            path_length,
+            events: n,
+            ..
+        } = outcome
+        else {
+            panic!("θ0 = {theta0}: {outcome:?}");
+        };
+        assert_eq!(
+            (color, n, events.len()),
+            (COIN_COLOR, 2, 2),
+            "θ0 = {theta0}"
+        );
+        assert!(
+            (point.x - want_x).abs() < 1e-14,
+            "θ0 = {theta0}: x {}",
+            point.x
+        );
+        assert!((point.z - 0.002).abs() < 1e-15);
+        assert!((path_length - want_l).abs() < 1e-14, "θ0 = {theta0}");
+        assert_eq!((events[0].n1, events[0].n2), (1.0, 1.47));
+        assert_eq!((events[1].n1, events[1].n2), (1.47, 1.333));
+    }
+}
+
+#[test]
+fn a_thick_bottom_shifts_light_from_below_and_the_coin_on_it_wins_the_tie() {
+    // Light from below crosses the 8 mm bottom of index 1.5 and meets the coin lying on the
+    // floor exactly where the floor's face is: the opaque coin wins the tie.
+    let world = World::new(
+        &scene(
+            r#"
+            [container]
+            shape = "glass"
+            radius = 0.04
+            height = 0.12
+            bottom = 0.008
+            [[liquid]]
+            name = "water"
+            index = 1.333
+            top = 0.1
+            [[coin]]
+            x = 0.0
+            y = 0.0
+            radius = 0.03
+            "#,
+        ),
+        10,
+    );
+    for theta0 in [0.0f64, 0.2, 0.5, 1.0] {
+        let entry = Vec3::new(-0.01, 0.0, 0.0);
+        let o = entry - 0.1 * Vec3::new(-theta0.sin(), 0.0, theta0.cos());
+        let (outcome, events) = trace_events(&world, ray_to(o, entry));
+        let s = theta0.sin() / 1.5;
+        let want_x = -0.01 - 0.008 * s / (1.0 - s * s).sqrt();
+        let want_l = 0.1 + 0.008 / (1.0 - s * s).sqrt();
+        let WorldOutcome::Object {
+            color,
+            point,
+            path_length,
+            ..
+        } = outcome
+        else {
+            panic!("θ0 = {theta0}: {outcome:?}");
+        };
+        assert_eq!((color, events.len()), (COIN_COLOR, 1), "θ0 = {theta0}");
+        assert!((point.x - want_x).abs() < 1e-15, "θ0 = {theta0}");
+        assert!((point.z - 0.008).abs() < 1e-15, "θ0 = {theta0}");
+        assert!((path_length - want_l).abs() < 1e-14);
+        assert_eq!((events[0].n1, events[0].n2), (1.0, 1.5));
+    }
+}
+
+#[test]
+fn light_runs_down_a_thick_wall_by_total_reflection() {
+    // A ray entering the rim of the 2.5 mm wall almost straight down meets the wall's faces
+    // at grazing incidence, beyond the critical angles towards air (41.8°) and water (62.7°).
+    let world = World::new(&gallery("real-glass.toml"), 1000);
+    // 10° from the vertical in air, 6.6° in the glass: a reflection every 2 cm of height.
+    let entry = Vec3::new(0.03875, 0.0, 0.12);
+    let tilt = 10f64.to_radians();
+    let from = entry + 0.02 * Vec3::new(-tilt.sin(), 0.0, tilt.cos());
+    let (_, events) = trace_events(&world, ray_to(from, entry));
+    assert_eq!((events[0].n1, events[0].n2), (1.0, 1.5));
+    let inside: Vec<_> = events[1..]
+        .iter()
+        .take_while(|e| e.n1 == 1.5 && e.totally_reflected)
+        .collect();
+    assert!(
+        inside.len() >= 3,
+        "guided down the wall: {:?}",
+        &events[..4.min(events.len())]
+    );
+    for e in &inside {
+        assert!(e.point.z < 0.12 && e.point.z > 0.0);
+        let r = (e.point.x * e.point.x + e.point.y * e.point.y).sqrt();
+        assert!((0.0375 - 1e-12..=0.04 + 1e-12).contains(&r), "r = {r}");
+    }
+}
+
+#[test]
+fn snell_holds_at_every_event_in_every_gallery_scene() {
+    for name in GALLERY {
+        let d = gallery(name);
+        let world = World::new(&d, 10);
+        let observer = d.observer.unwrap().position;
+        let (lo, hi) = world.bounds();
+        let mut checked = 0;
+        for k in 0..4000u32 {
+            // Aim at points spread through the scene's box (a deterministic low-discrepancy walk).
+            let f = |m: f64| (k as f64 * m).fract();
+            let aim = lo + Vec3::new(f(0.618034), f(0.7548777), f(0.5698403)) * (hi - lo);
+            let (_, events) = trace_events(&world, ray_to(observer, aim));
+            for e in events {
+                assert!((e.outgoing.length() - 1.0).abs() < 1e-12);
+                let (si, so) = (sine(e.incoming, e.normal), sine(e.outgoing, e.normal));
+                if e.totally_reflected {
+                    assert!(e.n1 * si > e.n2 * (1.0 - 1e-12), "{name}: {e:?}");
+                    assert!((si - so).abs() < 1e-12);
+                    assert!(e.incoming.dot(e.normal) * e.outgoing.dot(e.normal) < 0.0);
+                } else {
+                    assert!((e.n1 * si - e.n2 * so).abs() < 1e-12, "{name}: {e:?}");
+                    assert!(e.incoming.dot(e.normal) * e.outgoing.dot(e.normal) > 0.0);
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked > 500, "{name}: {checked} events checked");
+    }
+}
+
+/// The description with every index set to 1.
+fn without_refraction(mut d: SceneDescription) -> SceneDescription {
+    if let bentstraw_optics::scene_file::Container::Glass(g) = &mut d.container {
+        g.index = 1.0;
+    }
+    for l in &mut d.liquids {
+        l.index = 1.0;
+    }
+    d
+}
+
+#[test]
+fn with_index_one_everywhere_every_image_point_lies_on_its_object() {
+    for name in GALLERY {
+        let d = without_refraction(gallery(name));
+        let world = World::new(&d, 10);
+        assert!(
+            world.boundaries().is_empty(),
+            "{name}: no interface is left"
+        );
+        let observer = d.observer.unwrap().position;
+        let cloud = sample_image_of(&world, observer, 5000, &|_| {});
+        assert!(cloud.points.len() >= 5000, "{name}: {}", cloud.points.len());
+        for p in &cloud.points {
+            assert_eq!(p.events, 0);
+            let miss = (p.position - p.straw_point).length();
+            assert!(miss < 1e-9, "{name}: {p:?} is {miss:e} m off its object");
+        }
+    }
+}
+
+#[test]
+fn a_glass_of_index_one_traces_like_walls_of_no_thickness() {
+    let thick = World::new(
+        &scene(
+            r#"
+            [container]
+            shape = "glass"
+            radius = 0.04
+            height = 0.2
+            wall = 0.004
+            index = 1.0
+            [[liquid]]
+            name = "water"
+            index = 1.333
+            top = 0.15
+            [[straw]]
+            x = 0.015
+            y = 0.01
+            "#,
+        ),
+        10,
+    );
+    let thin = World::new(
+        &scene(
+            r#"
+            [container]
+            shape = "glass"
+            radius = 0.036
+            height = 0.2
+            [[liquid]]
+            name = "water"
+            index = 1.333
+            top = 0.15
+            [[straw]]
+            x = 0.015
+            y = 0.01
+            "#,
+        ),
+        10,
+    );
+    for observer in [
+        Vec3::new(0.1, 0.0, 0.1),
+        Vec3::new(0.0, 0.1, 0.1),
+        Vec3::new(0.1, 0.0, 0.3),
+        Vec3::new(0.1, 0.0, -0.1),
+        Vec3::new(0.05, 0.07, 0.16),
+    ] {
+        let cloud = sample_image_of(&thick, observer, 5000, &|_| {});
+        assert!(cloud.points.len() >= 5000);
+        for p in &cloud.points {
+            let q = thin
+                .image_point(observer, p.direction)
+                .expect("the same ray reaches the straw");
+            assert_eq!((p.color, p.events), (q.color, q.events));
+            assert!((p.path_length - q.path_length).abs() < 1e-12);
+        }
+    }
+}
+
+/// The assignment's glass with the straw at `(x, y)`, water to `he` of index `n`.
+fn spec_as_data(x: f64, y: f64, he: f64, n: f64) -> SceneDescription {
+    scene(&format!(
+        r#"
+        [container]
+        shape = "glass"
+        radius = 0.04
+        height = 0.2
+        [[liquid]]
+        name = "water"
+        index = {n:?}
+        top = {he:?}
+        [[straw]]
+        x = {x:?}
+        y = {y:?}
+        "#
+    ))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// The assignment's scene written as data traces as the independent double-double tracer
+    /// does: same colour and events, the same path length, for every ray whose decisions are
+    /// clear (1e-9 m from any face's edge or tie).
+    #[test]
+    fn the_assignment_as_data_agrees_with_the_independent_tracer(
+        r in 0.0f64..0.035, phi in 0.0f64..std::f64::consts::TAU, he in 0.01f64..0.2, n in 1.01f64..2.0,
+        dist in 0.06f64..3.0, azimuth in 0.0f64..std::f64::consts::TAU, oz in -0.5f64..0.6, seed in 0u64..1000,
+    ) {
+        let (x, y) = (r * phi.cos(), r * phi.sin());
+        let world = World::new(&spec_as_data(x, y, he, n), 10);
+        let reference = Reference::new(&Scene::new(x, y, he, n, 10).unwrap());
+        let observer = Vec3::new(dist * azimuth.cos(), dist * azimuth.sin(), oz);
+        prop_assume!(observer.x.hypot(observer.y) > 0.045 || !(0.0..=0.25).contains(&oz));
+        let (mut clear, mut all) = (0, 0);
+        for k in 0..300u64 {
+            let f = |m: f64| ((k + seed) as f64 * m).fract();
+            let aim = Vec3::new(0.08 * f(0.618034) - 0.04, 0.08 * f(0.7548777) - 0.04, 0.26 * f(0.5698403));
+            let ray = ray_to(observer, aim);
+            let (want, margin) = reference.trace(ray);
+            all += 1;
+            if margin < 1e-9 {
+                continue;
+            }
+            clear += 1;
+            match (world.trace(ray), want) {
+                (
+                    WorldOutcome::Object { color, path_length, events, .. },
+                    RefOutcome::Straw { color: c, length, events: e, .. },
+                ) => {
+                    prop_assert_eq!((color, events), (c, e));
+                    prop_assert!((path_length - length).abs() < 1e-9 + 1e-14 * length,
+                        "L {} against {}", path_length, length);
+                }
+                (WorldOutcome::Escaped { events, .. }, RefOutcome::Escaped { events: e }) => {
+                    prop_assert_eq!(events, e)
+                }
+                (WorldOutcome::Dropped, RefOutcome::Dropped) => {}
+                (got, want) => prop_assert!(false, "world {:?}, reference {:?}, ray {:?}", got, want, ray),
+            }
+        }
+        prop_assert!(clear * 100 >= all * 95, "{} of {} rays well posed", clear, all);
+    }
+}
+
+#[test]
+fn the_reversing_arrow_points_the_other_way_through_the_water() {
+    // The card faces +x; its right (where the arrow's head is) is +y. Seen through the full glass
+    // of water (a cylindrical lens, the card beyond its focus) the head appears on the other side
+    // of the tail; through a glass of index 1 it does not.
+    for (n, reversed) in [(1.333, true), (1.0, false)] {
+        let mut d = gallery("reversing-arrow.toml");
+        d.liquids[0].index = n;
+        let world = World::new(&d, 10);
+        let observer = d.observer.unwrap().position;
+        let cloud = sample_image_of(&world, observer, 20000, &|_| {});
+        let card_y = d.cards[0].center.y;
+        let (mut head, mut tail) = (Vec::new(), Vec::new());
+        for p in cloud.points.iter().filter(|p| p.color == PICTURE_COLOR) {
+            // Through the water only (in and out of its side), not past the glass's sides.
+            if n > 1.0 && p.events != 2 {
+                continue;
+            }
+            let u = p.straw_point.y - card_y;
+            if u > 0.2 * 0.12 {
+                head.push(p.direction.y);
+            } else if u < -0.2 * 0.12 {
+                tail.push(p.direction.y);
+            }
+        }
+        assert!(
+            head.len() > 50 && tail.len() > 50,
+            "n = {n}: {} {}",
+            head.len(),
+            tail.len()
+        );
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        // The observer looks along −x: a larger y is to its right.
+        let head_right_of_tail = mean(&head) > mean(&tail);
+        assert_eq!(head_right_of_tail, !reversed, "n = {n}");
+    }
+}
+
+#[test]
+fn a_leaning_straw_rests_on_the_rim_of_its_bottom_cap() {
+    let d = gallery("leaning-straw.toml");
+    let straw = d.straws[0];
+    let world = World::new(&d, 10);
+    let (lo, _) = world.objects()[0].bounds();
+    let foot = straw.foot(0.0);
+    assert!(
+        foot.z.abs() < 1e-15,
+        "the cap's rim touches the floor: {foot}"
+    );
+    assert!(lo.z <= 0.0, "its box holds its foot");
+    // Straight up from below, just inside the foot: through the bottom of the water, onto the
+    // bottom cap, a hair above the floor.
+    let inward = (Vec3::new(straw.x, straw.y, 0.0) - Vec3::new(foot.x, foot.y, 0.0)).normalize();
+    let start = Vec3::new(foot.x, foot.y, -0.1) + 1e-4 * inward;
+    let outcome = world.trace(Ray::new(start, Vec3::Z));
+    let WorldOutcome::Object { color, point, .. } = outcome else {
+        panic!("{outcome:?}")
+    };
+    assert_eq!(color, 1);
+    let rise = 1e-4 * straw.tilt_deg.to_radians().tan();
+    assert!((point.z - rise).abs() < 1e-12, "{point} against {rise}");
+}
+
+#[test]
+fn rays_that_miss_graze_or_pass_above_meet_nothing() {
+    let world = World::new(&gallery("real-glass.toml"), 10);
+    // Tangent to the outer wall: no refraction, no event.
+    let tangent = world.trace(Ray::new(Vec3::new(0.04 + 1e-12, -1.0, 0.05), Vec3::Y));
+    assert!(
+        matches!(tangent, WorldOutcome::Escaped { events: 0, .. }),
+        "{tangent:?}"
+    );
+    let above = world.trace(Ray::new(Vec3::new(-1.0, 0.0, 0.5), Vec3::X));
+    assert!(matches!(above, WorldOutcome::Escaped { events: 0, .. }));
+    // A ray from 100 km away is brought to the scene first: it still finds the straw.
+    let far = Vec3::new(1e5, 0.0, 0.1);
+    let hit = world.trace(ray_to(far, Vec3::new(0.012, 0.0, 0.1)));
+    assert!(hit.color() > 0, "{hit:?}");
+}
+
+#[test]
+fn fresnel_weights_and_escaping_light_add_up_to_one() {
+    for name in ["real-glass.toml", "oil-on-water.toml", "tank-pencil.toml"] {
+        let d = gallery(name);
+        let world = World::new(&d, 1000);
+        let observer = d.observer.unwrap().position;
+        let (lo, hi) = world.bounds();
+        let mut all_lost = 0.0;
+        for k in 0..300u32 {
+            let f = |m: f64| (k as f64 * m).fract();
+            let aim = lo + Vec3::new(f(0.618034), f(0.7548777), f(0.5698403)) * (hi - lo);
+            let (mut escaped, mut lost) = (0.0, 0.0);
+            let weights = world.trace_fresnel(ray_to(observer, aim), 1e-6, |ray, w| match ray {
+                Some(_) => escaped += w,
+                None => lost += w,
+            });
+            let total: f64 = weights.iter().sum::<f64>() + escaped + lost;
+            assert!((total - 1.0).abs() < 1e-12, "{name}: {total}");
+            all_lost += lost;
+        }
+        // Little is abandoned: light trapped in a thick wall bounces on until the limits.
+        assert!(
+            all_lost / 300.0 < 0.02,
+            "{name}: {} lost on average",
+            all_lost / 300.0
+        );
+    }
+}
