@@ -133,6 +133,30 @@ pub fn framing_fov(eye: Vec3, target: Vec3, aspect: f64) -> f64 {
     (2.0 * (half * (1.0 + FRAMING_MARGIN)).atan()).min(MAX_FRAMING_FOV)
 }
 
+/// The vertical field of view (radians) that frames the box of corners `lo`, `hi` (its eight
+/// corners' picture, with the margin of [`framing_fov`]) for a camera at `eye` aimed at `target`
+/// with `aspect = width / height`; [`MAX_FRAMING_FOV`] at most, and when a corner is behind the eye.
+pub fn framing_fov_box(eye: Vec3, target: Vec3, (lo, hi): (Vec3, Vec3), aspect: f64) -> f64 {
+    let cam = Camera::new(eye, target, 1, 1, std::f64::consts::FRAC_PI_2);
+    let mut half: f64 = 0.0;
+    for k in 0..8 {
+        let corner = Vec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        );
+        let v = corner - eye;
+        let depth = v.dot(cam.forward);
+        if depth <= 0.0 {
+            return MAX_FRAMING_FOV;
+        }
+        half = half
+            .max((v.dot(cam.up) / depth).abs())
+            .max((v.dot(cam.right) / depth).abs() / aspect);
+    }
+    (2.0 * (half * (1.0 + FRAMING_MARGIN)).atan()).min(MAX_FRAMING_FOV)
+}
+
 /// A target for a camera at `eye` that centres the picture of the glass and the straw (rather than
 /// aiming at the centre of their box, which a close observer sees off-centre), at the distance of
 /// [`crate::scene::SCENE_CENTRE`]; that centre itself if the glass is partly behind the eye.

@@ -1,12 +1,13 @@
 //! `--scene FILE.toml`: a scene file read and checked, the flags that override it applied, and
-//! the result turned into the scene the tracer knows (or refused, when this version cannot
-//! trace it).
+//! the result turned into the scene to trace: the assignment's glass when the file is of its kind
+//! (traced by the fast tracers, exactly as the same flags), else a world of any shapes and media.
 
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
-use bentstraw_optics::scene::{Scene, WATER_INDEX};
-use bentstraw_optics::scene_file::SceneDescription;
+use bentstraw_optics::scene::{Scene, SceneError, MAX_EVENTS_LIMIT, WATER_INDEX};
+use bentstraw_optics::scene_file::{Observer, SceneDescription};
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 use crate::cli::{OptionalSceneFlags, SceneArgs, SceneFlags};
@@ -28,6 +29,30 @@ pub struct Resolved {
     pub observer: Vec3,
     /// The scene file's `[observer].target`, if it came from a file.
     pub target: Option<Vec3>,
+}
+
+/// A scene file's world (not of the assignment's kind), ready to trace, with its observer.
+#[derive(Clone, Debug)]
+pub struct FileWorld {
+    /// The file's name as messages show it.
+    pub name: String,
+    /// The scene as the file describes it, the flags' overrides applied and checked.
+    pub description: SceneDescription,
+    /// The scene ready for tracing.
+    pub world: World,
+    /// The validated observer.
+    pub observer: Vec3,
+    /// The file's `[observer].target`, if any.
+    pub target: Option<Vec3>,
+}
+
+/// The scene of one run: the assignment's glass, or a scene file's world.
+#[derive(Clone, Debug)]
+pub enum AnyScene {
+    /// The assignment's kind of scene (flags, or a file of that kind).
+    Spec(Resolved),
+    /// Any other scene file.
+    File(Box<FileWorld>),
 }
 
 /// The scene's inputs as the flags give them: a file, or the values, or a file and overrides.
@@ -87,9 +112,34 @@ impl OptionalSceneFlags {
 }
 
 impl SceneSource {
-    /// The validated scene and observer: from the flags alone as always, or from the scene file
-    /// with the flags overriding it. Every value goes through the same rules as the flags'.
+    /// The validated scene and observer, for the commands that work on the assignment's kind of
+    /// scene only; another scene file is refused, saying what it has and which commands take it.
     pub fn resolve(&self) -> CliResult<Resolved> {
+        match self.resolve_any()? {
+            AnyScene::Spec(r) => Ok(r),
+            AnyScene::File(f) => {
+                // The first few reasons: a file of a thousand different straws must not flood the
+                // terminal.
+                let reasons = f.description.unsupported();
+                let mut said = reasons[..reasons.len().min(MAX_REASONS)].join(", ");
+                if reasons.len() > MAX_REASONS {
+                    said.push_str(&format!(" and {} more", reasons.len() - MAX_REASONS));
+                }
+                fail(format!(
+                    "{} is a valid scene, but this command works only on scenes of the assignment's kind \
+                     (a glass of radius 0.04 m and height 0.2 m with walls of no thickness, at most one liquid, \
+                     one upright straw of radius 0.005 m and length 0.25 m, nothing else): it has {said} \
+                     (simulate, render and bench trace it)",
+                    f.name
+                ))
+            }
+        }
+    }
+
+    /// The validated scene and observer: from the flags alone as always, or from the scene file
+    /// with the flags overriding it. Every value goes through the same rules as the flags'; a
+    /// file of the assignment's kind gives exactly the scene the same flags give.
+    pub fn resolve_any(&self) -> CliResult<AnyScene> {
         let Some(path) = &self.file else {
             let (Some(observer), Some(straw), Some(water_height)) =
                 (self.observer, self.straw, self.water_height)
@@ -106,14 +156,14 @@ impl SceneSource {
                 max_events: self.max_events,
             }
             .scene_and_observer()?;
-            return Ok(Resolved {
+            return Ok(AnyScene::Spec(Resolved {
                 scene,
                 observer,
                 target: None,
-            });
+            }));
         };
         let name = shown(path);
-        let description = read_scene_file(path)?;
+        let mut description = read_scene_file(path)?;
         let overrides: Vec<&str> = [
             (self.straw.is_some(), "--straw"),
             (self.water_height.is_some(), "--water-height"),
@@ -130,20 +180,6 @@ impl SceneSource {
                 overrides.join(", ")
             ));
         }
-        let Some(spec) = description.spec_scene() else {
-            // The first few reasons: a file of a thousand different straws must not flood the
-            // terminal.
-            let reasons = description.unsupported();
-            let mut said = reasons[..reasons.len().min(MAX_REASONS)].join(", ");
-            if reasons.len() > MAX_REASONS {
-                said.push_str(&format!(" and {} more", reasons.len() - MAX_REASONS));
-            }
-            return fail(format!(
-                "{name} is a valid scene, but this version traces only scenes of the assignment's kind \
-                 (a glass of radius 0.04 m and height 0.2 m with walls of no thickness, at most one liquid, \
-                 one upright straw of radius 0.005 m and length 0.25 m, nothing else): it has {said}"
-            ));
-        };
         let observer = match (self.observer, description.observer) {
             (Some(o), _) => o,
             (None, Some(o)) => o.position.to_array(),
@@ -151,19 +187,58 @@ impl SceneSource {
                 return fail(format!("{name} has no [observer]: give --observer X,Y,Z"))
             }
         };
-        let (scene, observer) = SceneArgs {
-            observer,
-            straw: self.straw.unwrap_or([spec.straw_x, spec.straw_y]),
-            water_height: self.water_height.unwrap_or(spec.water_height),
-            n_water: self.n_water.unwrap_or(spec.n_water),
-            max_events: self.max_events,
+        if let Some(spec) = description.spec_scene() {
+            let (scene, observer) = SceneArgs {
+                observer,
+                straw: self.straw.unwrap_or([spec.straw_x, spec.straw_y]),
+                water_height: self.water_height.unwrap_or(spec.water_height),
+                n_water: self.n_water.unwrap_or(spec.n_water),
+                max_events: self.max_events,
+            }
+            .scene_and_observer()?;
+            return Ok(AnyScene::Spec(Resolved {
+                scene,
+                observer,
+                target: description.observer.map(|o| o.target),
+            }));
         }
-        .scene_and_observer()?;
-        Ok(Resolved {
-            scene,
-            observer,
-            target: description.observer.map(|o| o.target),
-        })
+        // Any other scene: the overrides change the file's one straw and liquid, and the whole
+        // scene, observer included, is checked again by the file's rules.
+        if let Some([x, y]) = self.straw {
+            description.straws[0].x = x;
+            description.straws[0].y = y;
+        }
+        if let Some(h) = self.water_height {
+            description.liquids[0].top = h;
+        }
+        if let Some(n) = self.n_water {
+            description.liquids[0].index = n;
+        }
+        if self.max_events == 0 || self.max_events > MAX_EVENTS_LIMIT {
+            return Err(CliError(SceneError::MaxEvents(self.max_events).to_string()));
+        }
+        let target = description.observer.map(|o| o.target);
+        let position = Vec3::from_array(observer);
+        let mut checked = description.clone();
+        checked.observer = Some(Observer {
+            position,
+            // Any point away from the eye: the target is the camera's business.
+            target: target
+                .filter(|t| *t != position)
+                .unwrap_or(position + Vec3::Z),
+        });
+        let flagged = |e: bentstraw_optics::scene_file::SceneFileError| {
+            let message = e.to_string();
+            CliError(format!("{name} with the flags given: {message}"))
+        };
+        checked.validate().map_err(flagged)?;
+        Ok(AnyScene::File(Box::new(FileWorld {
+            name,
+            world: World::new(&description, self.max_events),
+            description,
+            observer: position,
+            target,
+        })))
     }
 }
 

@@ -32,6 +32,7 @@ use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::sampling::ImageCloud;
 use bentstraw_optics::scene::{clip_text, Scene, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
+use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -39,6 +40,7 @@ use serde::Serialize;
 use crate::cli::QUOTED_MAX;
 use crate::error::{CliError, CliResult};
 use crate::files::{shown, write_atomically};
+use crate::scene_input::FileWorld;
 
 /// A file format for image points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -458,6 +460,157 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
         record[8..16].copy_from_slice(&q.y.to_le_bytes());
         record[16..24].copy_from_slice(&q.z.to_le_bytes());
         record[24..27].copy_from_slice(&section_rgb8(p.color));
+        record[27] = p.color;
+        w.write_all(&record)?;
+    }
+    Ok(())
+}
+
+/// The points of a scene file's world, as one format writes them: the same columns and encodings
+/// as the assignment's points, with colour codes 1..=8 (a straw's five bands, then a coin, a card
+/// and the picture on a card) and the scene file's text among the inputs.
+pub fn write_world_points(
+    path: &Path,
+    format: PointFormat,
+    world: &FileWorld,
+    min_points: usize,
+    cloud: &ImageCloud,
+) -> CliResult {
+    write_atomically(path, |w| match format {
+        PointFormat::Csv => write_csv(w, &cloud.points),
+        PointFormat::Json => write_world_json(w, world, min_points, cloud),
+        PointFormat::Ply => write_world_ply(w, world, min_points, cloud),
+    })
+}
+
+#[derive(Serialize)]
+struct JsonWorldInputs<'a> {
+    scene_file: &'a str,
+    scene: String,
+    observer: [f64; 3],
+    max_events: u32,
+    min_points: usize,
+}
+
+#[derive(Serialize)]
+struct JsonWorldStats {
+    rays_traced: u64,
+    points: usize,
+    hit_ratio: f64,
+    grid_spacing: f64,
+    points_per_color: serde_json::Map<String, serde_json::Value>,
+}
+
+/// JSON of a world's points: the inputs (the scene as TOML, every value written out), the
+/// statistics and the eight colours, then one `[x, y, z, color]` array a line.
+fn write_world_json(
+    w: &mut dyn Write,
+    world: &FileWorld,
+    min_points: usize,
+    cloud: &ImageCloud,
+) -> io::Result<()> {
+    let counts = cloud.counts_per_code();
+    let inputs = JsonWorldInputs {
+        scene_file: &world.name,
+        scene: world.description.to_toml(),
+        observer: world.observer.to_array(),
+        max_events: world.world.max_events,
+        min_points,
+    };
+    let stats = JsonWorldStats {
+        rays_traced: cloud.rays_traced,
+        points: cloud.points.len(),
+        hit_ratio: cloud.hit_ratio(),
+        grid_spacing: cloud.spacing,
+        points_per_color: COLOR_NAMES
+            .iter()
+            .zip(counts)
+            .map(|(name, n)| (name.to_string(), n.into()))
+            .collect(),
+    };
+    let colors: Vec<JsonColor> = (0..COLOR_COUNT)
+        .map(|k| JsonColor {
+            code: k as u8 + 1,
+            name: COLOR_NAMES[k],
+            rgb: COLOR_RGB[k],
+        })
+        .collect();
+    writeln!(w, "{{")?;
+    writeln!(w, "  \"schema\": \"bentstraw-image-points/1\",")?;
+    writeln!(w, "  \"units\": \"m\",")?;
+    writeln!(w, "  \"image_model\": \"course\",")?;
+    writeln!(w, "  \"inputs\": {},", json(&inputs))?;
+    writeln!(w, "  \"stats\": {},", json(&stats))?;
+    writeln!(w, "  \"colors\": {},", json(&colors))?;
+    writeln!(w, "  \"point_fields\": [\"x\",\"y\",\"z\",\"color\"],")?;
+    writeln!(w, "  \"points\": [")?;
+    let n = cloud.points.len();
+    let mut digits = ryu::Buffer::new();
+    for (i, p) in cloud.points.iter().enumerate() {
+        let sep = if i + 1 < n { "," } else { "" };
+        write!(w, "    [")?;
+        for v in [p.position.x, p.position.y, p.position.z] {
+            write!(w, "{},", shortest(&mut digits, v))?;
+        }
+        writeln!(w, "{}]{sep}", p.color)?;
+    }
+    writeln!(w, "  ]")?;
+    writeln!(w, "}}")
+}
+
+/// PLY of a world's points: as [`write_ply`], the scene file named in a comment.
+fn write_world_ply(
+    w: &mut dyn Write,
+    world: &FileWorld,
+    min_points: usize,
+    cloud: &ImageCloud,
+) -> io::Result<()> {
+    let o = world.observer;
+    writeln!(w, "ply")?;
+    writeln!(w, "format binary_little_endian 1.0")?;
+    writeln!(
+        w,
+        "comment bentstraw: virtual image points (course model), metres"
+    )?;
+    writeln!(w, "comment observer {} {} {}", o.x, o.y, o.z)?;
+    // A comment is one line of ASCII: the file's name with anything else replaced.
+    let name: String = world
+        .name
+        .chars()
+        .map(|c| if c.is_ascii_graphic() { c } else { '_' })
+        .collect();
+    writeln!(
+        w,
+        "comment scene_file {name} max_events {}",
+        world.world.max_events
+    )?;
+    writeln!(
+        w,
+        "comment rays_traced {} min_points {min_points}",
+        cloud.rays_traced
+    )?;
+    let legend: Vec<String> = COLOR_NAMES
+        .iter()
+        .enumerate()
+        .map(|(k, n)| format!("{} {n}", k + 1))
+        .collect();
+    writeln!(w, "comment color: code {}", legend.join(", "))?;
+    writeln!(w, "element vertex {}", cloud.points.len())?;
+    for axis in ["x", "y", "z"] {
+        writeln!(w, "property double {axis}")?;
+    }
+    for channel in ["red", "green", "blue", "color"] {
+        writeln!(w, "property uchar {channel}")?;
+    }
+    writeln!(w, "end_header")?;
+    let mut record = [0u8; 28];
+    for p in &cloud.points {
+        let q = p.position;
+        record[0..8].copy_from_slice(&q.x.to_le_bytes());
+        record[8..16].copy_from_slice(&q.y.to_le_bytes());
+        record[16..24].copy_from_slice(&q.z.to_le_bytes());
+        record[24..27]
+            .copy_from_slice(&COLOR_RGB[p.color as usize - 1].map(|c| (c * 255.0).round() as u8));
         record[27] = p.color;
         w.write_all(&record)?;
     }

@@ -11,6 +11,7 @@
 
 pub mod boundary;
 pub mod object;
+pub mod picture;
 
 use crate::geometry::{enter_sphere, Ray};
 use crate::image::ImagePoint;
@@ -126,6 +127,8 @@ pub enum WorldOutcome {
         events: u32,
         /// Which object.
         object: usize,
+        /// The object's unit normal there, facing the ray.
+        normal: Vec3,
     },
     /// It left the scene.
     Escaped {
@@ -447,15 +450,25 @@ impl World {
             match self.nearest(&ray, left) {
                 None => return WorldOutcome::Escaped { events, ray },
                 Some(Hit::Object {
-                    t, index, color, ..
+                    t,
+                    index,
+                    part,
+                    color,
                 }) => {
+                    let point = ray.at(t);
+                    let normal = self.objects[index].normal(part, point);
                     return WorldOutcome::Object {
                         color,
-                        point: ray.at(t),
+                        point,
                         path_length: length + t,
                         events,
                         object: index,
-                    }
+                        normal: if normal.dot(ray.direction) > 0.0 {
+                            -normal
+                        } else {
+                            normal
+                        },
+                    };
                 }
                 Some(Hit::Boundary { t, index }) => {
                     if events == self.max_events {

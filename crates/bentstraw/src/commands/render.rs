@@ -4,11 +4,12 @@
 use std::path::Path;
 use std::time::Instant;
 
-use bentstraw_optics::camera::{framing_fov, Camera};
+use bentstraw_optics::camera::{framing_fov, framing_fov_box, Camera};
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::{number_text, Scene, SCENE_CENTRE};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
+use bentstraw_optics::world::picture::{world_codes, world_picture, world_weights};
 use bentstraw_optics::Vec3;
 
 use crate::cli::{BackdropArg, CameraArgs, ModeArg, RenderArgs};
@@ -16,6 +17,7 @@ use crate::error::{fail, CliResult};
 use crate::files::{self, Output, OutputSet};
 use crate::pictures::png_bytes;
 use crate::progress;
+use crate::scene_input::{AnyScene, FileWorld};
 
 /// Picture size when `--size` is not given.
 pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
@@ -91,7 +93,10 @@ pub fn checked_fov_deg(deg: f64) -> CliResult<f64> {
 pub fn run(args: &RenderArgs) -> CliResult {
     let start = Instant::now();
     // Everything is checked before any work, so bad input leaves no file.
-    let resolved = args.scene.resolve()?;
+    let resolved = match args.scene.source().resolve_any()? {
+        AnyScene::Spec(r) => r,
+        AnyScene::File(world) => return run_world(args, &world, start),
+    };
     let (scene, observer) = (resolved.scene, resolved.observer);
     // A scene file's target stands in for an absent --target.
     let camera_args = CameraArgs {
@@ -99,48 +104,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
         ..args.camera.clone()
     };
     let camera = camera_from_args(&camera_args, observer)?;
-    if !args.prune.is_finite() || !(0.0..1.0).contains(&args.prune) {
-        return fail(format!(
-            "--prune {} is not allowed: the pruning weight must satisfy 0 <= W < 1",
-            number_text(args.prune)
-        ));
-    }
-    if !(1..=MAX_SAMPLES).contains(&args.samples) {
-        return fail(format!(
-            "--samples {} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}",
-            args.samples
-        ));
-    }
-    let mut outputs = vec![Output {
-        flag: "--output",
-        path: &args.output,
-        extensions: &["png"],
-    }];
-    if let Some(raw) = &args.raw {
-        outputs.push(Output {
-            flag: "--raw",
-            path: raw,
-            extensions: &["csv"],
-        });
-    }
-    // The previous picture and raw file stay until both new ones are complete.
-    let outputs = OutputSet::reserve(&outputs)?;
-
-    let mode = match args.mode {
-        ModeArg::Course => ShadingMode::Course,
-        ModeArg::Fresnel => ShadingMode::Fresnel {
-            prune_below: args.prune,
-        },
-    };
-    let options = ShadingOptions {
-        mode,
-        backdrop: match args.backdrop {
-            BackdropArg::None => Backdrop::Plain,
-            BackdropArg::Checker => Backdrop::Checker,
-        },
-        samples: args.samples,
-        outline: true,
-    };
+    let (options, outputs) = shading_and_outputs(args)?;
     // The explorer's frame call, picture only: the command line draws as fast as the live view.
     // The frame call, with a bar (after a second) whose estimate follows the rows drawn.
     let mut frame = Frame::default();
@@ -177,6 +141,124 @@ pub fn run(args: &RenderArgs) -> CliResult {
         write_raw(raw, &scene, &camera, args.mode, args.prune)?;
     }
     outputs.commit()?;
+    tell_rendered(args, &camera, start);
+    Ok(())
+}
+
+/// The shading options of `args`, checked, and its outputs reserved (the previous picture and raw
+/// file stay until both new ones are complete).
+fn shading_and_outputs(args: &RenderArgs) -> CliResult<(ShadingOptions, OutputSet)> {
+    if !args.prune.is_finite() || !(0.0..1.0).contains(&args.prune) {
+        return fail(format!(
+            "--prune {} is not allowed: the pruning weight must satisfy 0 <= W < 1",
+            number_text(args.prune)
+        ));
+    }
+    if !(1..=MAX_SAMPLES).contains(&args.samples) {
+        return fail(format!(
+            "--samples {} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}",
+            args.samples
+        ));
+    }
+    let mut outputs = vec![Output {
+        flag: "--output",
+        path: &args.output,
+        extensions: &["png"],
+    }];
+    if let Some(raw) = &args.raw {
+        outputs.push(Output {
+            flag: "--raw",
+            path: raw,
+            extensions: &["csv"],
+        });
+    }
+    let outputs = OutputSet::reserve(&outputs)?;
+    let mode = match args.mode {
+        ModeArg::Course => ShadingMode::Course,
+        ModeArg::Fresnel => ShadingMode::Fresnel {
+            prune_below: args.prune,
+        },
+    };
+    let options = ShadingOptions {
+        mode,
+        backdrop: match args.backdrop {
+            BackdropArg::None => Backdrop::Plain,
+            BackdropArg::Checker => Backdrop::Checker,
+        },
+        samples: args.samples,
+        outline: true,
+    };
+    Ok((options, outputs))
+}
+
+/// `render` of a scene file's world: the picture traced in double precision, and the raw rays.
+fn run_world(args: &RenderArgs, world: &FileWorld, start: Instant) -> CliResult {
+    let camera_args = CameraArgs {
+        target: args.camera.target.or(world.target.map(|t| t.to_array())),
+        ..args.camera.clone()
+    };
+    // Aimed at the file's target, else the middle of the scene; framing the whole scene.
+    let (lo, hi) = world.world.bounds();
+    let target = camera_args.target.unwrap_or((0.5 * (lo + hi)).to_array());
+    let mut camera = camera_from_args(
+        &CameraArgs {
+            target: Some(target),
+            ..camera_args.clone()
+        },
+        world.observer,
+    )?;
+    if camera_args.fov.is_none() {
+        let aspect = camera.width as f64 / camera.height as f64;
+        let fov = framing_fov_box(world.observer, Vec3::from_array(target), (lo, hi), aspect);
+        camera.tan_half_fov = (fov / 2.0).tan();
+    }
+    let (options, outputs) = shading_and_outputs(args)?;
+    let picture = progress::with_progress(None, "{spinner} rendering  [{elapsed}]", |_| {
+        world_picture(&world.world, &camera, &options)
+    });
+    let png = png_bytes(&picture)?;
+    files::write_bytes(&args.output, &png)?;
+    if let Some(raw) = &args.raw {
+        let w = camera.width as usize;
+        match args.mode {
+            ModeArg::Course => {
+                let codes = world_codes(&world.world, &camera);
+                files::write_atomically(raw, |out| {
+                    writeln!(out, "row,col,color")?;
+                    for (k, code) in codes.iter().enumerate() {
+                        writeln!(out, "{},{},{code}", k / w, k % w)?;
+                    }
+                    Ok(())
+                })?;
+            }
+            ModeArg::Fresnel => {
+                let weights = world_weights(&world.world, &camera, args.prune);
+                let mut digits = ryu::Buffer::new();
+                files::write_atomically(raw, |out| {
+                    writeln!(out, "row,col,w1,w2,w3,w4,w5,w6,w7,w8")?;
+                    for (k, px) in weights.iter().enumerate() {
+                        write!(out, "{},{}", k / w, k % w)?;
+                        for v in px {
+                            if *v == 0.0 {
+                                write!(out, ",0")?;
+                            } else {
+                                write!(out, ",{}", digits.format_finite(*v))?;
+                            }
+                        }
+                        writeln!(out)?;
+                    }
+                    Ok(())
+                })?;
+            }
+        }
+    }
+    outputs.commit()?;
+    tell_rendered(args, &camera, start);
+    Ok(())
+}
+
+/// The one line `render` says when done.
+fn tell_rendered(args: &RenderArgs, camera: &Camera, start: Instant) {
     let fov_deg = 2.0 * camera.tan_half_fov.atan().to_degrees();
     progress::tell(&format!(
         "render: {} mode, {}x{} pixels, {n}x{n} samples per pixel, fov {fov_deg:.2}°: wrote {}{} in {:.2} s\n",
@@ -194,7 +276,6 @@ pub fn run(args: &RenderArgs) -> CliResult {
         start.elapsed().as_secs_f64(),
         n = args.samples,
     ));
-    Ok(())
 }
 
 /// Writes one ray per pixel centre, row-major: `row,col,color` (course) or `row,col,w1..w5`

@@ -7,8 +7,9 @@ use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, ApparentPoint, StereoImage};
-use bentstraw_optics::sampling::{sample_image, ImageCloud};
+use bentstraw_optics::sampling::{sample_image, sample_image_of, ImageCloud};
 use bentstraw_optics::scene::{Scene, SECTION_NAMES};
+use bentstraw_optics::world::COLOR_NAMES;
 use bentstraw_optics::Vec3;
 
 use crate::cli::{ImageModelArg, SimulateArgs};
@@ -18,7 +19,8 @@ use crate::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
+use crate::scene_input::{AnyScene, FileWorld};
+use crate::writers::{write_points, write_world_points, ModelPoints, PointFormat, PointSet};
 use crate::{html, plot, progress, ray_diagram};
 
 /// Most image points `simulate` traces with the course model: measured at about 220 bytes a point
@@ -32,10 +34,14 @@ pub const MAX_MODEL_POINTS: usize = 2_000_000;
 /// Runs `simulate`.
 pub fn run(args: &SimulateArgs) -> CliResult {
     // 1. Validate everything, trace nothing yet.
-    let (scene, observer) = args.scene.scene_and_observer()?;
+    let resolved = args.scene.source().resolve_any()?;
     if args.points == 0 {
         return fail("--points 0 is not allowed: ask for at least 1 image point");
     }
+    let (scene, observer) = match resolved {
+        AnyScene::Spec(r) => (r.scene, r.observer),
+        AnyScene::File(world) => return run_world(args, &world),
+    };
     // The model comparison and the gap plot need both the eye and the stereo model.
     let both_models = args.models_plot.is_some() || args.gap_plot.is_some();
     let (most, per_point, model_name) = match args.image_model {
@@ -179,6 +185,100 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     if !matches!(model, ModelPoints::Course) {
         progress::tell(&model_summary(&set, modelled));
     }
+    Ok(())
+}
+
+/// `simulate` on a scene file's world: the image points of every object, as CSV, JSON or PLY.
+fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
+    let unsupported = [
+        (args.plot.is_some(), "--plot"),
+        (args.html.is_some(), "--html"),
+        (args.rays.is_some(), "--rays"),
+        (args.models_plot.is_some(), "--models-plot"),
+        (args.gap_plot.is_some(), "--gap-plot"),
+        (
+            args.image_model != ImageModelArg::Course,
+            "--image-model eye|stereo",
+        ),
+    ];
+    if let Some((_, flag)) = unsupported.iter().find(|(given, _)| *given) {
+        return fail(format!(
+            "{flag} is for scenes of the assignment's kind in this version; {} is another kind: \
+             simulate writes its image points (--output .csv, .json or .ply), render its picture",
+            world.name
+        ));
+    }
+    if args.points > MAX_POINTS {
+        return fail(format!(
+            "--points {} is too many: at most {MAX_POINTS} image points, as each takes about 300 \
+             bytes of memory until the file is written",
+            args.points
+        ));
+    }
+    let format = PointFormat::from_path(&args.output)?;
+    let outputs = OutputSet::reserve(&[Output {
+        flag: "--output",
+        path: &args.output,
+        extensions: &[],
+    }])?;
+    let started = Instant::now();
+    let cloud = progress::with_progress(
+        None,
+        "{spinner} tracing rays: {human_pos} so far  [{elapsed}]",
+        |bar| {
+            sample_image_of(&world.world, world.observer, args.points, &|rays| {
+                bar.set_position(rays)
+            })
+        },
+    );
+    let traced = started.elapsed();
+    write_world_points(&args.output, format, world, args.points, &cloud)?;
+    outputs.commit()?;
+    let o = world.observer;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "bentstraw simulate: the virtual image of {} (course model)",
+        world.name
+    );
+    let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
+    let _ = writeln!(t, "  event limit     {}", world.world.max_events);
+    let _ = writeln!(t, "  rays traced     {}", cloud.rays_traced);
+    let _ = writeln!(
+        t,
+        "  image points    {} (asked for at least {})",
+        cloud.points.len(),
+        args.points
+    );
+    for (k, n) in cloud.counts_per_code().iter().enumerate() {
+        if *n > 0 {
+            let _ = writeln!(t, "    {} {:<8} {:>8}", k + 1, COLOR_NAMES[k], n);
+        }
+    }
+    let _ = writeln!(
+        t,
+        "  hit ratio       {:.1} % of the rays reached an object",
+        100.0 * cloud.hit_ratio()
+    );
+    let _ = writeln!(
+        t,
+        "  time            {:.3} s tracing, {:.3} s in all",
+        traced.as_secs_f64(),
+        started.elapsed().as_secs_f64()
+    );
+    let _ = writeln!(
+        t,
+        "  wrote           {} ({} points)",
+        args.output.display(),
+        format.name()
+    );
+    if cloud.points.len() < args.points {
+        let _ = writeln!(
+            t,
+            "  note            fewer points than asked: the objects are all but invisible from here"
+        );
+    }
+    progress::tell(&t);
     Ok(())
 }
 
