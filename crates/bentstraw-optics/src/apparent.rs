@@ -298,16 +298,72 @@ pub struct LightPath {
 /// FNV-1a offset basis: the hash of an empty sequence of events.
 const EMPTY_SEQUENCE: u64 = 0xcbf2_9ce4_8422_2325;
 
-/// The hash of a sequence of events extended by `event`: face and kind of event.
+/// The hash of a sequence of events extended by one event: its face's code and its kind.
 #[inline]
-fn extend_sequence(hash: u64, event: &Event) -> u64 {
-    let face = match event.face {
-        Face::WaterSide => 0,
-        Face::WaterTop => 1,
-        _ => 2,
-    };
-    let code = 1 + 2 * face + u64::from(event.totally_reflected);
+fn extend_sequence(hash: u64, face: u64, totally_reflected: bool) -> u64 {
+    let code = 1 + 2 * face + u64::from(totally_reflected);
     (hash ^ code).wrapping_mul(0x0000_0100_0000_01b3)
+}
+
+/// One event of a ray as the models see it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathEvent {
+    /// A code for the face it happened on (the same face, the same code).
+    pub face: u64,
+    /// Where.
+    pub point: Vec3,
+    /// The direction after it.
+    pub outgoing: Vec3,
+    /// Whether it was a total reflection.
+    pub totally_reflected: bool,
+}
+
+/// What the eye and stereo models need of a scene: a ray's events, in order, and the object point
+/// it reaches. The assignment's glass and any scene file's world are modelled by the same code.
+pub trait PathTracer: Sync {
+    /// Traces `ray` from an eye by the course's law, telling `on_event` every event; the object
+    /// point reached and the number of events on the way, if it reaches one.
+    fn follow_events(&self, ray: Ray, on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)>;
+}
+
+impl PathTracer for Scene {
+    #[inline]
+    fn follow_events(&self, ray: Ray, mut on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)> {
+        let outcome = self.trace_with(ray, |e: &Event| {
+            on_event(PathEvent {
+                face: match e.face {
+                    Face::WaterSide => 0,
+                    Face::WaterTop => 1,
+                    _ => 2,
+                },
+                point: e.point,
+                outgoing: e.outgoing,
+                totally_reflected: e.totally_reflected,
+            })
+        });
+        match outcome {
+            Outcome::Straw { point, events, .. } => Some((point, events)),
+            _ => None,
+        }
+    }
+}
+
+impl PathTracer for crate::world::World {
+    #[inline]
+    fn follow_events(&self, ray: Ray, mut on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)> {
+        let outcome = self.trace_with(ray, |e| {
+            on_event(PathEvent {
+                face: e.boundary as u64,
+                point: e.point,
+                outgoing: e.outgoing,
+                totally_reflected: e.totally_reflected,
+            })
+        });
+        match outcome {
+            crate::world::WorldOutcome::Object { point, events, .. } => Some((point, events)),
+            _ => None,
+        }
+    }
 }
 
 /// The horizontal and vertical pupil directions `(e_h, e_v)` for a line of sight `u0`.
@@ -336,8 +392,8 @@ type Jacobian = [[f64; 2]; 2];
 /// perpendicular to the last segment (from `P`, direction `d`), on two fixed axes across the
 /// central last segment.
 #[derive(Clone, Copy, Debug)]
-struct Aim<'a> {
-    scene: &'a Scene,
+struct Aim<'a, T> {
+    scene: &'a T,
     path: LightPath,
     forward: Vec3,
     right: Vec3,
@@ -345,8 +401,8 @@ struct Aim<'a> {
     across: [Vec3; 2],
 }
 
-impl<'a> Aim<'a> {
-    fn new(scene: &'a Scene, path: LightPath, forward: Vec3, right: Vec3, up: Vec3) -> Self {
+impl<'a, T: PathTracer> Aim<'a, T> {
+    fn new(scene: &'a T, path: LightPath, forward: Vec3, right: Vec3, up: Vec3) -> Self {
         let a = any_perpendicular(path.final_direction);
         let b = path.final_direction.cross(a);
         Aim {
@@ -366,19 +422,20 @@ impl<'a> Aim<'a> {
 
     /// Follows the ray from `eye` through the path's events: the last segment `(P, d)` before the
     /// straw point and the tracer's outcome; `None` if the events differ from the path's.
-    fn follow(&self, eye: Vec3, direction: Vec3) -> Option<(Vec3, Vec3, Outcome)> {
+    #[allow(clippy::type_complexity)]
+    fn follow(&self, eye: Vec3, direction: Vec3) -> Option<(Vec3, Vec3, Option<(Vec3, u32)>)> {
         let wanted = self.path.events;
         let mut count = 0u32;
         let mut sequence = EMPTY_SEQUENCE;
         let (mut origin, mut last) = (eye, direction);
-        let outcome = self.scene.trace_with(
+        let outcome = self.scene.follow_events(
             Ray {
                 origin: eye,
                 direction,
             },
             |e| {
                 if count < wanted {
-                    sequence = extend_sequence(sequence, e);
+                    sequence = extend_sequence(sequence, e.face, e.totally_reflected);
                     origin = e.point;
                     last = e.outgoing;
                 }
@@ -413,13 +470,9 @@ impl<'a> Aim<'a> {
     /// Whether the ray from `eye` with parameters `x` reaches the straw point along the path.
     fn reaches(&self, eye: Vec3, x: [f64; 2]) -> bool {
         match self.follow(eye, self.direction(x)) {
-            Some((
-                _,
-                _,
-                Outcome::Straw {
-                    point, events: n, ..
-                },
-            )) => n == self.path.events && point.distance(self.path.straw_point) <= REACH_TOLERANCE,
+            Some((_, _, Some((point, n)))) => {
+                n == self.path.events && point.distance(self.path.straw_point) <= REACH_TOLERANCE
+            }
             _ => false,
         }
     }
@@ -569,36 +622,35 @@ impl<'a> Aim<'a> {
     }
 }
 
-impl Scene {
+/// The models of the apparent position, for every [`PathTracer`] (the assignment's glass, any
+/// scene file's world).
+pub trait ApparentPosition: PathTracer + Sized {
     /// The light path of the ray from `eye` along unit `u0`, if it reaches the straw.
-    pub fn light_path(&self, eye: Vec3, u0: Vec3) -> Option<LightPath> {
+    fn light_path(&self, eye: Vec3, u0: Vec3) -> Option<LightPath> {
         let mut sequence = EMPTY_SEQUENCE;
         let mut last = u0;
-        let outcome = self.trace_with(
+        let outcome = self.follow_events(
             Ray {
                 origin: eye,
                 direction: u0,
             },
             |e| {
-                sequence = extend_sequence(sequence, e);
+                sequence = extend_sequence(sequence, e.face, e.totally_reflected);
                 last = e.outgoing;
             },
         );
-        match outcome {
-            Outcome::Straw { point, events, .. } => Some(LightPath {
-                straw_point: point,
-                events,
-                final_direction: last,
-                sequence,
-            }),
-            _ => None,
-        }
+        outcome.map(|(point, events)| LightPath {
+            straw_point: point,
+            events,
+            final_direction: last,
+            sequence,
+        })
     }
 
     /// The unit direction from `eye` whose ray reaches `path`'s straw point along the same
     /// sequence of events (within [`REACH_TOLERANCE`], checked by tracing), searched from `guess`;
     /// `None` if there is none near (the point is hidden, or seen along another path).
-    pub fn reaim(&self, eye: Vec3, path: &LightPath, guess: Vec3) -> Option<Vec3> {
+    fn reaim(&self, eye: Vec3, path: &LightPath, guess: Vec3) -> Option<Vec3> {
         let forward = guess.normalize();
         let right = any_perpendicular(forward);
         let aim = Aim::new(self, *path, forward, right, forward.cross(right));
@@ -607,12 +659,12 @@ impl Scene {
     }
 
     /// The eye model's apparent point of `image`, seen from `observer` (module docs).
-    pub fn apparent_point(&self, observer: Vec3, image: &ImagePoint) -> ApparentPoint {
+    fn apparent_point(&self, observer: Vec3, image: &ImagePoint) -> ApparentPoint {
         self.apparent_point_with_step(observer, image, PUPIL_STEP)
     }
 
-    /// [`Scene::apparent_point`] with pupil step `step` (m) instead of [`PUPIL_STEP`].
-    pub fn apparent_point_with_step(
+    /// [`ApparentPosition::apparent_point`] with pupil step `step` (m) instead of [`PUPIL_STEP`].
+    fn apparent_point_with_step(
         &self,
         observer: Vec3,
         image: &ImagePoint,
@@ -646,7 +698,7 @@ impl Scene {
 
     /// The stereo model's point for `image` (seen from `observer`), seen by `eyes`; `None` if an
     /// eye does not see the same straw point along the same light path.
-    pub fn stereo_point(
+    fn stereo_point(
         &self,
         eyes: &StereoEyes,
         observer: Vec3,
@@ -697,10 +749,50 @@ impl Scene {
     }
 }
 
+impl<T: PathTracer> ApparentPosition for T {}
+
+/// The models on the assignment's glass, callable without naming the trait.
+impl Scene {
+    /// [`ApparentPosition::light_path`].
+    pub fn light_path(&self, eye: Vec3, u0: Vec3) -> Option<LightPath> {
+        ApparentPosition::light_path(self, eye, u0)
+    }
+
+    /// [`ApparentPosition::reaim`].
+    pub fn reaim(&self, eye: Vec3, path: &LightPath, guess: Vec3) -> Option<Vec3> {
+        ApparentPosition::reaim(self, eye, path, guess)
+    }
+
+    /// [`ApparentPosition::apparent_point`].
+    pub fn apparent_point(&self, observer: Vec3, image: &ImagePoint) -> ApparentPoint {
+        ApparentPosition::apparent_point(self, observer, image)
+    }
+
+    /// [`ApparentPosition::apparent_point_with_step`].
+    pub fn apparent_point_with_step(
+        &self,
+        observer: Vec3,
+        image: &ImagePoint,
+        step: f64,
+    ) -> ApparentPoint {
+        ApparentPosition::apparent_point_with_step(self, observer, image, step)
+    }
+
+    /// [`ApparentPosition::stereo_point`].
+    pub fn stereo_point(
+        &self,
+        eyes: &StereoEyes,
+        observer: Vec3,
+        image: &ImagePoint,
+    ) -> Option<StereoPoint> {
+        ApparentPosition::stereo_point(self, eyes, observer, image)
+    }
+}
+
 /// The eye model's points for `points` (image points seen from `observer`, e.g. from
 /// [`crate::sampling::sample_image`]), one per input point, in the same order; in parallel.
-pub fn eye_model_points(
-    scene: &Scene,
+pub fn eye_model_points<T: PathTracer>(
+    scene: &T,
     observer: Vec3,
     points: &[ImagePoint],
 ) -> Vec<ApparentPoint> {
@@ -712,7 +804,11 @@ pub fn eye_model_points(
 
 /// The stereo model's points for `points` (image points seen from `observer`), seen by the eyes
 /// [`StereoEyes::around`] the observer, in the input's order; in parallel.
-pub fn stereo_points(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> StereoImage {
+pub fn stereo_points<T: PathTracer>(
+    scene: &T,
+    observer: Vec3,
+    points: &[ImagePoint],
+) -> StereoImage {
     let all = stereo_point_each(scene, observer, points);
     let skipped = all.iter().filter(|p| p.is_none()).count();
     StereoImage {
@@ -724,8 +820,8 @@ pub fn stereo_points(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> St
 /// The stereo model's point for each of `points` (image points seen from `observer`), seen by the
 /// eyes [`StereoEyes::around`] the observer: one per input point, `None` where an eye does not see
 /// it along the same light path; in parallel.
-pub fn stereo_point_each(
-    scene: &Scene,
+pub fn stereo_point_each<T: PathTracer>(
+    scene: &T,
     observer: Vec3,
     points: &[ImagePoint],
 ) -> Vec<Option<StereoPoint>> {
@@ -747,7 +843,11 @@ pub struct ApparentImages {
 
 /// The eye model's and the stereo model's points for `points` (image points seen from
 /// `observer`, e.g. [`crate::sampling::sample_image`]'s), in parallel, deterministic.
-pub fn apparent_images(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> ApparentImages {
+pub fn apparent_images<T: PathTracer>(
+    scene: &T,
+    observer: Vec3,
+    points: &[ImagePoint],
+) -> ApparentImages {
     ApparentImages {
         eye: eye_model_points(scene, observer, points),
         stereo: stereo_points(scene, observer, points),

@@ -488,3 +488,70 @@ fn fresnel_weights_and_escaping_light_add_up_to_one() {
         );
     }
 }
+
+#[test]
+fn the_eye_model_finds_the_apparent_depth_of_a_coin_under_flat_water() {
+    use bentstraw_optics::apparent::{ApparentPosition, Focus};
+    // A coin's top 0.118 m under the flat surface of a tank's water; the eye 0.18 m above the
+    // surface. Straight down both foci are at the textbook apparent depth d/n; obliquely, at θ in
+    // air and θ' in water, the sagittal focus (across the plane of incidence: the horizontal pupil
+    // direction) is at d/(n cos θ') and the tangential one at d cos²θ/(n cos³θ') past the surface.
+    let n = 1.333;
+    let world = World::new(
+        &scene(&format!(
+            r#"
+            [container]
+            shape = "tank"
+            half_x = 0.1
+            half_y = 0.05
+            height = 0.2
+            [[liquid]]
+            name = "water"
+            index = {n}
+            top = 0.12
+            [[coin]]
+            x = 0.0
+            y = 0.0
+            radius = 0.045
+            thickness = 0.002
+            "#
+        )),
+        10,
+    );
+    let d = 0.12 - 0.002;
+    for theta in [0.0f64, 0.2, 0.4] {
+        let surface = Vec3::new(0.0, 0.0, 0.12);
+        let (above, u0) = (
+            0.18 / theta.cos(),
+            Vec3::new(theta.sin(), 0.0, -theta.cos()),
+        );
+        let eye = surface - above * u0;
+        let image = world.image_point(eye, u0).expect("the coin is seen");
+        let p = world.apparent_point(eye, &image);
+        let cos_t = (1.0 - (theta.sin() / n).powi(2)).sqrt();
+        let sagittal = above + d / (n * cos_t);
+        let tangential = above + d * theta.cos().powi(2) / (n * cos_t.powi(3));
+        let (Focus::InFront(s_h), Focus::InFront(s_v)) = (p.s_h, p.s_v) else {
+            panic!("θ = {theta}: {p:?}");
+        };
+        assert!(
+            (s_h - sagittal).abs() < 1e-7,
+            "θ = {theta}: s_h {s_h} against {sagittal}"
+        );
+        assert!(
+            (s_v - tangential).abs() < 1e-7,
+            "θ = {theta}: s_v {s_v} against {tangential}"
+        );
+    }
+    // The same through the round glass of the gallery's coin, looking straight down.
+    let d = gallery("coin-in-glass.toml");
+    let world = World::new(&d, 10);
+    let top = d.liquids[0].top;
+    let coin_top = d.container.floor() + d.coins[0].thickness;
+    let eye = Vec3::new(d.coins[0].x, d.coins[0].y, top + 0.2);
+    let image = world.image_point(eye, -Vec3::Z).expect("the coin is seen");
+    let want = 0.2 + (top - coin_top) / d.liquids[0].index;
+    let p = world.apparent_point(eye, &image);
+    let s = p.position.expect("both foci in front").distance(eye);
+    assert!((s - want).abs() < 1e-7, "{s} against {want}");
+}

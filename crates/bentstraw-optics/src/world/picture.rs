@@ -124,26 +124,45 @@ pub fn world_picture(world: &World, camera: &Camera, options: &ShadingOptions) -
 
 /// One course ray per pixel centre: the colour code it ends on (0 for none), row-major.
 pub fn world_codes(world: &World, camera: &Camera) -> Vec<u8> {
+    let mut codes = vec![0; camera.width as usize * camera.height as usize];
+    world_codes_into(world, camera, &mut codes);
+    codes
+}
+
+/// [`world_codes`] into a buffer of `width × height` codes (reused from picture to picture).
+pub fn world_codes_into(world: &World, camera: &Camera, codes: &mut [u8]) {
     let w = camera.width as usize;
-    (0..w * camera.height as usize)
-        .into_par_iter()
+    codes
+        .par_iter_mut()
         .with_min_len(256)
-        .map(|k| {
+        .enumerate()
+        .for_each(|(k, code)| {
             let (i, j) = ((k / w) as u32, (k % w) as u32);
-            world.trace(camera.pixel_ray(i, j)).color()
-        })
-        .collect()
+            *code = world.trace(camera.pixel_ray(i, j)).color();
+        });
 }
 
 /// One Fresnel ray per pixel centre: the weight reaching each colour code, row-major.
 pub fn world_weights(world: &World, camera: &Camera, prune_below: f64) -> Vec<[f64; COLOR_COUNT]> {
+    let mut weights = vec![[0.0; COLOR_COUNT]; camera.width as usize * camera.height as usize];
+    world_weights_into(world, camera, prune_below, &mut weights);
+    weights
+}
+
+/// [`world_weights`] into a buffer of `width × height` pixels (reused from picture to picture).
+pub fn world_weights_into(
+    world: &World,
+    camera: &Camera,
+    prune_below: f64,
+    weights: &mut [[f64; COLOR_COUNT]],
+) {
     let w = camera.width as usize;
-    (0..w * camera.height as usize)
-        .into_par_iter()
+    weights
+        .par_iter_mut()
         .with_min_len(256)
-        .map(|k| {
+        .enumerate()
+        .for_each(|(k, px)| {
             let (i, j) = ((k / w) as u32, (k % w) as u32);
-            world.trace_fresnel(camera.pixel_ray(i, j), prune_below, |_, _| {})
-        })
-        .collect()
+            *px = world.trace_fresnel(camera.pixel_ray(i, j), prune_below, |_, _| {});
+        });
 }

@@ -12,11 +12,14 @@ use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
 use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE, WATER_INDEX};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
+use bentstraw_optics::world::picture::{world_codes_into, world_picture, world_weights_into};
+use bentstraw_optics::world::{World, COLOR_COUNT};
 use bentstraw_optics::Vec3;
 
 use crate::cli::{BenchArgs, ModeArg};
 use crate::commands::render;
 use crate::error::{fail, CliError, CliResult};
+use crate::scene_input::AnyScene;
 
 /// Vertical field of view of the benchmark views (degrees).
 const BENCH_FOV_DEG: f64 = 50.0;
@@ -30,11 +33,19 @@ const MAX_RAYS_PER_CASE: u64 = 1_000_000_000;
 /// Fresnel branches lighter than this are abandoned (the same default as `render --prune`).
 const BENCH_PRUNE: f64 = 1e-4;
 
+/// What a view shows: the assignment's glass (the fast tracers) or a scene file's world.
+enum Traced {
+    /// The assignment's kind of scene.
+    Spec(Scene),
+    /// Any other scene file.
+    World(Box<World>),
+}
+
 /// One view to time.
 struct View {
     /// Reference simulation number, or `None` for a view given on the command line.
     simulation: Option<u32>,
-    scene: Scene,
+    scene: Traced,
     camera: Camera,
 }
 
@@ -155,12 +166,19 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
                 "a single view needs all three of --observer, --straw and --water-height, or a --scene file (give none to time the four reference views)",
             );
         }
-        let resolved = args.view.source().resolve()?;
-        let target = target_flag.or(resolved.target).unwrap_or(SCENE_CENTRE);
-        let camera = camera_for(resolved.observer, target)?;
+        let (scene, observer, target) = match args.view.source().resolve_any()? {
+            AnyScene::Spec(r) => (Traced::Spec(r.scene), r.observer, r.target),
+            AnyScene::File(f) => {
+                let (lo, hi) = f.world.bounds();
+                let target = f.target.unwrap_or(0.5 * (lo + hi));
+                (Traced::World(Box::new(f.world)), f.observer, Some(target))
+            }
+        };
+        let target = target_flag.or(target).unwrap_or(SCENE_CENTRE);
+        let camera = camera_for(observer, target)?;
         return Ok(vec![View {
             simulation: None,
-            scene: resolved.scene,
+            scene,
             camera,
         }]);
     }
@@ -183,7 +201,7 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
             let camera = camera_for(r.observer, target_flag.unwrap_or(zoom))?;
             Ok(View {
                 simulation: Some(r.number),
-                scene,
+                scene: Traced::Spec(scene),
                 camera,
             })
         })
@@ -197,22 +215,30 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
 fn time_picture(view: &View, mode: ModeArg, repeat: usize) -> f64 {
     let pixels = view.camera.width as usize * view.camera.height as usize;
     // Only the mode's buffer: at the largest size the weights alone take 1 GB.
-    let (mut codes, mut weights) = match mode {
-        ModeArg::Course => (vec![0u8; pixels], Vec::new()),
-        ModeArg::Fresnel => (Vec::new(), vec![[0.0; SECTION_COUNT]; pixels]),
+    let (mut codes, mut weights, mut all_weights) = match mode {
+        ModeArg::Course => (vec![0u8; pixels], Vec::new(), Vec::new()),
+        ModeArg::Fresnel => match view.scene {
+            Traced::Spec(_) => (Vec::new(), vec![[0.0; SECTION_COUNT]; pixels], Vec::new()),
+            Traced::World(_) => (Vec::new(), Vec::new(), vec![[0.0; COLOR_COUNT]; pixels]),
+        },
     };
     let mut once = || -> f64 {
         let start = Instant::now();
-        match mode {
-            ModeArg::Course => {
-                course_picture_into(&view.scene, &view.camera, &mut codes);
-                std::hint::black_box(&codes);
+        match (mode, &view.scene) {
+            (ModeArg::Course, Traced::Spec(scene)) => {
+                course_picture_into(scene, &view.camera, &mut codes);
             }
-            ModeArg::Fresnel => {
-                fresnel_picture_into(&view.scene, &view.camera, BENCH_PRUNE, &mut weights);
-                std::hint::black_box(&weights);
+            (ModeArg::Fresnel, Traced::Spec(scene)) => {
+                fresnel_picture_into(scene, &view.camera, BENCH_PRUNE, &mut weights);
+            }
+            (ModeArg::Course, Traced::World(world)) => {
+                world_codes_into(world, &view.camera, &mut codes);
+            }
+            (ModeArg::Fresnel, Traced::World(world)) => {
+                world_weights_into(world, &view.camera, BENCH_PRUNE, &mut all_weights);
             }
         }
+        std::hint::black_box((&codes, &weights, &all_weights));
         start.elapsed().as_secs_f64()
     };
     once();
@@ -241,8 +267,15 @@ fn time_frame(view: &View, mode: ModeArg, repeat: usize) -> f64 {
     let mut frame = Frame::default();
     let mut once = || -> f64 {
         let start = Instant::now();
-        draw_frame(&view.scene, &request, &mut frame);
-        std::hint::black_box(&frame.picture);
+        match &view.scene {
+            Traced::Spec(scene) => {
+                draw_frame(scene, &request, &mut frame);
+                std::hint::black_box(&frame.picture);
+            }
+            Traced::World(world) => {
+                std::hint::black_box(world_picture(world, &view.camera, &request.shading));
+            }
+        }
         start.elapsed().as_secs_f64()
     };
     once();
