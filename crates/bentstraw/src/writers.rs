@@ -85,11 +85,20 @@ impl PointFormat {
     }
 }
 
+/// The scene a simulation traced.
+#[derive(Clone, Copy, Debug)]
+pub enum Inputs<'a> {
+    /// The assignment's kind of scene.
+    Spec(&'a Scene),
+    /// A scene file's world.
+    File(&'a FileWorld),
+}
+
 /// A simulation's result with the inputs that produced it: everything a points file records.
 #[derive(Clone, Copy, Debug)]
 pub struct PointSet<'a> {
     /// The scene traced.
-    pub scene: &'a Scene,
+    pub inputs: Inputs<'a>,
     /// The observer.
     pub observer: Vec3,
     /// The number of points asked for.
@@ -357,7 +366,10 @@ struct JsonColor {
 
 /// JSON: the inputs, statistics and colour legend, then one `[x, y, z, color]` array a line.
 pub fn write_json(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    let s = set.scene;
+    let s = match set.inputs {
+        Inputs::Spec(s) => s,
+        Inputs::File(world) => return write_world_json(w, set, world),
+    };
     let inputs = JsonInputs {
         observer: set.observer.to_array(),
         straw: [s.straw_x, s.straw_y],
@@ -419,7 +431,10 @@ pub fn section_rgb8(code: u8) -> [u8; 3] {
 
 /// PLY, binary little-endian: `double x, y, z`, `uchar red, green, blue`, `uchar color`.
 pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    let s = set.scene;
+    let s = match set.inputs {
+        Inputs::Spec(s) => s,
+        Inputs::File(world) => return write_world_ply(w, set, world),
+    };
     let o = set.observer;
     // The header is ASCII by the format's rules.
     writeln!(w, "ply")?;
@@ -466,23 +481,6 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
     Ok(())
 }
 
-/// The points of a scene file's world, as one format writes them: the same columns and encodings
-/// as the assignment's points, with colour codes 1..=8 (a straw's five bands, then a coin, a card
-/// and the picture on a card) and the scene file's text among the inputs.
-pub fn write_world_points(
-    path: &Path,
-    format: PointFormat,
-    world: &FileWorld,
-    min_points: usize,
-    cloud: &ImageCloud,
-) -> CliResult {
-    write_atomically(path, |w| match format {
-        PointFormat::Csv => write_csv(w, &cloud.points),
-        PointFormat::Json => write_world_json(w, world, min_points, cloud),
-        PointFormat::Ply => write_world_ply(w, world, min_points, cloud),
-    })
-}
-
 #[derive(Serialize)]
 struct JsonWorldInputs<'a> {
     scene_file: &'a str,
@@ -502,13 +500,10 @@ struct JsonWorldStats {
 }
 
 /// JSON of a world's points: the inputs (the scene as TOML, every value written out), the
-/// statistics and the eight colours, then one `[x, y, z, color]` array a line.
-fn write_world_json(
-    w: &mut dyn Write,
-    world: &FileWorld,
-    min_points: usize,
-    cloud: &ImageCloud,
-) -> io::Result<()> {
+/// statistics and the eight colours (codes 1..=8: a straw's five bands, a coin, a card, the
+/// picture on a card), then the points as the model's fields.
+fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io::Result<()> {
+    let (cloud, min_points) = (set.cloud, set.min_points);
     let counts = cloud.counts_per_code();
     let inputs = JsonWorldInputs {
         scene_file: &world.name,
@@ -538,39 +533,33 @@ fn write_world_json(
     writeln!(w, "{{")?;
     writeln!(w, "  \"schema\": \"bentstraw-image-points/1\",")?;
     writeln!(w, "  \"units\": \"m\",")?;
-    writeln!(w, "  \"image_model\": \"course\",")?;
+    writeln!(w, "  \"image_model\": {},", json(set.image_model()))?;
     writeln!(w, "  \"inputs\": {},", json(&inputs))?;
     writeln!(w, "  \"stats\": {},", json(&stats))?;
     writeln!(w, "  \"colors\": {},", json(&colors))?;
-    writeln!(w, "  \"point_fields\": [\"x\",\"y\",\"z\",\"color\"],")?;
+    writeln!(w, "  \"point_fields\": {},", json(set.model.fields()))?;
     writeln!(w, "  \"points\": [")?;
-    let n = cloud.points.len();
-    let mut digits = ryu::Buffer::new();
-    for (i, p) in cloud.points.iter().enumerate() {
+    let rows = set.rows();
+    let n = rows.len();
+    for (i, row) in rows.iter().enumerate() {
         let sep = if i + 1 < n { "," } else { "" };
-        write!(w, "    [")?;
-        for v in [p.position.x, p.position.y, p.position.z] {
-            write!(w, "{},", shortest(&mut digits, v))?;
-        }
-        writeln!(w, "{}]{sep}", p.color)?;
+        let cells: Vec<String> = row.iter().map(Value::json).collect();
+        writeln!(w, "    [{}]{sep}", cells.join(","))?;
     }
     writeln!(w, "  ]")?;
     writeln!(w, "}}")
 }
 
 /// PLY of a world's points: as [`write_ply`], the scene file named in a comment.
-fn write_world_ply(
-    w: &mut dyn Write,
-    world: &FileWorld,
-    min_points: usize,
-    cloud: &ImageCloud,
-) -> io::Result<()> {
+fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io::Result<()> {
+    let (cloud, min_points) = (set.cloud, set.min_points);
     let o = world.observer;
     writeln!(w, "ply")?;
     writeln!(w, "format binary_little_endian 1.0")?;
     writeln!(
         w,
-        "comment bentstraw: virtual image points (course model), metres"
+        "comment bentstraw: virtual image points ({} model), metres",
+        set.image_model()
     )?;
     writeln!(w, "comment observer {} {} {}", o.x, o.y, o.z)?;
     // A comment is one line of ASCII: the file's name with anything else replaced.
@@ -595,7 +584,8 @@ fn write_world_ply(
         .map(|(k, n)| format!("{} {n}", k + 1))
         .collect();
     writeln!(w, "comment color: code {}", legend.join(", "))?;
-    writeln!(w, "element vertex {}", cloud.points.len())?;
+    let points = set.placed_points();
+    writeln!(w, "element vertex {}", points.len())?;
     for axis in ["x", "y", "z"] {
         writeln!(w, "property double {axis}")?;
     }
@@ -604,7 +594,7 @@ fn write_world_ply(
     }
     writeln!(w, "end_header")?;
     let mut record = [0u8; 28];
-    for p in &cloud.points {
+    for p in &points {
         let q = p.position;
         record[0..8].copy_from_slice(&q.x.to_le_bytes());
         record[8..16].copy_from_slice(&q.y.to_le_bytes());
@@ -648,7 +638,7 @@ mod tests {
 
     fn set<'a>(scene: &'a Scene, cloud: &'a ImageCloud) -> PointSet<'a> {
         PointSet {
-            scene,
+            inputs: Inputs::Spec(scene),
             observer: Vec3::new(0.0, 0.1, 0.1),
             min_points: 3,
             model: ModelPoints::Course,

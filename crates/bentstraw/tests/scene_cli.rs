@@ -587,3 +587,86 @@ fn explore_starts_on_a_scene_file() {
     assert!(err.contains("a rectangular tank"), "{err}");
     assert!(out.stdout.is_empty());
 }
+
+/// The eye and stereo models and the gap plot work on any scene file: the columns of the
+/// models, a point for most image points, and the figure written.
+#[test]
+fn the_models_work_in_every_kind_of_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = gallery("coin-in-glass.toml");
+    for (model, first) in [("eye", "x,y,z,color,s_h,s_v"), ("stereo", "x,y,z,color")] {
+        let out = format!("{model}.csv");
+        succeeded(&run(
+            dir.path(),
+            &[
+                "simulate",
+                "--scene",
+                &file,
+                "--points",
+                "2000",
+                "--image-model",
+                model,
+                "--output",
+                &out,
+            ],
+        ));
+        let text = std::fs::read_to_string(dir.path().join(&out)).unwrap();
+        assert!(text.starts_with(first), "{model}: {}", &text[..80]);
+        let placed = text.lines().skip(1).filter(|l| !l.starts_with(',')).count();
+        assert!(placed > 1000, "{model}: {placed} points placed");
+    }
+    succeeded(&run(
+        dir.path(),
+        &[
+            "simulate",
+            "--scene",
+            &file,
+            "--points",
+            "2000",
+            "--output",
+            "p.json",
+            "--gap-plot",
+            "gap.svg",
+        ],
+    ));
+    let svg = std::fs::read_to_string(dir.path().join("gap.svg")).unwrap();
+    assert!(svg.contains("<svg"));
+    let json = std::fs::read_to_string(dir.path().join("p.json")).unwrap();
+    assert!(
+        json.contains("\"scene_file\"") && json.contains("\"coin\""),
+        "{}",
+        &json[..400]
+    );
+}
+
+/// `bench --scene` times a scene file of any kind: a line per case, then the averages.
+#[test]
+fn bench_times_any_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["real-glass.toml", "reversing-arrow.toml"] {
+        for extra in [&[][..], &["--frame"][..]] {
+            let mut args = vec![
+                "bench",
+                "--scene",
+                &gallery(name),
+                "--size",
+                "40x30",
+                "--repeat",
+                "1",
+                "--threads",
+                "1",
+            ]
+            .into_iter()
+            .map(String::from)
+            .collect::<Vec<_>>();
+            args.extend(extra.iter().map(|s| s.to_string()));
+            let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+            let out = run(dir.path(), &refs);
+            succeeded(&out);
+            let text = String::from_utf8(out.stdout).unwrap();
+            // A header, course and fresnel, the averages.
+            assert_eq!(text.lines().count(), 4, "{name} {extra:?}: {text}");
+            assert!(text.contains("Mrays/s"));
+        }
+    }
+}

@@ -20,7 +20,7 @@ use crate::model_plots::{
     ModelCloud, MODEL_NAMES,
 };
 use crate::scene_input::{AnyScene, FileWorld};
-use crate::writers::{write_points, write_world_points, ModelPoints, PointFormat, PointSet};
+use crate::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
 use crate::{html, plot, progress, ray_diagram};
 
 /// Most image points `simulate` traces with the course model: measured at about 220 bytes a point
@@ -129,7 +129,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 
     // 4. Write.
     let set = PointSet {
-        scene: &scene,
+        inputs: Inputs::Spec(&scene),
         observer,
         min_points: args.points,
         model,
@@ -188,58 +188,115 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     Ok(())
 }
 
-/// `simulate` on a scene file's world: the image points of every object, as CSV, JSON or PLY.
+/// `simulate` on a scene file's world: the image points of every object (course, eye or stereo
+/// model) as CSV, JSON or PLY, and the gap plot.
 fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
     let unsupported = [
         (args.plot.is_some(), "--plot"),
         (args.html.is_some(), "--html"),
         (args.rays.is_some(), "--rays"),
         (args.models_plot.is_some(), "--models-plot"),
-        (args.gap_plot.is_some(), "--gap-plot"),
-        (
-            args.image_model != ImageModelArg::Course,
-            "--image-model eye|stereo",
-        ),
     ];
     if let Some((_, flag)) = unsupported.iter().find(|(given, _)| *given) {
         return fail(format!(
             "{flag} is for scenes of the assignment's kind in this version; {} is another kind: \
-             simulate writes its image points (--output .csv, .json or .ply), render its picture",
+             simulate writes its image points (--output .csv, .json or .ply, any --image-model) \
+             and --gap-plot, render its picture",
             world.name
         ));
     }
-    if args.points > MAX_POINTS {
+    let both_models = args.gap_plot.is_some();
+    let most = if both_models || args.image_model != ImageModelArg::Course {
+        MAX_MODEL_POINTS
+    } else {
+        MAX_POINTS
+    };
+    if args.points > most {
         return fail(format!(
-            "--points {} is too many: at most {MAX_POINTS} image points, as each takes about 300 \
-             bytes of memory until the file is written",
+            "--points {} is too many for this model: at most {most} image points, as each takes \
+             memory until the files are written",
             args.points
         ));
     }
     let format = PointFormat::from_path(&args.output)?;
-    let outputs = OutputSet::reserve(&[Output {
+    let mut outputs = vec![Output {
         flag: "--output",
         path: &args.output,
         extensions: &[],
-    }])?;
+    }];
+    if let Some(path) = &args.gap_plot {
+        outputs.push(Output {
+            flag: "--gap-plot",
+            path,
+            extensions: plot::FIGURE_EXTENSIONS,
+        });
+    }
+    let outputs = OutputSet::reserve(&outputs)?;
     let started = Instant::now();
+    let (w, observer) = (&world.world, world.observer);
     let cloud = progress::with_progress(
         None,
         "{spinner} tracing rays: {human_pos} so far  [{elapsed}]",
-        |bar| {
-            sample_image_of(&world.world, world.observer, args.points, &|rays| {
-                bar.set_position(rays)
-            })
-        },
+        |bar| sample_image_of(w, observer, args.points, &|rays| bar.set_position(rays)),
     );
     let traced = started.elapsed();
-    write_world_points(&args.output, format, world, args.points, &cloud)?;
+    let modelled = Instant::now();
+    let eye = (both_models || args.image_model == ImageModelArg::Eye)
+        .then(|| with_spinner("eye model", || eye_model_points(w, observer, &cloud.points)));
+    let stereo = (both_models || args.image_model == ImageModelArg::Stereo)
+        .then(|| with_spinner("stereo model", || stereo_points(w, observer, &cloud.points)));
+    let model = match (args.image_model, &eye, &stereo) {
+        (ImageModelArg::Eye, Some(eye), _) => ModelPoints::Eye(eye),
+        (ImageModelArg::Stereo, _, Some(stereo)) => ModelPoints::Stereo(stereo),
+        _ => ModelPoints::Course,
+    };
+    let modelled = modelled.elapsed();
+    let set = PointSet {
+        inputs: Inputs::File(world),
+        observer,
+        min_points: args.points,
+        model,
+        cloud: &cloud,
+    };
+    write_points(&args.output, format, &set)?;
+    let mut written = vec![format!(
+        "{} ({} points)",
+        args.output.display(),
+        format.name()
+    )];
+    if let (Some(path), Some(eye), Some(stereo)) = (&args.gap_plot, &eye, &stereo) {
+        let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
+        let series = GapSeries::of_models(&eye_gaps, &stereo_gaps);
+        let title = format!(
+            "Gap from the course's point to the eye's and the stereo point: {}",
+            world.name
+        );
+        write_gap_plot(path, &series, &title)?;
+        written.push(format!("{} (gap to the course's points)", path.display()));
+    }
     outputs.commit()?;
-    let o = world.observer;
+    progress::tell(&summary(&set, traced, started.elapsed(), &written));
+    if !matches!(model, ModelPoints::Course) {
+        progress::tell(&model_summary(&set, modelled));
+    }
+    Ok(())
+}
+
+/// The one-screen summary of a scene file's world.
+fn world_summary(
+    set: &PointSet,
+    world: &FileWorld,
+    traced: Duration,
+    total: Duration,
+    written: &[String],
+) -> String {
+    let (o, cloud) = (set.observer, set.cloud);
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "bentstraw simulate: the virtual image of {} (course model)",
-        world.name
+        "bentstraw simulate: the virtual image of {} ({} model)",
+        world.name,
+        set.image_model()
     );
     let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
     let _ = writeln!(t, "  event limit     {}", world.world.max_events);
@@ -248,7 +305,7 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
         t,
         "  image points    {} (asked for at least {})",
         cloud.points.len(),
-        args.points
+        set.min_points
     );
     for (k, n) in cloud.counts_per_code().iter().enumerate() {
         if *n > 0 {
@@ -264,22 +321,21 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
         t,
         "  time            {:.3} s tracing, {:.3} s in all",
         traced.as_secs_f64(),
-        started.elapsed().as_secs_f64()
+        total.as_secs_f64()
     );
-    let _ = writeln!(
-        t,
-        "  wrote           {} ({} points)",
-        args.output.display(),
-        format.name()
-    );
-    if cloud.points.len() < args.points {
+    if let Some((first, rest)) = written.split_first() {
+        let _ = writeln!(t, "  wrote           {first}");
+        for w in rest {
+            let _ = writeln!(t, "                  {w}");
+        }
+    }
+    if cloud.points.len() < set.min_points {
         let _ = writeln!(
             t,
             "  note            fewer points than asked: the objects are all but invisible from here"
         );
     }
-    progress::tell(&t);
-    Ok(())
+    t
 }
 
 /// The model comparison and the gap plot, if asked for: the course's, the eye's and the stereo
@@ -290,7 +346,10 @@ fn write_model_figures(
     eye: &[ApparentPoint],
     stereo: &StereoImage,
 ) -> CliResult {
-    let inputs = simulation_title(set.scene, set.observer);
+    let Inputs::Spec(scene) = set.inputs else {
+        unreachable!("the model figures are drawn for the assignment's kind of scene only");
+    };
+    let inputs = simulation_title(scene, set.observer);
     if let Some(path) = &args.models_plot {
         let placed = [
             ModelPoints::Course,
@@ -304,7 +363,7 @@ fn write_model_figures(
             .map(|(name, points)| ModelCloud { name, points })
             .collect();
         let title = format!("Where the straw appears: {inputs}");
-        write_model_comparison(path, set.scene, set.observer, &clouds, &title)?;
+        write_model_comparison(path, scene, set.observer, &clouds, &title)?;
     }
     if let Some(path) = &args.gap_plot {
         let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
@@ -348,7 +407,11 @@ pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
 
 /// The one-screen summary printed on stderr; `written` names the files written, one a line.
 pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[String]) -> String {
-    let (s, o, cloud) = (set.scene, set.observer, set.cloud);
+    let (o, cloud) = (set.observer, set.cloud);
+    let s = match set.inputs {
+        Inputs::Spec(s) => s,
+        Inputs::File(world) => return world_summary(set, world, traced, total, written),
+    };
     let mut t = String::new();
     let _ = writeln!(
         t,

@@ -23,7 +23,7 @@ use crate::model_plots::{
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
 use crate::validation::{self, write_validation_figure, ValidationSeries};
-use crate::writers::{write_points, ModelPoints, PointFormat, PointSet};
+use crate::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
 use crate::{html, pictures, plot, progress};
 
 /// Most image points per simulation: the table traces twelve, and runs the eye and stereo models
@@ -236,7 +236,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
 
     let t1 = Instant::now();
     let set = PointSet {
-        scene,
+        inputs: Inputs::Spec(scene),
         observer,
         min_points: points,
         model: ModelPoints::Course,
@@ -543,7 +543,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         ModelPoints::Stereo(&stereo),
     ] {
         let set = PointSet {
-            scene,
+            inputs: Inputs::Spec(scene),
             observer,
             min_points: cloud.points.len(),
             model,

@@ -22,7 +22,7 @@ use serde_json::{json, Value};
 use crate::cli::{parse_size, parse_vec2, parse_vec3, CameraArgs, SceneArgs};
 use crate::commands::render::{camera_from_args, MAX_SAMPLES};
 use crate::pictures::png_bytes;
-use crate::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
+use crate::writers::{write_csv, write_model_csv, write_ply, Inputs, ModelPoints, PointSet};
 
 /// Most image points one request may ask for (a million take about half a second).
 pub const MAX_POINTS: usize = 1_000_000;
@@ -638,7 +638,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
         _ => ModelPoints::Course,
     };
     let set = PointSet {
-        scene: &view.scene,
+        inputs: Inputs::Spec(&view.scene),
         observer: view.observer,
         min_points: points,
         model: set_model,
