@@ -8,6 +8,7 @@ mod commands;
 mod error;
 mod explore;
 mod files;
+mod gallery;
 mod html;
 mod model_plots;
 mod pictures;
@@ -16,6 +17,7 @@ mod progress;
 mod ray_diagram;
 mod report;
 mod scene_input;
+mod sketch;
 mod validation;
 mod writers;
 

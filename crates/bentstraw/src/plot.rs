@@ -16,8 +16,9 @@ use std::sync::Once;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{
     Scene, GLASS_HEIGHT, GLASS_RADIUS, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES,
-    SECTION_RGB, STRAW_HEIGHT, STRAW_RADIUS,
+    STRAW_HEIGHT, STRAW_RADIUS,
 };
+use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use image::ImageEncoder;
 use plotters::prelude::*;
@@ -87,14 +88,52 @@ impl AxisBox {
     }
 }
 
-/// The axis box of a figure: tight around glass, straw and points, with a margin; the observer is
-/// included unless that would make the box more than [`FAR_OBSERVER_FACTOR`] times larger.
-pub(crate) fn axis_box(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> AxisBox {
-    let mut lo = Vec3::new(-GLASS_RADIUS, -GLASS_RADIUS, 0.0);
-    let mut hi = Vec3::new(GLASS_RADIUS, GLASS_RADIUS, GLASS_HEIGHT);
-    let straw = Vec3::new(scene.straw_x, scene.straw_y, 0.0);
-    lo = lo.min(straw - Vec3::new(STRAW_RADIUS, STRAW_RADIUS, 0.0));
-    hi = hi.max(straw + Vec3::new(STRAW_RADIUS, STRAW_RADIUS, STRAW_HEIGHT));
+/// What a figure draws of the scene besides the points: the assignment's glass and straw, or a
+/// scene file's container, liquids and objects.
+#[derive(Clone, Copy, Debug)]
+pub enum Sketch<'a> {
+    /// The assignment's kind of scene.
+    Spec(&'a Scene),
+    /// A scene file's world.
+    World(&'a World),
+}
+
+impl<'a> From<&'a Scene> for Sketch<'a> {
+    fn from(scene: &'a Scene) -> Self {
+        Sketch::Spec(scene)
+    }
+}
+
+impl<'a> From<&'a World> for Sketch<'a> {
+    fn from(world: &'a World) -> Self {
+        Sketch::World(world)
+    }
+}
+
+/// The axis box of a figure: tight around the scene (glass and straw, or a world's container and
+/// objects) and the points, with a margin; the observer is included unless that would make the
+/// box more than [`FAR_OBSERVER_FACTOR`] times larger.
+pub(crate) fn axis_box<'a>(
+    scene: impl Into<Sketch<'a>>,
+    observer: Vec3,
+    points: &[ImagePoint],
+) -> AxisBox {
+    let (mut lo, mut hi, centre) = match scene.into() {
+        Sketch::Spec(scene) => {
+            let lo = Vec3::new(-GLASS_RADIUS, -GLASS_RADIUS, 0.0);
+            let hi = Vec3::new(GLASS_RADIUS, GLASS_RADIUS, GLASS_HEIGHT);
+            let straw = Vec3::new(scene.straw_x, scene.straw_y, 0.0);
+            (
+                lo.min(straw - Vec3::new(STRAW_RADIUS, STRAW_RADIUS, 0.0)),
+                hi.max(straw + Vec3::new(STRAW_RADIUS, STRAW_RADIUS, STRAW_HEIGHT)),
+                SCENE_CENTRE,
+            )
+        }
+        Sketch::World(world) => {
+            let (lo, hi) = world.bounds();
+            (lo, hi, 0.5 * (lo + hi))
+        }
+    };
     for p in points {
         if p.position.is_finite() {
             lo = lo.min(p.position);
@@ -110,7 +149,7 @@ pub(crate) fn axis_box(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> 
         hi = with_hi;
     } else {
         // Widen the box a little towards the observer and put an arrow pointing to it there.
-        let c = SCENE_CENTRE;
+        let c = centre;
         let d = (observer - c).normalize();
         let exit = (0..3)
             .filter(|&a| d[a].abs() > 1e-12)
@@ -377,9 +416,10 @@ pub(crate) fn rgb(c: (u8, u8, u8)) -> RGBColor {
     RGBColor(c.0, c.1, c.2)
 }
 
-/// The display colour of section code `code` (1..=5), as 8-bit RGB.
+/// The display colour of colour code `code` (1..=5 a straw's sections, 6..=8 a coin, a card and
+/// its picture), as 8-bit RGB.
 pub(crate) fn section_rgb8(code: u8) -> [u8; 3] {
-    let c = SECTION_RGB[(code.clamp(1, SECTION_COUNT as u8) - 1) as usize];
+    let c = COLOR_RGB[(code.clamp(1, COLOR_COUNT as u8) - 1) as usize];
     [
         (c[0] * 255.0).round() as u8,
         (c[1] * 255.0).round() as u8,
@@ -529,9 +569,9 @@ pub(crate) fn three_view_size(heading: &Heading) -> (u32, u32) {
 
 /// Draws the classic three-view figure of `points` seen from `observer` into `path`: PNG, SVG or
 /// PDF by its extension.
-pub fn write_cloud_figure(
+pub fn write_cloud_figure<'a>(
     path: &Path,
-    scene: &Scene,
+    scene: impl Into<Sketch<'a>>,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
@@ -541,14 +581,15 @@ pub fn write_cloud_figure(
 }
 
 /// The classic figure as the bytes of its file (format by `path`'s extension).
-pub(crate) fn render_cloud_figure(
+pub(crate) fn render_cloud_figure<'a>(
     path: &Path,
-    scene: &Scene,
+    scene: impl Into<Sketch<'a>>,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
 ) -> CliResult<Vec<u8>> {
     register_font();
+    let scene = scene.into();
     let heading = cloud_heading(observer, points.len(), title);
     let size = three_view_size(&heading);
     figure_bytes(
@@ -577,7 +618,7 @@ pub(crate) fn cloud_heading(observer: Vec3, n: usize, title: &str) -> Heading {
 /// The classic figure on any backend.
 fn draw_cloud_figure<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: &Scene,
+    scene: Sketch,
     observer: Vec3,
     points: &[ImagePoint],
     heading: &Heading,
@@ -599,16 +640,35 @@ fn draw_cloud_figure<DB: DrawingBackend>(
         draw_axis_labels(root, p, &bx).map_err(e)?;
         draw_observer(root, p, &bx, observer, &dots).map_err(e)?;
     }
-    let n = counts(points);
-    let mut items: Vec<(LegendMark, String)> =
-        vec![(LegendMark::None, "image points by section:".to_string())];
-    items.extend((0..SECTION_COUNT).map(|k| {
-        (
-            LegendMark::Swatch(section_rgb8(k as u8 + 1)),
-            format!("{} {}: {}", k + 1, SECTION_NAMES[k], n[k]),
-        )
-    }));
-    items.extend(common_legend(bx.observer_inside));
+    let mut items: Vec<(LegendMark, String)>;
+    if let Sketch::Spec(_) = scene {
+        let n = counts(points);
+        items = vec![(LegendMark::None, "image points by section:".to_string())];
+        items.extend((0..SECTION_COUNT).map(|k| {
+            (
+                LegendMark::Swatch(section_rgb8(k as u8 + 1)),
+                format!("{} {}: {}", k + 1, SECTION_NAMES[k], n[k]),
+            )
+        }));
+        items.extend(common_legend(bx.observer_inside));
+    } else {
+        // The codes the points have: a straw's bands, coins, cards, pictures.
+        let mut n = [0usize; COLOR_COUNT];
+        for p in points {
+            n[p.color as usize - 1] += 1;
+        }
+        items = vec![(LegendMark::None, "image points by colour:".to_string())];
+        items.extend((0..COLOR_COUNT).filter(|&k| n[k] > 0).map(|k| {
+            (
+                LegendMark::Swatch(COLOR_RGB[k].map(|c| (c * 255.0).round() as u8)),
+                format!("{} {}: {}", k + 1, COLOR_NAMES[k], n[k]),
+            )
+        }));
+        let mut common = common_legend(bx.observer_inside);
+        common[1].1 = "container and liquids (wireframe)".to_string();
+        common[2].1 = "objects, true outlines".to_string();
+        items.extend(common);
+    }
     draw_legend_cell(root, legend_cell(heading.height()), &items).map_err(e)?;
     Ok(())
 }
@@ -1050,19 +1110,29 @@ fn tick_pixel(panel: &Panel, a: usize, v: f64) -> f64 {
 }
 
 /// The water's wireframe segments on the near (`front`) or far side of the glass's axis.
-pub(crate) fn draw_water<DB: DrawingBackend>(
+pub(crate) fn draw_water<'a, DB: DrawingBackend>(
     root: &AreaOn<DB>,
     proj: &Projection,
-    scene: &Scene,
+    scene: impl Into<Sketch<'a>>,
     front: bool,
 ) -> DrawResultOn<DB> {
-    let axis_depth = proj.nearness(Vec3::new(0.0, 0.0, scene.water_height / 2.0));
+    let (axis, segments) = match scene.into() {
+        Sketch::Spec(scene) => (
+            Vec3::new(0.0, 0.0, scene.water_height / 2.0),
+            water_segments(scene),
+        ),
+        Sketch::World(world) => {
+            let (lo, hi) = world.bounds();
+            (0.5 * (lo + hi), crate::sketch::world_wireframe(world))
+        }
+    };
+    let axis_depth = proj.nearness(axis);
     let color = if front {
         rgb(WATER_RGB).mix(0.75)
     } else {
         rgb(WATER_RGB).mix(0.45)
     };
-    for [a, b] in water_segments(scene) {
+    for [a, b] in segments {
         let mid = 0.5 * (a + b);
         if (proj.nearness(mid) > axis_depth) == front {
             root.draw(&PathElement::new(vec![proj.at(a), proj.at(b)], color))?;
@@ -1072,12 +1142,22 @@ pub(crate) fn draw_water<DB: DrawingBackend>(
 }
 
 /// The straw's true outline, dashed: its section boundaries and its two silhouette lines.
-pub(crate) fn draw_straw_outline<DB: DrawingBackend>(
+pub(crate) fn draw_straw_outline<'a, DB: DrawingBackend>(
     root: &AreaOn<DB>,
     proj: &Projection,
-    scene: &Scene,
+    scene: impl Into<Sketch<'a>>,
 ) -> DrawResultOn<DB> {
     let color = rgb(STRAW_OUTLINE_RGB);
+    let scene = match scene.into() {
+        Sketch::Spec(scene) => scene,
+        Sketch::World(world) => {
+            for line in crate::sketch::object_outlines(world) {
+                let px: Vec<(f64, f64)> = line.iter().map(|&p| proj.pixel(p)).collect();
+                dashed(root, &px, color)?;
+            }
+            return Ok(());
+        }
+    };
     for k in 0..=SECTION_COUNT {
         let c = circle(
             scene.straw_x,

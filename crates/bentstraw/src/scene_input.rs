@@ -242,6 +242,23 @@ impl SceneSource {
     }
 }
 
+/// The world of a scene file's text named `name`, seen from its own `[observer]`, with the
+/// default event limit (for the built-in gallery).
+pub fn file_world(name: &str, text: &str) -> CliResult<FileWorld> {
+    let description =
+        SceneDescription::from_toml(text).map_err(|e| CliError(format!("{name}: {e}")))?;
+    let Some(observer) = description.observer else {
+        return fail(format!("{name} has no [observer]"));
+    };
+    Ok(FileWorld {
+        name: name.to_string(),
+        world: World::new(&description, bentstraw_optics::scene::DEFAULT_MAX_EVENTS),
+        description,
+        observer: observer.position,
+        target: Some(observer.target),
+    })
+}
+
 /// Reads and checks the scene file at `path`; every refusal names the file.
 pub fn read_scene_file(path: &Path) -> CliResult<SceneDescription> {
     let name = shown(path);

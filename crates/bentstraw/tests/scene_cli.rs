@@ -302,10 +302,10 @@ fn a_scene_check_cannot_trace_yet_is_refused_honestly() {
             &gallery("oil-on-water.toml"),
             "--output",
             "new.csv",
-            "--plot",
-            "new.png",
+            "--html",
+            "new.html",
         ],
-        &["--plot", "oil-on-water.toml", ".csv, .json or .ply"],
+        &["--html", "oil-on-water.toml", ".csv, .json or .ply"],
     );
 }
 

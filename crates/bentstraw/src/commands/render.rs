@@ -193,25 +193,7 @@ fn shading_and_outputs(args: &RenderArgs) -> CliResult<(ShadingOptions, OutputSe
 
 /// `render` of a scene file's world: the picture traced in double precision, and the raw rays.
 fn run_world(args: &RenderArgs, world: &FileWorld, start: Instant) -> CliResult {
-    let camera_args = CameraArgs {
-        target: args.camera.target.or(world.target.map(|t| t.to_array())),
-        ..args.camera.clone()
-    };
-    // Aimed at the file's target, else the middle of the scene; framing the whole scene.
-    let (lo, hi) = world.world.bounds();
-    let target = camera_args.target.unwrap_or((0.5 * (lo + hi)).to_array());
-    let mut camera = camera_from_args(
-        &CameraArgs {
-            target: Some(target),
-            ..camera_args.clone()
-        },
-        world.observer,
-    )?;
-    if camera_args.fov.is_none() {
-        let aspect = camera.width as f64 / camera.height as f64;
-        let fov = framing_fov_box(world.observer, Vec3::from_array(target), (lo, hi), aspect);
-        camera.tan_half_fov = (fov / 2.0).tan();
-    }
+    let camera = world_camera(world, &args.camera)?;
     let (options, outputs) = shading_and_outputs(args)?;
     let picture = progress::with_progress(None, "{spinner} rendering  [{elapsed}]", |_| {
         world_picture(&world.world, &camera, &options)
@@ -255,6 +237,29 @@ fn run_world(args: &RenderArgs, world: &FileWorld, start: Instant) -> CliResult 
     outputs.commit()?;
     tell_rendered(args, &camera, start);
     Ok(())
+}
+
+/// The camera of `camera_args` for a scene file's world: aimed at `--target`, else the file's
+/// target, else the middle of the scene; framing the whole scene unless `--fov` is given.
+pub fn world_camera(world: &FileWorld, camera_args: &CameraArgs) -> CliResult<Camera> {
+    let (lo, hi) = world.world.bounds();
+    let target = camera_args
+        .target
+        .or(world.target.map(|t| t.to_array()))
+        .unwrap_or((0.5 * (lo + hi)).to_array());
+    let mut camera = camera_from_args(
+        &CameraArgs {
+            target: Some(target),
+            ..camera_args.clone()
+        },
+        world.observer,
+    )?;
+    if camera_args.fov.is_none() {
+        let aspect = camera.width as f64 / camera.height as f64;
+        let fov = framing_fov_box(world.observer, Vec3::from_array(target), (lo, hi), aspect);
+        camera.tan_half_fov = (fov / 2.0).tan();
+    }
+    Ok(camera)
 }
 
 /// The one line `render` says when done.

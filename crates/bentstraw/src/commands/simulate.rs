@@ -192,7 +192,6 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 /// model) as CSV, JSON or PLY, and the gap plot.
 fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
     let unsupported = [
-        (args.plot.is_some(), "--plot"),
         (args.html.is_some(), "--html"),
         (args.rays.is_some(), "--rays"),
         (args.models_plot.is_some(), "--models-plot"),
@@ -200,8 +199,8 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
     if let Some((_, flag)) = unsupported.iter().find(|(given, _)| *given) {
         return fail(format!(
             "{flag} is for scenes of the assignment's kind in this version; {} is another kind: \
-             simulate writes its image points (--output .csv, .json or .ply, any --image-model) \
-             and --gap-plot, render its picture",
+             simulate writes its image points (--output .csv, .json or .ply, any --image-model), \
+             --plot and --gap-plot, render its picture",
             world.name
         ));
     }
@@ -224,12 +223,14 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
         path: &args.output,
         extensions: &[],
     }];
-    if let Some(path) = &args.gap_plot {
-        outputs.push(Output {
-            flag: "--gap-plot",
-            path,
-            extensions: plot::FIGURE_EXTENSIONS,
-        });
+    for (flag, path) in [("--plot", &args.plot), ("--gap-plot", &args.gap_plot)] {
+        if let Some(path) = path {
+            outputs.push(Output {
+                flag,
+                path,
+                extensions: plot::FIGURE_EXTENSIONS,
+            });
+        }
     }
     let outputs = OutputSet::reserve(&outputs)?;
     let started = Instant::now();
@@ -264,6 +265,18 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
         args.output.display(),
         format.name()
     )];
+    if let Some(path) = &args.plot {
+        let title = format!(
+            "{}: observer ({}, {}, {}) m ({} model)",
+            world.name,
+            observer.x,
+            observer.y,
+            observer.z,
+            model.name()
+        );
+        plot::write_cloud_figure(path, &world.world, observer, &set.placed_points(), &title)?;
+        written.push(format!("{} (figure, three views)", path.display()));
+    }
     if let (Some(path), Some(eye), Some(stereo)) = (&args.gap_plot, &eye, &stereo) {
         let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
         let series = GapSeries::of_models(&eye_gaps, &stereo_gaps);

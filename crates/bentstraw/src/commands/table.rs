@@ -16,6 +16,7 @@ use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
 use crate::files::{self, Output, OutputSet};
+use crate::gallery::{gallery_files, gallery_sections};
 use crate::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
@@ -131,6 +132,7 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
         .iter()
         .flat_map(|job| job.outputs())
         .chain(INTRO_FILES.iter().map(|f| f.to_string()))
+        .chain(gallery_files())
         .chain([VALIDATION_FILE.to_string(), REPORT_FILE.to_string()])
         .map(|name| out.join(name))
         .collect();
@@ -160,7 +162,8 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
         },
     );
     let intro = intro_sections(out, args.points);
-    let closing = closing_sections(out);
+    let mut closing = gallery_sections(out);
+    closing.extend(closing_sections(out));
     let elapsed = started.elapsed();
 
     let report = Report {

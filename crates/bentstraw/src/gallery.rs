@@ -1,0 +1,179 @@
+//! The gallery of classic demonstrations, built into the program, and its part of the report:
+//! for each scene file its picture and its image points.
+
+use std::path::Path;
+
+use bentstraw_optics::sampling::sample_image_of;
+use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
+use bentstraw_optics::world::picture::world_picture;
+use rayon::prelude::*;
+
+use crate::cli::CameraArgs;
+use crate::commands::render::world_camera;
+use crate::error::CliResult;
+use crate::pictures::png_bytes;
+use crate::report::{Figure, Link, Section};
+use crate::scene_input::{file_world, FileWorld};
+use crate::{files, plot};
+
+/// The gallery's scene files beyond the assignment's own (`scenes/`): name and text.
+pub const GALLERY: [(&str, &str); 6] = [
+    (
+        "leaning-straw",
+        include_str!("../../../scenes/leaning-straw.toml"),
+    ),
+    (
+        "real-glass",
+        include_str!("../../../scenes/real-glass.toml"),
+    ),
+    (
+        "oil-on-water",
+        include_str!("../../../scenes/oil-on-water.toml"),
+    ),
+    (
+        "tank-pencil",
+        include_str!("../../../scenes/tank-pencil.toml"),
+    ),
+    (
+        "coin-in-glass",
+        include_str!("../../../scenes/coin-in-glass.toml"),
+    ),
+    (
+        "reversing-arrow",
+        include_str!("../../../scenes/reversing-arrow.toml"),
+    ),
+];
+
+/// Image points per gallery scene in the report.
+const GALLERY_POINTS: usize = 20_000;
+
+/// The files the gallery writes into the report's folder.
+pub fn gallery_files() -> Vec<String> {
+    GALLERY
+        .iter()
+        .flat_map(|(stem, _)| {
+            [
+                format!("gallery_{stem}.png"),
+                format!("gallery_{stem}_points.png"),
+                format!("gallery_{stem}_points.svg"),
+            ]
+        })
+        .collect()
+}
+
+/// What a scene file says it shows: its opening comment, as one paragraph.
+pub fn opening_comment(text: &str) -> String {
+    text.lines()
+        .take_while(|l| l.starts_with('#'))
+        .map(|l| l.trim_start_matches('#').trim())
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The report's sections of the gallery, one per scene, its files written into `out`.
+pub fn gallery_sections(out: &Path) -> Vec<Section> {
+    GALLERY
+        .par_iter()
+        .map(
+            |(stem, text)| match file_world(&format!("scenes/{stem}.toml"), text) {
+                Ok(world) => scene_section(out, stem, text, &world),
+                Err(e) => Section {
+                    title: format!("Gallery: {stem}"),
+                    figures: vec![Figure {
+                        error: Some(e.0),
+                        ..Figure::image(&format!("gallery_{stem}.png"), "")
+                    }],
+                    notes: vec![],
+                    side_by_side: false,
+                    table: vec![],
+                },
+            },
+        )
+        .collect()
+}
+
+/// The section of one gallery scene: its picture and its image points.
+fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Section {
+    let picture_file = format!("gallery_{stem}.png");
+    let points_file = format!("gallery_{stem}_points.png");
+    let svg_file = format!("gallery_{stem}_points.svg");
+    let mut picture = Figure::image(
+        &picture_file,
+        &format!(
+            "What the eye sees (bentstraw render --scene scenes/{stem}.toml): Fresnel reflection \
+             and refraction at every surface, the checkerboard behind."
+        ),
+    );
+    picture.error = write_picture(&out.join(&picture_file), world)
+        .err()
+        .map(|e| e.0);
+    let cloud = sample_image_of(&world.world, world.observer, GALLERY_POINTS, &|_| {});
+    let title = format!("{}: the image points (course model)", world.name);
+    let mut points = Figure::image(
+        &points_file,
+        &format!(
+            "Where each piece appears (bentstraw simulate --scene scenes/{stem}.toml --plot \
+             points.png): {} image points P = O + L·u0, the container and liquids as a \
+             wireframe, the objects' true outlines dashed.",
+            cloud.points.len()
+        ),
+    );
+    let draw = |file: &str| {
+        plot::write_cloud_figure(
+            &out.join(file),
+            &world.world,
+            world.observer,
+            &cloud.points,
+            &title,
+        )
+    };
+    points.error = draw(&points_file).err().map(|e| e.0);
+    points.links.push(Link::new(
+        &svg_file,
+        "figure as SVG",
+        draw(&svg_file).err().map(|e| e.0),
+    ));
+    Section {
+        title: format!("Gallery: {}", stem.replace('-', " ")),
+        figures: vec![picture, points],
+        notes: vec![opening_comment(text)],
+        side_by_side: true,
+        table: vec![],
+    }
+}
+
+/// The scene's picture from its own observer, 1000x750, Fresnel, as a PNG.
+fn write_picture(path: &Path, world: &FileWorld) -> CliResult {
+    let camera = world_camera(
+        world,
+        &CameraArgs {
+            target: None,
+            fov: None,
+            size: Some((1000, 750)),
+        },
+    )?;
+    let options = ShadingOptions {
+        mode: ShadingMode::Fresnel { prune_below: 1e-4 },
+        backdrop: Backdrop::Checker,
+        samples: 3,
+        outline: false,
+    };
+    files::write_bytes(
+        path,
+        &png_bytes(&world_picture(&world.world, &camera, &options))?,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_gallery_scene_is_valid_and_says_what_it_shows() {
+        for (stem, text) in GALLERY {
+            let world = file_world(stem, text).unwrap();
+            assert!(!world.world.objects().is_empty(), "{stem}");
+            assert!(opening_comment(text).len() > 60, "{stem}");
+        }
+    }
+}
