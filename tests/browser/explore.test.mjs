@@ -178,6 +178,51 @@ test("clicking a point of the cloud shows its path with simulate's numbers", asy
   await context.close();
 });
 
+test("the scene chooser shows a gallery scene whose points and paths are simulate's", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  await page.waitForFunction(() => Number(document.body.dataset.scenes || 0) >= 6);
+  const frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.selectOption("#scene", "reversing-arrow");
+  await waitReady(page, frames);
+  assert.match(page.url(), /scene=reversing-arrow/);
+  // The points are simulate's for the same scene file and eye, codes 7 (card) and 8 (arrow).
+  const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-"));
+  const csv = path.join(dir, "arrow.csv");
+  const r = await runCli(["simulate", "--scene", path.join(ROOT, "scenes/reversing-arrow.toml"), "--points", "20000", "--output", csv]);
+  assert.equal(r.code, 0, r.stderr);
+  const rows = csvRows(readFileSync(csv, "utf8"));
+  const pts = await page.evaluate(() => ({ xyz: Array.from(window.bentstraw.frame.xyz), color: Array.from(window.bentstraw.frame.color) }));
+  assert.equal(pts.color.length, rows.length);
+  rows.forEach(([x, y, z, c], i) => {
+    assert.equal(pts.color[i], c);
+    assert.deepEqual(pts.xyz.slice(3 * i, 3 * i + 3), [Math.fround(x), Math.fround(y), Math.fround(z)]);
+  });
+  assert.ok(pts.color.includes(8) && pts.color.includes(7));
+  // A point of the arrow seen through the water: its path length and image point are the file's.
+  const k = rows.findIndex(([, , , c]) => c === 8);
+  await page.evaluate((i) => window.bentstraw.pickPoint(i), k);
+  await page.waitForFunction(() => window.bentstraw.path !== null);
+  const p = await page.evaluate(() => window.bentstraw.path);
+  assert.equal(p.color, 8);
+  assert.equal(p.color_name, "arrow");
+  const [x, y, z] = rows[k];
+  const o = [0.3, 0, 0.1];
+  assert.ok(Math.abs(p.path_length - Math.hypot(x - o[0], y - o[1], z - o[2])) < 1e-12, `${p.path_length}`);
+  p.image_point.forEach((v, i) => assert.ok(Math.abs(v - [x, y, z][i]) < 1e-12));
+  // The water's sliders belong to the assignment's glass: off for a gallery scene.
+  assert.equal(await page.locator("#he").isDisabled(), true);
+  await page.screenshot({ path: path.join(ROOT, "docs/explorer-gallery.png") });
+  // Back to the glass: the sliders are live again.
+  const f2 = await page.evaluate(() => window.bentstraw.frames);
+  await page.selectOption("#scene", "");
+  await waitReady(page, f2);
+  assert.equal(await page.locator("#he").isDisabled(), false);
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("a copied link reproduces the state in a fresh page", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url + "#observer=0.12,0.05,0.14&straw=0.01,-0.01&water-height=0.12&n-water=1.5&mode=course&color=path&models=course,eye&view=20,10,1.5");

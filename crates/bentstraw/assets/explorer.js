@@ -4,8 +4,9 @@
 
 // ---- the scene's fixed sizes (the glass and the straw), for drawing outlines only ----
 const GLASS_R = 0.04, GLASS_H = 0.20, STRAW_R = 0.005, STRAW_H = 0.25;
-const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff"];
-const SECTION_NAMES = ["red", "orange", "magenta", "green", "blue"];
+// Colour codes 1..5 a straw's sections; in the gallery's scenes also 6 a coin, 7 a card, 8 its arrow.
+const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff", "#c79938", "#edebe0", "#1f1f24"];
+const SECTION_NAMES = ["red", "orange", "magenta", "green", "blue", "coin", "card", "arrow"];
 // Colours of the kinds of light path, in the server's order of kinds (direct, top, wall, bottom…).
 const PATH_COLORS = ["#222222", "#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
 // Quick frames (while dragging) have this many times fewer pixels along each side, and this many
@@ -30,6 +31,7 @@ const PRESETS = [
 
 // ---- state: everything the address holds ----
 const state = {
+  scene: "", // "" the assignment's glass, else a scene of the gallery (scenes/NAME.toml)
   observer: [0.1, 0, 0.1], straw: [0.02, 0.01], he: 0.15, n: 1.333, events: 10, points: 20000,
   mode: "fresnel", backdrop: "checker", color: "section", models: ["course"],
   view: [-35, 22, 1], pick: "",
@@ -41,6 +43,7 @@ function num(x) { return String(Math.round(x * 1e7) / 1e7); }
 /** The server's query for the state (names as the command line's flags). */
 function viewQuery(s, extra) {
   const p = new URLSearchParams();
+  if (s.scene) p.set("scene", s.scene);
   p.set("observer", s.observer.map(num).join(","));
   p.set("straw", s.straw.map(num).join(","));
   p.set("water-height", num(s.he));
@@ -67,6 +70,7 @@ function stateHash(s) {
 function readParams(text, s) {
   const p = new URLSearchParams(text.replace(/^[#?]/, ""));
   const list = (v) => v.split(",").map(Number);
+  s.scene = p.get("scene") || "";
   if (p.has("observer")) s.observer = list(p.get("observer"));
   if (p.has("straw")) s.straw = list(p.get("straw"));
   if (p.has("water-height")) s.he = Number(p.get("water-height"));
@@ -161,7 +165,10 @@ function changed(options) {
   history.replaceState(null, "", stateHash(state));
   syncControls();
   drawMaps();
-  if (!(options && options.keepPath)) { path = null; state.pick = ""; }
+  if (!(options && options.keepPath)) {
+    path = null; state.pick = "";
+    $("readout").innerHTML = '<p class="hint">Click the picture or a point of the cloud.</p>';
+  }
   // The models' points belong to the previous view: they come back with the full frame.
   models = { eye: null, stereo: null };
   requestFrame(true);
@@ -274,6 +281,7 @@ function showError(text) {
 // ---- painting ----
 function paintAll() {
   drawPicture();
+  drawMaps();
   drawCloud();
   drawLegend();
   const h = frame.header;
@@ -306,12 +314,31 @@ function cloudProjection(w, h) {
   const right = [-Math.sin(a), Math.cos(a), 0];
   const up = [-Math.sin(e) * Math.cos(a), -Math.sin(e) * Math.sin(a), Math.cos(e)];
   const toward = [Math.cos(e) * Math.cos(a), Math.cos(e) * Math.sin(a), Math.sin(e)];
-  const centre = [0, 0, 0.125];
-  const k = zoom * Math.min(w, h) / 0.36;
+  const box = sceneBox();
+  const centre = box.centre;
+  const k = zoom * Math.min(w, h) / box.size;
   return {
     toward,
     p(q) { const d = sub(q, centre); return [w / 2 + k * dot(d, right), h / 2 - k * dot(d, up)]; },
   };
+}
+
+/** The middle and size of what the views show: the glass and straw, or a gallery scene's box. */
+function sceneBox() {
+  const b = state.scene && frame && frame.header.scene ? frame.header.scene.bounds : null;
+  if (!b) return { centre: [0, 0, 0.125], size: 0.36 };
+  return { centre: [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2], size: 1.3 * Math.max(b[3] - b[0], b[4] - b[1], b[5] - b[2]) };
+}
+
+/** A gallery scene's wireframe (pairs of points) and outlines (polylines), from the frame. */
+function sceneLines() {
+  const sc = state.scene && frame && frame.header.scene;
+  if (!sc) return null;
+  const pt = (a, i) => [a[i], a[i + 1], a[i + 2]];
+  const wire = [];
+  for (let i = 0; i + 5 < sc.wireframe.length; i += 6) wire.push([pt(sc.wireframe, i), pt(sc.wireframe, i + 3)]);
+  const outlines = sc.outlines.map((l) => Array.from({ length: l.length / 3 }, (_, i) => pt(l, 3 * i)));
+  return { wire, outlines };
 }
 
 let layer = null, layerPixels = null;
@@ -331,16 +358,23 @@ function drawCloud() {
     ctx.strokeStyle = style; ctx.lineWidth = width || 1; ctx.setLineDash(dash || []); ctx.stroke(); ctx.setLineDash([]);
   };
   const circle = (cx, cy, r, z) => Array.from({ length: 73 }, (_, i) => [cx + r * Math.cos(i * Math.PI / 36), cy + r * Math.sin(i * Math.PI / 36), z]);
-  // The water's wireframe, the glass's rim, the straw's true outline.
-  for (const z of [0, state.he]) line(circle(0, 0, GLASS_R, z), "#4a7fc1", 1);
-  line(circle(0, 0, GLASS_R, GLASS_H), "#b8c2d3", 1, [3, 3]);
-  for (let i = 0; i < 30; i++) {
-    const a = i * Math.PI / 15;
-    line([[GLASS_R * Math.cos(a), GLASS_R * Math.sin(a), 0], [GLASS_R * Math.cos(a), GLASS_R * Math.sin(a), state.he]], "rgba(74,127,193,0.35)", 1);
+  const lines = sceneLines();
+  if (lines) {
+    // A gallery scene: its container's and liquids' wireframe, its objects' true outlines.
+    for (const seg of lines.wire) line(seg, "rgba(74,127,193,0.6)", 1);
+    for (const l of lines.outlines) line(l, "#888", 1, [2, 3]);
+  } else {
+    // The water's wireframe, the glass's rim, the straw's true outline.
+    for (const z of [0, state.he]) line(circle(0, 0, GLASS_R, z), "#4a7fc1", 1);
+    line(circle(0, 0, GLASS_R, GLASS_H), "#b8c2d3", 1, [3, 3]);
+    for (let i = 0; i < 30; i++) {
+      const a = i * Math.PI / 15;
+      line([[GLASS_R * Math.cos(a), GLASS_R * Math.sin(a), 0], [GLASS_R * Math.cos(a), GLASS_R * Math.sin(a), state.he]], "rgba(74,127,193,0.35)", 1);
+    }
+    const [sx, sy] = state.straw;
+    for (let z = 0; z <= STRAW_H + 1e-9; z += 0.05) line(circle(sx, sy, STRAW_R, z), "#888", 1, [2, 3]);
+    for (const a of [0, Math.PI / 2, Math.PI, 1.5 * Math.PI]) line([[sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), 0], [sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), STRAW_H]], "#888", 1, [2, 3]);
   }
-  const [sx, sy] = state.straw;
-  for (let z = 0; z <= STRAW_H + 1e-9; z += 0.05) line(circle(sx, sy, STRAW_R, z), "#888", 1, [2, 3]);
-  for (const a of [0, Math.PI / 2, Math.PI, 1.5 * Math.PI]) line([[sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), 0], [sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), STRAW_H]], "#888", 1, [2, 3]);
   // The points: written as pixels into an offscreen layer (tens of thousands of fillRect calls
   // would cost more than the frame itself), then laid over the outlines.
   const d = window.devicePixelRatio || 1;
@@ -415,7 +449,7 @@ function drawLegend() {
   };
   if (!frame) return;
   if (state.color === "path") frame.header.paths.forEach((p, i) => item(PATH_COLORS[i % PATH_COLORS.length], p.words, p.count));
-  else frame.header.points_per_color.forEach((c, i) => item(SECTION_RGB[i], `${i + 1} ${SECTION_NAMES[i]}`, c));
+  else frame.header.points_per_color.forEach((c, i) => { if ((i < 5 && !state.scene) || c > 0) item(SECTION_RGB[i], `${i + 1} ${SECTION_NAMES[i]}`, c); });
   const modelCount = (m) => (!m || m.pending ? "…" : m.all ? m.color.length : `${m.color.length}, more coming`);
   if (state.models.includes("eye")) item("rgba(0,0,0,.3)", "eye model: faint, smaller", modelCount(models.eye));
   if (state.models.includes("stereo")) item("rgba(0,0,0,.3)", "stereo model: faint, smaller", modelCount(models.stereo));
@@ -429,9 +463,22 @@ function mapGeometry() {
   return { extent };
 }
 
+/** A gallery scene's wireframe and outlines on a map, through `at` (a point to the map's pixels). */
+function drawLines(ctx, lines, at) {
+  ctx.strokeStyle = "rgba(74,127,193,0.6)"; ctx.lineWidth = 1;
+  ctx.beginPath();
+  for (const [a, b] of lines.wire) { ctx.moveTo(...at(a)); ctx.lineTo(...at(b)); }
+  ctx.stroke();
+  ctx.strokeStyle = "#777"; ctx.setLineDash([2, 3]);
+  ctx.beginPath();
+  for (const l of lines.outlines) l.forEach((q, i) => (i ? ctx.lineTo(...at(q)) : ctx.moveTo(...at(q))));
+  ctx.stroke(); ctx.setLineDash([]);
+}
+
 function drawMaps() {
   const g = mapGeometry();
   const o = state.observer, [sx, sy] = state.straw;
+  const lines = sceneLines();
   // Side: horizontal axis along the eye's azimuth.
   {
     const { ctx, w, h } = fit(sideCanvas);
@@ -441,13 +488,18 @@ function drawMaps() {
     const u = [Math.cos(az), Math.sin(az)];
     const P = (s, z) => [w / 2 + k * s, h / 2 - k * (z - 0.1)];
     ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText("side", 6, 14);
-    const [wx0, wy0] = P(-GLASS_R, state.he), [wx1, wy1] = P(GLASS_R, 0);
-    ctx.fillStyle = "rgba(74,127,193,0.25)"; ctx.fillRect(wx0, wy0, wx1 - wx0, wy1 - wy0);
-    ctx.strokeStyle = "#4a7fc1"; ctx.strokeRect(...P(-GLASS_R, GLASS_H), 2 * GLASS_R * k, GLASS_H * k);
-    const s = sx * u[0] + sy * u[1];
-    for (let i = 0; i < 5; i++) {
-      const [x0, y0] = P(s - STRAW_R, 0.05 * (i + 1));
-      ctx.fillStyle = SECTION_RGB[i]; ctx.fillRect(x0, y0, 2 * STRAW_R * k, 0.05 * k);
+    if (lines) {
+      // A gallery scene, seen along the eye's azimuth: `s` across, z up.
+      drawLines(ctx, lines, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]));
+    } else {
+      const [wx0, wy0] = P(-GLASS_R, state.he), [wx1, wy1] = P(GLASS_R, 0);
+      ctx.fillStyle = "rgba(74,127,193,0.25)"; ctx.fillRect(wx0, wy0, wx1 - wx0, wy1 - wy0);
+      ctx.strokeStyle = "#4a7fc1"; ctx.strokeRect(...P(-GLASS_R, GLASS_H), 2 * GLASS_R * k, GLASS_H * k);
+      const s = sx * u[0] + sy * u[1];
+      for (let i = 0; i < 5; i++) {
+        const [x0, y0] = P(s - STRAW_R, 0.05 * (i + 1));
+        ctx.fillStyle = SECTION_RGB[i]; ctx.fillRect(x0, y0, 2 * STRAW_R * k, 0.05 * k);
+      }
     }
     ctx.strokeStyle = "#999"; ctx.beginPath(); ctx.moveTo(0, P(0, 0)[1]); ctx.lineTo(w, P(0, 0)[1]); ctx.stroke();
     const [ex, ey] = P(Math.hypot(o[0], o[1]), o[2]);
@@ -462,15 +514,18 @@ function drawMaps() {
     const k = mapScale(w, h, g.extent);
     const P = (x, y) => [w / 2 + k * y, h / 2 + k * x]; // x down, y right: the eye of reference 2 below the glass
     ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText("from above (x down, y right)", 6, 14);
-    ctx.fillStyle = state.he > 0 ? "rgba(74,127,193,0.25)" : "transparent"; ctx.strokeStyle = "#4a7fc1";
-    ctx.beginPath(); ctx.arc(...P(0, 0), GLASS_R * k, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
-    ctx.fillStyle = SECTION_RGB[4]; ctx.beginPath(); ctx.arc(...P(sx, sy), Math.max(3, STRAW_R * k), 0, 2 * Math.PI); ctx.fill();
+    if (lines) drawLines(ctx, lines, (q) => P(q[0], q[1]));
+    else {
+      ctx.fillStyle = state.he > 0 ? "rgba(74,127,193,0.25)" : "transparent"; ctx.strokeStyle = "#4a7fc1";
+      ctx.beginPath(); ctx.arc(...P(0, 0), GLASS_R * k, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+      ctx.fillStyle = SECTION_RGB[4]; ctx.beginPath(); ctx.arc(...P(sx, sy), Math.max(3, STRAW_R * k), 0, 2 * Math.PI); ctx.fill();
+    }
     const [ex, ey] = P(o[0], o[1]);
     ctx.strokeStyle = "rgba(0,0,0,.35)"; ctx.beginPath(); ctx.moveTo(ex, ey); ctx.lineTo(...P(0, 0)); ctx.stroke();
     ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
     topCanvas.mapInverse = (x, y) => [(y - h / 2) / k, (x - w / 2) / k];
     topCanvas.eyeAt = [ex, ey];
-    topCanvas.strawAt = P(sx, sy);
+    topCanvas.strawAt = lines ? null : P(sx, sy);
   }
 }
 
@@ -630,6 +685,9 @@ function showReadout() {
 
 // ---- controls ----
 function syncControls() {
+  $("scene").value = state.scene;
+  // A gallery scene's liquids and straws are its file's: the water's sliders are the glass's.
+  $("he").disabled = $("n").disabled = Boolean(state.scene);
   $("he").value = state.he; $("he-out").textContent = num(state.he) + " m";
   $("n").value = state.n; $("n-out").textContent = num(state.n);
   $("events").value = state.events; $("events-out").textContent = String(state.events);
@@ -654,8 +712,29 @@ PRESETS.forEach((p, i) => { const o = document.createElement("option"); o.value 
 $("preset").addEventListener("change", (e) => {
   const p = PRESETS[Number(e.target.value)];
   if (!p) return;
-  Object.assign(state, { n: 1.333, events: 10, color: "section" }, p.v);
+  Object.assign(state, { scene: "", n: 1.333, events: 10, color: "section" }, p.v);
   state.observer = p.v.observer.slice(); state.straw = p.v.straw.slice();
+  changed();
+});
+
+// The gallery's scenes, from the server: choosing one moves the eye to the view it is meant for.
+let gallery = [];
+fetch("/api/scenes").then((r) => r.json()).then((list) => {
+  gallery = list;
+  for (const g of list) {
+    const o = document.createElement("option");
+    o.value = g.name; o.textContent = g.title; o.title = g.shows;
+    $("scene").appendChild(o);
+  }
+  $("scene").value = state.scene;
+  document.body.dataset.scenes = String(list.length);
+});
+$("scene").addEventListener("change", (e) => {
+  state.scene = e.target.value;
+  const g = gallery.find((x) => x.name === state.scene);
+  state.observer = g ? g.observer.slice() : [0.1, 0, 0.1];
+  $("preset").value = "";
+  frame = null;
   changed();
 });
 

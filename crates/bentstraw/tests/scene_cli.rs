@@ -569,7 +569,49 @@ fn explore_starts_on_a_scene_file() {
     assert!(from_file.contains("observer=0.1,0,0.1&amp;straw=0.02,0.01&amp;water-height=0.15"));
     let overridden = page(&["--water-height", "0.1"]);
     assert!(overridden.contains("straw=0.02,0.01&amp;water-height=0.1&amp;"));
+    // A scene of the gallery starts the page on it, from its own observer.
+    let page_on = |file: &str| -> String {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+            .args(["explore", "--no-open", "--port", "0", "--scene", file])
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .expect("bentstraw runs");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().unwrap())
+            .read_line(&mut line)
+            .unwrap();
+        let url = line
+            .split_whitespace()
+            .find(|w| w.starts_with("http://"))
+            .unwrap();
+        let host = url.trim_start_matches("http://").trim_end_matches('/');
+        let mut stream = std::net::TcpStream::connect(host).unwrap();
+        write!(
+            stream,
+            "GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n"
+        )
+        .unwrap();
+        let mut body = String::new();
+        stream.read_to_string(&mut body).unwrap();
+        child.kill().unwrap();
+        child.wait().unwrap();
+        body
+    };
+    let tank = page_on(&gallery("tank-pencil.toml"));
+    assert!(
+        tank.contains("scene=tank-pencil&amp;observer="),
+        "{}",
+        &tank[..tank.len().min(2000)]
+    );
+    // Another scene of a kind the page does not draw yet is refused before anything listens.
     let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("mine.toml"),
+        std::fs::read_to_string(gallery("tank-pencil.toml"))
+            .unwrap()
+            .replace("half_x = 0.10", "half_x = 0.12"),
+    )
+    .unwrap();
     let out = run(
         dir.path(),
         &[
@@ -578,13 +620,16 @@ fn explore_starts_on_a_scene_file() {
             "--port",
             "0",
             "--scene",
-            &gallery("tank-pencil.toml"),
+            "mine.toml",
         ],
     );
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(err.contains("a rectangular tank"), "{err}");
+    assert!(
+        err.contains("a rectangular tank") && err.contains("gallery"),
+        "{err}"
+    );
     assert!(out.stdout.is_empty());
 }
 

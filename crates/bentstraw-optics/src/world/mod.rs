@@ -16,6 +16,7 @@ pub mod picture;
 use crate::geometry::{enter_sphere, Ray};
 use crate::image::ImagePoint;
 use crate::interface::{reflect, refract, refract_with_reflectance};
+use crate::light_path_type::{Entry, LightPathType};
 use crate::sampling::ImageTracer;
 use crate::scene_file::{Container, SceneDescription};
 use crate::trace::FRESNEL_SEGMENTS_PER_RAY;
@@ -633,6 +634,33 @@ impl World {
             }
         }
         weights
+    }
+}
+
+impl World {
+    /// How a ray enters the liquid (or the container) at event `e`, its first: through a surface
+    /// from above, through a wall, through a bottom from below.
+    pub fn entry_of(&self, e: &WorldEvent) -> Entry {
+        match self.boundaries[e.boundary].shape {
+            Shape::Horizontal { .. } if e.incoming.z < 0.0 => Entry::Top,
+            Shape::Horizontal { .. } => Entry::Bottom,
+            _ => Entry::Wall,
+        }
+    }
+
+    /// Traces `ray` by the course's law and tells the kind of its light path: how it enters (its
+    /// first event) and how many total reflections it undergoes.
+    pub fn trace_path_type(&self, ray: Ray) -> (WorldOutcome, LightPathType) {
+        let mut kind = LightPathType::DIRECT;
+        let outcome = self.trace_with(ray, |e| {
+            if kind.entry == Entry::Direct {
+                kind.entry = self.entry_of(e);
+            }
+            if e.totally_reflected {
+                kind.total_reflections += 1;
+            }
+        });
+        (outcome, kind)
     }
 }
 

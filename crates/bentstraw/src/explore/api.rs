@@ -7,21 +7,30 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use bentstraw_optics::apparent::{eye_model_points, stereo_point_each, stereo_points, Focus};
+use bentstraw_optics::apparent::{
+    eye_model_points, stereo_point_each, stereo_points, ApparentPosition, Focus,
+};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
+use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
-use bentstraw_optics::sampling::sample_image;
-use bentstraw_optics::scene::{clip_text, Scene, SECTION_NAMES};
-use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
+use bentstraw_optics::sampling::{sample_image, sample_image_of, ImageCloud};
+use bentstraw_optics::scene::{clip_text, Scene, SceneError, MAX_EVENTS_LIMIT};
+use bentstraw_optics::scene_file::Observer;
+use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
 use bentstraw_optics::trace::{Face, Outcome};
+use bentstraw_optics::world::picture::world_picture;
+use bentstraw_optics::world::{Shape, World, WorldOutcome, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
 use crate::cli::{parse_size, parse_vec2, parse_vec3, CameraArgs, SceneArgs};
-use crate::commands::render::{camera_from_args, MAX_SAMPLES};
+use crate::commands::render::{camera_from_args, world_camera, MAX_SAMPLES};
+use crate::gallery::{opening_comment, GALLERY};
 use crate::pictures::png_bytes;
+use crate::scene_input::{file_world, FileWorld};
+use crate::sketch::{object_outlines, world_wireframe};
 use crate::writers::{write_csv, write_model_csv, write_ply, Inputs, ModelPoints, PointSet};
 
 /// Most image points one request may ask for (a million take about half a second).
@@ -121,8 +130,8 @@ fn percent_decode(s: &str) -> Result<String, String> {
 /// Everything that defines a view: the scene, the observer, the picture and the points.
 #[derive(Debug, Clone)]
 pub struct View {
-    /// The scene (validated).
-    pub scene: Scene,
+    /// The scene (validated): the assignment's glass, or a gallery scene.
+    pub scene: Traced,
     /// The observer (validated).
     pub observer: Vec3,
     /// The scene's inputs as the command line takes them.
@@ -139,6 +148,70 @@ pub struct View {
     pub samples: u32,
     /// Image points asked for (0: none).
     pub points: usize,
+}
+
+/// What a view shows: the assignment's glass, or a scene of the built-in gallery.
+#[derive(Debug, Clone)]
+pub enum Traced {
+    /// The assignment's kind of scene, from the page's values.
+    Spec(Scene),
+    /// A scene of the gallery (its name, `scenes/NAME.toml`), seen from the page's observer.
+    World(&'static str, Arc<FileWorld>),
+}
+
+/// The gallery scene named `name`, with its own observer moved to `observer` and the event limit
+/// `max_events`, checked by the scene file's rules.
+fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Traced, String> {
+    let Some((stem, text)) = GALLERY.iter().find(|(stem, _)| *stem == name) else {
+        let names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
+        return Err(format!(
+            "invalid value '{}' for 'scene' [possible values: {}]",
+            clip_text(name, 40),
+            names.join(", ")
+        ));
+    };
+    let file = format!("scenes/{stem}.toml");
+    let mut world = file_world(&file, text).map_err(|e| e.0)?;
+    for (axis, v) in ["X", "Y", "Z"].iter().zip(observer) {
+        if !v.is_finite() {
+            return Err(format!("observer {axis} = {v} is not a finite number"));
+        }
+    }
+    let position = Vec3::from_array(observer);
+    let mut checked = world.description.clone();
+    checked.observer = Some(Observer {
+        position,
+        target: world
+            .target
+            .filter(|t| *t != position)
+            .unwrap_or(position + Vec3::Z),
+    });
+    checked
+        .validate()
+        .map_err(|e| format!("{file} with this observer: {e}"))?;
+    if max_events == 0 || max_events > MAX_EVENTS_LIMIT {
+        return Err(SceneError::MaxEvents(max_events).to_string());
+    }
+    world.observer = position;
+    world.world = World::new(&world.description, max_events);
+    Ok(Traced::World(stem, Arc::new(world)))
+}
+
+/// `GET /api/scenes`: the gallery's scenes: name, what it shows, its own observer and target.
+pub fn scenes_reply() -> Reply {
+    let list: Vec<Value> = GALLERY
+        .iter()
+        .filter_map(|(stem, text)| {
+            let w = file_world(stem, text).ok()?;
+            Some(json!({
+                "name": stem,
+                "title": stem.replace('-', " "),
+                "shows": opening_comment(text),
+                "observer": vec_json(w.observer),
+            }))
+        })
+        .collect();
+    Reply::json(&Value::Array(list))
 }
 
 fn get<'a>(q: &'a HashMap<String, String>, name: &str) -> Option<&'a str> {
@@ -178,8 +251,15 @@ impl View {
     /// line's message for the first value that breaks a rule.
     pub fn from_query(q: &HashMap<String, String>) -> Result<View, String> {
         let observer_text = required(q, "observer")?;
-        let straw_text = required(q, "straw")?;
-        let he_text = required(q, "water-height")?;
+        let gallery = get(q, "scene").filter(|s| !s.is_empty());
+        // A gallery scene needs no straw or water: its file has them.
+        let (straw_text, he_text) = match gallery {
+            Some(_) => (
+                get(q, "straw").unwrap_or("0,0"),
+                get(q, "water-height").unwrap_or("0.1"),
+            ),
+            None => (required(q, "straw")?, required(q, "water-height")?),
+        };
         let scene_args = SceneArgs {
             observer: flag(parse_vec3(observer_text), "observer", observer_text)?,
             straw: flag(parse_vec2(straw_text), "straw", straw_text)?,
@@ -187,7 +267,16 @@ impl View {
             n_water: get(q, "n-water").map_or(Ok(1.333), |t| number(t, "n-water"))?,
             max_events: get(q, "max-events").map_or(Ok(10), |t| number(t, "max-events"))?,
         };
-        let (scene, observer) = scene_args.scene_and_observer().map_err(|e| e.0)?;
+        let (scene, observer) = match gallery {
+            Some(name) => {
+                let traced = gallery_world(name, scene_args.observer, scene_args.max_events)?;
+                (traced, Vec3::from_array(scene_args.observer))
+            }
+            None => {
+                let (scene, observer) = scene_args.scene_and_observer().map_err(|e| e.0)?;
+                (Traced::Spec(scene), observer)
+            }
+        };
         let camera_args = CameraArgs {
             target: get(q, "target")
                 .map(|t| flag(parse_vec3(t), "target", t))
@@ -204,7 +293,11 @@ impl View {
                 ));
             }
         }
-        let camera = camera_from_args(&camera_args, observer).map_err(|e| e.0)?;
+        let camera = match &scene {
+            Traced::Spec(_) => camera_from_args(&camera_args, observer),
+            Traced::World(_, world) => world_camera(world, &camera_args),
+        }
+        .map_err(|e| e.0)?;
         let fresnel = match get(q, "mode").unwrap_or("fresnel") {
             "fresnel" => true,
             "course" => false,
@@ -250,6 +343,25 @@ impl View {
         })
     }
 
+    /// The assignment's scene, when the view shows it.
+    #[cfg(test)]
+    pub fn spec_scene(&self) -> Option<&Scene> {
+        match &self.scene {
+            Traced::Spec(scene) => Some(scene),
+            Traced::World(..) => None,
+        }
+    }
+
+    /// At least `points` image points of the view's scene, as `simulate` traces them.
+    fn sample(&self, points: usize) -> ImageCloud {
+        match &self.scene {
+            Traced::Spec(scene) => sample_image(scene, self.observer, points, &|_| {}),
+            Traced::World(_, world) => {
+                sample_image_of(&world.world, self.observer, points, &|_| {})
+            }
+        }
+    }
+
     fn shading(&self) -> ShadingOptions {
         ShadingOptions {
             mode: if self.fresnel {
@@ -270,6 +382,16 @@ impl View {
     /// The scene flags, as `simulate` and `render` take them.
     fn scene_flags(&self) -> String {
         let a = &self.scene_args;
+        if let Traced::World(stem, _) = &self.scene {
+            let mut s = format!(
+                "--scene scenes/{stem}.toml --observer {},{},{}",
+                a.observer[0], a.observer[1], a.observer[2]
+            );
+            if a.max_events != 10 {
+                s += &format!(" --max-events {}", a.max_events);
+            }
+            return s;
+        }
         let mut s = format!(
             "--observer {},{},{} --straw {},{} --water-height {}",
             a.observer[0], a.observer[1], a.observer[2], a.straw[0], a.straw[1], a.water_height
@@ -322,7 +444,7 @@ impl View {
 
 /// The colour's name of section `code`.
 fn color_name(code: u8) -> &'static str {
-    SECTION_NAMES[code as usize - 1]
+    COLOR_NAMES[code as usize - 1]
 }
 
 /// `GET /api/frame`: the picture (RGBA) and the points (f32 xyz, colour codes, path kinds) in one
@@ -330,13 +452,17 @@ fn color_name(code: u8) -> &'static str {
 /// `width × height × 4` bytes, `3n` little-endian `f32`, `n` colour bytes, `n` path-kind bytes
 /// (indices into the header's `paths`).
 pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
+    let scene = match &view.scene {
+        Traced::Spec(scene) => scene,
+        Traced::World(_, world) => return world_frame_reply(view, world),
+    };
     let request = FrameRequest {
         camera: view.camera,
         shading: view.shading(),
         min_points: view.points,
     };
     let started = std::time::Instant::now();
-    draw_frame(&view.scene, &request, frame);
+    draw_frame(scene, &request, frame);
     let ms = started.elapsed().as_secs_f64() * 1e3;
     *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) = Some((
         view.simulate_command("course"),
@@ -360,31 +486,105 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
         "simulate": view.simulate_command("course"),
         "render": view.render_command(),
     });
+    let kind_of = frame
+        .paths
+        .iter()
+        .map(|k| kinds.binary_search(k).unwrap_or(0) as u8);
+    frame_body(&header, &frame.picture, &frame.points, kind_of)
+}
+
+/// A frame's binary answer: the header, the picture as RGBA, the points, their path kinds.
+fn frame_body(
+    header: &Value,
+    picture: &RgbPicture,
+    points: &[ImagePoint],
+    kinds: impl Iterator<Item = u8>,
+) -> Reply {
     let mut head = header.to_string().into_bytes();
     while head.len() & 3 != 0 {
         head.push(b' ');
     }
-    let n = frame.points.len();
-    let pixels = frame.picture.pixels.len() / 3;
+    let n = points.len();
+    let pixels = picture.pixels.len() / 3;
     let mut body = Vec::with_capacity(4 + head.len() + 4 * pixels + 14 * n);
     body.extend_from_slice(&(head.len() as u32).to_le_bytes());
     body.extend_from_slice(&head);
-    for rgb in frame.picture.pixels.chunks_exact(3) {
+    for rgb in picture.pixels.chunks_exact(3) {
         body.extend_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
     }
-    for p in &frame.points {
+    for p in points {
         for v in p.position.to_array() {
             body.extend_from_slice(&(v as f32).to_le_bytes());
         }
     }
-    body.extend(frame.points.iter().map(|p| p.color));
-    body.extend(
-        frame
-            .paths
-            .iter()
-            .map(|k| kinds.binary_search(k).unwrap_or(0) as u8),
-    );
+    body.extend(points.iter().map(|p| p.color));
+    body.extend(kinds);
     Reply::bytes("application/octet-stream", body)
+}
+
+/// The frame of a gallery scene: its picture (traced in double precision), its image points of
+/// every object and their light paths, and what the page draws of the scene: the container's and
+/// liquids' wireframe, the objects' outlines, the box holding them.
+fn world_frame_reply(view: &View, world: &FileWorld) -> Reply {
+    let started = std::time::Instant::now();
+    let w = &world.world;
+    let picture = world_picture(w, &view.camera, &view.shading());
+    let cloud = if view.points == 0 {
+        ImageCloud::default()
+    } else {
+        sample_image_of(w, view.observer, view.points, &|_| {})
+    };
+    let ms = started.elapsed().as_secs_f64() * 1e3;
+    let kinds: Vec<LightPathType> = cloud
+        .points
+        .iter()
+        .map(|p| {
+            w.trace_path_type(Ray {
+                origin: view.observer,
+                direction: p.direction,
+            })
+            .1
+        })
+        .collect();
+    let mut distinct = kinds.clone();
+    distinct.sort();
+    distinct.dedup();
+    let paths: Vec<Value> = distinct
+        .iter()
+        .map(|k| {
+            let n = kinds.iter().filter(|x| *x == k).count();
+            json!({"key": k.key(), "words": k.to_string(), "count": n})
+        })
+        .collect();
+    *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) = Some((
+        view.simulate_command("course"),
+        Arc::new(cloud.points.clone()),
+    ));
+    let flat = |p: &[Vec3]| -> Vec<f64> { p.iter().flat_map(|q| q.to_array()).collect() };
+    let wireframe: Vec<f64> = world_wireframe(w).iter().flat_map(|s| flat(s)).collect();
+    let outlines: Vec<Vec<f64>> = object_outlines(w).iter().map(|l| flat(l)).collect();
+    let (lo, hi) = w.bounds();
+    let header = json!({
+        "width": view.camera.width,
+        "height": view.camera.height,
+        "n": cloud.points.len(),
+        "rays_traced": cloud.rays_traced,
+        "points_per_color": cloud.counts_per_code(),
+        "paths": paths,
+        "fov_deg": 2.0 * view.camera.tan_half_fov.atan().to_degrees(),
+        "ms": ms,
+        "simulate": view.simulate_command("course"),
+        "render": view.render_command(),
+        "scene": {
+            "wireframe": wireframe,
+            "outlines": outlines,
+            "bounds": [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
+        },
+    });
+    let kind_of = kinds
+        .iter()
+        .map(|k| distinct.binary_search(k).unwrap_or(0) as u8);
+    frame_body(&header, &picture, &cloud.points, kind_of)
 }
 
 /// The course points of the last frame drawn, with the `simulate` command that gives them: a
@@ -404,8 +604,7 @@ fn course_points(view: &View) -> Arc<Vec<ImagePoint>> {
         }
     }
     drop(last);
-    let cloud = sample_image(&view.scene, view.observer, view.points.max(1), &|_| {});
-    Arc::new(cloud.points)
+    Arc::new(view.sample(view.points.max(1)).points)
 }
 
 /// A model's answers for the last few views asked: the view and model, the step `every`, and
@@ -421,17 +620,23 @@ fn place(
     points: &[ImagePoint],
 ) -> Result<Vec<Option<(Vec3, u8)>>, Reply> {
     match model {
-        "eye" => Ok(eye_model_points(&view.scene, view.observer, points)
-            .iter()
-            .map(|p| Some((p.position?, p.image.color)))
-            .collect()),
-        "stereo" => Ok(stereo_point_each(&view.scene, view.observer, points)
-            .iter()
-            .map(|p| {
-                let p = p.as_ref()?;
-                Some((p.position?, p.image.color))
-            })
-            .collect()),
+        "eye" => Ok(match &view.scene {
+            Traced::Spec(s) => eye_model_points(s, view.observer, points),
+            Traced::World(_, w) => eye_model_points(&w.world, view.observer, points),
+        }
+        .iter()
+        .map(|p| Some((p.position?, p.image.color)))
+        .collect()),
+        "stereo" => Ok(match &view.scene {
+            Traced::Spec(s) => stereo_point_each(s, view.observer, points),
+            Traced::World(_, w) => stereo_point_each(&w.world, view.observer, points),
+        }
+        .iter()
+        .map(|p| {
+            let p = p.as_ref()?;
+            Some((p.position?, p.image.color))
+        })
+        .collect()),
         other => Err(Reply::text(
             400,
             format!(
@@ -514,7 +719,7 @@ fn focus_json(f: &Focus) -> Value {
 pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, String> {
     let u0 = if let Some(k) = get(q, "point") {
         let k: usize = number(k, "point")?;
-        let cloud = sample_image(&view.scene, view.observer, view.points.max(1), &|_| {});
+        let cloud = view.sample(view.points.max(1));
         let Some(p) = cloud.points.get(k) else {
             return Err(format!(
                 "point {k} does not exist: the view has {} image points",
@@ -542,7 +747,10 @@ pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, Stri
 
 /// The light path of the ray from the observer along unit `u0`, as the page shows it.
 pub fn ray_json(view: &View, u0: Vec3) -> Value {
-    let scene = &view.scene;
+    let scene = match &view.scene {
+        Traced::Spec(scene) => scene,
+        Traced::World(_, world) => return world_ray_json(view, &world.world, u0),
+    };
     let eye = view.observer;
     let mut events = Vec::new();
     let mut kind = LightPathType::DIRECT;
@@ -604,14 +812,82 @@ pub fn ray_json(view: &View, u0: Vec3) -> Value {
     out
 }
 
+/// The light path of the ray from the observer along unit `u0` in a gallery scene, as the page
+/// shows it (the same fields as [`ray_json`]'s).
+fn world_ray_json(view: &View, world: &World, u0: Vec3) -> Value {
+    let eye = view.observer;
+    let mut events = Vec::new();
+    let mut last = (eye, u0);
+    let ray = Ray {
+        origin: eye,
+        direction: u0,
+    };
+    let outcome = world.trace_with(ray, |e| {
+        let cos = e.incoming.dot(e.normal).abs().min(1.0);
+        let face = match world.boundaries()[e.boundary].shape {
+            Shape::Horizontal { .. } => "horizontal surface",
+            _ => "wall",
+        };
+        events.push(json!({
+            "point": vec_json(e.point),
+            "face": face,
+            "event": if e.totally_reflected { "total reflection" } else { "refraction" },
+            "incidence_deg": cos.acos().to_degrees(),
+            "n1": e.n1,
+            "n2": e.n2,
+        }));
+        last = (e.point, e.outgoing);
+    });
+    let kind = world.trace_path_type(ray).1;
+    let mut out = json!({
+        "observer": vec_json(eye),
+        "direction": vec_json(u0),
+        "events": events,
+        "path": kind.to_string(),
+        "path_key": kind.key(),
+    });
+    match (outcome, world.image_point(eye, u0)) {
+        (WorldOutcome::Object { .. }, Some(image)) => {
+            let apparent = world.apparent_point(eye, &image);
+            let stereo = stereo_points(world, eye, &[image]);
+            out["outcome"] = json!("straw");
+            out["color"] = json!(image.color);
+            out["color_name"] = json!(color_name(image.color));
+            out["straw_point"] = vec_json(image.straw_point);
+            out["path_length"] = json!(image.path_length);
+            out["image_point"] = vec_json(image.position);
+            out["s_h"] = focus_json(&apparent.s_h);
+            out["s_v"] = focus_json(&apparent.s_v);
+            out["eye_point"] = apparent.position.map_or(Value::Null, vec_json);
+            out["gap_eye"] = json!(apparent.gap_to_course());
+            let sp = stereo.points.first();
+            out["stereo_point"] = sp.and_then(|p| p.position).map_or(Value::Null, vec_json);
+            out["gap_stereo"] = json!(sp.and_then(|p| p.gap_to_course()));
+        }
+        (WorldOutcome::Dropped, _) => {
+            out["outcome"] = json!("dropped");
+            out["leaves"] = json!({"from": vec_json(last.0), "direction": vec_json(last.1)});
+        }
+        _ => {
+            out["outcome"] = json!("escaped");
+            out["leaves"] = json!({"from": vec_json(last.0), "direction": vec_json(last.1)});
+        }
+    }
+    out
+}
+
 /// `GET /api/export?format=csv|ply|png` (`&model=eye|stereo` for the points): the file `simulate`
 /// or `render` would write for this view.
 pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, String> {
     let format = get(q, "format").unwrap_or("csv");
     let model = get(q, "model").unwrap_or("course");
     if format == "png" {
-        let picture =
-            bentstraw_optics::shading::shaded_picture(&view.scene, &view.camera, &view.shading());
+        let picture = match &view.scene {
+            Traced::Spec(scene) => {
+                bentstraw_optics::shading::shaded_picture(scene, &view.camera, &view.shading())
+            }
+            Traced::World(_, world) => world_picture(&world.world, &view.camera, &view.shading()),
+        };
         let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.0)?);
         r.file_name = Some("view.png".into());
         return Ok(r);
@@ -623,22 +899,33 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
         ));
     }
     let points = view.points.max(1);
-    let cloud = sample_image(&view.scene, view.observer, points, &|_| {});
+    let cloud = view.sample(points);
     let eye;
     let stereo;
-    let set_model = match model {
-        "eye" => {
-            eye = eye_model_points(&view.scene, view.observer, &cloud.points);
+    let set_model = match (model, &view.scene) {
+        ("eye", Traced::Spec(s)) => {
+            eye = eye_model_points(s, view.observer, &cloud.points);
             ModelPoints::Eye(&eye)
         }
-        "stereo" => {
-            stereo = stereo_points(&view.scene, view.observer, &cloud.points);
+        ("eye", Traced::World(_, w)) => {
+            eye = eye_model_points(&w.world, view.observer, &cloud.points);
+            ModelPoints::Eye(&eye)
+        }
+        ("stereo", Traced::Spec(s)) => {
+            stereo = stereo_points(s, view.observer, &cloud.points);
+            ModelPoints::Stereo(&stereo)
+        }
+        ("stereo", Traced::World(_, w)) => {
+            stereo = stereo_points(&w.world, view.observer, &cloud.points);
             ModelPoints::Stereo(&stereo)
         }
         _ => ModelPoints::Course,
     };
     let set = PointSet {
-        inputs: Inputs::Spec(&view.scene),
+        inputs: match &view.scene {
+            Traced::Spec(s) => Inputs::Spec(s),
+            Traced::World(_, w) => Inputs::File(w),
+        },
         observer: view.observer,
         min_points: points,
         model: set_model,
@@ -673,6 +960,9 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
 
 /// The answer to `GET path?query` for the API routes (`/api/...`), with a reusable frame.
 pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
+    if path == "/api/scenes" {
+        return scenes_reply();
+    }
     let q = match parse_query(query) {
         Ok(q) => q,
         Err(e) => return Reply::text(400, e),
@@ -757,7 +1047,7 @@ mod tests {
     #[test]
     fn models_place_every_kth_course_point() {
         let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=800"))).unwrap();
-        let cloud = sample_image(&view.scene, view.observer, 800, &|_| {}).points;
+        let cloud = sample_image(view.spec_scene().unwrap(), view.observer, 800, &|_| {}).points;
         let decode = |r: Reply| -> Vec<[f32; 3]> {
             assert_eq!(r.status, 200);
             let n = u32::from_le_bytes(r.body[0..4].try_into().unwrap()) as usize;
@@ -774,7 +1064,7 @@ mod tests {
         };
         let expect = |every: usize| -> Vec<[f32; 3]> {
             let some: Vec<ImagePoint> = cloud.iter().step_by(every).copied().collect();
-            eye_model_points(&view.scene, view.observer, &some)
+            eye_model_points(view.spec_scene().unwrap(), view.observer, &some)
                 .iter()
                 .filter_map(|p| p.position)
                 .map(|q| [q.x as f32, q.y as f32, q.z as f32])
@@ -816,7 +1106,8 @@ mod tests {
         assert_eq!((4 + len) % 4, 0);
         let header: Value = serde_json::from_slice(&b[4..4 + len]).unwrap();
         let n = header["n"].as_u64().unwrap() as usize;
-        let expected = sample_image(&view.scene, view.observer, 1500, &|_| {}).points;
+        let expected =
+            sample_image(view.spec_scene().unwrap(), view.observer, 1500, &|_| {}).points;
         assert_eq!(n, expected.len());
         let start = 4 + len + 40 * 30 * 4;
         assert_eq!(b.len(), start + 12 * n + 2 * n);
@@ -833,7 +1124,7 @@ mod tests {
     #[test]
     fn ray_of_a_point_is_that_point() {
         let view = View::from_query(&query(&format!("{REF2}&points=1000"))).unwrap();
-        let pts = sample_image(&view.scene, view.observer, 1000, &|_| {}).points;
+        let pts = sample_image(view.spec_scene().unwrap(), view.observer, 1000, &|_| {}).points;
         let r = ray_reply(&view, &query("point=17")).unwrap();
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         let p = pts[17];
@@ -846,6 +1137,48 @@ mod tests {
         assert_eq!(v["events"].as_array().unwrap().len(), p.events as usize);
         assert!(ray_reply(&view, &query("point=99999999")).is_err());
         assert!(ray_reply(&view, &query("row=-1&col=3")).is_err());
+    }
+
+    /// A gallery scene: its frame holds the objects' points (codes up to 8) and what the page draws
+    /// of the scene; its rays, models and exports answer; a wrong name or an eye inside the
+    /// container gets the rule's message.
+    #[test]
+    fn gallery_scenes_are_served() {
+        let mut f = Frame::default();
+        let q = "scene=reversing-arrow&observer=0.3,0,0.1&size=48x36&points=800";
+        let r = handle("/api/frame", q, &mut f);
+        assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+        let len = u32::from_le_bytes(r.body[..4].try_into().unwrap()) as usize;
+        let header: Value = serde_json::from_slice(&r.body[4..4 + len]).unwrap();
+        assert!(header["n"].as_u64().unwrap() >= 800);
+        assert_eq!(header["points_per_color"].as_array().unwrap().len(), 8);
+        assert!(
+            header["points_per_color"][7].as_u64().unwrap() > 0,
+            "the arrow"
+        );
+        assert!(!header["scene"]["wireframe"].as_array().unwrap().is_empty());
+        assert!(header["simulate"]
+            .as_str()
+            .unwrap()
+            .contains("--scene scenes/reversing-arrow.toml --observer 0.3,0,0.1"));
+        let ray = handle("/api/ray", &format!("{q}&point=10"), &mut f);
+        assert_eq!(ray.status, 200);
+        let ray: Value = serde_json::from_slice(&ray.body).unwrap();
+        assert!(ray["color"].as_u64().unwrap() >= 7);
+        for route in ["/api/model", "/api/export"] {
+            assert_eq!(handle(route, q, &mut f).status, 200, "{route}");
+        }
+        let png = handle("/api/export", &format!("{q}&format=png"), &mut f);
+        assert!(png.body.starts_with(b"\x89PNG"));
+        let scenes: Value =
+            serde_json::from_slice(&handle("/api/scenes", "", &mut f).body).unwrap();
+        assert_eq!(scenes.as_array().unwrap().len(), GALLERY.len());
+        let wrong = handle("/api/frame", "scene=teapot&observer=1,0,0", &mut f);
+        assert_eq!(wrong.status, 400);
+        assert!(String::from_utf8_lossy(&wrong.body).contains("leaning-straw"));
+        let inside = handle("/api/frame", "scene=tank-pencil&observer=0,0,0.05", &mut f);
+        assert_eq!(inside.status, 400);
+        assert!(String::from_utf8_lossy(&inside.body).contains("inside or on the container"));
     }
 
     #[test]
@@ -861,11 +1194,12 @@ mod tests {
         use super::*;
         use proptest::prelude::*;
 
-        const ROUTES: [&str; 5] = [
+        const ROUTES: [&str; 6] = [
             "/api/frame",
             "/api/model",
             "/api/ray",
             "/api/export",
+            "/api/scenes",
             "/api/x",
         ];
 

@@ -8,10 +8,13 @@ mod server;
 use std::io::Write;
 
 use bentstraw_optics::scene::{Scene, WATER_INDEX};
+use bentstraw_optics::scene_file::SceneDescription;
 use bentstraw_optics::Vec3;
 
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
+use crate::gallery::GALLERY;
+use crate::scene_input::AnyScene;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -55,8 +58,35 @@ pub fn run(args: &ExploreArgs) -> CliResult {
 /// and the flags that override it, or the flags, or the second reference view by default.
 fn initial_query(a: &ExploreArgs) -> CliResult<String> {
     let v = &a.view;
+    let mode = match a.mode {
+        crate::cli::ModeArg::Course => "course",
+        crate::cli::ModeArg::Fresnel => "fresnel",
+    };
     let (scene, o) = if v.scene.is_some() {
-        v.source().resolve().map(|r| (r.scene, r.observer))?
+        match v.source().resolve_any()? {
+            AnyScene::Spec(r) => (r.scene, r.observer),
+            // A scene of the built-in gallery starts the page on it; another is refused, saying
+            // what the page offers.
+            AnyScene::File(f) => {
+                let Some((stem, _)) = GALLERY.iter().find(|(_, text)| {
+                    SceneDescription::from_toml(text).is_ok_and(|d| d == f.description)
+                }) else {
+                    let names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
+                    return fail(format!(
+                        "{} is a valid scene, but the explorer shows the assignment's kind of scene \
+                         and the gallery's ({}) in this version: it has {}",
+                        f.name,
+                        names.join(", "),
+                        f.description.unsupported().join(", ")
+                    ));
+                };
+                let o = f.observer;
+                return Ok(format!(
+                    "scene={stem}&observer={},{},{}&max-events={}&points={}&mode={mode}",
+                    o.x, o.y, o.z, v.max_events, a.points
+                ));
+            }
+        }
     } else {
         let o = v.observer.unwrap_or([0.1, 0.0, 0.1]);
         let [x, y] = v.straw.unwrap_or([0.02, 0.01]);
@@ -71,7 +101,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         (scene, Vec3::from_array(o))
     };
     Ok(format!(
-        "observer={},{},{}&straw={},{}&water-height={}&n-water={}&max-events={}&points={}&mode={}",
+        "observer={},{},{}&straw={},{}&water-height={}&n-water={}&max-events={}&points={}&mode={mode}",
         o.x,
         o.y,
         o.z,
@@ -81,10 +111,6 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         scene.n_water,
         scene.max_events,
         a.points,
-        match a.mode {
-            crate::cli::ModeArg::Course => "course",
-            crate::cli::ModeArg::Fresnel => "fresnel",
-        }
     ))
 }
 
