@@ -399,19 +399,22 @@ fn table_writes_every_simulation_and_the_report() {
         .starts_with(b"\x89PNG"));
     let files = fs::read_dir(&folder).unwrap().count();
     // 12 × (csv, png, svg, html), 4 × 11 pictures, model files and ray diagrams, the opening
-    // view and its ray diagram, the validation figure, the report.
+    // view and its ray diagram, the validation figure, the report, and 6 gallery scenes × (their
+    // picture, their points as PNG and SVG).
     for f in [
         "classic_view.png",
         "classic_rays.svg",
         "validation.svg",
         "sim3_rays.svg",
+        "gallery_reversing-arrow.png",
+        "gallery_tank-pencil_points.png",
     ] {
         assert!(folder.join(f).is_file(), "{f}");
         assert!(index.contains(f), "{f} not in the report");
     }
     assert_eq!(
         files,
-        12 * 4 + 4 * 11 + 2 + 1 + 1,
+        12 * 4 + 4 * 11 + 2 + 1 + 1 + 6 * 3,
         "unexpected files in the table's folder"
     );
     assert!(!err.contains("could not be written"), "{err}");
