@@ -27,11 +27,195 @@ use rayon::prelude::*;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::light_path_type::{trace_path_type, LightPathType};
-use crate::sampling::{frame_for, sample_image, Frame, ImageCloud};
-use crate::scene::{Scene, MAX_EVENTS_LIMIT, SECTION_COUNT};
+use crate::sampling::{frame_for, frame_for_box, sample_image, sample_image_of, Frame, ImageCloud};
+use crate::scene::{Scene, MAX_EVENTS_LIMIT};
 use crate::trace::Outcome;
 use crate::tracer::Tracer;
+use crate::world::{World, WorldOutcome, COLOR_COUNT};
 use crate::Vec3;
+
+/// How a ray traced to judge a point ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reach {
+    /// It reaches an object, of colour code `color`, after a broken path of length `path_length`.
+    Object {
+        /// The colour code reached.
+        color: u8,
+        /// The length of its broken path (m).
+        path_length: f64,
+        /// Its events on the way.
+        events: u32,
+    },
+    /// It leaves the scene.
+    Escaped,
+    /// It would need more events than allowed.
+    Dropped,
+}
+
+/// What checking a solution needs of a scene: a ray traced by the course's law with the kind of
+/// its light path, the true image, the map of the observer's directions, the optical path
+/// length, the distance to the objects, and whether anything refracts. The assignment's glass and
+/// any scene file's world are checked by the same code.
+pub trait CheckedScene: Sync {
+    /// Traces `ray` with the scene's event limit, or `max_events` if given.
+    fn reach(&self, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType);
+    /// The true image seen from `observer`, at least `samples` points.
+    fn true_image(&self, observer: Vec3, samples: usize) -> ImageCloud;
+    /// The equal-area map of `observer`'s directions the true image is sampled on.
+    fn direction_map(&self, observer: Vec3) -> Frame;
+    /// The optical path length `Σ n·l` of the ray from `observer` along unit `u0`, if it reaches
+    /// an object.
+    fn optical_path_length(&self, observer: Vec3, u0: Vec3) -> Option<f64>;
+    /// Distance from `p` to the nearest object's surface (m).
+    fn distance_to_objects(&self, p: Vec3) -> f64;
+    /// Whether any interface bends light (an index other than air's).
+    fn refracts(&self) -> bool;
+}
+
+/// The outcome of the assignment's tracer as a [`Reach`].
+fn reach_of(outcome: Outcome) -> Reach {
+    match outcome {
+        Outcome::Straw {
+            color,
+            path_length,
+            events,
+            ..
+        } => Reach::Object {
+            color,
+            path_length,
+            events,
+        },
+        Outcome::Escaped { .. } => Reach::Escaped,
+        Outcome::Dropped => Reach::Dropped,
+    }
+}
+
+impl CheckedScene for Tracer {
+    fn reach(&self, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType) {
+        let (outcome, path) = match max_events {
+            None => trace_path_type(self, &self.scene, ray),
+            Some(m) => {
+                let mut patient = self.scene;
+                patient.max_events = m;
+                trace_path_type(&Tracer::new(&patient), &patient, ray)
+            }
+        };
+        (reach_of(outcome), path)
+    }
+    fn true_image(&self, observer: Vec3, samples: usize) -> ImageCloud {
+        self.scene.true_image(observer, samples)
+    }
+    fn direction_map(&self, observer: Vec3) -> Frame {
+        frame_for(observer)
+    }
+    fn optical_path_length(&self, observer: Vec3, u0: Vec3) -> Option<f64> {
+        self.scene.optical_path_length(observer, u0)
+    }
+    fn distance_to_objects(&self, p: Vec3) -> f64 {
+        self.scene.distance_to_straw_surface(p)
+    }
+    fn refracts(&self) -> bool {
+        self.scene.refracts()
+    }
+}
+
+impl CheckedScene for Scene {
+    fn reach(&self, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType) {
+        Tracer::new(self).reach(ray, max_events)
+    }
+    fn true_image(&self, observer: Vec3, samples: usize) -> ImageCloud {
+        sample_image(self, observer, samples, &|_| {})
+    }
+    fn direction_map(&self, observer: Vec3) -> Frame {
+        frame_for(observer)
+    }
+    fn optical_path_length(&self, observer: Vec3, u0: Vec3) -> Option<f64> {
+        let mut at = observer;
+        let mut in_water = false;
+        let mut optical = 0.0;
+        let outcome = self.trace_with(
+            Ray {
+                origin: observer,
+                direction: u0,
+            },
+            |e| {
+                let n = if in_water { self.n_water } else { 1.0 };
+                optical += n * (e.point - at).length();
+                at = e.point;
+                if !e.totally_reflected {
+                    in_water = !in_water;
+                }
+            },
+        );
+        match outcome {
+            Outcome::Straw { point, .. } => {
+                let n = if in_water { self.n_water } else { 1.0 };
+                Some(optical + n * (point - at).length())
+            }
+            _ => None,
+        }
+    }
+    fn distance_to_objects(&self, p: Vec3) -> f64 {
+        self.distance_to_straw_surface(p)
+    }
+    fn refracts(&self) -> bool {
+        self.n_water != 1.0
+    }
+}
+
+impl CheckedScene for World {
+    fn reach(&self, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType) {
+        let (outcome, path) =
+            self.trace_path_type_limited(ray, max_events.unwrap_or(self.max_events));
+        let reach = match outcome {
+            WorldOutcome::Object {
+                color,
+                path_length,
+                events,
+                ..
+            } => Reach::Object {
+                color,
+                path_length,
+                events,
+            },
+            WorldOutcome::Escaped { .. } => Reach::Escaped,
+            WorldOutcome::Dropped => Reach::Dropped,
+        };
+        (reach, path)
+    }
+    fn true_image(&self, observer: Vec3, samples: usize) -> ImageCloud {
+        sample_image_of(self, observer, samples, &|_| {})
+    }
+    fn direction_map(&self, observer: Vec3) -> Frame {
+        frame_for_box(observer, self.bounds())
+    }
+    fn optical_path_length(&self, observer: Vec3, u0: Vec3) -> Option<f64> {
+        // Each straight piece in the index of the medium it crosses: the one each event leaves
+        // (n1), and after the last event the one it enters (or stays in, when totally reflected).
+        let (mut at, mut optical, mut n) = (observer, 0.0, 1.0);
+        let outcome = self.trace_with(
+            Ray {
+                origin: observer,
+                direction: u0,
+            },
+            |e| {
+                optical += e.n1 * (e.point - at).length();
+                at = e.point;
+                n = if e.totally_reflected { e.n1 } else { e.n2 };
+            },
+        );
+        match outcome {
+            WorldOutcome::Object { point, .. } => Some(optical + n * (point - at).length()),
+            _ => None,
+        }
+    }
+    fn distance_to_objects(&self, p: Vec3) -> f64 {
+        self.distance_to_objects(p)
+    }
+    fn refracts(&self) -> bool {
+        !self.boundaries().is_empty()
+    }
+}
 
 /// Default tolerance on a point's path length (m).
 pub const DEFAULT_TOLERANCE: f64 = 1e-6;
@@ -169,7 +353,7 @@ pub struct Judgement {
 /// Judges `point` seen from `observer` with `tracer` (its scene's event limit) and a path-length
 /// `tolerance` (m).
 pub fn judge_point(
-    tracer: &Tracer,
+    tracer: &impl CheckedScene,
     observer: Vec3,
     point: &ClaimedPoint,
     tolerance: f64,
@@ -187,10 +371,9 @@ pub fn judge_point(
         origin: observer,
         direction: offset / distance,
     };
-    let scene = &tracer.scene;
-    let (outcome, path) = trace_path_type(tracer, scene, ray);
+    let (outcome, path) = tracer.reach(ray, None);
     let verdict = match outcome {
-        Outcome::Straw {
+        Reach::Object {
             color, path_length, ..
         } => {
             let length_error = distance - path_length;
@@ -202,16 +385,14 @@ pub fn judge_point(
                 Verdict::Correct { length_error }
             }
         }
-        Outcome::Escaped { .. } => Verdict::NoStraw,
-        Outcome::Dropped => {
+        Reach::Escaped => Verdict::NoStraw,
+        Reach::Dropped => {
             // Tell "would reach the straw later" from "never reaches it": trace again with the
             // largest event limit allowed.
-            let mut patient = *scene;
-            patient.max_events = MAX_EVENTS_LIMIT;
-            let (outcome, path) = trace_path_type(&Tracer::new(&patient), &patient, ray);
+            let (outcome, path) = tracer.reach(ray, Some(MAX_EVENTS_LIMIT));
             return Judgement {
                 verdict: match outcome {
-                    Outcome::Straw { color, events, .. } => Verdict::TooManyEvents {
+                    Reach::Object { color, events, .. } => Verdict::TooManyEvents {
                         events,
                         actual: color,
                     },
@@ -225,17 +406,16 @@ pub fn judge_point(
 }
 
 /// Judges every point (in parallel; the result is in the points' order).
-pub fn judge_points(
-    scene: &Scene,
+pub fn judge_points<T: CheckedScene>(
+    scene: &T,
     observer: Vec3,
     points: &[ClaimedPoint],
     tolerance: f64,
 ) -> Vec<Judgement> {
-    let tracer = Tracer::new(scene);
     points
         .par_iter()
         .with_min_len(256)
-        .map(|p| judge_point(&tracer, observer, p, tolerance))
+        .map(|p| judge_point(scene, observer, p, tolerance))
         .collect()
 }
 
@@ -304,10 +484,10 @@ impl Tally {
 }
 
 /// Tallies per claimed colour code 1..=5 (indices 0..=4).
-pub fn tally_per_colour(points: &[ClaimedPoint], judged: &[Judgement]) -> [Tally; SECTION_COUNT] {
-    let mut t = [Tally::default(); SECTION_COUNT];
+pub fn tally_per_colour(points: &[ClaimedPoint], judged: &[Judgement]) -> [Tally; COLOR_COUNT] {
+    let mut t = [Tally::default(); COLOR_COUNT];
     for (p, j) in points.iter().zip(judged) {
-        if (1..=SECTION_COUNT as u8).contains(&p.color) {
+        if (1..=COLOR_COUNT as u8).contains(&p.color) {
             t[p.color as usize - 1].add(j.verdict.kind());
         }
     }
@@ -345,8 +525,8 @@ pub fn true_sample_count(solution_points: usize) -> usize {
 
 /// The true image seen from `observer`, sampled densely enough to judge a solution of
 /// `solution_points` points.
-pub fn true_image(scene: &Scene, observer: Vec3, solution_points: usize) -> ImageCloud {
-    sample_image(scene, observer, true_sample_count(solution_points), &|_| {})
+pub fn true_image(scene: &impl CheckedScene, observer: Vec3, solution_points: usize) -> ImageCloud {
+    scene.true_image(observer, true_sample_count(solution_points))
 }
 
 /// Where on its section a missing region lies, along the straw.
@@ -424,7 +604,7 @@ pub struct Coverage {
     /// The equal-area map the comparison is made on.
     pub frame: Frame,
     /// Per colour code 1..=5 (indices 0..=4).
-    pub per_colour: [ColourCoverage; SECTION_COUNT],
+    pub per_colour: [ColourCoverage; COLOR_COUNT],
     /// For each true-image point, whether the solution reaches it.
     pub reached: Vec<bool>,
     /// The missing regions at least [`MIN_REGION_SHARE`] of their colour, largest first.
@@ -447,13 +627,13 @@ impl Coverage {
 /// directions (unit) and colours of the solution's points that really reach their colour,
 /// `solution_points` the number of points the solution has in all (its density).
 pub fn coverage(
-    scene: &Scene,
+    scene: &impl CheckedScene,
     observer: Vec3,
     truth: &ImageCloud,
     covering: &[(Vec3, u8)],
     solution_points: usize,
 ) -> Coverage {
-    let frame = frame_for(observer);
+    let frame = scene.direction_map(observer);
     let h = truth.spacing;
     let sample_solid_angle = h * h;
     let total_solid_angle = truth.points.len() as f64 * sample_solid_angle;
@@ -531,7 +711,7 @@ pub fn coverage(
         });
     let reached: Vec<bool> = marks.into_iter().map(AtomicBool::into_inner).collect();
 
-    let mut per_colour = [ColourCoverage::default(); SECTION_COUNT];
+    let mut per_colour = [ColourCoverage::default(); COLOR_COUNT];
     for (p, &r) in truth.points.iter().zip(&reached) {
         let c = &mut per_colour[p.color as usize - 1];
         let z = p.straw_point.z;
@@ -686,15 +866,14 @@ fn nearest_spacing(points: &[(f64, f64, u8)], bin: f64, cap: f64) -> Vec<f64> {
 /// Groups the unreached true samples into regions: same colour, same kind of light path, and
 /// neighbours on the true sampling grid (8-neighbourhood).
 fn missing_regions(
-    scene: &Scene,
+    scene: &impl CheckedScene,
     observer: Vec3,
     truth: &ImageCloud,
     reached: &[bool],
     frame: &Frame,
-    per_colour: &[ColourCoverage; SECTION_COUNT],
+    per_colour: &[ColourCoverage; COLOR_COUNT],
 ) -> Vec<MissingRegion> {
     let h = truth.spacing;
-    let tracer = Tracer::new(scene);
     let unreached: Vec<usize> = (0..truth.points.len()).filter(|&i| !reached[i]).collect();
     let paths: Vec<LightPathType> = unreached
         .par_iter()
@@ -703,7 +882,7 @@ fn missing_regions(
                 origin: observer,
                 direction: truth.points[i].direction,
             };
-            trace_path_type(&tracer, scene, ray).1
+            scene.reach(ray, None).1
         })
         .collect();
     // Grid cell of each unreached sample: the true image's directions are the centres
@@ -843,37 +1022,14 @@ const HINT_SAMPLE: usize = 400;
 const HINT_SHARE: f64 = 0.5;
 
 /// The optical path length `Σ n·l` of the ray from `observer` along unit `u0`, if it reaches the straw.
-pub fn optical_path_length(scene: &Scene, observer: Vec3, u0: Vec3) -> Option<f64> {
-    let mut at = observer;
-    let mut in_water = false;
-    let mut optical = 0.0;
-    let outcome = scene.trace_with(
-        Ray {
-            origin: observer,
-            direction: u0,
-        },
-        |e| {
-            let n = if in_water { scene.n_water } else { 1.0 };
-            optical += n * (e.point - at).length();
-            at = e.point;
-            if !e.totally_reflected {
-                in_water = !in_water;
-            }
-        },
-    );
-    match outcome {
-        Outcome::Straw { point, .. } => {
-            let n = if in_water { scene.n_water } else { 1.0 };
-            Some(optical + n * (point - at).length())
-        }
-        _ => None,
-    }
+pub fn optical_path_length(scene: &impl CheckedScene, observer: Vec3, u0: Vec3) -> Option<f64> {
+    scene.optical_path_length(observer, u0)
 }
 
 /// Likely reasons why most points are wrong (none when at least half are correct): tried on an
 /// even subset of the points.
 pub fn hints(
-    scene: &Scene,
+    scene: &impl CheckedScene,
     observer: Vec3,
     points: &[ClaimedPoint],
     judged: &[Judgement],
@@ -889,7 +1045,6 @@ pub fn hints(
     let step = points.len().div_ceil(HINT_SAMPLE).max(1);
     let tried: Vec<&ClaimedPoint> = points.iter().step_by(step).collect();
     let share = |n: usize| n as f64 / tried.len() as f64;
-    let tracer = Tracer::new(scene);
     let mut out = Vec::new();
     for factor in [1e-3, 1e-2] {
         let n = tried
@@ -899,7 +1054,7 @@ pub fn hints(
                     position: p.position * factor,
                     color: p.color,
                 };
-                judge_point(&tracer, observer, &scaled, tolerance)
+                judge_point(scene, observer, &scaled, tolerance)
                     .verdict
                     .kind()
                     == VerdictKind::Correct
@@ -922,17 +1077,17 @@ pub fn hints(
                     .is_some_and(|l| (l - len).abs() <= tolerance)
         })
         .count();
-    if scene.n_water != 1.0 && share(optical) >= HINT_SHARE {
+    if scene.refracts() && share(optical) >= HINT_SHARE {
         out.push(Hint::OpticalPath {
             share: share(optical),
         });
     }
     let on_straw = points
         .iter()
-        .filter(|p| scene.distance_to_straw_surface(p.position) <= tolerance)
+        .filter(|p| scene.distance_to_objects(p.position) <= tolerance)
         .count() as f64
         / points.len() as f64;
-    if scene.n_water != 1.0 && on_straw >= HINT_SHARE {
+    if scene.refracts() && on_straw >= HINT_SHARE {
         out.push(Hint::OnStraw { share: on_straw });
     }
     out
@@ -945,8 +1100,8 @@ pub struct CheckReport {
     pub judged: Vec<Judgement>,
     /// Counts over all points.
     pub tally: Tally,
-    /// Counts per claimed colour code 1..=5.
-    pub per_colour: [Tally; SECTION_COUNT],
+    /// Counts per claimed colour code 1..=8 (a straw's five, then a coin, a card, a picture).
+    pub per_colour: [Tally; COLOR_COUNT],
     /// The true image the solution is compared with.
     pub truth: ImageCloud,
     /// How the solution covers it.
@@ -965,8 +1120,8 @@ impl CheckReport {
 }
 
 /// Judges every point of a solution and compares its coverage with the true image.
-pub fn check_solution(
-    scene: &Scene,
+pub fn check_solution<T: CheckedScene>(
+    scene: &T,
     observer: Vec3,
     points: &[ClaimedPoint],
     tolerance: f64,

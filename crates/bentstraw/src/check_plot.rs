@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use bentstraw_optics::check::{CheckReport, ClaimedPoint, VerdictKind};
-use bentstraw_optics::scene::{Scene, SECTION_COUNT, SECTION_NAMES};
+use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES};
+use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -15,7 +16,7 @@ use crate::plot::{
     axis_box, dashed, draw_axis_labels, draw_legend_cell, draw_observer, draw_panes,
     draw_straw_outline, draw_water, figure_bytes, figure_views, font, layout, legend_cell,
     section_rgb8, three_view_size, AreaOn, DrawResultOn, FigureFormat, Heading, LegendMark, Panel,
-    TEXT,
+    Sketch, TEXT,
 };
 
 /// Most true-image samples and correct points drawn per panel in a PNG (an even subset beyond that).
@@ -46,16 +47,17 @@ fn pale(code: u8) -> RGBColor {
 }
 
 /// Draws the check figure of `points` (the solution) and `report` into `path` (.png, .svg or .pdf).
-pub fn write_check_figure(
+pub fn write_check_figure<'a>(
     path: &Path,
-    scene: &Scene,
+    scene: impl Into<Sketch<'a>>,
     observer: Vec3,
     points: &[ClaimedPoint],
     report: &CheckReport,
     title: &str,
 ) -> CliResult {
     let format = FigureFormat::of(path)?;
-    let heading = check_heading(report, title);
+    let scene = scene.into();
+    let heading = check_heading(report, title, colours(scene));
     let bytes = figure_bytes(
         path,
         format,
@@ -89,14 +91,14 @@ pub fn write_check_figure(
 }
 
 /// The check figure's heading: `title`, then the tally and the coverage.
-fn check_heading(report: &CheckReport, title: &str) -> Heading {
+fn check_heading(report: &CheckReport, title: &str, colours: usize) -> Heading {
     let t = &report.tally;
-    let cov: Vec<String> = (0..SECTION_COUNT)
+    let cov: Vec<String> = (0..colours)
         .map(|k| format!("{:.0} %", 100.0 * report.coverage.per_colour[k].share()))
         .collect();
     let sub = format!(
         "{} points: {} correct, {} wrong colour, {} wrong length, {} no straw, {} need more events · \
-         coverage per colour 1–5: {} · lengths in metres, one scale for both axes of a panel",
+         coverage per colour 1–{colours}: {} · lengths in metres, one scale for both axes of a panel",
         t.points,
         t.correct,
         t.wrong_colour,
@@ -106,6 +108,14 @@ fn check_heading(report: &CheckReport, title: &str) -> Heading {
         cov.join(", ")
     );
     Heading::new(title, &sub)
+}
+
+/// How many colour codes the scene can show.
+fn colours(scene: Sketch) -> usize {
+    match scene {
+        Sketch::Spec(_) => SECTION_COUNT,
+        Sketch::World(_) => COLOR_COUNT,
+    }
 }
 
 /// Whether pixel `(x, y)` lies inside `panel`.
@@ -124,7 +134,7 @@ fn stride(n: usize, max: usize) -> usize {
 /// The figure on any backend: the same code draws the PNG and the SVG.
 fn draw_check<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: &Scene,
+    scene: Sketch,
     observer: Vec3,
     points: &[ClaimedPoint],
     report: &CheckReport,
@@ -219,7 +229,7 @@ fn draw_check<DB: DrawingBackend>(
         draw_axis_labels(root, panel, &bx)?;
         draw_observer(root, panel, &bx, observer, &[])?;
     }
-    draw_check_legend(root, report, legend_cell(heading.height()))
+    draw_check_legend(root, report, legend_cell(heading.height()), scene)
 }
 
 /// The mark of a wrong point: a cross for a wrong colour or length, a ring for no straw or too
@@ -245,10 +255,15 @@ fn draw_check_legend<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     report: &CheckReport,
     cell: (i32, i32, i32, i32),
+    scene: Sketch,
 ) -> DrawResultOn<DB> {
     let mut items: Vec<(LegendMark, String)> =
         vec![(LegendMark::None, "pale: true, full: correct".to_string())];
-    for (k, name) in SECTION_NAMES.iter().enumerate() {
+    let names: &[&str] = match scene {
+        Sketch::Spec(_) => &SECTION_NAMES,
+        Sketch::World(_) => &COLOR_NAMES,
+    };
+    for (k, name) in names.iter().enumerate() {
         let full = section_rgb8(k as u8 + 1);
         let p = pale(k as u8 + 1);
         items.push((
@@ -350,7 +365,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("f.png");
         write_check_figure(&path, &scene, r.observer, &points, &report, "t").unwrap();
-        let top = check_heading(&report, "t").height();
+        let top = check_heading(&report, "t", SECTION_COUNT).height();
         (decode(&std::fs::read(path).unwrap()), top)
     }
 

@@ -53,7 +53,7 @@ pub fn gallery_files() -> Vec<String> {
         .iter()
         .flat_map(|(stem, _)| {
             [
-                format!("gallery_{stem}.png"),
+                format!("gallery_{stem}_observer.png"),
                 format!("gallery_{stem}_points.png"),
                 format!("gallery_{stem}_points.svg"),
             ]
@@ -81,7 +81,7 @@ pub fn gallery_sections(out: &Path) -> Vec<Section> {
                     title: format!("Gallery: {stem}"),
                     figures: vec![Figure {
                         error: Some(e.0),
-                        ..Figure::image(&format!("gallery_{stem}.png"), "")
+                        ..Figure::image(&format!("gallery_{stem}_observer.png"), "")
                     }],
                     notes: vec![],
                     side_by_side: false,
@@ -94,7 +94,7 @@ pub fn gallery_sections(out: &Path) -> Vec<Section> {
 
 /// The section of one gallery scene: its picture and its image points.
 fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Section {
-    let picture_file = format!("gallery_{stem}.png");
+    let picture_file = format!("gallery_{stem}_observer.png");
     let points_file = format!("gallery_{stem}_points.png");
     let svg_file = format!("gallery_{stem}_points.svg");
     let mut picture = Figure::image(

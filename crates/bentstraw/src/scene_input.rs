@@ -17,8 +17,19 @@ use crate::files::shown;
 /// Largest scene file read (1 MB): a scene is a few dozen lines.
 pub const MAX_SCENE_FILE_BYTES: u64 = 1 << 20;
 
-/// Most reasons an unsupported scene's refusal names.
+/// Most reasons a refusal names of what a scene has.
 const MAX_REASONS: usize = 5;
+
+/// What a scene has that the assignment's has not, in words, at most [`MAX_REASONS`] of them (a
+/// file of a thousand different straws must not flood the terminal).
+pub fn unsupported_words(description: &SceneDescription) -> String {
+    let reasons = description.unsupported();
+    let mut said = reasons[..reasons.len().min(MAX_REASONS)].join(", ");
+    if reasons.len() > MAX_REASONS {
+        said.push_str(&format!(" and {} more", reasons.len() - MAX_REASONS));
+    }
+    said
+}
 
 /// The scene and observer of one run, with the target a scene file suggests.
 #[derive(Clone, Copy, Debug)]
@@ -84,17 +95,6 @@ impl SceneFlags {
             max_events: self.max_events,
         }
     }
-
-    /// The validated scene and observer (and a scene file's target).
-    pub fn resolve(&self) -> CliResult<Resolved> {
-        self.source().resolve()
-    }
-
-    /// The validated scene and observer.
-    pub fn scene_and_observer(&self) -> CliResult<(Scene, Vec3)> {
-        let r = self.resolve()?;
-        Ok((r.scene, r.observer))
-    }
 }
 
 impl OptionalSceneFlags {
@@ -112,30 +112,6 @@ impl OptionalSceneFlags {
 }
 
 impl SceneSource {
-    /// The validated scene and observer, for the commands that work on the assignment's kind of
-    /// scene only; another scene file is refused, saying what it has and which commands take it.
-    pub fn resolve(&self) -> CliResult<Resolved> {
-        match self.resolve_any()? {
-            AnyScene::Spec(r) => Ok(r),
-            AnyScene::File(f) => {
-                // The first few reasons: a file of a thousand different straws must not flood the
-                // terminal.
-                let reasons = f.description.unsupported();
-                let mut said = reasons[..reasons.len().min(MAX_REASONS)].join(", ");
-                if reasons.len() > MAX_REASONS {
-                    said.push_str(&format!(" and {} more", reasons.len() - MAX_REASONS));
-                }
-                fail(format!(
-                    "{} is a valid scene, but this command works only on scenes of the assignment's kind \
-                     (a glass of radius 0.04 m and height 0.2 m with walls of no thickness, at most one liquid, \
-                     one upright straw of radius 0.005 m and length 0.25 m, nothing else): it has {said} \
-                     (simulate, render and bench trace it)",
-                    f.name
-                ))
-            }
-        }
-    }
-
     /// The validated scene and observer: from the flags alone as always, or from the scene file
     /// with the flags overriding it. Every value goes through the same rules as the flags'; a
     /// file of the assignment's kind gives exactly the scene the same flags give.

@@ -406,7 +406,7 @@ fn table_writes_every_simulation_and_the_report() {
         "classic_rays.svg",
         "validation.svg",
         "sim3_rays.svg",
-        "gallery_reversing-arrow.png",
+        "gallery_reversing-arrow_observer.png",
         "gallery_tank-pencil_points.png",
     ] {
         assert!(folder.join(f).is_file(), "{f}");

@@ -270,43 +270,59 @@ fn an_unreadable_or_huge_scene_file_is_refused() {
     );
 }
 
+/// `check` judges a solution in any scene file: a scene's own points pass, a solution with wrong
+/// colours fails and says so, colour codes past the scene's are refused with their line.
 #[test]
-fn a_scene_check_cannot_trace_yet_is_refused_honestly() {
-    let m = assert_refused(
-        &[],
+fn check_judges_solutions_in_any_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = gallery("reversing-arrow.toml");
+    succeeded(&run(
+        dir.path(),
+        &[
+            "simulate", "--scene", &file, "--points", "3000", "--output", "mine.csv",
+        ],
+    ));
+    let out = run(
+        dir.path(),
         &[
             "check",
-            "old.csv",
+            "mine.csv",
             "--scene",
-            &gallery("leaning-straw.toml"),
-        ],
-        &[
-            "valid",
-            "assignment",
-            "a straw tilted 15°",
-            "simulate, render",
+            &file,
+            "--json",
+            "--plot",
+            "check.svg",
         ],
     );
-    assert!(m.contains("leaning-straw.toml"), "{m}");
-    assert_refused(
-        &[],
-        &["check", "old.csv", "--scene", &gallery("oil-on-water.toml")],
-        &["2 liquid layers"],
+    succeeded(&out);
+    let json = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(json.contains("\"verdict\":\"pass\""), "{json}");
+    assert!(json.contains("\"scene_file\""), "{json}");
+    assert!(dir.path().join("check.svg").is_file());
+    // The arrow's points claimed as the card: every one a wrong colour.
+    let text = std::fs::read_to_string(dir.path().join("mine.csv")).unwrap();
+    let wrong: String = text
+        .lines()
+        .map(|l| {
+            l.strip_suffix(",8")
+                .map_or(l.to_string(), |p| format!("{p},7"))
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(dir.path().join("wrong.csv"), wrong).unwrap();
+    let out = run(dir.path(), &["check", "wrong.csv", "--scene", &file]);
+    assert_eq!(out.status.code(), Some(1));
+    let summary = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        summary.contains("FAIL") && summary.contains("8 arrow"),
+        "{summary}"
     );
-    // Figures and the apparent-position models are for the assignment's kind for now.
-    assert_refused(
-        &[],
-        &[
-            "simulate",
-            "--scene",
-            &gallery("oil-on-water.toml"),
-            "--output",
-            "new.csv",
-            "--html",
-            "new.html",
-        ],
-        &["--html", "oil-on-water.toml", ".csv, .json or .ply"],
-    );
+    // A colour code past the scene's eight is refused with its line.
+    std::fs::write(dir.path().join("nine.csv"), "x,y,z,color\n0.1,0,0.1,9\n").unwrap();
+    let out = run(dir.path(), &["check", "nine.csv", "--scene", &file]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("line 2") && err.contains("1 to 8"), "{err}");
 }
 
 /// Every gallery scene gives its image points and its picture; the points are the objects'
@@ -480,8 +496,10 @@ fn a_scene_of_many_unsupported_straws_is_refused_in_a_short_line() {
     let m = assert_refused(
         &[("many.toml", &text)],
         &[
-            "check",
-            "old.csv",
+            "explore",
+            "--no-open",
+            "--port",
+            "0",
             "--scene",
             "many.toml",
             "--observer",

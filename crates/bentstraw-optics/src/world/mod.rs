@@ -441,7 +441,17 @@ impl World {
     }
 
     /// [`World::trace`], telling `on_event` every refraction and total reflection, in order.
-    pub fn trace_with(&self, ray: Ray, mut on_event: impl FnMut(&WorldEvent)) -> WorldOutcome {
+    pub fn trace_with(&self, ray: Ray, on_event: impl FnMut(&WorldEvent)) -> WorldOutcome {
+        self.trace_limited(ray, self.max_events, on_event)
+    }
+
+    /// [`World::trace_with`] with the event limit `max_events` instead of the world's.
+    pub fn trace_limited(
+        &self,
+        ray: Ray,
+        max_events: u32,
+        mut on_event: impl FnMut(&WorldEvent),
+    ) -> WorldOutcome {
         let Some((mut ray, mut length)) = enter_sphere(ray, self.centre, self.radius) else {
             return WorldOutcome::Escaped { events: 0, ray };
         };
@@ -472,7 +482,7 @@ impl World {
                     };
                 }
                 Some(Hit::Boundary { t, index }) => {
-                    if events == self.max_events {
+                    if events == max_events {
                         return WorldOutcome::Dropped;
                     }
                     events += 1;
@@ -651,8 +661,17 @@ impl World {
     /// Traces `ray` by the course's law and tells the kind of its light path: how it enters (its
     /// first event) and how many total reflections it undergoes.
     pub fn trace_path_type(&self, ray: Ray) -> (WorldOutcome, LightPathType) {
+        self.trace_path_type_limited(ray, self.max_events)
+    }
+
+    /// [`World::trace_path_type`] with the event limit `max_events`.
+    pub fn trace_path_type_limited(
+        &self,
+        ray: Ray,
+        max_events: u32,
+    ) -> (WorldOutcome, LightPathType) {
         let mut kind = LightPathType::DIRECT;
-        let outcome = self.trace_with(ray, |e| {
+        let outcome = self.trace_limited(ray, max_events, |e| {
             if kind.entry == Entry::Direct {
                 kind.entry = self.entry_of(e);
             }
@@ -661,6 +680,16 @@ impl World {
             }
         });
         (outcome, kind)
+    }
+}
+
+impl World {
+    /// Distance from `p` to the nearest object's surface (m).
+    pub fn distance_to_objects(&self, p: Vec3) -> f64 {
+        self.objects
+            .iter()
+            .map(|o| o.distance(p))
+            .fold(f64::INFINITY, f64::min)
     }
 }
 

@@ -94,6 +94,19 @@ impl SolidCylinder {
         best.map(|(t, part)| (t, part, pz + t * dz))
     }
 
+    /// Distance from `p` to the cylinder's surface (side or caps), inside or out.
+    pub fn distance(&self, p: Vec3) -> f64 {
+        let d = p - self.base;
+        let along = d.dot(self.axis);
+        let dr = (d - along * self.axis).length() - self.radius; // > 0 outside the side
+        let dz = (-along).max(along - self.length); // > 0 beyond a cap
+        if dr <= 0.0 && dz <= 0.0 {
+            (-dr).min(-dz)
+        } else {
+            dr.max(0.0).hypot(dz.max(0.0))
+        }
+    }
+
     /// Outward unit normal at the point `p` of `part`.
     pub fn normal(&self, part: Part, p: Vec3) -> Vec3 {
         match part {
@@ -207,6 +220,26 @@ impl Object {
                     CARD_COLOR
                 };
                 Some((t, Part::Side, color))
+            }
+        }
+    }
+
+    /// Distance from `p` to the object's surface (m).
+    pub fn distance(&self, p: Vec3) -> f64 {
+        match self {
+            Object::Straw { solid, .. } | Object::Coin(solid) => solid.distance(p),
+            Object::Card {
+                centre,
+                front,
+                right,
+                width,
+                height,
+                ..
+            } => {
+                let q = p - *centre;
+                let du = (q.dot(*right).abs() - width / 2.0).max(0.0);
+                let dv = (q.z.abs() - height / 2.0).max(0.0);
+                q.dot(*front).hypot(du.hypot(dv))
             }
         }
     }

@@ -13,13 +13,16 @@ use bentstraw_optics::check::{MissingRegion, VerdictKind, REACH_CELLS};
 use bentstraw_optics::check::{DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{clip_text, number_text, Scene, SECTION_COUNT, SECTION_NAMES};
+use bentstraw_optics::world::COLOR_NAMES;
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
 use crate::files::check_writable;
+use crate::plot::Sketch;
 use crate::report::Check;
+use crate::scene_input::{AnyScene, FileWorld};
 
 /// Most points a solution may have (more is not a reasonable image: refuse rather than run for long).
 pub const MAX_POINTS: usize = 10_000_000;
@@ -61,9 +64,32 @@ fn rounding_error(digits: usize, largest: f64) -> f64 {
     0.5 * 10f64.powf(largest.log10().floor() - digits as f64 + 1.0)
 }
 
+/// The scene a solution is checked in: the assignment's glass, or a scene file's world.
+#[derive(Clone, Copy)]
+enum Checked<'a> {
+    /// The assignment's kind of scene.
+    Spec(&'a Scene),
+    /// Any other scene file.
+    File(&'a FileWorld),
+}
+
+impl Checked<'_> {
+    /// The names of the colour codes this scene can show, code 1 first.
+    fn names(&self) -> &'static [&'static str] {
+        match self {
+            Checked::Spec(_) => &SECTION_NAMES,
+            Checked::File(_) => &COLOR_NAMES,
+        }
+    }
+}
+
 /// Runs `check`; `Ok(true)` for a pass, `Ok(false)` for a fail.
 pub fn run(args: &CheckArgs) -> CliResult<bool> {
-    let (scene, observer) = args.scene.scene_and_observer()?;
+    let resolved = args.scene.source().resolve_any()?;
+    let (checked, observer) = match &resolved {
+        AnyScene::Spec(r) => (Checked::Spec(&r.scene), r.observer),
+        AnyScene::File(f) => (Checked::File(f), f.observer),
+    };
     if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
         return Err(CliError(format!(
             "--tolerance {} is not allowed: it must be a finite length > 0 (metres)",
@@ -81,14 +107,23 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
         check_writable(p)?;
     }
     let started = Instant::now();
-    let solution = read_solution(&args.file)?;
-    let report = check_solution(
-        &scene,
-        observer,
-        &solution.points,
-        args.tolerance,
-        args.min_coverage,
-    );
+    let solution = read_solution_of(&args.file, checked.names().len())?;
+    let report = match checked {
+        Checked::Spec(scene) => check_solution(
+            scene,
+            observer,
+            &solution.points,
+            args.tolerance,
+            args.min_coverage,
+        ),
+        Checked::File(f) => check_solution(
+            &f.world,
+            observer,
+            &solution.points,
+            args.tolerance,
+            args.min_coverage,
+        ),
+    };
     let seconds = started.elapsed().as_secs_f64();
     if let Some(p) = &args.plot {
         let title = format!(
@@ -96,9 +131,13 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
             clip_text(&args.file.display().to_string(), 60),
             if report.passes() { "pass" } else { "fail" }
         );
+        let sketch = match checked {
+            Checked::Spec(scene) => Sketch::Spec(scene),
+            Checked::File(f) => Sketch::World(&f.world),
+        };
         crate::check_plot::write_check_figure(
             p,
-            &scene,
+            sketch,
             observer,
             &solution.points,
             &report,
@@ -107,19 +146,20 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
     }
     let file = args.file.display().to_string();
     if args.json {
-        let v = json_report(&file, &scene, observer, &solution, &report, args, seconds);
+        let v = json_report(&file, checked, observer, &solution, &report, args, seconds);
         println!("{v}");
     } else {
         print!(
             "{}",
-            summary(&file, &scene, observer, &solution, &report, args, seconds)
+            summary(&file, checked, observer, &solution, &report, args, seconds)
         );
     }
     Ok(report.passes())
 }
 
-/// Reads and parses the solution at `path` (refusing files too large to be an image).
-pub fn read_solution(path: &Path) -> CliResult<Solution> {
+/// Reads and parses the solution at `path` (refusing files too large to be an image), for a
+/// scene whose colour codes go from 1 to `codes`.
+fn read_solution_of(path: &Path, codes: usize) -> CliResult<Solution> {
     let name = clip_text(&path.display().to_string(), 80);
     let meta = std::fs::metadata(path).map_err(|e| CliError(format!("cannot read {name}: {e}")))?;
     if meta.is_dir() {
@@ -133,7 +173,7 @@ pub fn read_solution(path: &Path) -> CliResult<Solution> {
         )));
     }
     let bytes = std::fs::read(path).map_err(|e| CliError(format!("cannot read {name}: {e}")))?;
-    parse_solution(&bytes).map_err(|e| CliError(format!("{name}: {e}")))
+    parse_solution_of(&bytes, codes).map_err(|e| CliError(format!("{name}: {e}")))
 }
 
 /// The colour columns' accepted names.
@@ -142,7 +182,14 @@ const COLOUR_NAMES: [&str; 8] = [
 ];
 
 /// Parses a solution: columns `x y z color` (or as a header names them), one point a line.
+#[cfg(test)]
 pub fn parse_solution(bytes: &[u8]) -> Result<Solution, String> {
+    parse_solution_of(bytes, SECTION_COUNT)
+}
+
+/// [`parse_solution`] for a scene whose colour codes go from 1 to `codes` (5: a straw's sections;
+/// 8 with a scene file's coins, cards and pictures).
+pub fn parse_solution_of(bytes: &[u8], codes: usize) -> Result<Solution, String> {
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let mut solution = Solution::default();
     // Column of x, y, z and the colour; None until the first line that is not a comment.
@@ -207,11 +254,19 @@ pub fn parse_solution(bytes: &[u8]) -> Result<Solution, String> {
             }
         }
         let c = v[3];
-        if c.fract() != 0.0 || !(1.0..=SECTION_COUNT as f64).contains(&c) {
-            return Err(format!(
-                "line {line_no}: colour {} is not a colour code: expected a whole number from 1 (red) to 5 (blue)",
-                number_text(c)
-            ));
+        if c.fract() != 0.0 || !(1.0..=codes as f64).contains(&c) {
+            return Err(if codes == SECTION_COUNT {
+                format!(
+                    "line {line_no}: colour {} is not a colour code: expected a whole number from 1 (red) to 5 (blue)",
+                    number_text(c)
+                )
+            } else {
+                format!(
+                    "line {line_no}: colour {} is not a colour code: expected a whole number from 1 to {codes} \
+                     (1 red … 5 blue a straw's sections, 6 a coin, 7 a card, 8 the arrow on it)",
+                    number_text(c)
+                )
+            });
         }
         if solution.points.len() == MAX_POINTS {
             return Err(format!(
@@ -315,7 +370,7 @@ fn column_name(field: &str) -> String {
 
 /// A colour code with its name: `2 (orange)`.
 fn colour_words(code: u8) -> String {
-    match SECTION_NAMES.get(code as usize - 1) {
+    match COLOR_NAMES.get(code as usize - 1) {
         Some(n) => format!("{code} ({n})"),
         None => code.to_string(),
     }
@@ -357,7 +412,7 @@ fn point_words(p: &ClaimedPoint, v: &Verdict, path: &str) -> String {
 
 /// A missing region in words a student understands.
 pub fn region_words(m: &MissingRegion) -> String {
-    let name = SECTION_NAMES[m.color as usize - 1];
+    let name = COLOR_NAMES[m.color as usize - 1];
     let (z0, z1) = m.straw_z;
     format!(
         "{name} ({}): {:.1} % of its image, {:.0} mm of straw {} (z = {:.0}–{:.0} mm), seen {}",
@@ -390,7 +445,7 @@ fn all_hints(solution: &Solution, r: &CheckReport) -> Vec<String> {
 /// The one-screen summary.
 fn summary(
     file: &str,
-    scene: &Scene,
+    checked: Checked,
     o: Vec3,
     solution: &Solution,
     r: &CheckReport,
@@ -400,18 +455,30 @@ fn summary(
     let mut t = String::new();
     let t_ = &r.tally;
     let _ = writeln!(t, "bentstraw check: {file}");
-    let _ = writeln!(
-        t,
-        "  scene           observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}, at most {} events",
-        o.x, o.y, o.z, scene.straw_x, scene.straw_y, scene.water_height, scene.n_water, scene.max_events
-    );
+    match checked {
+        Checked::Spec(scene) => {
+            let _ = writeln!(
+                t,
+                "  scene           observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}, at most {} events",
+                o.x, o.y, o.z, scene.straw_x, scene.straw_y, scene.water_height, scene.n_water, scene.max_events
+            );
+        }
+        Checked::File(f) => {
+            let _ = writeln!(
+                t,
+                "  scene           {}, observer ({}, {}, {}) m, at most {} events",
+                f.name, o.x, o.y, o.z, f.world.max_events
+            );
+        }
+    }
+    let names = checked.names();
     if let Some(h) = &solution.header {
         let _ = writeln!(t, "  read            {h}");
     }
     let wrong = t_.points - t_.correct;
-    let incomplete: Vec<String> = (0..SECTION_COUNT)
+    let incomplete: Vec<String> = (0..names.len())
         .filter(|&k| r.coverage.per_colour[k].share() < args.min_coverage)
-        .map(|k| SECTION_NAMES[k].to_string())
+        .map(|k| names[k].to_string())
         .collect();
     let _ = writeln!(
         t,
@@ -465,9 +532,13 @@ fn summary(
         "  {:<11} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8}  {:>8}",
         "colour", "points", "correct", "colour?", "length?", "no straw", "events?", "coverage"
     );
-    for (k, name) in SECTION_NAMES.iter().enumerate() {
+    for (k, name) in names.iter().enumerate() {
         let c = &r.per_colour[k];
         let cov = &r.coverage.per_colour[k];
+        // A scene file's colours neither claimed nor seen are left out (a card has no red).
+        if matches!(checked, Checked::File(_)) && c.points == 0 && cov.true_samples == 0 {
+            continue;
+        }
         let cov_text = if cov.true_samples == 0 {
             "not seen".to_string()
         } else {
@@ -558,6 +629,7 @@ pub fn own_points_check(scene: &Scene, observer: Vec3, points: &[ImagePoint]) ->
         .coverage
         .per_colour
         .iter()
+        .take(SECTION_COUNT)
         .map(|c| format!("{:.1} %", 100.0 * c.share()))
         .collect();
     let mut text = format!(
@@ -580,7 +652,7 @@ pub fn own_points_check(scene: &Scene, observer: Vec3, points: &[ImagePoint]) ->
 /// The JSON object of `--json`.
 fn json_report(
     file: &str,
-    scene: &Scene,
+    checked: Checked,
     o: Vec3,
     solution: &Solution,
     r: &CheckReport,
@@ -590,7 +662,7 @@ fn json_report(
     let t = &r.tally;
     let mut coverage = serde_json::Map::new();
     let mut per_colour = Vec::new();
-    for (k, name) in SECTION_NAMES.iter().enumerate() {
+    for (k, name) in checked.names().iter().enumerate() {
         let cov = &r.coverage.per_colour[k];
         coverage.insert((k + 1).to_string(), json!(cov.share()));
         let c = &r.per_colour[k];
@@ -648,13 +720,9 @@ fn json_report(
             v
         })
         .collect();
-    json!({
+    let mut v = json!({
         "file": file,
         "observer": [o.x, o.y, o.z],
-        "straw": [scene.straw_x, scene.straw_y],
-        "water_height": scene.water_height,
-        "n_water": scene.n_water,
-        "max_events": scene.max_events,
         "tolerance": args.tolerance,
         "min_coverage": args.min_coverage,
         "points": t.points,
@@ -674,7 +742,20 @@ fn json_report(
         "digits": solution.digits,
         "true_samples": r.truth.points.len(),
         "seconds": seconds,
-    })
+    });
+    match checked {
+        Checked::Spec(scene) => {
+            v["straw"] = json!([scene.straw_x, scene.straw_y]);
+            v["water_height"] = json!(scene.water_height);
+            v["n_water"] = json!(scene.n_water);
+            v["max_events"] = json!(scene.max_events);
+        }
+        Checked::File(f) => {
+            v["scene_file"] = json!(f.name);
+            v["max_events"] = json!(f.world.max_events);
+        }
+    }
+    v
 }
 
 #[cfg(test)]

@@ -14,7 +14,7 @@ use bentstraw_optics::Vec3;
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
 use crate::gallery::GALLERY;
-use crate::scene_input::AnyScene;
+use crate::scene_input::{unsupported_words, AnyScene};
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -77,7 +77,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
                          and the gallery's ({}) in this version: it has {}",
                         f.name,
                         names.join(", "),
-                        f.description.unsupported().join(", ")
+                        unsupported_words(&f.description)
                     ));
                 };
                 let o = f.observer;
