@@ -6,9 +6,10 @@ use std::collections::BTreeMap;
 
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::light_path_type::LightPathType;
+use crate::light_path_type::{Entry, LightPathType};
 use crate::scene::Scene;
-use crate::trace::{Event, Outcome};
+use crate::trace::{Event, Face, Outcome};
+use crate::world::World;
 use crate::Vec3;
 
 /// One ray from the eye to the straw, as a diagram draws it.
@@ -29,6 +30,60 @@ impl DiagramRay {
             .chain(self.events.iter().map(|e| e.point))
             .chain(std::iter::once(self.image.straw_point))
             .collect()
+    }
+}
+
+/// A scene whose rays a diagram can draw: the assignment's glass or any scene file's world.
+pub trait DiagramScene: Sync {
+    /// The ray from `observer` along unit `u0` with its events, if it reaches an object.
+    fn diagram_ray(&self, observer: Vec3, u0: Vec3) -> Option<DiagramRay>;
+}
+
+impl DiagramScene for Scene {
+    fn diagram_ray(&self, observer: Vec3, u0: Vec3) -> Option<DiagramRay> {
+        diagram_ray(self, observer, u0)
+    }
+}
+
+impl DiagramScene for World {
+    fn diagram_ray(&self, observer: Vec3, u0: Vec3) -> Option<DiagramRay> {
+        let mut events = Vec::new();
+        let mut kind = LightPathType::DIRECT;
+        self.trace_with(
+            Ray {
+                origin: observer,
+                direction: u0,
+            },
+            |e| {
+                // The kind of face, in the glass's words: a surface met from above, from below,
+                // or a wall.
+                let entry = self.entry_of(e);
+                if kind.entry == Entry::Direct {
+                    kind.entry = entry;
+                }
+                kind.total_reflections += u32::from(e.totally_reflected);
+                events.push(Event {
+                    point: e.point,
+                    face: match entry {
+                        Entry::Top => Face::WaterTop,
+                        Entry::Bottom => Face::WaterBottom,
+                        _ => Face::WaterSide,
+                    },
+                    normal: e.normal,
+                    incoming: e.incoming,
+                    outgoing: e.outgoing,
+                    n1: e.n1,
+                    n2: e.n2,
+                    totally_reflected: e.totally_reflected,
+                });
+            },
+        );
+        let image = self.image_point(observer, u0)?;
+        Some(DiagramRay {
+            image,
+            events,
+            kind,
+        })
     }
 }
 
@@ -56,13 +111,13 @@ pub fn diagram_ray(scene: &Scene, observer: Vec3, u0: Vec3) -> Option<DiagramRay
 
 /// Image points per kind of light path, most common first (ties by kind).
 pub fn path_type_counts(
-    scene: &Scene,
+    scene: &impl DiagramScene,
     observer: Vec3,
     points: &[ImagePoint],
 ) -> Vec<(LightPathType, usize)> {
     let mut counts: BTreeMap<LightPathType, usize> = BTreeMap::new();
     for p in points {
-        if let Some(r) = diagram_ray(scene, observer, p.direction) {
+        if let Some(r) = scene.diagram_ray(observer, p.direction) {
             *counts.entry(r.kind).or_default() += 1;
         }
     }
@@ -76,14 +131,14 @@ pub fn path_type_counts(
 /// sampler's order, which sweeps across the image), so rare paths — the pieces made by total
 /// reflection — are drawn too.
 pub fn diagram_rays(
-    scene: &Scene,
+    scene: &impl DiagramScene,
     observer: Vec3,
     points: &[ImagePoint],
     count: usize,
 ) -> Vec<DiagramRay> {
     let mut groups: BTreeMap<(u8, LightPathType), Vec<DiagramRay>> = BTreeMap::new();
     for p in points {
-        if let Some(r) = diagram_ray(scene, observer, p.direction) {
+        if let Some(r) = scene.diagram_ray(observer, p.direction) {
             groups.entry((p.color, r.kind)).or_default().push(r);
         }
     }

@@ -1,5 +1,5 @@
 //! The gallery of classic demonstrations, built into the program, and its part of the report:
-//! for each scene file its picture and its image points.
+//! for each scene file its picture, its image points and its ray diagram.
 
 use std::path::Path;
 
@@ -12,6 +12,7 @@ use crate::cli::CameraArgs;
 use crate::commands::render::world_camera;
 use crate::error::CliResult;
 use crate::pictures::png_bytes;
+use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{Figure, Link, Section};
 use crate::scene_input::{file_world, FileWorld};
 use crate::{files, plot};
@@ -56,6 +57,7 @@ pub fn gallery_files() -> Vec<String> {
                 format!("gallery_{stem}_observer.png"),
                 format!("gallery_{stem}_points.png"),
                 format!("gallery_{stem}_points.svg"),
+                format!("gallery_{stem}_rays.svg"),
             ]
         })
         .collect()
@@ -133,9 +135,25 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
         "figure as SVG",
         draw(&svg_file).err().map(|e| e.0),
     ));
+    let rays_file = format!("gallery_{stem}_rays.svg");
+    let mut rays = Figure::image(
+        &rays_file,
+        "Which light path makes which piece (bentstraw simulate --rays): broken paths from the \
+         eye, refractions (o) and total reflections (x), the dashed line of sight to each image \
+         point.",
+    );
+    let diagram = Diagram::new(&world.world, world.observer, &cloud.points);
+    rays.error = write_ray_diagram(
+        &out.join(&rays_file),
+        &world.world,
+        &diagram,
+        &format!("Ray diagram: {}", world.name),
+    )
+    .err()
+    .map(|e| e.0);
     Section {
         title: format!("Gallery: {}", stem.replace('-', " ")),
-        figures: vec![picture, points],
+        figures: vec![picture, points, rays],
         notes: vec![opening_comment(text)],
         side_by_side: true,
         table: vec![],

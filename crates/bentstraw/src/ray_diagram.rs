@@ -11,18 +11,23 @@ use std::path::Path;
 
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
-use bentstraw_optics::ray_diagram::{diagram_rays, path_type_counts, DiagramRay};
+use bentstraw_optics::ray_diagram::{diagram_rays, path_type_counts, DiagramRay, DiagramScene};
 use bentstraw_optics::scene::{
-    Scene, GLASS_HEIGHT, GLASS_RADIUS, SECTION_HEIGHT, SECTION_RGB, STRAW_HEIGHT, STRAW_RADIUS,
+    GLASS_HEIGHT, GLASS_RADIUS, SECTION_HEIGHT, SECTION_RGB, STRAW_HEIGHT, STRAW_RADIUS,
 };
+use bentstraw_optics::world::COLOR_RGB;
 use bentstraw_optics::Vec3;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::error::CliResult;
 use crate::files;
-use crate::plot::{figure_bytes, font, wrap, FigureFormat, CAPTION, CAPTION_LINE, TEXT, TITLE};
+use crate::plot::{
+    figure_bytes, font, wrap, FigureFormat, Sketch, CAPTION, CAPTION_LINE, TEXT, TITLE,
+};
+use crate::sketch::{object_outlines, world_wireframe};
 
 /// Width of the diagram (px).
 pub const DIAGRAM_WIDTH: u32 = 1000;
@@ -59,7 +64,7 @@ pub struct Diagram {
 
 impl Diagram {
     /// The diagram of `points` (an image seen from `observer`): about [`DIAGRAM_RAYS`] rays.
-    pub fn new(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> Diagram {
+    pub fn new(scene: &impl DiagramScene, observer: Vec3, points: &[ImagePoint]) -> Diagram {
         Diagram {
             observer,
             rays: diagram_rays(scene, observer, points, DIAGRAM_RAYS),
@@ -80,13 +85,24 @@ impl Diagram {
 }
 
 /// Writes the diagram to `path`, `.png`, `.svg` or `.pdf` by its extension.
-pub fn write_ray_diagram(path: &Path, scene: &Scene, diagram: &Diagram, title: &str) -> CliResult {
+pub fn write_ray_diagram<'a>(
+    path: &Path,
+    scene: impl Into<Sketch<'a>>,
+    diagram: &Diagram,
+    title: &str,
+) -> CliResult {
     let bytes = render(path, scene, diagram, title)?;
     files::write_bytes(path, &bytes)
 }
 
 /// The diagram as the bytes of a PNG, SVG or PDF file, by `path`'s extension.
-pub fn render(path: &Path, scene: &Scene, diagram: &Diagram, title: &str) -> CliResult<Vec<u8>> {
+pub fn render<'a>(
+    path: &Path,
+    scene: impl Into<Sketch<'a>>,
+    diagram: &Diagram,
+    title: &str,
+) -> CliResult<Vec<u8>> {
+    let scene = scene.into();
     figure_bytes(
         path,
         FigureFormat::of(path)?,
@@ -126,7 +142,7 @@ impl View {
 
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    scene: &Scene,
+    scene: Sketch,
     diagram: &Diagram,
     title: &str,
 ) -> Result<(), String> {
@@ -197,14 +213,29 @@ fn draw<DB: DrawingBackend>(
 
 /// Range of a panel: the glass, the straw, the observer, every ray vertex and image point, with a
 /// margin; widened so that one metre is as long across as up.
-fn ranges(scene: &Scene, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f64), (f64, f64)) {
+fn ranges(scene: Sketch, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f64), (f64, f64)) {
     let mut pts: Vec<(f64, f64)> = Vec::new();
-    for z in [0.0, STRAW_HEIGHT] {
-        for (x, y) in [(-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)] {
-            pts.push(view.project(Vec3::new(x * GLASS_RADIUS, y * GLASS_RADIUS, z)));
+    match scene {
+        Sketch::Spec(scene) => {
+            for z in [0.0, STRAW_HEIGHT] {
+                for (x, y) in [(-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)] {
+                    pts.push(view.project(Vec3::new(x * GLASS_RADIUS, y * GLASS_RADIUS, z)));
+                }
+            }
+            pts.push(view.project(Vec3::new(scene.straw_x, scene.straw_y, 0.0)));
+        }
+        Sketch::World(world) => {
+            let (lo, hi) = world.bounds();
+            for k in 0..8 {
+                let pick = |bit: i32, a: f64, b: f64| if k & bit == 0 { a } else { b };
+                pts.push(view.project(Vec3::new(
+                    pick(1, lo.x, hi.x),
+                    pick(2, lo.y, hi.y),
+                    pick(4, lo.z, hi.z),
+                )));
+            }
         }
     }
-    pts.push(view.project(Vec3::new(scene.straw_x, scene.straw_y, 0.0)));
     pts.push(view.project(diagram.observer));
     for r in &diagram.rays {
         pts.push(view.project(r.image.position));
@@ -238,7 +269,7 @@ fn ranges(scene: &Scene, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f
 #[allow(clippy::too_many_arguments)]
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    scene: &Scene,
+    scene: Sketch,
     diagram: &Diagram,
     view: View,
     caption: [&str; 2],
@@ -292,6 +323,27 @@ fn draw_panel<DB: DrawingBackend>(
                 (cx + r * a.cos(), cy + r * a.sin())
             })
             .collect()
+    };
+    let scene = match scene {
+        Sketch::Spec(scene) => scene,
+        Sketch::World(world) => {
+            // A scene file's world: its container's and liquids' wireframe, its objects' outlines.
+            let wire: Vec<[Vec3; 2]> = world_wireframe(world);
+            chart
+                .draw_series(wire.iter().map(|[a, b]| {
+                    PathElement::new(vec![view.project(*a), view.project(*b)], glass.mix(0.5))
+                }))
+                .map_err(e)?;
+            for line in object_outlines(world) {
+                chart
+                    .draw_series(std::iter::once(PathElement::new(
+                        line.iter().map(|p| view.project(*p)).collect::<Vec<_>>(),
+                        RGBColor(150, 150, 150).stroke_width(2),
+                    )))
+                    .map_err(e)?;
+            }
+            return draw_rays(&mut chart, diagram, view);
+        }
     };
     match view {
         View::Side(axis) => {
@@ -354,7 +406,17 @@ fn draw_panel<DB: DrawingBackend>(
         }
     }
 
-    // The rays: the dashed line of sight to the image point, the broken path, the events.
+    draw_rays(&mut chart, diagram, view)
+}
+
+/// The rays of a panel: the dashed line of sight to the image point, the broken path, the
+/// events, the image point; then the observer.
+fn draw_rays<DB: DrawingBackend>(
+    chart: &mut ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    diagram: &Diagram,
+    view: View,
+) -> Result<(), String> {
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     for r in &diagram.rays {
         let color = diagram.color_of(r.kind);
         let eye = view.project(diagram.observer);
@@ -388,8 +450,7 @@ fn draw_panel<DB: DrawingBackend>(
                     .map_err(e)?;
             }
         }
-        let [cr, cg, cb] =
-            SECTION_RGB[r.image.color as usize - 1].map(|v| (v * 255.0).round() as u8);
+        let [cr, cg, cb] = COLOR_RGB[r.image.color as usize - 1].map(|v| (v * 255.0).round() as u8);
         chart
             .draw_series(std::iter::once(Circle::new(
                 image,
@@ -422,7 +483,7 @@ fn tick(v: f64) -> String {
 mod tests {
     use super::*;
     use bentstraw_optics::sampling::sample_image;
-    use bentstraw_optics::scene::REFERENCES;
+    use bentstraw_optics::scene::{Scene, REFERENCES};
 
     fn diagram_of(number: usize) -> (Scene, Diagram) {
         let r = REFERENCES[number - 1];

@@ -400,7 +400,7 @@ fn table_writes_every_simulation_and_the_report() {
     let files = fs::read_dir(&folder).unwrap().count();
     // 12 × (csv, png, svg, html), 4 × 11 pictures, model files and ray diagrams, the opening
     // view and its ray diagram, the validation figure, the report, and 6 gallery scenes × (their
-    // picture, their points as PNG and SVG).
+    // picture, their points as PNG and SVG, their ray diagram).
     for f in [
         "classic_view.png",
         "classic_rays.svg",
@@ -408,13 +408,14 @@ fn table_writes_every_simulation_and_the_report() {
         "sim3_rays.svg",
         "gallery_reversing-arrow_observer.png",
         "gallery_tank-pencil_points.png",
+        "gallery_oil-on-water_rays.svg",
     ] {
         assert!(folder.join(f).is_file(), "{f}");
         assert!(index.contains(f), "{f} not in the report");
     }
     assert_eq!(
         files,
-        12 * 4 + 4 * 11 + 2 + 1 + 1 + 6 * 3,
+        12 * 4 + 4 * 11 + 2 + 1 + 1 + 6 * 4,
         "unexpected files in the table's folder"
     );
     assert!(!err.contains("could not be written"), "{err}");

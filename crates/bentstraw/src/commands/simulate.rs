@@ -193,14 +193,13 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
     let unsupported = [
         (args.html.is_some(), "--html"),
-        (args.rays.is_some(), "--rays"),
         (args.models_plot.is_some(), "--models-plot"),
     ];
     if let Some((_, flag)) = unsupported.iter().find(|(given, _)| *given) {
         return fail(format!(
             "{flag} is for scenes of the assignment's kind in this version; {} is another kind: \
              simulate writes its image points (--output .csv, .json or .ply, any --image-model), \
-             --plot and --gap-plot, render its picture",
+             --plot, --rays and --gap-plot, render its picture",
             world.name
         ));
     }
@@ -223,7 +222,11 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
         path: &args.output,
         extensions: &[],
     }];
-    for (flag, path) in [("--plot", &args.plot), ("--gap-plot", &args.gap_plot)] {
+    for (flag, path) in [
+        ("--plot", &args.plot),
+        ("--rays", &args.rays),
+        ("--gap-plot", &args.gap_plot),
+    ] {
         if let Some(path) = path {
             outputs.push(Output {
                 flag,
@@ -276,6 +279,15 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
         );
         plot::write_cloud_figure(path, &world.world, observer, &set.placed_points(), &title)?;
         written.push(format!("{} (figure, three views)", path.display()));
+    }
+    if let Some(path) = &args.rays {
+        let diagram = ray_diagram::Diagram::new(&world.world, observer, &cloud.points);
+        let title = format!(
+            "Ray diagram: {}, observer ({}, {}, {}) m",
+            world.name, observer.x, observer.y, observer.z
+        );
+        ray_diagram::write_ray_diagram(path, &world.world, &diagram, &title)?;
+        written.push(format!("{} (ray diagram)", path.display()));
     }
     if let (Some(path), Some(eye), Some(stereo)) = (&args.gap_plot, &eye, &stereo) {
         let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
