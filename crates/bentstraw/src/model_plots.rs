@@ -15,7 +15,7 @@ use std::path::Path;
 use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{
-    Scene, GLASS_HEIGHT, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT,
+    GLASS_HEIGHT, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT,
 };
 use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
@@ -28,7 +28,7 @@ use crate::plot::{
     axis_box, common_legend, draw_axis_labels, draw_dots, draw_legend_cell, draw_observer,
     draw_panes, draw_straw_outline, draw_water, figure_bytes, figure_views, font, grid, num, rgb,
     section_rgb8, section_words, triple, visible_dots, AreaOn, AxisBox, FigureFormat, Heading,
-    LegendMark, Panel, ViewDirection, CAPTION_LINE, FIGURE_WIDTH, LEGEND_LINE, TEXT, TITLE,
+    LegendMark, Panel, Sketch, ViewDirection, CAPTION_LINE, FIGURE_WIDTH, LEGEND_LINE, TEXT, TITLE,
 };
 
 /// The three models' names in the comparison figure, in the order course, eye, stereo.
@@ -106,32 +106,45 @@ const FAR_POINT_LIMIT: f64 = 3.0 * GLASS_HEIGHT;
 
 /// Draws the models' clouds one above the other, same viewpoints and scales, into `path` (PNG,
 /// SVG or PDF by its extension).
-pub fn write_model_comparison(
+pub fn write_model_comparison<'a>(
     path: &Path,
-    scene: &Scene,
+    scene: impl Into<Sketch<'a>>,
     observer: Vec3,
     models: &[ModelCloud],
     title: &str,
 ) -> CliResult {
-    let bytes = render_model_comparison(path, scene, observer, models, title)?;
+    let bytes = render_model_comparison(path, scene.into(), observer, models, title)?;
     files::write_bytes(path, &bytes)
 }
 
-/// Whether an image point is drawn in the comparison (finite and not absurdly far).
-fn on_frame(p: &ImagePoint) -> bool {
-    p.position.is_finite() && (p.position - SCENE_CENTRE).length() <= FAR_POINT_LIMIT
+/// Whether an image point is drawn in the comparison (finite and not absurdly far from the scene:
+/// for a scene file, three times its box's size from the box's middle).
+fn on_frame(scene: Sketch, p: &ImagePoint) -> bool {
+    let (centre, limit) = match scene {
+        Sketch::Spec(_) => (SCENE_CENTRE, FAR_POINT_LIMIT),
+        Sketch::World(w) => {
+            let (lo, hi) = w.bounds();
+            (0.5 * (lo + hi), 3.0 * (hi - lo).max_element())
+        }
+    };
+    p.position.is_finite() && (p.position - centre).length() <= limit
 }
 
 /// The one box shared by every panel: glass, straw, the observer when near, and every model's points
 /// on the frame. Also returns the count of points left off per model.
-fn shared_box(scene: &Scene, observer: Vec3, models: &[ModelCloud]) -> (AxisBox, Vec<usize>) {
+fn shared_box<'a>(
+    scene: impl Into<Sketch<'a>>,
+    observer: Vec3,
+    models: &[ModelCloud],
+) -> (AxisBox, Vec<usize>) {
+    let scene = scene.into();
     let all: Vec<ImagePoint> = models
         .iter()
-        .flat_map(|m| m.points.iter().copied().filter(on_frame))
+        .flat_map(|m| m.points.iter().copied().filter(|p| on_frame(scene, p)))
         .collect();
     let off = models
         .iter()
-        .map(|m| m.points.iter().filter(|p| !on_frame(p)).count())
+        .map(|m| m.points.iter().filter(|p| !on_frame(scene, p)).count())
         .collect();
     (axis_box(scene, observer, &all), off)
 }
@@ -146,7 +159,16 @@ fn comparison_views(observer: Vec3) -> [(ViewDirection, String); COLUMNS] {
 }
 
 /// The comparison figure's heading.
-fn comparison_heading(scene: &Scene, observer: Vec3, title: &str) -> Heading {
+fn comparison_heading<'a>(scene: impl Into<Sketch<'a>>, observer: Vec3, title: &str) -> Heading {
+    let Sketch::Spec(scene) = scene.into() else {
+        return Heading::new(
+            title,
+            &format!(
+                "observer {} m · same box and scale in every panel of a column, lengths in metres",
+                triple(observer)
+            ),
+        );
+    };
     Heading::new(
         title,
         &format!(
@@ -206,7 +228,7 @@ fn comparison_layout(
 /// The comparison figure as the bytes of its file.
 fn render_model_comparison(
     path: &Path,
-    scene: &Scene,
+    scene: Sketch,
     observer: Vec3,
     models: &[ModelCloud],
     title: &str,
@@ -224,7 +246,7 @@ fn render_model_comparison(
 /// The comparison figure on any backend.
 fn draw_comparison<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: &Scene,
+    scene: Sketch,
     observer: Vec3,
     models: &[ModelCloud],
     heading: &Heading,
@@ -236,7 +258,13 @@ fn draw_comparison<DB: DrawingBackend>(
     let panels = comparison_layout(&bx, observer, models, &off, heading.height());
     let drawn: Vec<Vec<ImagePoint>> = models
         .iter()
-        .map(|m| m.points.iter().copied().filter(on_frame).collect())
+        .map(|m| {
+            m.points
+                .iter()
+                .copied()
+                .filter(|p| on_frame(scene, p))
+                .collect()
+        })
         .collect();
     let ghost: Vec<(ImagePoint, [u8; 3])> = drawn
         .first()
@@ -482,7 +510,7 @@ fn draw_gap_plot<DB: DrawingBackend>(
 mod tests {
     use super::*;
     use crate::plot::tests::{decode, point};
-    use bentstraw_optics::scene::STRAW_RADIUS;
+    use bentstraw_optics::scene::{Scene, STRAW_RADIUS};
 
     /// Points on the straw's surface in section `color`, around its axis at `(x, y)`.
     fn ring(x: f64, y: f64, color: u8, n: usize) -> Vec<ImagePoint> {

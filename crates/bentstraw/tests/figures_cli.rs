@@ -469,8 +469,9 @@ fn the_reports_figures_come_as_svg_too_and_are_legible() {
             "{svg} not linked"
         );
     }
-    // 12 classic figures, 4 comparisons, 4 gap plots, 5 ray diagrams, the validation.
-    assert_eq!(svgs.len(), 12 + 4 + 4 + 5 + 1, "{svgs:?}");
+    // 12 classic figures, 4 comparisons, 4 gap plots, 5 ray diagrams, the validation, and the
+    // gallery's 6 scenes' points and ray diagrams.
+    assert_eq!(svgs.len(), 12 + 4 + 4 + 5 + 1 + 6 + 6, "{svgs:?}");
     for name in &svgs {
         let svg = read_svg(&folder.join(name));
         svg.assert_legible(name);
@@ -482,6 +483,8 @@ fn the_reports_figures_come_as_svg_too_and_are_legible() {
             &["side view", "top view", "eye", "refraction"]
         } else if name == "validation.svg" {
             &["index of the water n →", "simulation 1"]
+        } else if name.starts_with("gallery_") {
+            &["front view", "side view", "top view", "image points by colour"]
         } else {
             &["front view", "side view", "top view", "Simulation"]
         };

@@ -191,19 +191,15 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 /// `simulate` on a scene file's world: the image points of every object (course, eye or stereo
 /// model) as CSV, JSON or PLY, and the gap plot.
 fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
-    let unsupported = [
-        (args.html.is_some(), "--html"),
-        (args.models_plot.is_some(), "--models-plot"),
-    ];
-    if let Some((_, flag)) = unsupported.iter().find(|(given, _)| *given) {
+    if args.html.is_some() {
         return fail(format!(
-            "{flag} is for scenes of the assignment's kind in this version; {} is another kind: \
+            "--html is for scenes of the assignment's kind in this version; {} is another kind: \
              simulate writes its image points (--output .csv, .json or .ply, any --image-model), \
-             --plot, --rays and --gap-plot, render its picture",
+             --plot, --rays, --models-plot and --gap-plot; explore shows the gallery's scenes in 3D",
             world.name
         ));
     }
-    let both_models = args.gap_plot.is_some();
+    let both_models = args.gap_plot.is_some() || args.models_plot.is_some();
     let most = if both_models || args.image_model != ImageModelArg::Course {
         MAX_MODEL_POINTS
     } else {
@@ -225,6 +221,7 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
     for (flag, path) in [
         ("--plot", &args.plot),
         ("--rays", &args.rays),
+        ("--models-plot", &args.models_plot),
         ("--gap-plot", &args.gap_plot),
     ] {
         if let Some(path) = path {
@@ -288,6 +285,22 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
         );
         ray_diagram::write_ray_diagram(path, &world.world, &diagram, &title)?;
         written.push(format!("{} (ray diagram)", path.display()));
+    }
+    if let (Some(path), Some(eye), Some(stereo)) = (&args.models_plot, &eye, &stereo) {
+        let placed = [
+            ModelPoints::Course,
+            ModelPoints::Eye(eye),
+            ModelPoints::Stereo(stereo),
+        ]
+        .map(|model| PointSet { model, ..set }.placed_points());
+        let clouds: Vec<ModelCloud> = MODEL_NAMES
+            .iter()
+            .zip(&placed)
+            .map(|(name, points)| ModelCloud { name, points })
+            .collect();
+        let title = format!("Where the objects appear: {}", world.name);
+        write_model_comparison(path, &world.world, observer, &clouds, &title)?;
+        written.push(format!("{} (the three models compared)", path.display()));
     }
     if let (Some(path), Some(eye), Some(stereo)) = (&args.gap_plot, &eye, &stereo) {
         let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
