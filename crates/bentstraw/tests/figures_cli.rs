@@ -484,7 +484,12 @@ fn the_reports_figures_come_as_svg_too_and_are_legible() {
         } else if name == "validation.svg" {
             &["index of the water n →", "simulation 1"]
         } else if name.starts_with("gallery_") {
-            &["front view", "side view", "top view", "image points by colour"]
+            &[
+                "front view",
+                "side view",
+                "top view",
+                "image points by colour",
+            ]
         } else {
             &["front view", "side view", "top view", "Simulation"]
         };
