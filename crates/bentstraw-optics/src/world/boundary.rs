@@ -201,3 +201,105 @@ impl Boundary {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
+        Ray::new(Vec3::from_array(o), Vec3::from_array(d))
+    }
+
+    fn boundary(shape: Shape) -> Boundary {
+        Boundary {
+            shape,
+            outer: Side::Medium(0),
+            inner: Side::Medium(2),
+        }
+    }
+
+    #[test]
+    fn a_horizontal_region_is_crossed_inside_and_missed_outside() {
+        let disk = boundary(Shape::Horizontal {
+            z: 0.1,
+            region: Region::Disk {
+                cx: 0.0,
+                cy: 0.0,
+                r2: 0.04 * 0.04,
+            },
+        });
+        let down = ray([0.01, 0.0, 0.3], [0.0, 0.0, -1.0]);
+        assert_eq!(disk.crossings(&down, false)[0], 0.3 - 0.1);
+        // Leaving it: not met again.
+        assert_eq!(disk.crossings(&down, true), [f64::INFINITY; 2]);
+        // Outside the disk, parallel to it, or going away: missed.
+        assert!(disk.crossings(&ray([0.05, 0.0, 0.3], [0.0, 0.0, -1.0]), false)[0].is_infinite());
+        assert!(disk.crossings(&ray([0.0, 0.0, 0.1], [1.0, 0.0, 0.0]), false)[0].is_infinite());
+        assert!(disk.crossings(&ray([0.0, 0.0, 0.3], [0.0, 0.0, 1.0]), false)[0].is_infinite());
+        // A ring holds what lies between its radii only; a rectangle its half widths.
+        let ring = boundary(Shape::Horizontal {
+            z: 0.0,
+            region: Region::Annulus {
+                inner2: 0.0375 * 0.0375,
+                outer2: 0.04 * 0.04,
+            },
+        });
+        assert!(ring.crossings(&ray([0.039, 0.0, 1.0], [0.0, 0.0, -1.0]), false)[0] == 1.0);
+        assert!(ring.crossings(&ray([0.03, 0.0, 1.0], [0.0, 0.0, -1.0]), false)[0].is_infinite());
+        let rect = boundary(Shape::Horizontal {
+            z: 0.0,
+            region: Region::Rectangle {
+                half_x: 0.1,
+                half_y: 0.05,
+            },
+        });
+        assert!(rect.crossings(&ray([0.09, -0.05, 1.0], [0.0, 0.0, -1.0]), false)[0] == 1.0);
+        assert!(rect.crossings(&ray([0.09, 0.06, 1.0], [0.0, 0.0, -1.0]), false)[0].is_infinite());
+    }
+
+    #[test]
+    fn an_upright_side_gives_both_crossings_in_order_and_only_the_far_one_when_leaving() {
+        let side = boundary(Shape::Upright {
+            cx: 0.0,
+            cy: 0.0,
+            radius: 0.04,
+            z_min: 0.0,
+            z_max: 0.2,
+        });
+        let through = ray([-1.0, 0.0, 0.1], [1.0, 0.0, 0.0]);
+        let [a, b] = side.crossings(&through, false);
+        assert!(
+            (a - 0.96).abs() < 1e-15 && (b - 1.04).abs() < 1e-15,
+            "{a} {b}"
+        );
+        // From the near crossing, leaving the side inwards: only the far one.
+        let inside = ray([-0.04, 0.0, 0.1], [1.0, 0.0, 0.0]);
+        let [c, d] = side.crossings(&inside, true);
+        assert!((c - 0.08).abs() < 1e-15 && d.is_infinite(), "{c} {d}");
+        // Above its top: no crossing; starting inside: the far one only, in order.
+        assert!(side.crossings(&ray([-1.0, 0.0, 0.3], [1.0, 0.0, 0.0]), false)[0].is_infinite());
+        let [e, f] = side.crossings(&ray([0.0, 0.0, 0.1], [1.0, 0.0, 0.0]), false);
+        assert!((e - 0.04).abs() < 1e-15 && f.is_infinite());
+        // A line passing beside it misses; the normal points away from the axis.
+        assert!(side.crossings(&ray([-1.0, 0.05, 0.1], [1.0, 0.0, 0.0]), false)[0].is_infinite());
+        assert_eq!(side.normal(Vec3::new(0.0, -0.04, 0.1)), Vec3::NEG_Y);
+    }
+
+    #[test]
+    fn a_tank_wall_is_a_bounded_vertical_plane_facing_away_from_the_middle() {
+        let wall = boundary(Shape::Vertical {
+            axis: 1,
+            at: -0.05,
+            half: 0.1,
+            z_min: 0.0,
+            z_max: 0.2,
+        });
+        assert_eq!(wall.normal(Vec3::ZERO), Vec3::NEG_Y);
+        let r = ray([0.02, 0.5, 0.1], [0.0, -1.0, 0.0]);
+        assert!((wall.crossings(&r, false)[0] - 0.55).abs() < 1e-15);
+        assert!(wall.crossings(&r, true)[0].is_infinite());
+        // Beyond its ends, above its top: missed.
+        assert!(wall.crossings(&ray([0.11, 0.5, 0.1], [0.0, -1.0, 0.0]), false)[0].is_infinite());
+        assert!(wall.crossings(&ray([0.0, 0.5, 0.25], [0.0, -1.0, 0.0]), false)[0].is_infinite());
+    }
+}

@@ -285,3 +285,84 @@ pub fn in_arrow(u: f64, v: f64, w: f64, h: f64) -> bool {
     let head = (0.1 * w..=0.4 * w).contains(&u) && v.abs() <= 0.3 * h * (0.4 * w - u) / (0.3 * w);
     shaft || head
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_leaning_straw_is_entered_by_its_side_and_caps_with_their_colours() {
+        let s = Straw {
+            x: 0.0,
+            y: 0.0,
+            tilt_deg: 30.0,
+            azimuth_deg: 0.0,
+            radius: 0.005,
+            length: 0.25,
+        };
+        let straw = Object::straw(&s, 0.0);
+        // Along its axis from above its top: the top cap, blue, at the axis's end.
+        let top = s.bottom_centre(0.0) + s.length * s.axis();
+        let from = top + 0.1 * s.axis();
+        let (t, part, color) = straw.hit(&Ray::new(from, -s.axis())).unwrap();
+        assert_eq!((part, color), (Part::Top, 5));
+        assert!((t - 0.1).abs() < 1e-15);
+        // Across its side at a third of its length: band 2 (orange), at the radius.
+        let mid = s.bottom_centre(0.0) + 0.3 * s.length * s.axis();
+        let across = Vec3::new(0.0, 1.0, 0.0);
+        let (t, part, color) = straw.hit(&Ray::new(mid - 0.1 * across, across)).unwrap();
+        assert_eq!((part, color), (Part::Side, 2));
+        assert!((t - (0.1 - 0.005)).abs() < 1e-15);
+        // Beside it: nothing; a ray starting inside it (by rounding) meets it at once.
+        assert!(straw
+            .hit(&Ray::new(
+                mid - 0.1 * across + Vec3::new(0.0, 0.0, 0.2),
+                across
+            ))
+            .is_none());
+        assert_eq!(straw.hit(&Ray::new(mid, across)).unwrap().0, 0.0);
+        // Its distance: zero on its surface, the radius less on its axis.
+        assert!(straw.distance(mid + 0.005 * across).abs() < 1e-15);
+        assert!((straw.distance(mid) - 0.005).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_card_shows_its_arrow_on_its_front_only() {
+        let card = Object::card(&Card {
+            center: Vec3::new(-0.1, 0.0, 0.1),
+            facing_deg: 0.0,
+            width: 0.12,
+            height: 0.06,
+            picture: Picture::Arrow,
+        });
+        // The head's tip region (u = 0.3·w, on the +y side seen from the front), from the front.
+        let at = Vec3::new(-0.1, 0.3 * 0.12, 0.1);
+        let front = card.hit(&Ray::new(at + Vec3::X, Vec3::NEG_X)).unwrap();
+        assert_eq!(front.2, PICTURE_COLOR);
+        assert!((front.0 - 1.0).abs() < 1e-15);
+        // The same point from behind: the plain card.
+        assert_eq!(
+            card.hit(&Ray::new(at - Vec3::X, Vec3::X)).unwrap().2,
+            CARD_COLOR
+        );
+        // Off the arrow, off the card.
+        assert_eq!(
+            card.hit(&Ray::new(
+                Vec3::new(-0.1, -0.05, 0.125) + Vec3::X,
+                Vec3::NEG_X
+            ))
+            .unwrap()
+            .2,
+            CARD_COLOR
+        );
+        assert!(card
+            .hit(&Ray::new(Vec3::new(-0.1, 0.07, 0.1) + Vec3::X, Vec3::NEG_X))
+            .is_none());
+        // The arrow's rule at its corners.
+        let (w, h) = (1.0, 1.0);
+        assert!(in_arrow(-0.35, 0.1, w, h) && !in_arrow(-0.36, 0.0, w, h));
+        assert!(in_arrow(0.1, 0.3, w, h) && !in_arrow(0.1, 0.31, w, h));
+        assert!(in_arrow(0.4, 0.0, w, h) && !in_arrow(0.41, 0.0, w, h));
+        assert!(in_arrow(0.25, 0.15, w, h) && !in_arrow(0.25, 0.16, w, h));
+    }
+}
