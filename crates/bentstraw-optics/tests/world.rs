@@ -619,3 +619,149 @@ fn check_judges_a_worlds_points_and_finds_what_is_missing() {
     let r = check_solution(&world, observer, &moved, DEFAULT_TOLERANCE, 0.98);
     assert_eq!(r.tally.wrong_length, 1);
 }
+
+mod random_scenes {
+    use super::*;
+    use bentstraw_optics::scene_file::{
+        Card, Coin, Container, Glass, Liquid, Observer, Picture, Straw, Tank,
+    };
+
+    /// A random scene of every kind the format allows (glass or tank, thick or thin, up to three
+    /// layers, leaning straws, a coin, a card), kept when the format's rules accept it.
+    fn scene() -> impl Strategy<Value = SceneDescription> {
+        (
+            (
+                any::<bool>(),
+                0.03f64..0.06,
+                0.12f64..0.22,
+                0.0f64..0.004,
+                0.0f64..0.01,
+            ),
+            (
+                1.0f64..1.8,
+                prop::collection::vec((1.0f64..2.0, 0.1f64..1.0), 0..4),
+            ),
+            (0.0f64..1.0, 0.0f64..6.3, 0.0f64..35.0, 0.0f64..360.0),
+            (any::<bool>(), any::<bool>(), 0.0f64..6.3),
+        )
+            .prop_map(
+                |(
+                    (tank, r, h, wall, bottom),
+                    (glass_n, layers),
+                    (sr, sa, tilt, az),
+                    (coin, card, oa),
+                )| {
+                    let container = if tank {
+                        Container::Tank(Tank {
+                            half_x: r * 1.6,
+                            half_y: r,
+                            height: h,
+                        })
+                    } else {
+                        Container::Glass(Glass {
+                            radius: r,
+                            height: h,
+                            wall,
+                            bottom,
+                            index: glass_n,
+                        })
+                    };
+                    let floor = container.floor();
+                    // Tops rising from the floor to the rim.
+                    let mut top = floor;
+                    let room = h - floor;
+                    let total: f64 = layers.iter().map(|l| l.1).sum::<f64>().max(1e-9);
+                    let liquids = layers
+                        .iter()
+                        .enumerate()
+                        .map(|(k, &(n, share))| {
+                            top += 0.95 * room * share / total;
+                            Liquid {
+                                name: format!("liquid {k}"),
+                                index: n,
+                                top,
+                            }
+                        })
+                        .collect();
+                    let inner = if tank { r } else { r - wall };
+                    let straw = Straw {
+                        x: 0.4 * inner * sr * sa.cos(),
+                        y: 0.4 * inner * sr * sa.sin(),
+                        tilt_deg: tilt,
+                        azimuth_deg: az,
+                        radius: 0.004,
+                        length: 0.2,
+                    };
+                    let coins = if coin {
+                        vec![Coin {
+                            x: -0.6 * inner,
+                            y: 0.0,
+                            radius: 0.2 * inner,
+                            thickness: 0.002,
+                        }]
+                    } else {
+                        vec![]
+                    };
+                    let cards = if card {
+                        vec![Card {
+                            center: Vec3::new(-0.3, 0.0, 0.1),
+                            facing_deg: 0.0,
+                            width: 0.12,
+                            height: 0.06,
+                            picture: Picture::Arrow,
+                        }]
+                    } else {
+                        vec![]
+                    };
+                    let d = 0.4;
+                    SceneDescription {
+                        container,
+                        liquids,
+                        straws: vec![straw],
+                        coins,
+                        cards,
+                        observer: Some(Observer {
+                            position: Vec3::new(d * oa.cos(), d * oa.sin(), 0.15),
+                            target: Vec3::new(0.0, 0.0, 0.08),
+                        }),
+                    }
+                },
+            )
+            .prop_filter("the format's rules", |d| d.validate().is_ok())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(40))]
+
+        /// In any valid scene: Snell or total reflection at every event, Fresnel weights that add
+        /// up to 1, and with every index 1 every image point on its object.
+        #[test]
+        fn any_valid_scene_obeys_the_laws(d in scene()) {
+            let world = World::new(&d, 10);
+            let observer = d.observer.unwrap().position;
+            let (lo, hi) = world.bounds();
+            for k in 0..200u32 {
+                let f = |m: f64| (k as f64 * m).fract();
+                let aim = lo + Vec3::new(f(0.618034), f(0.7548777), f(0.5698403)) * (hi - lo);
+                let ray = ray_to(observer, aim);
+                let (_, events) = trace_events(&world, ray);
+                for e in events {
+                    let (si, so) = (sine(e.incoming, e.normal), sine(e.outgoing, e.normal));
+                    if e.totally_reflected {
+                        prop_assert!(e.n1 * si > e.n2 * (1.0 - 1e-12));
+                    } else {
+                        prop_assert!((e.n1 * si - e.n2 * so).abs() < 1e-12, "{:?}", e);
+                    }
+                }
+                let mut rest = 0.0;
+                let w = world.trace_fresnel(ray, 1e-6, |_, x| rest += x);
+                prop_assert!((w.iter().sum::<f64>() + rest - 1.0).abs() < 1e-12);
+            }
+            let flat = World::new(&without_refraction(d.clone()), 10);
+            let cloud = sample_image_of(&flat, observer, 1500, &|_| {});
+            for p in &cloud.points {
+                prop_assert!((p.position - p.straw_point).length() < 1e-9);
+            }
+        }
+    }
+}
