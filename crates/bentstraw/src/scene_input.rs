@@ -17,20 +17,6 @@ use crate::files::shown;
 /// Largest scene file read (1 MB): a scene is a few dozen lines.
 pub const MAX_SCENE_FILE_BYTES: u64 = 1 << 20;
 
-/// Most reasons a refusal names of what a scene has.
-const MAX_REASONS: usize = 5;
-
-/// What a scene has that the assignment's has not, in words, at most [`MAX_REASONS`] of them (a
-/// file of a thousand different straws must not flood the terminal).
-pub fn unsupported_words(description: &SceneDescription) -> String {
-    let reasons = description.unsupported();
-    let mut said = reasons[..reasons.len().min(MAX_REASONS)].join(", ");
-    if reasons.len() > MAX_REASONS {
-        said.push_str(&format!(" and {} more", reasons.len() - MAX_REASONS));
-    }
-    said
-}
-
 /// The scene and observer of one run, with the target a scene file suggests.
 #[derive(Clone, Copy, Debug)]
 pub struct Resolved {

@@ -156,22 +156,30 @@ pub enum Traced {
     /// The assignment's kind of scene, from the page's values.
     Spec(Scene),
     /// A scene of the gallery (its name, `scenes/NAME.toml`), seen from the page's observer.
-    World(&'static str, Arc<FileWorld>),
+    World(Arc<FileWorld>),
 }
 
 /// The gallery scene named `name`, with its own observer moved to `observer` and the event limit
 /// `max_events`, checked by the scene file's rules.
 fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Traced, String> {
-    let Some((stem, text)) = GALLERY.iter().find(|(stem, _)| *stem == name) else {
-        let names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
-        return Err(format!(
-            "invalid value '{}' for 'scene' [possible values: {}]",
-            clip_text(name, 40),
-            names.join(", ")
-        ));
+    let mut world = match GALLERY.iter().find(|(stem, _)| *stem == name) {
+        Some((stem, text)) => file_world(&format!("scenes/{stem}.toml"), text).map_err(|e| e.0)?,
+        None => match USER_SCENE.get() {
+            Some(user) if name == USER_SCENE_NAME => user.clone(),
+            _ => {
+                let mut names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
+                if USER_SCENE.get().is_some() {
+                    names.push(USER_SCENE_NAME);
+                }
+                return Err(format!(
+                    "invalid value '{}' for 'scene' [possible values: {}]",
+                    clip_text(name, 40),
+                    names.join(", ")
+                ));
+            }
+        },
     };
-    let file = format!("scenes/{stem}.toml");
-    let mut world = file_world(&file, text).map_err(|e| e.0)?;
+    let file = world.name.clone();
     for (axis, v) in ["X", "Y", "Z"].iter().zip(observer) {
         if !v.is_finite() {
             return Err(format!("observer {axis} = {v} is not a finite number"));
@@ -194,12 +202,20 @@ fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Trac
     }
     world.observer = position;
     world.world = World::new(&world.description, max_events);
-    Ok(Traced::World(stem, Arc::new(world)))
+    Ok(Traced::World(Arc::new(world)))
 }
 
-/// `GET /api/scenes`: the gallery's scenes: name, what it shows, its own observer and target.
+/// The name the page uses for the scene file `explore --scene` was started with.
+pub const USER_SCENE_NAME: &str = "file";
+
+/// The scene file `explore --scene` was started with, when it is neither the assignment's kind
+/// nor one of the gallery's: the page offers it beside the gallery (a request never names a file).
+pub static USER_SCENE: std::sync::OnceLock<FileWorld> = std::sync::OnceLock::new();
+
+/// `GET /api/scenes`: the gallery's scenes (and the file the explorer was started with): name,
+/// what it shows, its own observer.
 pub fn scenes_reply() -> Reply {
-    let list: Vec<Value> = GALLERY
+    let mut list: Vec<Value> = GALLERY
         .iter()
         .filter_map(|(stem, text)| {
             let w = file_world(stem, text).ok()?;
@@ -211,6 +227,14 @@ pub fn scenes_reply() -> Reply {
             }))
         })
         .collect();
+    if let Some(user) = USER_SCENE.get() {
+        list.push(json!({
+            "name": USER_SCENE_NAME,
+            "title": clip_text(&user.name, 40),
+            "shows": "the scene file the explorer was started with",
+            "observer": vec_json(user.observer),
+        }));
+    }
     Reply::json(&Value::Array(list))
 }
 
@@ -295,7 +319,7 @@ impl View {
         }
         let camera = match &scene {
             Traced::Spec(_) => camera_from_args(&camera_args, observer),
-            Traced::World(_, world) => world_camera(world, &camera_args),
+            Traced::World(world) => world_camera(world, &camera_args),
         }
         .map_err(|e| e.0)?;
         let fresnel = match get(q, "mode").unwrap_or("fresnel") {
@@ -348,7 +372,7 @@ impl View {
     pub fn spec_scene(&self) -> Option<&Scene> {
         match &self.scene {
             Traced::Spec(scene) => Some(scene),
-            Traced::World(..) => None,
+            Traced::World(_) => None,
         }
     }
 
@@ -356,9 +380,7 @@ impl View {
     fn sample(&self, points: usize) -> ImageCloud {
         match &self.scene {
             Traced::Spec(scene) => sample_image(scene, self.observer, points, &|_| {}),
-            Traced::World(_, world) => {
-                sample_image_of(&world.world, self.observer, points, &|_| {})
-            }
+            Traced::World(world) => sample_image_of(&world.world, self.observer, points, &|_| {}),
         }
     }
 
@@ -382,10 +404,10 @@ impl View {
     /// The scene flags, as `simulate` and `render` take them.
     fn scene_flags(&self) -> String {
         let a = &self.scene_args;
-        if let Traced::World(stem, _) = &self.scene {
+        if let Traced::World(world) = &self.scene {
             let mut s = format!(
-                "--scene scenes/{stem}.toml --observer {},{},{}",
-                a.observer[0], a.observer[1], a.observer[2]
+                "--scene {} --observer {},{},{}",
+                world.name, a.observer[0], a.observer[1], a.observer[2]
             );
             if a.max_events != 10 {
                 s += &format!(" --max-events {}", a.max_events);
@@ -454,7 +476,7 @@ fn color_name(code: u8) -> &'static str {
 pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
     let scene = match &view.scene {
         Traced::Spec(scene) => scene,
-        Traced::World(_, world) => return world_frame_reply(view, world),
+        Traced::World(world) => return world_frame_reply(view, world),
     };
     let request = FrameRequest {
         camera: view.camera,
@@ -622,14 +644,14 @@ fn place(
     match model {
         "eye" => Ok(match &view.scene {
             Traced::Spec(s) => eye_model_points(s, view.observer, points),
-            Traced::World(_, w) => eye_model_points(&w.world, view.observer, points),
+            Traced::World(w) => eye_model_points(&w.world, view.observer, points),
         }
         .iter()
         .map(|p| Some((p.position?, p.image.color)))
         .collect()),
         "stereo" => Ok(match &view.scene {
             Traced::Spec(s) => stereo_point_each(s, view.observer, points),
-            Traced::World(_, w) => stereo_point_each(&w.world, view.observer, points),
+            Traced::World(w) => stereo_point_each(&w.world, view.observer, points),
         }
         .iter()
         .map(|p| {
@@ -749,7 +771,7 @@ pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, Stri
 pub fn ray_json(view: &View, u0: Vec3) -> Value {
     let scene = match &view.scene {
         Traced::Spec(scene) => scene,
-        Traced::World(_, world) => return world_ray_json(view, &world.world, u0),
+        Traced::World(world) => return world_ray_json(view, &world.world, u0),
     };
     let eye = view.observer;
     let mut events = Vec::new();
@@ -886,7 +908,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
             Traced::Spec(scene) => {
                 bentstraw_optics::shading::shaded_picture(scene, &view.camera, &view.shading())
             }
-            Traced::World(_, world) => world_picture(&world.world, &view.camera, &view.shading()),
+            Traced::World(world) => world_picture(&world.world, &view.camera, &view.shading()),
         };
         let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.0)?);
         r.file_name = Some("view.png".into());
@@ -907,7 +929,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
             eye = eye_model_points(s, view.observer, &cloud.points);
             ModelPoints::Eye(&eye)
         }
-        ("eye", Traced::World(_, w)) => {
+        ("eye", Traced::World(w)) => {
             eye = eye_model_points(&w.world, view.observer, &cloud.points);
             ModelPoints::Eye(&eye)
         }
@@ -915,7 +937,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
             stereo = stereo_points(s, view.observer, &cloud.points);
             ModelPoints::Stereo(&stereo)
         }
-        ("stereo", Traced::World(_, w)) => {
+        ("stereo", Traced::World(w)) => {
             stereo = stereo_points(&w.world, view.observer, &cloud.points);
             ModelPoints::Stereo(&stereo)
         }
@@ -924,7 +946,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     let set = PointSet {
         inputs: match &view.scene {
             Traced::Spec(s) => Inputs::Spec(s),
-            Traced::World(_, w) => Inputs::File(w),
+            Traced::World(w) => Inputs::File(w),
         },
         observer: view.observer,
         min_points: points,
@@ -1179,6 +1201,21 @@ mod tests {
         let inside = handle("/api/frame", "scene=tank-pencil&observer=0,0,0.05", &mut f);
         assert_eq!(inside.status, 400);
         assert!(String::from_utf8_lossy(&inside.body).contains("inside or on the container"));
+    }
+
+    /// The scene file the explorer was started with is served under its own name.
+    #[test]
+    fn the_started_file_is_served_beside_the_gallery() {
+        let text = GALLERY[3].1.replace("half_x = 0.10", "half_x = 0.12");
+        let _ = USER_SCENE.set(file_world("mine.toml", &text).unwrap());
+        let mut f = Frame::default();
+        let q = "scene=file&observer=0,-0.35,0.12&size=40x30&points=500";
+        let r = handle("/api/frame", q, &mut f);
+        assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+        let scenes: Value =
+            serde_json::from_slice(&handle("/api/scenes", "", &mut f).body).unwrap();
+        assert_eq!(scenes.as_array().unwrap().len(), GALLERY.len() + 1);
+        assert_eq!(scenes[GALLERY.len()]["name"], json!("file"));
     }
 
     #[test]

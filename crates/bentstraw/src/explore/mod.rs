@@ -14,7 +14,7 @@ use bentstraw_optics::Vec3;
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
 use crate::gallery::GALLERY;
-use crate::scene_input::{unsupported_words, AnyScene};
+use crate::scene_input::AnyScene;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -68,23 +68,29 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
             // A scene of the built-in gallery starts the page on it; another is refused, saying
             // what the page offers.
             AnyScene::File(f) => {
-                let Some((stem, _)) = GALLERY.iter().find(|(_, text)| {
-                    SceneDescription::from_toml(text).is_ok_and(|d| d == f.description)
-                }) else {
-                    let names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
-                    return fail(format!(
-                        "{} is a valid scene, but the explorer shows the assignment's kind of scene \
-                         and the gallery's ({}) in this version: it has {}",
-                        f.name,
-                        names.join(", "),
-                        unsupported_words(&f.description)
-                    ));
-                };
                 let o = f.observer;
-                return Ok(format!(
-                    "scene={stem}&observer={},{},{}&max-events={}&points={}&mode={mode}",
-                    o.x, o.y, o.z, v.max_events, a.points
-                ));
+                let query = |stem: &str| {
+                    format!(
+                        "scene={stem}&observer={},{},{}&max-events={}&points={}&mode={mode}",
+                        o.x, o.y, o.z, v.max_events, a.points
+                    )
+                };
+                // A scene of the built-in gallery starts the page on it; any other file is
+                // offered beside the gallery, as it is (the page cannot name files).
+                if let Some((stem, _)) = GALLERY.iter().find(|(_, text)| {
+                    SceneDescription::from_toml(text).is_ok_and(|d| d == f.description)
+                }) {
+                    return Ok(query(stem));
+                }
+                if v.straw.is_some() || v.water_height.is_some() || v.n_water.is_some() {
+                    return fail(format!(
+                        "explore shows {} as the file has it: --straw, --water-height and --n-water \
+                         change only the assignment's kind of scene here (edit the file instead)",
+                        f.name
+                    ));
+                }
+                let _ = api::USER_SCENE.set(*f);
+                return Ok(query(api::USER_SCENE_NAME));
             }
         }
     } else {
