@@ -281,7 +281,8 @@ function showError(text) {
 // ---- painting ----
 function paintAll() {
   drawPicture();
-  drawMaps();
+  // A gallery scene's maps are drawn from the frame's wireframe; the glass's need no frame.
+  if (state.scene) drawMaps();
   drawCloud();
   drawLegend();
   const h = frame.header;
