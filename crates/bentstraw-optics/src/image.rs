@@ -34,15 +34,37 @@ impl ImagePoint {
                 path_length,
                 events,
                 ..
-            } => Some(ImagePoint {
-                position: observer + path_length * u0,
+            } => Some(ImagePoint::reached(
+                observer,
+                u0,
                 color,
-                direction: u0,
+                point,
                 path_length,
-                straw_point: point,
                 events,
-            }),
+            )),
             _ => None,
+        }
+    }
+
+    /// The image point `P = O + L·u0` of the ray from `observer` along unit `u0` that reached
+    /// `point`, of colour code `color`, after a broken path of length `path_length` and `events`
+    /// events.
+    #[inline]
+    pub fn reached(
+        observer: Vec3,
+        u0: Vec3,
+        color: u8,
+        point: Vec3,
+        path_length: f64,
+        events: u32,
+    ) -> ImagePoint {
+        ImagePoint {
+            position: observer + path_length * u0,
+            color,
+            direction: u0,
+            path_length,
+            straw_point: point,
+            events,
         }
     }
 }

@@ -399,13 +399,25 @@ pub fn write_json(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
             rgb: SECTION_RGB[k],
         })
         .collect();
+    write_json_object(w, set, &json(&inputs), &json(&stats), &json(&colors))
+}
+
+/// The JSON object of a point set: its schema, model, inputs, statistics and colours (each
+/// already JSON text), then one array of the model's fields a line.
+fn write_json_object(
+    w: &mut dyn Write,
+    set: &PointSet,
+    inputs: &str,
+    stats: &str,
+    colors: &str,
+) -> io::Result<()> {
     writeln!(w, "{{")?;
     writeln!(w, "  \"schema\": \"bentstraw-image-points/1\",")?;
     writeln!(w, "  \"units\": \"m\",")?;
     writeln!(w, "  \"image_model\": {},", json(set.image_model()))?;
-    writeln!(w, "  \"inputs\": {},", json(&inputs))?;
-    writeln!(w, "  \"stats\": {},", json(&stats))?;
-    writeln!(w, "  \"colors\": {},", json(&colors))?;
+    writeln!(w, "  \"inputs\": {inputs},")?;
+    writeln!(w, "  \"stats\": {stats},")?;
+    writeln!(w, "  \"colors\": {colors},")?;
     writeln!(w, "  \"point_fields\": {},", json(set.model.fields()))?;
     writeln!(w, "  \"points\": [")?;
     let rows = set.rows();
@@ -424,9 +436,10 @@ fn json<T: Serialize + ?Sized>(value: &T) -> String {
     serde_json::to_string(value).expect("plain data always serialises")
 }
 
-/// The 8-bit display colour of section `code` (SPEC §1).
+/// The 8-bit display colour of colour code `code` (1..=5 a straw's sections, 6..=8 a coin, a
+/// card and its picture).
 pub fn section_rgb8(code: u8) -> [u8; 3] {
-    SECTION_RGB[code as usize - 1].map(|c| (c * 255.0).round() as u8)
+    COLOR_RGB[code as usize - 1].map(|c| (c * 255.0).round() as u8)
 }
 
 /// PLY, binary little-endian: `double x, y, z`, `uchar red, green, blue`, `uchar color`.
@@ -459,7 +472,12 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
         w,
         "comment color: section code 1 red, 2 orange, 3 magenta, 4 green, 5 blue"
     )?;
-    let points = set.placed_points();
+    write_ply_vertices(w, &set.placed_points())
+}
+
+/// The PLY header's vertex element and the end of the header, then the points' binary records:
+/// `double x, y, z`, `uchar red, green, blue` (the colour code's display colour), `uchar color`.
+fn write_ply_vertices(w: &mut dyn Write, points: &[ImagePoint]) -> io::Result<()> {
     writeln!(w, "element vertex {}", points.len())?;
     for axis in ["x", "y", "z"] {
         writeln!(w, "property double {axis}")?;
@@ -469,7 +487,7 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
     }
     writeln!(w, "end_header")?;
     let mut record = [0u8; 28];
-    for p in &points {
+    for p in points {
         let q = p.position;
         record[0..8].copy_from_slice(&q.x.to_le_bytes());
         record[8..16].copy_from_slice(&q.y.to_le_bytes());
@@ -530,24 +548,7 @@ fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io:
             rgb: COLOR_RGB[k],
         })
         .collect();
-    writeln!(w, "{{")?;
-    writeln!(w, "  \"schema\": \"bentstraw-image-points/1\",")?;
-    writeln!(w, "  \"units\": \"m\",")?;
-    writeln!(w, "  \"image_model\": {},", json(set.image_model()))?;
-    writeln!(w, "  \"inputs\": {},", json(&inputs))?;
-    writeln!(w, "  \"stats\": {},", json(&stats))?;
-    writeln!(w, "  \"colors\": {},", json(&colors))?;
-    writeln!(w, "  \"point_fields\": {},", json(set.model.fields()))?;
-    writeln!(w, "  \"points\": [")?;
-    let rows = set.rows();
-    let n = rows.len();
-    for (i, row) in rows.iter().enumerate() {
-        let sep = if i + 1 < n { "," } else { "" };
-        let cells: Vec<String> = row.iter().map(Value::json).collect();
-        writeln!(w, "    [{}]{sep}", cells.join(","))?;
-    }
-    writeln!(w, "  ]")?;
-    writeln!(w, "}}")
+    write_json_object(w, set, &json(&inputs), &json(&stats), &json(&colors))
 }
 
 /// PLY of a world's points: as [`write_ply`], the scene file named in a comment.
@@ -584,27 +585,7 @@ fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io::
         .map(|(k, n)| format!("{} {n}", k + 1))
         .collect();
     writeln!(w, "comment color: code {}", legend.join(", "))?;
-    let points = set.placed_points();
-    writeln!(w, "element vertex {}", points.len())?;
-    for axis in ["x", "y", "z"] {
-        writeln!(w, "property double {axis}")?;
-    }
-    for channel in ["red", "green", "blue", "color"] {
-        writeln!(w, "property uchar {channel}")?;
-    }
-    writeln!(w, "end_header")?;
-    let mut record = [0u8; 28];
-    for p in &points {
-        let q = p.position;
-        record[0..8].copy_from_slice(&q.x.to_le_bytes());
-        record[8..16].copy_from_slice(&q.y.to_le_bytes());
-        record[16..24].copy_from_slice(&q.z.to_le_bytes());
-        record[24..27]
-            .copy_from_slice(&COLOR_RGB[p.color as usize - 1].map(|c| (c * 255.0).round() as u8));
-        record[27] = p.color;
-        w.write_all(&record)?;
-    }
-    Ok(())
+    write_ply_vertices(w, &set.placed_points())
 }
 
 #[cfg(test)]

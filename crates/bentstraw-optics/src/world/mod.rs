@@ -529,14 +529,14 @@ impl World {
                 path_length,
                 events,
                 ..
-            } => Some(ImagePoint {
-                position: observer + path_length * u0,
+            } => Some(ImagePoint::reached(
+                observer,
+                u0,
                 color,
-                direction: u0,
+                point,
                 path_length,
-                straw_point: point,
                 events,
-            }),
+            )),
             _ => None,
         }
     }

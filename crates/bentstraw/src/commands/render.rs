@@ -201,37 +201,13 @@ fn run_world(args: &RenderArgs, world: &FileWorld, start: Instant) -> CliResult 
     let png = png_bytes(&picture)?;
     files::write_bytes(&args.output, &png)?;
     if let Some(raw) = &args.raw {
-        let w = camera.width as usize;
         match args.mode {
-            ModeArg::Course => {
-                let codes = world_codes(&world.world, &camera);
-                files::write_atomically(raw, |out| {
-                    writeln!(out, "row,col,color")?;
-                    for (k, code) in codes.iter().enumerate() {
-                        writeln!(out, "{},{},{code}", k / w, k % w)?;
-                    }
-                    Ok(())
-                })?;
-            }
-            ModeArg::Fresnel => {
-                let weights = world_weights(&world.world, &camera, args.prune);
-                let mut digits = ryu::Buffer::new();
-                files::write_atomically(raw, |out| {
-                    writeln!(out, "row,col,w1,w2,w3,w4,w5,w6,w7,w8")?;
-                    for (k, px) in weights.iter().enumerate() {
-                        write!(out, "{},{}", k / w, k % w)?;
-                        for v in px {
-                            if *v == 0.0 {
-                                write!(out, ",0")?;
-                            } else {
-                                write!(out, ",{}", digits.format_finite(*v))?;
-                            }
-                        }
-                        writeln!(out)?;
-                    }
-                    Ok(())
-                })?;
-            }
+            ModeArg::Course => write_raw_codes(raw, &camera, &world_codes(&world.world, &camera))?,
+            ModeArg::Fresnel => write_raw_weights(
+                raw,
+                &camera,
+                &world_weights(&world.world, &camera, args.prune),
+            )?,
         }
     }
     outputs.commit()?;
@@ -289,36 +265,52 @@ fn tell_rendered(args: &RenderArgs, camera: &Camera, start: Instant) {
 /// Traced in double precision: a data file is for checking, where the last edge pixel matters
 /// more than the milliseconds the single-precision picture path saves.
 fn write_raw(path: &Path, scene: &Scene, camera: &Camera, mode: ModeArg, prune: f64) -> CliResult {
-    let w = camera.width as usize;
     match mode {
-        ModeArg::Course => {
-            let codes = course_picture_exact(scene, camera);
-            files::write_atomically(path, |out| {
-                writeln!(out, "row,col,color")?;
-                for (k, code) in codes.iter().enumerate() {
-                    writeln!(out, "{},{},{code}", k / w, k % w)?;
-                }
-                Ok(())
-            })
-        }
+        ModeArg::Course => write_raw_codes(path, camera, &course_picture_exact(scene, camera)),
         ModeArg::Fresnel => {
-            let weights = fresnel_picture_exact(scene, camera, prune);
-            let mut digits = ryu::Buffer::new();
-            files::write_atomically(path, |out| {
-                writeln!(out, "row,col,w1,w2,w3,w4,w5")?;
-                for (k, px) in weights.iter().enumerate() {
-                    write!(out, "{},{}", k / w, k % w)?;
-                    for v in px {
-                        if *v == 0.0 {
-                            write!(out, ",0")?;
-                        } else {
-                            write!(out, ",{}", digits.format_finite(*v))?;
-                        }
-                    }
-                    writeln!(out)?;
-                }
-                Ok(())
-            })
+            write_raw_weights(path, camera, &fresnel_picture_exact(scene, camera, prune))
         }
     }
+}
+
+/// Writes one colour code per pixel centre, row-major: `row,col,color`.
+fn write_raw_codes(path: &Path, camera: &Camera, codes: &[u8]) -> CliResult {
+    let w = camera.width as usize;
+    files::write_atomically(path, |out| {
+        writeln!(out, "row,col,color")?;
+        for (k, code) in codes.iter().enumerate() {
+            writeln!(out, "{},{},{code}", k / w, k % w)?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes the weights of each pixel centre's ray on each colour code, row-major:
+/// `row,col,w1,…,wN`, each in the shortest form that reads back as the same `f64` (zeros as `0`).
+fn write_raw_weights<const N: usize>(
+    path: &Path,
+    camera: &Camera,
+    weights: &[[f64; N]],
+) -> CliResult {
+    let w = camera.width as usize;
+    let mut digits = ryu::Buffer::new();
+    files::write_atomically(path, |out| {
+        write!(out, "row,col")?;
+        for k in 1..=N {
+            write!(out, ",w{k}")?;
+        }
+        writeln!(out)?;
+        for (k, px) in weights.iter().enumerate() {
+            write!(out, "{},{}", k / w, k % w)?;
+            for v in px {
+                if *v == 0.0 {
+                    write!(out, ",0")?;
+                } else {
+                    write!(out, ",{}", digits.format_finite(*v))?;
+                }
+            }
+            writeln!(out)?;
+        }
+        Ok(())
+    })
 }

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, ApparentPoint, StereoImage};
 use bentstraw_optics::sampling::{sample_image, sample_image_of, ImageCloud};
-use bentstraw_optics::scene::{Scene, SECTION_NAMES};
+use bentstraw_optics::scene::Scene;
 use bentstraw_optics::world::COLOR_NAMES;
 use bentstraw_optics::Vec3;
 
@@ -320,62 +320,6 @@ fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
     Ok(())
 }
 
-/// The one-screen summary of a scene file's world.
-fn world_summary(
-    set: &PointSet,
-    world: &FileWorld,
-    traced: Duration,
-    total: Duration,
-    written: &[String],
-) -> String {
-    let (o, cloud) = (set.observer, set.cloud);
-    let mut t = String::new();
-    let _ = writeln!(
-        t,
-        "bentstraw simulate: the virtual image of {} ({} model)",
-        world.name,
-        set.image_model()
-    );
-    let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
-    let _ = writeln!(t, "  event limit     {}", world.world.max_events);
-    let _ = writeln!(t, "  rays traced     {}", cloud.rays_traced);
-    let _ = writeln!(
-        t,
-        "  image points    {} (asked for at least {})",
-        cloud.points.len(),
-        set.min_points
-    );
-    for (k, n) in cloud.counts_per_code().iter().enumerate() {
-        if *n > 0 {
-            let _ = writeln!(t, "    {} {:<8} {:>8}", k + 1, COLOR_NAMES[k], n);
-        }
-    }
-    let _ = writeln!(
-        t,
-        "  hit ratio       {:.1} % of the rays reached an object",
-        100.0 * cloud.hit_ratio()
-    );
-    let _ = writeln!(
-        t,
-        "  time            {:.3} s tracing, {:.3} s in all",
-        traced.as_secs_f64(),
-        total.as_secs_f64()
-    );
-    if let Some((first, rest)) = written.split_first() {
-        let _ = writeln!(t, "  wrote           {first}");
-        for w in rest {
-            let _ = writeln!(t, "                  {w}");
-        }
-    }
-    if cloud.points.len() < set.min_points {
-        let _ = writeln!(
-            t,
-            "  note            fewer points than asked: the objects are all but invisible from here"
-        );
-    }
-    t
-}
-
 /// The model comparison and the gap plot, if asked for: the course's, the eye's and the stereo
 /// points of `set`'s cloud.
 fn write_model_figures(
@@ -446,24 +390,40 @@ pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
 /// The one-screen summary printed on stderr; `written` names the files written, one a line.
 pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[String]) -> String {
     let (o, cloud) = (set.observer, set.cloud);
-    let s = match set.inputs {
-        Inputs::Spec(s) => s,
-        Inputs::File(world) => return world_summary(set, world, traced, total, written),
-    };
     let mut t = String::new();
-    let _ = writeln!(
-        t,
-        "bentstraw simulate: the straw's virtual image ({} model)",
-        set.image_model()
-    );
-    let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
-    let _ = writeln!(t, "  straw axis      ({}, {}) m", s.straw_x, s.straw_y);
-    let _ = writeln!(
-        t,
-        "  water           height {} m, index {}",
-        s.water_height, s.n_water
-    );
-    let _ = writeln!(t, "  event limit     {}", s.max_events);
+    // What was traced: the assignment's glass by its values, a scene file by its name.
+    let (object, counts): (&str, Vec<(usize, usize)>) = match set.inputs {
+        Inputs::Spec(s) => {
+            let _ = writeln!(
+                t,
+                "bentstraw simulate: the straw's virtual image ({} model)",
+                set.image_model()
+            );
+            let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
+            let _ = writeln!(t, "  straw axis      ({}, {}) m", s.straw_x, s.straw_y);
+            let _ = writeln!(
+                t,
+                "  water           height {} m, index {}",
+                s.water_height, s.n_water
+            );
+            let _ = writeln!(t, "  event limit     {}", s.max_events);
+            let counts = cloud.counts_per_color().into_iter().enumerate().collect();
+            ("the straw", counts)
+        }
+        Inputs::File(world) => {
+            let _ = writeln!(
+                t,
+                "bentstraw simulate: the virtual image of {} ({} model)",
+                world.name,
+                set.image_model()
+            );
+            let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
+            let _ = writeln!(t, "  event limit     {}", world.world.max_events);
+            // The colours the image has (a card has no red).
+            let counts = cloud.counts_per_code().into_iter().enumerate();
+            ("an object", counts.filter(|c| c.1 > 0).collect())
+        }
+    };
     let _ = writeln!(t, "  rays traced     {}", cloud.rays_traced);
     let _ = writeln!(
         t,
@@ -471,12 +431,12 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
         cloud.points.len(),
         set.min_points
     );
-    for (k, n) in cloud.counts_per_color().iter().enumerate() {
-        let _ = writeln!(t, "    {} {:<8} {:>8}", k + 1, SECTION_NAMES[k], n);
+    for (k, n) in counts {
+        let _ = writeln!(t, "    {} {:<8} {:>8}", k + 1, COLOR_NAMES[k], n);
     }
     let _ = writeln!(
         t,
-        "  hit ratio       {:.1} % of the rays reached the straw",
+        "  hit ratio       {:.1} % of the rays reached {object}",
         100.0 * cloud.hit_ratio()
     );
     let _ = writeln!(
@@ -492,9 +452,13 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
         }
     }
     if cloud.points.len() < set.min_points {
+        let invisible = match set.inputs {
+            Inputs::Spec(_) => "the straw is",
+            Inputs::File(_) => "the objects are",
+        };
         let _ = writeln!(
             t,
-            "  note            fewer points than asked: the straw is all but invisible from here"
+            "  note            fewer points than asked: {invisible} all but invisible from here"
         );
     }
     t

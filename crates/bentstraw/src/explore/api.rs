@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
 use bentstraw_optics::apparent::{
-    eye_model_points, stereo_point_each, stereo_points, ApparentPosition, Focus,
+    eye_model_points, stereo_point_each, stereo_points, ApparentPosition, Focus, PathTracer,
 };
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
@@ -806,21 +806,7 @@ pub fn ray_json(view: &View, u0: Vec3) -> Value {
     match outcome {
         Outcome::Straw { .. } => {
             let image = ImagePoint::from_outcome(eye, u0, outcome).expect("reached the straw");
-            let apparent = scene.apparent_point(eye, &image);
-            let stereo = stereo_points(scene, eye, &[image]);
-            out["outcome"] = json!("straw");
-            out["color"] = json!(image.color);
-            out["color_name"] = json!(color_name(image.color));
-            out["straw_point"] = vec_json(image.straw_point);
-            out["path_length"] = json!(image.path_length);
-            out["image_point"] = vec_json(image.position);
-            out["s_h"] = focus_json(&apparent.s_h);
-            out["s_v"] = focus_json(&apparent.s_v);
-            out["eye_point"] = apparent.position.map_or(Value::Null, vec_json);
-            out["gap_eye"] = json!(apparent.gap_to_course());
-            let sp = stereo.points.first();
-            out["stereo_point"] = sp.and_then(|p| p.position).map_or(Value::Null, vec_json);
-            out["gap_stereo"] = json!(sp.and_then(|p| p.gap_to_course()));
+            reached_json(&mut out, scene, eye, &image);
         }
         Outcome::Escaped { .. } => {
             out["outcome"] = json!("escaped");
@@ -832,6 +818,26 @@ pub fn ray_json(view: &View, u0: Vec3) -> Value {
         }
     }
     out
+}
+
+/// The fields of a ray that reached an object: its colour, the object's point, the path length,
+/// the image point, and where the eye and stereo models put it.
+fn reached_json(out: &mut Value, scene: &impl PathTracer, eye: Vec3, image: &ImagePoint) {
+    let apparent = scene.apparent_point(eye, image);
+    let stereo = stereo_points(scene, eye, &[*image]);
+    out["outcome"] = json!("straw");
+    out["color"] = json!(image.color);
+    out["color_name"] = json!(color_name(image.color));
+    out["straw_point"] = vec_json(image.straw_point);
+    out["path_length"] = json!(image.path_length);
+    out["image_point"] = vec_json(image.position);
+    out["s_h"] = focus_json(&apparent.s_h);
+    out["s_v"] = focus_json(&apparent.s_v);
+    out["eye_point"] = apparent.position.map_or(Value::Null, vec_json);
+    out["gap_eye"] = json!(apparent.gap_to_course());
+    let sp = stereo.points.first();
+    out["stereo_point"] = sp.and_then(|p| p.position).map_or(Value::Null, vec_json);
+    out["gap_stereo"] = json!(sp.and_then(|p| p.gap_to_course()));
 }
 
 /// The light path of the ray from the observer along unit `u0` in a gallery scene, as the page
@@ -870,21 +876,7 @@ fn world_ray_json(view: &View, world: &World, u0: Vec3) -> Value {
     });
     match (outcome, world.image_point(eye, u0)) {
         (WorldOutcome::Object { .. }, Some(image)) => {
-            let apparent = world.apparent_point(eye, &image);
-            let stereo = stereo_points(world, eye, &[image]);
-            out["outcome"] = json!("straw");
-            out["color"] = json!(image.color);
-            out["color_name"] = json!(color_name(image.color));
-            out["straw_point"] = vec_json(image.straw_point);
-            out["path_length"] = json!(image.path_length);
-            out["image_point"] = vec_json(image.position);
-            out["s_h"] = focus_json(&apparent.s_h);
-            out["s_v"] = focus_json(&apparent.s_v);
-            out["eye_point"] = apparent.position.map_or(Value::Null, vec_json);
-            out["gap_eye"] = json!(apparent.gap_to_course());
-            let sp = stereo.points.first();
-            out["stereo_point"] = sp.and_then(|p| p.position).map_or(Value::Null, vec_json);
-            out["gap_stereo"] = json!(sp.and_then(|p| p.gap_to_course()));
+            reached_json(&mut out, world, eye, &image);
         }
         (WorldOutcome::Dropped, _) => {
             out["outcome"] = json!("dropped");
