@@ -12,7 +12,11 @@
 //! rays at a time in single precision (same pixels but for rare ones on colour boundaries).
 //!
 //! A scene can also be read from a scene file's text ([`scene_file`]): the TOML format, checked
-//! rule by rule into a plain description.
+//! rule by rule into a plain description. Any such scene (thick glass, a tank, liquid layers,
+//! leaning straws, coins, cards) is traced as a [`world::World`]: media known by id, the
+//! boundaries between them, opaque objects. Sampling, the eye and stereo models, checking and
+//! ray diagrams are written once over small traits that the assignment's glass and a world both
+//! implement.
 //!
 //! The conventions are those of the project's specification (`shared/SPEC.md`): SI units (metres),
 //! origin at the centre of the glass's base, `z` up.
