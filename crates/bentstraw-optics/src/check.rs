@@ -7,7 +7,7 @@
 //! broken path whose length matches `|P − O|` within a tolerance.
 //!
 //! What is missing is found by comparing the solution with the true image, densely sampled by
-//! [`sample_image`](crate::sampling::sample_image) on the equal-area map of the observer's directions
+//! [`sample_image`] on the equal-area map of the observer's directions
 //! ([`Frame`]): equal areas of that map are equal solid angles, so counting the true image's samples
 //! that a solution reaches measures the solid angle it covers. A true sample counts as reached when a
 //! solution point of its colour, whose ray really reaches that colour, lies within [`REACH_CELLS`]
