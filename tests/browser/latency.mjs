@@ -1,6 +1,7 @@
 // The explorer's latency benchmark (not a test): a scripted drag in the picture, in course and in
 // Fresnel mode, and the input-to-paint latency of the frames painted meanwhile.
-// Run: node latency.mjs   (after cargo build --release; BENTSTRAW=path to use another binary)
+// Run: node latency.mjs   (after cargo build --release; BENTSTRAW=path to use another binary;
+// SCENE=NAME for a scene of the gallery, e.g. SCENE=leaning-straw, seen from its own eye)
 import os from "node:os";
 import { startServer, launch, openPage, waitReady, percentile } from "./harness.mjs";
 
@@ -8,13 +9,21 @@ const MOVES = Number(process.env.MOVES || 120); // pointer moves, one every 16 m
 // The window: its picture panel is about 800x600 CSS pixels.
 const VIEWPORT = { width: Number(process.env.WIDTH || 1500), height: Number(process.env.HEIGHT || 1180) };
 const server = await startServer();
+/** The eye of gallery scene `name`, as the server lists it. */
+async function sceneEye(page, name) {
+  const list = await (await fetch(server.url + "api/scenes")).json();
+  const s = list.find((x) => x.name === name);
+  if (!s) throw new Error(`no scene ${name}: ${list.map((x) => x.name).join(", ")}`);
+  return s.observer.join(",");
+}
 const browser = await launch();
 console.log(`machine: ${os.cpus()[0].model}, ${os.cpus().length} cores, load ${os.loadavg().map((x) => x.toFixed(1)).join(" ")}`);
 console.log("mode     picture  points  frames  p50 ms  p95 ms  max ms  fps   (quick frames while dragging)");
 for (const mode of ["course", "fresnel"]) {
   // 1000x750 CSS pixels for the picture's panel: quick frames of about 500x375, full ones about 1000x750.
   const { page, context } = await openPage(browser, server.url, VIEWPORT);
-  await page.goto(server.url + `#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&mode=${mode}&points=20000`);
+  const scene = process.env.SCENE ? `scene=${process.env.SCENE}&observer=${await sceneEye(page, process.env.SCENE)}` : "observer=0.1,0,0.1";
+  await page.goto(server.url + `#${scene}&straw=0.02,0.01&water-height=0.15&mode=${mode}&points=20000`);
   await waitReady(page);
   const size = await page.evaluate(() => `${window.bentstraw.frame.header.width}x${window.bentstraw.frame.header.height}`);
   await page.evaluate(() => { window.bentstraw.latencies.length = 0; });

@@ -23,6 +23,7 @@ use bentstraw_optics::trace::{Face, Outcome};
 use bentstraw_optics::world::picture::world_picture;
 use bentstraw_optics::world::{Shape, World, WorldOutcome, COLOR_NAMES};
 use bentstraw_optics::Vec3;
+use rayon::prelude::*;
 use serde_json::{json, Value};
 
 use crate::cli::{parse_size, parse_vec2, parse_vec3, CameraArgs, SceneArgs};
@@ -559,7 +560,8 @@ fn world_frame_reply(view: &View, world: &FileWorld) -> Reply {
     let ms = started.elapsed().as_secs_f64() * 1e3;
     let kinds: Vec<LightPathType> = cloud
         .points
-        .iter()
+        .par_iter()
+        .with_min_len(256)
         .map(|p| {
             w.trace_path_type(Ray {
                 origin: view.observer,
