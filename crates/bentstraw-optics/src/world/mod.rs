@@ -397,9 +397,16 @@ impl World {
                 if t >= best_t {
                     break;
                 }
-                let p = ray.at(t);
-                let (n1, n2) = self.sides(b, p, ray.direction);
-                if n1 != n2 {
+                // A boundary between two fixed media refracts everywhere (those of one index were
+                // left out); one beside the cavity only where the layer there differs.
+                let refracts = match (b.outer, b.inner) {
+                    (Side::Medium(_), Side::Medium(_)) => true,
+                    _ => {
+                        let (n1, n2) = self.sides(b, ray.at(t), ray.direction);
+                        n1 != n2
+                    }
+                };
+                if refracts {
                     best = Some(Hit::Boundary { t, index });
                     best_t = t;
                     break;
