@@ -18,6 +18,7 @@ use crate::image::ImagePoint;
 use crate::interface::{reflect, refract, refract_with_reflectance};
 use crate::light_path_type::{Entry, LightPathType};
 use crate::sampling::ImageTracer;
+use crate::scene::{SECTION_NAMES, SECTION_RGB};
 use crate::scene_file::{Container, SceneDescription};
 use crate::trace::FRESNEL_SEGMENTS_PER_RAY;
 use crate::Vec3;
@@ -31,21 +32,28 @@ pub const AIR: MediumId = 0;
 pub const CONTAINER: MediumId = 1;
 /// How many colour codes there are: 1..=5 a straw's bands, 6 a coin, 7 a card, 8 its picture.
 pub const COLOR_COUNT: usize = 8;
-/// Display colours of codes 1..=8 (index 0 is code 1), RGB in 0..1: the straw's five, then a
-/// coin's brass, a card's off-white and its arrow's near black.
+/// Display colours of codes 1..=8 (index 0 is code 1), RGB in 0..1: the straw's five sections,
+/// then a coin's brass, a card's off-white and its arrow's near black.
 pub const COLOR_RGB: [[f64; 3]; COLOR_COUNT] = [
-    [1.0, 0.0, 0.0],
-    [0.929, 0.694, 0.125],
-    [1.0, 0.0, 1.0],
-    [0.0, 0.8, 0.0],
-    [0.0, 0.0, 1.0],
+    SECTION_RGB[0],
+    SECTION_RGB[1],
+    SECTION_RGB[2],
+    SECTION_RGB[3],
+    SECTION_RGB[4],
     [0.78, 0.6, 0.22],
     [0.93, 0.92, 0.88],
     [0.12, 0.12, 0.14],
 ];
-/// Names of colour codes 1..=8.
+/// Names of colour codes 1..=8: the straw's five sections, then a coin, a card, its arrow.
 pub const COLOR_NAMES: [&str; COLOR_COUNT] = [
-    "red", "orange", "magenta", "green", "blue", "coin", "card", "arrow",
+    SECTION_NAMES[0],
+    SECTION_NAMES[1],
+    SECTION_NAMES[2],
+    SECTION_NAMES[3],
+    SECTION_NAMES[4],
+    "coin",
+    "card",
+    "arrow",
 ];
 
 /// The scene ready for tracing: media, boundaries, objects, and a sphere holding them all.
