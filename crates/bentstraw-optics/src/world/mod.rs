@@ -160,6 +160,24 @@ impl WorldOutcome {
     }
 }
 
+/// The medium of the cavity at height `z`: the first layer whose top lies above `z` (`cavity` is
+/// `(upper height, medium)`, lowest first), else air.
+fn cavity_medium(cavity: &[(f64, MediumId)], z: f64) -> MediumId {
+    cavity
+        .iter()
+        .find(|(top, _)| z < *top)
+        .map_or(AIR, |(_, m)| *m)
+}
+
+/// The boundary of the plane `z` over `region`, `below` under it and `above` over it.
+fn horizontal(z: f64, region: Region, below: MediumId, above: MediumId) -> Boundary {
+    Boundary {
+        shape: Shape::Horizontal { z, region },
+        outer: Side::Medium(above),
+        inner: Side::Medium(below),
+    }
+}
+
 impl World {
     /// The world a valid scene description describes, with event limit `max_events`.
     pub fn new(scene: &SceneDescription, max_events: u32) -> World {
@@ -175,60 +193,18 @@ impl World {
             indices.push(liquid.index);
         }
         cavity.push((f64::INFINITY, AIR));
-        let medium_above = |z: f64| {
-            cavity
-                .iter()
-                .find(|(top, _)| z < *top)
-                .map_or(AIR, |(_, m)| *m)
-        };
+        let medium_above = |z: f64| cavity_medium(&cavity, z);
 
-        let mut boundaries = Vec::new();
-        let mut horizontal = |z: f64, region: Region, below: MediumId, above: MediumId| {
-            boundaries.push(Boundary {
-                shape: Shape::Horizontal { z, region },
-                outer: Side::Medium(above),
-                inner: Side::Medium(below),
-            })
-        };
-        let (lo, hi);
-        match &scene.container {
+        // The container's own faces (a glass's rings at its base and rim, its sides; a tank's
+        // walls), the horizontal region its inside covers, and its box.
+        let (rings, surface, walls, lo, hi) = match &scene.container {
             Container::Glass(g) => {
                 indices[CONTAINER as usize] = g.index;
                 let inner = g.radius - g.wall;
-                // The outer base; then the floor inside, the rim, each liquid's surface.
-                if g.wall > 0.0 {
-                    horizontal(
-                        0.0,
-                        Region::Annulus {
-                            inner2: inner * inner,
-                            outer2: g.radius * g.radius,
-                        },
-                        AIR,
-                        CONTAINER,
-                    );
-                    horizontal(
-                        g.height,
-                        Region::Annulus {
-                            inner2: inner * inner,
-                            outer2: g.radius * g.radius,
-                        },
-                        CONTAINER,
-                        AIR,
-                    );
-                }
-                let disk = |r: f64| Region::Disk {
-                    cx: 0.0,
-                    cy: 0.0,
-                    r2: r * r,
+                let ring = Region::Annulus {
+                    inner2: inner * inner,
+                    outer2: g.radius * g.radius,
                 };
-                horizontal(0.0, disk(inner), AIR, medium_above(0.0));
-                if floor > 0.0 {
-                    horizontal(floor, disk(inner), CONTAINER, medium_above(floor));
-                }
-                for (k, liquid) in scene.liquids.iter().enumerate() {
-                    let below = 2 + k as MediumId;
-                    horizontal(liquid.top, disk(inner), below, medium_above(liquid.top));
-                }
                 let upright = |radius: f64, z_min: f64| Shape::Upright {
                     cx: 0.0,
                     cy: 0.0,
@@ -236,63 +212,89 @@ impl World {
                     z_min,
                     z_max: g.height,
                 };
-                if g.wall > 0.0 {
-                    boundaries.push(Boundary {
-                        shape: upright(g.radius, 0.0),
-                        outer: Side::Medium(AIR),
-                        inner: Side::Medium(CONTAINER),
-                    });
-                    boundaries.push(Boundary {
-                        shape: upright(inner, floor),
-                        outer: Side::Medium(CONTAINER),
-                        inner: Side::Cavity,
-                    });
+                let (rings, walls) = if g.wall > 0.0 {
+                    (
+                        vec![
+                            horizontal(0.0, ring, AIR, CONTAINER),
+                            horizontal(g.height, ring, CONTAINER, AIR),
+                        ],
+                        vec![
+                            Boundary {
+                                shape: upright(g.radius, 0.0),
+                                outer: Side::Medium(AIR),
+                                inner: Side::Medium(CONTAINER),
+                            },
+                            Boundary {
+                                shape: upright(inner, floor),
+                                outer: Side::Medium(CONTAINER),
+                                inner: Side::Cavity,
+                            },
+                        ],
+                    )
                 } else {
-                    boundaries.push(Boundary {
-                        shape: upright(g.radius, 0.0),
-                        outer: Side::Medium(AIR),
-                        inner: Side::Cavity,
-                    });
-                }
-                lo = Vec3::new(-g.radius, -g.radius, 0.0);
-                hi = Vec3::new(g.radius, g.radius, g.height);
+                    (
+                        vec![],
+                        vec![Boundary {
+                            shape: upright(g.radius, 0.0),
+                            outer: Side::Medium(AIR),
+                            inner: Side::Cavity,
+                        }],
+                    )
+                };
+                let surface = Region::Disk {
+                    cx: 0.0,
+                    cy: 0.0,
+                    r2: inner * inner,
+                };
+                let lo = Vec3::new(-g.radius, -g.radius, 0.0);
+                let hi = Vec3::new(g.radius, g.radius, g.height);
+                (rings, surface, walls, lo, hi)
             }
             Container::Tank(t) => {
-                let rect = Region::Rectangle {
+                let surface = Region::Rectangle {
                     half_x: t.half_x,
                     half_y: t.half_y,
                 };
-                horizontal(0.0, rect, AIR, medium_above(0.0));
-                for (k, liquid) in scene.liquids.iter().enumerate() {
-                    horizontal(
-                        liquid.top,
-                        rect,
-                        2 + k as MediumId,
-                        medium_above(liquid.top),
-                    );
-                }
-                for (axis, at, half) in [
+                let walls = [
                     (0, t.half_x, t.half_y),
                     (0, -t.half_x, t.half_y),
                     (1, t.half_y, t.half_x),
                     (1, -t.half_y, t.half_x),
-                ] {
-                    boundaries.push(Boundary {
-                        shape: Shape::Vertical {
-                            axis,
-                            at,
-                            half,
-                            z_min: 0.0,
-                            z_max: t.height,
-                        },
-                        outer: Side::Medium(AIR),
-                        inner: Side::Cavity,
-                    });
-                }
-                lo = Vec3::new(-t.half_x, -t.half_y, 0.0);
-                hi = Vec3::new(t.half_x, t.half_y, height);
+                ]
+                .map(|(axis, at, half)| Boundary {
+                    shape: Shape::Vertical {
+                        axis,
+                        at,
+                        half,
+                        z_min: 0.0,
+                        z_max: t.height,
+                    },
+                    outer: Side::Medium(AIR),
+                    inner: Side::Cavity,
+                })
+                .to_vec();
+                let lo = Vec3::new(-t.half_x, -t.half_y, 0.0);
+                let hi = Vec3::new(t.half_x, t.half_y, height);
+                (vec![], surface, walls, lo, hi)
             }
+        };
+        // The horizontal faces over the inside: the outer base, the floor above a thick bottom,
+        // each liquid's surface; then the walls.
+        let mut boundaries = rings;
+        boundaries.push(horizontal(0.0, surface, AIR, medium_above(0.0)));
+        if floor > 0.0 {
+            boundaries.push(horizontal(floor, surface, CONTAINER, medium_above(floor)));
         }
+        for (k, liquid) in scene.liquids.iter().enumerate() {
+            let below = 2 + k as MediumId;
+            boundaries.push(horizontal(
+                liquid.top,
+                surface,
+                below,
+                medium_above(liquid.top),
+            ));
+        }
+        boundaries.extend(walls);
 
         let mut objects = Vec::new();
         objects.extend(scene.straws.iter().map(|s| Object::straw(s, floor)));
@@ -352,11 +354,7 @@ impl World {
     pub fn medium(&self, side: Side, z: f64) -> MediumId {
         match side {
             Side::Medium(m) => m,
-            Side::Cavity => self
-                .cavity
-                .iter()
-                .find(|(top, _)| z < *top)
-                .map_or(AIR, |(_, m)| *m),
+            Side::Cavity => cavity_medium(&self.cavity, z),
         }
     }
 
