@@ -43,14 +43,22 @@ impl LightPathType {
     /// Takes one more event of the ray into account (events in the order they happen).
     #[inline]
     pub fn record(&mut self, event: &Event) {
+        let entry = match event.face {
+            Face::WaterTop => Entry::Top,
+            Face::WaterBottom => Entry::Bottom,
+            _ => Entry::Wall,
+        };
+        self.record_entry(entry, event.totally_reflected);
+    }
+
+    /// Takes one more event into account by the kind of face it happens on: the first one's is
+    /// how the ray enters.
+    #[inline]
+    pub fn record_entry(&mut self, entry: Entry, totally_reflected: bool) {
         if self.entry == Entry::Direct {
-            self.entry = match event.face {
-                Face::WaterTop => Entry::Top,
-                Face::WaterBottom => Entry::Bottom,
-                _ => Entry::Wall,
-            };
+            self.entry = entry;
         }
-        if event.totally_reflected {
+        if totally_reflected {
             self.total_reflections += 1;
         }
     }

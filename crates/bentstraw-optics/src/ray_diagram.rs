@@ -48,8 +48,7 @@ impl DiagramScene for Scene {
 impl DiagramScene for World {
     fn diagram_ray(&self, observer: Vec3, u0: Vec3) -> Option<DiagramRay> {
         let mut events = Vec::new();
-        let mut kind = LightPathType::DIRECT;
-        self.trace_with(
+        let outcome = self.trace_with(
             Ray {
                 origin: observer,
                 direction: u0,
@@ -57,14 +56,9 @@ impl DiagramScene for World {
             |e| {
                 // The kind of face, in the glass's words: a surface met from above, from below,
                 // or a wall.
-                let entry = self.entry_of(e);
-                if kind.entry == Entry::Direct {
-                    kind.entry = entry;
-                }
-                kind.total_reflections += u32::from(e.totally_reflected);
                 events.push(Event {
                     point: e.point,
-                    face: match entry {
+                    face: match self.entry_of(e) {
                         Entry::Top => Face::WaterTop,
                         Entry::Bottom => Face::WaterBottom,
                         _ => Face::WaterSide,
@@ -78,11 +72,10 @@ impl DiagramScene for World {
                 });
             },
         );
-        let image = self.image_point(observer, u0)?;
         Some(DiagramRay {
-            image,
+            image: outcome.image_point(observer, u0)?,
+            kind: LightPathType::of_events(&events),
             events,
-            kind,
         })
     }
 }

@@ -158,6 +158,28 @@ impl WorldOutcome {
             _ => 0,
         }
     }
+
+    /// The image point `P = O + L·u0` this outcome makes for the ray from `observer` along unit
+    /// `u0`, if it reached an object.
+    pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
+        match *self {
+            WorldOutcome::Object {
+                color,
+                point,
+                path_length,
+                events,
+                ..
+            } => Some(ImagePoint::reached(
+                observer,
+                u0,
+                color,
+                point,
+                path_length,
+                events,
+            )),
+            _ => None,
+        }
+    }
 }
 
 /// The medium of the cavity at height `z`: the first layer whose top lies above `z` (`cavity` is
@@ -532,26 +554,11 @@ impl World {
     /// The image point seen from `observer` along unit `u0` by the course's convention,
     /// `P = O + L·u0`, if the ray reaches an object.
     pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
-        match self.trace(Ray {
+        self.trace(Ray {
             origin: observer,
             direction: u0,
-        }) {
-            WorldOutcome::Object {
-                color,
-                point,
-                path_length,
-                events,
-                ..
-            } => Some(ImagePoint::reached(
-                observer,
-                u0,
-                color,
-                point,
-                path_length,
-                events,
-            )),
-            _ => None,
-        }
+        })
+        .image_point(observer, u0)
     }
 
     /// Fresnel tracing: the weight of `ray` that ends on each colour code (index 0 = code 1). At
@@ -685,12 +692,7 @@ impl World {
     ) -> (WorldOutcome, LightPathType) {
         let mut kind = LightPathType::DIRECT;
         let outcome = self.trace_limited(ray, max_events, |e| {
-            if kind.entry == Entry::Direct {
-                kind.entry = self.entry_of(e);
-            }
-            if e.totally_reflected {
-                kind.total_reflections += 1;
-            }
+            kind.record_entry(self.entry_of(e), e.totally_reflected)
         });
         (outcome, kind)
     }
