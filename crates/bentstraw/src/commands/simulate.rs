@@ -19,7 +19,8 @@ use crate::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use crate::scene_input::{AnyScene, FileWorld};
+use crate::plot::Sketch;
+use crate::scene_input::AnyScene;
 use crate::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
 use crate::{html, plot, progress, ray_diagram};
 
@@ -31,17 +32,26 @@ pub const MAX_POINTS: usize = 10_000_000;
 /// cores), so at most ~1.2 GB and a minute.
 pub const MAX_MODEL_POINTS: usize = 2_000_000;
 
-/// Runs `simulate`.
+/// Runs `simulate`: the same steps for the assignment's glass (traced by its fast tracers) and
+/// for a scene file's world.
 pub fn run(args: &SimulateArgs) -> CliResult {
     // 1. Validate everything, trace nothing yet.
     let resolved = args.scene.source().resolve_any()?;
     if args.points == 0 {
         return fail("--points 0 is not allowed: ask for at least 1 image point");
     }
-    let (scene, observer) = match resolved {
-        AnyScene::Spec(r) => (r.scene, r.observer),
-        AnyScene::File(world) => return run_world(args, &world),
+    let (inputs, observer) = match &resolved {
+        AnyScene::Spec(r) => (Inputs::Spec(&r.scene), r.observer),
+        AnyScene::File(world) => (Inputs::File(world), world.observer),
     };
+    if let (Inputs::File(world), Some(_)) = (inputs, &args.html) {
+        return fail(format!(
+            "--html is for scenes of the assignment's kind in this version; {} is another kind: \
+             simulate writes its image points (--output .csv, .json or .ply, any --image-model), \
+             --plot, --rays, --models-plot and --gap-plot; explore shows the gallery's scenes in 3D",
+            world.name
+        ));
+    }
     // The model comparison and the gap plot need both the eye and the stereo model.
     let both_models = args.models_plot.is_some() || args.gap_plot.is_some();
     let (most, per_point, model_name) = match args.image_model {
@@ -67,36 +77,24 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         path: &args.output,
         extensions: &[],
     }];
-    if let Some(p) = &args.plot {
-        outputs.push(Output {
-            flag: "--plot",
-            path: p,
-            extensions: plot::FIGURE_EXTENSIONS,
-        });
-    }
-    if let Some(h) = &args.html {
-        outputs.push(Output {
-            flag: "--html",
-            path: h,
-            extensions: &["html", "htm"],
-        });
-    }
-    if let Some(r) = &args.rays {
-        outputs.push(Output {
-            flag: "--rays",
-            path: r,
-            extensions: plot::FIGURE_EXTENSIONS,
-        });
-    }
-    for (flag, path) in [
+    let figures = [
+        ("--plot", &args.plot),
+        ("--html", &args.html),
+        ("--rays", &args.rays),
         ("--models-plot", &args.models_plot),
         ("--gap-plot", &args.gap_plot),
-    ] {
+    ];
+    for (flag, path) in figures {
         if let Some(path) = path {
+            let extensions = if flag == "--html" {
+                &["html", "htm"][..]
+            } else {
+                plot::FIGURE_EXTENSIONS
+            };
             outputs.push(Output {
                 flag,
                 path,
-                extensions: plot::FIGURE_EXTENSIONS,
+                extensions,
             });
         }
     }
@@ -105,19 +103,21 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 
     // 2. Trace.
     let started = Instant::now();
-    let cloud = trace_with_spinner(&scene, observer, args.points);
+    let cloud = trace_with_spinner(inputs, observer, args.points);
     let traced = started.elapsed();
 
     // 3. The apparent-position model, if not the course's.
     let modelled = Instant::now();
     let eye = (both_models || args.image_model == ImageModelArg::Eye).then(|| {
-        with_spinner("eye model", || {
-            eye_model_points(&scene, observer, &cloud.points)
+        with_spinner("eye model", || match inputs {
+            Inputs::Spec(scene) => eye_model_points(scene, observer, &cloud.points),
+            Inputs::File(w) => eye_model_points(&w.world, observer, &cloud.points),
         })
     });
     let stereo = (both_models || args.image_model == ImageModelArg::Stereo).then(|| {
-        with_spinner("stereo model", || {
-            stereo_points(&scene, observer, &cloud.points)
+        with_spinner("stereo model", || match inputs {
+            Inputs::Spec(scene) => stereo_points(scene, observer, &cloud.points),
+            Inputs::File(w) => stereo_points(&w.world, observer, &cloud.points),
         })
     });
     let model = match (args.image_model, &eye, &stereo) {
@@ -129,34 +129,41 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 
     // 4. Write.
     let set = PointSet {
-        inputs: Inputs::Spec(&scene),
+        inputs,
         observer,
         min_points: args.points,
         model,
         cloud: &cloud,
     };
+    let sketch = match inputs {
+        Inputs::Spec(scene) => Sketch::Spec(scene),
+        Inputs::File(w) => Sketch::World(&w.world),
+    };
     let title = format!(
         "{} ({} model)",
-        simulation_title(&scene, observer),
+        inputs_title(inputs, observer),
         model.name()
     );
     write_points(&args.output, format, &set)?;
     if args.plot.is_some() || args.html.is_some() {
         let placed = set.placed_points();
         if let Some(p) = &args.plot {
-            plot::write_cloud_figure(p, &scene, observer, &placed, &title)?;
+            plot::write_cloud_figure(p, sketch, observer, &placed, &title)?;
         }
-        if let Some(h) = &args.html {
-            html::write_cloud_viewer(h, &scene, observer, &placed, &title)?;
+        if let (Some(h), Inputs::Spec(scene)) = (&args.html, inputs) {
+            html::write_cloud_viewer(h, scene, observer, &placed, &title)?;
         }
     }
     if let Some(r) = &args.rays {
-        let diagram = ray_diagram::Diagram::new(&scene, observer, &cloud.points);
-        let title = format!("Ray diagram: {}", simulation_title(&scene, observer));
-        ray_diagram::write_ray_diagram(r, &scene, &diagram, &title)?;
+        let diagram = match inputs {
+            Inputs::Spec(scene) => ray_diagram::Diagram::new(scene, observer, &cloud.points),
+            Inputs::File(w) => ray_diagram::Diagram::new(&w.world, observer, &cloud.points),
+        };
+        let title = format!("Ray diagram: {}", inputs_title(inputs, observer));
+        ray_diagram::write_ray_diagram(r, sketch, &diagram, &title)?;
     }
     if let (Some(eye), Some(stereo)) = (&eye, &stereo) {
-        write_model_figures(args, &set, eye, stereo)?;
+        write_model_figures(args, &set, sketch, eye, stereo)?;
     }
     outputs.commit()?;
     let total = started.elapsed();
@@ -188,150 +195,16 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     Ok(())
 }
 
-/// `simulate` on a scene file's world: the image points of every object (course, eye or stereo
-/// model) as CSV, JSON or PLY, and the gap plot.
-fn run_world(args: &SimulateArgs, world: &FileWorld) -> CliResult {
-    if args.html.is_some() {
-        return fail(format!(
-            "--html is for scenes of the assignment's kind in this version; {} is another kind: \
-             simulate writes its image points (--output .csv, .json or .ply, any --image-model), \
-             --plot, --rays, --models-plot and --gap-plot; explore shows the gallery's scenes in 3D",
-            world.name
-        ));
-    }
-    let both_models = args.gap_plot.is_some() || args.models_plot.is_some();
-    let most = if both_models || args.image_model != ImageModelArg::Course {
-        MAX_MODEL_POINTS
-    } else {
-        MAX_POINTS
-    };
-    if args.points > most {
-        return fail(format!(
-            "--points {} is too many for this model: at most {most} image points, as each takes \
-             memory until the files are written",
-            args.points
-        ));
-    }
-    let format = PointFormat::from_path(&args.output)?;
-    let mut outputs = vec![Output {
-        flag: "--output",
-        path: &args.output,
-        extensions: &[],
-    }];
-    for (flag, path) in [
-        ("--plot", &args.plot),
-        ("--rays", &args.rays),
-        ("--models-plot", &args.models_plot),
-        ("--gap-plot", &args.gap_plot),
-    ] {
-        if let Some(path) = path {
-            outputs.push(Output {
-                flag,
-                path,
-                extensions: plot::FIGURE_EXTENSIONS,
-            });
-        }
-    }
-    let outputs = OutputSet::reserve(&outputs)?;
-    let started = Instant::now();
-    let (w, observer) = (&world.world, world.observer);
-    let cloud = progress::with_progress(
-        None,
-        "{spinner} tracing rays: {human_pos} so far  [{elapsed}]",
-        |bar| sample_image_of(w, observer, args.points, &|rays| bar.set_position(rays)),
-    );
-    let traced = started.elapsed();
-    let modelled = Instant::now();
-    let eye = (both_models || args.image_model == ImageModelArg::Eye)
-        .then(|| with_spinner("eye model", || eye_model_points(w, observer, &cloud.points)));
-    let stereo = (both_models || args.image_model == ImageModelArg::Stereo)
-        .then(|| with_spinner("stereo model", || stereo_points(w, observer, &cloud.points)));
-    let model = match (args.image_model, &eye, &stereo) {
-        (ImageModelArg::Eye, Some(eye), _) => ModelPoints::Eye(eye),
-        (ImageModelArg::Stereo, _, Some(stereo)) => ModelPoints::Stereo(stereo),
-        _ => ModelPoints::Course,
-    };
-    let modelled = modelled.elapsed();
-    let set = PointSet {
-        inputs: Inputs::File(world),
-        observer,
-        min_points: args.points,
-        model,
-        cloud: &cloud,
-    };
-    write_points(&args.output, format, &set)?;
-    let mut written = vec![format!(
-        "{} ({} points)",
-        args.output.display(),
-        format.name()
-    )];
-    if let Some(path) = &args.plot {
-        let title = format!(
-            "{}: observer ({}, {}, {}) m ({} model)",
-            world.name,
-            observer.x,
-            observer.y,
-            observer.z,
-            model.name()
-        );
-        plot::write_cloud_figure(path, &world.world, observer, &set.placed_points(), &title)?;
-        written.push(format!("{} (figure, three views)", path.display()));
-    }
-    if let Some(path) = &args.rays {
-        let diagram = ray_diagram::Diagram::new(&world.world, observer, &cloud.points);
-        let title = format!(
-            "Ray diagram: {}, observer ({}, {}, {}) m",
-            world.name, observer.x, observer.y, observer.z
-        );
-        ray_diagram::write_ray_diagram(path, &world.world, &diagram, &title)?;
-        written.push(format!("{} (ray diagram)", path.display()));
-    }
-    if let (Some(path), Some(eye), Some(stereo)) = (&args.models_plot, &eye, &stereo) {
-        let placed = [
-            ModelPoints::Course,
-            ModelPoints::Eye(eye),
-            ModelPoints::Stereo(stereo),
-        ]
-        .map(|model| PointSet { model, ..set }.placed_points());
-        let clouds: Vec<ModelCloud> = MODEL_NAMES
-            .iter()
-            .zip(&placed)
-            .map(|(name, points)| ModelCloud { name, points })
-            .collect();
-        let title = format!("Where the objects appear: {}", world.name);
-        write_model_comparison(path, &world.world, observer, &clouds, &title)?;
-        written.push(format!("{} (the three models compared)", path.display()));
-    }
-    if let (Some(path), Some(eye), Some(stereo)) = (&args.gap_plot, &eye, &stereo) {
-        let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
-        let series = GapSeries::of_models(&eye_gaps, &stereo_gaps);
-        let title = format!(
-            "Gap from the course's point to the eye's and the stereo point: {}",
-            world.name
-        );
-        write_gap_plot(path, &series, &title)?;
-        written.push(format!("{} (gap to the course's points)", path.display()));
-    }
-    outputs.commit()?;
-    progress::tell(&summary(&set, traced, started.elapsed(), &written));
-    if !matches!(model, ModelPoints::Course) {
-        progress::tell(&model_summary(&set, modelled));
-    }
-    Ok(())
-}
-
 /// The model comparison and the gap plot, if asked for: the course's, the eye's and the stereo
 /// points of `set`'s cloud.
 fn write_model_figures(
     args: &SimulateArgs,
     set: &PointSet,
+    sketch: Sketch,
     eye: &[ApparentPoint],
     stereo: &StereoImage,
 ) -> CliResult {
-    let Inputs::Spec(scene) = set.inputs else {
-        unreachable!("the model figures are drawn for the assignment's kind of scene only");
-    };
-    let inputs = simulation_title(scene, set.observer);
+    let inputs = inputs_title(set.inputs, set.observer);
     if let Some(path) = &args.models_plot {
         let placed = [
             ModelPoints::Course,
@@ -344,8 +217,12 @@ fn write_model_figures(
             .zip(&placed)
             .map(|(name, points)| ModelCloud { name, points })
             .collect();
-        let title = format!("Where the straw appears: {inputs}");
-        write_model_comparison(path, scene, set.observer, &clouds, &title)?;
+        let what = match set.inputs {
+            Inputs::Spec(_) => "the straw appears",
+            Inputs::File(_) => "the objects appear",
+        };
+        let title = format!("Where {what}: {inputs}");
+        write_model_comparison(path, sketch, set.observer, &clouds, &title)?;
     }
     if let Some(path) = &args.gap_plot {
         let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
@@ -364,13 +241,31 @@ fn with_spinner<T>(what: &str, work: impl FnOnce() -> T) -> T {
     })
 }
 
-/// Samples the straw's image, with a spinner counting rays when it takes a while.
-pub fn trace_with_spinner(scene: &Scene, observer: Vec3, min_points: usize) -> ImageCloud {
+/// Samples the image of the scene's objects, with a spinner counting rays when it takes a while.
+fn trace_with_spinner(inputs: Inputs, observer: Vec3, min_points: usize) -> ImageCloud {
     progress::with_progress(
         None,
         "{spinner} tracing rays: {human_pos} so far  [{elapsed}]",
-        |bar| sample_image(scene, observer, min_points, &|rays| bar.set_position(rays)),
+        |bar| {
+            let progress = |rays| bar.set_position(rays);
+            match inputs {
+                Inputs::Spec(scene) => sample_image(scene, observer, min_points, &progress),
+                Inputs::File(w) => sample_image_of(&w.world, observer, min_points, &progress),
+            }
+        },
     )
+}
+
+/// The inputs in words, for figures' titles: the assignment's values, or a scene file's name and
+/// the observer.
+fn inputs_title(inputs: Inputs, observer: Vec3) -> String {
+    match inputs {
+        Inputs::Spec(scene) => simulation_title(scene, observer),
+        Inputs::File(w) => format!(
+            "{}, observer ({}, {}, {}) m",
+            w.name, observer.x, observer.y, observer.z
+        ),
+    }
 }
 
 /// A short title naming the inputs, for figures.
