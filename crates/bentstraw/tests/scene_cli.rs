@@ -554,14 +554,14 @@ fn overrides_need_one_straw_and_one_liquid_and_a_file_without_observer_needs_the
 }
 
 /// `explore --scene` starts the page on the file's scene and observer, the flags overriding it;
-/// a scene this version cannot trace is refused before anything listens.
+/// a file the page cannot show as it is, with those flags, is refused before anything listens.
 #[test]
 fn explore_starts_on_a_scene_file() {
     use std::io::{BufRead, BufReader, Read, Write};
-    let page = |extra: &[&str]| -> String {
+    // The page `explore --scene FILE EXTRA…` serves.
+    let page_on = |file: &str, extra: &[&str]| -> String {
         let mut child = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
-            .args(["explore", "--no-open", "--port", "0", "--scene"])
-            .arg(gallery("spec.toml"))
+            .args(["explore", "--no-open", "--port", "0", "--scene", file])
             .args(extra)
             .stdout(std::process::Stdio::piped())
             .spawn()
@@ -588,39 +588,13 @@ fn explore_starts_on_a_scene_file() {
         body
     };
     // The file's observer, straw and water (spec.toml: the second reference view).
-    let from_file = page(&[]);
+    let spec = gallery("spec.toml");
+    let from_file = page_on(&spec, &[]);
     assert!(from_file.contains("observer=0.1,0,0.1&amp;straw=0.02,0.01&amp;water-height=0.15"));
-    let overridden = page(&["--water-height", "0.1"]);
+    let overridden = page_on(&spec, &["--water-height", "0.1"]);
     assert!(overridden.contains("straw=0.02,0.01&amp;water-height=0.1&amp;"));
     // A scene of the gallery starts the page on it, from its own observer.
-    let page_on = |file: &str| -> String {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
-            .args(["explore", "--no-open", "--port", "0", "--scene", file])
-            .stdout(std::process::Stdio::piped())
-            .spawn()
-            .expect("bentstraw runs");
-        let mut line = String::new();
-        BufReader::new(child.stdout.take().unwrap())
-            .read_line(&mut line)
-            .unwrap();
-        let url = line
-            .split_whitespace()
-            .find(|w| w.starts_with("http://"))
-            .unwrap();
-        let host = url.trim_start_matches("http://").trim_end_matches('/');
-        let mut stream = std::net::TcpStream::connect(host).unwrap();
-        write!(
-            stream,
-            "GET / HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n"
-        )
-        .unwrap();
-        let mut body = String::new();
-        stream.read_to_string(&mut body).unwrap();
-        child.kill().unwrap();
-        child.wait().unwrap();
-        body
-    };
-    let tank = page_on(&gallery("tank-pencil.toml"));
+    let tank = page_on(&gallery("tank-pencil.toml"), &[]);
     assert!(
         tank.contains("scene=tank-pencil&amp;observer="),
         "{}",
@@ -636,7 +610,7 @@ fn explore_starts_on_a_scene_file() {
             .replace("half_x = 0.10", "half_x = 0.12"),
     )
     .unwrap();
-    let page = page_on(&mine.display().to_string());
+    let page = page_on(&mine.display().to_string(), &[]);
     assert!(page.contains("scene=file&amp;observer="));
     // Its values are the file's: the flags that change the assignment's scene are refused here.
     let out = run(
