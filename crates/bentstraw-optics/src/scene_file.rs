@@ -1053,9 +1053,15 @@ impl SceneDescription {
     }
 
     fn validate_observer(&self) -> Result<(), SceneFileError> {
-        let Some(o) = &self.observer else {
-            return Ok(());
-        };
+        match &self.observer {
+            Some(o) => self.check_observer(o),
+            None => Ok(()),
+        }
+    }
+
+    /// Checks `o` by the rules an `[observer]` of this scene obeys (finite, outside the container
+    /// and the straws, its target away from its eye), as if the file gave it.
+    pub fn check_observer(&self, o: &Observer) -> Result<(), SceneFileError> {
         for (name, p) in [("position", o.position), ("target", o.target)] {
             for v in p.to_array() {
                 finite(&format!("observer.{name}"), v)?;

@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use bentstraw_optics::sampling::sample_image_of;
+use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
 use bentstraw_optics::world::picture::world_picture;
 use rayon::prelude::*;
@@ -76,8 +77,8 @@ pub fn opening_comment(text: &str) -> String {
 pub fn gallery_sections(out: &Path) -> Vec<Section> {
     GALLERY
         .par_iter()
-        .map(
-            |(stem, text)| match file_world(&format!("scenes/{stem}.toml"), text) {
+        .map(|(stem, text)| {
+            match file_world(&format!("scenes/{stem}.toml"), text, DEFAULT_MAX_EVENTS) {
                 Ok(world) => scene_section(out, stem, text, &world),
                 Err(e) => Section {
                     title: format!("Gallery: {stem}"),
@@ -89,8 +90,8 @@ pub fn gallery_sections(out: &Path) -> Vec<Section> {
                     side_by_side: false,
                     table: vec![],
                 },
-            },
-        )
+            }
+        })
         .collect()
 }
 
@@ -189,7 +190,7 @@ mod tests {
     #[test]
     fn every_gallery_scene_is_valid_and_says_what_it_shows() {
         for (stem, text) in GALLERY {
-            let world = file_world(stem, text).unwrap();
+            let world = file_world(stem, text, DEFAULT_MAX_EVENTS).unwrap();
             assert!(!world.world.objects().is_empty(), "{stem}");
             assert!(opening_comment(text).len() > 60, "{stem}");
         }

@@ -204,9 +204,9 @@ impl SceneSource {
     }
 }
 
-/// The world of a scene file's text named `name`, seen from its own `[observer]`, with the
-/// default event limit (for the built-in gallery).
-pub fn file_world(name: &str, text: &str) -> CliResult<FileWorld> {
+/// The world of a scene file's text named `name`, seen from its own `[observer]`, with the event
+/// limit `max_events` (for the built-in gallery).
+pub fn file_world(name: &str, text: &str, max_events: u32) -> CliResult<FileWorld> {
     let description =
         SceneDescription::from_toml(text).map_err(|e| CliError(format!("{name}: {e}")))?;
     let Some(observer) = description.observer else {
@@ -214,7 +214,7 @@ pub fn file_world(name: &str, text: &str) -> CliResult<FileWorld> {
     };
     Ok(FileWorld {
         name: name.to_string(),
-        world: World::new(&description, bentstraw_optics::scene::DEFAULT_MAX_EVENTS),
+        world: World::new(&description, max_events),
         description,
         observer: observer.position,
         target: Some(observer.target),

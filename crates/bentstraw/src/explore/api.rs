@@ -16,7 +16,7 @@ use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::sampling::{sample_image, sample_image_of, ImageCloud};
-use bentstraw_optics::scene::{clip_text, Scene, SceneError, MAX_EVENTS_LIMIT};
+use bentstraw_optics::scene::{clip_text, Scene, SceneError, DEFAULT_MAX_EVENTS, MAX_EVENTS_LIMIT};
 use bentstraw_optics::scene_file::Observer;
 use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
 use bentstraw_optics::trace::{Face, Outcome};
@@ -164,9 +164,17 @@ pub enum Traced {
 /// `max_events`, checked by the scene file's rules.
 fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Traced, String> {
     let mut world = match GALLERY.iter().find(|(stem, _)| *stem == name) {
-        Some((stem, text)) => file_world(&format!("scenes/{stem}.toml"), text).map_err(|e| e.0)?,
+        Some((stem, text)) => {
+            file_world(&format!("scenes/{stem}.toml"), text, max_events).map_err(|e| e.0)?
+        }
         None => match USER_SCENE.get() {
-            Some(user) if name == USER_SCENE_NAME => user.clone(),
+            Some(user) if name == USER_SCENE_NAME => {
+                let mut user = user.clone();
+                if user.world.max_events != max_events {
+                    user.world = World::new(&user.description, max_events);
+                }
+                user
+            }
             _ => {
                 let mut names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
                 if USER_SCENE.get().is_some() {
@@ -187,22 +195,21 @@ fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Trac
         }
     }
     let position = Vec3::from_array(observer);
-    let mut checked = world.description.clone();
-    checked.observer = Some(Observer {
-        position,
-        target: world
-            .target
-            .filter(|t| *t != position)
-            .unwrap_or(position + Vec3::Z),
-    });
-    checked
-        .validate()
+    // The file's own rules hold already: only the eye moved.
+    world
+        .description
+        .check_observer(&Observer {
+            position,
+            target: world
+                .target
+                .filter(|t| *t != position)
+                .unwrap_or(position + Vec3::Z),
+        })
         .map_err(|e| format!("{file} with this observer: {e}"))?;
     if max_events == 0 || max_events > MAX_EVENTS_LIMIT {
         return Err(SceneError::MaxEvents(max_events).to_string());
     }
     world.observer = position;
-    world.world = World::new(&world.description, max_events);
     Ok(Traced::World(Arc::new(world)))
 }
 
@@ -219,7 +226,7 @@ pub fn scenes_reply() -> Reply {
     let mut list: Vec<Value> = GALLERY
         .iter()
         .filter_map(|(stem, text)| {
-            let w = file_world(stem, text).ok()?;
+            let w = file_world(stem, text, DEFAULT_MAX_EVENTS).ok()?;
             Some(json!({
                 "name": stem,
                 "title": stem.replace('-', " "),
@@ -1201,7 +1208,7 @@ mod tests {
     #[test]
     fn the_started_file_is_served_beside_the_gallery() {
         let text = GALLERY[3].1.replace("half_x = 0.10", "half_x = 0.12");
-        let _ = USER_SCENE.set(file_world("mine.toml", &text).unwrap());
+        let _ = USER_SCENE.set(file_world("mine.toml", &text, DEFAULT_MAX_EVENTS).unwrap());
         let mut f = Frame::default();
         let q = "scene=file&observer=0,-0.35,0.12&size=40x30&points=500";
         let r = handle("/api/frame", q, &mut f);
