@@ -28,6 +28,7 @@ use rayon::slice::ParallelSliceMut;
 
 use crate::error::{CliError, CliResult};
 use crate::files;
+use crate::writers::Inputs;
 
 /// Width of every figure in pixels (printed 8.5 cm wide: see [`TEXT`]).
 pub const FIGURE_WIDTH: u32 = 1000;
@@ -107,6 +108,15 @@ impl<'a> From<&'a Scene> for Sketch<'a> {
 impl<'a> From<&'a World> for Sketch<'a> {
     fn from(world: &'a World) -> Self {
         Sketch::World(world)
+    }
+}
+
+impl<'a> From<Inputs<'a>> for Sketch<'a> {
+    fn from(inputs: Inputs<'a>) -> Self {
+        match inputs {
+            Inputs::Spec(scene) => Sketch::Spec(scene),
+            Inputs::File(file) => Sketch::World(&file.world),
+        }
     }
 }
 

@@ -22,7 +22,8 @@ use crate::error::{CliError, CliResult};
 use crate::files::check_writable;
 use crate::plot::Sketch;
 use crate::report::Check;
-use crate::scene_input::{AnyScene, FileWorld};
+use crate::scene_input::AnyScene;
+use crate::writers::Inputs;
 
 /// Most points a solution may have (more is not a reasonable image: refuse rather than run for long).
 pub const MAX_POINTS: usize = 10_000_000;
@@ -64,22 +65,11 @@ fn rounding_error(digits: usize, largest: f64) -> f64 {
     0.5 * 10f64.powf(largest.log10().floor() - digits as f64 + 1.0)
 }
 
-/// The scene a solution is checked in: the assignment's glass, or a scene file's world.
-#[derive(Clone, Copy)]
-enum Checked<'a> {
-    /// The assignment's kind of scene.
-    Spec(&'a Scene),
-    /// Any other scene file.
-    File(&'a FileWorld),
-}
-
-impl Checked<'_> {
-    /// The names of the colour codes this scene can show, code 1 first.
-    fn names(&self) -> &'static [&'static str] {
-        match self {
-            Checked::Spec(_) => &SECTION_NAMES,
-            Checked::File(_) => &COLOR_NAMES,
-        }
+/// The names of the colour codes the scene can show, code 1 first.
+fn colour_names(checked: Inputs) -> &'static [&'static str] {
+    match checked {
+        Inputs::Spec(_) => &SECTION_NAMES,
+        Inputs::File(_) => &COLOR_NAMES,
     }
 }
 
@@ -87,8 +77,8 @@ impl Checked<'_> {
 pub fn run(args: &CheckArgs) -> CliResult<bool> {
     let resolved = args.scene.source().resolve_any()?;
     let (checked, observer) = match &resolved {
-        AnyScene::Spec(r) => (Checked::Spec(&r.scene), r.observer),
-        AnyScene::File(f) => (Checked::File(f), f.observer),
+        AnyScene::Spec(r) => (Inputs::Spec(&r.scene), r.observer),
+        AnyScene::File(f) => (Inputs::File(f), f.observer),
     };
     if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
         return Err(CliError(format!(
@@ -107,16 +97,16 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
         check_writable(p)?;
     }
     let started = Instant::now();
-    let solution = read_solution_of(&args.file, checked.names().len())?;
+    let solution = read_solution_of(&args.file, colour_names(checked).len())?;
     let report = match checked {
-        Checked::Spec(scene) => check_solution(
+        Inputs::Spec(scene) => check_solution(
             scene,
             observer,
             &solution.points,
             args.tolerance,
             args.min_coverage,
         ),
-        Checked::File(f) => check_solution(
+        Inputs::File(f) => check_solution(
             &f.world,
             observer,
             &solution.points,
@@ -131,10 +121,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
             clip_text(&args.file.display().to_string(), 60),
             if report.passes() { "pass" } else { "fail" }
         );
-        let sketch = match checked {
-            Checked::Spec(scene) => Sketch::Spec(scene),
-            Checked::File(f) => Sketch::World(&f.world),
-        };
+        let sketch = Sketch::from(checked);
         crate::check_plot::write_check_figure(
             p,
             sketch,
@@ -445,7 +432,7 @@ fn all_hints(solution: &Solution, r: &CheckReport) -> Vec<String> {
 /// The one-screen summary.
 fn summary(
     file: &str,
-    checked: Checked,
+    checked: Inputs,
     o: Vec3,
     solution: &Solution,
     r: &CheckReport,
@@ -456,14 +443,14 @@ fn summary(
     let t_ = &r.tally;
     let _ = writeln!(t, "bentstraw check: {file}");
     match checked {
-        Checked::Spec(scene) => {
+        Inputs::Spec(scene) => {
             let _ = writeln!(
                 t,
                 "  scene           observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}, at most {} events",
                 o.x, o.y, o.z, scene.straw_x, scene.straw_y, scene.water_height, scene.n_water, scene.max_events
             );
         }
-        Checked::File(f) => {
+        Inputs::File(f) => {
             let _ = writeln!(
                 t,
                 "  scene           {}, observer ({}, {}, {}) m, at most {} events",
@@ -471,7 +458,7 @@ fn summary(
             );
         }
     }
-    let names = checked.names();
+    let names = colour_names(checked);
     if let Some(h) = &solution.header {
         let _ = writeln!(t, "  read            {h}");
     }
@@ -536,7 +523,7 @@ fn summary(
         let c = &r.per_colour[k];
         let cov = &r.coverage.per_colour[k];
         // A scene file's colours neither claimed nor seen are left out (a card has no red).
-        if matches!(checked, Checked::File(_)) && c.points == 0 && cov.true_samples == 0 {
+        if matches!(checked, Inputs::File(_)) && c.points == 0 && cov.true_samples == 0 {
             continue;
         }
         let cov_text = if cov.true_samples == 0 {
@@ -652,7 +639,7 @@ pub fn own_points_check(scene: &Scene, observer: Vec3, points: &[ImagePoint]) ->
 /// The JSON object of `--json`.
 fn json_report(
     file: &str,
-    checked: Checked,
+    checked: Inputs,
     o: Vec3,
     solution: &Solution,
     r: &CheckReport,
@@ -662,7 +649,7 @@ fn json_report(
     let t = &r.tally;
     let mut coverage = serde_json::Map::new();
     let mut per_colour = Vec::new();
-    for (k, name) in checked.names().iter().enumerate() {
+    for (k, name) in colour_names(checked).iter().enumerate() {
         let cov = &r.coverage.per_colour[k];
         coverage.insert((k + 1).to_string(), json!(cov.share()));
         let c = &r.per_colour[k];
@@ -744,13 +731,13 @@ fn json_report(
         "seconds": seconds,
     });
     match checked {
-        Checked::Spec(scene) => {
+        Inputs::Spec(scene) => {
             v["straw"] = json!([scene.straw_x, scene.straw_y]);
             v["water_height"] = json!(scene.water_height);
             v["n_water"] = json!(scene.n_water);
             v["max_events"] = json!(scene.max_events);
         }
-        Checked::File(f) => {
+        Inputs::File(f) => {
             v["scene_file"] = json!(f.name);
             v["max_events"] = json!(f.world.max_events);
         }

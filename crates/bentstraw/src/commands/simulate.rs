@@ -135,10 +135,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         model,
         cloud: &cloud,
     };
-    let sketch = match inputs {
-        Inputs::Spec(scene) => Sketch::Spec(scene),
-        Inputs::File(w) => Sketch::World(&w.world),
-    };
+    let sketch = Sketch::from(inputs);
     let title = format!(
         "{} ({} model)",
         inputs_title(inputs, observer),
