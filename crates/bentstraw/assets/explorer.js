@@ -281,8 +281,6 @@ function showError(text) {
 // ---- painting ----
 function paintAll() {
   drawPicture();
-  // A gallery scene's maps are drawn from the frame's wireframe; the glass's need no frame.
-  if (state.scene) drawMaps();
   drawCloud();
   drawLegend();
   const h = frame.header;
@@ -324,22 +322,36 @@ function cloudProjection(w, h) {
   };
 }
 
+/** What the page draws of each gallery scene (wireframe, outlines, box), asked once per scene. */
+const sketches = {};
+function fetchSketch(name) {
+  if (sketches[name]) return;
+  sketches[name] = "pending";
+  fetch("/api/sketch?scene=" + encodeURIComponent(name)).then((r) => (r.ok ? r.json() : null)).then((sc) => {
+    if (!sc) { delete sketches[name]; return; }
+    const pt = (a, i) => [a[i], a[i + 1], a[i + 2]];
+    const wire = [];
+    for (let i = 0; i + 5 < sc.wireframe.length; i += 6) wire.push([pt(sc.wireframe, i), pt(sc.wireframe, i + 3)]);
+    const outlines = sc.outlines.map((l) => Array.from({ length: l.length / 3 }, (_, i) => pt(l, 3 * i)));
+    sketches[name] = { wire, outlines, bounds: sc.bounds };
+    if (state.scene === name) { drawMaps(); drawCloud(); }
+  });
+}
+
 /** The middle and size of what the views show: the glass and straw, or a gallery scene's box. */
 function sceneBox() {
-  const b = state.scene && frame && frame.header.scene ? frame.header.scene.bounds : null;
+  const lines = sceneLines();
+  const b = lines ? lines.bounds : null;
   if (!b) return { centre: [0, 0, 0.125], size: 0.36 };
   return { centre: [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2], size: 1.3 * Math.max(b[3] - b[0], b[4] - b[1], b[5] - b[2]) };
 }
 
-/** A gallery scene's wireframe (pairs of points) and outlines (polylines), from the frame. */
+/** A gallery scene's wireframe (pairs of points), outlines (polylines) and box, once its sketch has come. */
 function sceneLines() {
-  const sc = state.scene && frame && frame.header.scene;
-  if (!sc) return null;
-  const pt = (a, i) => [a[i], a[i + 1], a[i + 2]];
-  const wire = [];
-  for (let i = 0; i + 5 < sc.wireframe.length; i += 6) wire.push([pt(sc.wireframe, i), pt(sc.wireframe, i + 3)]);
-  const outlines = sc.outlines.map((l) => Array.from({ length: l.length / 3 }, (_, i) => pt(l, 3 * i)));
-  return { wire, outlines };
+  if (!state.scene) return null;
+  const sc = sketches[state.scene];
+  if (sc === undefined) fetchSketch(state.scene);
+  return sc && sc !== "pending" ? sc : null;
 }
 
 let layer = null, layerPixels = null;

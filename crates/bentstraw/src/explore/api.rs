@@ -163,31 +163,7 @@ pub enum Traced {
 /// The gallery scene named `name`, with its own observer moved to `observer` and the event limit
 /// `max_events`, checked by the scene file's rules.
 fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Traced, String> {
-    let mut world = match GALLERY.iter().find(|(stem, _)| *stem == name) {
-        Some((stem, text)) => {
-            file_world(&format!("scenes/{stem}.toml"), text, max_events).map_err(|e| e.0)?
-        }
-        None => match USER_SCENE.get() {
-            Some(user) if name == USER_SCENE_NAME => {
-                let mut user = user.clone();
-                if user.world.max_events != max_events {
-                    user.world = World::new(&user.description, max_events);
-                }
-                user
-            }
-            _ => {
-                let mut names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
-                if USER_SCENE.get().is_some() {
-                    names.push(USER_SCENE_NAME);
-                }
-                return Err(format!(
-                    "invalid value '{}' for 'scene' [possible values: {}]",
-                    clip_text(name, 40),
-                    names.join(", ")
-                ));
-            }
-        },
-    };
+    let mut world = named_world(name, max_events)?;
     let file = world.name.clone();
     for (axis, v) in ["X", "Y", "Z"].iter().zip(observer) {
         if !v.is_finite() {
@@ -213,12 +189,59 @@ fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Trac
     Ok(Traced::World(Arc::new(world)))
 }
 
+/// The scene the page names `name` (a gallery scene, or the file the explorer was started with),
+/// from its own eye, with the event limit `max_events`.
+fn named_world(name: &str, max_events: u32) -> Result<FileWorld, String> {
+    Ok(match GALLERY.iter().find(|(stem, _)| *stem == name) {
+        Some((stem, text)) => {
+            file_world(&format!("scenes/{stem}.toml"), text, max_events).map_err(|e| e.0)?
+        }
+        None => match USER_SCENE.get() {
+            Some(user) if name == USER_SCENE_NAME => {
+                let mut user = user.clone();
+                if user.world.max_events != max_events {
+                    user.world = World::new(&user.description, max_events);
+                }
+                user
+            }
+            _ => {
+                let mut names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
+                if USER_SCENE.get().is_some() {
+                    names.push(USER_SCENE_NAME);
+                }
+                return Err(format!(
+                    "invalid value '{}' for 'scene' [possible values: {}]",
+                    clip_text(name, 40),
+                    names.join(", ")
+                ));
+            }
+        },
+    })
+}
+
 /// The name the page uses for the scene file `explore --scene` was started with.
 pub const USER_SCENE_NAME: &str = "file";
 
 /// The scene file `explore --scene` was started with, when it is neither the assignment's kind
 /// nor one of the gallery's: the page offers it beside the gallery (a request never names a file).
 pub static USER_SCENE: std::sync::OnceLock<FileWorld> = std::sync::OnceLock::new();
+
+/// `GET /api/sketch?scene=NAME`: what the page draws of a scene besides its points, asked once
+/// per scene (not with every frame): the container's and liquids' wireframe as `[x, y, z, x, y,
+/// z]` segments, the objects' outlines as flat polylines, and the box holding them.
+pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
+    let file = named_world(required(q, "scene")?, DEFAULT_MAX_EVENTS)?;
+    let w = &file.world;
+    let flat = |p: &[Vec3]| -> Vec<f64> { p.iter().flat_map(|q| q.to_array()).collect() };
+    let wireframe: Vec<f64> = world_wireframe(w).iter().flat_map(|s| flat(s)).collect();
+    let outlines: Vec<Vec<f64>> = object_outlines(w).iter().map(|l| flat(l)).collect();
+    let (lo, hi) = w.bounds();
+    Ok(Reply::json(&json!({
+        "wireframe": wireframe,
+        "outlines": outlines,
+        "bounds": [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
+    })))
+}
 
 /// `GET /api/scenes`: the gallery's scenes (and the file the explorer was started with): name,
 /// what it shows, its own observer.
@@ -553,8 +576,8 @@ fn frame_body(
 }
 
 /// The frame of a gallery scene: its picture (traced in double precision), its image points of
-/// every object and their light paths, and what the page draws of the scene: the container's and
-/// liquids' wireframe, the objects' outlines, the box holding them.
+/// every object and their light paths (what the page draws of the scene itself comes once, from
+/// [`sketch_reply`]).
 fn world_frame_reply(view: &View, world: &FileWorld) -> Reply {
     let started = std::time::Instant::now();
     let w = &world.world;
@@ -591,10 +614,6 @@ fn world_frame_reply(view: &View, world: &FileWorld) -> Reply {
         view.simulate_command("course"),
         Arc::new(cloud.points.clone()),
     ));
-    let flat = |p: &[Vec3]| -> Vec<f64> { p.iter().flat_map(|q| q.to_array()).collect() };
-    let wireframe: Vec<f64> = world_wireframe(w).iter().flat_map(|s| flat(s)).collect();
-    let outlines: Vec<Vec<f64>> = object_outlines(w).iter().map(|l| flat(l)).collect();
-    let (lo, hi) = w.bounds();
     let header = json!({
         "width": view.camera.width,
         "height": view.camera.height,
@@ -606,11 +625,6 @@ fn world_frame_reply(view: &View, world: &FileWorld) -> Reply {
         "ms": ms,
         "simulate": view.simulate_command("course"),
         "render": view.render_command(),
-        "scene": {
-            "wireframe": wireframe,
-            "outlines": outlines,
-            "bounds": [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
-        },
     });
     let kind_of = kinds
         .iter()
@@ -990,6 +1004,9 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
         Ok(q) => q,
         Err(e) => return Reply::text(400, e),
     };
+    if path == "/api/sketch" {
+        return sketch_reply(&q).unwrap_or_else(|e| Reply::text(400, e));
+    }
     let view = match View::from_query(&q) {
         Ok(v) => v,
         Err(e) => return Reply::text(400, e),
@@ -1179,7 +1196,10 @@ mod tests {
             header["points_per_color"][7].as_u64().unwrap() > 0,
             "the arrow"
         );
-        assert!(!header["scene"]["wireframe"].as_array().unwrap().is_empty());
+        let sketch: Value =
+            serde_json::from_slice(&handle("/api/sketch", "scene=reversing-arrow", &mut f).body)
+                .unwrap();
+        assert!(!sketch["wireframe"].as_array().unwrap().is_empty());
         assert!(header["simulate"]
             .as_str()
             .unwrap()
@@ -1232,12 +1252,13 @@ mod tests {
         use super::*;
         use proptest::prelude::*;
 
-        const ROUTES: [&str; 6] = [
+        const ROUTES: [&str; 7] = [
             "/api/frame",
             "/api/model",
             "/api/ray",
             "/api/export",
             "/api/scenes",
+            "/api/sketch",
             "/api/x",
         ];
 
