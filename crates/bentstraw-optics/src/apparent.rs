@@ -72,7 +72,7 @@ use rayon::prelude::*;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::scene::{Scene, SCENE_CENTRE};
-use crate::trace::{Event, Face, Outcome};
+use crate::tracer::Tracer;
 use crate::Vec3;
 
 /// Step `δ` of the eye across the pupil for the finite differences of the eye model (m).
@@ -326,25 +326,19 @@ pub trait PathTracer: Sync {
     fn follow_events(&self, ray: Ray, on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)>;
 }
 
+/// One ray at a time (each call prepares the scene again): for tests and single rays; to trace
+/// many, use the [`Tracer`].
 impl PathTracer for Scene {
     #[inline]
-    fn follow_events(&self, ray: Ray, mut on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)> {
-        let outcome = self.trace_with(ray, |e: &Event| {
-            on_event(PathEvent {
-                face: match e.face {
-                    Face::WaterSide => 0,
-                    Face::WaterTop => 1,
-                    _ => 2,
-                },
-                point: e.point,
-                outgoing: e.outgoing,
-                totally_reflected: e.totally_reflected,
-            })
-        });
-        match outcome {
-            Outcome::Straw { point, events, .. } => Some((point, events)),
-            _ => None,
-        }
+    fn follow_events(&self, ray: Ray, on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)> {
+        Tracer::new(self).world().follow_events(ray, on_event)
+    }
+}
+
+impl PathTracer for Tracer {
+    #[inline]
+    fn follow_events(&self, ray: Ray, on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)> {
+        self.world().follow_events(ray, on_event)
     }
 }
 
@@ -860,6 +854,7 @@ mod tests {
     use crate::interface::refract;
     use crate::sampling::sample_image;
     use crate::scene::{GLASS_RADIUS, REFERENCES, STRAW_RADIUS, WATER_INDEX};
+    use crate::trace::Outcome;
     use proptest::prelude::*;
     use proptest::test_runner::{Config, TestRunner};
 

@@ -97,7 +97,7 @@ impl CheckedScene for Tracer {
             Some(m) => {
                 let mut patient = self.scene;
                 patient.max_events = m;
-                trace_path_type(&Tracer::new(&patient), &patient, ray)
+                trace_path_type(self, &patient, ray)
             }
         };
         (reach_of(outcome), path)

@@ -1,5 +1,6 @@
 //! Rays and the two shapes the scene is made of: upright cylinders (their side) and horizontal disks.
 
+use crate::lanes::{Mask, Real};
 use crate::Vec3;
 
 /// A half-line `origin + t·direction`, `t > 0`, with a unit `direction`.
@@ -45,7 +46,7 @@ pub struct CylinderSide {
 impl CylinderSide {
     /// The quadratic of `ray`'s line meeting this side (see [`SideQuadratic`]).
     #[inline]
-    fn quadratic(&self, ray: &Ray) -> SideQuadratic {
+    fn quadratic(&self, ray: &Ray) -> SideQuadratic<f64> {
         SideQuadratic::new(
             ray.origin.x - self.cx,
             ray.origin.y - self.cy,
@@ -60,8 +61,11 @@ impl CylinderSide {
     /// A ray that only grazes the cylinder (tangent) meets it at one point and counts as a hit there.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<f64> {
-        self.quadratic(ray)
-            .nearest_root(ray.origin.z, ray.direction.z, self.z_min, self.z_max)
+        let q = self.quadratic(ray);
+        finite(
+            q.roots(1.0 / q.a)
+                .nearest(ray.origin.z, ray.direction.z, self.z_min, self.z_max),
+        )
     }
 
     /// Distance at which `ray`, which starts on this side (it has just been refracted or reflected
@@ -69,8 +73,11 @@ impl CylinderSide {
     /// distance, so a genuine hit a hair away is never lost.
     #[inline]
     pub fn intersect_leaving(&self, ray: &Ray) -> Option<f64> {
-        self.quadratic(ray)
-            .other_root(ray.origin.z, ray.direction.z, self.z_min, self.z_max)
+        let q = self.quadratic(ray);
+        finite(
+            q.roots(1.0 / q.a)
+                .other(ray.origin.z, ray.direction.z, self.z_min, self.z_max),
+        )
     }
 
     /// Distance at which `ray` enters the solid cylinder through this side (an opaque object
@@ -78,8 +85,14 @@ impl CylinderSide {
     /// ray starts inside the solid (by rounding, on its surface).
     #[inline]
     pub fn entry(&self, ray: &Ray) -> Option<f64> {
-        self.quadratic(ray)
-            .entering_root(ray.origin.z, ray.direction.z, self.z_min, self.z_max)
+        let q = self.quadratic(ray);
+        finite(q.roots(1.0 / q.a).entering(
+            &q,
+            ray.origin.z,
+            ray.direction.z,
+            self.z_min,
+            self.z_max,
+        ))
     }
 
     /// Outward unit normal at a point `p` of the side.
@@ -90,7 +103,7 @@ impl CylinderSide {
 }
 
 /// A ray's line `p + t·d` (horizontal parts relative to an upright axis) meeting a cylinder of
-/// radius² `r2` around it: `a t² + 2 half_b t + c = 0`.
+/// radius² `r2` around it: `a t² + 2 half_b t + c = 0`, for one ray or eight ([`Real`]).
 ///
 /// The discriminant is computed as `disc = a·r² − (px·dy − py·dx)²` (Lagrange's identity), not
 /// `half_b² − a·c`: for a distant origin both terms of the latter are huge and nearly equal, and
@@ -98,21 +111,31 @@ impl CylinderSide {
 /// The roots come in the cancellation-free form `q = −(half_b + sign(half_b)·√disc)`, `t = q/a`
 /// and `c/q`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct SideQuadratic {
+pub(crate) struct SideQuadratic<R = f64> {
     /// `dx² + dy²`: zero for a vertical ray, parallel to the side.
-    pub a: f64,
+    pub a: R,
     /// `px·dx + py·dy`: negative when the ray moves towards the axis.
-    pub half_b: f64,
+    pub half_b: R,
     /// `px² + py² − r²`: negative when the ray starts inside the cylinder.
-    pub c: f64,
+    pub c: R,
     /// `a·r² − (px·dy − py·dx)²`: negative when the line misses the cylinder.
-    pub disc: f64,
+    pub disc: R,
 }
 
-impl SideQuadratic {
+/// The roots of a [`SideQuadratic`] in the lanes where the line meets the cylinder (`real`):
+/// the smaller, the larger, and `q/a` (the one not near zero when `c` is).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SideRoots<R: Real> {
+    pub near: R,
+    pub far: R,
+    pub q_over_a: R,
+    pub real: R::Mask,
+}
+
+impl<R: Real> SideQuadratic<R> {
     /// The quadratic of the line from `(px, py)` along `(dx, dy)` for radius² `r2`.
     #[inline(always)]
-    pub fn new(px: f64, py: f64, dx: f64, dy: f64, r2: f64) -> SideQuadratic {
+    pub fn new(px: R, py: R, dx: R, dy: R, r2: R) -> SideQuadratic<R> {
         let a = dx * dx + dy * dy;
         let cross = px * dy - py * dx;
         SideQuadratic {
@@ -123,60 +146,117 @@ impl SideQuadratic {
         }
     }
 
-    /// Both roots, smaller first, and `q/a` (the one not near zero when `c` is); `None` if the
-    /// line misses or is vertical.
+    /// Whether the line passes farther than `r·(1 + 1e-9)` from the axis (`r2 = r²`): `disc/a =
+    /// r² − distance²` without cancellation, and the margin, relative to `a·r²`, is far above its
+    /// rounding, so rounding never fakes a miss.
     #[inline(always)]
-    pub(crate) fn roots(&self) -> Option<(f64, f64, f64)> {
-        if self.a == 0.0 || self.disc < 0.0 {
-            return None;
-        }
-        let sq = self.disc.sqrt();
-        let q = if self.half_b >= 0.0 {
-            -(self.half_b + sq)
-        } else {
-            -self.half_b + sq
-        };
-        if q == 0.0 {
-            return Some((0.0, 0.0, 0.0)); // tangent at the start
-        }
-        let (r1, r2) = (q / self.a, self.c / q);
-        Some((r1.min(r2), r1.max(r2), r1))
+    pub fn clearly_misses(&self, r2: R) -> R::Mask {
+        self.disc.lt(-(R::splat(MISS_MARGIN) * self.a * r2))
     }
 
-    /// The nearest root `t > 0` whose height `oz + t·dz` lies in `[z_min, z_max]`.
+    /// Whether a ray on or outside the cylinder (`c >= 0`) moves away from its axis (`half_b >=
+    /// 0`): then both roots are `<= 0` (their product `c/a >= 0`, their sum `−2·half_b/a <= 0`),
+    /// so it meets the side nowhere ahead, whatever the rounding.
     #[inline(always)]
-    pub fn nearest_root(&self, oz: f64, dz: f64, z_min: f64, z_max: f64) -> Option<f64> {
-        let (t0, t1, _) = self.roots()?;
-        [t0, t1]
-            .into_iter()
-            .find(|&t| t > 0.0 && in_range(oz + t * dz, z_min, z_max))
+    pub fn moving_away(&self) -> R::Mask {
+        let zero = R::splat(0.0);
+        self.c.ge(zero).and(self.half_b.ge(zero))
+    }
+
+    /// The lanes where the line meets the cylinder (not vertical, `disc >= 0`).
+    #[inline(always)]
+    pub fn real(&self) -> R::Mask {
+        let zero = R::splat(0.0);
+        self.a.gt(zero).and(self.disc.ge(zero))
+    }
+
+    /// Both roots, smaller first, and `q/a`, where the line meets the cylinder (not vertical,
+    /// `disc >= 0`); `inv_a = 1/a` (see [`Real::quotient`]). A ray tangent at its start (`q = 0`)
+    /// has all three 0.
+    #[inline(always)]
+    pub fn roots(&self, inv_a: R) -> SideRoots<R> {
+        let zero = R::splat(0.0);
+        let real = self.real();
+        let sq = self.disc.sqrt();
+        let q = R::select(self.half_b.ge(zero), -(self.half_b + sq), -self.half_b + sq);
+        let tangent = q.eq(zero);
+        let r1 = R::quotient(q, self.a, inv_a);
+        let r2 = self.c / q;
+        SideRoots {
+            near: R::select(tangent, zero, r1.min(r2)),
+            far: R::select(tangent, zero, r1.max(r2)),
+            q_over_a: R::select(tangent, zero, r1),
+            real,
+        }
+    }
+}
+
+impl<R: Real> SideRoots<R> {
+    /// The nearest root `t > 0` whose height `oz + t·dz` lies in `[z_min, z_max]` (infinite where
+    /// none).
+    #[inline(always)]
+    pub fn nearest(&self, oz: R, dz: R, z_min: R, z_max: R) -> R {
+        let zero = R::splat(0.0);
+        let ok0 = self
+            .near
+            .gt(zero)
+            .and(in_range(oz + self.near * dz, z_min, z_max));
+        let ok1 = self
+            .far
+            .gt(zero)
+            .and(in_range(oz + self.far * dz, z_min, z_max));
+        let t = R::select(
+            ok0,
+            self.near,
+            R::select(ok1, self.far, R::splat(f64::INFINITY)),
+        );
+        R::select(self.real, t, R::splat(f64::INFINITY))
     }
 
     /// For a ray starting on the cylinder (`c ≈ 0`): the root away from its start, `q/a` (the
     /// other, `c/q`, is the start itself), if it lies ahead and within the heights.
     #[inline(always)]
-    pub fn other_root(&self, oz: f64, dz: f64, z_min: f64, z_max: f64) -> Option<f64> {
-        let (_, _, t) = self.roots()?;
-        (t > 0.0 && in_range(oz + t * dz, z_min, z_max)).then_some(t)
+    pub fn other(&self, oz: R, dz: R, z_min: R, z_max: R) -> R {
+        let t = self.q_over_a;
+        let ok = self
+            .real
+            .and(t.gt(R::splat(0.0)))
+            .and(in_range(oz + t * dz, z_min, z_max));
+        R::select(ok, t, R::splat(f64::INFINITY))
     }
 
     /// The entering root of the solid cylinder between the heights: the smaller root if it lies
-    /// ahead (`t > 0`) and within the heights; `0` if the ray starts inside the solid (`c < 0` with
-    /// its start between the heights: only rounding puts a ray there, on the surface).
+    /// ahead (`t > 0`) and within the heights; `0` where the ray starts inside the solid (`c < 0`
+    /// with its start between the heights: only rounding puts a ray there, on the surface).
     #[inline(always)]
-    pub fn entering_root(&self, oz: f64, dz: f64, z_min: f64, z_max: f64) -> Option<f64> {
-        if self.c < 0.0 && in_range(oz, z_min, z_max) {
-            return Some(0.0);
-        }
-        let (t0, _, _) = self.roots()?;
-        (t0 > 0.0 && in_range(oz + t0 * dz, z_min, z_max)).then_some(t0)
+    pub fn entering(&self, q: &SideQuadratic<R>, oz: R, dz: R, z_min: R, z_max: R) -> R {
+        let zero = R::splat(0.0);
+        let inside = q.c.lt(zero).and(in_range(oz, z_min, z_max));
+        let ok = self
+            .real
+            .and(self.near.gt(zero))
+            .and(in_range(oz + self.near * dz, z_min, z_max));
+        R::select(
+            inside,
+            zero,
+            R::select(ok, self.near, R::splat(f64::INFINITY)),
+        )
     }
 }
 
-/// Whether `z_min <= z <= z_max`.
+/// Relative margin of the "line clearly misses the circle" tests, far above rounding (1e-16).
+const MISS_MARGIN: f64 = 1e-9;
+
+/// Whether `z_min <= z <= z_max`, lane by lane.
 #[inline(always)]
-fn in_range(z: f64, z_min: f64, z_max: f64) -> bool {
-    z >= z_min && z <= z_max
+pub(crate) fn in_range<R: Real>(z: R, z_min: R, z_max: R) -> R::Mask {
+    z.ge(z_min).and(z.le(z_max))
+}
+
+/// The finite lanes of `t` as an `Option` for one ray.
+#[inline(always)]
+fn finite(t: f64) -> Option<f64> {
+    t.is_finite().then_some(t)
 }
 
 /// A horizontal disk of centre `(cx, cy, z)`, boundary included.
@@ -204,8 +284,26 @@ impl Disk {
     }
 }
 
-/// Distance `t > 0` to the plane `z = h` from height `oz` along vertical component `dz`; the
-/// division is done only when the plane lies ahead (`h − oz` and `dz` of the same strict sign).
+/// The lanes where the plane `z = h` lies ahead of height `oz` along vertical component `dz`
+/// (`h − oz` and `dz` of the same strict sign), and `h − oz`; [`plane_distance_of`] then gives
+/// the distance, so that no division is done when no lane needs one.
+#[inline(always)]
+pub(crate) fn plane_ahead<R: Real>(h: R, oz: R, dz: R) -> (R, R::Mask) {
+    let zero = R::splat(0.0);
+    let num = h - oz;
+    let ahead = (num.gt(zero).and(dz.gt(zero))).or(num.lt(zero).and(dz.lt(zero)));
+    (num, ahead)
+}
+
+/// The distance `num / dz` to a plane [`plane_ahead`] found ahead; `inv_dz = 1/dz` (see
+/// [`Real::quotient`]).
+#[inline(always)]
+pub(crate) fn plane_distance_of<R: Real>(num: R, dz: R, inv_dz: R) -> R {
+    R::quotient(num, dz, inv_dz)
+}
+
+/// [`plane_ahead`] for one ray: the distance if the plane lies ahead (the division is done only
+/// then).
 #[inline(always)]
 pub(crate) fn plane_distance(h: f64, oz: f64, dz: f64) -> Option<f64> {
     let num = h - oz;

@@ -28,6 +28,7 @@ pub mod frame;
 pub mod geometry;
 pub mod image;
 pub mod interface;
+pub mod lanes;
 pub mod light_path_type;
 pub mod packet;
 pub mod picture;

@@ -9,7 +9,7 @@ use std::fmt;
 
 use crate::geometry::Ray;
 use crate::scene::Scene;
-use crate::trace::{follow_ray, Event, Face, NearestFace, Outcome};
+use crate::trace::{Event, Face, NearestFace, Outcome};
 
 /// The water face by which a ray from the eye enters the water, or none.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -104,13 +104,16 @@ impl fmt::Display for LightPathType {
     }
 }
 
-/// Traces `ray` (from air) by the course's law and tells the kind of its light path.
+/// Traces `ray` (from air) through `faces` by the course's law, with the event limit of `scene`
+/// (the same scene, or the same with another limit), and tells the kind of its light path.
 pub fn trace_path_type(
     faces: &impl NearestFace,
     scene: &Scene,
     ray: Ray,
 ) -> (Outcome, LightPathType) {
     let mut kind = LightPathType::DIRECT;
-    let outcome = follow_ray(faces, scene, ray, |e| kind.record(e));
+    let outcome = faces
+        .prepared()
+        .trace_limited(ray, scene.max_events, |e| kind.record(e));
     (outcome, kind)
 }

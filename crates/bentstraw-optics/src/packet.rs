@@ -1,192 +1,195 @@
-//! The single-precision packet tracer for course-mode pictures: eight rays at a time, structure of
-//! arrays, branch-free, so that the compiler maps each step onto one 8-wide SIMD instruction.
+//! The single-precision packet tracer for pictures: eight rays at a time, structure of arrays,
+//! branch-free, so that the compiler maps each step onto one 8-wide SIMD instruction.
 //!
-//! The physics is SPEC §3 exactly as in [`crate::tracer`], with the same rules for which face a
-//! ray can meet next (the face it has just left is excluded exactly, the opaque straw counts only
-//! where a ray enters it); only the arithmetic differs (f32, good to ~1e-8 m at the scale of the
-//! glass). A pixel's colour can therefore differ from the double-precision tracer's only where the
-//! answer changes within a hair of the ray: on the picture's colour boundaries. The tests bound
-//! how many pixels differ and check that they all lie on boundaries. Image points never use this
-//! path; they stay in double precision.
+//! The physics is the world's one rule ([`World`]'s nearest surface and what light does there,
+//! written once over [`Real`] and compiled here for [`F8`]): the same surfaces, the same
+//! exclusion of the face a ray has just left, the same opaque objects, for the assignment's glass
+//! and for every scene file. Only the arithmetic differs (f32, good to ~1e-8 m at the scale of
+//! the glass). A pixel's colour can therefore differ from the double-precision tracer's only where
+//! the answer changes within a hair of the ray: on the picture's colour boundaries. The tests
+//! bound how many pixels differ and check that they all lie on boundaries. Image points never use
+//! this path; they stay in double precision.
 //!
 //! An eye farther than [`FAR_EYE`] from the scene cannot be written in f32 to the precision the
 //! glass needs (at 1 km an f32 is good to 6e-5 m): each ray is then made in double precision and
-//! brought to the scene's bounding sphere ([`enter_bounding_sphere`]) before it is rounded to f32,
-//! so a far view is as sharp as a near one.
+//! brought to the scene's bounding sphere before it is rounded to f32, so a far view is as sharp
+//! as a near one.
 //!
-//! The same generic code is compiled twice: for AVX2 (chosen at run time with
-//! `is_x86_feature_detected!`) and for the baseline target. Both use the same IEEE operations in the
-//! same order (no fused multiply-add), so both give the same pixels.
+//! The same generic code is compiled three times: for AVX-512 and for AVX2 (chosen at run time
+//! with `is_x86_feature_detected!`) and for the baseline target. All use the same IEEE operations
+//! in the same order (no fused multiply-add), so all give the same pixels.
+
+use std::borrow::Cow;
 
 use crate::camera::Camera;
-use crate::geometry::{enter_bounding_sphere, Ray, BOUNDING_CENTRE};
-use crate::scene::{
-    Scene, GLASS_RADIUS, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT, STRAW_RADIUS,
-};
+use crate::geometry::{enter_sphere, Ray};
+use crate::lanes::{Mask, Real, F8, M8, V3};
+use crate::scene::{Scene, SECTION_COUNT};
 use crate::trace::FRESNEL_SEGMENTS_PER_RAY;
+use crate::world::{World, AIR};
 use crate::Vec3;
 
-/// Rays per packet.
-pub const LANES: usize = 8;
+pub use crate::lanes::LANES;
 
 /// Distance (m) from the scene's centre beyond which an eye's rays are made in double precision
 /// and started on the scene's bounding sphere.
 pub const FAR_EYE: f64 = 1.0;
 
-/// Code of "no face" in a lane's record of the face it has just left (0 side, 1 top, 2 bottom).
+/// Code of "nothing" in a lane's record of what it has just left.
 const NO_FACE: f32 = -1.0;
 
-/// Eight `f32`s, one per ray.
-#[derive(Clone, Copy, Debug)]
-struct F8([f32; LANES]);
-
-/// Eight lane masks (all bits set = true).
-#[derive(Clone, Copy, Debug)]
-struct M8([u32; LANES]);
-
-macro_rules! lanewise {
-    ($trait:ident, $method:ident, $op:tt) => {
-        impl std::ops::$trait for F8 {
-            type Output = F8;
-            #[inline(always)]
-            fn $method(self, o: F8) -> F8 {
-                F8(std::array::from_fn(|k| self.0[k] $op o.0[k]))
-            }
-        }
-    };
-}
-lanewise!(Add, add, +);
-lanewise!(Sub, sub, -);
-lanewise!(Mul, mul, *);
-lanewise!(Div, div, /);
-
-impl std::ops::Neg for F8 {
-    type Output = F8;
-    #[inline(always)]
-    fn neg(self) -> F8 {
-        self.map(|x| -x)
-    }
+/// Which compilation of the packet code a processor runs: the same generic code, the same IEEE
+/// operations in the same order (no fused multiply-add), so the same pixels, compiled for the
+/// widest instruction set it has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Instructions {
+    /// x86-64 with AVX-512 (VL): the same 8-lane operations, with twice the registers.
+    Avx512,
+    /// x86-64 with AVX2.
+    Avx2,
+    /// The baseline instruction set of the target.
+    Baseline,
 }
 
-macro_rules! compare {
-    ($name:ident, $op:tt) => {
-        #[inline(always)]
-        fn $name(self, o: F8) -> M8 {
-            M8(std::array::from_fn(|k| if self.0[k] $op o.0[k] { u32::MAX } else { 0 }))
-        }
-    };
-}
-
-impl F8 {
-    #[inline(always)]
-    fn splat(x: f32) -> F8 {
-        F8([x; LANES])
-    }
-    #[inline(always)]
-    fn map(self, f: impl Fn(f32) -> f32) -> F8 {
-        F8(std::array::from_fn(|k| f(self.0[k])))
-    }
-    #[inline(always)]
-    fn sqrt(self) -> F8 {
-        self.map(f32::sqrt)
-    }
-    #[inline(always)]
-    fn max(self, o: F8) -> F8 {
-        F8(std::array::from_fn(|k| {
-            if self.0[k] > o.0[k] {
-                self.0[k]
-            } else {
-                o.0[k]
-            }
-        }))
-    }
-    #[inline(always)]
-    fn abs(self) -> F8 {
-        self.map(f32::abs)
-    }
-    compare!(lt, <);
-    compare!(eq, ==);
-    compare!(le, <=);
-    compare!(gt, >);
-    compare!(ge, >=);
-}
-
-impl M8 {
-    #[inline(always)]
-    fn splat(b: bool) -> M8 {
-        M8([if b { u32::MAX } else { 0 }; LANES])
-    }
-    #[inline(always)]
-    fn and(self, o: M8) -> M8 {
-        M8(std::array::from_fn(|k| self.0[k] & o.0[k]))
-    }
-    #[inline(always)]
-    fn or(self, o: M8) -> M8 {
-        M8(std::array::from_fn(|k| self.0[k] | o.0[k]))
-    }
-    #[inline(always)]
-    fn and_not(self, o: M8) -> M8 {
-        M8(std::array::from_fn(|k| self.0[k] & !o.0[k]))
-    }
-    #[inline(always)]
-    fn any(self) -> bool {
-        self.0.iter().fold(0, |a, &b| a | b) != 0
-    }
-    /// `a` where the mask is set, else `b`.
-    #[inline(always)]
-    fn select(self, a: F8, b: F8) -> F8 {
-        F8(std::array::from_fn(|k| {
-            f32::from_bits((a.0[k].to_bits() & self.0[k]) | (b.0[k].to_bits() & !self.0[k]))
-        }))
-    }
-}
-
-/// The scene in single precision, ready for packets.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PacketTracer {
-    straw_x: f32,
-    straw_y: f32,
-    water_height: f32,
-    has_water: bool,
-    /// `n1/n2` from air into water, and from water into air.
-    eta_into_water: f32,
-    eta_into_air: f32,
-    max_events: u32,
-}
-
-impl PacketTracer {
-    /// Prepares `scene` for single-precision packets.
-    pub fn new(scene: &Scene) -> PacketTracer {
-        PacketTracer {
-            straw_x: scene.straw_x as f32,
-            straw_y: scene.straw_y as f32,
-            water_height: scene.water_height as f32,
-            has_water: scene.has_water(),
-            eta_into_water: (1.0 / scene.n_water) as f32,
-            eta_into_air: scene.n_water as f32,
-            max_events: scene.max_events,
-        }
-    }
-
-    /// Colour codes (0 = none) of the rays through the centres of pixel row `row` of `camera`;
-    /// `codes.len()` must be the camera's width.
-    pub fn course_row(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+impl Instructions {
+    /// The widest this processor has.
+    pub fn detect() -> Instructions {
         #[cfg(target_arch = "x86_64")]
         {
+            if std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl")
+            {
+                return Instructions::Avx512;
+            }
             if std::is_x86_feature_detected!("avx2") {
-                // SAFETY: the CPU supports AVX2, checked just above.
-                unsafe { self.course_row_avx2(camera, row, codes) };
-                return;
+                return Instructions::Avx2;
             }
         }
-        self.course_row_generic(camera, row, codes);
+        Instructions::Baseline
+    }
+}
+
+/// A method that runs `$generic` compiled for the packet tracer's instruction set, with the two
+/// compilations it may choose (`$avx2`, `$avx512`).
+macro_rules! compiled {
+    ($(#[$doc:meta])* pub fn $name:ident(&self $(, $arg:ident: $ty:ty)* $(,)?)
+        => $generic:ident, $avx2:ident, $avx512:ident) => {
+        $(#[$doc])*
+        #[allow(clippy::too_many_arguments)]
+        pub fn $name(&self $(, $arg: $ty)*) {
+            match self.instructions {
+                // SAFETY: the processor has these instructions ([`Instructions::detect`]).
+                #[cfg(target_arch = "x86_64")]
+                Instructions::Avx512 => unsafe { self.$avx512($($arg),*) },
+                // SAFETY: as above.
+                #[cfg(target_arch = "x86_64")]
+                Instructions::Avx2 => unsafe { self.$avx2($($arg),*) },
+                _ => self.$generic($($arg),*),
+            }
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx2")]
+        #[allow(clippy::too_many_arguments)]
+        unsafe fn $avx2(&self $(, $arg: $ty)*) {
+            self.$generic($($arg),*)
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx2,avx512f,avx512vl")]
+        #[allow(clippy::too_many_arguments)]
+        unsafe fn $avx512(&self $(, $arg: $ty)*) {
+            self.$generic($($arg),*)
+        }
+    };
+}
+
+/// A world ready for packets: the assignment's glass ([`PacketTracer::new`]) or any scene's
+/// ([`PacketTracer::for_world`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PacketTracer<'w> {
+    world: Cow<'w, World>,
+    instructions: Instructions,
+}
+
+/// How one branch of a pixel's ray ends ([`PacketTracer::branch_ends_row`]), in single precision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BranchEnd {
+    /// On an object.
+    Object {
+        /// Colour code there (1..=5 a straw's bands, 6 a coin, 7 a card, 8 its picture).
+        code: u8,
+        /// Which object.
+        object: u16,
+        /// Which part of it (0 side, 1 bottom, 2 top).
+        part: u8,
+        /// The point reached.
+        point: [f32; 3],
+        /// The branch's weight.
+        weight: f32,
+    },
+    /// Out of the scene along its last straight piece.
+    Escaped {
+        /// Where the last piece starts (the eye or the last event).
+        origin: [f32; 3],
+        /// Its unit direction.
+        direction: [f32; 3],
+        /// The branch's weight.
+        weight: f32,
+    },
+    /// It would need more events than allowed.
+    Dropped {
+        /// The branch's weight.
+        weight: f32,
+    },
+}
+
+/// The components of lane `k`.
+#[inline(always)]
+fn lane(v: &V3<F8>, k: usize) -> [f32; 3] {
+    [v.x.0[k], v.y.0[k], v.z.0[k]]
+}
+
+impl PacketTracer<'static> {
+    /// Prepares the assignment's `scene` for single-precision packets.
+    pub fn new(scene: &Scene) -> PacketTracer<'static> {
+        PacketTracer {
+            world: Cow::Owned(World::assignment(scene)),
+            instructions: Instructions::detect(),
+        }
+    }
+}
+
+impl<'w> PacketTracer<'w> {
+    /// Traces `world` in packets.
+    pub fn for_world(world: &'w World) -> PacketTracer<'w> {
+        PacketTracer {
+            world: Cow::Borrowed(world),
+            instructions: Instructions::detect(),
+        }
     }
 
-    /// [`Self::course_row`] compiled for AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn course_row_avx2(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
-        self.course_row_generic(camera, row, codes);
+    /// The same tracer, compiled for `instructions` (which the processor must have: checked).
+    pub fn with_instructions(mut self, instructions: Instructions) -> Option<PacketTracer<'w>> {
+        let ok = match (instructions, Instructions::detect()) {
+            (Instructions::Avx512, Instructions::Avx512) => true,
+            (Instructions::Avx512, _) => false,
+            (Instructions::Avx2, Instructions::Baseline) => false,
+            _ => true,
+        };
+        self.instructions = instructions;
+        ok.then_some(self)
+    }
+
+    /// The world traced.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    compiled! {
+        /// Colour codes (0 = none) of the rays through the centres of pixel row `row` of
+        /// `camera`; `codes.len()` must be the camera's width.
+        pub fn course_row(&self, camera: &Camera, row: u32, codes: &mut [u8])
+            => course_row_generic, course_row_avx2, course_row_avx512
     }
 
     /// [`Self::course_row`] for any target (the baseline instruction set).
@@ -196,55 +199,37 @@ impl PacketTracer {
 
     #[inline(always)]
     fn course_row_generic(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
-        let rays = row_rays(camera, row);
+        let rays = RowRays::new(camera, row, self.world.bounding_sphere());
+        let zero = F8::splat(0.0);
         for (p, chunk) in codes.chunks_mut(LANES).enumerate() {
-            let (o, d, alive) = rays(p);
-            let out = self.trace8(o, d, alive);
-            for (c, o) in chunk.iter_mut().zip(out) {
-                *c = o;
+            let (o, d, alive) = rays.packet(p);
+            let ends = self
+                .world
+                .follow_course(o, d, alive, zero, self.world.max_events, |_| {});
+            let code = F8::select(ends.reached, ends.color, zero);
+            for (c, x) in chunk.iter_mut().zip(code.0) {
+                *c = x as u8;
             }
         }
     }
 
-    /// Fresnel weights per section (SPEC §6) of the rays through the centres of pixel row `row`;
-    /// `weights.len()` must be the camera's width. `wave` holds reusable buffers.
-    ///
-    /// Traced breadth first: every branch alive after `k` events is in one list, traced eight at a
-    /// time; the list of their children is the next. So lanes stay full whatever the tree's shape.
-    /// Branches lighter than `prune_below` are abandoned, branches that provably escape (out
-    /// of the water through the side or bottom, or mirrored off their outside) are not followed,
-    /// and at most [`FRESNEL_SEGMENTS_PER_RAY`] segments are followed per pixel.
-    pub fn fresnel_row(
-        &self,
-        camera: &Camera,
-        row: u32,
-        prune_below: f64,
-        wave: &mut FresnelWave,
-        weights: &mut [[f64; SECTION_COUNT]],
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::is_x86_feature_detected!("avx2") {
-                // SAFETY: the CPU supports AVX2, checked just above.
-                unsafe { self.fresnel_row_avx2(camera, row, prune_below, wave, weights) };
-                return;
-            }
-        }
-        self.fresnel_row_generic(camera, row, prune_below, wave, weights);
-    }
-
-    /// [`Self::fresnel_row`] compiled for AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn fresnel_row_avx2(
-        &self,
-        camera: &Camera,
-        row: u32,
-        prune_below: f64,
-        wave: &mut FresnelWave,
-        weights: &mut [[f64; SECTION_COUNT]],
-    ) {
-        self.fresnel_row_generic(camera, row, prune_below, wave, weights);
+    compiled! {
+        /// Fresnel weights per section (SPEC §6) of the rays through the centres of pixel row `row`;
+        /// `weights.len()` must be the camera's width. `wave` holds reusable buffers.
+        ///
+        /// Traced breadth first: every branch alive after `k` events is in one list, traced eight at a
+        /// time; the list of their children is the next. So lanes stay full whatever the tree's shape.
+        /// Branches lighter than `prune_below` are abandoned, branches that provably escape (out
+        /// through a face of the scene's hull, or mirrored off it) are not followed, and at most
+        /// [`FRESNEL_SEGMENTS_PER_RAY`] segments are followed per pixel.
+        pub fn fresnel_row(
+            &self,
+            camera: &Camera,
+            row: u32,
+            prune_below: f64,
+            wave: &mut FresnelWave,
+            weights: &mut [[f64; SECTION_COUNT]],
+        ) => fresnel_row_generic, fresnel_row_avx2, fresnel_row_avx512
     }
 
     /// [`Self::fresnel_row`] for any target (the baseline instruction set).
@@ -274,54 +259,34 @@ impl PacketTracer {
         }
         // The picture's breadth-first loop, keeping only the weight that reaches the straw.
         self.branch_ends_row_generic(camera, row, true, prune_below, wave, &mut |pixel, end| {
-            if let BranchEnd::Straw { code, weight, .. } = end {
-                weights[pixel][code as usize - 1] += weight as f64;
+            if let BranchEnd::Object { code, weight, .. } = end {
+                if (code as usize) <= SECTION_COUNT {
+                    weights[pixel][code as usize - 1] += weight as f64;
+                }
             }
         });
     }
 
-    /// How every branch of the rays through the centres of pixel row `row` ends, for a picture
-    /// that shows what each branch meets: `on_end(pixel, end)` once per branch end.
-    ///
-    /// With `split` (SPEC §6, fresnel) each branch splits at every water face by the Fresnel
-    /// reflectance, branches lighter than `prune_below` are abandoned; without it (SPEC §3, course)
-    /// each ray is refracted or totally reflected and keeps weight 1. Branches that provably
-    /// escape (out of the water through the side or bottom, or mirrored off their outside) are
-    /// reported as escaping from the face at once. Traced breadth first, so the lanes stay full
-    /// (see [`Self::fresnel_row`], which is this loop keeping only the straw's weights).
-    pub fn branch_ends_row(
-        &self,
-        camera: &Camera,
-        row: u32,
-        split: bool,
-        prune_below: f64,
-        wave: &mut FresnelWave,
-        on_end: &mut impl FnMut(usize, BranchEnd),
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::is_x86_feature_detected!("avx2") {
-                // SAFETY: the CPU supports AVX2, checked just above.
-                unsafe { self.branch_ends_row_avx2(camera, row, split, prune_below, wave, on_end) };
-                return;
-            }
-        }
-        self.branch_ends_row_generic(camera, row, split, prune_below, wave, on_end);
-    }
-
-    /// [`Self::branch_ends_row`] compiled for AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn branch_ends_row_avx2(
-        &self,
-        camera: &Camera,
-        row: u32,
-        split: bool,
-        prune_below: f64,
-        wave: &mut FresnelWave,
-        on_end: &mut impl FnMut(usize, BranchEnd),
-    ) {
-        self.branch_ends_row_generic(camera, row, split, prune_below, wave, on_end);
+    compiled! {
+        /// How every branch of the rays through the centres of pixel row `row` ends, for a picture
+        /// that shows what each branch meets: `on_end(pixel, end)` once per branch end.
+        ///
+        /// With `split` (SPEC §6, fresnel) each branch splits at every interface by the Fresnel
+        /// reflectance, branches lighter than `prune_below` are abandoned; without it (SPEC §3, course)
+        /// each ray is refracted or totally reflected, keeps weight 1, and is traced by the course's
+        /// loop eight at a time. Branches that provably escape (out through a face of the scene's
+        /// hull, or mirrored off it) are reported as escaping from the face at once. Fresnel branches
+        /// are traced breadth first, so the lanes stay full (see [`Self::fresnel_row`], which is this
+        /// loop keeping only the straw's weights).
+        pub fn branch_ends_row(
+            &self,
+            camera: &Camera,
+            row: u32,
+            split: bool,
+            prune_below: f64,
+            wave: &mut FresnelWave,
+            on_end: &mut impl FnMut(usize, BranchEnd),
+        ) => branch_ends_row_generic, branch_ends_row_avx2, branch_ends_row_avx512
     }
 
     #[inline(always)]
@@ -335,21 +300,25 @@ impl PacketTracer {
         on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
         let width = camera.width as usize;
-        let eye = [
-            camera.eye.x as f32,
-            camera.eye.y as f32,
-            camera.eye.z as f32,
-        ];
+        let eye = to_f32(camera.eye);
+        let rays = RowRays::new(camera, row, self.world.bounding_sphere());
+        if !split {
+            for (p, start) in (0..width).step_by(LANES).enumerate() {
+                let (o, d, alive) = rays.packet(p);
+                let n = LANES.min(width - start);
+                self.course_ends(eye, o, d, alive, n, &mut |k, end| on_end(start + k, end));
+            }
+            return;
+        }
         wave.eye = eye;
         let cur = &mut wave.current;
         cur.clear();
         cur.reserve_total(width);
-        let rays = row_rays(camera, row);
         for (p, chunk_start) in (0..width).step_by(LANES).enumerate() {
-            let ([ox, oy, oz], [dx, dy, dz], alive) = rays(p);
+            let (o, d, alive) = rays.packet(p);
             for k in 0..LANES.min(width - chunk_start) {
-                let direction = [dx.0[k], dy.0[k], dz.0[k]];
-                if alive.0[k] == 0 {
+                let direction = lane(&d, k);
+                if !alive.lane(k) {
                     // Misses the scene: straight on to the backdrop.
                     on_end(
                         chunk_start + k,
@@ -362,90 +331,72 @@ impl PacketTracer {
                     continue;
                 }
                 cur.push(
-                    [ox.0[k], oy.0[k], oz.0[k]],
+                    lane(&o, k),
                     direction,
                     1.0,
-                    false,
+                    AIR as f32,
                     (chunk_start + k) as u32,
                     NO_FACE,
                 );
             }
         }
-        self.follow_branches(
-            split,
-            prune_below,
-            FRESNEL_SEGMENTS_PER_RAY,
-            width,
-            wave,
-            on_end,
-        );
+        self.follow_branches(prune_below, FRESNEL_SEGMENTS_PER_RAY, width, wave, on_end);
     }
 
-    /// [`Self::branch_ends_row`] for any rays from `eye` along unit `directions`, each following
-    /// at most `max_segments` segments; `on_end` is given the index of the ray in `directions`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn branch_ends(
+    /// How the course rays of the `n` first lanes of `(o, d, alive)` end, told to `on_end` with
+    /// their lane; `eye` is where they come from (a ray that meets nothing is the ray from it).
+    #[inline(always)]
+    fn course_ends(
         &self,
-        eye: Vec3,
-        directions: &[Vec3],
-        split: bool,
-        prune_below: f64,
-        max_segments: u32,
-        wave: &mut FresnelWave,
+        eye: [f32; 3],
+        o: V3<F8>,
+        d: V3<F8>,
+        alive: M8,
+        n: usize,
         on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::is_x86_feature_detected!("avx2") {
-                // SAFETY: the CPU supports AVX2, checked just above.
-                unsafe {
-                    self.branch_ends_avx2(
-                        eye,
-                        directions,
-                        split,
-                        prune_below,
-                        max_segments,
-                        wave,
-                        on_end,
-                    )
-                };
-                return;
-            }
+        let ends =
+            self.world
+                .follow_course(o, d, alive, F8::splat(0.0), self.world.max_events, |_| {});
+        for k in 0..n {
+            let end = if ends.reached.lane(k) {
+                BranchEnd::Object {
+                    code: ends.color.0[k] as u8,
+                    object: ends.object.0[k] as u16,
+                    part: ends.part.0[k] as u8,
+                    point: lane(&ends.point, k),
+                    weight: 1.0,
+                }
+            } else if ends.dropped.lane(k) {
+                BranchEnd::Dropped { weight: 1.0 }
+            } else {
+                BranchEnd::Escaped {
+                    origin: if ends.events.0[k] == 0.0 {
+                        eye
+                    } else {
+                        lane(&ends.origin, k)
+                    },
+                    direction: lane(&ends.direction, k),
+                    weight: 1.0,
+                }
+            };
+            on_end(k, end);
         }
-        self.branch_ends_generic(
-            eye,
-            directions,
-            split,
-            prune_below,
-            max_segments,
-            wave,
-            on_end,
-        );
     }
 
-    /// [`Self::branch_ends`] compiled for AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    #[allow(clippy::too_many_arguments)]
-    unsafe fn branch_ends_avx2(
-        &self,
-        eye: Vec3,
-        directions: &[Vec3],
-        split: bool,
-        prune_below: f64,
-        max_segments: u32,
-        wave: &mut FresnelWave,
-        on_end: &mut impl FnMut(usize, BranchEnd),
-    ) {
-        self.branch_ends_generic(
-            eye,
-            directions,
-            split,
-            prune_below,
-            max_segments,
-            wave,
-            on_end,
-        );
+    compiled! {
+        /// [`Self::branch_ends_row`] for any rays from `eye` along unit `directions`, each following
+        /// at most `max_segments` segments; `on_end` is given the index of the ray in `directions`.
+        pub fn branch_ends(
+            &self,
+            eye: Vec3,
+            directions: &[Vec3],
+            split: bool,
+            prune_below: f64,
+            max_segments: u32,
+            wave: &mut FresnelWave,
+            on_end: &mut impl FnMut(usize, BranchEnd),
+        ) => branch_ends_generic, branch_ends_avx2, branch_ends_avx512
     }
 
     #[inline(always)]
@@ -460,67 +411,91 @@ impl PacketTracer {
         wave: &mut FresnelWave,
         on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
-        let v = |x: Vec3| [x.x as f32, x.y as f32, x.z as f32];
-        let far = (eye - BOUNDING_CENTRE).length() > FAR_EYE;
-        wave.eye = v(eye);
+        let (centre, radius) = self.world.bounding_sphere();
+        let far = (eye - centre).length() > FAR_EYE;
+        // Where each ray starts: a far eye's rays on the bounding sphere, made in double
+        // precision; `None` for a ray that misses the scene.
+        let start = |d: Vec3| {
+            if far {
+                enter_sphere(
+                    Ray {
+                        origin: eye,
+                        direction: d,
+                    },
+                    centre,
+                    radius,
+                )
+                .map(|(r, _)| r.origin)
+            } else {
+                Some(eye)
+            }
+        };
+        let eye32 = to_f32(eye);
+        if !split {
+            for (c, chunk) in directions.chunks(LANES).enumerate() {
+                let mut o = [[0.0f32; LANES]; 3];
+                let mut d = [[0.0f32; LANES]; 3];
+                let mut alive = [0u32; LANES];
+                for (k, &dir) in chunk.iter().enumerate() {
+                    let origin = start(dir);
+                    let (a, b) = (to_f32(origin.unwrap_or(eye)), to_f32(dir));
+                    for i in 0..3 {
+                        o[i][k] = a[i];
+                        d[i][k] = b[i];
+                    }
+                    if origin.is_some() {
+                        alive[k] = u32::MAX;
+                    }
+                }
+                let v = |a: [[f32; LANES]; 3]| V3::new(F8(a[0]), F8(a[1]), F8(a[2]));
+                self.course_ends(eye32, v(o), v(d), M8(alive), chunk.len(), &mut |k, end| {
+                    on_end(c * LANES + k, end)
+                });
+            }
+            return;
+        }
+        wave.eye = eye32;
         let cur = &mut wave.current;
         cur.clear();
         cur.reserve_total(directions.len());
         for (k, &d) in directions.iter().enumerate() {
-            // A far eye's rays start on the bounding sphere, made in double precision.
-            let start = if far {
-                enter_bounding_sphere(Ray {
-                    origin: eye,
-                    direction: d,
-                })
-                .map(|(r, _)| r.origin)
-            } else {
-                Some(eye)
-            };
-            match start {
-                Some(o) => cur.push(v(o), v(d), 1.0, false, k as u32, NO_FACE),
+            match start(d) {
+                Some(o) => cur.push(to_f32(o), to_f32(d), 1.0, AIR as f32, k as u32, NO_FACE),
                 None => on_end(
                     k,
                     BranchEnd::Escaped {
-                        origin: v(eye),
-                        direction: v(d),
+                        origin: eye32,
+                        direction: to_f32(d),
                         weight: 1.0,
                     },
                 ),
             }
         }
-        self.follow_branches(
-            split,
-            prune_below,
-            max_segments,
-            directions.len(),
-            wave,
-            on_end,
-        );
+        self.follow_branches(prune_below, max_segments, directions.len(), wave, on_end);
     }
 
-    /// Follows the branches in `wave.current` to their ends, breadth first (see
+    /// Follows the Fresnel branches in `wave.current` to their ends, breadth first (see
     /// [`Self::branch_ends_row`]), at most `max_segments` segments for each of the `pixels`
     /// pixels (what still travels then is dropped).
     #[inline(always)]
     fn follow_branches<E: FnMut(usize, BranchEnd)>(
         &self,
-        split: bool,
         prune_below: f64,
         max_segments: u32,
         pixels: usize,
         wave: &mut FresnelWave,
         on_end: &mut E,
     ) {
+        let world = &*self.world;
         let prune = prune_below as f32;
-        let n_water = self.eta_into_air;
         let eye = wave.eye;
         let segments = &mut wave.segments;
         segments.clear();
         segments.resize(pixels, 1);
+        let first_object = F8::splat(world.boundaries().len() as f64);
+        let inf = F8::splat(f64::INFINITY);
         let (cur, next) = (&mut wave.current, &mut wave.next);
-        let lane = |v: &[F8; 3], k: usize| [v[0].0[k], v[1].0[k], v[2].0[k]];
-        for event in 0..=self.max_events {
+        for event in 0..=world.max_events {
             if cur.len() == 0 {
                 break;
             }
@@ -528,10 +503,10 @@ impl PacketTracer {
             next.reserve_total(2 * cur.len());
             for base in (0..cur.len()).step_by(LANES) {
                 let n = LANES.min(cur.len() - base);
-                let alive = M8(std::array::from_fn(|k| if k < n { u32::MAX } else { 0 }));
-                let o = [cur.load(0, base), cur.load(1, base), cur.load(2, base)];
-                let d = [cur.load(3, base), cur.load(4, base), cur.load(5, base)];
-                let left = cur.load_left(base);
+                let alive = M8::first(n);
+                let o = V3::new(cur.load(0, base), cur.load(1, base), cur.load(2, base));
+                let d = V3::new(cur.load(3, base), cur.load(4, base), cur.load(5, base));
+                let left = cur.load_code(&cur.left, base);
                 let escape = |k: usize, on_end: &mut E| {
                     // A branch that met nothing is the ray from the eye (a far eye's rays start
                     // on the bounding sphere, possibly past the backdrop's floor).
@@ -549,81 +524,64 @@ impl PacketTracer {
                         },
                     )
                 };
-                let Some(hit) = self.hit8(o, d, alive, left) else {
+                let Some(hit) = world.nearest_lanes(o, d, alive, left) else {
                     for k in 0..n {
                         escape(k, on_end);
                     }
                     continue;
                 };
-                let inf = F8::splat(f32::INFINITY);
-                let hits_straw = alive
-                    .and(hit.t_straw.lt(inf))
-                    .and(hit.t_straw.le(hit.t_water));
-                let hits_water = alive.and_not(hits_straw).and(hit.t_water.lt(inf));
+                let met = alive.and(hit.t.lt(inf));
+                let on_object = met.and(hit.code.ge(first_object));
+                let on_boundary = met.and_not(on_object);
+                let color = hit.color(world, on_object);
                 for k in 0..n {
                     let pixel = cur.pixel[base + k] as usize;
                     let w = cur.w[base + k];
-                    if hits_straw.0[k] != 0 {
-                        let t = hit.t_straw.0[k];
+                    if on_object.lane(k) {
+                        let t = hit.t.0[k];
                         let [ox, oy, oz] = lane(&o, k);
                         let [dx, dy, dz] = lane(&d, k);
                         on_end(
                             pixel,
-                            BranchEnd::Straw {
-                                code: hit.straw_code.0[k] as u8,
+                            BranchEnd::Object {
+                                code: color.0[k] as u8,
+                                object: (hit.code.0[k] - first_object.0[k]) as u16,
+                                part: hit.part.0[k] as u8,
                                 point: [ox + t * dx, oy + t * dy, oz + t * dz],
                                 weight: w,
                             },
                         );
-                    } else if hits_water.0[k] == 0 {
+                    } else if !on_boundary.lane(k) {
                         escape(k, on_end);
-                    } else if event == self.max_events {
+                    } else if event == world.max_events {
                         on_end(pixel, BranchEnd::Dropped { weight: w });
                     }
                 }
-                if event == self.max_events || !hits_water.any() {
+                if event == world.max_events || !on_boundary.any() {
                     continue;
                 }
-                let in_water = M8(std::array::from_fn(|k| {
-                    if k < n && cur.in_water[base + k] {
-                        u32::MAX
-                    } else {
-                        0
-                    }
-                }));
-                let b = self.bend8(o, d, hit.t_water, hit.water_face, in_water);
-                let one = F8::splat(1.0);
-                let nw = F8::splat(n_water);
-                let (n1, n2) = (in_water.select(nw, one), in_water.select(one, nw));
-                let rs = (n1 * b.cos_i - n2 * b.cos_t) / (n1 * b.cos_i + n2 * b.cos_t);
-                let rp = (n2 * b.cos_i - n1 * b.cos_t) / (n2 * b.cos_i + n1 * b.cos_t);
-                let r = b.total.select(one, F8::splat(0.5) * (rs * rs + rp * rp));
+                let medium = cur.load_code(&cur.medium, base);
+                let q = o.along(hit.t, d);
+                let b = world.bend_lanes(hit.code, on_boundary, q, d, medium);
+                let r = b.reflectance();
                 for k in 0..n {
-                    if hits_water.0[k] == 0 {
+                    if !on_boundary.lane(k) {
                         continue;
                     }
-                    let (w, water, pixel) =
-                        (cur.w[base + k], cur.in_water[base + k], cur.pixel[base + k]);
-                    let total = b.total.0[k] != 0;
-                    // Course: the one branch the law picks keeps the whole weight.
-                    let (wr, wt) = match (split, total) {
-                        (_, true) => (w, 0.0),
-                        (true, false) => (w * r.0[k], w - w * r.0[k]),
-                        (false, false) => (0.0, w),
-                    };
-                    let q = lane(&b.q, k);
-                    // Out through the side or bottom, or mirrored off their outside: escapes.
-                    let (reflected_escapes, refracted_escapes) = if b.is_top.0[k] == 0 {
-                        (!water, water)
+                    let (w, pixel) = (cur.w[base + k], cur.pixel[base + k]);
+                    let total = b.total.lane(k);
+                    let (wr, wt) = if total {
+                        (w, 0.0)
                     } else {
-                        (false, false)
+                        (w * r.0[k], w - w * r.0[k])
                     };
-                    let face = hit.water_face.0[k];
-                    for (weight, directions, escapes, to_water) in [
-                        (wr, &b.reflected, reflected_escapes, water),
-                        (wt, &b.refracted, refracted_escapes, !water),
+                    let q = lane(&q, k);
+                    let face = b.surface.0[k];
+                    for (weight, directions, escapes, medium) in [
+                        (wr, &b.reflected, b.reflected_escapes.lane(k), medium.0[k]),
+                        (wt, &b.refracted, b.refracted_escapes.lane(k), b.beyond.0[k]),
                     ] {
-                        if weight <= 0.0 || (split && weight < prune) {
+                        if weight <= 0.0 || weight < prune {
                             continue;
                         }
                         let dir = lane(directions, k);
@@ -644,7 +602,7 @@ impl PacketTracer {
                             );
                         } else {
                             *used += 1;
-                            next.push(q, dir, weight, to_water, pixel, face);
+                            next.push(q, dir, weight, medium, pixel, face);
                         }
                     }
                 }
@@ -652,366 +610,103 @@ impl PacketTracer {
             std::mem::swap(cur, next);
         }
     }
-
-    /// Colour codes of eight rays from `o` along unit directions `d` (lanes not `alive` see
-    /// nothing).
-    #[inline(always)]
-    fn trace8(&self, o: [F8; 3], d: [F8; 3], alive: M8) -> [u8; LANES] {
-        let inf = F8::splat(f32::INFINITY);
-        let zero = F8::splat(0.0);
-
-        let [mut ox, mut oy, mut oz] = o;
-        let [mut dx, mut dy, mut dz] = d;
-        let mut alive = alive;
-        let mut in_water = M8::splat(false);
-        let mut left = F8::splat(NO_FACE);
-        // Colour codes as floats, 0 = none.
-        let mut code = zero;
-
-        for event in 0..=self.max_events {
-            if !alive.any() {
-                break;
-            }
-            let Some(hit) = self.hit8([ox, oy, oz], [dx, dy, dz], alive, left) else {
-                break;
-            };
-            let Hit8 {
-                t_water,
-                water_face,
-                t_straw,
-                straw_code,
-            } = hit;
-
-            // What each live ray does now.
-            let hits_straw = alive.and(t_straw.lt(inf)).and(t_straw.le(t_water));
-            code = hits_straw.select(straw_code, code);
-            let hits_water = alive.and_not(hits_straw).and(t_water.lt(inf));
-            alive = if event == self.max_events {
-                M8::splat(false) // an (event+1)-th event would be needed: dropped
-            } else {
-                hits_water
-            };
-            if !alive.any() {
-                break;
-            }
-
-            // Refraction or total reflection at the water face, for the live rays.
-            let bend = self.bend8([ox, oy, oz], [dx, dy, dz], t_water, water_face, in_water);
-            let Bend8 {
-                q,
-                refracted,
-                reflected,
-                total,
-                is_top,
-                ..
-            } = bend;
-            let [qx, qy, qz] = q;
-            let [rx, ry, rz] = refracted;
-            let [lx, ly, lz] = reflected;
-            dx = alive.select(total.select(lx, rx), dx);
-            dy = alive.select(total.select(ly, ry), dy);
-            dz = alive.select(total.select(lz, rz), dz);
-            ox = alive.select(qx, ox);
-            oy = alive.select(qy, oy);
-            oz = alive.select(qz, oz);
-            left = alive.select(water_face, left);
-            let crossed = alive.and_not(total);
-            // A ray leaving the water through the side wall moves away from the axis for good, and
-            // one leaving through the bottom moves down for good: neither can meet any face again
-            // (all lie inside the glass's circle, above z = 0). Only a ray out through the top
-            // may still meet the straw.
-            let out_not_top = crossed.and(in_water).and_not(is_top);
-            alive = alive.and_not(out_not_top);
-            in_water = M8(std::array::from_fn(|k| in_water.0[k] ^ crossed.0[k]));
-        }
-        std::array::from_fn(|k| code.0[k] as u8)
-    }
-
-    /// The nearest water face and straw face ahead of eight rays (infinite distances for none),
-    /// each lane having just left water face `left` (0 side, 1 top, 2 bottom, [`NO_FACE`]);
-    /// `None` when no live ray's line comes near the glass at all.
-    #[inline(always)]
-    fn hit8(&self, o: [F8; 3], d: [F8; 3], alive: M8, left: F8) -> Option<Hit8> {
-        let inf = F8::splat(f32::INFINITY);
-        let zero = F8::splat(0.0);
-        let rv2 = F8::splat((GLASS_RADIUS * GLASS_RADIUS) as f32);
-        let rp2 = F8::splat((STRAW_RADIUS * STRAW_RADIUS) as f32);
-        let he = F8::splat(self.water_height);
-        let hp = F8::splat(STRAW_HEIGHT as f32);
-        let (sx, sy) = (F8::splat(self.straw_x), F8::splat(self.straw_y));
-        let water_on = M8::splat(self.has_water);
-        let [ox, oy, oz] = o;
-        let [dx, dy, dz] = d;
-        let a = dx * dx + dy * dy;
-        let inv_a = F8::splat(1.0) / a;
-        let inv_dz = F8::splat(1.0) / dz;
-        let left_side = left.eq(F8::splat(0.0));
-        let left_top = left.eq(F8::splat(1.0));
-        let left_bottom = left.eq(F8::splat(2.0));
-
-        // Water side wall: the first root ahead with 0 <= z <= he; for a ray that has just left
-        // it (it starts on it), the root away from its start.
-        let b = ox * dx + oy * dy;
-        let c = ox * ox + oy * oy - rv2;
-        let disc = b * b - a * c;
-        if !alive.and(disc.ge(zero)).any() {
-            return None; // every live ray's line misses the glass, which holds every face
-        }
-        let sq = disc.max(zero).sqrt();
-        let t0 = (-b - sq) * inv_a;
-        let t1 = (-b + sq) * inv_a;
-        let z0 = oz + t0 * dz;
-        let z1 = oz + t1 * dz;
-        let ok0 = t0.gt(zero).and(z0.ge(zero)).and(z0.le(he));
-        let ok1 = t1.gt(zero).and(z1.ge(zero)).and(z1.le(he));
-        let real = disc.ge(zero);
-        let t_side = ok0.select(t0, ok1.select(t1, inf));
-        let start_is_t0 = t0.abs().lt(t1.abs());
-        let t_again = start_is_t0.select(t1, t0);
-        let ok_again = start_is_t0.and(ok1).or(ok0.and_not(start_is_t0));
-        let t_side = left_side.select(ok_again.select(t_again, inf), t_side);
-        let t_side = real.select(t_side, inf);
-
-        // The planes z = he and z = 0 (a ray on a plane, having just left it, is not met again).
-        let t_top = (he - oz) * inv_dz;
-        let t_bottom = -oz * inv_dz;
-        let (xt, yt) = (ox + t_top * dx, oy + t_top * dy);
-        let (xb, yb) = (ox + t_bottom * dx, oy + t_bottom * dy);
-        let top_ok = t_top
-            .gt(zero)
-            .and((xt * xt + yt * yt).le(rv2))
-            .and_not(left_top);
-        let bottom_plane = t_bottom.gt(zero).and_not(left_bottom);
-        let bottom_ok = bottom_plane.and((xb * xb + yb * yb).le(rv2));
-
-        // Nearest water face: side (0), top (1), bottom (2); ties keep the earlier.
-        let mut t_water = t_side;
-        let mut water_face = zero;
-        let m = top_ok.and(t_top.lt(t_water));
-        t_water = m.select(t_top, t_water);
-        water_face = m.select(F8::splat(1.0), water_face);
-        let m = bottom_ok.and(t_bottom.lt(t_water));
-        t_water = m.select(t_bottom, t_water);
-        water_face = m.select(F8::splat(2.0), water_face);
-        t_water = water_on.select(t_water, inf);
-
-        // Straw side (opaque: only the entering root, or at once for a ray that starts inside
-        // it by rounding), top cap, bottom cap.
-        let (px, py) = (ox - sx, oy - sy);
-        let bs = px * dx + py * dy;
-        let cs = px * px + py * py - rp2;
-        let discs = bs * bs - a * cs;
-        let near_straw = alive.and(discs.ge(zero));
-        // No live ray's line passes within the straw's radius: no straw face can be hit
-        // (its caps lie inside that circle); skip the work.
-        let (t_straw, straw_code) = if near_straw.any() {
-            let ts = (-bs - discs.max(zero).sqrt()) * inv_a;
-            let inside = cs.lt(zero).and(oz.ge(zero)).and(oz.le(hp));
-            let ts = inside.select(zero, ts);
-            let zs = oz + ts * dz;
-            let side_ok = discs
-                .ge(zero)
-                .and(ts.gt(zero).or(inside))
-                .and(zs.ge(zero))
-                .and(zs.le(hp));
-            let mut t_straw = side_ok.select(ts, inf);
-            // Section of the side hit, 1..=5: one plus the section boundaries below the hit.
-            let mut straw_code = F8::splat(1.0);
-            for k in 1..SECTION_COUNT {
-                let above = zs.ge(F8::splat((k as f64 * SECTION_HEIGHT) as f32));
-                straw_code = above.select(straw_code + F8::splat(1.0), straw_code);
-            }
-            let t_cap = (hp - oz) * inv_dz;
-            let (xc, yc) = (ox + t_cap * dx - sx, oy + t_cap * dy - sy);
-            let m = t_cap
-                .gt(zero)
-                .and((xc * xc + yc * yc).le(rp2))
-                .and(t_cap.lt(t_straw));
-            t_straw = m.select(t_cap, t_straw);
-            straw_code = m.select(F8::splat(SECTION_COUNT as f32), straw_code);
-            let (xs, ys) = (xb - sx, yb - sy);
-            let m = bottom_plane
-                .and((xs * xs + ys * ys).le(rp2))
-                .and(t_bottom.lt(t_straw));
-            t_straw = m.select(t_bottom, t_straw);
-            straw_code = m.select(F8::splat(1.0), straw_code);
-            (t_straw, straw_code)
-        } else {
-            (inf, zero)
-        };
-
-        Some(Hit8 {
-            t_water,
-            water_face,
-            t_straw,
-            straw_code,
-        })
-    }
-
-    /// Where eight rays meet the water face at `t_water`, and their refracted and mirrored
-    /// directions there (`total` where Snell's law forbids refraction).
-    #[inline(always)]
-    fn bend8(&self, o: [F8; 3], d: [F8; 3], t_water: F8, water_face: F8, in_water: M8) -> Bend8 {
-        let zero = F8::splat(0.0);
-        let inv_rv = F8::splat((1.0 / GLASS_RADIUS) as f32);
-        let [ox, oy, oz] = o;
-        let [dx, dy, dz] = d;
-        let t = t_water;
-        let (qx, qy, qz) = (ox + t * dx, oy + t * dy, oz + t * dz);
-        let is_side = water_face.lt(F8::splat(0.5));
-        let is_top = water_face.lt(F8::splat(1.5)).and_not(is_side);
-        let (nx, ny) = (
-            is_side.select(qx * inv_rv, zero),
-            is_side.select(qy * inv_rv, zero),
-        );
-        let nz = is_side.select(zero, is_top.select(F8::splat(1.0), F8::splat(-1.0)));
-        // The side's normal q/Rv is unit to rounding (q lies on the wall): not renormalised.
-        let cos_raw = -(dx * nx + dy * ny + dz * nz);
-        let facing = cos_raw.ge(zero);
-        let (mx, my, mz) = (
-            facing.select(nx, -nx),
-            facing.select(ny, -ny),
-            facing.select(nz, -nz),
-        );
-        let cos_i = facing.select(cos_raw, -cos_raw);
-        let eta = in_water.select(F8::splat(self.eta_into_air), F8::splat(self.eta_into_water));
-        let sin2_t = eta * eta * (F8::splat(1.0) - cos_i * cos_i);
-        let total = sin2_t.gt(F8::splat(1.0));
-        let cos_t = (F8::splat(1.0) - sin2_t).max(zero).sqrt();
-        let k = eta * cos_i - cos_t;
-        let (rx, ry, rz) = (eta * dx + k * mx, eta * dy + k * my, eta * dz + k * mz);
-        // Snell's refracted direction is unit when d and the normal are; the rounding drift
-        // over at most a few events (~1e-7) is far below what changes a pixel.
-        // Mirror: d + 2·cos_i·m (m faces the incoming ray).
-        let two_cos = F8::splat(2.0) * cos_i;
-        let (lx, ly, lz) = (dx + two_cos * mx, dy + two_cos * my, dz + two_cos * mz);
-        Bend8 {
-            q: [qx, qy, qz],
-            refracted: [rx, ry, rz],
-            reflected: [lx, ly, lz],
-            total,
-            is_top,
-            cos_i,
-            cos_t,
-        }
-    }
 }
 
-/// How one branch of a pixel's ray ends ([`PacketTracer::branch_ends_row`]), in single precision.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum BranchEnd {
-    /// On the straw.
-    Straw {
-        /// Colour code of the section, 1..=5.
-        code: u8,
-        /// The straw point reached.
-        point: [f32; 3],
-        /// The branch's weight.
-        weight: f32,
-    },
-    /// Out of the scene along its last straight piece.
-    Escaped {
-        /// Where the last piece starts (the eye or the last event).
-        origin: [f32; 3],
-        /// Its unit direction.
-        direction: [f32; 3],
-        /// The branch's weight.
-        weight: f32,
-    },
-    /// It would need more events than allowed.
-    Dropped {
-        /// The branch's weight.
-        weight: f32,
-    },
-}
-
-/// The nearest faces ahead of eight rays.
-#[derive(Clone, Copy, Debug)]
-struct Hit8 {
-    /// Distance to the nearest water face (infinite: none).
-    t_water: F8,
-    /// Which: 0 side, 1 top, 2 bottom.
-    water_face: F8,
-    /// Distance to the nearest straw face (infinite: none).
-    t_straw: F8,
-    /// The colour code there.
-    straw_code: F8,
-}
-
-/// Eight rays at a water face.
-#[derive(Clone, Copy, Debug)]
-struct Bend8 {
-    /// The points met.
-    q: [F8; 3],
-    /// Refracted directions (meaningless where `total`).
-    refracted: [F8; 3],
-    /// Mirrored directions.
-    reflected: [F8; 3],
-    /// Total reflection.
-    total: M8,
-    /// The face is the water's top.
-    is_top: M8,
-    /// Cosine of incidence, and of refraction.
-    cos_i: F8,
-    cos_t: F8,
-}
-
-/// The rays through the centres of pixels `8p .. 8p + 8` of row `row` (SPEC §6: `f + sx·r + sy·u`,
-/// `sx` affine in the column): origins, unit directions and which lanes can meet the scene.
-///
-/// Near the scene, in single precision from the eye. Farther than [`FAR_EYE`], each ray is made in
-/// double precision ([`Camera::pixel_ray`]) and started where it enters the bounding sphere.
+/// `v` rounded to single precision.
 #[inline(always)]
-fn row_rays(camera: &Camera, row: u32) -> impl Fn(usize) -> ([F8; 3], [F8; 3], M8) + '_ {
-    let (w, h) = (camera.width as f64, camera.height as f64);
-    let sx_scale = camera.tan_half_fov * (w / h);
-    let sy = ((1.0 - 2.0 * (row as f64 + 0.5) / h) * camera.tan_half_fov) as f32;
-    let sx_step = (2.0 / w * sx_scale) as f32;
-    let sx_start = (sx_scale * (1.0 / w - 1.0)) as f32; // pixel 0's centre
-    let v = |x: Vec3| [x.x as f32, x.y as f32, x.z as f32];
-    let (f, r, u) = (v(camera.forward), v(camera.right), v(camera.up));
-    // The row's part common to all pixels: f + sy·u.
-    let base = [f[0] + sy * u[0], f[1] + sy * u[1], f[2] + sy * u[2]];
-    let lane = F8(std::array::from_fn(|k| k as f32));
-    let eye = v(camera.eye);
-    let far = (camera.eye - BOUNDING_CENTRE).length() > FAR_EYE;
-    move |p: usize| {
-        if far {
-            let mut o = [[0.0f32; LANES]; 3];
-            let mut d = [[0.0f32; LANES]; 3];
-            let mut alive = [0u32; LANES];
-            for k in 0..LANES {
-                // Columns past the picture's edge are traced (and ignored) like any other.
-                let ray = camera.pixel_ray(row, (p * LANES + k) as u32);
-                // A ray that misses the scene keeps the eye and its direction (a picture still
-                // shows what lies behind), but is not traced.
-                let start = enter_bounding_sphere(ray);
-                let start_ray = start.map_or(ray, |(r, _)| r);
-                for (c, (x, y)) in v(start_ray.origin)
-                    .into_iter()
-                    .zip(v(start_ray.direction))
-                    .enumerate()
-                {
-                    o[c][k] = x;
-                    d[c][k] = y;
-                }
-                if start.is_some() {
-                    alive[k] = u32::MAX;
-                }
-            }
-            return (o.map(F8), d.map(F8), M8(alive));
+fn to_f32(v: Vec3) -> [f32; 3] {
+    [v.x as f32, v.y as f32, v.z as f32]
+}
+
+/// The rays through the centres of the pixels of one row of a camera's picture (SPEC §6:
+/// `f + sx·r + sy·u`, `sx` affine in the column), eight at a time ([`RowRays::packet`]).
+struct RowRays<'c> {
+    camera: &'c Camera,
+    row: u32,
+    /// `sx` of pixel 0's centre and its step from one column to the next.
+    sx_start: f32,
+    sx_step: f32,
+    /// The row's part common to all pixels, `f + sy·u`, and `r`.
+    base: [f32; 3],
+    right: [f32; 3],
+    eye: [f32; 3],
+    /// The scene's bounding sphere, and whether the eye is far from it.
+    sphere: (Vec3, f64),
+    far: bool,
+}
+
+impl<'c> RowRays<'c> {
+    /// The rays of row `row` of `camera`, for a scene in the bounding sphere `sphere`.
+    fn new(camera: &'c Camera, row: u32, sphere: (Vec3, f64)) -> RowRays<'c> {
+        let (w, h) = (camera.width as f64, camera.height as f64);
+        let sx_scale = camera.tan_half_fov * (w / h);
+        let sy = ((1.0 - 2.0 * (row as f64 + 0.5) / h) * camera.tan_half_fov) as f32;
+        let (f, u) = (to_f32(camera.forward), to_f32(camera.up));
+        RowRays {
+            camera,
+            row,
+            sx_step: (2.0 / w * sx_scale) as f32,
+            sx_start: (sx_scale * (1.0 / w - 1.0)) as f32,
+            base: [f[0] + sy * u[0], f[1] + sy * u[1], f[2] + sy * u[2]],
+            right: to_f32(camera.right),
+            eye: to_f32(camera.eye),
+            sphere,
+            far: (camera.eye - sphere.0).length() > FAR_EYE,
         }
-        let first = F8::splat((p * LANES) as f32);
-        let sx = F8::splat(sx_start) + (first + lane) * F8::splat(sx_step);
-        let dx = F8::splat(base[0]) + sx * F8::splat(r[0]);
-        let dy = F8::splat(base[1]) + sx * F8::splat(r[1]);
-        let dz = F8::splat(base[2]) + sx * F8::splat(r[2]);
-        let inv = F8::splat(1.0) / (dx * dx + dy * dy + dz * dz).sqrt();
+    }
+
+    /// The rays through the centres of pixels `8p .. 8p + 8`: origins, unit directions and which
+    /// lanes can meet the scene.
+    ///
+    /// Near the scene, in single precision from the eye. Farther than [`FAR_EYE`], each ray is
+    /// made in double precision ([`Camera::pixel_ray`]) and started where it enters the bounding
+    /// sphere.
+    #[inline(always)]
+    fn packet(&self, p: usize) -> (V3<F8>, V3<F8>, M8) {
+        let s = |x: f32| F8([x; LANES]);
+        if self.far {
+            return self.far_packet(p);
+        }
+        let lanes = F8(std::array::from_fn(|k| k as f32));
+        let first = s((p * LANES) as f32);
+        let sx = s(self.sx_start) + (first + lanes) * s(self.sx_step);
+        let (b, r) = (self.base, self.right);
+        let dx = s(b[0]) + sx * s(r[0]);
+        let dy = s(b[1]) + sx * s(r[1]);
+        let dz = s(b[2]) + sx * s(r[2]);
+        let inv = s(1.0) / (dx * dx + dy * dy + dz * dz).sqrt();
+        let e = self.eye;
         (
-            [F8::splat(eye[0]), F8::splat(eye[1]), F8::splat(eye[2])],
-            [dx * inv, dy * inv, dz * inv],
+            V3::new(s(e[0]), s(e[1]), s(e[2])),
+            V3::new(dx * inv, dy * inv, dz * inv),
             M8::splat(true),
         )
+    }
+
+    /// [`Self::packet`] for a far eye.
+    fn far_packet(&self, p: usize) -> (V3<F8>, V3<F8>, M8) {
+        let (centre, radius) = self.sphere;
+        let mut o = [[0.0f32; LANES]; 3];
+        let mut d = [[0.0f32; LANES]; 3];
+        let mut alive = [0u32; LANES];
+        for k in 0..LANES {
+            // Columns past the picture's edge are traced (and ignored) like any other.
+            let ray = self.camera.pixel_ray(self.row, (p * LANES + k) as u32);
+            // A ray that misses the scene keeps the eye and its direction (a picture still
+            // shows what lies behind), but is not traced.
+            let start = enter_sphere(ray, centre, radius);
+            let start_ray = start.map_or(ray, |(r, _)| r);
+            let (a, b) = (to_f32(start_ray.origin), to_f32(start_ray.direction));
+            for c in 0..3 {
+                o[c][k] = a[c];
+                d[c][k] = b[c];
+            }
+            if start.is_some() {
+                alive[k] = u32::MAX;
+            }
+        }
+        let v = |a: [[f32; LANES]; 3]| V3::new(F8(a[0]), F8(a[1]), F8(a[2]));
+        (v(o), v(d), M8(alive))
     }
 }
 
@@ -1027,7 +722,8 @@ pub struct FresnelWave {
     eye: [f32; 3],
 }
 
-/// Fresnel branches, structure of arrays: origin and direction components, weight, medium, pixel.
+/// Fresnel branches, structure of arrays: origin and direction components, weight, the medium
+/// each travels in (its id), pixel, and what each has just left.
 ///
 /// The vectors only grow (to the largest wave seen) and are written by index: `len` counts the
 /// branches in use, so pushing is a plain store.
@@ -1036,9 +732,10 @@ struct Branches {
     /// `ox, oy, oz, dx, dy, dz`.
     ray: [Vec<f32>; 6],
     w: Vec<f32>,
-    in_water: Vec<bool>,
+    /// The medium's id, as a number.
+    medium: Vec<f32>,
     pixel: Vec<u32>,
-    /// The water face each branch starts on (as [`Hit8::water_face`], or [`NO_FACE`]).
+    /// The code of the surface each branch starts on ([`World::nearest`]'s), or [`NO_FACE`].
     left: Vec<f32>,
     len: usize,
 }
@@ -1060,7 +757,7 @@ impl Branches {
                 v.resize(n, 0.0);
             }
             self.w.resize(n, 0.0);
-            self.in_water.resize(n, false);
+            self.medium.resize(n, 0.0);
             self.pixel.resize(n, 0);
             self.left.resize(n, NO_FACE);
         }
@@ -1068,22 +765,22 @@ impl Branches {
 
     /// Appends a branch; room must have been made with [`Self::reserve_total`].
     #[inline(always)]
-    fn push(&mut self, o: [f32; 3], d: [f32; 3], w: f32, in_water: bool, pixel: u32, left: f32) {
+    fn push(&mut self, o: [f32; 3], d: [f32; 3], w: f32, medium: f32, pixel: u32, left: f32) {
         let n = self.len;
         for (k, x) in o.into_iter().chain(d).enumerate() {
             self.ray[k][n] = x;
         }
         self.w[n] = w;
-        self.in_water[n] = in_water;
+        self.medium[n] = medium;
         self.pixel[n] = pixel;
         self.left[n] = left;
         self.len = n + 1;
     }
 
-    /// The faces branches `base .. base + 8` start on ([`NO_FACE`] past the end).
+    /// The codes `v` of branches `base .. base + 8` ([`NO_FACE`] past the end).
     #[inline(always)]
-    fn load_left(&self, base: usize) -> F8 {
-        let v = &self.left[..self.len];
+    fn load_code(&self, v: &[f32], base: usize) -> F8 {
+        let v = &v[..self.len];
         match v.get(base..base + LANES) {
             Some(full) => F8(std::array::from_fn(|k| full[k])),
             None => F8(std::array::from_fn(|k| {
@@ -1111,14 +808,18 @@ mod tests {
     use crate::scene::REFERENCES;
     use crate::Vec3;
 
-    /// The AVX2 build and the portable build give the same pixels (same IEEE operations).
+    /// Every build the processor can run gives the portable build's pixels (same IEEE operations).
     #[test]
-    fn avx2_and_portable_agree() {
-        #[cfg(target_arch = "x86_64")]
-        let has_avx2 = std::is_x86_feature_detected!("avx2");
-        #[cfg(not(target_arch = "x86_64"))]
-        let has_avx2 = false;
-        if !has_avx2 {
+    fn every_instruction_set_gives_the_same_pixels() {
+        let builds: Vec<Instructions> = [Instructions::Avx512, Instructions::Avx2]
+            .into_iter()
+            .filter(|&i| {
+                PacketTracer::new(&REFERENCES[0].scene(1.333))
+                    .with_instructions(i)
+                    .is_some()
+            })
+            .collect();
+        if builds.is_empty() {
             // Both calls would run the portable code: comparing it with itself proves nothing.
             // (The packet pictures are checked against the double-precision tracer elsewhere.)
             eprintln!(
@@ -1130,19 +831,21 @@ mod tests {
             let scene = r.scene(1.333);
             let target = Vec3::new(r.straw.0, r.straw.1, r.water_height);
             let cam = Camera::new(r.observer, target, 203, 61, 50f64.to_radians());
-            let pt = PacketTracer::new(&scene);
-            for i in 0..cam.height {
-                let mut a = vec![0u8; cam.width as usize];
-                let mut b = vec![0u8; cam.width as usize];
-                pt.course_row(&cam, i, &mut a);
-                pt.course_row_portable(&cam, i, &mut b);
-                assert_eq!(a, b, "row {i}");
-                let mut wave = FresnelWave::default();
-                let mut fa = vec![[0.0; SECTION_COUNT]; cam.width as usize];
-                let mut fb = fa.clone();
-                pt.fresnel_row(&cam, i, 1e-4, &mut wave, &mut fa);
-                pt.fresnel_row_portable(&cam, i, 1e-4, &mut wave, &mut fb);
-                assert_eq!(fa, fb, "fresnel row {i}");
+            for &isa in &builds {
+                let pt = PacketTracer::new(&scene).with_instructions(isa).unwrap();
+                for i in 0..cam.height {
+                    let mut a = vec![0u8; cam.width as usize];
+                    let mut b = vec![0u8; cam.width as usize];
+                    pt.course_row(&cam, i, &mut a);
+                    pt.course_row_portable(&cam, i, &mut b);
+                    assert_eq!(a, b, "{isa:?} row {i}");
+                    let mut wave = FresnelWave::default();
+                    let mut fa = vec![[0.0; SECTION_COUNT]; cam.width as usize];
+                    let mut fb = fa.clone();
+                    pt.fresnel_row(&cam, i, 1e-4, &mut wave, &mut fa);
+                    pt.fresnel_row_portable(&cam, i, 1e-4, &mut wave, &mut fb);
+                    assert_eq!(fa, fb, "{isa:?} fresnel row {i}");
+                }
             }
         }
     }

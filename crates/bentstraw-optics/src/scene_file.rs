@@ -1153,6 +1153,41 @@ impl SceneDescription {
         out
     }
 
+    /// The assignment's scene written as a description: the glass of radius 0.04 m and height
+    /// 0.2 m with walls and bottom of no thickness, its water (none when its height is 0), the
+    /// upright straw of radius 0.005 m and length 0.25 m; no observer.
+    pub fn assignment(scene: &Scene) -> SceneDescription {
+        SceneDescription {
+            container: Container::Glass(Glass {
+                radius: GLASS_RADIUS,
+                height: GLASS_HEIGHT,
+                wall: 0.0,
+                bottom: 0.0,
+                index: DEFAULT_CONTAINER_INDEX,
+            }),
+            liquids: if scene.has_water() {
+                vec![Liquid {
+                    name: "water".to_string(),
+                    index: scene.n_water,
+                    top: scene.water_height,
+                }]
+            } else {
+                vec![]
+            },
+            straws: vec![Straw {
+                x: scene.straw_x,
+                y: scene.straw_y,
+                tilt_deg: 0.0,
+                azimuth_deg: 0.0,
+                radius: STRAW_RADIUS,
+                length: STRAW_HEIGHT,
+            }],
+            coins: vec![],
+            cards: vec![],
+            observer: None,
+        }
+    }
+
     /// The assignment's scene when this is exactly its kind (a glass of radius 0.04 m and height
     /// 0.2 m with zero-thickness walls and bottom, at most one liquid, one upright straw of radius
     /// 0.005 m and length 0.25 m, no coin, no card), with the default event limit; else `None`.

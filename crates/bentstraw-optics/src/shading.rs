@@ -30,13 +30,14 @@ use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::packet::{BranchEnd, FresnelWave, PacketTracer};
 use crate::scene::{Scene, GLASS_HEIGHT, GLASS_RADIUS, SECTION_RGB};
+use crate::trace::FRESNEL_SEGMENTS_PER_PIXEL;
 #[cfg(test)]
 use crate::trace::{
-    follow_fresnel, follow_ray, FresnelStep, NearestFace, Outcome, FRESNEL_SEGMENTS_PER_RAY,
+    follow_fresnel, follow_ray, Face, FresnelStep, NearestFace, Outcome, FRESNEL_SEGMENTS_PER_RAY,
 };
-use crate::trace::{Face, FRESNEL_SEGMENTS_PER_PIXEL};
 #[cfg(test)]
 use crate::tracer::Tracer;
+use crate::world::{Object, Part, World, COLOR_RGB};
 use crate::Vec3;
 
 /// Distance of the backdrop wall behind the glass's axis (m).
@@ -410,27 +411,23 @@ fn light_direction(s: &Surroundings) -> Vec3 {
     (s.toward_eye + 0.8 * Vec3::Z + 0.5 * s.toward_eye.cross(Vec3::Z)).normalize()
 }
 
-/// Linear colour of the straw's section `color` at `point` of `face`, gently shaded.
-fn straw_radiance(scene: &Scene, light: Vec3, color: u8, face: Face, point: Vec3) -> [f64; 3] {
-    let normal = match face {
-        Face::StrawTop => Vec3::Z,
-        Face::StrawBottom => Vec3::NEG_Z,
-        _ => Vec3::new(point.x - scene.straw_x, point.y - scene.straw_y, 0.0).normalize_or_zero(),
-    };
-    let shade = 0.62 + 0.38 * normal.dot(light).max(0.0);
-    linear(SECTION_RGB[color as usize - 1]).map(|c| c * shade)
-}
-
-/// The straw's face at a point `p` on it (from the packet tracer, which reports points only):
-/// the caps within a micrometre of their planes, else the side.
-fn straw_face_at(p: Vec3) -> Face {
-    if p.z >= crate::scene::STRAW_HEIGHT - 1e-6 {
-        Face::StrawTop
-    } else if p.z <= 1e-6 {
-        Face::StrawBottom
-    } else {
-        Face::StrawSide
+/// Linear colour of colour code `color` at `point` of part `part` of object `object` of
+/// `world`, gently shaded by `light` (a card shows the side facing the eye `eye`).
+fn object_radiance(
+    world: &World,
+    light: Vec3,
+    eye: Vec3,
+    color: u8,
+    (object, part): (usize, Part),
+    point: Vec3,
+) -> [f64; 3] {
+    let o = &world.objects()[object];
+    let mut normal = o.normal(part, point);
+    if matches!(o, Object::Card { .. }) && normal.dot(eye - point) < 0.0 {
+        normal = -normal;
     }
+    let shade = 0.62 + 0.38 * normal.dot(light).max(0.0);
+    linear(COLOR_RGB[color as usize - 1]).map(|c| c * shade)
 }
 
 /// Linear colour seen along one ray, traced in double precision by `tracer`: the reference the
@@ -438,16 +435,22 @@ fn straw_face_at(p: Vec3) -> Face {
 #[cfg(test)]
 fn sample(
     tracer: &impl NearestFace,
-    scene: &Scene,
     surroundings: &Surroundings,
     light: Vec3,
     mode: ShadingMode,
     ray: Ray,
 ) -> [f64; 3] {
+    let prepared = tracer.prepared();
+    let world = prepared.world();
+    let straw = |face: Face| match face {
+        Face::StrawTop => (0, Part::Top),
+        Face::StrawBottom => (0, Part::Bottom),
+        _ => (0, Part::Side),
+    };
     match mode {
         ShadingMode::Course => {
             let mut last = ray;
-            let outcome = follow_ray(tracer, scene, ray, |e| {
+            let outcome = follow_ray(tracer, ray, |e| {
                 last = Ray {
                     origin: e.point,
                     direction: e.outgoing,
@@ -456,7 +459,7 @@ fn sample(
             match outcome {
                 Outcome::Straw {
                     color, point, face, ..
-                } => straw_radiance(scene, light, color, face, point),
+                } => object_radiance(world, light, ray.origin, color, straw(face), point),
                 Outcome::Escaped { .. } => surroundings.radiance(&last),
                 // Light that needs more events than allowed is not followed: shown dark.
                 Outcome::Dropped => [0.05; 3],
@@ -469,27 +472,25 @@ fn sample(
                     acc[k] += w * c[k];
                 }
             };
-            follow_fresnel::<false>(
-                tracer,
-                scene,
-                ray,
-                prune_below,
-                FRESNEL_SEGMENTS_PER_RAY,
-                |step| match step {
+            follow_fresnel::<false>(tracer, ray, prune_below, FRESNEL_SEGMENTS_PER_RAY, |step| {
+                match step {
                     FresnelStep::Straw {
                         color,
                         point,
                         face,
                         weight,
                         ..
-                    } => add(straw_radiance(scene, light, color, face, point), weight),
+                    } => add(
+                        object_radiance(world, light, ray.origin, color, straw(face), point),
+                        weight,
+                    ),
                     FresnelStep::Escaped { ray, weight, .. } => {
                         add(surroundings.radiance(&ray), weight)
                     }
                     // Dropped and pruned weight is light not followed: it adds nothing (dark).
                     _ => {}
-                },
-            );
+                }
+            });
             acc
         }
     }
@@ -533,13 +534,15 @@ pub fn shaded_picture(scene: &Scene, camera: &Camera, options: &ShadingOptions) 
 
 /// How the ends of a picture's branches are shaded.
 struct EndShader<'a> {
-    scene: &'a Scene,
+    world: &'a World,
     surroundings: &'a Surroundings,
     light: Vec3,
     /// Whether rays split (Fresnel mode).
     split: bool,
     /// The eye, as the packet tracer reports it.
     eye: [f32; 3],
+    /// The eye.
+    eye64: Vec3,
 }
 
 impl EndShader<'_> {
@@ -550,14 +553,17 @@ impl EndShader<'_> {
     fn shade(&self, end: BranchEnd) -> Option<([f64; 3], f64, Region)> {
         let v = |a: [f32; 3]| Vec3::new(a[0] as f64, a[1] as f64, a[2] as f64);
         match end {
-            BranchEnd::Straw {
+            BranchEnd::Object {
                 code,
+                object,
+                part,
                 point,
                 weight,
             } => {
                 let p = v(point);
+                let at = (object as usize, Part::from_code(part as f64));
                 Some((
-                    straw_radiance(self.scene, self.light, code, straw_face_at(p), p),
+                    object_radiance(self.world, self.light, self.eye64, code, at, p),
                     weight as f64,
                     Region::Scene,
                 ))
@@ -629,6 +635,18 @@ pub fn shaded_picture_into(
     buffers: &mut ShadingBuffers,
     picture: &mut RgbPicture,
 ) {
+    shaded_world_picture_into(&World::assignment(scene), camera, options, buffers, picture);
+}
+
+/// [`shaded_picture_into`] of any world: the glass's outline, if asked for, is the assignment's
+/// glass's (the faces of other scenes show by what they refract and reflect).
+pub fn shaded_world_picture_into(
+    world: &World,
+    camera: &Camera,
+    options: &ShadingOptions,
+    buffers: &mut ShadingBuffers,
+    picture: &mut RgbPicture,
+) {
     let (w, h) = (camera.width as usize, camera.height as usize);
     let surroundings = Surroundings::new(options.backdrop, camera.eye);
     let light = light_direction(&surroundings);
@@ -644,18 +662,19 @@ pub fn shaded_picture_into(
     seen.resize(w * h, Region::Scene);
     // Pixel centres: the single-precision packet tracer, eight rays at a time (most of a
     // picture's rays); the samples at edges below go through it too.
-    let packets = PacketTracer::new(scene);
+    let packets = PacketTracer::for_world(world);
     let (split, prune) = match options.mode {
         ShadingMode::Course => (false, 0.0),
         ShadingMode::Fresnel { prune_below } => (true, prune_below),
     };
     let eye = camera.eye;
     let shader = EndShader {
-        scene,
+        world,
         surroundings: &surroundings,
         light,
         split,
         eye: [eye.x as f32, eye.y as f32, eye.z as f32],
+        eye64: eye,
     };
     let draw_outline = || {
         if options.outline {
@@ -1152,8 +1171,8 @@ mod tests {
                 for i in 0..cam.height {
                     for j in 0..cam.width {
                         let ray = cam.pixel_ray(i, j);
-                        let fast = sample(&tracer, &scene, &s, light, mode, ray);
-                        let plain = sample(&scene, &scene, &s, light, mode, ray);
+                        let fast = sample(&tracer, &s, light, mode, ray);
+                        let plain = sample(&scene, &s, light, mode, ray);
                         assert_eq!(fast, plain, "pixel ({i}, {j}) of reference {}", r.number);
                     }
                 }
@@ -1181,7 +1200,7 @@ mod tests {
                 let mut off = 0;
                 for i in 0..cam.height {
                     for j in 0..cam.width {
-                        let exact = sample(&tracer, &scene, &s, light, mode, cam.pixel_ray(i, j))
+                        let exact = sample(&tracer, &s, light, mode, cam.pixel_ray(i, j))
                             .map(|c| (linear_to_srgb(c) * 255.0).round() as i32);
                         let got = pic.pixel(i, j).map(i32::from);
                         if (0..3).any(|k| (exact[k] - got[k]).abs() > 2) {
@@ -1373,7 +1392,7 @@ mod tests {
                             let row = i as f64 + (a as f64 + 0.5) / m as f64;
                             let col = j as f64 + (b as f64 + 0.5) / m as f64;
                             let ray = Ray::new(cam.eye, cam.direction_at(row, col));
-                            let c = sample(&tracer, &scene, &s, light, mode, ray);
+                            let c = sample(&tracer, &s, light, mode, ray);
                             for k in 0..3 {
                                 mean[k] += c[k] / (m * m) as f64;
                             }

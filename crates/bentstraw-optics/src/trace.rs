@@ -4,8 +4,9 @@
 //! Also the Fresnel tracer of SPEC §6, which splits a ray at each water face into a reflected and a
 //! refracted branch.
 
-use crate::geometry::{enter_bounding_sphere, Ray};
-use crate::interface::{reflect, refract, refract_with_reflectance};
+use std::borrow::Cow;
+
+use crate::geometry::Ray;
 use crate::scene::{section_at, Scene, GLASS_RADIUS, SECTION_COUNT};
 use crate::tracer::Tracer;
 use crate::Vec3;
@@ -225,7 +226,7 @@ impl Scene {
     /// Traces `ray`, which starts in air, calling `on_event` at every water event, in order.
     #[inline]
     pub fn trace_with(&self, ray: Ray, on_event: impl FnMut(&Event)) -> Outcome {
-        follow_ray(&Tracer::new(self), self, ray, on_event)
+        Tracer::new(self).trace_with(ray, on_event)
     }
 
     /// Fresnel tracing (SPEC §6): the weight of `ray` that ends on each section (index 0 = code 1).
@@ -233,7 +234,7 @@ impl Scene {
     /// At each water face the ray splits into a reflected branch of weight `R` (unpolarised Fresnel
     /// reflectance, 1 under total reflection) and a refracted branch of weight `1 − R`; each branch
     /// keeps its own event count and is dropped past `max_events`. Branches lighter than
-    /// `prune_below` are abandoned (their weight is lost, never misattributed). No allocation.
+    /// `prune_below` are abandoned (their weight is lost, never misattributed).
     #[inline]
     pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
         self.trace_fresnel_with(ray, prune_below, |_| {})
@@ -260,99 +261,40 @@ impl Scene {
         max_segments: u32,
         on_step: impl FnMut(FresnelStep),
     ) -> [f64; SECTION_COUNT] {
-        follow_fresnel::<false>(
-            &Tracer::new(self),
-            self,
-            ray,
-            prune_below,
-            max_segments,
-            on_step,
-        )
+        Tracer::new(self).fresnel_bounded::<false>(ray, prune_below, max_segments, on_step)
     }
 }
 
-/// A way of finding the nearest face a ray meets (the tracer, [`crate::tracer::Tracer`]).
+/// The assignment's scene, prepared for tracing or not: what the course's loop and the Fresnel
+/// loop ([`follow_ray`], [`follow_fresnel`]) trace.
 pub trait NearestFace {
+    /// The scene made ready for tracing (a [`Tracer`] is; a [`Scene`] makes one).
+    fn prepared(&self) -> Cow<'_, Tracer>;
+
     /// The nearest face `ray` meets ahead, `left` being the water face it has just left (if it
     /// starts on one, after an event there); the straw wins ties (SPEC §3).
-    fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection>;
+    fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
+        self.prepared().nearest_intersection(ray, left)
+    }
 }
 
 impl NearestFace for Scene {
     #[inline]
-    fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
-        self.nearest_intersection(ray, left)
+    fn prepared(&self) -> Cow<'_, Tracer> {
+        Cow::Owned(Tracer::new(self))
     }
 }
 
-/// The course's tracing loop (SPEC §3), written once for every [`NearestFace`]: from air, face after
-/// face, refraction or total reflection at each water face, until the straw, escape, or one event
-/// more than `scene.max_events`; `on_event` is told every event, in order.
+/// The course's tracing loop (SPEC §3) in the assignment's words: from air, face after face,
+/// refraction or total reflection at each water face, until the straw, escape, or one event more
+/// than the scene's `max_events`; `on_event` is told every event, in order. It is the one loop
+/// every scene is traced by ([`crate::world::World`]'s), told in the water's and straw's faces.
 #[inline]
-pub fn follow_ray(
-    faces: &impl NearestFace,
-    scene: &Scene,
-    ray: Ray,
-    mut on_event: impl FnMut(&Event),
-) -> Outcome {
-    // A distant ray is first brought to the scene (no face lies before its bounding sphere).
-    let Some((mut ray, mut length)) = enter_bounding_sphere(ray) else {
-        return Outcome::Escaped { events: 0 };
-    };
-    let mut in_water = false;
-    let mut events = 0u32;
-    let mut left = None;
-    loop {
-        let Some(hit) = faces.nearest_face(&ray, left) else {
-            return Outcome::Escaped { events };
-        };
-        let point = ray.at(hit.distance);
-        length += hit.distance;
-        if hit.face.is_straw() {
-            return Outcome::Straw {
-                color: scene.straw_color(hit.face, point),
-                point,
-                path_length: length,
-                events,
-                face: hit.face,
-            };
-        }
-        if events == scene.max_events {
-            return Outcome::Dropped;
-        }
-        events += 1;
-        let normal = scene.water_normal(hit.face, point);
-        let (n1, n2) = if in_water {
-            (scene.n_water, 1.0)
-        } else {
-            (1.0, scene.n_water)
-        };
-        let (outgoing, totally_reflected) = match refract(ray.direction, normal, n1, n2) {
-            Some(t) => (t.normalize(), false),
-            None => (reflect(ray.direction, normal), true),
-        };
-        on_event(&Event {
-            point,
-            face: hit.face,
-            normal,
-            incoming: ray.direction,
-            outgoing,
-            n1,
-            n2,
-            totally_reflected,
-        });
-        if !totally_reflected {
-            in_water = !in_water;
-        }
-        ray = Ray {
-            origin: point,
-            direction: outgoing,
-        };
-        left = Some(hit.face);
-    }
+pub fn follow_ray(faces: &impl NearestFace, ray: Ray, on_event: impl FnMut(&Event)) -> Outcome {
+    faces.prepared().trace_with(ray, on_event)
 }
 
-/// The Fresnel tracing loop of SPEC §6, written once for every [`NearestFace`]; see
+/// The Fresnel tracing loop of SPEC §6 in the assignment's words; see
 /// [`Scene::trace_fresnel_with`]. With `SKIP_ESCAPING`, branches that provably escape are not
 /// followed (for pictures, where they add nothing): a branch that leaves the water through its side
 /// wall or bottom, or is reflected off their outside, moves away from the axis or downwards for good
@@ -362,171 +304,12 @@ pub fn follow_ray(
 #[inline]
 pub fn follow_fresnel<const SKIP_ESCAPING: bool>(
     faces: &impl NearestFace,
-    scene: &Scene,
     ray: Ray,
     prune_below: f64,
     max_segments: u32,
-    mut on_step: impl FnMut(FresnelStep),
+    on_step: impl FnMut(FresnelStep),
 ) -> [f64; SECTION_COUNT] {
-    // Depth-first. At each split the branch on the air side is followed first: the water is
-    // convex, so a branch in air that leaves a water face never meets the water again and ends at
-    // once; the stack thus holds at most one waiting branch, whatever the event limit (a few slots
-    // spare; a branch that found no slot would be reported as pruned).
-    const STACK: usize = 4;
-    #[derive(Clone, Copy)]
-    struct Branch {
-        ray: Ray,
-        in_water: bool,
-        events: u32,
-        weight: f64,
-        /// The water face the branch starts on (it has just left it).
-        left: Option<Face>,
-    }
-    let mut weights = [0.0; SECTION_COUNT];
-    // A distant ray is first brought to the scene; one that misses it escapes as it is.
-    let Some((start, _)) = enter_bounding_sphere(ray) else {
-        on_step(FresnelStep::Escaped {
-            ray,
-            weight: 1.0,
-            events: 0,
-        });
-        return weights;
-    };
-    let mut stack = [Branch {
-        ray: start,
-        in_water: false,
-        events: 0,
-        weight: 1.0,
-        left: None,
-    }; STACK];
-    let mut top = 1usize;
-    let mut segments = 0u32;
-    while top > 0 {
-        top -= 1;
-        let mut b = stack[top];
-        loop {
-            if segments == max_segments {
-                // Out of work: this branch and every waiting one are dropped.
-                on_step(FresnelStep::Dropped { weight: b.weight });
-                for waiting in &stack[..top] {
-                    on_step(FresnelStep::Dropped {
-                        weight: waiting.weight,
-                    });
-                }
-                return weights;
-            }
-            segments += 1;
-            let Some(hit) = faces.nearest_face(&b.ray, b.left) else {
-                on_step(FresnelStep::Escaped {
-                    // A branch that met nothing is the ray as it started, from the eye.
-                    ray: if b.events == 0 { ray } else { b.ray },
-                    weight: b.weight,
-                    events: b.events,
-                });
-                break;
-            };
-            let point = b.ray.at(hit.distance);
-            if hit.face.is_straw() {
-                let color = scene.straw_color(hit.face, point);
-                weights[color as usize - 1] += b.weight;
-                on_step(FresnelStep::Straw {
-                    color,
-                    point,
-                    face: hit.face,
-                    weight: b.weight,
-                    events: b.events,
-                });
-                break;
-            }
-            if b.events == scene.max_events {
-                on_step(FresnelStep::Dropped { weight: b.weight });
-                break;
-            }
-            b.events += 1;
-            let normal = scene.water_normal(hit.face, point);
-            let (n1, n2) = if b.in_water {
-                (scene.n_water, 1.0)
-            } else {
-                (1.0, scene.n_water)
-            };
-            let reflected = reflect(b.ray.direction, normal);
-            match refract_with_reflectance(b.ray.direction, normal, n1, n2) {
-                None => {
-                    on_step(FresnelStep::TotalReflection {
-                        point,
-                        weight: b.weight,
-                    });
-                    b.ray = Ray {
-                        origin: point,
-                        direction: reflected,
-                    };
-                    b.left = Some(hit.face);
-                }
-                Some((t, r)) => {
-                    let mut wr = b.weight * r;
-                    let mut wt = b.weight * (1.0 - r);
-                    on_step(FresnelStep::Split {
-                        point,
-                        normal,
-                        incoming: b.ray.direction,
-                        n1,
-                        n2,
-                        weight: b.weight,
-                        reflected: wr,
-                        refracted: wt,
-                    });
-                    if SKIP_ESCAPING && hit.face != Face::WaterTop {
-                        // The branch that ends up in air here escapes (see above).
-                        if b.in_water {
-                            wt = 0.0;
-                        } else {
-                            wr = 0.0;
-                        }
-                    }
-                    let refl = Branch {
-                        ray: Ray {
-                            origin: point,
-                            direction: reflected,
-                        },
-                        in_water: b.in_water,
-                        events: b.events,
-                        weight: wr,
-                        left: Some(hit.face),
-                    };
-                    let refr = Branch {
-                        ray: Ray {
-                            origin: point,
-                            direction: t.normalize(),
-                        },
-                        in_water: !b.in_water,
-                        events: b.events,
-                        weight: wt,
-                        left: Some(hit.face),
-                    };
-                    // The air-side branch now (it ends at once), the water-side one later.
-                    let (now, later) = if b.in_water {
-                        (refr, refl)
-                    } else {
-                        (refl, refr)
-                    };
-                    if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
-                        stack[top] = later;
-                        top += 1;
-                    } else if !(SKIP_ESCAPING && later.weight == 0.0) {
-                        on_step(FresnelStep::Pruned {
-                            weight: later.weight,
-                        });
-                    }
-                    if now.weight < prune_below || now.weight == 0.0 {
-                        if !(SKIP_ESCAPING && now.weight == 0.0) {
-                            on_step(FresnelStep::Pruned { weight: now.weight });
-                        }
-                        break;
-                    }
-                    b = now;
-                }
-            }
-        }
-    }
-    weights
+    faces
+        .prepared()
+        .fresnel_bounded::<SKIP_ESCAPING>(ray, prune_below, max_segments, on_step)
 }

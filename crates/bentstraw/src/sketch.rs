@@ -27,7 +27,7 @@ fn pairs(line: &[Vec3]) -> impl Iterator<Item = [Vec3; 2]> + '_ {
 fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
     match b.shape {
         Shape::Horizontal { z, region } => match region {
-            Region::Disk { cx, cy, r2 } => out.extend(pairs(&circle(cx, cy, r2.sqrt(), z))),
+            Region::Disk { cx, cy, radius } => out.extend(pairs(&circle(cx, cy, radius, z))),
             Region::Annulus { inner2, outer2 } => {
                 out.extend(pairs(&circle(0.0, 0.0, inner2.sqrt(), z)));
                 out.extend(pairs(&circle(0.0, 0.0, outer2.sqrt(), z)));

@@ -2,29 +2,33 @@
 //! thick walls, a tank, oil on water, leaning straws, coins, cards), traced by the same laws as
 //! the assignment's glass.
 //!
-//! The scene is a list of [`Boundary`]s between media (each medium known by an id, its index in
-//! a table) and a list of opaque [`Object`]s. A ray carries the medium it travels in; at the
-//! nearest boundary ahead it refracts or is totally reflected by Snell's law between the indices on
-//! its two sides; an object stops it and gives its colour. A boundary between media of the same
-//! index is no interface (light crosses it unbent, and it is no event): a glass of index 1 traces
-//! exactly like walls of no thickness.
+//! The scene is a list of [`Boundary`]s, each between two media (each medium known by an id, its
+//! index in a table), and a list of opaque [`Object`]s. A ray carries the id of the medium it
+//! travels in; at the nearest boundary ahead it refracts or is totally reflected by Snell's law
+//! between the indices on its two sides; an object stops it and gives its colour. In a scene
+//! file, a face between media of the same index is no interface (light crosses it unbent, and it
+//! is no event): a glass of index 1 traces exactly like walls of no thickness.
+//!
+//! The assignment's glass is a world too ([`World::assignment`]): one rule for what a ray meets
+//! first ([`World::nearest`]) and one course loop serve it and every scene file, for one ray in
+//! double precision and for eight in single precision ([`crate::lanes`]).
 
 pub mod boundary;
+mod nearest;
 pub mod object;
 pub mod picture;
+mod trace;
 
-use crate::geometry::{enter_sphere, Ray};
+use crate::geometry::{Ray, BOUNDING_CENTRE, BOUNDING_RADIUS};
 use crate::image::ImagePoint;
-use crate::interface::{reflect, refract, refract_with_reflectance};
-use crate::light_path_type::{Entry, LightPathType};
 use crate::sampling::ImageTracer;
-use crate::scene::{SECTION_NAMES, SECTION_RGB};
+use crate::scene::{Scene, SECTION_NAMES, SECTION_RGB};
 use crate::scene_file::{Container, SceneDescription};
-use crate::trace::FRESNEL_SEGMENTS_PER_RAY;
 use crate::Vec3;
 
-pub use boundary::{Boundary, MediumId, Region, Shape, Side};
+pub use boundary::{Boundary, MediumId, Region, Shape};
 pub use object::{in_arrow, Object, Part, CARD_COLOR, COIN_COLOR, PICTURE_COLOR};
+pub use trace::WorldFresnelStep;
 
 /// The medium id of air.
 pub const AIR: MediumId = 0;
@@ -56,25 +60,40 @@ pub const COLOR_NAMES: [&str; COLOR_COUNT] = [
     "arrow",
 ];
 
-/// The scene ready for tracing: media, boundaries, objects, and a sphere holding them all.
+/// The scene ready for tracing: media, boundaries, objects, and the volumes that hold them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct World {
     /// Refractive index of each medium, by id.
     indices: Vec<f64>,
-    /// The cavity's media by height: `(upper height, medium)`, lowest first, the last unbounded.
-    cavity: Vec<(f64, MediumId)>,
-    /// Every boundary between media of different index.
+    /// Every boundary where light can refract or be totally reflected.
     boundaries: Vec<Boundary>,
     /// Every opaque object.
     objects: Vec<Object>,
+    /// How many whole surfaces the boundaries lie on: codes `0..surfaces` name them, and
+    /// `surfaces + j` names object `j` (what a ray has just left).
+    surfaces: u32,
     /// Corners of a box holding every boundary and object.
     lo: Vec3,
     hi: Vec3,
     /// A sphere holding the box (rays from afar are first brought to it).
     centre: Vec3,
     radius: f64,
+    /// Radius of a circle around the `z` axis holding everything (a ray whose line passes
+    /// clearly outside it meets nothing).
+    reach: f64,
+    /// Whether any boundary is a vertical plane (rays then need the reciprocals of `dx`, `dy`).
+    verticals: bool,
     /// Most events (refractions and total reflections) a ray may undergo.
     pub max_events: u32,
+}
+
+/// Which faces between media of the same index are kept as events.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum SameIndex {
+    /// None: light crosses them unbent and uncounted (scene files: a glass of index 1 is no glass).
+    Dropped,
+    /// A liquid's faces (the assignment's water at index 1 still has its faces, each an event).
+    LiquidFacesKept,
 }
 
 /// What a ray meets first.
@@ -136,6 +155,8 @@ pub enum WorldOutcome {
         events: u32,
         /// Which object.
         object: usize,
+        /// Which part of it.
+        part: Part,
         /// The object's unit normal there, facing the ray.
         normal: Vec3,
     },
@@ -191,18 +212,68 @@ fn cavity_medium(cavity: &[(f64, MediumId)], z: f64) -> MediumId {
         .map_or(AIR, |(_, m)| *m)
 }
 
-/// The boundary of the plane `z` over `region`, `below` under it and `above` over it.
-fn horizontal(z: f64, region: Region, below: MediumId, above: MediumId) -> Boundary {
+/// A boundary of `shape` with `outer` and `inner` media, its surface and escape side not yet known.
+fn piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
     Boundary {
-        shape: Shape::Horizontal { z, region },
-        outer: Side::Medium(above),
-        inner: Side::Medium(below),
+        shape,
+        outer,
+        inner,
+        surface: 0,
+        escape: 0,
     }
 }
 
+/// The plane `z` over `region`, `below` under it and `above` over it.
+fn horizontal(z: f64, region: Region, below: MediumId, above: MediumId) -> Boundary {
+    piece(Shape::Horizontal { z, region }, above, below)
+}
+
+/// The pieces of a wall between `z_min` and `z_max` with `outside` beyond it and the cavity
+/// within: one per layer of the cavity it touches, made by `shape(lo, hi)`.
+fn wall_pieces(
+    cavity: &[(f64, MediumId)],
+    z_min: f64,
+    z_max: f64,
+    outside: MediumId,
+    shape: impl Fn(f64, f64) -> Shape,
+) -> Vec<Boundary> {
+    let mut out = Vec::new();
+    let mut below = f64::NEG_INFINITY;
+    for &(top, medium) in cavity {
+        let (lo, hi) = (below.max(z_min), top.min(z_max));
+        if lo < hi {
+            out.push(piece(shape(lo, hi), outside, medium));
+        }
+        below = top;
+    }
+    out
+}
+
 impl World {
-    /// The world a valid scene description describes, with event limit `max_events`.
+    /// The world a valid scene description describes, with event limit `max_events`. A face
+    /// between media of the same index is no interface (light crosses it unbent, and it is no
+    /// event): a glass of index 1 traces exactly like walls of no thickness.
     pub fn new(scene: &SceneDescription, max_events: u32) -> World {
+        World::build(scene, max_events, SameIndex::Dropped)
+    }
+
+    /// The assignment's scene as a world: the glass of radius 0.04 m with walls and bottom of no
+    /// thickness, its water, its upright straw, traced exactly as the assignment says. Every
+    /// water face is an event, even where the water's index is 1, and distant rays are brought
+    /// to the sphere of radius 0.15 m around the scene's centre that its results were always
+    /// computed from.
+    pub fn assignment(scene: &Scene) -> World {
+        let mut world = World::build(
+            &SceneDescription::assignment(scene),
+            scene.max_events,
+            SameIndex::LiquidFacesKept,
+        );
+        world.centre = BOUNDING_CENTRE;
+        world.radius = BOUNDING_RADIUS;
+        world
+    }
+
+    fn build(scene: &SceneDescription, max_events: u32, same_index: SameIndex) -> World {
         let mut indices = vec![1.0, 1.0];
         let floor = scene.container.floor();
         let height = scene.container.height();
@@ -217,96 +288,77 @@ impl World {
         cavity.push((f64::INFINITY, AIR));
         let medium_above = |z: f64| cavity_medium(&cavity, z);
 
-        // The container's own faces (a glass's rings at its base and rim, its sides; a tank's
-        // walls), the horizontal region its inside covers, and its box.
-        let (rings, surface, walls, lo, hi) = match &scene.container {
+        // The walls first (they win ties with the horizontal faces at their edges, as the
+        // assignment's glass always had it), then the horizontal faces: each liquid's surface,
+        // the floor above a thick bottom, the outer base, a glass's rings at its base and rim.
+        let mut boundaries = Vec::new();
+        let (surface, lo, hi, rings) = match &scene.container {
             Container::Glass(g) => {
                 indices[CONTAINER as usize] = g.index;
                 let inner = g.radius - g.wall;
-                let ring = Region::Annulus {
-                    inner2: inner * inner,
-                    outer2: g.radius * g.radius,
+                let upright = |radius: f64| {
+                    move |z_min: f64, z_max: f64| Shape::Upright {
+                        cx: 0.0,
+                        cy: 0.0,
+                        radius,
+                        z_min,
+                        z_max,
+                    }
                 };
-                let upright = |radius: f64, z_min: f64| Shape::Upright {
-                    cx: 0.0,
-                    cy: 0.0,
-                    radius,
-                    z_min,
-                    z_max: g.height,
-                };
-                let (rings, walls) = if g.wall > 0.0 {
-                    (
-                        vec![
-                            horizontal(0.0, ring, AIR, CONTAINER),
-                            horizontal(g.height, ring, CONTAINER, AIR),
-                        ],
-                        vec![
-                            Boundary {
-                                shape: upright(g.radius, 0.0),
-                                outer: Side::Medium(AIR),
-                                inner: Side::Medium(CONTAINER),
-                            },
-                            Boundary {
-                                shape: upright(inner, floor),
-                                outer: Side::Medium(CONTAINER),
-                                inner: Side::Cavity,
-                            },
-                        ],
-                    )
+                let mut rings = Vec::new();
+                if g.wall > 0.0 {
+                    boundaries.push(piece(upright(g.radius)(0.0, g.height), AIR, CONTAINER));
+                    boundaries.extend(wall_pieces(
+                        &cavity,
+                        floor,
+                        g.height,
+                        CONTAINER,
+                        upright(inner),
+                    ));
+                    let ring = Region::Annulus {
+                        inner2: inner * inner,
+                        outer2: g.radius * g.radius,
+                    };
+                    rings.push(horizontal(0.0, ring, AIR, CONTAINER));
+                    rings.push(horizontal(g.height, ring, CONTAINER, AIR));
                 } else {
-                    (
-                        vec![],
-                        vec![Boundary {
-                            shape: upright(g.radius, 0.0),
-                            outer: Side::Medium(AIR),
-                            inner: Side::Cavity,
-                        }],
-                    )
-                };
+                    boundaries.extend(wall_pieces(&cavity, 0.0, g.height, AIR, upright(g.radius)));
+                }
                 let surface = Region::Disk {
                     cx: 0.0,
                     cy: 0.0,
-                    r2: inner * inner,
+                    radius: inner,
                 };
                 let lo = Vec3::new(-g.radius, -g.radius, 0.0);
                 let hi = Vec3::new(g.radius, g.radius, g.height);
-                (rings, surface, walls, lo, hi)
+                (surface, lo, hi, rings)
             }
             Container::Tank(t) => {
-                let surface = Region::Rectangle {
-                    half_x: t.half_x,
-                    half_y: t.half_y,
-                };
-                let walls = [
+                for (axis, at, half) in [
                     (0, t.half_x, t.half_y),
                     (0, -t.half_x, t.half_y),
                     (1, t.half_y, t.half_x),
                     (1, -t.half_y, t.half_x),
-                ]
-                .map(|(axis, at, half)| Boundary {
-                    shape: Shape::Vertical {
-                        axis,
-                        at,
-                        half,
-                        z_min: 0.0,
-                        z_max: t.height,
-                    },
-                    outer: Side::Medium(AIR),
-                    inner: Side::Cavity,
-                })
-                .to_vec();
+                ] {
+                    boundaries.extend(wall_pieces(&cavity, 0.0, t.height, AIR, |z_min, z_max| {
+                        Shape::Vertical {
+                            axis,
+                            at,
+                            half,
+                            z_min,
+                            z_max,
+                        }
+                    }));
+                }
+                let surface = Region::Rectangle {
+                    half_x: t.half_x,
+                    half_y: t.half_y,
+                };
                 let lo = Vec3::new(-t.half_x, -t.half_y, 0.0);
                 let hi = Vec3::new(t.half_x, t.half_y, height);
-                (vec![], surface, walls, lo, hi)
+                (surface, lo, hi, vec![])
             }
         };
-        // The horizontal faces over the inside: the outer base, the floor above a thick bottom,
-        // each liquid's surface; then the walls.
-        let mut boundaries = rings;
-        boundaries.push(horizontal(0.0, surface, AIR, medium_above(0.0)));
-        if floor > 0.0 {
-            boundaries.push(horizontal(floor, surface, CONTAINER, medium_above(floor)));
-        }
         for (k, liquid) in scene.liquids.iter().enumerate() {
             let below = 2 + k as MediumId;
             boundaries.push(horizontal(
@@ -316,7 +368,20 @@ impl World {
                 medium_above(liquid.top),
             ));
         }
-        boundaries.extend(walls);
+        if floor > 0.0 {
+            boundaries.push(horizontal(floor, surface, CONTAINER, medium_above(floor)));
+        }
+        boundaries.push(horizontal(0.0, surface, AIR, medium_above(0.0)));
+        boundaries.extend(rings);
+        // Faces with the same medium on both sides are none; faces between media of the same
+        // index are kept only as the rule says.
+        let is_liquid = |m: MediumId| m >= 2;
+        boundaries.retain(|b| {
+            b.outer != b.inner
+                && (indices[b.outer as usize] != indices[b.inner as usize]
+                    || (same_index == SameIndex::LiquidFacesKept
+                        && (is_liquid(b.outer) || is_liquid(b.inner))))
+        });
 
         let mut objects = Vec::new();
         objects.extend(scene.straws.iter().map(|s| Object::straw(s, floor)));
@@ -329,54 +394,54 @@ impl World {
         let centre = 0.5 * (lo + hi);
         // A hair larger than the box's half diagonal, so rounding never puts a face outside it.
         let radius = 0.5 * (hi - lo).length() * (1.0 + 1e-9) + 1e-12;
-        let mut world = World {
+        let reach = boundaries
+            .iter()
+            .map(Boundary::reach)
+            .chain(objects.iter().map(Object::reach))
+            .fold(0.0, f64::max);
+
+        // Whole surfaces: every plane and cylinder a boundary lies on, numbered once.
+        let mut keys: Vec<(u8, [f64; 3])> = Vec::new();
+        for b in &mut boundaries {
+            let key = b.surface_key();
+            b.surface = match keys.iter().position(|k| *k == key) {
+                Some(i) => i as u32,
+                None => {
+                    keys.push(key);
+                    keys.len() as u32 - 1
+                }
+            };
+            b.escape = b.escape_side(lo, hi, reach);
+        }
+        // A cap lying in the plane of a horizontal boundary is part of that surface.
+        for o in &mut objects {
+            if let Object::Straw { solid, .. } | Object::Coin(solid) = o {
+                if solid.upright() {
+                    let top = solid.base.z + solid.length;
+                    for (k, z) in [solid.base.z, top].into_iter().enumerate() {
+                        solid.cap_surfaces[k] = keys
+                            .iter()
+                            .position(|key| *key == (0, [z, 0.0, 0.0]))
+                            .map(|i| i as u32);
+                    }
+                }
+            }
+        }
+        let verticals = boundaries
+            .iter()
+            .any(|b| matches!(b.shape, Shape::Vertical { .. }));
+        World {
             indices,
-            cavity,
             boundaries,
             objects,
+            surfaces: keys.len() as u32,
             lo,
             hi,
             centre,
             radius,
+            reach,
+            verticals,
             max_events,
-        };
-        // Boundaries with the same index on both sides everywhere are no interfaces at all.
-        let all = std::mem::take(&mut world.boundaries);
-        world.boundaries = all
-            .into_iter()
-            .filter(|b| !world.never_refracts(b))
-            .collect();
-        world
-    }
-
-    /// Whether `b` has the same index on both sides at every height.
-    fn never_refracts(&self, b: &Boundary) -> bool {
-        let n_outer = |z: f64| self.index(self.medium(b.outer, z));
-        let n_inner = |z: f64| self.index(self.medium(b.inner, z));
-        match b.shape {
-            Shape::Horizontal { z, .. } => n_outer(z) == n_inner(z),
-            Shape::Upright { z_min, z_max, .. } | Shape::Vertical { z_min, z_max, .. } => {
-                // Sides change only at the cavity's band edges: test each band's middle and ends.
-                let mut heights = vec![z_min, z_max];
-                let mut below = f64::NEG_INFINITY;
-                for &(top, _) in &self.cavity {
-                    let (a, b) = (below.max(z_min), top.min(z_max));
-                    if a <= b {
-                        heights.push(0.5 * (a + b));
-                    }
-                    below = top;
-                }
-                heights.iter().all(|&z| n_outer(z) == n_inner(z))
-            }
-        }
-    }
-
-    /// The medium on side `side` at height `z`.
-    #[inline]
-    pub fn medium(&self, side: Side, z: f64) -> MediumId {
-        match side {
-            Side::Medium(m) => m,
-            Side::Cavity => cavity_medium(&self.cavity, z),
         }
     }
 
@@ -386,7 +451,7 @@ impl World {
         self.indices[m as usize]
     }
 
-    /// The boundaries (between media of different index somewhere).
+    /// The boundaries, each between two media (walls cut where the medium inside them changes).
     pub fn boundaries(&self) -> &[Boundary] {
         &self.boundaries
     }
@@ -401,300 +466,29 @@ impl World {
         (self.lo, self.hi)
     }
 
-    /// The indices on the two sides of boundary `b` at `p` for a ray along `d`: the one it comes
-    /// through and the one it goes into.
-    #[inline]
-    fn sides(&self, b: &Boundary, p: Vec3, d: Vec3) -> (f64, f64) {
-        let outer = self.index(self.medium(b.outer, p.z));
-        let inner = self.index(self.medium(b.inner, p.z));
-        if d.dot(b.normal(p)) > 0.0 {
-            (inner, outer)
-        } else {
-            (outer, inner)
-        }
+    /// The centre and radius of a sphere holding everything (a ray from afar is first brought
+    /// to it: no boundary or object lies before it).
+    pub fn bounding_sphere(&self) -> (Vec3, f64) {
+        (self.centre, self.radius)
     }
 
-    /// The nearest thing `ray` meets ahead: a boundary where the indices differ, or an object
-    /// (which wins a tie). `left` is the boundary the ray starts on, having just met it.
-    #[inline]
-    pub fn nearest(&self, ray: &Ray, left: Option<usize>) -> Option<Hit> {
-        let mut best: Option<Hit> = None;
-        let mut best_t = f64::INFINITY;
-        for (index, b) in self.boundaries.iter().enumerate() {
-            for t in b.crossings(ray, left == Some(index)) {
-                if t >= best_t {
-                    break;
-                }
-                // A boundary between two fixed media refracts everywhere (those of one index were
-                // left out); one beside the cavity only where the layer there differs.
-                let refracts = match (b.outer, b.inner) {
-                    (Side::Medium(_), Side::Medium(_)) => true,
-                    _ => {
-                        let (n1, n2) = self.sides(b, ray.at(t), ray.direction);
-                        n1 != n2
-                    }
-                };
-                if refracts {
-                    best = Some(Hit::Boundary { t, index });
-                    best_t = t;
-                    break;
-                }
-            }
-        }
-        for (index, o) in self.objects.iter().enumerate() {
-            if let Some((t, part, color)) = o.hit(ray) {
-                if t <= best_t {
-                    best = Some(Hit::Object {
-                        t,
-                        index,
-                        part,
-                        color,
-                    });
-                    best_t = t;
-                }
-            }
-        }
-        best
+    /// Whether any interface bends light (media of different indices meet somewhere).
+    pub fn refracts(&self) -> bool {
+        self.boundaries
+            .iter()
+            .any(|b| self.index(b.outer) != self.index(b.inner))
     }
 
-    /// The point at distance `t` along `ray` on boundary `b`, put exactly on its plane when it
-    /// is a plane (so that no other piece of the same plane is met again a hair away).
-    #[inline]
-    fn point_on(&self, b: &Boundary, ray: &Ray, t: f64) -> Vec3 {
-        let mut p = ray.at(t);
-        match b.shape {
-            Shape::Horizontal { z, .. } => p.z = z,
-            Shape::Vertical { axis, at, .. } => p[axis] = at,
-            Shape::Upright { .. } => {}
-        }
-        p
+    /// The code of what a ray has just left, for the tracers: boundary `index`'s surface.
+    #[inline(always)]
+    pub(crate) fn surface_code(&self, index: usize) -> u32 {
+        self.boundaries[index].surface
     }
 
-    /// Traces `ray`, which starts in air outside every object, by the course's law.
-    pub fn trace(&self, ray: Ray) -> WorldOutcome {
-        self.trace_with(ray, |_| {})
-    }
-
-    /// [`World::trace`], telling `on_event` every refraction and total reflection, in order.
-    pub fn trace_with(&self, ray: Ray, on_event: impl FnMut(&WorldEvent)) -> WorldOutcome {
-        self.trace_limited(ray, self.max_events, on_event)
-    }
-
-    /// [`World::trace_with`] with the event limit `max_events` instead of the world's.
-    pub fn trace_limited(
-        &self,
-        ray: Ray,
-        max_events: u32,
-        mut on_event: impl FnMut(&WorldEvent),
-    ) -> WorldOutcome {
-        let Some((mut ray, mut length)) = enter_sphere(ray, self.centre, self.radius) else {
-            return WorldOutcome::Escaped { events: 0, ray };
-        };
-        let mut events = 0u32;
-        let mut left = None;
-        loop {
-            match self.nearest(&ray, left) {
-                None => return WorldOutcome::Escaped { events, ray },
-                Some(Hit::Object {
-                    t,
-                    index,
-                    part,
-                    color,
-                }) => {
-                    let point = ray.at(t);
-                    let normal = self.objects[index].normal(part, point);
-                    return WorldOutcome::Object {
-                        color,
-                        point,
-                        path_length: length + t,
-                        events,
-                        object: index,
-                        normal: if normal.dot(ray.direction) > 0.0 {
-                            -normal
-                        } else {
-                            normal
-                        },
-                    };
-                }
-                Some(Hit::Boundary { t, index }) => {
-                    if events == max_events {
-                        return WorldOutcome::Dropped;
-                    }
-                    events += 1;
-                    length += t;
-                    let b = &self.boundaries[index];
-                    let point = self.point_on(b, &ray, t);
-                    let normal = b.normal(point);
-                    let (n1, n2) = self.sides(b, point, ray.direction);
-                    let (outgoing, totally_reflected) = match refract(ray.direction, normal, n1, n2)
-                    {
-                        Some(d) => (d.normalize(), false),
-                        None => (reflect(ray.direction, normal), true),
-                    };
-                    on_event(&WorldEvent {
-                        point,
-                        boundary: index,
-                        normal,
-                        incoming: ray.direction,
-                        outgoing,
-                        n1,
-                        n2,
-                        totally_reflected,
-                    });
-                    ray = Ray {
-                        origin: point,
-                        direction: outgoing,
-                    };
-                    left = Some(index);
-                }
-            }
-        }
-    }
-
-    /// The image point seen from `observer` along unit `u0` by the course's convention,
-    /// `P = O + L·u0`, if the ray reaches an object.
-    pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
-        self.trace(Ray {
-            origin: observer,
-            direction: u0,
-        })
-        .image_point(observer, u0)
-    }
-
-    /// Fresnel tracing: the weight of `ray` that ends on each colour code (index 0 = code 1). At
-    /// every interface a branch splits into a reflected part `R` (unpolarised Fresnel
-    /// reflectance; all of it under total reflection) and a refracted part `1 − R`. `on_leave` is
-    /// told every other end of a branch with its weight: `Some(last straight piece)` for light
-    /// leaving the scene, `None` for light abandoned (lighter than `prune_below`, past the event
-    /// limit, or past [`FRESNEL_SEGMENTS_PER_RAY`] straight segments in all), so that the weights
-    /// told and returned add up to 1. No allocation.
-    pub fn trace_fresnel(
-        &self,
-        ray: Ray,
-        prune_below: f64,
-        mut on_leave: impl FnMut(Option<Ray>, f64),
-    ) -> [f64; COLOR_COUNT] {
-        // Depth-first; a thick wall or layers can hold several waiting branches, so the stack is
-        // deeper than the one glass of water needs. A branch that finds it full is abandoned.
-        const STACK: usize = 32;
-        #[derive(Clone, Copy)]
-        struct Branch {
-            ray: Ray,
-            events: u32,
-            weight: f64,
-            left: Option<usize>,
-        }
-        let mut weights = [0.0; COLOR_COUNT];
-        let Some((start, _)) = enter_sphere(ray, self.centre, self.radius) else {
-            on_leave(Some(ray), 1.0);
-            return weights;
-        };
-        let mut stack = [Branch {
-            ray: start,
-            events: 0,
-            weight: 1.0,
-            left: None,
-        }; STACK];
-        let mut top = 1;
-        let mut segments = 0;
-        while top > 0 {
-            top -= 1;
-            let mut b = stack[top];
-            loop {
-                if segments == FRESNEL_SEGMENTS_PER_RAY {
-                    on_leave(None, b.weight);
-                    for waiting in &stack[..top] {
-                        on_leave(None, waiting.weight);
-                    }
-                    return weights;
-                }
-                segments += 1;
-                match self.nearest(&b.ray, b.left) {
-                    None => {
-                        on_leave(Some(if b.events == 0 { ray } else { b.ray }), b.weight);
-                        break;
-                    }
-                    Some(Hit::Object { color, .. }) => {
-                        weights[color as usize - 1] += b.weight;
-                        break;
-                    }
-                    Some(Hit::Boundary { t, index }) => {
-                        if b.events == self.max_events {
-                            on_leave(None, b.weight);
-                            break;
-                        }
-                        b.events += 1;
-                        let boundary = &self.boundaries[index];
-                        let point = self.point_on(boundary, &b.ray, t);
-                        let normal = boundary.normal(point);
-                        let (n1, n2) = self.sides(boundary, point, b.ray.direction);
-                        let reflected = Ray {
-                            origin: point,
-                            direction: reflect(b.ray.direction, normal),
-                        };
-                        b.left = Some(index);
-                        match refract_with_reflectance(b.ray.direction, normal, n1, n2) {
-                            None => b.ray = reflected,
-                            Some((d, r)) => {
-                                let later = Branch {
-                                    ray: reflected,
-                                    weight: b.weight * r,
-                                    ..b
-                                };
-                                b.weight -= later.weight;
-                                if later.weight >= prune_below && later.weight > 0.0 && top < STACK
-                                {
-                                    stack[top] = later;
-                                    top += 1;
-                                } else {
-                                    on_leave(None, later.weight);
-                                }
-                                b.ray = Ray {
-                                    origin: point,
-                                    direction: d.normalize(),
-                                };
-                                if b.weight < prune_below || b.weight == 0.0 {
-                                    on_leave(None, b.weight);
-                                    break;
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        weights
-    }
-}
-
-impl World {
-    /// How a ray enters the liquid (or the container) at event `e`, its first: through a surface
-    /// from above, through a wall, through a bottom from below.
-    pub fn entry_of(&self, e: &WorldEvent) -> Entry {
-        match self.boundaries[e.boundary].shape {
-            Shape::Horizontal { .. } if e.incoming.z < 0.0 => Entry::Top,
-            Shape::Horizontal { .. } => Entry::Bottom,
-            _ => Entry::Wall,
-        }
-    }
-
-    /// Traces `ray` by the course's law and tells the kind of its light path: how it enters (its
-    /// first event) and how many total reflections it undergoes.
-    pub fn trace_path_type(&self, ray: Ray) -> (WorldOutcome, LightPathType) {
-        self.trace_path_type_limited(ray, self.max_events)
-    }
-
-    /// [`World::trace_path_type`] with the event limit `max_events`.
-    pub fn trace_path_type_limited(
-        &self,
-        ray: Ray,
-        max_events: u32,
-    ) -> (WorldOutcome, LightPathType) {
-        let mut kind = LightPathType::DIRECT;
-        let outcome = self.trace_limited(ray, max_events, |e| {
-            kind.record_entry(self.entry_of(e), e.totally_reflected)
-        });
-        (outcome, kind)
+    /// The code of object `index` as what a ray has just left.
+    #[inline(always)]
+    pub(crate) fn object_code(&self, index: usize) -> u32 {
+        self.surfaces + index as u32
     }
 }
 
@@ -721,5 +515,47 @@ impl ImageTracer for World {
 
     fn scene_box(&self) -> (Vec3, Vec3) {
         (self.lo, self.hi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::REFERENCES;
+
+    /// The assignment's glass as a world: the water's side, surface and bottom, in that order
+    /// (the order of the assignment's ties), the side and the bottom faces of the scene's hull
+    /// (light leaving through them escapes), the surface not; one surface each; the straw's
+    /// bottom cap on the bottom's plane.
+    #[test]
+    fn the_assignments_glass_is_three_faces_and_a_straw() {
+        let world = World::assignment(&REFERENCES[1].scene(1.333));
+        let b = world.boundaries();
+        assert_eq!(b.len(), 3);
+        assert!(
+            matches!(b[0].shape, Shape::Upright { z_min, z_max, .. } if z_min == 0.0 && z_max == 0.15)
+        );
+        assert!(matches!(b[1].shape, Shape::Horizontal { z, .. } if z == 0.15));
+        assert!(matches!(b[2].shape, Shape::Horizontal { z, .. } if z == 0.0));
+        assert_eq!(
+            b.iter()
+                .map(|b| (b.outer, b.inner, b.escape))
+                .collect::<Vec<_>>(),
+            [(AIR, 2, 1), (AIR, 2, 0), (2, AIR, -1)]
+        );
+        assert_eq!(b.iter().map(|b| b.surface).collect::<Vec<_>>(), [0, 1, 2]);
+        let Object::Straw { solid, .. } = world.objects()[0] else {
+            panic!("a straw")
+        };
+        assert_eq!(solid.cap_surfaces, [Some(2), None]);
+        // With index 1 the water keeps its faces; without water there are none.
+        assert_eq!(
+            World::assignment(&REFERENCES[1].scene(1.0))
+                .boundaries()
+                .len(),
+            3
+        );
+        let dry = Scene::new(0.0, 0.0, 0.0, 1.333, 10).unwrap();
+        assert!(World::assignment(&dry).boundaries().is_empty());
     }
 }

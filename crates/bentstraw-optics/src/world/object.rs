@@ -5,8 +5,10 @@
 //! [`PICTURE_COLOR`] for the picture on a card's front. Only the crossing by which light enters an
 //! object counts (it is opaque), and a ray that starts inside one, by rounding, meets it at once.
 
-use crate::geometry::{plane_distance, Ray, SideQuadratic};
+use crate::geometry::{plane_ahead, plane_distance_of, Ray, SideQuadratic};
+use crate::lanes::{Mask, Real, V3};
 use crate::scene_file::{Card, Coin, Picture, Straw};
+use crate::world::boundary::Reciprocals;
 use crate::Vec3;
 
 /// Colour code of a coin.
@@ -27,6 +29,18 @@ pub enum Part {
     Top,
 }
 
+impl Part {
+    /// The part of code 0 (side), 1 (bottom) or 2 (top).
+    #[inline]
+    pub fn from_code(code: f64) -> Part {
+        match code as u8 {
+            1 => Part::Bottom,
+            2 => Part::Top,
+            _ => Part::Side,
+        }
+    }
+}
+
 /// A cylinder along any axis with its two caps, in its own frame: `e1`, `e2` across the axis,
 /// `axis` along it from the bottom cap's centre `base`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,6 +57,13 @@ pub struct SolidCylinder {
     pub radius: f64,
     /// Length along the axis.
     pub length: f64,
+    /// The surfaces of the scene whose planes hold the bottom and top caps (a coin's bottom lies
+    /// on the floor), if any: a ray leaving such a surface does not meet the cap on it.
+    pub cap_surfaces: [Option<u32>; 2],
+    /// Whether the axis is the scene's `z` (its frame is then the scene's own axes).
+    upright: bool,
+    /// The bottom cap's centre in the frame `(e1, e2, axis)`.
+    base_in_frame: [f64; 3],
 }
 
 impl SolidCylinder {
@@ -54,44 +75,95 @@ impl SolidCylinder {
         } else {
             Vec3::Z.cross(axis).cross(axis).normalize()
         };
+        let e2 = axis.cross(e1);
+        let upright = axis == Vec3::Z;
         SolidCylinder {
             base,
             axis,
             e1,
-            e2: axis.cross(e1),
+            e2,
             radius,
             length,
+            cap_surfaces: [None; 2],
+            upright,
+            base_in_frame: if upright {
+                base.to_array()
+            } else {
+                [base.dot(e1), base.dot(e2), base.dot(axis)]
+            },
         }
     }
 
-    /// Where `ray` enters the solid, and by which part.
-    #[inline]
-    pub fn entry(&self, ray: &Ray) -> Option<(f64, Part, f64)> {
-        let p = ray.origin - self.base;
-        let d = ray.direction;
-        let (px, py, pz) = (p.dot(self.e1), p.dot(self.e2), p.dot(self.axis));
-        let (dx, dy, dz) = (d.dot(self.e1), d.dot(self.e2), d.dot(self.axis));
-        let r2 = self.radius * self.radius;
-        let side = SideQuadratic::new(px, py, dx, dy, r2);
-        let mut best: Option<(f64, Part)> = side
-            .entering_root(pz, dz, 0.0, self.length)
-            .map(|t| (t, Part::Side));
-        let on_cap = |t: f64| {
-            let (x, y) = (px + t * dx, py + t * dy);
-            x * x + y * y <= r2
-        };
-        for (h, part) in [(0.0, Part::Bottom), (self.length, Part::Top)] {
-            if let Some(t) = plane_distance(h, pz, dz) {
-                let nearer = match best {
-                    Some((b, _)) => t < b,
-                    None => true,
-                };
-                if nearer && on_cap(t) {
-                    best = Some((t, part));
-                }
-            }
+    /// Whether its axis is the scene's `z`: its frame is then the scene's own axes.
+    #[inline(always)]
+    pub fn upright(&self) -> bool {
+        self.upright
+    }
+
+    /// `v` in the frame `(e1, e2, axis)`: the components themselves when upright (the products
+    /// with the unit axes would give the same numbers).
+    #[inline(always)]
+    fn frame<R: Real>(&self, v: V3<R>) -> V3<R> {
+        if self.upright() {
+            v
+        } else {
+            let dot = |e: Vec3| v.dot(V3::splat(e));
+            V3::new(dot(self.e1), dot(self.e2), dot(self.axis))
         }
-        best.map(|(t, part)| (t, part, pz + t * dz))
+    }
+
+    /// Where the rays from `o` along `d` enter the solid, by which part, and how far along its
+    /// axis: the side's entering root (0 for a ray inside it by rounding), or a cap nearer than
+    /// that; the side wins a tie. `left` is the code of the surface each ray has just left:
+    /// a cap on that surface is not met.
+    #[inline(always)]
+    pub(crate) fn entry<R: Real>(
+        &self,
+        o: V3<R>,
+        d: V3<R>,
+        inv: &Reciprocals<R>,
+        alive: R::Mask,
+        left: R,
+    ) -> Option<(R, R, R)> {
+        let (o, d) = (self.frame(o), self.frame(d));
+        let [c1, c2, c3] = self.base_in_frame;
+        let r2 = R::splat(self.radius * self.radius);
+        let (cx, cy, z0) = (R::splat(c1), R::splat(c2), R::splat(c3));
+        let side = SideQuadratic::new(o.x - cx, o.y - cy, d.x, d.y, r2);
+        // Nothing of it (its caps lie inside its circle) where the line clearly passes beside.
+        let near = alive.and_not(side.clearly_misses(r2));
+        if !near.any() {
+            return None;
+        }
+        let (inv_a, inv_dz) = if self.upright() {
+            (inv.a, inv.d.z)
+        } else {
+            let one = R::splat(1.0);
+            (one / side.a, one / d.z)
+        };
+        let z1 = R::splat(c3 + self.length);
+        let mut t = side.roots(inv_a).entering(&side, o.z, d.z, z0, z1);
+        let mut part = R::splat(0.0);
+        // The caps, top then bottom: a point of the cap's plane within the radius.
+        let mut cap = |h: R, code: f64, surface: Option<u32>| {
+            let (num, ahead) = plane_ahead(h, o.z, d.z);
+            let mut ahead = ahead.and(near);
+            if let Some(s) = surface {
+                ahead = ahead.and_not(left.eq(R::splat(s as f64)));
+            }
+            if !ahead.any() {
+                return;
+            }
+            let tc = plane_distance_of(num, d.z, inv_dz);
+            let (x, y) = (o.x + tc * d.x - cx, o.y + tc * d.y - cy);
+            let m = ahead.and((x * x + y * y).le(r2)).and(tc.lt(t));
+            t = R::select(m, tc, t);
+            part = R::select(m, R::splat(code), part);
+        };
+        cap(z1, 2.0, self.cap_surfaces[1]);
+        cap(z0, 1.0, self.cap_surfaces[0]);
+        let t = R::select(near, t, R::splat(f64::INFINITY));
+        Some((t, part, o.z + t * d.z))
     }
 
     /// Distance from `p` to the cylinder's surface (side or caps), inside or out.
@@ -153,11 +225,10 @@ impl Object {
     /// A straw resting on a floor at height `floor`.
     pub fn straw(s: &Straw, floor: f64) -> Object {
         let solid = SolidCylinder::new(s.bottom_centre(floor), s.axis(), s.radius, s.length);
-        let band = s.length / 5.0;
-        Object::Straw {
-            solid,
-            edges: [band, 2.0 * band, 3.0 * band, 4.0 * band],
-        }
+        // The bands' edges along the axis from the bottom cap, each `k·length/5` rounded once
+        // (0.15 m, not 3 × 0.05 = 0.15000000000000002).
+        let edges = [1.0, 2.0, 3.0, 4.0].map(|k| k * s.length / 5.0);
+        Object::Straw { solid, edges }
     }
 
     /// A coin lying on a floor at height `floor`.
@@ -184,20 +255,28 @@ impl Object {
         }
     }
 
-    /// Where `ray` first meets the object: the distance, the part, and the colour code there.
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<(f64, Part, u8)> {
+    /// Where the rays from `o` along `d` first meet the object: the distance (infinite where
+    /// they do not), the part (0 side, 1 bottom, 2 top), and what tells the colour code there
+    /// ([`Object::color_lanes`]): a straw's height along its axis, else the code itself.
+    /// `left` is the code of the surface each ray has just left (see [`SolidCylinder::entry`]).
+    #[inline(always)]
+    pub(crate) fn entry<R: Real>(
+        &self,
+        o: V3<R>,
+        d: V3<R>,
+        inv: &Reciprocals<R>,
+        alive: R::Mask,
+        left: R,
+    ) -> Option<(R, R, R)> {
         match self {
-            Object::Straw { solid, edges } => {
-                let (t, part, along) = solid.entry(ray)?;
-                let color = match part {
-                    Part::Bottom => 1,
-                    Part::Top => 5,
-                    Part::Side => 1 + edges.iter().filter(|&&e| along >= e).count() as u8,
-                };
-                Some((t, part, color))
+            Object::Straw { solid, .. } => {
+                let (t, part, along) = solid.entry(o, d, inv, alive, left)?;
+                Some((t, part, along - R::splat(solid.base_in_frame[2])))
             }
-            Object::Coin(solid) => solid.entry(ray).map(|(t, part, _)| (t, part, COIN_COLOR)),
+            Object::Coin(solid) => {
+                let (t, part, _) = solid.entry(o, d, inv, alive, left)?;
+                Some((t, part, R::splat(COIN_COLOR as f64)))
+            }
             Object::Card {
                 centre,
                 front,
@@ -206,22 +285,60 @@ impl Object {
                 height,
                 arrow,
             } => {
-                let p = ray.origin - *centre;
-                let t = plane_distance(0.0, p.dot(*front), ray.direction.dot(*front))?;
-                let q = p + t * ray.direction;
-                let (u, v) = (q.dot(*right), q.z);
-                if u.abs() > width / 2.0 || v.abs() > height / 2.0 {
+                let p = o - V3::splat(*centre);
+                let (f, r) = (V3::splat(*front), V3::splat(*right));
+                let dn = d.dot(f);
+                let (num, ahead) = plane_ahead(R::splat(0.0), p.dot(f), dn);
+                let ahead = ahead.and(alive);
+                if !ahead.any() {
                     return None;
                 }
-                let seen_from_front = ray.direction.dot(*front) < 0.0;
-                let color = if *arrow && seen_from_front && in_arrow(u, v, *width, *height) {
-                    PICTURE_COLOR
-                } else {
-                    CARD_COLOR
-                };
-                Some((t, Part::Side, color))
+                let t = num / dn;
+                let q = p.along(t, d);
+                let (u, v) = (q.dot(r), q.z);
+                let (w, h) = (R::splat(*width), R::splat(*height));
+                let half = R::splat(0.5);
+                let on = ahead.and(u.abs().le(half * w)).and(v.abs().le(half * h));
+                let t = R::select(on, t, R::splat(f64::INFINITY));
+                let mut color = R::splat(CARD_COLOR as f64);
+                if *arrow {
+                    let seen_from_front = dn.lt(R::splat(0.0));
+                    let drawn = seen_from_front.and(in_arrow_lanes(u, v, w, h));
+                    color = R::select(drawn, R::splat(PICTURE_COLOR as f64), color);
+                }
+                Some((t, R::splat(0.0), color))
             }
         }
+    }
+
+    /// The colour codes where rays met the object on `part` with `tag` ([`Object::entry`]'s):
+    /// a straw's band (one plus the band edges at or below the point; its caps are its end
+    /// bands), else the tag itself.
+    #[inline(always)]
+    pub(crate) fn color_lanes<R: Real>(&self, part: R, tag: R) -> R {
+        match self {
+            Object::Straw { edges, .. } => {
+                let mut band = R::splat(1.0);
+                for &e in edges {
+                    band = R::select(tag.ge(R::splat(e)), band + R::splat(1.0), band);
+                }
+                R::select(
+                    part.eq(R::splat(0.0)),
+                    band,
+                    R::select(part.eq(R::splat(1.0)), R::splat(1.0), R::splat(5.0)),
+                )
+            }
+            _ => tag,
+        }
+    }
+
+    /// Where `ray` first meets the object: the distance, the part, and the colour code there.
+    pub fn hit(&self, ray: &Ray) -> Option<(f64, Part, u8)> {
+        let (o, d) = (V3::from(ray.origin), V3::from(ray.direction));
+        let (t, part, tag) = self.entry(o, d, &Reciprocals::new(d), true, -1.0)?;
+        let color = self.color_lanes(part, tag);
+        t.is_finite()
+            .then(|| (t, Part::from_code(part), color as u8))
     }
 
     /// Distance from `p` to the object's surface (m).
@@ -253,12 +370,39 @@ impl Object {
         }
     }
 
+    /// The largest distance of a point of the object from the `z` axis (at most a hair more).
+    pub(crate) fn reach(&self) -> f64 {
+        let from_axis = |p: Vec3| p.x.hypot(p.y);
+        match self {
+            Object::Straw { solid, .. } | Object::Coin(solid) => {
+                let top = solid.base + solid.length * solid.axis;
+                from_axis(solid.base).max(from_axis(top)) + solid.radius
+            }
+            Object::Card {
+                centre,
+                right,
+                width,
+                ..
+            } => {
+                let a = *centre + 0.5 * width * *right;
+                let b = *centre - 0.5 * width * *right;
+                from_axis(a).max(from_axis(b))
+            }
+        }
+    }
+
     /// The corners of a box holding the object.
     pub fn bounds(&self) -> (Vec3, Vec3) {
         match self {
             Object::Straw { solid, .. } | Object::Coin(solid) => {
                 let top = solid.base + solid.length * solid.axis;
-                let r = Vec3::splat(solid.radius);
+                // Upright: exactly its circle's extent across and nothing along; else a box of
+                // the radius all round.
+                let r = if solid.upright() {
+                    Vec3::new(solid.radius, solid.radius, 0.0)
+                } else {
+                    Vec3::splat(solid.radius)
+                };
                 (solid.base.min(top) - r, solid.base.max(top) + r)
             }
             Object::Card {
@@ -281,9 +425,21 @@ impl Object {
 /// centre) lies on the arrow drawn on it: a shaft `|v| <= 0.1·h` for `−0.35·w <= u <= 0.1·w`, and
 /// a head `0.1·w <= u <= 0.4·w`, `|v| <= 0.3·h·(0.4·w − u)/(0.3·w)`, pointing to the right.
 pub fn in_arrow(u: f64, v: f64, w: f64, h: f64) -> bool {
-    let shaft = v.abs() <= 0.1 * h && (-0.35 * w..=0.1 * w).contains(&u);
-    let head = (0.1 * w..=0.4 * w).contains(&u) && v.abs() <= 0.3 * h * (0.4 * w - u) / (0.3 * w);
-    shaft || head
+    in_arrow_lanes(u, v, w, h)
+}
+
+/// [`in_arrow`], lane by lane.
+#[inline(always)]
+fn in_arrow_lanes<R: Real>(u: R, v: R, w: R, h: R) -> R::Mask {
+    let k = |x: f64| R::splat(x);
+    let between = |x: R, lo: R, hi: R| x.ge(lo).and(x.le(hi));
+    let shaft = v
+        .abs()
+        .le(k(0.1) * h)
+        .and(between(u, k(-0.35) * w, k(0.1) * w));
+    let head = between(u, k(0.1) * w, k(0.4) * w)
+        .and(v.abs().le(k(0.3) * h * (k(0.4) * w - u) / (k(0.3) * w)));
+    shaft.or(head)
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, ApparentPoint, StereoImage};
 use bentstraw_optics::sampling::{sample_image, sample_image_of, ImageCloud};
 use bentstraw_optics::scene::Scene;
+use bentstraw_optics::tracer::Tracer;
 use bentstraw_optics::world::COLOR_NAMES;
 use bentstraw_optics::Vec3;
 
@@ -110,13 +111,13 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     let modelled = Instant::now();
     let eye = (both_models || args.image_model == ImageModelArg::Eye).then(|| {
         with_spinner("eye model", || match inputs {
-            Inputs::Spec(scene) => eye_model_points(scene, observer, &cloud.points),
+            Inputs::Spec(scene) => eye_model_points(&Tracer::new(scene), observer, &cloud.points),
             Inputs::File(w) => eye_model_points(&w.world, observer, &cloud.points),
         })
     });
     let stereo = (both_models || args.image_model == ImageModelArg::Stereo).then(|| {
         with_spinner("stereo model", || match inputs {
-            Inputs::Spec(scene) => stereo_points(scene, observer, &cloud.points),
+            Inputs::Spec(scene) => stereo_points(&Tracer::new(scene), observer, &cloud.points),
             Inputs::File(w) => stereo_points(&w.world, observer, &cloud.points),
         })
     });

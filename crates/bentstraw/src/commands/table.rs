@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX};
+use bentstraw_optics::tracer::Tracer;
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 
@@ -535,8 +536,8 @@ fn closing_sections(out: &Path) -> Vec<Section> {
 /// The course's, the eye's and the stereo image side by side, and how far apart they are.
 fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
-    let eye = eye_model_points(scene, observer, &cloud.points);
-    let stereo = stereo_points(scene, observer, &cloud.points);
+    let eye = eye_model_points(&Tracer::new(scene), observer, &cloud.points);
+    let stereo = stereo_points(&Tracer::new(scene), observer, &cloud.points);
     let mut figures = Vec::new();
     let mut placed = Vec::new();
     let mut links = Vec::new();

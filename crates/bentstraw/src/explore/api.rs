@@ -20,6 +20,7 @@ use bentstraw_optics::scene::{clip_text, Scene, SceneError, DEFAULT_MAX_EVENTS, 
 use bentstraw_optics::scene_file::Observer;
 use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
 use bentstraw_optics::trace::{Face, Outcome};
+use bentstraw_optics::tracer::Tracer;
 use bentstraw_optics::world::picture::world_picture;
 use bentstraw_optics::world::{Shape, World, WorldOutcome, COLOR_NAMES};
 use bentstraw_optics::Vec3;
@@ -666,14 +667,14 @@ fn place(
 ) -> Result<Vec<Option<(Vec3, u8)>>, Reply> {
     match model {
         "eye" => Ok(match &view.scene {
-            Traced::Spec(s) => eye_model_points(s, view.observer, points),
+            Traced::Spec(s) => eye_model_points(&Tracer::new(s), view.observer, points),
             Traced::World(w) => eye_model_points(&w.world, view.observer, points),
         }
         .iter()
         .map(|p| Some((p.position?, p.image.color)))
         .collect()),
         "stereo" => Ok(match &view.scene {
-            Traced::Spec(s) => stereo_point_each(s, view.observer, points),
+            Traced::Spec(s) => stereo_point_each(&Tracer::new(s), view.observer, points),
             Traced::World(w) => stereo_point_each(&w.world, view.observer, points),
         }
         .iter()
@@ -829,7 +830,7 @@ pub fn ray_json(view: &View, u0: Vec3) -> Value {
     match outcome {
         Outcome::Straw { .. } => {
             let image = ImagePoint::from_outcome(eye, u0, outcome).expect("reached the straw");
-            reached_json(&mut out, scene, eye, &image);
+            reached_json(&mut out, &Tracer::new(scene), eye, &image);
         }
         Outcome::Escaped { .. } => {
             out["outcome"] = json!("escaped");
@@ -941,7 +942,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     let stereo;
     let set_model = match (model, &view.scene) {
         ("eye", Traced::Spec(s)) => {
-            eye = eye_model_points(s, view.observer, &cloud.points);
+            eye = eye_model_points(&Tracer::new(s), view.observer, &cloud.points);
             ModelPoints::Eye(&eye)
         }
         ("eye", Traced::World(w)) => {
@@ -949,7 +950,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
             ModelPoints::Eye(&eye)
         }
         ("stereo", Traced::Spec(s)) => {
-            stereo = stereo_points(s, view.observer, &cloud.points);
+            stereo = stereo_points(&Tracer::new(s), view.observer, &cloud.points);
             ModelPoints::Stereo(&stereo)
         }
         ("stereo", Traced::World(w)) => {
@@ -1104,11 +1105,15 @@ mod tests {
         };
         let expect = |every: usize| -> Vec<[f32; 3]> {
             let some: Vec<ImagePoint> = cloud.iter().step_by(every).copied().collect();
-            eye_model_points(view.spec_scene().unwrap(), view.observer, &some)
-                .iter()
-                .filter_map(|p| p.position)
-                .map(|q| [q.x as f32, q.y as f32, q.z as f32])
-                .collect()
+            eye_model_points(
+                &Tracer::new(view.spec_scene().unwrap()),
+                view.observer,
+                &some,
+            )
+            .iter()
+            .filter_map(|p| p.position)
+            .map(|q| [q.x as f32, q.y as f32, q.z as f32])
+            .collect()
         };
         // Before any frame (traced afresh) and after this view's frame (its points reused).
         for with_frame in [false, true] {

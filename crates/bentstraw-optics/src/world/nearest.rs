@@ -1,0 +1,240 @@
+//! The one rule for what a ray meets first, and what light does there: written once over
+//! [`Real`], so that the same rule traces one ray in double precision and eight rays in single
+//! precision.
+
+use crate::geometry::{Ray, SideQuadratic};
+use crate::interface::{reflectance_lanes, scatter_lanes};
+use crate::lanes::{Mask, Real, V3};
+
+use super::boundary::{Around, Reciprocals};
+use super::{Hit, Part, World};
+
+/// What the rays of a [`Real`] meet first.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Nearest<R: Real> {
+    /// The distance (infinite where nothing is met).
+    pub t: R,
+    /// What is met: boundary `k` as `k`, object `j` as `boundaries + j`.
+    pub code: R,
+    /// The object's part (0 side, 1 bottom, 2 top).
+    pub part: R,
+    /// What tells the object's colour code there ([`Nearest::color`]).
+    pub tag: R,
+}
+
+impl<R: Real> Nearest<R> {
+    /// The colour codes where the lanes of `on_object` met objects of `world`.
+    #[inline(always)]
+    pub fn color(&self, world: &World, on_object: R::Mask) -> R {
+        let first = world.boundaries.len();
+        let object = self.code - R::splat(first as f64);
+        let mut color = R::splat(0.0);
+        for (j, m) in object.values(on_object, world.objects.len()) {
+            color = R::select(m, world.objects[j].color_lanes(self.part, self.tag), color);
+        }
+        color
+    }
+}
+
+/// What light does at the boundaries the rays of a [`Real`] have met.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bend<R: Real> {
+    /// Unit normal of the boundary, towards its outer side.
+    pub normal: V3<R>,
+    /// Index of the medium each ray comes through, and of the one beyond, and their ratio.
+    pub n1: R,
+    pub n2: R,
+    pub eta: R,
+    /// The medium beyond (the ray's if it is totally reflected).
+    pub beyond: R,
+    /// The refracted unit direction (meaningless where `total`) and the mirrored one.
+    pub refracted: V3<R>,
+    pub reflected: V3<R>,
+    /// Total internal reflection.
+    pub total: R::Mask,
+    /// Cosine of incidence.
+    pub cos_i: R,
+    /// The code of the surface met (what the ray leaves from).
+    pub surface: R,
+    /// Whether the refracted ray, or the mirrored one, leaves the scene for good there.
+    pub refracted_escapes: R::Mask,
+    pub reflected_escapes: R::Mask,
+}
+
+impl<R: Real> Bend<R> {
+    /// The unpolarised Fresnel reflectance (1 under total reflection).
+    #[inline(always)]
+    pub fn reflectance(&self) -> R {
+        reflectance_lanes(self.n1, self.n2, self.eta, self.cos_i)
+    }
+
+    /// The direction the course's law picks: mirrored under total reflection, else refracted.
+    #[inline(always)]
+    pub fn outgoing(&self) -> V3<R> {
+        V3::select(self.total, self.reflected, self.refracted)
+    }
+}
+
+impl World {
+    /// What the rays from `o` along unit `d` (the lanes of `alive`) meet first: the nearest
+    /// boundary, or an object, which wins a tie; `None` if no live ray can meet anything. `left`
+    /// is the code of what each ray has just left ([`World::surface_code`],
+    /// [`World::object_code`], or −1): that surface's crossing at the ray's start is excluded
+    /// exactly, and an object (convex) not met at all.
+    #[inline(always)]
+    pub(crate) fn nearest_lanes<R: Real>(
+        &self,
+        o: V3<R>,
+        d: V3<R>,
+        alive: R::Mask,
+        left: R,
+    ) -> Option<Nearest<R>> {
+        let inf = R::splat(f64::INFINITY);
+        // Everything lies within the reach around the z axis: a line clearly outside meets nothing.
+        let reach2 = self.reach * self.reach;
+        let r2 = R::splat(reach2);
+        let around = Around {
+            r2: reach2,
+            quadratic: SideQuadratic::new(o.x, o.y, d.x, d.y, r2),
+        };
+        let alive = alive.and_not(around.quadratic.clearly_misses(r2));
+        if !alive.any() {
+            return None;
+        }
+        let mut inv = Reciprocals::new(d);
+        if !self.verticals {
+            // Not needed: no division by dx or dy (the compiler drops the unused ones).
+            inv.d.x = R::splat(0.0);
+            inv.d.y = R::splat(0.0);
+        }
+        let mut t = inf;
+        let mut code = R::splat(-1.0);
+        for (k, b) in self.boundaries.iter().enumerate() {
+            let leaving = left.eq(R::splat(b.surface as f64));
+            let tb = b.crossing(o, d, &inv, leaving, alive, &around);
+            let m = tb.lt(t);
+            t = R::select(m, tb, t);
+            code = R::select(m, R::splat(k as f64), code);
+        }
+        let mut part = R::splat(0.0);
+        let mut tag = R::splat(0.0);
+        let first_object = self.boundaries.len();
+        for (j, object) in self.objects.iter().enumerate() {
+            let own = R::splat(self.object_code(j) as f64);
+            let live = alive.and_not(left.eq(own));
+            if !live.any() {
+                continue;
+            }
+            if let Some((to, po, co)) = object.entry(o, d, &inv, live, left) {
+                // The opaque object wins a tie (a straw's bottom cap on the water's bottom).
+                let m = live.and(to.le(t)).and(to.lt(inf));
+                t = R::select(m, to, t);
+                code = R::select(m, R::splat((first_object + j) as f64), code);
+                part = R::select(m, po, part);
+                tag = R::select(m, co, tag);
+            }
+        }
+        Some(Nearest { t, code, part, tag })
+    }
+
+    /// What light does where the rays of `live`, travelling along `d` in medium `medium`, meet
+    /// the boundaries `code` at the points `q`: the boundary's normal and the indices on its two
+    /// sides, then Snell's law (refraction or total reflection) and the mirror.
+    #[inline(always)]
+    pub(crate) fn bend_lanes<R: Real>(
+        &self,
+        code: R,
+        live: R::Mask,
+        q: V3<R>,
+        d: V3<R>,
+        medium: R,
+    ) -> Bend<R> {
+        let zero = R::splat(0.0);
+        let none = R::Mask::splat(false);
+        let mut normal = V3::new(zero, zero, zero);
+        let (mut n1, mut n2, mut eta) = (zero, zero, zero);
+        let mut beyond = medium;
+        let mut surface = R::splat(-1.0);
+        // Where the refracted and the mirrored light leave the scene for good.
+        let (mut refracted_escapes, mut reflected_escapes) = (none, none);
+        for (k, m) in code.values(live, self.boundaries.len()) {
+            let b = &self.boundaries[k];
+            // Most packets meet one boundary: then every lane takes its values, no select.
+            let all = !live.and_not(m).any();
+            let pick = |a: R, b: R| if all { a } else { R::select(m, a, b) };
+            let pick_mask = |a: R::Mask, b: R::Mask| {
+                if all {
+                    a
+                } else {
+                    R::Mask::select_mask(m, a, b)
+                }
+            };
+            let n = b.normal_at(q);
+            normal = V3::new(
+                pick(n.x, normal.x),
+                pick(n.y, normal.y),
+                pick(n.z, normal.z),
+            );
+            // The lanes coming from the inner side, and each side's indices and medium.
+            let inside = medium.eq(R::splat(b.inner as f64));
+            let (n_out, n_in) = (self.index(b.outer), self.index(b.inner));
+            let side = |from_inner: f64, from_outer: f64| {
+                R::select(inside, R::splat(from_inner), R::splat(from_outer))
+            };
+            n1 = pick(side(n_in, n_out), n1);
+            n2 = pick(side(n_out, n_in), n2);
+            eta = pick(side(n_in / n_out, n_out / n_in), eta);
+            beyond = pick(side(b.outer as f64, b.inner as f64), beyond);
+            surface = pick(R::splat(b.surface as f64), surface);
+            // Refracted light changes side, mirrored light stays; it escapes where that side is
+            // the boundary's escape side.
+            let (to_outer, to_inner) = (inside, R::Mask::splat(true).and_not(inside));
+            let (refr, refl) = match b.escape {
+                1 => (to_outer, to_inner),
+                -1 => (to_inner, to_outer),
+                _ => (none, none),
+            };
+            refracted_escapes = pick_mask(refr, refracted_escapes);
+            reflected_escapes = pick_mask(refl, reflected_escapes);
+        }
+        let s = scatter_lanes(d, normal, eta);
+        Bend {
+            normal,
+            n1,
+            n2,
+            eta,
+            beyond: R::select(s.total, medium, beyond),
+            refracted: s.refracted.renormalize(),
+            reflected: s.reflected,
+            total: s.total,
+            cos_i: s.cos_i,
+            surface,
+            refracted_escapes: refracted_escapes.and(live).and_not(s.total),
+            reflected_escapes: reflected_escapes.and(live),
+        }
+    }
+
+    /// The nearest thing `ray` meets ahead: a boundary or an object (which wins a tie). `left` is
+    /// the code of what the ray starts on, having just met it ([`World::surface_code`] of a
+    /// boundary, [`World::object_code`] of an object).
+    #[inline]
+    pub fn nearest(&self, ray: &Ray, left: Option<u32>) -> Option<Hit> {
+        let (o, d) = (V3::from(ray.origin), V3::from(ray.direction));
+        let left = left.map_or(-1.0, |c| c as f64);
+        let n = self.nearest_lanes(o, d, true, left)?;
+        if !n.t.is_finite() {
+            return None;
+        }
+        let k = n.code as usize;
+        Some(if k < self.boundaries.len() {
+            Hit::Boundary { t: n.t, index: k }
+        } else {
+            Hit::Object {
+                t: n.t,
+                index: k - self.boundaries.len(),
+                part: Part::from_code(n.part),
+                color: n.color(self, true) as u8,
+            }
+        })
+    }
+}
