@@ -1,5 +1,6 @@
-//! One frame of a live view, in one call: the observer's picture for people and the straw's image
-//! points with the kind of light path that made each, into buffers kept from frame to frame.
+//! One frame of a live view, in one call: the observer's picture for people and the image points
+//! of every object with the kind of light path that made each, into buffers kept from frame to
+//! frame, for the assignment's glass or any scene file's world.
 //!
 //! The explorer redraws a frame at every input event and `render` draws one picture through the
 //! same call, so both get the same speed and the same pixels.
@@ -9,11 +10,11 @@ use rayon::prelude::*;
 use crate::camera::Camera;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::light_path_type::{trace_path_type, LightPathType};
-use crate::sampling::sample_image;
+use crate::light_path_type::LightPathType;
+use crate::sampling::sample_image_of;
 use crate::scene::Scene;
-use crate::shading::{shaded_picture_into, RgbPicture, ShadingBuffers, ShadingOptions};
-use crate::tracer::Tracer;
+use crate::shading::{shaded_world_picture_into, RgbPicture, ShadingBuffers, ShadingOptions};
+use crate::world::World;
 
 /// What one frame shows, beside the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,9 +70,15 @@ impl Frame {
 }
 
 /// Draws the frame of `scene` asked for by `request` into `frame`: the picture and the points are
-/// computed side by side (each in parallel itself), the points by [`sample_image`], so they are
+/// computed side by side (each in parallel itself), the points by [`crate::sampling::sample_image`], so they are
 /// exactly `simulate`'s for the same inputs.
 pub fn draw_frame(scene: &Scene, request: &FrameRequest, frame: &mut Frame) {
+    draw_world_frame(&World::assignment(scene), request, frame);
+}
+
+/// [`draw_frame`] of any world: its picture, and the image points of every object with the
+/// kind of light path that made each.
+pub fn draw_world_frame(world: &World, request: &FrameRequest, frame: &mut Frame) {
     let Frame {
         picture,
         points,
@@ -81,7 +88,7 @@ pub fn draw_frame(scene: &Scene, request: &FrameRequest, frame: &mut Frame) {
     } = frame;
     let observer = request.camera.eye;
     rayon::join(
-        || shaded_picture_into(scene, &request.camera, &request.shading, shading, picture),
+        || shaded_world_picture_into(world, &request.camera, &request.shading, shading, picture),
         || {
             points.clear();
             paths.clear();
@@ -89,10 +96,9 @@ pub fn draw_frame(scene: &Scene, request: &FrameRequest, frame: &mut Frame) {
             if request.min_points == 0 {
                 return;
             }
-            let cloud = sample_image(scene, observer, request.min_points, &|_| {});
+            let cloud = sample_image_of(world, observer, request.min_points, &|_| {});
             *points = cloud.points;
             *rays_traced = cloud.rays_traced;
-            let tracer = Tracer::new(scene);
             points
                 .par_iter()
                 .map(|p| {
@@ -100,7 +106,7 @@ pub fn draw_frame(scene: &Scene, request: &FrameRequest, frame: &mut Frame) {
                         origin: observer,
                         direction: p.direction,
                     };
-                    trace_path_type(&tracer, scene, ray).1
+                    world.trace_path_type(ray).1
                 })
                 .collect_into_vec(paths);
         },

@@ -163,9 +163,11 @@ impl Real for f64 {
     }
     #[inline(always)]
     fn select(m: bool, a: f64, b: f64) -> f64 {
-        // Without a branch: the tracer's choices depend on the data and are hard to predict.
-        let mask = (m as u64).wrapping_neg();
-        f64::from_bits((a.to_bits() & mask) | (b.to_bits() & !mask))
+        if m {
+            a
+        } else {
+            b
+        }
     }
     #[inline(always)]
     fn values(self, live: bool, n: usize) -> impl Iterator<Item = (usize, bool)> {

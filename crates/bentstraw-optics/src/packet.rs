@@ -24,7 +24,7 @@ use std::borrow::Cow;
 use crate::camera::Camera;
 use crate::geometry::{enter_sphere, Ray};
 use crate::lanes::{Mask, Real, F8, M8, V3};
-use crate::scene::{Scene, SECTION_COUNT};
+use crate::scene::Scene;
 use crate::trace::FRESNEL_SEGMENTS_PER_RAY;
 use crate::world::{World, AIR};
 use crate::Vec3;
@@ -71,11 +71,11 @@ impl Instructions {
 /// A method that runs `$generic` compiled for the packet tracer's instruction set, with the two
 /// compilations it may choose (`$avx2`, `$avx512`).
 macro_rules! compiled {
-    ($(#[$doc:meta])* pub fn $name:ident(&self $(, $arg:ident: $ty:ty)* $(,)?)
+    ($(#[$doc:meta])* pub fn $name:ident $(<const $g:ident: usize>)? (&self $(, $arg:ident: $ty:ty)* $(,)?)
         => $generic:ident, $avx2:ident, $avx512:ident) => {
         $(#[$doc])*
         #[allow(clippy::too_many_arguments)]
-        pub fn $name(&self $(, $arg: $ty)*) {
+        pub fn $name $(<const $g: usize>)? (&self $(, $arg: $ty)*) {
             match self.instructions {
                 // SAFETY: the processor has these instructions ([`Instructions::detect`]).
                 #[cfg(target_arch = "x86_64")]
@@ -90,14 +90,14 @@ macro_rules! compiled {
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx2")]
         #[allow(clippy::too_many_arguments)]
-        unsafe fn $avx2(&self $(, $arg: $ty)*) {
+        unsafe fn $avx2 $(<const $g: usize>)? (&self $(, $arg: $ty)*) {
             self.$generic($($arg),*)
         }
 
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx2,avx512f,avx512vl")]
         #[allow(clippy::too_many_arguments)]
-        unsafe fn $avx512(&self $(, $arg: $ty)*) {
+        unsafe fn $avx512 $(<const $g: usize>)? (&self $(, $arg: $ty)*) {
             self.$generic($($arg),*)
         }
     };
@@ -214,54 +214,55 @@ impl<'w> PacketTracer<'w> {
     }
 
     compiled! {
-        /// Fresnel weights per section (SPEC §6) of the rays through the centres of pixel row `row`;
-        /// `weights.len()` must be the camera's width. `wave` holds reusable buffers.
+        /// Fresnel weights per colour code (SPEC §6; the first `N` codes, 5 for the straw's
+        /// sections) of the rays through the centres of pixel row `row`; `weights.len()` must be
+        /// the camera's width. `wave` holds reusable buffers.
         ///
         /// Traced breadth first: every branch alive after `k` events is in one list, traced eight at a
         /// time; the list of their children is the next. So lanes stay full whatever the tree's shape.
         /// Branches lighter than `prune_below` are abandoned, branches that provably escape (out
         /// through a face of the scene's hull, or mirrored off it) are not followed, and at most
         /// [`FRESNEL_SEGMENTS_PER_RAY`] segments are followed per pixel.
-        pub fn fresnel_row(
+        pub fn fresnel_row<const N: usize>(
             &self,
             camera: &Camera,
             row: u32,
             prune_below: f64,
             wave: &mut FresnelWave,
-            weights: &mut [[f64; SECTION_COUNT]],
+            weights: &mut [[f64; N]],
         ) => fresnel_row_generic, fresnel_row_avx2, fresnel_row_avx512
     }
 
     /// [`Self::fresnel_row`] for any target (the baseline instruction set).
-    pub fn fresnel_row_portable(
+    pub fn fresnel_row_portable<const N: usize>(
         &self,
         camera: &Camera,
         row: u32,
         prune_below: f64,
         wave: &mut FresnelWave,
-        weights: &mut [[f64; SECTION_COUNT]],
+        weights: &mut [[f64; N]],
     ) {
         self.fresnel_row_generic(camera, row, prune_below, wave, weights);
     }
 
     #[inline(always)]
-    fn fresnel_row_generic(
+    fn fresnel_row_generic<const N: usize>(
         &self,
         camera: &Camera,
         row: u32,
         prune_below: f64,
         wave: &mut FresnelWave,
-        weights: &mut [[f64; SECTION_COUNT]],
+        weights: &mut [[f64; N]],
     ) {
         debug_assert_eq!(weights.len(), camera.width as usize);
         for w in weights.iter_mut() {
-            *w = [0.0; SECTION_COUNT];
+            *w = [0.0; N];
         }
-        // The picture's breadth-first loop, keeping only the weight that reaches the straw.
+        // The picture's breadth-first loop, keeping only the weight that reaches the objects.
         self.branch_ends_row_generic(camera, row, true, prune_below, wave, &mut |pixel, end| {
             if let BranchEnd::Object { code, weight, .. } = end {
-                if (code as usize) <= SECTION_COUNT {
-                    weights[pixel][code as usize - 1] += weight as f64;
+                if let Some(w) = weights[pixel].get_mut(code as usize - 1) {
+                    *w += weight as f64;
                 }
             }
         });
@@ -805,7 +806,7 @@ impl Branches {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::REFERENCES;
+    use crate::scene::{REFERENCES, SECTION_COUNT};
     use crate::Vec3;
 
     /// Every build the processor can run gives the portable build's pixels (same IEEE operations).

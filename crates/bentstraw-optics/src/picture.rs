@@ -1,12 +1,16 @@
-//! The observer's picture, one ray per pixel centre (SPEC §6): colour codes (course mode) or
-//! weights per section (fresnel mode), row-major.
+//! The observer's picture as data, one ray per pixel centre (SPEC §6): colour codes (course mode)
+//! or weights per colour (fresnel mode), row-major, for the assignment's scene or any world.
+//!
+//! Traced two ways: in single precision, eight rays at a time ([`crate::packet`], what pictures
+//! use), and in double precision, one ray at a time (the `_exact` functions, what raw files hold
+//! and the tests compare the packets with).
 
 use rayon::prelude::*;
 
 use crate::camera::Camera;
 use crate::packet::{FresnelWave, PacketTracer};
 use crate::scene::{Scene, SECTION_COUNT};
-use crate::tracer::Tracer;
+use crate::world::{World, COLOR_COUNT};
 
 /// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by SPEC §3.
 ///
@@ -21,13 +25,22 @@ pub fn course_picture(scene: &Scene, camera: &Camera) -> Vec<u8> {
 /// [`course_picture`] into a caller's buffer of `width × height` codes (an interactive view keeps
 /// one and redraws into it, with no allocation per picture).
 pub fn course_picture_into(scene: &Scene, camera: &Camera, codes: &mut [u8]) {
+    course_codes_into(&PacketTracer::new(scene), camera, codes);
+}
+
+/// [`course_picture_into`] of any world (colour codes 1..=8).
+pub fn world_course_picture_into(world: &World, camera: &Camera, codes: &mut [u8]) {
+    course_codes_into(&PacketTracer::for_world(world), camera, codes);
+}
+
+/// The course codes of `tracer`'s world through `camera`, into `codes`.
+fn course_codes_into(tracer: &PacketTracer, camera: &Camera, codes: &mut [u8]) {
     let w = camera.width as usize;
     assert_eq!(
         codes.len(),
         w * camera.height as usize,
         "one code per pixel"
     );
-    let tracer = PacketTracer::new(scene);
     codes.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         tracer.course_row(camera, i as u32, row);
     });
@@ -36,12 +49,16 @@ pub fn course_picture_into(scene: &Scene, camera: &Camera, codes: &mut [u8]) {
 /// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by SPEC §3, traced in
 /// double precision: exactly [`Scene::trace`]'s colours.
 pub fn course_picture_exact(scene: &Scene, camera: &Camera) -> Vec<u8> {
+    world_course_picture_exact(&World::assignment(scene), camera)
+}
+
+/// [`course_picture_exact`] of any world: exactly [`World::trace`]'s colours.
+pub fn world_course_picture_exact(world: &World, camera: &Camera) -> Vec<u8> {
     let w = camera.width as usize;
-    let tracer = Tracer::new(scene);
     let mut codes = vec![0u8; w * camera.height as usize];
     codes.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         for (j, code) in row.iter_mut().enumerate() {
-            *code = tracer.color(camera.pixel_ray(i as u32, j as u32));
+            *code = world.trace(camera.pixel_ray(i as u32, j as u32)).color();
         }
     });
     codes
@@ -68,13 +85,38 @@ pub fn fresnel_picture_into(
     prune_below: f64,
     weights: &mut [[f64; SECTION_COUNT]],
 ) {
+    fresnel_weights_into(&PacketTracer::new(scene), camera, prune_below, weights);
+}
+
+/// [`fresnel_picture_into`] of any world: the weight reaching each colour code 1..=8.
+pub fn world_fresnel_picture_into(
+    world: &World,
+    camera: &Camera,
+    prune_below: f64,
+    weights: &mut [[f64; COLOR_COUNT]],
+) {
+    fresnel_weights_into(
+        &PacketTracer::for_world(world),
+        camera,
+        prune_below,
+        weights,
+    );
+}
+
+/// The Fresnel weights of `tracer`'s world through `camera`, into `weights` (codes past `N` are
+/// not kept).
+fn fresnel_weights_into<const N: usize>(
+    tracer: &PacketTracer,
+    camera: &Camera,
+    prune_below: f64,
+    weights: &mut [[f64; N]],
+) {
     let w = camera.width as usize;
     assert_eq!(
         weights.len(),
         w * camera.height as usize,
         "one pixel per pixel"
     );
-    let tracer = PacketTracer::new(scene);
     weights
         .par_chunks_mut(w)
         .enumerate()
@@ -90,12 +132,37 @@ pub fn fresnel_picture_exact(
     camera: &Camera,
     prune_below: f64,
 ) -> Vec<[f64; SECTION_COUNT]> {
+    weights_exact(&World::assignment(scene), camera, prune_below)
+}
+
+/// [`fresnel_picture_exact`] of any world: the weight reaching each colour code 1..=8.
+pub fn world_fresnel_picture_exact(
+    world: &World,
+    camera: &Camera,
+    prune_below: f64,
+) -> Vec<[f64; COLOR_COUNT]> {
+    weights_exact(world, camera, prune_below)
+}
+
+/// The Fresnel weights of the first `N` colour codes, each pixel centre traced in double
+/// precision.
+fn weights_exact<const N: usize>(
+    world: &World,
+    camera: &Camera,
+    prune_below: f64,
+) -> Vec<[f64; N]> {
     let w = camera.width as usize;
-    let tracer = Tracer::new(scene);
-    let mut weights = vec![[0.0; SECTION_COUNT]; w * camera.height as usize];
+    let mut weights = vec![[0.0; N]; w * camera.height as usize];
     weights.par_chunks_mut(w).enumerate().for_each(|(i, row)| {
         for (j, px) in row.iter_mut().enumerate() {
-            *px = tracer.trace_fresnel_escaping(camera.pixel_ray(i as u32, j as u32), prune_below);
+            let ray = camera.pixel_ray(i as u32, j as u32);
+            let all = world.fresnel_steps::<true>(
+                ray,
+                prune_below,
+                crate::trace::FRESNEL_SEGMENTS_PER_RAY,
+                |_| {},
+            );
+            *px = std::array::from_fn(|k| all[k]);
         }
     });
     weights

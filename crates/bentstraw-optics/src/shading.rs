@@ -677,7 +677,7 @@ pub fn shaded_world_picture_into(
         eye64: eye,
     };
     let draw_outline = || {
-        if options.outline {
+        if options.outline && world.is_assignment() {
             outline_mask(mask, camera);
         } else {
             mask.clear();

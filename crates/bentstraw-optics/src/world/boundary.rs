@@ -124,6 +124,30 @@ pub struct Boundary {
     /// The side a ray leaving it escapes to for good (+1 the outer side, −1 the inner side, 0
     /// none): the side beyond which nothing of the scene lies (the scene's convex hull ends here).
     pub escape: i8,
+    /// The indices on its outer and inner sides, and their ratios `n_outer/n_inner` (light going
+    /// in) and `n_inner/n_outer` (going out), worked out once.
+    pub(crate) optics: Optics,
+}
+
+/// A boundary's indices and their ratios.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Optics {
+    pub n_outer: f64,
+    pub n_inner: f64,
+    pub eta_in: f64,
+    pub eta_out: f64,
+}
+
+impl Optics {
+    /// Between media of indices `n_outer` and `n_inner`.
+    pub fn new(n_outer: f64, n_inner: f64) -> Optics {
+        Optics {
+            n_outer,
+            n_inner,
+            eta_in: n_outer / n_inner,
+            eta_out: n_inner / n_outer,
+        }
+    }
 }
 
 /// The circle around the `z` axis that holds the whole scene: its radius² and the quadratic of
@@ -338,6 +362,7 @@ mod tests {
             inner: 2,
             surface: 0,
             escape: 0,
+            optics: Optics::new(1.0, 1.333),
         }
     }
 

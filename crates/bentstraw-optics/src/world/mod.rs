@@ -83,6 +83,8 @@ pub struct World {
     reach: f64,
     /// Whether any boundary is a vertical plane (rays then need the reciprocals of `dx`, `dy`).
     verticals: bool,
+    /// Whether this is the assignment's glass ([`World::assignment`]).
+    assignment: bool,
     /// Most events (refractions and total reflections) a ray may undergo.
     pub max_events: u32,
 }
@@ -157,8 +159,6 @@ pub enum WorldOutcome {
         object: usize,
         /// Which part of it.
         part: Part,
-        /// The object's unit normal there, facing the ray.
-        normal: Vec3,
     },
     /// It left the scene.
     Escaped {
@@ -220,6 +220,7 @@ fn piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
         inner,
         surface: 0,
         escape: 0,
+        optics: boundary::Optics::default(),
     }
 }
 
@@ -270,6 +271,7 @@ impl World {
         );
         world.centre = BOUNDING_CENTRE;
         world.radius = BOUNDING_RADIUS;
+        world.assignment = true;
         world
     }
 
@@ -412,6 +414,7 @@ impl World {
                 }
             };
             b.escape = b.escape_side(lo, hi, reach);
+            b.optics = boundary::Optics::new(indices[b.outer as usize], indices[b.inner as usize]);
         }
         // A cap lying in the plane of a horizontal boundary is part of that surface.
         for o in &mut objects {
@@ -441,6 +444,7 @@ impl World {
             radius,
             reach,
             verticals,
+            assignment: false,
             max_events,
         }
     }
@@ -464,6 +468,11 @@ impl World {
     /// The corners of a box holding every boundary and object.
     pub fn bounds(&self) -> (Vec3, Vec3) {
         (self.lo, self.hi)
+    }
+
+    /// Whether this is the assignment's glass (its glass, of index 1, is drawn as an outline).
+    pub fn is_assignment(&self) -> bool {
+        self.assignment
     }
 
     /// The centre and radius of a sphere holding everything (a ray from afar is first brought

@@ -177,13 +177,13 @@ impl World {
             );
             // The lanes coming from the inner side, and each side's indices and medium.
             let inside = medium.eq(R::splat(b.inner as f64));
-            let (n_out, n_in) = (self.index(b.outer), self.index(b.inner));
+            let x = &b.optics;
             let side = |from_inner: f64, from_outer: f64| {
                 R::select(inside, R::splat(from_inner), R::splat(from_outer))
             };
-            n1 = pick(side(n_in, n_out), n1);
-            n2 = pick(side(n_out, n_in), n2);
-            eta = pick(side(n_in / n_out, n_out / n_in), eta);
+            n1 = pick(side(x.n_inner, x.n_outer), n1);
+            n2 = pick(side(x.n_outer, x.n_inner), n2);
+            eta = pick(side(x.eta_out, x.eta_in), eta);
             beyond = pick(side(b.outer as f64, b.inner as f64), beyond);
             surface = pick(R::splat(b.surface as f64), surface);
             // Refracted light changes side, mirrored light stays; it escapes where that side is

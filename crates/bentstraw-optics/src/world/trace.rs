@@ -190,23 +190,13 @@ impl World {
             },
         );
         if ends.reached {
-            let index = ends.object as usize;
-            let point: Vec3 = ends.point.into();
-            let part = Part::from_code(ends.part);
-            let normal = self.objects[index].normal(part, point);
-            let direction: Vec3 = ends.direction.into();
             WorldOutcome::Object {
                 color: ends.color as u8,
-                point,
+                point: ends.point.into(),
                 path_length: ends.length,
                 events: ends.events as u32,
-                object: index,
-                part,
-                normal: if normal.dot(direction) > 0.0 {
-                    -normal
-                } else {
-                    normal
-                },
+                object: ends.object as usize,
+                part: Part::from_code(ends.part),
             }
         } else if ends.dropped {
             WorldOutcome::Dropped

@@ -7,12 +7,12 @@
 use std::time::Instant;
 
 use bentstraw_optics::camera::Camera;
-use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
+use bentstraw_optics::frame::{draw_frame, draw_world_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
+use bentstraw_optics::picture::{world_course_picture_into, world_fresnel_picture_into};
 use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE, WATER_INDEX};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
-use bentstraw_optics::world::picture::{world_codes_into, world_picture, world_weights_into};
 use bentstraw_optics::world::{World, COLOR_COUNT};
 use bentstraw_optics::Vec3;
 
@@ -232,10 +232,10 @@ fn time_picture(view: &View, mode: ModeArg, repeat: usize) -> f64 {
                 fresnel_picture_into(scene, &view.camera, BENCH_PRUNE, &mut weights);
             }
             (ModeArg::Course, Traced::World(world)) => {
-                world_codes_into(world, &view.camera, &mut codes);
+                world_course_picture_into(world, &view.camera, &mut codes);
             }
             (ModeArg::Fresnel, Traced::World(world)) => {
-                world_weights_into(world, &view.camera, BENCH_PRUNE, &mut all_weights);
+                world_fresnel_picture_into(world, &view.camera, BENCH_PRUNE, &mut all_weights);
             }
         }
         std::hint::black_box((&codes, &weights, &all_weights));
@@ -268,14 +268,10 @@ fn time_frame(view: &View, mode: ModeArg, repeat: usize) -> f64 {
     let mut once = || -> f64 {
         let start = Instant::now();
         match &view.scene {
-            Traced::Spec(scene) => {
-                draw_frame(scene, &request, &mut frame);
-                std::hint::black_box(&frame.picture);
-            }
-            Traced::World(world) => {
-                std::hint::black_box(world_picture(world, &view.camera, &request.shading));
-            }
+            Traced::Spec(scene) => draw_frame(scene, &request, &mut frame),
+            Traced::World(world) => draw_world_frame(world, &request, &mut frame),
         }
+        std::hint::black_box(&frame.picture);
         start.elapsed().as_secs_f64()
     };
     once();

@@ -5,11 +5,11 @@ use std::path::Path;
 use std::time::Instant;
 
 use bentstraw_optics::camera::{framing_fov, framing_fov_box, Camera};
-use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
-use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
-use bentstraw_optics::scene::{number_text, Scene, SCENE_CENTRE};
+use bentstraw_optics::frame::{draw_world_frame, Frame, FrameRequest};
+use bentstraw_optics::scene::{number_text, SCENE_CENTRE, SECTION_COUNT};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
-use bentstraw_optics::world::picture::{world_codes, world_picture, world_weights};
+use bentstraw_optics::world::picture::{world_codes, world_weights};
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 use crate::cli::{BackdropArg, CameraArgs, ModeArg, RenderArgs};
@@ -93,20 +93,24 @@ pub fn checked_fov_deg(deg: f64) -> CliResult<f64> {
 pub fn run(args: &RenderArgs) -> CliResult {
     let start = Instant::now();
     // Everything is checked before any work, so bad input leaves no file.
-    let resolved = match args.scene.source().resolve_any()? {
-        AnyScene::Spec(r) => r,
-        AnyScene::File(world) => return run_world(args, &world, start),
+    let (world, camera) = match args.scene.source().resolve_any()? {
+        AnyScene::Spec(resolved) => {
+            // A scene file's target stands in for an absent --target.
+            let camera_args = CameraArgs {
+                target: args.camera.target.or(resolved.target.map(|t| t.to_array())),
+                ..args.camera.clone()
+            };
+            let camera = camera_from_args(&camera_args, resolved.observer)?;
+            (World::assignment(&resolved.scene), camera)
+        }
+        AnyScene::File(file) => {
+            let camera = world_camera(&file, &args.camera)?;
+            (file.world, camera)
+        }
     };
-    let (scene, observer) = (resolved.scene, resolved.observer);
-    // A scene file's target stands in for an absent --target.
-    let camera_args = CameraArgs {
-        target: args.camera.target.or(resolved.target.map(|t| t.to_array())),
-        ..args.camera.clone()
-    };
-    let camera = camera_from_args(&camera_args, observer)?;
     let (options, outputs) = shading_and_outputs(args)?;
-    // The explorer's frame call, picture only: the command line draws as fast as the live view.
-    // The frame call, with a bar (after a second) whose estimate follows the rows drawn.
+    // The explorer's frame call, picture only: the command line draws as fast as the live view,
+    // with a bar (after a second) whose estimate follows the rows drawn.
     let mut frame = Frame::default();
     let rows = frame.picture_progress();
     let total = 2 * camera.height as u64;
@@ -128,7 +132,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
                     shading: options,
                     min_points: 0,
                 };
-                draw_frame(&scene, &request, &mut frame);
+                draw_world_frame(&world, &request, &mut frame);
                 done.store(true, std::sync::atomic::Ordering::Relaxed);
                 watcher.thread().unpark();
             });
@@ -138,7 +142,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
     let png = png_bytes(&picture)?;
     files::write_bytes(&args.output, &png)?;
     if let Some(raw) = &args.raw {
-        write_raw(raw, &scene, &camera, args.mode, args.prune)?;
+        write_raw(raw, &world, &camera, args.mode, args.prune)?;
     }
     outputs.commit()?;
     tell_rendered(args, &camera, start);
@@ -191,30 +195,6 @@ fn shading_and_outputs(args: &RenderArgs) -> CliResult<(ShadingOptions, OutputSe
     Ok((options, outputs))
 }
 
-/// `render` of a scene file's world: the picture traced in double precision, and the raw rays.
-fn run_world(args: &RenderArgs, world: &FileWorld, start: Instant) -> CliResult {
-    let camera = world_camera(world, &args.camera)?;
-    let (options, outputs) = shading_and_outputs(args)?;
-    let picture = progress::with_progress(None, "{spinner} rendering  [{elapsed}]", |_| {
-        world_picture(&world.world, &camera, &options)
-    });
-    let png = png_bytes(&picture)?;
-    files::write_bytes(&args.output, &png)?;
-    if let Some(raw) = &args.raw {
-        match args.mode {
-            ModeArg::Course => write_raw_codes(raw, &camera, &world_codes(&world.world, &camera))?,
-            ModeArg::Fresnel => write_raw_weights(
-                raw,
-                &camera,
-                &world_weights(&world.world, &camera, args.prune),
-            )?,
-        }
-    }
-    outputs.commit()?;
-    tell_rendered(args, &camera, start);
-    Ok(())
-}
-
 /// The camera of `camera_args` for a scene file's world: aimed at `--target`, else the file's
 /// target, else the middle of the scene; framing the whole scene unless `--fov` is given.
 pub fn world_camera(world: &FileWorld, camera_args: &CameraArgs) -> CliResult<Camera> {
@@ -264,12 +244,17 @@ fn tell_rendered(args: &RenderArgs, camera: &Camera, start: Instant) {
 ///
 /// Traced in double precision: a data file is for checking, where the last edge pixel matters
 /// more than the milliseconds the single-precision picture path saves.
-fn write_raw(path: &Path, scene: &Scene, camera: &Camera, mode: ModeArg, prune: f64) -> CliResult {
+fn write_raw(path: &Path, world: &World, camera: &Camera, mode: ModeArg, prune: f64) -> CliResult {
     match mode {
-        ModeArg::Course => write_raw_codes(path, camera, &course_picture_exact(scene, camera)),
-        ModeArg::Fresnel => {
-            write_raw_weights(path, camera, &fresnel_picture_exact(scene, camera, prune))
+        ModeArg::Course => write_raw_codes(path, camera, &world_codes(world, camera)),
+        // The assignment's straw has five sections; a scene file's objects eight codes.
+        ModeArg::Fresnel if world.is_assignment() => {
+            let all = world_weights(world, camera, prune);
+            let sections: Vec<[f64; SECTION_COUNT]> =
+                all.iter().map(|w| std::array::from_fn(|k| w[k])).collect();
+            write_raw_weights(path, camera, &sections)
         }
+        ModeArg::Fresnel => write_raw_weights(path, camera, &world_weights(world, camera, prune)),
     }
 }
 

@@ -11,7 +11,7 @@ use bentstraw_optics::apparent::{
     eye_model_points, stereo_point_each, stereo_points, ApparentPosition, Focus, PathTracer,
 };
 use bentstraw_optics::camera::Camera;
-use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
+use bentstraw_optics::frame::{draw_frame, draw_world_frame, Frame, FrameRequest};
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
@@ -24,7 +24,6 @@ use bentstraw_optics::tracer::Tracer;
 use bentstraw_optics::world::picture::world_picture;
 use bentstraw_optics::world::{Shape, World, WorldOutcome, COLOR_NAMES};
 use bentstraw_optics::Vec3;
-use rayon::prelude::*;
 use serde_json::{json, Value};
 
 use crate::cli::{parse_size, parse_vec2, parse_vec3, CameraArgs, SceneArgs};
@@ -506,17 +505,23 @@ fn color_name(code: u8) -> &'static str {
 /// `width × height × 4` bytes, `3n` little-endian `f32`, `n` colour bytes, `n` path-kind bytes
 /// (indices into the header's `paths`).
 pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
-    let scene = match &view.scene {
-        Traced::Spec(scene) => scene,
-        Traced::World(world) => return world_frame_reply(view, world),
-    };
     let request = FrameRequest {
         camera: view.camera,
         shading: view.shading(),
         min_points: view.points,
     };
     let started = std::time::Instant::now();
-    draw_frame(scene, &request, frame);
+    // The colour codes a scene can show: the straw's five, or all eight in a scene file.
+    let codes = match &view.scene {
+        Traced::Spec(scene) => {
+            draw_frame(scene, &request, frame);
+            5
+        }
+        Traced::World(world) => {
+            draw_world_frame(&world.world, &request, frame);
+            COLOR_NAMES.len()
+        }
+    };
     let ms = started.elapsed().as_secs_f64() * 1e3;
     *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) = Some((
         view.simulate_command("course"),
@@ -524,7 +529,7 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
     ));
     let counts = frame.path_counts();
     let kinds: Vec<LightPathType> = counts.iter().map(|c| c.0).collect();
-    let mut per_color = [0usize; 5];
+    let mut per_color = vec![0usize; codes];
     for p in &frame.points {
         per_color[p.color as usize - 1] += 1;
     }
@@ -574,63 +579,6 @@ fn frame_body(
     body.extend(points.iter().map(|p| p.color));
     body.extend(kinds);
     Reply::bytes("application/octet-stream", body)
-}
-
-/// The frame of a gallery scene: its picture (traced in double precision), its image points of
-/// every object and their light paths (what the page draws of the scene itself comes once, from
-/// [`sketch_reply`]).
-fn world_frame_reply(view: &View, world: &FileWorld) -> Reply {
-    let started = std::time::Instant::now();
-    let w = &world.world;
-    let picture = world_picture(w, &view.camera, &view.shading());
-    let cloud = if view.points == 0 {
-        ImageCloud::default()
-    } else {
-        sample_image_of(w, view.observer, view.points, &|_| {})
-    };
-    let ms = started.elapsed().as_secs_f64() * 1e3;
-    let kinds: Vec<LightPathType> = cloud
-        .points
-        .par_iter()
-        .with_min_len(256)
-        .map(|p| {
-            w.trace_path_type(Ray {
-                origin: view.observer,
-                direction: p.direction,
-            })
-            .1
-        })
-        .collect();
-    let mut distinct = kinds.clone();
-    distinct.sort();
-    distinct.dedup();
-    let paths: Vec<Value> = distinct
-        .iter()
-        .map(|k| {
-            let n = kinds.iter().filter(|x| *x == k).count();
-            json!({"key": k.key(), "words": k.to_string(), "count": n})
-        })
-        .collect();
-    *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) = Some((
-        view.simulate_command("course"),
-        Arc::new(cloud.points.clone()),
-    ));
-    let header = json!({
-        "width": view.camera.width,
-        "height": view.camera.height,
-        "n": cloud.points.len(),
-        "rays_traced": cloud.rays_traced,
-        "points_per_color": cloud.counts_per_code(),
-        "paths": paths,
-        "fov_deg": 2.0 * view.camera.tan_half_fov.atan().to_degrees(),
-        "ms": ms,
-        "simulate": view.simulate_command("course"),
-        "render": view.render_command(),
-    });
-    let kind_of = kinds
-        .iter()
-        .map(|k| distinct.binary_search(k).unwrap_or(0) as u8);
-    frame_body(&header, &picture, &cloud.points, kind_of)
 }
 
 /// The course points of the last frame drawn, with the `simulate` command that gives them: a
