@@ -197,10 +197,14 @@ impl<R: Real> SideRoots<R> {
     #[inline(always)]
     pub fn nearest(&self, oz: R, dz: R, z_min: R, z_max: R) -> R {
         let zero = R::splat(0.0);
-        let ok0 = self
-            .near
-            .gt(zero)
-            .and(in_range(oz + self.near * dz, z_min, z_max));
+        let ok0 =
+            self.real
+                .and(self.near.gt(zero))
+                .and(in_range(oz + self.near * dz, z_min, z_max));
+        // Where every ray meets the near root there is nothing more to look at.
+        if !self.real.and_not(ok0).any() {
+            return R::select(ok0, self.near, R::splat(f64::INFINITY));
+        }
         let ok1 = self
             .far
             .gt(zero)
