@@ -1,7 +1,7 @@
 // bentstraw 3D viewer: the straw's image points, the water's wireframe, the straw's true outline and the
 // observer, in an orthographic view with one scale on every axis (z stays upright).
 // Data comes from the JSON script element "bentstraw-data": coordinates as little-endian float32
-// offsets from `origin` (base64), colour codes 1..5 as bytes (base64).
+// offsets from `origin` (base64), colour codes 1..8 as bytes (base64).
 "use strict";
 
 // ---- pure helpers (also used by the tests under node) ----
@@ -83,14 +83,15 @@ function startViewer(data) {
   const radius = 0.5 * Math.hypot(bmax[0] - bmin[0], bmax[1] - bmin[1], bmax[2] - bmin[2]);
 
   const state = { az: 0, el: 0, zoom: 1, panX: 0, panY: 0 };
-  const show = { water: true, straw: true, axes: true, sections: [true, true, true, true, true, true] };
+  // Colour codes 1..5 a straw's sections; in a scene file's world 6 a coin, 7 a card, 8 its arrow.
+  const show = { water: true, straw: true, axes: true, sections: new Array(9).fill(true) };
   let width = 0, height = 0, dpr = 1;
   let image = null, pixels = null, depth = null;
   let interacting = false, idleTimer = 0, frameQueued = false, benchNote = "";
 
   // Colours per section, shaded by depth in 16 steps (far points a little darker) for a sense of depth.
   const SHADES = 16;
-  const lut = new Uint32Array(6 * SHADES);
+  const lut = new Uint32Array(9 * SHADES);
   for (const s of data.sections) {
     for (let k = 0; k < SHADES; k++) {
       const f = 0.72 + 0.28 * k / (SHADES - 1);
@@ -254,8 +255,21 @@ function startViewer(data) {
     }
   }
 
-  // The water's top and bottom circles and vertical lines, on the far or near side of the glass's axis.
+  // The water's top and bottom circles and vertical lines, on the far or near side of the glass's axis;
+  // or a scene file's wireframe (data.wire: segments), on the far or near side of its centre.
   function drawWater(cam, front) {
+    if (data.wire) {
+      const centreDepth = cam.px(data.sceneCentre)[2];
+      ctx.beginPath();
+      for (const [a, b] of data.wire) {
+        const pa = cam.px(a), pb = cam.px(b);
+        if ((0.5 * (pa[2] + pb[2]) > centreDepth) === front) line(pa, pb);
+      }
+      ctx.strokeStyle = front ? "rgba(40,120,200,0.75)" : "rgba(40,120,200,0.45)";
+      ctx.lineWidth = dpr;
+      ctx.stroke();
+      return;
+    }
     const he = data.water.height, R = data.water.radius;
     const axisDepth = cam.px([0, 0, he / 2])[2];
     ctx.beginPath();
@@ -281,10 +295,26 @@ function startViewer(data) {
     ctx.stroke();
   }
 
-  // The straw's true outline, dashed: section boundaries and its two silhouette lines.
+  // The straw's true outline, dashed: section boundaries and its two silhouette lines; or a scene
+  // file's objects' outlines (data.outlines: polylines).
   function drawStraw(cam) {
-    const s = data.straw;
     ctx.beginPath();
+    if (data.outlines) {
+      for (const poly of data.outlines) {
+        for (let k = 1; k < poly.length; k++) line(cam.px(poly[k - 1]), cam.px(poly[k]));
+      }
+    } else {
+      drawStrawOutline(cam);
+    }
+    ctx.setLineDash([5 * dpr, 4 * dpr]);
+    ctx.strokeStyle = "#787878";
+    ctx.lineWidth = dpr;
+    ctx.stroke();
+    ctx.setLineDash([]);
+  }
+
+  function drawStrawOutline(cam) {
+    const s = data.straw;
     const N = 48;
     for (let j = 0; j <= 5; j++) {
       const z = j * s.sectionHeight;
@@ -299,11 +329,6 @@ function startViewer(data) {
       const x = s.x + sign * s.radius * r[0], y = s.y + sign * s.radius * r[1];
       line(cam.px([x, y, 0]), cam.px([x, y, s.height]));
     }
-    ctx.setLineDash([5 * dpr, 4 * dpr]);
-    ctx.strokeStyle = "#787878";
-    ctx.lineWidth = dpr;
-    ctx.stroke();
-    ctx.setLineDash([]);
   }
 
   // Tick labels and names along three outer edges of the box (the same rule as the PNG figure).

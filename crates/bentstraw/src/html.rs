@@ -11,6 +11,7 @@ use bentstraw_optics::scene::{
     Scene, GLASS_RADIUS, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES, STRAW_HEIGHT,
     STRAW_RADIUS,
 };
+use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::json;
 
@@ -20,16 +21,34 @@ use crate::plot::{
     axis_box, counts, degrees, figure_views, observer_direction, section_rgb8, whole,
     WIRE_VERTICALS,
 };
+use crate::sketch::{object_outlines, world_wireframe};
 
 /// The viewer's script, kept in its own file so it stays readable and lintable.
 const VIEWER_JS: &str = include_str!("../assets/viewer.js");
 /// The viewer's style sheet.
 const VIEWER_CSS: &str = include_str!("../assets/viewer.css");
 
-/// Writes an interactive 3D view of `points`, the water wireframe and the observer to `path`.
-pub fn write_cloud_viewer(
+/// What a 3D view shows besides the points: the assignment's glass, or a scene file's world
+/// (with the file's name).
+#[derive(Clone, Copy)]
+pub enum Viewed<'a> {
+    /// The assignment's kind of scene.
+    Spec(&'a Scene),
+    /// A scene file's world, and the file's name.
+    World(&'a World, &'a str),
+}
+
+impl<'a> From<&'a Scene> for Viewed<'a> {
+    fn from(scene: &'a Scene) -> Self {
+        Viewed::Spec(scene)
+    }
+}
+
+/// Writes an interactive 3D view of `points`, the scene's wireframe and outlines and the observer
+/// to `path`.
+pub fn write_cloud_viewer<'a>(
     path: &Path,
-    scene: &Scene,
+    scene: impl Into<Viewed<'a>>,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
@@ -43,13 +62,19 @@ pub fn write_cloud_viewer(
 }
 
 /// The whole HTML page.
-fn viewer_page(
-    scene: &Scene,
+fn viewer_page<'a>(
+    scene: impl Into<Viewed<'a>>,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
     file_stem: &str,
 ) -> String {
+    let scene = match scene.into() {
+        Viewed::Spec(scene) => scene,
+        Viewed::World(world, name) => {
+            return world_viewer_page(world, name, observer, points, title, file_stem)
+        }
+    };
     let data = viewer_data(scene, observer, points, title, file_stem);
     // In a <script> element only "</" could end the element early; JSON allows "<" as \u003c.
     let data = data.to_string().replace('<', "\\u003c");
@@ -137,15 +162,7 @@ fn viewer_data(
 ) -> serde_json::Value {
     let bx = axis_box(scene, observer, points);
     let origin = bx.centre();
-    let mut xyz = Vec::with_capacity(points.len() * 12);
-    let mut colors = Vec::with_capacity(points.len());
-    for p in points {
-        let d = p.position - origin;
-        for v in [d.x, d.y, d.z] {
-            xyz.extend_from_slice(&(v as f32).to_le_bytes());
-        }
-        colors.push(p.color);
-    }
+    let (xyz, colors) = encoded_points(points, origin);
     let n = counts(points);
     let sections: Vec<_> = (0..SECTION_COUNT)
         .map(|k| {
@@ -157,43 +174,7 @@ fn viewer_data(
             })
         })
         .collect();
-    let o = observer_direction(observer);
-    let [_, side, top] = figure_views(observer);
-    // First, and shown on opening: a three-quarter view that makes the page look 3D at once.
-    let three_quarter = json!({
-        "name": "3D view",
-        "caption": "three-quarter view: 35° round from the observer's azimuth, 20° from above",
-        "az": o.azimuth.to_degrees() - 35.0,
-        "el": 20.0,
-    });
-    // Then the observer's own direction, and the figure's side and top views.
-    let observer_view = (
-        o,
-        format!(
-            "from the observer's direction (azimuth {}°, elevation {}°)",
-            whole(degrees(o.azimuth)),
-            whole(o.elevation.to_degrees())
-        ),
-    );
-    let views: Vec<_> = std::iter::once(three_quarter)
-        .chain(
-            [
-                observer_view,
-                (side.0, side.1.join(" ")),
-                (top.0, top.1.join(" ")),
-            ]
-            .iter()
-            .zip(["observer", "side", "top"])
-            .map(|((v, caption), name)| {
-                json!({
-                    "name": format!("{name} view"),
-                    "caption": caption,
-                    "az": v.azimuth.to_degrees(),
-                    "el": v.elevation.to_degrees(),
-                })
-            }),
-        )
-        .collect();
+    let views = views_json(observer);
     let v3 = |v: Vec3| [v.x, v.y, v.z];
     json!({
         "title": title,
@@ -223,6 +204,183 @@ fn viewer_data(
         "sections": sections,
         "views": views,
     })
+}
+
+/// The preset views of a page: a three-quarter view first (shown on opening, so the page looks
+/// 3D at once), then the observer's own direction and the figure's side and top views.
+fn views_json(observer: Vec3) -> Vec<serde_json::Value> {
+    let o = observer_direction(observer);
+    let [_, side, top] = figure_views(observer);
+    // First, and shown on opening: a three-quarter view that makes the page look 3D at once.
+    let three_quarter = json!({
+        "name": "3D view",
+        "caption": "three-quarter view: 35° round from the observer's azimuth, 20° from above",
+        "az": o.azimuth.to_degrees() - 35.0,
+        "el": 20.0,
+    });
+    // Then the observer's own direction, and the figure's side and top views.
+    let observer_view = (
+        o,
+        format!(
+            "from the observer's direction (azimuth {}°, elevation {}°)",
+            whole(degrees(o.azimuth)),
+            whole(o.elevation.to_degrees())
+        ),
+    );
+    std::iter::once(three_quarter)
+        .chain(
+            [
+                observer_view,
+                (side.0, side.1.join(" ")),
+                (top.0, top.1.join(" ")),
+            ]
+            .iter()
+            .zip(["observer", "side", "top"])
+            .map(|((v, caption), name)| {
+                json!({
+                    "name": format!("{name} view"),
+                    "caption": caption,
+                    "az": v.azimuth.to_degrees(),
+                    "el": v.elevation.to_degrees(),
+                })
+            }),
+        )
+        .collect()
+}
+
+/// The page of a scene file's world: the same viewer, with the world's wireframe (its
+/// boundaries) and its objects' true outlines instead of the glass and the straw.
+fn world_viewer_page(
+    world: &World,
+    name: &str,
+    observer: Vec3,
+    points: &[ImagePoint],
+    title: &str,
+    file_stem: &str,
+) -> String {
+    let bx = axis_box(world, observer, points);
+    let origin = bx.centre();
+    let (xyz, colors) = encoded_points(points, origin);
+    let mut n = [0usize; COLOR_COUNT];
+    for p in points {
+        n[p.color as usize - 1] += 1;
+    }
+    // The codes the scene has: those of its objects' points, at least.
+    let codes: Vec<usize> = (0..COLOR_COUNT).filter(|&k| n[k] > 0).collect();
+    let v3 = |v: Vec3| [v.x, v.y, v.z];
+    let wire: Vec<[[f64; 3]; 2]> = world_wireframe(world)
+        .iter()
+        .map(|s| [v3(s[0]), v3(s[1])])
+        .collect();
+    let outlines: Vec<Vec<[f64; 3]>> = object_outlines(world)
+        .iter()
+        .map(|l| l.iter().map(|&p| v3(p)).collect())
+        .collect();
+    let (lo, hi) = world.bounds();
+    let data = json!({
+        "title": title,
+        "fileStem": file_stem,
+        "n": points.len(),
+        "origin": v3(origin),
+        "box": { "min": v3(bx.min), "max": v3(bx.max) },
+        "xyz": base64(&xyz),
+        "color": base64(&colors),
+        "observer": v3(observer),
+        "sceneCentre": v3(0.5 * (lo + hi)),
+        "observerInside": bx.observer_inside,
+        "arrow": bx.observer_arrow.map(|(a, b)| [v3(a), v3(b)]),
+        "wire": wire,
+        "outlines": outlines,
+        "sections": codes.iter().map(|&k| json!({
+            "code": k + 1,
+            "name": COLOR_NAMES[k],
+            "rgb": section_rgb8(k as u8 + 1),
+            "count": n[k],
+        })).collect::<Vec<_>>(),
+        "views": views_json(observer),
+    });
+    let data = data.to_string().replace('<', "\\u003c");
+    let mut legend = String::new();
+    for &k in &codes {
+        let [r, g, b] = section_rgb8(k as u8 + 1);
+        legend.push_str(&format!(
+            "<li data-code=\"{code}\" title=\"click to hide or show\"><span class=\"swatch\" style=\"background:rgb({r},{g},{b})\"></span>{code} {name}<span class=\"count\">{count}</span></li>\n",
+            code = k + 1,
+            name = COLOR_NAMES[k],
+            count = n[k],
+        ));
+    }
+    let observer_note = if bx.observer_inside {
+        "observer"
+    } else {
+        "observer (far: arrow points to it)"
+    };
+    format!(
+        r#"<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta name="generator" content="bentstraw">
+<title>{title_html}</title>
+<style>
+{css}
+</style>
+</head>
+<body>
+<canvas id="view" aria-label="3D view of the image points"></canvas>
+<noscript><p style="position:absolute;right:20px;top:20px">This page draws its 3D view with JavaScript: please allow scripts for this file.</p></noscript>
+<div id="panel">
+<h1>{title_html}</h1>
+<div class="facts">
+<div>observer ({ox}, {oy}, {oz}) m</div>
+<div>scene {name_html}</div>
+<div>{count} image points</div>
+</div>
+<ul id="legend">
+{legend}<li class="static"><span class="swatch dot"></span>{observer_note}</li>
+<li class="static"><span class="swatch line"></span>container and liquids (wireframe)</li>
+<li class="static"><span class="swatch dash"></span>objects, true outlines</li>
+</ul>
+<div class="buttons" id="buttons"></div>
+<div class="toggles">
+<label><input type="checkbox" id="show-water" checked> wireframe</label>
+<label><input type="checkbox" id="show-straw" checked> outlines</label>
+<label><input type="checkbox" id="show-axes" checked> axes</label>
+</div>
+<div id="status"></div>
+<div class="hint">drag or arrow keys: rotate · wheel, pinch or +/−: zoom · shift-drag, right-drag or two fingers: pan · double-click or R: reset · click a colour to hide it · lengths in metres, one scale on every axis</div>
+</div>
+<script id="bentstraw-data" type="application/json">{data}</script>
+<script>
+{js}
+</script>
+</body>
+</html>
+"#,
+        title_html = escape_html(title),
+        name_html = escape_html(name),
+        css = VIEWER_CSS,
+        js = VIEWER_JS,
+        ox = observer.x,
+        oy = observer.y,
+        oz = observer.z,
+        count = points.len(),
+    )
+}
+
+/// The points as little-endian `f32` offsets from `origin`, and their colour codes.
+fn encoded_points(points: &[ImagePoint], origin: Vec3) -> (Vec<u8>, Vec<u8>) {
+    let mut xyz = Vec::with_capacity(points.len() * 12);
+    let mut colors = Vec::with_capacity(points.len());
+    for p in points {
+        let d = p.position - origin;
+        for v in [d.x, d.y, d.z] {
+            xyz.extend_from_slice(&(v as f32).to_le_bytes());
+        }
+        colors.push(p.color);
+    }
+    (xyz, colors)
 }
 
 /// Standard base64 with padding (RFC 4648), as the browser's `atob` reads it.
@@ -266,8 +424,9 @@ fn escape_html(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bentstraw_optics::sampling::sample_image;
+    use bentstraw_optics::sampling::{sample_image, sample_image_of};
     use bentstraw_optics::scene::REFERENCES;
+    use bentstraw_optics::scene_file::SceneDescription;
 
     fn reference_page(title: &str) -> (Vec<ImagePoint>, String) {
         let r = REFERENCES[0];
@@ -521,6 +680,59 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
     /// colour present. Skipped where Chromium is not installed (it is not needed otherwise).
     #[test]
     fn chromium_draws_the_page() {
+        let (points, page) = reference_page("Smoke test");
+        draws_in_chromium(&page, &points);
+    }
+
+    /// A gallery scene's world, its points from its own observer, and its page.
+    fn world_page(name: &str) -> (World, Vec<ImagePoint>, String) {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenes")
+            .join(name);
+        let d = SceneDescription::from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let world = World::new(&d, 10);
+        let observer = d.observer.unwrap().position;
+        let points = sample_image_of(&world, observer, 3000, &|_| {}).points;
+        let page = viewer_page(Viewed::World(&world, name), observer, &points, name, "w");
+        (world, points, page)
+    }
+
+    /// A scene file's page carries its points exactly, a legend of the codes present with their
+    /// counts, the world's wireframe and its objects' outlines; and the browser draws it.
+    #[test]
+    fn a_scene_files_page_shows_its_world() {
+        let (world, points, page) = world_page("reversing-arrow.toml");
+        let data = embedded_data(&page);
+        assert_eq!(data["n"].as_u64().unwrap() as usize, points.len());
+        let colors = unbase64(data["color"].as_str().unwrap());
+        assert_eq!(colors, points.iter().map(|p| p.color).collect::<Vec<_>>());
+        let sections = data["sections"].as_array().unwrap();
+        let codes: Vec<u64> = sections
+            .iter()
+            .map(|s| s["code"].as_u64().unwrap())
+            .collect();
+        assert_eq!(codes, [7, 8], "the card and its arrow");
+        for s in sections {
+            let code = s["code"].as_u64().unwrap() as u8;
+            let n = points.iter().filter(|p| p.color == code).count();
+            assert_eq!(s["count"].as_u64().unwrap() as usize, n);
+        }
+        assert_eq!(
+            data["wire"].as_array().unwrap().len(),
+            world_wireframe(&world).len()
+        );
+        assert_eq!(
+            data["outlines"].as_array().unwrap().len(),
+            object_outlines(&world).len()
+        );
+        assert!(data.get("water").is_none() && data.get("straw").is_none());
+        let (_, points, page) = world_page("tank-pencil.toml");
+        draws_in_chromium(&page, &points);
+    }
+
+    /// Opens `page` in headless Chromium and checks that the script ran to the end and drew every
+    /// straw colour among `points`. Skipped where Chromium is not installed.
+    fn draws_in_chromium(page: &str, points: &[ImagePoint]) {
         let chromium = Path::new("/usr/bin/chromium");
         if !chromium.exists() {
             eprintln!(
@@ -529,10 +741,9 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
             );
             return;
         }
-        let (points, page) = reference_page("Smoke test");
         let dir = tempfile::tempdir().unwrap();
         let html = dir.path().join("page.html");
-        std::fs::write(&html, &page).unwrap();
+        std::fs::write(&html, page).unwrap();
         let shot = dir.path().join("shot.png");
         let mut child = std::process::Command::new(chromium)
             .args([
@@ -579,7 +790,7 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
         // The status line is written at the end of each frame: the script ran without an error.
         assert!(dom.contains("drawn in"), "the viewer did not draw a frame");
         let img = image::open(&shot).expect("a screenshot").to_rgb8();
-        let n = counts(&points);
+        let n = counts(points);
         for code in 1..=5u8 {
             if n[(code - 1) as usize] == 0 {
                 continue;

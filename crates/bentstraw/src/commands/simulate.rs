@@ -45,14 +45,6 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         AnyScene::Spec(r) => (Inputs::Spec(&r.scene), r.observer),
         AnyScene::File(world) => (Inputs::File(world), world.observer),
     };
-    if let (Inputs::File(world), Some(_)) = (inputs, &args.html) {
-        return fail(format!(
-            "--html is for scenes of the assignment's kind in this version; {} is another kind: \
-             simulate writes its image points (--output .csv, .json or .ply, any --image-model), \
-             --plot, --rays, --models-plot and --gap-plot; explore shows the gallery's scenes in 3D",
-            world.name
-        ));
-    }
     // The model comparison and the gap plot need both the eye and the stereo model.
     let both_models = args.models_plot.is_some() || args.gap_plot.is_some();
     let (most, per_point, model_name) = match args.image_model {
@@ -148,8 +140,12 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         if let Some(p) = &args.plot {
             plot::write_cloud_figure(p, sketch, observer, &placed, &title)?;
         }
-        if let (Some(h), Inputs::Spec(scene)) = (&args.html, inputs) {
-            html::write_cloud_viewer(h, scene, observer, &placed, &title)?;
+        if let Some(h) = &args.html {
+            let viewed = match inputs {
+                Inputs::Spec(scene) => html::Viewed::Spec(scene),
+                Inputs::File(w) => html::Viewed::World(&w.world, &w.name),
+            };
+            html::write_cloud_viewer(h, viewed, observer, &placed, &title)?;
         }
     }
     if let Some(r) = &args.rays {
