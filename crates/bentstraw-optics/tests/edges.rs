@@ -181,7 +181,11 @@ proptest! {
             prop_assert!((p.path_length - length).abs() <= 1e-9 + 1e-14 * length,
                 "L {} vs {}", p.path_length, length);
         }
-        prop_assert!(checked as f64 >= 0.98 * cloud.points.len() as f64,
+        // Not vacuous: most points are checked. Where the straw touches the wall, the points seen
+        // along the contact line lie within 1e-10 m of the wall, where the order of the two
+        // surfaces is within rounding; the sampler refines that edge, so up to a few per cent of a
+        // cloud can be there (6% for one observer 2 km away, kept in the regressions file).
+        prop_assert!(checked as f64 >= 0.9 * cloud.points.len() as f64,
             "only {checked} of {} points are well posed", cloud.points.len());
     }
 
