@@ -187,3 +187,77 @@ fn packet_pictures_of_far_observers_match_exact() {
         );
     }
 }
+
+/// Pixels of `fast` that differ from `exact` (row-major, `w` wide), and how many of them lie off
+/// every colour boundary of `exact` (no 8-neighbour of another colour).
+fn differing(fast: &[u8], exact: &[u8], w: usize) -> (usize, usize) {
+    let h = exact.len() / w;
+    let at = |i: usize, j: usize| exact[i * w + j];
+    let (mut differ, mut off) = (0, 0);
+    for i in 0..h {
+        for j in 0..w {
+            if fast[i * w + j] == at(i, j) {
+                continue;
+            }
+            differ += 1;
+            let boundary = (i.saturating_sub(1)..=(i + 1).min(h - 1))
+                .any(|a| (j.saturating_sub(1)..=(j + 1).min(w - 1)).any(|b| at(a, b) != at(i, j)));
+            off += usize::from(!boundary);
+        }
+    }
+    (differ, off)
+}
+
+/// Every gallery scene (thick walls, layers, a tank, leaning straws, a coin, a card): the packet
+/// tracer, the same rule in single precision, agrees with the double-precision tracer on every
+/// pixel but a few on colour boundaries, in course and in Fresnel mode (all eight codes).
+#[test]
+fn packet_pictures_of_every_gallery_scene_match_exact() {
+    use bentstraw_optics::picture::{
+        world_course_picture_exact, world_course_picture_into, world_fresnel_picture_exact,
+        world_fresnel_picture_into,
+    };
+    use bentstraw_optics::scene_file::SceneDescription;
+    use bentstraw_optics::world::World;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+    for name in [
+        "leaning-straw",
+        "real-glass",
+        "oil-on-water",
+        "tank-pencil",
+        "coin-in-glass",
+        "reversing-arrow",
+    ] {
+        let text = std::fs::read_to_string(dir.join(format!("{name}.toml"))).unwrap();
+        let d = SceneDescription::from_toml(&text).unwrap();
+        let world = World::new(&d, 10);
+        let o = d.observer.unwrap();
+        let camera = Camera::new(o.position, o.target, 240, 180, 40f64.to_radians());
+        let total = (camera.width * camera.height) as usize;
+        let mut fast = vec![0u8; total];
+        world_course_picture_into(&world, &camera, &mut fast);
+        let exact = world_course_picture_exact(&world, &camera);
+        let seen = exact.iter().filter(|&&c| c > 0).count();
+        assert!(seen > total / 200, "{name}: objects on {seen} pixels");
+        let (differ, off) = differing(&fast, &exact, camera.width as usize);
+        eprintln!("{name}: course {differ} of {total} pixels differ ({seen} show objects), {off} off boundaries");
+        assert_eq!(off, 0, "{name}: {off} pixels off any colour boundary");
+        assert!(differ * 1000 < 5 * total, "{name}: {differ} pixels differ");
+        // Fresnel: each pixel's strongest code agrees off boundaries, and the weights agree to
+        // 1e-3 on all but a few pixels.
+        let mut weights = vec![[0.0; 8]; total];
+        world_fresnel_picture_into(&world, &camera, 1e-4, &mut weights);
+        let exact_w = world_fresnel_picture_exact(&world, &camera, 1e-4);
+        let close = weights
+            .iter()
+            .zip(&exact_w)
+            .filter(|(a, b)| a.iter().zip(b.iter()).all(|(x, y)| (x - y).abs() < 1e-3))
+            .count();
+        eprintln!("{name}: fresnel {close} of {total} pixels within 1e-3");
+        assert!(
+            (total - close) * 100 < 2 * total,
+            "{name}: {} pixels differ by more than 1e-3",
+            total - close
+        );
+    }
+}

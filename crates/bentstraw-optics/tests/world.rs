@@ -490,6 +490,50 @@ fn fresnel_weights_and_escaping_light_add_up_to_one() {
     }
 }
 
+/// Light leaving through a face of the scene's hull never comes back: following those branches
+/// (as the explorer's ray diagram does) or skipping them (as pictures do) puts the same weight on
+/// every colour, for rays aimed all over every gallery scene and from observers all around it.
+#[test]
+fn branches_leaving_through_the_hull_never_return() {
+    use bentstraw_optics::world::WorldFresnelStep;
+    let mut skipped = 0usize;
+    for name in GALLERY {
+        let d = gallery(name);
+        let world = World::new(&d, 10);
+        let (lo, hi) = world.bounds();
+        let centre = (lo + hi) * 0.5;
+        let reach = (hi - lo).length();
+        for k in 0..400u32 {
+            let f = |m: f64| (k as f64 * m).fract();
+            let aim = lo + Vec3::new(f(0.618034), f(0.7548777), f(0.5698403)) * (hi - lo);
+            // Half from the file's observer, half from all around (above, below, beside).
+            let observer = if k % 2 == 0 {
+                d.observer.unwrap().position
+            } else {
+                let (az, el) = (
+                    f(0.3819660) * std::f64::consts::TAU,
+                    f(0.1415926) * 3.0 - 1.5,
+                );
+                centre + Vec3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin()) * reach
+            };
+            let ray = ray_to(observer, aim);
+            let mut escaping = 0usize;
+            let all = world.fresnel_steps::<false>(ray, 1e-9, 100_000, |step| {
+                escaping += usize::from(matches!(step, WorldFresnelStep::Escaped { .. }))
+            });
+            let kept = world.fresnel_steps::<true>(ray, 1e-9, 100_000, |_| {});
+            for (a, b) in all.iter().zip(&kept) {
+                assert!(
+                    (a - b).abs() <= 1e-12,
+                    "{name}: {all:?} vs {kept:?}, ray {ray:?}"
+                );
+            }
+            skipped += escaping;
+        }
+    }
+    assert!(skipped > 1000, "{skipped} escaping branches");
+}
+
 #[test]
 fn the_eye_model_finds_the_apparent_depth_of_a_coin_under_flat_water() {
     use bentstraw_optics::apparent::{ApparentPosition, Focus};
