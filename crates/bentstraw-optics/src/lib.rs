@@ -7,14 +7,14 @@
 //! per pixel, for data) and [`shading`] (an RGB picture for people). The crate does no I/O and
 //! prints nothing.
 //!
-//! For speed, [`tracer::Tracer`] is the same tracer with per-scene work done once and provably
-//! useless tests skipped (same results to the bit), and [`packet`] traces course-mode pictures eight
-//! rays at a time in single precision (same pixels but for rare ones on colour boundaries).
-//!
 //! A scene can also be read from a scene file's text ([`scene_file`]): the TOML format, checked
-//! rule by rule into a plain description. Any such scene (thick glass, a tank, liquid layers,
-//! leaning straws, coins, cards) is traced as a [`world::World`]: media known by id, the
-//! boundaries between them, opaque objects. Sampling, the eye and stereo models, checking and
+//! rule by rule into a plain description. Every scene (the assignment's glass, thick glass, a tank,
+//! liquid layers, leaning straws, coins, cards) is traced as a [`world::World`]: media known by id,
+//! the boundaries between them, opaque objects; [`tracer::Tracer`] is the assignment's glass built
+//! as one, once. Which surface a ray meets first, how it bends there and how a Fresnel split
+//! weighs its branches are written once over the number type ([`lanes`]): `f64` for one ray in
+//! double precision, eight `f32` lanes for [`packet`], which traces pictures eight rays at a time
+//! (same pixels but for rare ones on colour boundaries). Sampling, the eye and stereo models, checking and
 //! ray diagrams are written once over small traits that the assignment's glass and a world both
 //! implement.
 //!

@@ -1,5 +1,7 @@
-//! Following one ray through the water to the straw (SPEC §3): nearest face, refraction or total
-//! reflection at each water face, at most `max_events` events, the opaque straw stops the ray.
+//! Following one ray through the water to the straw (SPEC §3), told in the assignment's words:
+//! the faces of the water and the straw, the events at the water's faces, the outcome. The tracing
+//! itself is the one loop every scene is traced by ([`crate::world::World`]'s), run on the
+//! assignment's glass built as a world ([`Tracer`]).
 //!
 //! Also the Fresnel tracer of SPEC §6, which splits a ray at each water face into a reflected and a
 //! refracted branch.
@@ -43,18 +45,6 @@ pub struct Intersection {
     pub distance: f64,
     /// The face met.
     pub face: Face,
-}
-
-impl Intersection {
-    /// The nearer of the nearest water face and the nearest straw face (each a distance, infinite
-    /// if none, and a face); the opaque straw wins ties (SPEC §3), e.g. its bottom cap on `z = 0`.
-    #[inline]
-    pub fn nearer(water: (f64, Face), straw: (f64, Face)) -> Option<Intersection> {
-        let (distance, face) = if straw.0 <= water.0 { straw } else { water };
-        distance
-            .is_finite()
-            .then_some(Intersection { distance, face })
-    }
 }
 
 /// What happened at one water face.

@@ -490,13 +490,13 @@ impl World {
 
     /// The code of what a ray has just left, for the tracers: boundary `index`'s surface.
     #[inline(always)]
-    pub(crate) fn surface_code(&self, index: usize) -> u32 {
+    pub fn surface_code(&self, index: usize) -> u32 {
         self.boundaries[index].surface
     }
 
     /// The code of object `index` as what a ray has just left.
     #[inline(always)]
-    pub(crate) fn object_code(&self, index: usize) -> u32 {
+    pub fn object_code(&self, index: usize) -> u32 {
         self.surfaces + index as u32
     }
 }

@@ -174,8 +174,9 @@ pub fn parse_solution(bytes: &[u8]) -> Result<Solution, String> {
     parse_solution_of(bytes, SECTION_COUNT)
 }
 
-/// [`parse_solution`] for a scene whose colour codes go from 1 to `codes` (5: a straw's sections;
-/// 8 with a scene file's coins, cards and pictures).
+/// Parses a solution (columns `x y z color`, or as a header names them, one point a line) for a
+/// scene whose colour codes go from 1 to `codes` (5: a straw's sections; 8 with a scene file's
+/// coins, cards and pictures).
 pub fn parse_solution_of(bytes: &[u8], codes: usize) -> Result<Solution, String> {
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let mut solution = Solution::default();
