@@ -1,4 +1,5 @@
-//! Cost of the apparent-position models per image point (issue 4), on reference simulation 1.
+//! Cost of the apparent-position models (eye and stereo) per image point, on reference
+//! simulation 1.
 //!
 //! Run: `cargo bench -p bentstraw-optics --bench apparent`
 

@@ -1,5 +1,5 @@
-//! How far the course's image points (SPEC §4) are from the eye model's and the stereo model's
-//! apparent points, for the four reference simulations (SPEC §5), 20000 points each.
+//! How far the course's image points (`O + L·u0`) are from the eye model's and the stereo model's
+//! apparent points, for the four reference simulations, 20000 points each.
 //!
 //! Run: `cargo run --release -p bentstraw-optics --example apparent_gaps`
 

@@ -1,6 +1,6 @@
 //! Where the straw really appears: the apparent position of a straw point for one eye with a small
 //! pupil (the eye model) and for two eyes (the stereo model), beside the course's convention of
-//! SPEC §4 (issue 4).
+//! the image point (`O + L·u0`: along the first direction, as far as the light travelled).
 //!
 //! # Re-aiming
 //! Every model needs the rays from one straw point `Q` that reach other eye positions along the
@@ -18,8 +18,8 @@
 //! along `e` (the normal curvature of the wavefront there), computed as the mean of `1/s(+δ)` and
 //! `1/s(−δ)` (odd orders cancel) refined by one Richardson step between `δ` and `2δ` (error
 //! `O(δ⁴)`); for a point seen in air the formula is exact for any `δ`.
-//! - horizontal focus `s_h`: `e_h = (u0 × ẑ)/|u0 × ẑ|` (`x̂` when `u0` is vertical, as the camera of
-//!   SPEC §6), the horizontal perpendicular to `u0`;
+//! - horizontal focus `s_h`: `e_h = (u0 × ẑ)/|u0 × ẑ|` (`x̂` when `u0` is vertical, as the camera's
+//!   right), the horizontal perpendicular to `u0`;
 //! - vertical focus `s_v`: `e_v = e_h × u0`, the perpendicular to `u0` in the vertical plane
 //!   containing it.
 //!
@@ -176,7 +176,7 @@ impl Focus {
 /// A straw point as one eye with a small pupil sees it (the eye model).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ApparentPoint {
-    /// The course's image point (SPEC §4) of the same ray: straw point, colour, direction `u0`.
+    /// The course's image point (`O + L·u0`) of the same ray: straw point, colour, direction `u0`.
     pub image: ImagePoint,
     /// Horizontal focus `s_h`: for pupil points displaced horizontally, perpendicular to `u0`.
     pub s_h: Focus,
@@ -228,7 +228,7 @@ impl StereoEyes {
     pub fn with_separation(observer: Vec3, separation: f64) -> StereoEyes {
         let to_centre = SCENE_CENTRE - observer;
         let level = Vec3::new(to_centre.x, to_centre.y, 0.0);
-        // "Right" as for the camera of SPEC §6: forward × ẑ.
+        // "Right" as for the observer's camera: forward × ẑ.
         let right = if level.length() < 1e-9 {
             Vec3::X
         } else {
@@ -244,7 +244,7 @@ impl StereoEyes {
 /// A straw point as two eyes see it (the stereo model).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StereoPoint {
-    /// The course's image point (SPEC §4) of the observer's ray to the same straw point.
+    /// The course's image point (`O + L·u0`) of the observer's ray to the same straw point.
     pub image: ImagePoint,
     /// Midpoint of the closest approach of the two lines of sight, if they converge in front of
     /// both eyes.

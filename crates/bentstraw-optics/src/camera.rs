@@ -1,4 +1,4 @@
-//! The observer's pinhole camera (SPEC §6).
+//! The observer's pinhole camera (see `docs/physics.md` in the repository).
 
 use crate::geometry::Ray;
 use crate::scene::{GLASS_RADIUS, STRAW_HEIGHT};
@@ -29,7 +29,7 @@ pub struct Camera {
     pub tan_half_fov: f64,
 }
 
-/// The orthonormal basis of SPEC §6 looking along `direction`: forward `f`, right
+/// The camera's orthonormal basis looking along `direction`: forward `f`, right
 /// `r = (f × ẑ)/|f × ẑ|` (`x̂` when looking straight up or down), up `u = r × f`.
 pub fn view_basis(direction: Vec3) -> (Vec3, Vec3, Vec3) {
     let forward = direction.normalize();
@@ -43,7 +43,8 @@ pub fn view_basis(direction: Vec3) -> (Vec3, Vec3, Vec3) {
 }
 
 impl Camera {
-    /// The camera of SPEC §6 at `eye`, aimed at `target`, with vertical field of view `fov_y` (radians).
+    /// A pinhole camera at `eye`, aimed at `target`, with vertical field of view `fov_y`
+    /// (radians).
     ///
     /// The caller guarantees `eye != target`, `width, height > 0` and `0 < fov_y < π`.
     pub fn new(eye: Vec3, target: Vec3, width: u32, height: u32, fov_y: f64) -> Camera {

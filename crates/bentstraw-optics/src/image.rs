@@ -1,4 +1,5 @@
-//! The virtual image of the straw in the course's convention (SPEC §4).
+//! The virtual image of the straw in the course's convention: a ray that reaches the straw gives
+//! the image point `P = O + L·u0` (eye, first direction, length of the whole broken path).
 
 use crate::geometry::Ray;
 use crate::scene::Scene;

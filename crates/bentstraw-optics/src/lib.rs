@@ -3,7 +3,7 @@
 //! Data flows one way: a [`scene::Scene`] and an observer give rays ([`geometry::Ray`]), the tracer
 //! ([`trace`]) follows them through the water's faces ([`interface`]) to the straw, and each ray that
 //! arrives becomes an [`image::ImagePoint`]; [`sampling`] chooses the rays so that the straw's image is
-//! covered evenly. The observer's own picture (SPEC §6) comes from [`camera`] and [`picture`] (one ray
+//! covered evenly. The observer's own picture comes from [`camera`] and [`picture`] (one ray
 //! per pixel, for data) and [`shading`] (an RGB picture for people). The crate does no I/O and
 //! prints nothing.
 //!
@@ -18,7 +18,7 @@
 //! ray diagrams are written once over small traits that the assignment's glass and a world both
 //! implement.
 //!
-//! The conventions are those of the project's specification (`shared/SPEC.md`): SI units (metres),
+//! The conventions (see `docs/physics.md` in the repository): SI units (metres),
 //! origin at the centre of the glass's base, `z` up.
 
 pub mod apparent;

@@ -214,7 +214,7 @@ impl<'w> PacketTracer<'w> {
     }
 
     compiled! {
-        /// Fresnel weights per colour code (SPEC §6; the first `N` codes, 5 for the straw's
+        /// Fresnel weights per colour code (the first `N` codes, 5 for the straw's
         /// sections) of the rays through the centres of pixel row `row`; `weights.len()` must be
         /// the camera's width. `wave` holds reusable buffers.
         ///
@@ -272,8 +272,8 @@ impl<'w> PacketTracer<'w> {
         /// How every branch of the rays through the centres of pixel row `row` ends, for a picture
         /// that shows what each branch meets: `on_end(pixel, end)` once per branch end.
         ///
-        /// With `split` (SPEC §6, fresnel) each branch splits at every interface by the Fresnel
-        /// reflectance, branches lighter than `prune_below` are abandoned; without it (SPEC §3, course)
+        /// With `split` (fresnel mode) each branch splits at every interface by the Fresnel
+        /// reflectance, branches lighter than `prune_below` are abandoned; without it (course mode)
         /// each ray is refracted or totally reflected, keeps weight 1, and is traced by the course's
         /// loop eight at a time. Branches that provably escape (out through a face of the scene's
         /// hull, or mirrored off it) are reported as escaping from the face at once. Fresnel branches
@@ -619,7 +619,7 @@ fn to_f32(v: Vec3) -> [f32; 3] {
     [v.x as f32, v.y as f32, v.z as f32]
 }
 
-/// The rays through the centres of the pixels of one row of a camera's picture (SPEC §6:
+/// The rays through the centres of the pixels of one row of a camera's picture (directions
 /// `f + sx·r + sy·u`, `sx` affine in the column), eight at a time ([`RowRays::packet`]).
 struct RowRays<'c> {
     camera: &'c Camera,

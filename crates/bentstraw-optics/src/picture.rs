@@ -1,4 +1,4 @@
-//! The observer's picture as data, one ray per pixel centre (SPEC §6): colour codes (course mode)
+//! The observer's picture as data, one ray per pixel centre: colour codes (course mode)
 //! or weights per colour (fresnel mode), row-major, for the assignment's scene or any world.
 //!
 //! Traced two ways: in single precision, eight rays at a time ([`crate::packet`], what pictures
@@ -12,7 +12,8 @@ use crate::packet::{FresnelWave, PacketTracer};
 use crate::scene::{Scene, SECTION_COUNT};
 use crate::world::{World, COLOR_COUNT};
 
-/// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by SPEC §3.
+/// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by the course's
+/// law (refraction or total reflection at each water face).
 ///
 /// Traced in single precision, eight rays at a time ([`crate::packet`]): the same pixels as
 /// [`course_picture_exact`] except, rarely, on a colour boundary.
@@ -46,8 +47,8 @@ fn course_codes_into(tracer: &PacketTracer, camera: &Camera, codes: &mut [u8]) {
     });
 }
 
-/// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by SPEC §3, traced in
-/// double precision: exactly [`Scene::trace`]'s colours.
+/// Colour code (0 = no straw) of the ray through each pixel centre, row-major, by the course's
+/// law, traced in double precision: exactly [`Scene::trace`]'s colours.
 pub fn course_picture_exact(scene: &Scene, camera: &Camera) -> Vec<u8> {
     world_course_picture_exact(&World::assignment(scene), camera)
 }
@@ -64,7 +65,8 @@ pub fn world_course_picture_exact(world: &World, camera: &Camera) -> Vec<u8> {
     codes
 }
 
-/// Weights per section (SPEC §6, fresnel mode) of the ray through each pixel centre, row-major.
+/// Weights per section (fresnel mode: each branch weighted by the Fresnel reflectance) of the ray
+/// through each pixel centre, row-major.
 ///
 /// Traced in single precision, breadth first, eight branches at a time ([`crate::packet`]): the
 /// weights of [`fresnel_picture_exact`] to about 1e-4, except, rarely, on a boundary.
@@ -125,7 +127,8 @@ fn fresnel_weights_into<const N: usize>(
         });
 }
 
-/// Weights per section (SPEC §6, fresnel mode) of the ray through each pixel centre, row-major,
+/// Weights per section (fresnel mode: each branch weighted by the Fresnel reflectance) of the ray
+/// through each pixel centre, row-major,
 /// traced in double precision (branches that provably escape are not followed).
 pub fn fresnel_picture_exact(
     scene: &Scene,

@@ -63,7 +63,7 @@ impl Frame {
         )
     }
 
-    /// A whole-sphere map looking along `forward`, with right/up as in the camera of SPEC §6.
+    /// A whole-sphere map looking along `forward`, with right/up as in the observer's camera.
     pub fn looking(forward: Vec3) -> Frame {
         let (f, right, up) = view_basis(forward);
         Frame {

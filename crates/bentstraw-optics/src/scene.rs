@@ -1,4 +1,4 @@
-//! The glass, the water and the straw (SPEC §1), and the rules a valid simulation obeys (SPEC §2).
+//! The glass, the water and the straw, and the rules a valid simulation obeys.
 
 use std::fmt;
 
@@ -23,7 +23,7 @@ pub const WATER_INDEX: f64 = 1.333;
 pub const DEFAULT_MAX_EVENTS: u32 = 10;
 /// Largest event limit accepted.
 pub const MAX_EVENTS_LIMIT: u32 = 1000;
-/// Display colours of the sections, codes 1..=5 (index 0 is code 1), RGB in 0..1 (SPEC §1).
+/// Display colours of the sections, codes 1..=5 (index 0 is code 1), RGB in 0..1.
 pub const SECTION_RGB: [[f64; 3]; SECTION_COUNT] = [
     [1.0, 0.0, 0.0],
     [0.929, 0.694, 0.125],
@@ -165,7 +165,7 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// A validated scene (SPEC §2): straw axis `(xp, yp)`, water height `he`, index `n_water`,
+    /// A validated scene: straw axis `(xp, yp)`, water height `he`, index `n_water`,
     /// event limit `max_events`.
     pub fn new(
         xp: f64,
@@ -214,7 +214,8 @@ impl Scene {
         )
     }
 
-    /// Checks that `observer` is a place an observer may stand (SPEC §2).
+    /// Checks that `observer` is a place an observer may stand: finite, not inside or on the
+    /// glass, not inside the part of the straw above the glass.
     pub fn validate_observer(&self, observer: Vec3) -> Result<(), SceneError> {
         require_finite("observer x", observer.x)?;
         require_finite("observer y", observer.y)?;
@@ -328,7 +329,7 @@ impl Scene {
 /// The centre of the box enclosing the glass and the straw, `(0, 0, 0.125)`: the default target.
 pub const SCENE_CENTRE: Vec3 = Vec3::new(0.0, 0.0, STRAW_HEIGHT / 2.0);
 
-/// One of the four reference simulations of SPEC §5.
+/// One of the four reference simulations: an observer, a straw position and a water height.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Reference {
     /// Number, 1..=4.
@@ -341,7 +342,7 @@ pub struct Reference {
     pub water_height: f64,
 }
 
-/// The four reference simulations of SPEC §5.
+/// The four reference simulations (see the README's table of them).
 pub const REFERENCES: [Reference; 4] = [
     Reference {
         number: 1,

@@ -3,10 +3,10 @@
 //! through the same camera, for comparison.
 //!
 //! Everything is computed in linear light and encoded as sRGB bytes at the end; the section
-//! colours of SPEC §1 are display (sRGB) values, so a pixel wholly on one section, facing the light,
+//! colours are display (sRGB) values, so a pixel wholly on one section, facing the light,
 //! shows exactly that colour.
 //!
-//! The surroundings (chosen here; SPEC §6 is silent on them):
+//! The surroundings (chosen here; the assignment says nothing of them):
 //! - a vertical wall behind the glass, opposite the observer: the plane at [`WALL_DISTANCE`] behind
 //!   the glass's axis, facing the observer horizontally, up to `z =` [`WALL_TOP`];
 //! - a floor (the table the glass stands on) at `z = 0`, only when the observer is above it: an
@@ -62,10 +62,10 @@ pub enum Backdrop {
 /// How rays are followed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ShadingMode {
-    /// SPEC §3: one ray, refracted or totally reflected at each water face.
+    /// The course's law: one ray, refracted or totally reflected at each water face.
     Course,
-    /// SPEC §6: reflected and refracted branches weighted by the Fresnel reflectance; branches
-    /// lighter than `prune_below` are abandoned.
+    /// Fresnel splitting: reflected and refracted branches weighted by the Fresnel reflectance;
+    /// branches lighter than `prune_below` are abandoned.
     Fresnel {
         /// Pruning threshold on a branch's weight.
         prune_below: f64,

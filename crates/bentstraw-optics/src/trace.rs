@@ -1,9 +1,9 @@
-//! Following one ray through the water to the straw (SPEC §3), told in the assignment's words:
+//! Following one ray through the water to the straw, told in the assignment's words:
 //! the faces of the water and the straw, the events at the water's faces, the outcome. The tracing
 //! itself is the one loop every scene is traced by ([`crate::world::World`]'s), run on the
 //! assignment's glass built as a world ([`Tracer`]).
 //!
-//! Also the Fresnel tracer of SPEC §6, which splits a ray at each water face into a reflected and a
+//! Also the Fresnel tracer, which splits a ray at each water face into a reflected and a
 //! refracted branch.
 
 use std::borrow::Cow;
@@ -181,7 +181,8 @@ pub enum FresnelStep {
 
 impl Scene {
     /// The nearest face `ray` meets ahead, `left` being the water face it has just left (if it
-    /// starts on one); the straw wins ties (SPEC §3). The one rule is [`Tracer::nearest_intersection`].
+    /// starts on one); the opaque straw wins ties. The one rule is
+    /// [`Tracer::nearest_intersection`].
     #[inline]
     pub fn nearest_intersection(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
         Tracer::new(self).nearest_intersection(ray, left)
@@ -207,7 +208,8 @@ impl Scene {
         }
     }
 
-    /// Traces `ray`, which starts in air, by the course's law (SPEC §3).
+    /// Traces `ray`, which starts in air, by the course's law: refraction or total reflection at
+    /// each water face.
     #[inline]
     pub fn trace(&self, ray: Ray) -> Outcome {
         self.trace_with(ray, |_| {})
@@ -219,7 +221,7 @@ impl Scene {
         Tracer::new(self).trace_with(ray, on_event)
     }
 
-    /// Fresnel tracing (SPEC §6): the weight of `ray` that ends on each section (index 0 = code 1).
+    /// Fresnel tracing: the weight of `ray` that ends on each section (index 0 = code 1).
     ///
     /// At each water face the ray splits into a reflected branch of weight `R` (unpolarised Fresnel
     /// reflectance, 1 under total reflection) and a refracted branch of weight `1 − R`; each branch
@@ -262,7 +264,7 @@ pub trait NearestFace {
     fn prepared(&self) -> Cow<'_, Tracer>;
 
     /// The nearest face `ray` meets ahead, `left` being the water face it has just left (if it
-    /// starts on one, after an event there); the straw wins ties (SPEC §3).
+    /// starts on one, after an event there); the opaque straw wins ties.
     fn nearest_face(&self, ray: &Ray, left: Option<Face>) -> Option<Intersection> {
         self.prepared().nearest_intersection(ray, left)
     }
@@ -275,7 +277,7 @@ impl NearestFace for Scene {
     }
 }
 
-/// The course's tracing loop (SPEC §3) in the assignment's words: from air, face after face,
+/// The course's tracing loop in the assignment's words: from air, face after face,
 /// refraction or total reflection at each water face, until the straw, escape, or one event more
 /// than the scene's `max_events`; `on_event` is told every event, in order. It is the one loop
 /// every scene is traced by ([`crate::world::World`]'s), told in the water's and straw's faces.
@@ -284,7 +286,7 @@ pub fn follow_ray(faces: &impl NearestFace, ray: Ray, on_event: impl FnMut(&Even
     faces.prepared().trace_with(ray, on_event)
 }
 
-/// The Fresnel tracing loop of SPEC §6 in the assignment's words; see
+/// The Fresnel tracing loop in the assignment's words; see
 /// [`Scene::trace_fresnel_with`]. With `SKIP_ESCAPING`, branches that provably escape are not
 /// followed (for pictures, where they add nothing): a branch that leaves the water through its side
 /// wall or bottom, or is reflected off their outside, moves away from the axis or downwards for good

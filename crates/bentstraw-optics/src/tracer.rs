@@ -72,7 +72,7 @@ impl Tracer {
             .map(|k| self.world.surface_code(k))
     }
 
-    /// The nearest face `ray` meets ahead (`t > 0`); the straw wins ties (SPEC §3).
+    /// The nearest face `ray` meets ahead (`t > 0`); the opaque straw wins ties.
     ///
     /// `left` is the face the ray has just left (it starts on it, after an event there, or, for a
     /// ray sent back from the straw, on the straw): its root at the start is excluded exactly (a
@@ -109,7 +109,8 @@ impl Tracer {
         }
     }
 
-    /// Traces `ray`, which starts in air, by the course's law (SPEC §3).
+    /// Traces `ray`, which starts in air, by the course's law: refraction or total reflection at
+    /// each water face.
     #[inline]
     pub fn trace(&self, ray: Ray) -> Outcome {
         self.trace_with(ray, |_| {})
@@ -164,7 +165,8 @@ impl Tracer {
         self.world.image_point(observer, u0)
     }
 
-    /// Fresnel tracing (SPEC §6): the weight of `ray` that ends on each section.
+    /// Fresnel tracing (the ray splits at each water face into branches weighted by the Fresnel
+    /// reflectance): the weight of `ray` that ends on each section.
     pub fn trace_fresnel(&self, ray: Ray, prune_below: f64) -> [f64; SECTION_COUNT] {
         self.fresnel_bounded::<false>(ray, prune_below, FRESNEL_SEGMENTS_PER_RAY, |_| {})
     }

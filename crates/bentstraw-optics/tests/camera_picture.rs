@@ -1,4 +1,4 @@
-//! The observer's camera (SPEC §6) and the per-pixel pictures against the point cloud.
+//! The observer's pinhole camera and the per-pixel pictures against the point cloud.
 
 use bentstraw_optics::camera::{framing_fov, framing_target, Camera, FRAMING_MARGIN};
 use bentstraw_optics::picture::{course_picture, fresnel_picture};
@@ -8,7 +8,7 @@ use bentstraw_optics::scene::{
 };
 use bentstraw_optics::Vec3;
 
-/// SPEC §6's pixel direction, written out with plain arrays (no glam), normalised.
+/// The pixel direction of docs/physics.md, written out with plain arrays (no glam), normalised.
 fn spec_direction(
     eye: [f64; 3],
     target: [f64; 3],

@@ -1,6 +1,6 @@
 //! The tracers give what an independent tracer gives.
 //!
-//! The reference is `support/reference.rs`: SPEC §3 and the Fresnel split written out the plainest
+//! The reference is `support/reference.rs`: the course's law and the Fresnel split in the plainest
 //! way, in double-double arithmetic, sharing no code with the library. Every expected value is
 //! computed by it, over many rays (all pixels of the four benchmark views, random rays from random
 //! observers of random scenes, and awkward rays: vertical, horizontal, along the axes, grazing).

@@ -1,5 +1,5 @@
 //! The Fresnel reflectance against known values, and the conservation of weight in Fresnel tracing
-//! (SPEC §6).
+//! (each split passes on the whole weight: `R` reflected, `1 − R` refracted).
 
 mod support;
 

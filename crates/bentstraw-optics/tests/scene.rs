@@ -1,4 +1,4 @@
-//! The rules a valid simulation obeys (SPEC §2), and the geometry helpers of the scene.
+//! The rules a valid simulation obeys, and the geometry helpers of the scene.
 
 use bentstraw_optics::scene::{section_at, Scene, SceneError, REFERENCES};
 use bentstraw_optics::Vec3;

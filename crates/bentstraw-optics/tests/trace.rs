@@ -1,4 +1,5 @@
-//! The tracing loop of SPEC §3 and the facts of SPEC §7.
+//! The course's tracing loop (refraction or total reflection at each water face, the event
+//! limit), and the facts it must reproduce, such as a straw on the axis looking `n` times wider.
 
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::scene::{Scene, GLASS_RADIUS, REFERENCES, STRAW_HEIGHT, STRAW_RADIUS};
@@ -60,7 +61,7 @@ fn colour_codes_follow_the_sections_from_the_bottom() {
 
 #[test]
 fn a_straw_on_the_axis_looks_n_times_wider_for_any_distance() {
-    // SPEC §7: horizontal rays at impact parameter b meet the straw iff b <= n·Rp.
+    // Horizontal rays at impact parameter b meet the straw iff b <= n·Rp.
     for n in [1.0, 1.1, 1.333, 1.5] {
         let scene = Scene::new(0.0, 0.0, 0.2, n, 10).unwrap();
         let threshold = n * STRAW_RADIUS;

@@ -206,7 +206,7 @@ pub struct TableArgs {
     pub points: usize,
 }
 
-/// The observer's picture mode (SPEC §6).
+/// The observer's picture mode: the course's single ray, or Fresnel-weighted branches.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ModeArg {
     /// One ray per sample, the colour code it hits.

@@ -1,4 +1,4 @@
-//! The classic figure (SPEC §5): the image points in their section colours, the water as a
+//! The classic figure: the image points in their section colours, the water as a
 //! wireframe, the observer, equal axes, three views (front, side, from above) in a 2 × 2 grid with
 //! the legend in the fourth cell; and what every figure shares: one pipeline writing PNG, SVG or
 //! PDF by the file's extension ([`figure_bytes`]), text sizes legible at 8.5 cm, headings, legends.

@@ -4,7 +4,7 @@
 //! same `f64` (CSV, JSON), or the `f64` bytes themselves (PLY). No timing goes into a file, so the
 //! same inputs give byte-identical files.
 //!
-//! - **CSV**: header `x,y,z,color`, then one point a row; `color` is the section code of SPEC §1
+//! - **CSV**: header `x,y,z,color`, then one point a row; `color` is the straw section's code
 //!   (1 = red … 5 = blue).
 //! - **JSON**: one object, schema `bentstraw-image-points/1`:
 //!   ```text
@@ -112,7 +112,7 @@ pub struct PointSet<'a> {
 /// The points of one apparent-position model, as written.
 #[derive(Clone, Copy, Debug)]
 pub enum ModelPoints<'a> {
-    /// The course's convention (SPEC §4): the cloud's image points.
+    /// The course's convention (`O + L·u0`): the cloud's image points.
     Course,
     /// The eye model: one apparent point per image point, with its two foci.
     Eye(&'a [ApparentPoint]),
@@ -708,7 +708,7 @@ mod tests {
             assert_eq!(z.to_bits(), p.position.z.to_bits());
             assert_eq!(rec[27], p.color);
         }
-        // Section 5 is blue, section 2 orange (SPEC §1 display colours).
+        // Section 5 is blue, section 2 orange (the sections' display colours).
         assert_eq!(section_rgb8(5), [0, 0, 255]);
         assert_eq!(section_rgb8(2), [237, 177, 32]);
     }

@@ -39,7 +39,7 @@ use bentstraw_optics::Vec3;
 use crate::cli::SceneArgs;
 
 impl SceneArgs {
-    /// The validated scene and observer (SPEC §2).
+    /// The scene and observer, checked against the rules of valid inputs.
     pub fn scene_and_observer(&self) -> CliResult<(Scene, Vec3)> {
         let scene = Scene::new(
             self.straw[0],

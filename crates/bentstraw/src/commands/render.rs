@@ -1,4 +1,4 @@
-//! `bentstraw render`: the observer's picture (SPEC §6) as a PNG for people, and optionally one ray
+//! `bentstraw render`: the observer's picture as a PNG for people, and optionally one ray
 //! per pixel centre as CSV.
 
 use std::path::Path;

@@ -319,7 +319,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     }
 }
 
-/// What the observer's eye sees (SPEC §6, fresnel mode) beside the image points through the same camera.
+/// What the observer's eye sees (fresnel mode) beside the image points through the same camera.
 fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let seen = format!("{}_observer.png", job.stem);
@@ -682,7 +682,7 @@ fn inputs(scene: &Scene, o: Vec3) -> Vec<(String, String)> {
     ]
 }
 
-/// The built-in check of SPEC §4 for `n_water = 1`: every image point lies on the straw.
+/// The built-in check for `n_water = 1`: every image point lies on the straw.
 fn check(scene: &Scene, cloud: &ImageCloud) -> Option<Check> {
     if scene.n_water != 1.0 {
         return None;
