@@ -15,8 +15,17 @@ pub fn reflect(d: Vec3, normal: Vec3) -> Vec3 {
 /// incidence) is totally reflected: `(n1/n2)·sin θi > 1`.
 #[inline]
 pub fn total_internal_reflection(n1: f64, n2: f64, cos_i: f64) -> bool {
-    let eta = n1 / n2;
-    eta * eta * (1.0 - cos_i * cos_i) > 1.0
+    snell(n1 / n2, cos_i).1
+}
+
+/// Snell–Descartes for `eta = n1/n2` at incidence `cos_i`: `sin² θt = eta²·(1 − cos² θi)`, and
+/// whether it exceeds 1, i.e. whether the light is totally reflected. The one test of total
+/// internal reflection every tracer and the Fresnel reflectance use.
+#[inline(always)]
+fn snell<R: Real>(eta: R, cos_i: R) -> (R, R::Mask) {
+    let one = R::splat(1.0);
+    let sin2_t = eta * eta * (one - cos_i * cos_i);
+    (sin2_t, sin2_t.gt(one))
 }
 
 /// What light does at an interface, for one ray or eight ([`Real`]): the refracted direction (not
@@ -46,12 +55,12 @@ pub(crate) fn scatter_lanes<R: Real>(d: V3<R>, normal: V3<R>, eta: R) -> Scatter
     let facing = c.ge(zero);
     let nn = V3::select(facing, normal, -normal);
     let cos_i = R::select(facing, c, -c);
-    let sin2_t = eta * eta * (one - cos_i * cos_i);
+    let (sin2_t, total) = snell(eta, cos_i);
     let cos_t = (one - sin2_t).sqrt();
     Scattered {
         refracted: d.scale(eta) + nn.scale(eta * cos_i - cos_t),
         reflected: d - normal.scale(R::splat(2.0) * dn),
-        total: sin2_t.gt(one),
+        total,
         cos_i,
     }
 }
@@ -71,11 +80,10 @@ pub(crate) fn reflectance_lanes<R: Real>(n1: R, n2: R, eta: R, cos_i: R) -> R {
 fn reflectances_lanes<R: Real>(n1: R, n2: R, eta: R, cos_i: R) -> (R, R) {
     let one = R::splat(1.0);
     let cos_i = cos_i.min(one);
-    let sin2_t = eta * eta * (one - cos_i * cos_i);
+    let (sin2_t, total) = snell(eta, cos_i);
     let cos_t = (one - sin2_t).sqrt();
     let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
     let rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
-    let total = sin2_t.ge(one);
     let three = R::splat(3.0);
     (
         R::select(total, three, rs * rs),

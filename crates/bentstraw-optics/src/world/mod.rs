@@ -375,6 +375,20 @@ impl World {
         }
         boundaries.push(horizontal(0.0, surface, AIR, medium_above(0.0)));
         boundaries.extend(rings);
+        // Where faces between media of the same index are dropped, such media are one medium:
+        // light cannot tell them apart, and a ray that crossed a dropped face must still know on
+        // which side of the next face it is. Each medium takes the id of the first medium of its
+        // index (air's, 0, for index 1). The assignment's water keeps its own id: its faces stay.
+        if same_index == SameIndex::Dropped {
+            let one_medium = |m: MediumId| {
+                let n = indices[m as usize];
+                indices.iter().position(|&k| k == n).unwrap_or(m as usize) as MediumId
+            };
+            for b in &mut boundaries {
+                b.outer = one_medium(b.outer);
+                b.inner = one_medium(b.inner);
+            }
+        }
         // Faces with the same medium on both sides are none; faces between media of the same
         // index are kept only as the rule says.
         let is_liquid = |m: MediumId| m >= 2;
