@@ -1,0 +1,54 @@
+//! The command line's tests, one test binary: each links the whole program's dependencies, so one
+//! binary instead of seven saves six links on every `cargo test`. Each file of `tests/` is a
+//! module here (`autotests = false` in Cargo.toml: a new file must be added below, which
+//! `every_test_file_is_a_module` checks).
+//!
+//! The report job (`bentstraw table`, many seconds) runs once, in `the_report_job`, and the
+//! modules check its output.
+
+mod bench_cli;
+mod check_cli;
+mod cli;
+mod figures_cli;
+mod outputs_cli;
+mod render_cli;
+mod scene_cli;
+
+/// The rule for tests needing node, Chromium or poppler, shared with the unit tests.
+#[allow(dead_code)]
+#[path = "../src/test_support.rs"]
+mod test_support;
+
+use std::process::Command;
+
+/// The report job on its defaults (as `cargo run --release` runs it; `cli` checks that no
+/// arguments means `table --out out`), into folders it must make; run once, checked by each
+/// module that has something to say about the report.
+#[test]
+fn the_report_job() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+        .current_dir(dir.path())
+        .args(["table", "--out", "made/here"])
+        .output()
+        .expect("the binary runs");
+    let folder = dir.path().join("made/here");
+    cli::table_writes_every_simulation_and_the_report(&out, &folder);
+    figures_cli::the_reports_figures_come_as_svg_too_and_are_legible(&folder);
+}
+
+/// Every `.rs` file of `tests/` is compiled: as this file or a module of it.
+#[test]
+fn every_test_file_is_a_module() {
+    let tests = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let main = std::fs::read_to_string(tests.join("main.rs")).unwrap();
+    for entry in std::fs::read_dir(&tests).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        if let Some(stem) = name.strip_suffix(".rs") {
+            assert!(
+                stem == "main" || main.contains(&format!("\nmod {stem};\n")),
+                "tests/{name} is not compiled: add `mod {stem};` to tests/main.rs"
+            );
+        }
+    }
+}
