@@ -8,11 +8,12 @@ use std::hint::black_box;
 use bentstraw_optics::apparent::StereoEyes;
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::{REFERENCES, WATER_INDEX};
+use bentstraw_optics::world::World;
 use criterion::{criterion_group, criterion_main, Criterion};
 
 fn models(c: &mut Criterion) {
     let r = REFERENCES[0];
-    let scene = r.scene(WATER_INDEX);
+    let scene = World::assignment(&r.scene(WATER_INDEX));
     let cloud = sample_image(&scene, r.observer, 1000, &|_| {});
     let points: Vec<_> = cloud.points.iter().step_by(10).copied().collect();
     let eyes = StereoEyes::around(r.observer);

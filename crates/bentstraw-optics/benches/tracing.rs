@@ -7,15 +7,15 @@ use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::picture::{
     course_picture, course_picture_exact, fresnel_picture, fresnel_picture_exact,
 };
-use bentstraw_optics::scene::{Scene, REFERENCES};
-use bentstraw_optics::tracer::Tracer;
+use bentstraw_optics::scene::REFERENCES;
+use bentstraw_optics::world::{World, FRESNEL_SEGMENTS_PER_RAY};
 use bentstraw_optics::Vec3;
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 
 /// Reference simulation 2's scene and its benchmark camera (zoomed where the straw enters the water).
-fn view(w: u32, h: u32) -> (Scene, Camera) {
+fn view(w: u32, h: u32) -> (World, Camera) {
     let r = REFERENCES[1];
-    let scene = r.scene(1.333);
+    let scene = World::assignment(&r.scene(1.333));
     let target = Vec3::new(r.straw.0, r.straw.1, r.water_height);
     (
         scene,
@@ -31,31 +31,14 @@ fn middle_row(camera: &Camera) -> Vec<Ray> {
 }
 
 fn intersections(c: &mut Criterion) {
-    let (scene, camera) = view(256, 192);
+    let (world, camera) = view(256, 192);
     let rays = middle_row(&camera);
-    let tracer = Tracer::new(&scene);
     let mut g = c.benchmark_group("intersection");
     g.throughput(Throughput::Elements(rays.len() as u64));
-    g.bench_function("cylinder side (water)", |b| {
-        let side = scene.water_side();
+    g.bench_function("World::nearest", |b| {
         b.iter(|| {
             rays.iter()
-                .filter_map(|r| side.intersect(black_box(r)))
-                .sum::<f64>()
-        })
-    });
-    g.bench_function("disk (water top)", |b| {
-        let disk = scene.water_top();
-        b.iter(|| {
-            rays.iter()
-                .filter_map(|r| disk.intersect(black_box(r)))
-                .sum::<f64>()
-        })
-    });
-    g.bench_function("Tracer::nearest_intersection", |b| {
-        b.iter(|| {
-            rays.iter()
-                .filter_map(|r| tracer.nearest_intersection(black_box(r), None))
+                .filter_map(|r| world.nearest(black_box(r), None))
                 .count()
         })
     });
@@ -63,36 +46,28 @@ fn intersections(c: &mut Criterion) {
 }
 
 fn one_ray(c: &mut Criterion) {
-    let (scene, camera) = view(256, 192);
+    let (world, camera) = view(256, 192);
     let rays = middle_row(&camera);
-    let tracer = Tracer::new(&scene);
     let mut g = c.benchmark_group("trace");
     g.throughput(Throughput::Elements(rays.len() as u64));
-    g.bench_function("course Scene::trace", |b| {
+    g.bench_function("course World::trace", |b| {
         b.iter(|| {
             rays.iter()
-                .map(|r| scene.trace(black_box(*r)).color() as u32)
+                .map(|r| world.trace(black_box(*r)).color() as u32)
                 .sum::<u32>()
         })
     });
-    g.bench_function("course Tracer::trace", |b| {
+    g.bench_function("fresnel World::fresnel_steps", |b| {
         b.iter(|| {
             rays.iter()
-                .map(|r| tracer.color(black_box(*r)) as u32)
-                .sum::<u32>()
-        })
-    });
-    g.bench_function("fresnel Scene::trace_fresnel", |b| {
-        b.iter(|| {
-            rays.iter()
-                .map(|r| scene.trace_fresnel(black_box(*r), 1e-4)[0])
-                .sum::<f64>()
-        })
-    });
-    g.bench_function("fresnel Tracer::trace_fresnel", |b| {
-        b.iter(|| {
-            rays.iter()
-                .map(|r| tracer.trace_fresnel(black_box(*r), 1e-4)[0])
+                .map(|r| {
+                    world.fresnel_steps::<false>(
+                        black_box(*r),
+                        1e-4,
+                        FRESNEL_SEGMENTS_PER_RAY,
+                        |_| {},
+                    )[0]
+                })
                 .sum::<f64>()
         })
     });

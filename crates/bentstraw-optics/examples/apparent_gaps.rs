@@ -8,6 +8,7 @@ use std::time::Instant;
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, Focus};
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::{REFERENCES, WATER_INDEX};
+use bentstraw_optics::world::World;
 
 /// The median of `values` (sorted here); NaN if empty.
 fn median(values: &mut [f64]) -> f64 {
@@ -30,10 +31,10 @@ fn main() {
     );
     for r in REFERENCES {
         let scene = r.scene(WATER_INDEX);
-        let cloud = sample_image(&scene, r.observer, 20_000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), r.observer, 20_000, &|_| {});
         let start = Instant::now();
-        let eye = eye_model_points(&scene, r.observer, &cloud.points);
-        let stereo = stereo_points(&scene, r.observer, &cloud.points);
+        let eye = eye_model_points(&World::assignment(&scene), r.observer, &cloud.points);
+        let stereo = stereo_points(&World::assignment(&scene), r.observer, &cloud.points);
         let seconds = start.elapsed().as_secs_f64();
         let mut gaps: Vec<f64> = eye.iter().filter_map(|p| p.gap_to_course()).collect();
         let undefined = eye.len() - gaps.len();

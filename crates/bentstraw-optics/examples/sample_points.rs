@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::REFERENCES;
+use bentstraw_optics::world::World;
 
 fn main() {
     let n: usize = std::env::args()
@@ -13,7 +14,7 @@ fn main() {
     for r in REFERENCES {
         let scene = r.scene(1.333);
         let start = Instant::now();
-        let cloud = sample_image(&scene, r.observer, n, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), r.observer, n, &|_| {});
         let seconds = start.elapsed().as_secs_f64();
         // An order-sensitive checksum, to compare runs bit for bit.
         let checksum = cloud.points.iter().enumerate().fold(0u64, |acc, (n, p)| {

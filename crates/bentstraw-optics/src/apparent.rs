@@ -5,7 +5,7 @@
 //! # Re-aiming
 //! Every model needs the rays from one straw point `Q` that reach other eye positions along the
 //! same light path (the same sequence of water faces, refracted or totally reflected alike). A
-//! [`LightPath`] records that sequence for the traced ray from the observer; [`Scene::reaim`] finds,
+//! [`LightPath`] records that sequence for the traced ray from the observer; [`World::reaim`] finds,
 //! by Newton's method on the initial direction, the ray from another eye position that follows the
 //! same sequence and whose last straight segment passes through `Q`, then checks with the tracer
 //! that this ray really reaches `Q` (within [`REACH_TOLERANCE`]) without meeting anything else.
@@ -50,11 +50,12 @@
 //! use bentstraw_optics::apparent::{eye_model_points, stereo_points, Focus};
 //! use bentstraw_optics::sampling::sample_image;
 //! use bentstraw_optics::scene::{REFERENCES, WATER_INDEX};
+//! use bentstraw_optics::world::World;
 //!
 //! let r = REFERENCES[0];
-//! let scene = r.scene(WATER_INDEX);
-//! let cloud = sample_image(&scene, r.observer, 200, &|_| {});
-//! let eye = eye_model_points(&scene, r.observer, &cloud.points);
+//! let world = World::assignment(&r.scene(WATER_INDEX));
+//! let cloud = sample_image(&world, r.observer, 200, &|_| {});
+//! let eye = eye_model_points(&world, r.observer, &cloud.points);
 //! assert_eq!(eye.len(), cloud.points.len());
 //! for p in &eye {
 //!     // Both foci in front of the eye: the apparent point is defined, between them.
@@ -63,16 +64,16 @@
 //!         assert!(s >= h.min(v) - 1e-12 && s <= h.max(v) + 1e-12);
 //!     }
 //! }
-//! let stereo = stereo_points(&scene, r.observer, &cloud.points);
+//! let stereo = stereo_points(&world, r.observer, &cloud.points);
 //! assert_eq!(stereo.points.len() + stereo.skipped, cloud.points.len());
 //! ```
 
-use rayon::prelude::*;
+use crate::parallel::*;
 
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::scene::{Scene, SCENE_CENTRE};
-use crate::tracer::Tracer;
+use crate::scene::SCENE_CENTRE;
+use crate::world::{Outcome, World};
 use crate::Vec3;
 
 /// Step `δ` of the eye across the pupil for the finite differences of the eye model (m).
@@ -318,33 +319,16 @@ pub struct PathEvent {
     pub totally_reflected: bool,
 }
 
-/// What the eye and stereo models need of a scene: a ray's events, in order, and the object point
-/// it reaches. The assignment's glass and any scene file's world are modelled by the same code.
-pub trait PathTracer: Sync {
-    /// Traces `ray` from an eye by the course's law, telling `on_event` every event; the object
-    /// point reached and the number of events on the way, if it reaches one.
-    fn follow_events(&self, ray: Ray, on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)>;
-}
-
-/// One ray at a time (each call prepares the scene again): for tests and single rays; to trace
-/// many, use the [`Tracer`].
-impl PathTracer for Scene {
+impl World {
+    /// Traces `ray` from an eye by the course's law, telling `on_event` every event as the
+    /// models see it; the object point reached and the number of events on the way, if it
+    /// reaches one.
     #[inline]
-    fn follow_events(&self, ray: Ray, on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)> {
-        Tracer::new(self).world().follow_events(ray, on_event)
-    }
-}
-
-impl PathTracer for Tracer {
-    #[inline]
-    fn follow_events(&self, ray: Ray, on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)> {
-        self.world().follow_events(ray, on_event)
-    }
-}
-
-impl PathTracer for crate::world::World {
-    #[inline]
-    fn follow_events(&self, ray: Ray, mut on_event: impl FnMut(PathEvent)) -> Option<(Vec3, u32)> {
+    pub fn follow_events(
+        &self,
+        ray: Ray,
+        mut on_event: impl FnMut(PathEvent),
+    ) -> Option<(Vec3, u32)> {
         let outcome = self.trace_with(ray, |e| {
             on_event(PathEvent {
                 face: e.boundary as u64,
@@ -354,7 +338,7 @@ impl PathTracer for crate::world::World {
             })
         });
         match outcome {
-            crate::world::WorldOutcome::Object { point, events, .. } => Some((point, events)),
+            Outcome::Object { point, events, .. } => Some((point, events)),
             _ => None,
         }
     }
@@ -386,8 +370,8 @@ type Jacobian = [[f64; 2]; 2];
 /// perpendicular to the last segment (from `P`, direction `d`), on two fixed axes across the
 /// central last segment.
 #[derive(Clone, Copy, Debug)]
-struct Aim<'a, T> {
-    scene: &'a T,
+struct Aim<'a> {
+    world: &'a World,
     path: LightPath,
     forward: Vec3,
     right: Vec3,
@@ -395,12 +379,12 @@ struct Aim<'a, T> {
     across: [Vec3; 2],
 }
 
-impl<'a, T: PathTracer> Aim<'a, T> {
-    fn new(scene: &'a T, path: LightPath, forward: Vec3, right: Vec3, up: Vec3) -> Self {
+impl<'a> Aim<'a> {
+    fn new(world: &'a World, path: LightPath, forward: Vec3, right: Vec3, up: Vec3) -> Self {
         let a = any_perpendicular(path.final_direction);
         let b = path.final_direction.cross(a);
         Aim {
-            scene,
+            world,
             path,
             forward,
             right,
@@ -422,7 +406,7 @@ impl<'a, T: PathTracer> Aim<'a, T> {
         let mut count = 0u32;
         let mut sequence = EMPTY_SEQUENCE;
         let (mut origin, mut last) = (eye, direction);
-        let outcome = self.scene.follow_events(
+        let outcome = self.world.follow_events(
             Ray {
                 origin: eye,
                 direction,
@@ -616,11 +600,10 @@ impl<'a, T: PathTracer> Aim<'a, T> {
     }
 }
 
-/// The models of the apparent position, for every [`PathTracer`] (the assignment's glass, any
-/// scene file's world).
-pub trait ApparentPosition: PathTracer + Sized {
+/// The models of the apparent position, for any world.
+impl World {
     /// The light path of the ray from `eye` along unit `u0`, if it reaches the straw.
-    fn light_path(&self, eye: Vec3, u0: Vec3) -> Option<LightPath> {
+    pub fn light_path(&self, eye: Vec3, u0: Vec3) -> Option<LightPath> {
         let mut sequence = EMPTY_SEQUENCE;
         let mut last = u0;
         let outcome = self.follow_events(
@@ -644,7 +627,7 @@ pub trait ApparentPosition: PathTracer + Sized {
     /// The unit direction from `eye` whose ray reaches `path`'s straw point along the same
     /// sequence of events (within [`REACH_TOLERANCE`], checked by tracing), searched from `guess`;
     /// `None` if there is none near (the point is hidden, or seen along another path).
-    fn reaim(&self, eye: Vec3, path: &LightPath, guess: Vec3) -> Option<Vec3> {
+    pub fn reaim(&self, eye: Vec3, path: &LightPath, guess: Vec3) -> Option<Vec3> {
         let forward = guess.normalize();
         let right = any_perpendicular(forward);
         let aim = Aim::new(self, *path, forward, right, forward.cross(right));
@@ -653,12 +636,12 @@ pub trait ApparentPosition: PathTracer + Sized {
     }
 
     /// The eye model's apparent point of `image`, seen from `observer` (module docs).
-    fn apparent_point(&self, observer: Vec3, image: &ImagePoint) -> ApparentPoint {
+    pub fn apparent_point(&self, observer: Vec3, image: &ImagePoint) -> ApparentPoint {
         self.apparent_point_with_step(observer, image, PUPIL_STEP)
     }
 
-    /// [`ApparentPosition::apparent_point`] with pupil step `step` (m) instead of [`PUPIL_STEP`].
-    fn apparent_point_with_step(
+    /// [`World::apparent_point`] with pupil step `step` (m) instead of [`PUPIL_STEP`].
+    pub fn apparent_point_with_step(
         &self,
         observer: Vec3,
         image: &ImagePoint,
@@ -692,7 +675,7 @@ pub trait ApparentPosition: PathTracer + Sized {
 
     /// The stereo model's point for `image` (seen from `observer`), seen by `eyes`; `None` if an
     /// eye does not see the same straw point along the same light path.
-    fn stereo_point(
+    pub fn stereo_point(
         &self,
         eyes: &StereoEyes,
         observer: Vec3,
@@ -743,67 +726,23 @@ pub trait ApparentPosition: PathTracer + Sized {
     }
 }
 
-impl<T: PathTracer> ApparentPosition for T {}
-
-/// The models on the assignment's glass, callable without naming the trait.
-impl Scene {
-    /// [`ApparentPosition::light_path`].
-    pub fn light_path(&self, eye: Vec3, u0: Vec3) -> Option<LightPath> {
-        ApparentPosition::light_path(self, eye, u0)
-    }
-
-    /// [`ApparentPosition::reaim`].
-    pub fn reaim(&self, eye: Vec3, path: &LightPath, guess: Vec3) -> Option<Vec3> {
-        ApparentPosition::reaim(self, eye, path, guess)
-    }
-
-    /// [`ApparentPosition::apparent_point`].
-    pub fn apparent_point(&self, observer: Vec3, image: &ImagePoint) -> ApparentPoint {
-        ApparentPosition::apparent_point(self, observer, image)
-    }
-
-    /// [`ApparentPosition::apparent_point_with_step`].
-    pub fn apparent_point_with_step(
-        &self,
-        observer: Vec3,
-        image: &ImagePoint,
-        step: f64,
-    ) -> ApparentPoint {
-        ApparentPosition::apparent_point_with_step(self, observer, image, step)
-    }
-
-    /// [`ApparentPosition::stereo_point`].
-    pub fn stereo_point(
-        &self,
-        eyes: &StereoEyes,
-        observer: Vec3,
-        image: &ImagePoint,
-    ) -> Option<StereoPoint> {
-        ApparentPosition::stereo_point(self, eyes, observer, image)
-    }
-}
-
 /// The eye model's points for `points` (image points seen from `observer`, e.g. from
 /// [`crate::sampling::sample_image`]), one per input point, in the same order; in parallel.
-pub fn eye_model_points<T: PathTracer>(
-    scene: &T,
+pub fn eye_model_points(
+    world: &World,
     observer: Vec3,
     points: &[ImagePoint],
 ) -> Vec<ApparentPoint> {
     points
         .par_iter()
-        .map(|p| scene.apparent_point(observer, p))
+        .map(|p| world.apparent_point(observer, p))
         .collect()
 }
 
 /// The stereo model's points for `points` (image points seen from `observer`), seen by the eyes
 /// [`StereoEyes::around`] the observer, in the input's order; in parallel.
-pub fn stereo_points<T: PathTracer>(
-    scene: &T,
-    observer: Vec3,
-    points: &[ImagePoint],
-) -> StereoImage {
-    let all = stereo_point_each(scene, observer, points);
+pub fn stereo_points(world: &World, observer: Vec3, points: &[ImagePoint]) -> StereoImage {
+    let all = stereo_point_each(world, observer, points);
     let skipped = all.iter().filter(|p| p.is_none()).count();
     StereoImage {
         points: all.into_iter().flatten().collect(),
@@ -814,15 +753,15 @@ pub fn stereo_points<T: PathTracer>(
 /// The stereo model's point for each of `points` (image points seen from `observer`), seen by the
 /// eyes [`StereoEyes::around`] the observer: one per input point, `None` where an eye does not see
 /// it along the same light path; in parallel.
-pub fn stereo_point_each<T: PathTracer>(
-    scene: &T,
+pub fn stereo_point_each(
+    world: &World,
     observer: Vec3,
     points: &[ImagePoint],
 ) -> Vec<Option<StereoPoint>> {
     let eyes = StereoEyes::around(observer);
     points
         .par_iter()
-        .map(|p| scene.stereo_point(&eyes, observer, p))
+        .map(|p| world.stereo_point(&eyes, observer, p))
         .collect()
 }
 
@@ -837,14 +776,10 @@ pub struct ApparentImages {
 
 /// The eye model's and the stereo model's points for `points` (image points seen from
 /// `observer`, e.g. [`crate::sampling::sample_image`]'s), in parallel, deterministic.
-pub fn apparent_images<T: PathTracer>(
-    scene: &T,
-    observer: Vec3,
-    points: &[ImagePoint],
-) -> ApparentImages {
+pub fn apparent_images(world: &World, observer: Vec3, points: &[ImagePoint]) -> ApparentImages {
     ApparentImages {
-        eye: eye_model_points(scene, observer, points),
-        stereo: stereo_points(scene, observer, points),
+        eye: eye_model_points(world, observer, points),
+        stereo: stereo_points(world, observer, points),
     }
 }
 
@@ -853,8 +788,8 @@ mod tests {
     use super::*;
     use crate::interface::refract;
     use crate::sampling::sample_image;
+    use crate::scene::Scene;
     use crate::scene::{GLASS_RADIUS, REFERENCES, STRAW_RADIUS, WATER_INDEX};
-    use crate::trace::Outcome;
     use proptest::prelude::*;
     use proptest::test_runner::{Config, TestRunner};
 
@@ -862,7 +797,7 @@ mod tests {
 
     /// The ray from `eye` along `u0` must reach the straw; its image point.
     fn image(scene: &Scene, eye: Vec3, u0: Vec3) -> ImagePoint {
-        scene
+        World::assignment(scene)
             .image_point(eye, u0.normalize())
             .expect("the ray reaches the straw")
     }
@@ -870,7 +805,7 @@ mod tests {
     /// Whether the ray from `eye` along `u` has a total reflection on its way.
     fn totally_reflected(scene: &Scene, eye: Vec3, u: Vec3) -> bool {
         let mut tir = false;
-        scene.trace_with(
+        World::assignment(scene).trace_with(
             Ray {
                 origin: eye,
                 direction: u,
@@ -994,7 +929,7 @@ mod tests {
             scene.validate_observer(eye).unwrap();
             let im = image(&scene, eye, s - eye);
             assert!(im.straw_point.distance(q) < 1e-12, "{:?}", im.straw_point);
-            let ap = scene.apparent_point(eye, &im);
+            let ap = World::assignment(&scene).apparent_point(eye, &im);
             let (sh, sv) = (ap.s_h.distance().unwrap(), ap.s_v.distance().unwrap());
             assert!(
                 (sh - (l + sagittal)).abs() < 1e-9,
@@ -1035,7 +970,7 @@ mod tests {
         assert!(inv_image < 0.0);
         let expected_h = (dist - GLASS_RADIUS) - 1.0 / inv_image;
         let expected_v = (dist - GLASS_RADIUS) + s / N;
-        let ap = scene.apparent_point(eye, &im);
+        let ap = World::assignment(&scene).apparent_point(eye, &im);
         let (sh, sv) = (ap.s_h.distance().unwrap(), ap.s_v.distance().unwrap());
         assert!((sh - expected_h).abs() < 1e-9, "s_h {sh} vs {expected_h}");
         assert!((sv - expected_v).abs() < 1e-9, "s_v {sv} vs {expected_v}");
@@ -1043,7 +978,9 @@ mod tests {
         // horizontal focus, up to O(separation²).
         let eyes = StereoEyes::with_separation(eye, 1e-4);
         assert!((eyes.right - eyes.left).normalize().distance(Vec3::Y) < 1e-12);
-        let st = scene.stereo_point(&eyes, eye, &im).unwrap();
+        let st = World::assignment(&scene)
+            .stereo_point(&eyes, eye, &im)
+            .unwrap();
         let expected = eye - expected_h * Vec3::X;
         assert!(
             st.position.unwrap().distance(expected) < 1e-6,
@@ -1052,7 +989,7 @@ mod tests {
         );
         // With the real 65 mm both lines of sight stay in the horizontal plane by symmetry: they
         // meet (no miss, no vertical disparity), on the central line, nearer than the straw point.
-        let st = scene
+        let st = World::assignment(&scene)
             .stereo_point(&StereoEyes::around(eye), eye, &im)
             .unwrap();
         let p = st.position.unwrap();
@@ -1100,7 +1037,9 @@ mod tests {
             let observer = s + 0.2 * Vec3::new(theta.sin(), 0.0, theta.cos());
             let im = image(&scene, observer, s - observer);
             let eyes = StereoEyes::around(observer);
-            let st = scene.stereo_point(&eyes, observer, &im).unwrap();
+            let st = World::assignment(&scene)
+                .stereo_point(&eyes, observer, &im)
+                .unwrap();
             let line = |e: Vec3| (e, (fermat_crossing(e, q, he) - e).normalize());
             let ((el, ul), (er, ur)) = (line(eyes.left), line(eyes.right));
             assert!(
@@ -1140,7 +1079,7 @@ mod tests {
                 coddington_image(N, 1.0, theta_w, theta, t, -1.0 / GLASS_RADIUS, 0.0);
             // Virtual images (negative t'): behind the wall as seen from the eye.
             let (expected_h, expected_v) = (air - tan_img, air - sag_img);
-            let ap = scene.apparent_point(eye, &im);
+            let ap = World::assignment(&scene).apparent_point(eye, &im);
             let (sh, sv) = (ap.s_h.distance().unwrap(), ap.s_v.distance().unwrap());
             assert!(
                 (sh - expected_h).abs() < 1e-9,
@@ -1158,9 +1097,9 @@ mod tests {
     fn without_refraction_every_model_gives_the_straw_surface() {
         for r in REFERENCES {
             let scene = r.scene(1.0);
-            let cloud = sample_image(&scene, r.observer, 300, &|_| {});
+            let cloud = sample_image(&World::assignment(&scene), r.observer, 300, &|_| {});
             assert!(cloud.points.len() >= 300);
-            let eye = eye_model_points(&scene, r.observer, &cloud.points);
+            let eye = eye_model_points(&World::assignment(&scene), r.observer, &cloud.points);
             let undefined = eye.iter().filter(|ap| ap.position.is_none()).count();
             // Only pencils cut by an edge (silhouettes, rims) may lack a focus.
             assert!(undefined * 50 <= eye.len(), "{undefined} of {}", eye.len());
@@ -1177,10 +1116,10 @@ mod tests {
                     r.number,
                     ap
                 );
-                assert!(scene.distance_to_straw_surface(p) < 1e-9);
+                assert!(World::assignment(&scene).distance_to_objects(p) < 1e-9);
                 assert!((ap.astigmatism().unwrap()).abs() < 1e-9);
             }
-            let stereo = stereo_points(&scene, r.observer, &cloud.points);
+            let stereo = stereo_points(&World::assignment(&scene), r.observer, &cloud.points);
             assert!(
                 stereo.points.len() > cloud.points.len() / 2,
                 "{}",
@@ -1211,12 +1150,15 @@ mod tests {
         for r in REFERENCES {
             let scene = r.scene(WATER_INDEX);
             let eyes = StereoEyes::around(r.observer);
-            let cloud = sample_image(&scene, r.observer, 1500, &|_| {});
+            let cloud = sample_image(&World::assignment(&scene), r.observer, 1500, &|_| {});
             let (mut followed, mut lost) = (0, 0);
             for image in &cloud.points {
-                let path = scene.light_path(r.observer, image.direction).unwrap();
+                let path = World::assignment(&scene)
+                    .light_path(r.observer, image.direction)
+                    .unwrap();
                 let (e_h, e_v) = pupil_axes(image.direction);
-                let aim = Aim::new(&scene, path, image.direction, e_h, e_v);
+                let world = World::assignment(&scene);
+                let aim = Aim::new(&world, path, image.direction, e_h, e_v);
                 for eye in [eyes.left, eyes.right] {
                     let coarse = aim.continue_to(r.observer, eye);
                     let tight = aim.continue_with(r.observer, eye, CONTINUATION_STEPS, 1e-13);
@@ -1306,8 +1248,8 @@ mod tests {
         cases.push((lens, eye));
         let (mut tir, mut tir_resolved, mut multi, mut multi_resolved) = (0, 0, 0, 0);
         for (scene, eye) in cases {
-            let cloud = sample_image(&scene, eye, 2000, &|_| {});
-            for ap in eye_model_points(&scene, eye, &cloud.points) {
+            let cloud = sample_image(&World::assignment(&scene), eye, 2000, &|_| {});
+            for ap in eye_model_points(&World::assignment(&scene), eye, &cloud.points) {
                 for f in [ap.s_h, ap.s_v] {
                     if let Some(s) = f.signed_distance() {
                         assert!(!s.is_nan() && s != 0.0, "{f:?}");
@@ -1344,21 +1286,23 @@ mod tests {
     #[test]
     fn converging_light_is_reported_behind_the_eye() {
         let (scene, eye) = lens_scene();
-        let cloud = sample_image(&scene, eye, 2000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), eye, 2000, &|_| {});
         let mut behind = 0;
-        for ap in eye_model_points(&scene, eye, &cloud.points) {
+        for ap in eye_model_points(&World::assignment(&scene), eye, &cloud.points) {
             let Focus::BehindEye(dist) = ap.s_h else {
                 continue;
             };
             behind += 1;
             assert!(ap.position.is_none());
-            let path = scene.light_path(eye, ap.image.direction).unwrap();
+            let path = World::assignment(&scene)
+                .light_path(eye, ap.image.direction)
+                .unwrap();
             let (e_h, _) = pupil_axes(ap.image.direction);
             let delta = 1e-5;
-            let up = scene
+            let up = World::assignment(&scene)
                 .reaim(eye + delta * e_h, &path, ap.image.direction)
                 .unwrap();
-            let um = scene
+            let um = World::assignment(&scene)
                 .reaim(eye - delta * e_h, &path, ap.image.direction)
                 .unwrap();
             let vergence = -(up - um).dot(e_h) / (2.0 * delta);
@@ -1378,19 +1322,21 @@ mod tests {
     fn vergence_matrix_is_symmetric_and_matches_the_foci() {
         let r = REFERENCES[0];
         let (scene, eye) = (r.scene(N), r.observer);
-        let cloud = sample_image(&scene, eye, 1000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), eye, 1000, &|_| {});
         let (mut checked, mut twisted) = (0, 0);
         for im in cloud.points.iter().step_by(20) {
-            let ap = scene.apparent_point(eye, im);
+            let ap = World::assignment(&scene).apparent_point(eye, im);
             let (Focus::InFront(sh), Focus::InFront(sv)) = (ap.s_h, ap.s_v) else {
                 continue;
             };
-            let path = scene.light_path(eye, im.direction).unwrap();
+            let path = World::assignment(&scene)
+                .light_path(eye, im.direction)
+                .unwrap();
             let (e_h, e_v) = pupil_axes(im.direction);
             let delta = 1e-5;
             let turn = |e: Vec3| -> Option<Vec3> {
-                let up = scene.reaim(eye + delta * e, &path, im.direction)?;
-                let um = scene.reaim(eye - delta * e, &path, im.direction)?;
+                let up = World::assignment(&scene).reaim(eye + delta * e, &path, im.direction)?;
+                let um = World::assignment(&scene).reaim(eye - delta * e, &path, im.direction)?;
                 Some(-(up - um) / (2.0 * delta))
             };
             let (Some(mh), Some(mv)) = (turn(e_h), turn(e_v)) else {
@@ -1416,19 +1362,22 @@ mod tests {
     fn vergences_obey_eulers_theorem() {
         let r = REFERENCES[3];
         let (scene, eye) = (r.scene(N), r.observer);
-        let cloud = sample_image(&scene, eye, 1000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), eye, 1000, &|_| {});
         let mut checked = 0;
         for im in cloud.points.iter().step_by(20) {
-            let ap = scene.apparent_point(eye, im);
+            let ap = World::assignment(&scene).apparent_point(eye, im);
             let (Some(vh), Some(vv)) = (ap.s_h.vergence(), ap.s_v.vergence()) else {
                 continue;
             };
             if ap.s_h == Focus::AtInfinity || ap.s_v == Focus::AtInfinity {
                 continue;
             }
-            let path = scene.light_path(eye, im.direction).unwrap();
+            let path = World::assignment(&scene)
+                .light_path(eye, im.direction)
+                .unwrap();
             let (e_h, e_v) = pupil_axes(im.direction);
-            let aim = Aim::new(&scene, path, im.direction, e_h, e_v);
+            let world = World::assignment(&scene);
+            let aim = Aim::new(&world, path, im.direction, e_h, e_v);
             let alpha: f64 = 0.6;
             let e1 = alpha.cos() * e_h + alpha.sin() * e_v;
             let e2 = -alpha.sin() * e_h + alpha.cos() * e_v;
@@ -1453,11 +1402,11 @@ mod tests {
     fn foci_converge_in_the_pupil_step() {
         let r = REFERENCES[1];
         let (scene, eye) = (r.scene(N), r.observer);
-        let cloud = sample_image(&scene, eye, 1000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), eye, 1000, &|_| {});
         let mut compared = 0;
         for im in cloud.points.iter().step_by(25) {
-            let a = scene.apparent_point_with_step(eye, im, 1e-5);
-            let b = scene.apparent_point_with_step(eye, im, 4e-5);
+            let a = World::assignment(&scene).apparent_point_with_step(eye, im, 1e-5);
+            let b = World::assignment(&scene).apparent_point_with_step(eye, im, 4e-5);
             for (fa, fb) in [(a.s_h, b.s_h), (a.s_v, b.s_v)] {
                 if let (Focus::InFront(x), Focus::InFront(y)) = (fa, fb) {
                     assert!((x - y).abs() < 1e-8, "{x} vs {y}");
@@ -1500,18 +1449,18 @@ mod tests {
                         zt,
                     );
                     let u0 = (target - eye).normalize();
-                    let Some(path) = scene.light_path(eye, u0) else {
+                    let Some(path) = World::assignment(&scene).light_path(eye, u0) else {
                         return Ok(());
                     };
                     hits.set(hits.get() + 1);
                     let (e_h, e_v) = pupil_axes(u0);
                     let moved = eye + delta * (turn.cos() * e_h + turn.sin() * e_v);
-                    if let Some(u) = scene.reaim(moved, &path, u0) {
-                        let out = scene.trace(Ray {
+                    if let Some(u) = World::assignment(&scene).reaim(moved, &path, u0) {
+                        let out = World::assignment(&scene).trace(Ray {
                             origin: moved,
                             direction: u,
                         });
-                        let Outcome::Straw { point, .. } = out else {
+                        let Outcome::Object { point, .. } = out else {
                             return Err(TestCaseError::fail(format!("{out:?}")));
                         };
                         prop_assert!(point.distance(path.straw_point) <= 1e-10);
@@ -1535,16 +1484,19 @@ mod tests {
     fn batch_results_are_deterministic_and_in_input_order() {
         let r = REFERENCES[2];
         let (scene, eye) = (r.scene(N), r.observer);
-        let cloud = sample_image(&scene, eye, 500, &|_| {});
-        let a = eye_model_points(&scene, eye, &cloud.points);
-        let b = eye_model_points(&scene, eye, &cloud.points);
+        let cloud = sample_image(&World::assignment(&scene), eye, 500, &|_| {});
+        let a = eye_model_points(&World::assignment(&scene), eye, &cloud.points);
+        let b = eye_model_points(&World::assignment(&scene), eye, &cloud.points);
         assert_eq!(a, b);
         for (ap, im) in a.iter().zip(&cloud.points) {
             assert_eq!(ap.image, *im);
         }
-        let both = apparent_images(&scene, eye, &cloud.points);
+        let both = apparent_images(&World::assignment(&scene), eye, &cloud.points);
         assert_eq!(both.eye, a);
-        assert_eq!(both.stereo, stereo_points(&scene, eye, &cloud.points));
+        assert_eq!(
+            both.stereo,
+            stereo_points(&World::assignment(&scene), eye, &cloud.points)
+        );
         let mut order = both
             .stereo
             .points

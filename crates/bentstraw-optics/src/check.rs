@@ -8,7 +8,7 @@
 //!
 //! What is missing is found by comparing the solution with the true image, densely sampled by
 //! [`sample_image`] on the equal-area map of the observer's directions
-//! ([`Frame`]): equal areas of that map are equal solid angles, so counting the true image's samples
+//! ([`DirectionMap`]): equal areas of that map are equal solid angles, so counting the true image's samples
 //! that a solution reaches measures the solid angle it covers. A true sample counts as reached when a
 //! solution point of its colour, whose ray really reaches that colour, lies within [`REACH_CELLS`]
 //! of the solution's own spacing there: the distance from that point to its nearest neighbour of the
@@ -22,16 +22,14 @@
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use rayon::prelude::*;
+use crate::parallel::*;
 
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::light_path_type::{trace_path_type, LightPathType};
-use crate::sampling::{frame_for, frame_for_box, sample_image, sample_image_of, Frame, ImageCloud};
-use crate::scene::{Scene, MAX_EVENTS_LIMIT};
-use crate::trace::Outcome;
-use crate::tracer::Tracer;
-use crate::world::{World, WorldOutcome, COLOR_COUNT};
+use crate::light_path_type::LightPathType;
+use crate::sampling::{sample_image, DirectionMap, ImageCloud};
+use crate::scene::MAX_EVENTS_LIMIT;
+use crate::world::{Outcome, World, COLOR_COUNT};
 use crate::Vec3;
 
 /// How a ray traced to judge a point ends.
@@ -52,30 +50,13 @@ pub enum Reach {
     Dropped,
 }
 
-/// What checking a solution needs of a scene: a ray traced by the course's law with the kind of
-/// its light path, the true image, the map of the observer's directions, the optical path
-/// length, the distance to the objects, and whether anything refracts. The assignment's glass and
-/// any scene file's world are checked by the same code.
-pub trait CheckedScene: Sync {
-    /// Traces `ray` with the scene's event limit, or `max_events` if given.
-    fn reach(&self, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType);
-    /// The true image seen from `observer`, at least `samples` points.
-    fn true_image(&self, observer: Vec3, samples: usize) -> ImageCloud;
-    /// The equal-area map of `observer`'s directions the true image is sampled on.
-    fn direction_map(&self, observer: Vec3) -> Frame;
-    /// The optical path length `Σ n·l` of the ray from `observer` along unit `u0`, if it reaches
-    /// an object.
-    fn optical_path_length(&self, observer: Vec3, u0: Vec3) -> Option<f64>;
-    /// Distance from `p` to the nearest object's surface (m).
-    fn distance_to_objects(&self, p: Vec3) -> f64;
-    /// Whether any interface bends light (an index other than air's).
-    fn refracts(&self) -> bool;
-}
-
-/// The outcome of the assignment's tracer as a [`Reach`].
-fn reach_of(outcome: Outcome) -> Reach {
-    match outcome {
-        Outcome::Straw {
+/// How `ray` ends, traced through `world` with its event limit (or `max_events`), and the kind
+/// of its light path.
+fn reach(world: &World, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType) {
+    let (outcome, path) =
+        world.trace_path_type_limited(ray, max_events.unwrap_or(world.max_events));
+    let reach = match outcome {
+        Outcome::Object {
             color,
             path_length,
             events,
@@ -87,134 +68,8 @@ fn reach_of(outcome: Outcome) -> Reach {
         },
         Outcome::Escaped { .. } => Reach::Escaped,
         Outcome::Dropped => Reach::Dropped,
-    }
-}
-
-impl CheckedScene for Tracer {
-    fn reach(&self, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType) {
-        let (outcome, path) = match max_events {
-            None => trace_path_type(self, &self.scene, ray),
-            Some(m) => {
-                let mut patient = self.scene;
-                patient.max_events = m;
-                trace_path_type(self, &patient, ray)
-            }
-        };
-        (reach_of(outcome), path)
-    }
-    fn true_image(&self, observer: Vec3, samples: usize) -> ImageCloud {
-        self.scene.true_image(observer, samples)
-    }
-    fn direction_map(&self, observer: Vec3) -> Frame {
-        frame_for(observer)
-    }
-    fn optical_path_length(&self, observer: Vec3, u0: Vec3) -> Option<f64> {
-        self.scene.optical_path_length(observer, u0)
-    }
-    fn distance_to_objects(&self, p: Vec3) -> f64 {
-        self.scene.distance_to_straw_surface(p)
-    }
-    fn refracts(&self) -> bool {
-        self.scene.refracts()
-    }
-}
-
-impl CheckedScene for Scene {
-    fn reach(&self, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType) {
-        Tracer::new(self).reach(ray, max_events)
-    }
-    fn true_image(&self, observer: Vec3, samples: usize) -> ImageCloud {
-        sample_image(self, observer, samples, &|_| {})
-    }
-    fn direction_map(&self, observer: Vec3) -> Frame {
-        frame_for(observer)
-    }
-    fn optical_path_length(&self, observer: Vec3, u0: Vec3) -> Option<f64> {
-        let mut at = observer;
-        let mut in_water = false;
-        let mut optical = 0.0;
-        let outcome = self.trace_with(
-            Ray {
-                origin: observer,
-                direction: u0,
-            },
-            |e| {
-                let n = if in_water { self.n_water } else { 1.0 };
-                optical += n * (e.point - at).length();
-                at = e.point;
-                if !e.totally_reflected {
-                    in_water = !in_water;
-                }
-            },
-        );
-        match outcome {
-            Outcome::Straw { point, .. } => {
-                let n = if in_water { self.n_water } else { 1.0 };
-                Some(optical + n * (point - at).length())
-            }
-            _ => None,
-        }
-    }
-    fn distance_to_objects(&self, p: Vec3) -> f64 {
-        self.distance_to_straw_surface(p)
-    }
-    fn refracts(&self) -> bool {
-        self.n_water != 1.0
-    }
-}
-
-impl CheckedScene for World {
-    fn reach(&self, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType) {
-        let (outcome, path) =
-            self.trace_path_type_limited(ray, max_events.unwrap_or(self.max_events));
-        let reach = match outcome {
-            WorldOutcome::Object {
-                color,
-                path_length,
-                events,
-                ..
-            } => Reach::Object {
-                color,
-                path_length,
-                events,
-            },
-            WorldOutcome::Escaped { .. } => Reach::Escaped,
-            WorldOutcome::Dropped => Reach::Dropped,
-        };
-        (reach, path)
-    }
-    fn true_image(&self, observer: Vec3, samples: usize) -> ImageCloud {
-        sample_image_of(self, observer, samples, &|_| {})
-    }
-    fn direction_map(&self, observer: Vec3) -> Frame {
-        frame_for_box(observer, self.bounds())
-    }
-    fn optical_path_length(&self, observer: Vec3, u0: Vec3) -> Option<f64> {
-        // Each straight piece in the index of the medium it crosses: the one each event leaves
-        // (n1), and after the last event the one it enters (or stays in, when totally reflected).
-        let (mut at, mut optical, mut n) = (observer, 0.0, 1.0);
-        let outcome = self.trace_with(
-            Ray {
-                origin: observer,
-                direction: u0,
-            },
-            |e| {
-                optical += e.n1 * (e.point - at).length();
-                at = e.point;
-                n = if e.totally_reflected { e.n1 } else { e.n2 };
-            },
-        );
-        match outcome {
-            WorldOutcome::Object { point, .. } => Some(optical + n * (point - at).length()),
-            _ => None,
-        }
-    }
-    fn distance_to_objects(&self, p: Vec3) -> f64 {
-        self.distance_to_objects(p)
-    }
-    fn refracts(&self) -> bool {
-        !self.boundaries().is_empty()
-    }
+    };
+    (reach, path)
 }
 
 /// Default tolerance on a point's path length (m).
@@ -350,10 +205,10 @@ pub struct Judgement {
     pub path: LightPathType,
 }
 
-/// Judges `point` seen from `observer` with `tracer` (its scene's event limit) and a path-length
+/// Judges `point` seen from `observer` in `world` (with its event limit) and a path-length
 /// `tolerance` (m).
 pub fn judge_point(
-    tracer: &impl CheckedScene,
+    world: &World,
     observer: Vec3,
     point: &ClaimedPoint,
     tolerance: f64,
@@ -371,7 +226,7 @@ pub fn judge_point(
         origin: observer,
         direction: offset / distance,
     };
-    let (outcome, path) = tracer.reach(ray, None);
+    let (outcome, path) = reach(world, ray, None);
     let verdict = match outcome {
         Reach::Object {
             color, path_length, ..
@@ -389,7 +244,7 @@ pub fn judge_point(
         Reach::Dropped => {
             // Tell "would reach the straw later" from "never reaches it": trace again with the
             // largest event limit allowed.
-            let (outcome, path) = tracer.reach(ray, Some(MAX_EVENTS_LIMIT));
+            let (outcome, path) = reach(world, ray, Some(MAX_EVENTS_LIMIT));
             return Judgement {
                 verdict: match outcome {
                     Reach::Object { color, events, .. } => Verdict::TooManyEvents {
@@ -406,8 +261,8 @@ pub fn judge_point(
 }
 
 /// Judges every point (in parallel; the result is in the points' order).
-pub fn judge_points<T: CheckedScene>(
-    scene: &T,
+pub fn judge_points(
+    world: &World,
     observer: Vec3,
     points: &[ClaimedPoint],
     tolerance: f64,
@@ -415,7 +270,7 @@ pub fn judge_points<T: CheckedScene>(
     points
         .par_iter()
         .with_min_len(256)
-        .map(|p| judge_point(scene, observer, p, tolerance))
+        .map(|p| judge_point(world, observer, p, tolerance))
         .collect()
 }
 
@@ -525,8 +380,8 @@ pub fn true_sample_count(solution_points: usize) -> usize {
 
 /// The true image seen from `observer`, sampled densely enough to judge a solution of
 /// `solution_points` points.
-pub fn true_image(scene: &impl CheckedScene, observer: Vec3, solution_points: usize) -> ImageCloud {
-    scene.true_image(observer, true_sample_count(solution_points))
+pub fn true_image(world: &World, observer: Vec3, solution_points: usize) -> ImageCloud {
+    sample_image(world, observer, true_sample_count(solution_points), &|_| {})
 }
 
 /// Where on its section a missing region lies, along the straw.
@@ -602,7 +457,7 @@ impl ColourCoverage {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Coverage {
     /// The equal-area map the comparison is made on.
-    pub frame: Frame,
+    pub frame: DirectionMap,
     /// Per colour code 1..=5 (indices 0..=4).
     pub per_colour: [ColourCoverage; COLOR_COUNT],
     /// For each true-image point, whether the solution reaches it.
@@ -627,13 +482,13 @@ impl Coverage {
 /// directions (unit) and colours of the solution's points that really reach their colour,
 /// `solution_points` the number of points the solution has in all (its density).
 pub fn coverage(
-    scene: &impl CheckedScene,
+    world: &World,
     observer: Vec3,
     truth: &ImageCloud,
     covering: &[(Vec3, u8)],
     solution_points: usize,
 ) -> Coverage {
-    let frame = scene.direction_map(observer);
+    let frame = DirectionMap::of_box(observer, world.bounds());
     let h = truth.spacing;
     let sample_solid_angle = h * h;
     let total_solid_angle = truth.points.len() as f64 * sample_solid_angle;
@@ -727,7 +582,7 @@ pub fn coverage(
         c.solid_angle = c.true_samples as f64 * sample_solid_angle;
     }
 
-    let missing = missing_regions(scene, observer, truth, &reached, &frame, &per_colour);
+    let missing = missing_regions(world, observer, truth, &reached, &frame, &per_colour);
     Coverage {
         frame,
         per_colour,
@@ -866,11 +721,11 @@ fn nearest_spacing(points: &[(f64, f64, u8)], bin: f64, cap: f64) -> Vec<f64> {
 /// Groups the unreached true samples into regions: same colour, same kind of light path, and
 /// neighbours on the true sampling grid (8-neighbourhood).
 fn missing_regions(
-    scene: &impl CheckedScene,
+    world: &World,
     observer: Vec3,
     truth: &ImageCloud,
     reached: &[bool],
-    frame: &Frame,
+    frame: &DirectionMap,
     per_colour: &[ColourCoverage; COLOR_COUNT],
 ) -> Vec<MissingRegion> {
     let h = truth.spacing;
@@ -882,7 +737,7 @@ fn missing_regions(
                 origin: observer,
                 direction: truth.points[i].direction,
             };
-            scene.reach(ray, None).1
+            reach(world, ray, None).1
         })
         .collect();
     // Grid cell of each unreached sample: the true image's directions are the centres
@@ -1021,15 +876,33 @@ const HINT_SAMPLE: usize = 400;
 /// Share of the points tried a hint must explain to be given.
 const HINT_SHARE: f64 = 0.5;
 
-/// The optical path length `Σ n·l` of the ray from `observer` along unit `u0`, if it reaches the straw.
-pub fn optical_path_length(scene: &impl CheckedScene, observer: Vec3, u0: Vec3) -> Option<f64> {
-    scene.optical_path_length(observer, u0)
+/// The optical path length `Σ n·l` of the ray from `observer` along unit `u0` through `world`, if
+/// it reaches an object: each straight piece in the index of the medium it crosses, the one each
+/// event leaves (`n1`), and after the last event the one it enters (or stays in, when totally
+/// reflected).
+pub fn optical_path_length(world: &World, observer: Vec3, u0: Vec3) -> Option<f64> {
+    let (mut at, mut optical, mut n) = (observer, 0.0, 1.0);
+    let outcome = world.trace_with(
+        Ray {
+            origin: observer,
+            direction: u0,
+        },
+        |e| {
+            optical += e.n1 * (e.point - at).length();
+            at = e.point;
+            n = if e.totally_reflected { e.n1 } else { e.n2 };
+        },
+    );
+    match outcome {
+        Outcome::Object { point, .. } => Some(optical + n * (point - at).length()),
+        _ => None,
+    }
 }
 
 /// Likely reasons why most points are wrong (none when at least half are correct): tried on an
 /// even subset of the points.
 pub fn hints(
-    scene: &impl CheckedScene,
+    world: &World,
     observer: Vec3,
     points: &[ClaimedPoint],
     judged: &[Judgement],
@@ -1054,7 +927,7 @@ pub fn hints(
                     position: p.position * factor,
                     color: p.color,
                 };
-                judge_point(scene, observer, &scaled, tolerance)
+                judge_point(world, observer, &scaled, tolerance)
                     .verdict
                     .kind()
                     == VerdictKind::Correct
@@ -1073,21 +946,21 @@ pub fn hints(
             let d = p.position - observer;
             let len = d.length();
             len > 0.0
-                && optical_path_length(scene, observer, d / len)
+                && optical_path_length(world, observer, d / len)
                     .is_some_and(|l| (l - len).abs() <= tolerance)
         })
         .count();
-    if scene.refracts() && share(optical) >= HINT_SHARE {
+    if world.refracts() && share(optical) >= HINT_SHARE {
         out.push(Hint::OpticalPath {
             share: share(optical),
         });
     }
     let on_straw = points
         .iter()
-        .filter(|p| scene.distance_to_objects(p.position) <= tolerance)
+        .filter(|p| world.distance_to_objects(p.position) <= tolerance)
         .count() as f64
         / points.len() as f64;
-    if scene.refracts() && on_straw >= HINT_SHARE {
+    if world.refracts() && on_straw >= HINT_SHARE {
         out.push(Hint::OnStraw { share: on_straw });
     }
     out
@@ -1120,14 +993,14 @@ impl CheckReport {
 }
 
 /// Judges every point of a solution and compares its coverage with the true image.
-pub fn check_solution<T: CheckedScene>(
-    scene: &T,
+pub fn check_solution(
+    world: &World,
     observer: Vec3,
     points: &[ClaimedPoint],
     tolerance: f64,
     min_coverage: f64,
 ) -> CheckReport {
-    let judged = judge_points(scene, observer, points, tolerance);
+    let judged = judge_points(world, observer, points, tolerance);
     let tally = Tally::of(judged.iter().map(|j| &j.verdict));
     let per_colour = tally_per_colour(points, &judged);
     let covering: Vec<(Vec3, u8)> = points
@@ -1136,10 +1009,10 @@ pub fn check_solution<T: CheckedScene>(
         .filter(|(_, j)| j.verdict.reaches_claimed_colour())
         .map(|(p, _)| ((p.position - observer).normalize(), p.color))
         .collect();
-    let truth = true_image(scene, observer, points.len());
-    let coverage = coverage(scene, observer, &truth, &covering, points.len());
+    let truth = true_image(world, observer, points.len());
+    let coverage = coverage(world, observer, &truth, &covering, points.len());
     let complete = coverage.complete(min_coverage);
-    let hints = hints(scene, observer, points, &judged, tolerance);
+    let hints = hints(world, observer, points, &judged, tolerance);
     CheckReport {
         hints,
         judged,
@@ -1154,11 +1027,11 @@ pub fn check_solution<T: CheckedScene>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::REFERENCES;
+    use crate::scene::{Scene, REFERENCES};
 
-    fn own_points(k: usize, n: usize) -> (Scene, Vec3, Vec<ImagePoint>) {
+    fn own_points(k: usize, n: usize) -> (World, Vec3, Vec<ImagePoint>) {
         let r = &REFERENCES[k];
-        let scene = r.scene(1.333);
+        let scene = World::assignment(&r.scene(1.333));
         let cloud = sample_image(&scene, r.observer, n, &|_| {});
         (scene, r.observer, cloud.points)
     }
@@ -1192,7 +1065,7 @@ mod tests {
     #[test]
     fn each_fault_gets_its_verdict() {
         let (scene, o, pts) = own_points(1, 2000);
-        let tracer = Tracer::new(&scene);
+        let tracer = scene.clone();
         let p = pts[10];
         // Moved 10 µm along its ray: wrong length by +10 µm.
         let moved = ClaimedPoint {
@@ -1247,9 +1120,9 @@ mod tests {
     fn a_point_needing_more_events_is_told_apart_from_no_straw() {
         // Points of reference 2 that need 2 or more events, judged with a limit of 1.
         let (scene, o, pts) = own_points(1, 3000);
-        let mut strict = scene;
+        let mut strict = scene.clone();
         strict.max_events = 1;
-        let tracer = Tracer::new(&strict);
+        let tracer = strict.clone();
         let deep: Vec<&ImagePoint> = pts.iter().filter(|p| p.events >= 2).collect();
         assert!(!deep.is_empty());
         for p in deep {
@@ -1292,7 +1165,7 @@ mod tests {
                 origin: o,
                 direction: p.direction,
             };
-            trace_path_type(&scene, &scene, ray).1.total_reflections > 0
+            scene.trace_path_type(ray).1.total_reflections > 0
         };
         let removed = pts.iter().filter(|p| tir(p)).count();
         assert!(removed > 20, "reference 2 shows total reflections");
@@ -1315,7 +1188,7 @@ mod tests {
         let (scene, o, pts) = own_points(1, 1000);
         let r = check_solution(&scene, o, &claimed(&pts), DEFAULT_TOLERANCE, 0.98);
         assert!(r.hints.is_empty());
-        let tracer = Tracer::new(&scene);
+        let tracer = scene.clone();
         // In millimetres.
         let mm: Vec<ClaimedPoint> = pts
             .iter()
@@ -1369,7 +1242,7 @@ mod tests {
     #[test]
     fn optical_path_of_a_ray_in_air_is_its_length() {
         // Straight down onto the straw's top cap from above: no water on the way.
-        let scene = Scene::with_defaults(0.0, 0.0, 0.15).unwrap();
+        let scene = World::assignment(&Scene::with_defaults(0.0, 0.0, 0.15).unwrap());
         let o = Vec3::new(0.0, 0.0, 0.4);
         let l = optical_path_length(&scene, o, Vec3::new(0.0, 0.0, -1.0)).unwrap();
         assert!((l - 0.15).abs() < 1e-15, "{l}");
@@ -1399,9 +1272,9 @@ mod tests {
         // Half of the image sampled five times more sparsely in each direction (every fifth grid
         // point both ways): no hole larger than the solution's own spacing there.
         let r = &REFERENCES[1];
-        let scene = r.scene(1.333);
+        let scene = World::assignment(&r.scene(1.333));
         let cloud = sample_image(&scene, r.observer, 10_000, &|_| {});
-        let frame = frame_for(r.observer);
+        let frame = DirectionMap::of_box(r.observer, scene.bounds());
         let h = cloud.spacing;
         let index = |p: &ImagePoint| {
             let (a, b) = frame.coordinates(p.direction);

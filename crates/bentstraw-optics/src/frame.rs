@@ -5,15 +5,14 @@
 //! The explorer redraws a frame at every input event and `render` draws one picture through the
 //! same call, so both get the same speed and the same pixels.
 
-use rayon::prelude::*;
+use crate::parallel::*;
 
 use crate::camera::Camera;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::light_path_type::LightPathType;
-use crate::sampling::sample_image_of;
-use crate::scene::Scene;
-use crate::shading::{shaded_world_picture_into, RgbPicture, ShadingBuffers, ShadingOptions};
+use crate::sampling::sample_image;
+use crate::shading::{shaded_picture_into, RgbPicture, ShadingBuffers, ShadingOptions};
 use crate::world::World;
 
 /// What one frame shows, beside the scene.
@@ -69,16 +68,11 @@ impl Frame {
     }
 }
 
-/// Draws the frame of `scene` asked for by `request` into `frame`: the picture and the points are
-/// computed side by side (each in parallel itself), the points by [`crate::sampling::sample_image`], so they are
-/// exactly `simulate`'s for the same inputs.
-pub fn draw_frame(scene: &Scene, request: &FrameRequest, frame: &mut Frame) {
-    draw_world_frame(&World::assignment(scene), request, frame);
-}
-
-/// [`draw_frame`] of any world: its picture, and the image points of every object with the
-/// kind of light path that made each.
-pub fn draw_world_frame(world: &World, request: &FrameRequest, frame: &mut Frame) {
+/// Draws the frame of `world` asked for by `request` into `frame`: its picture, and the image
+/// points of every object with the kind of light path that made each. The picture and the points
+/// are computed side by side (each in parallel itself), the points by
+/// [`crate::sampling::sample_image`], so they are exactly `simulate`'s for the same inputs.
+pub fn draw_frame(world: &World, request: &FrameRequest, frame: &mut Frame) {
     let Frame {
         picture,
         points,
@@ -87,8 +81,8 @@ pub fn draw_world_frame(world: &World, request: &FrameRequest, frame: &mut Frame
         shading,
     } = frame;
     let observer = request.camera.eye;
-    rayon::join(
-        || shaded_world_picture_into(world, &request.camera, &request.shading, shading, picture),
+    join(
+        || shaded_picture_into(world, &request.camera, &request.shading, shading, picture),
         || {
             points.clear();
             paths.clear();
@@ -96,7 +90,7 @@ pub fn draw_world_frame(world: &World, request: &FrameRequest, frame: &mut Frame
             if request.min_points == 0 {
                 return;
             }
-            let cloud = sample_image_of(world, observer, request.min_points, &|_| {});
+            let cloud = sample_image(world, observer, request.min_points, &|_| {});
             *points = cloud.points;
             *rays_traced = cloud.rays_traced;
             points
@@ -140,7 +134,11 @@ mod tests {
         let mut frame = Frame::default();
         for r in REFERENCES {
             let scene = r.scene(WATER_INDEX);
-            draw_frame(&scene, &request(r.observer, 2000), &mut frame);
+            draw_frame(
+                &World::assignment(&scene),
+                &request(r.observer, 2000),
+                &mut frame,
+            );
             assert!(frame.points.len() >= 2000);
             assert_eq!(frame.points.len(), frame.paths.len());
             for (p, k) in frame.points.iter().zip(&frame.paths) {
@@ -167,7 +165,7 @@ mod tests {
         let r = REFERENCES[2];
         let mut frame = Frame::default();
         draw_frame(
-            &r.scene(WATER_INDEX),
+            &World::assignment(&r.scene(WATER_INDEX)),
             &request(r.observer, 5000),
             &mut frame,
         );
@@ -188,7 +186,11 @@ mod tests {
         frame
             .stop_flag()
             .store(true, std::sync::atomic::Ordering::Relaxed);
-        draw_frame(&scene, &request(r.observer, 0), &mut frame);
+        draw_frame(
+            &World::assignment(&scene),
+            &request(r.observer, 0),
+            &mut frame,
+        );
         let black = |f: &Frame| {
             f.picture
                 .pixels
@@ -205,7 +207,11 @@ mod tests {
         frame
             .stop_flag()
             .store(false, std::sync::atomic::Ordering::Relaxed);
-        draw_frame(&scene, &request(r.observer, 0), &mut frame);
+        draw_frame(
+            &World::assignment(&scene),
+            &request(r.observer, 0),
+            &mut frame,
+        );
         assert_eq!(black(&frame), 0);
     }
 
@@ -214,7 +220,11 @@ mod tests {
     fn picture_only() {
         let r = REFERENCES[0];
         let mut frame = Frame::default();
-        draw_frame(&r.scene(WATER_INDEX), &request(r.observer, 0), &mut frame);
+        draw_frame(
+            &World::assignment(&r.scene(WATER_INDEX)),
+            &request(r.observer, 0),
+            &mut frame,
+        );
         assert!(frame.points.is_empty() && frame.paths.is_empty());
         assert_eq!(frame.picture.pixels.len(), 48 * 36 * 3);
     }
@@ -247,7 +257,7 @@ mod progress_tests {
                 },
                 min_points: 0,
             };
-            draw_frame(&scene, &request, &mut frame);
+            draw_frame(&World::assignment(&scene), &request, &mut frame);
             assert_eq!(counter.load(Ordering::Relaxed), 2 * 48);
         }
     }

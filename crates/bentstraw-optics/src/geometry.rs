@@ -1,4 +1,5 @@
-//! Rays and the two shapes the scene is made of: upright cylinders (their side) and horizontal disks.
+//! Rays, and where a ray's line meets the surfaces scenes are made of: the side of an upright
+//! cylinder (a quadratic), a horizontal plane, a sphere around everything.
 
 use crate::lanes::{Mask, Real};
 use crate::Vec3;
@@ -25,80 +26,6 @@ impl Ray {
     #[inline]
     pub fn at(&self, t: f64) -> Vec3 {
         self.origin + t * self.direction
-    }
-}
-
-/// The side of an upright (axis along `z`) circular cylinder between two heights; no caps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CylinderSide {
-    /// `x` of the axis.
-    pub cx: f64,
-    /// `y` of the axis.
-    pub cy: f64,
-    /// Radius.
-    pub radius: f64,
-    /// Lowest height of the side.
-    pub z_min: f64,
-    /// Highest height of the side.
-    pub z_max: f64,
-}
-
-impl CylinderSide {
-    /// The quadratic of `ray`'s line meeting this side (see [`SideQuadratic`]).
-    #[inline]
-    fn quadratic(&self, ray: &Ray) -> SideQuadratic<f64> {
-        SideQuadratic::new(
-            ray.origin.x - self.cx,
-            ray.origin.y - self.cy,
-            ray.direction.x,
-            ray.direction.y,
-            self.radius * self.radius,
-        )
-    }
-
-    /// Nearest distance `t > 0` at which `ray`, which does not start on this side, meets it.
-    ///
-    /// A ray that only grazes the cylinder (tangent) meets it at one point and counts as a hit there.
-    #[inline]
-    pub fn intersect(&self, ray: &Ray) -> Option<f64> {
-        let q = self.quadratic(ray);
-        finite(
-            q.roots(1.0 / q.a)
-                .nearest(ray.origin.z, ray.direction.z, self.z_min, self.z_max),
-        )
-    }
-
-    /// Distance at which `ray`, which starts on this side (it has just been refracted or reflected
-    /// there), meets it again: the root at its start is excluded by construction, not by a minimum
-    /// distance, so a genuine hit a hair away is never lost.
-    #[inline]
-    pub fn intersect_leaving(&self, ray: &Ray) -> Option<f64> {
-        let q = self.quadratic(ray);
-        finite(
-            q.roots(1.0 / q.a)
-                .other(ray.origin.z, ray.direction.z, self.z_min, self.z_max),
-        )
-    }
-
-    /// Distance at which `ray` enters the solid cylinder through this side (an opaque object
-    /// shows only the side by which light reaches it): its entering root `t > 0`, or `0` if the
-    /// ray starts inside the solid (by rounding, on its surface).
-    #[inline]
-    pub fn entry(&self, ray: &Ray) -> Option<f64> {
-        let q = self.quadratic(ray);
-        finite(q.roots(1.0 / q.a).entering(
-            &q,
-            ray.origin.z,
-            ray.direction.z,
-            self.z_min,
-            self.z_max,
-        ))
-    }
-
-    /// Outward unit normal at a point `p` of the side.
-    #[inline]
-    pub fn normal(&self, p: Vec3) -> Vec3 {
-        Vec3::new(p.x - self.cx, p.y - self.cy, 0.0).normalize()
     }
 }
 
@@ -257,37 +184,6 @@ pub(crate) fn in_range<R: Real>(z: R, z_min: R, z_max: R) -> R::Mask {
     z.ge(z_min).and(z.le(z_max))
 }
 
-/// The finite lanes of `t` as an `Option` for one ray.
-#[inline(always)]
-fn finite(t: f64) -> Option<f64> {
-    t.is_finite().then_some(t)
-}
-
-/// A horizontal disk of centre `(cx, cy, z)`, boundary included.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Disk {
-    /// `x` of the centre.
-    pub cx: f64,
-    /// `y` of the centre.
-    pub cy: f64,
-    /// Height of the disk's plane.
-    pub z: f64,
-    /// Radius.
-    pub radius: f64,
-}
-
-impl Disk {
-    /// Distance `t > 0` at which `ray` crosses the disk, if it does (a ray starting on the disk's
-    /// plane, having just left it, does not cross it again).
-    #[inline]
-    pub fn intersect(&self, ray: &Ray) -> Option<f64> {
-        let t = plane_distance(self.z, ray.origin.z, ray.direction.z)?;
-        let x = ray.origin.x + t * ray.direction.x - self.cx;
-        let y = ray.origin.y + t * ray.direction.y - self.cy;
-        (x * x + y * y <= self.radius * self.radius).then_some(t)
-    }
-}
-
 /// The lanes where the plane `z = h` lies ahead of height `oz` along vertical component `dz`
 /// (`h − oz` and `dz` of the same strict sign), and `h − oz`; [`plane_distance_of`] then gives
 /// the distance, so that no division is done when no lane needs one.
@@ -306,36 +202,13 @@ pub(crate) fn plane_distance_of<R: Real>(num: R, dz: R, inv_dz: R) -> R {
     R::quotient(num, dz, inv_dz)
 }
 
-/// [`plane_ahead`] for one ray: the distance if the plane lies ahead (the division is done only
-/// then).
-#[inline(always)]
-pub(crate) fn plane_distance(h: f64, oz: f64, dz: f64) -> Option<f64> {
-    let num = h - oz;
-    if (num > 0.0 && dz > 0.0) || (num < 0.0 && dz < 0.0) {
-        Some(num / dz)
-    } else {
-        None
-    }
-}
-
-/// Centre of the sphere that encloses every face of the scene.
-pub const BOUNDING_CENTRE: Vec3 = Vec3::new(0.0, 0.0, 0.125);
-/// Radius of that sphere (m): every point of the glass and straw lies within 0.1313 m of its centre.
-pub const BOUNDING_RADIUS: f64 = 0.15;
-
-/// The ray moved forward to where it enters the scene's bounding sphere, and the distance moved;
-/// unchanged (distance 0) if it starts inside; `None` if it misses the sphere (it meets nothing).
+/// The ray moved forward to where it enters the sphere of `centre` and `radius`, and the distance
+/// moved; unchanged (distance 0) if it starts inside; `None` if it misses the sphere.
 ///
-/// No face lies between a distant origin and the sphere, so the trace is unchanged, but every
-/// intersection is then computed from a point near the scene: the rounding of an origin kilometres
-/// away (1e-13 m per km) enters once, in the distance moved, instead of in every quadratic.
-#[inline]
-pub fn enter_bounding_sphere(ray: Ray) -> Option<(Ray, f64)> {
-    enter_sphere(ray, BOUNDING_CENTRE, BOUNDING_RADIUS)
-}
-
-/// The ray moved forward to where it enters the sphere of `centre` and `radius` (see
-/// [`enter_bounding_sphere`], the assignment's scene's sphere), and the distance moved.
+/// With a sphere holding every face of a scene, no face lies between a distant origin and the
+/// sphere, so the trace is unchanged, but every intersection is then computed from a point near
+/// the scene: the rounding of an origin kilometres away (1e-13 m per km) enters once, in the
+/// distance moved, instead of in every quadratic.
 #[inline(always)]
 pub fn enter_sphere(ray: Ray, centre: Vec3, radius: f64) -> Option<(Ray, f64)> {
     let p = ray.origin - centre;
@@ -362,4 +235,191 @@ pub fn enter_sphere(ray: Ray, centre: Vec3, radius: f64) -> Option<(Ray, f64)> {
         },
         t,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    //! Where a ray's line meets the side of an upright cylinder: the quadratic every upright
+    //! boundary and straw uses, through a small view of it for one ray.
+
+    use super::*;
+
+    /// The side of the upright cylinder of radius 1 around the `z` axis, from `z = -1` to `1`.
+    struct UnitCylinder;
+
+    fn unit_cylinder() -> UnitCylinder {
+        UnitCylinder
+    }
+
+    fn finite(t: f64) -> Option<f64> {
+        t.is_finite().then_some(t)
+    }
+
+    impl UnitCylinder {
+        fn roots(&self, ray: &Ray) -> (SideQuadratic<f64>, SideRoots<f64>) {
+            let (o, d) = (ray.origin, ray.direction);
+            let q = SideQuadratic::new(o.x, o.y, d.x, d.y, 1.0);
+            (q, q.roots(1.0 / q.a))
+        }
+
+        /// Nearest distance `t > 0` at which `ray`, not starting on the side, meets it.
+        fn intersect(&self, ray: &Ray) -> Option<f64> {
+            let (o, d) = (ray.origin, ray.direction);
+            finite(self.roots(ray).1.nearest(o.z, d.z, -1.0, 1.0))
+        }
+
+        /// Where `ray`, starting on the side, meets it again.
+        fn intersect_leaving(&self, ray: &Ray) -> Option<f64> {
+            let (o, d) = (ray.origin, ray.direction);
+            finite(self.roots(ray).1.other(o.z, d.z, -1.0, 1.0))
+        }
+
+        /// Where `ray` enters the solid cylinder through the side (0 if it starts inside).
+        fn entry(&self, ray: &Ray) -> Option<f64> {
+            let (o, d) = (ray.origin, ray.direction);
+            let (q, r) = self.roots(ray);
+            finite(r.entering(&q, o.z, d.z, -1.0, 1.0))
+        }
+    }
+
+    #[test]
+    fn cylinder_hit_from_outside_is_the_near_side() {
+        let ray = Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X);
+        assert_eq!(unit_cylinder().intersect(&ray), Some(4.0));
+    }
+
+    #[test]
+    fn cylinder_hit_off_centre_matches_pythagoras() {
+        // Impact parameter b = 0.6: the near side is at x = -sqrt(1 - 0.36) = -0.8.
+        let ray = Ray::new(Vec3::new(-5.0, 0.6, 0.0), Vec3::X);
+        let t = unit_cylinder().intersect(&ray).unwrap();
+        assert!((t - 4.2).abs() < 1e-14, "{t}");
+    }
+
+    #[test]
+    fn cylinder_from_inside_finds_the_far_side() {
+        let ray = Ray::new(Vec3::new(0.5, 0.0, 0.0), Vec3::X);
+        assert!((unit_cylinder().intersect(&ray).unwrap() - 0.5).abs() < 1e-15);
+        // Leaving from a point on the surface, the surface itself (t = 0) does not count.
+        let ray = Ray::new(Vec3::new(-1.0, 0.0, 0.0), Vec3::X);
+        assert!((unit_cylinder().intersect(&ray).unwrap() - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn cylinder_misses() {
+        let c = unit_cylinder();
+        // Passing beside it.
+        assert_eq!(
+            c.intersect(&Ray::new(Vec3::new(-5.0, 1.0 + 1e-9, 0.0), Vec3::X)),
+            None
+        );
+        // Pointing away.
+        assert_eq!(
+            c.intersect(&Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::NEG_X)),
+            None
+        );
+        // Vertical: parallel to the side.
+        assert_eq!(
+            c.intersect(&Ray::new(Vec3::new(0.5, 0.0, -5.0), Vec3::Z)),
+            None
+        );
+        // Above the side's height range, and below it.
+        assert_eq!(
+            c.intersect(&Ray::new(Vec3::new(-5.0, 0.0, 1.0 + 1e-9), Vec3::X)),
+            None
+        );
+        assert_eq!(
+            c.intersect(&Ray::new(Vec3::new(-5.0, 0.0, -1.0 - 1e-9), Vec3::X)),
+            None
+        );
+    }
+
+    #[test]
+    fn cylinder_tangent_ray_touches_once() {
+        // Exactly tangent at (0, 1, 0): discriminant zero, one point of contact at t = 5.
+        let ray = Ray::new(Vec3::new(-5.0, 1.0, 0.0), Vec3::X);
+        assert_eq!(unit_cylinder().intersect(&ray), Some(5.0));
+    }
+
+    #[test]
+    fn cylinder_slanted_ray_enters_through_the_side_within_its_height() {
+        // A ray climbing at 45° meets the side at x = -1, i.e. after 4 units of x, so z = -4.5 + 4 = -0.5.
+        let ray = Ray::new(Vec3::new(-5.0, 0.0, -4.5), Vec3::new(1.0, 0.0, 1.0));
+        let t = unit_cylinder().intersect(&ray).unwrap();
+        let p = ray.at(t);
+        assert!(
+            (p.x + 1.0).abs() < 1e-12 && (p.z + 0.5).abs() < 1e-12,
+            "{p}"
+        );
+        // Climbing faster, it passes over the near side's top and the far side is too high as well.
+        let ray = Ray::new(Vec3::new(-5.0, 0.0, -4.5), Vec3::new(1.0, 0.0, 2.0));
+        assert_eq!(unit_cylinder().intersect(&ray), None);
+    }
+
+    #[test]
+    fn a_distant_ray_meets_the_cylinder_exactly() {
+        // From 100 km, impact parameter 0.6: the near side at x = -0.8, so t = 1e5 - 0.8. The
+        // discriminant's textbook form half_b² - a·c subtracts two numbers of 1e10 and loses ~1e-6 of
+        // it; the cancellation-free form keeps every digit.
+        for dist in [1e3, 1e5, 1e7] {
+            let ray = Ray::new(Vec3::new(-dist, 0.6, 0.0), Vec3::X);
+            let t = unit_cylinder().intersect(&ray).unwrap();
+            let want = dist - 0.8;
+            assert!(
+                (t - want).abs() <= 4.0 * f64::EPSILON * dist,
+                "{dist}: {t} vs {want}"
+            );
+            assert!((ray.at(t).x + 0.8).abs() <= 4.0 * f64::EPSILON * dist);
+        }
+    }
+
+    #[test]
+    fn a_ray_leaving_the_side_meets_it_again_only_across_the_chord() {
+        // Start on the surface (rounded: cos and sin are not exact), heading inwards at an angle: the
+        // other side is a chord 2·|d·n| away; the start itself never counts, however it rounded.
+        let c = unit_cylinder();
+        for k in 0..200 {
+            let th = 0.0314 * k as f64;
+            let p = Vec3::new(th.cos(), th.sin(), 0.0);
+            let inward = Vec3::new(-th.cos() + 0.3 * th.sin(), -th.sin() - 0.3 * th.cos(), 0.1);
+            let ray = Ray::new(p, inward);
+            let n = Vec3::new(p.x, p.y, 0.0);
+            let horizontal = Vec3::new(ray.direction.x, ray.direction.y, 0.0);
+            let want = 2.0 * horizontal.dot(-n) / horizontal.length_squared();
+            let t = c.intersect_leaving(&ray).unwrap();
+            assert!((t - want).abs() < 1e-14, "{t} vs {want}");
+            // Heading outwards from the surface: no second meeting.
+            assert_eq!(c.intersect_leaving(&Ray::new(p, -inward)), None);
+        }
+    }
+
+    #[test]
+    fn a_side_a_hair_away_is_met_a_hair_away() {
+        // No minimum distance: 1e-12 m outside the side, moving in, the side is 1e-12 m ahead.
+        let ray = Ray::new(Vec3::new(-1.0 - 1e-12, 0.0, 0.0), Vec3::X);
+        let t = unit_cylinder().intersect(&ray).unwrap();
+        assert!(t > 0.0 && t < 2e-12, "{t}");
+        assert!((unit_cylinder().entry(&ray).unwrap() - t).abs() < 1e-20);
+    }
+
+    #[test]
+    fn an_opaque_solid_is_entered_only_through_its_near_side() {
+        let c = unit_cylinder();
+        // From outside: the entering root, never the exit one.
+        let ray = Ray::new(Vec3::new(-5.0, 0.6, 0.0), Vec3::X);
+        assert!((c.entry(&ray).unwrap() - 4.2).abs() < 1e-14);
+        // From inside the solid (only rounding puts a ray there): met at once.
+        assert_eq!(
+            c.entry(&Ray::new(Vec3::new(0.5, 0.0, 0.0), Vec3::X)),
+            Some(0.0)
+        );
+        // From outside, moving away: nothing, even though the line crosses the cylinder behind.
+        assert_eq!(
+            c.entry(&Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::NEG_X)),
+            None
+        );
+        // Entering above the side's top (through where a cap would be): not through the side.
+        let ray = Ray::new(Vec3::new(-5.0, 0.0, 1.5), Vec3::new(1.0, 0.0, -0.1));
+        assert_eq!(c.entry(&ray), None);
+    }
 }

@@ -1,9 +1,6 @@
 //! The virtual image of the straw in the course's convention: a ray that reaches the straw gives
 //! the image point `P = O + L·u0` (eye, first direction, length of the whole broken path).
 
-use crate::geometry::Ray;
-use crate::scene::Scene;
-use crate::trace::Outcome;
 use crate::Vec3;
 
 /// A point of the straw's virtual image: where the observer believes a straw point is.
@@ -24,29 +21,6 @@ pub struct ImagePoint {
 }
 
 impl ImagePoint {
-    /// The image point `P = O + L·u0` of the ray from `observer` along unit `u0` whose trace ended
-    /// with `outcome`, if it reached the straw.
-    #[inline]
-    pub fn from_outcome(observer: Vec3, u0: Vec3, outcome: Outcome) -> Option<ImagePoint> {
-        match outcome {
-            Outcome::Straw {
-                color,
-                point,
-                path_length,
-                events,
-                ..
-            } => Some(ImagePoint::reached(
-                observer,
-                u0,
-                color,
-                point,
-                path_length,
-                events,
-            )),
-            _ => None,
-        }
-    }
-
     /// The image point `P = O + L·u0` of the ray from `observer` along unit `u0` that reached
     /// `point`, of colour code `color`, after a broken path of length `path_length` and `events`
     /// events.
@@ -67,17 +41,5 @@ impl ImagePoint {
             straw_point: point,
             events,
         }
-    }
-}
-
-impl Scene {
-    /// The image point seen from `observer` along unit direction `u0`, if that ray reaches the straw.
-    #[inline]
-    pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
-        let outcome = self.trace(Ray {
-            origin: observer,
-            direction: u0,
-        });
-        ImagePoint::from_outcome(observer, u0, outcome)
     }
 }

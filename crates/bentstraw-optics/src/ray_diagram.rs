@@ -6,10 +6,8 @@ use std::collections::BTreeMap;
 
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::light_path_type::{Entry, LightPathType};
-use crate::scene::Scene;
-use crate::trace::{Event, Face, Outcome};
-use crate::world::World;
+use crate::light_path_type::LightPathType;
+use crate::world::{Event, World};
 use crate::Vec3;
 
 /// One ray from the eye to the straw, as a diagram draws it.
@@ -33,70 +31,23 @@ impl DiagramRay {
     }
 }
 
-/// A scene whose rays a diagram can draw: the assignment's glass or any scene file's world.
-pub trait DiagramScene: Sync {
-    /// The ray from `observer` along unit `u0` with its events, if it reaches an object.
-    fn diagram_ray(&self, observer: Vec3, u0: Vec3) -> Option<DiagramRay>;
-}
-
-impl DiagramScene for Scene {
-    fn diagram_ray(&self, observer: Vec3, u0: Vec3) -> Option<DiagramRay> {
-        diagram_ray(self, observer, u0)
-    }
-}
-
-impl DiagramScene for World {
-    fn diagram_ray(&self, observer: Vec3, u0: Vec3) -> Option<DiagramRay> {
-        let mut events = Vec::new();
-        let outcome = self.trace_with(
-            Ray {
-                origin: observer,
-                direction: u0,
-            },
-            |e| {
-                // The kind of face, in the glass's words: a surface met from above, from below,
-                // or a wall.
-                events.push(Event {
-                    point: e.point,
-                    face: match self.entry_of(e) {
-                        Entry::Top => Face::WaterTop,
-                        Entry::Bottom => Face::WaterBottom,
-                        _ => Face::WaterSide,
-                    },
-                    normal: e.normal,
-                    incoming: e.incoming,
-                    outgoing: e.outgoing,
-                    n1: e.n1,
-                    n2: e.n2,
-                    totally_reflected: e.totally_reflected,
-                });
-            },
-        );
-        Some(DiagramRay {
-            image: outcome.image_point(observer, u0)?,
-            kind: LightPathType::of_events(&events),
-            events,
-        })
-    }
-}
-
-/// The ray from `observer` along unit `u0` with its events, if it reaches the straw.
-pub fn diagram_ray(scene: &Scene, observer: Vec3, u0: Vec3) -> Option<DiagramRay> {
+/// The ray from `observer` along unit `u0` through `world`, with its events, if it reaches an
+/// object.
+pub fn diagram_ray(world: &World, observer: Vec3, u0: Vec3) -> Option<DiagramRay> {
     let mut events = Vec::new();
     let mut kind = LightPathType::DIRECT;
-    let outcome = scene.trace_with(
+    let outcome = world.trace_with(
         Ray {
             origin: observer,
             direction: u0,
         },
         |e| {
-            kind.record(e);
+            kind.record_entry(world.entry_of(e), e.totally_reflected);
             events.push(*e);
         },
     );
-    let image = ImagePoint::from_outcome(observer, u0, outcome)?;
-    matches!(outcome, Outcome::Straw { .. }).then_some(DiagramRay {
-        image,
+    Some(DiagramRay {
+        image: outcome.image_point(observer, u0)?,
         events,
         kind,
     })
@@ -104,13 +55,13 @@ pub fn diagram_ray(scene: &Scene, observer: Vec3, u0: Vec3) -> Option<DiagramRay
 
 /// Image points per kind of light path, most common first (ties by kind).
 pub fn path_type_counts(
-    scene: &impl DiagramScene,
+    world: &World,
     observer: Vec3,
     points: &[ImagePoint],
 ) -> Vec<(LightPathType, usize)> {
     let mut counts: BTreeMap<LightPathType, usize> = BTreeMap::new();
     for p in points {
-        if let Some(r) = scene.diagram_ray(observer, p.direction) {
+        if let Some(r) = diagram_ray(world, observer, p.direction) {
             *counts.entry(r.kind).or_default() += 1;
         }
     }
@@ -124,14 +75,14 @@ pub fn path_type_counts(
 /// sampler's order, which sweeps across the image), so rare paths — the pieces made by total
 /// reflection — are drawn too.
 pub fn diagram_rays(
-    scene: &impl DiagramScene,
+    world: &World,
     observer: Vec3,
     points: &[ImagePoint],
     count: usize,
 ) -> Vec<DiagramRay> {
     let mut groups: BTreeMap<(u8, LightPathType), Vec<DiagramRay>> = BTreeMap::new();
     for p in points {
-        if let Some(r) = scene.diagram_ray(observer, p.direction) {
+        if let Some(r) = diagram_ray(world, observer, p.direction) {
             groups.entry((p.color, r.kind)).or_default().push(r);
         }
     }

@@ -17,18 +17,17 @@
 
 use std::f64::consts::PI;
 
-use rayon::prelude::*;
+use crate::parallel::*;
 
 use crate::camera::view_basis;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::scene::{Scene, GLASS_RADIUS, STRAW_HEIGHT};
-use crate::tracer::Tracer;
+use crate::world::World;
 use crate::Vec3;
 
 /// The equal-area map of the observer's directions, and the rectangle of it that is sampled.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Frame {
+pub struct DirectionMap {
     /// Unit direction at the map's origin `(a, b) = (0, 0)`: towards the scene's centre.
     pub forward: Vec3,
     /// Unit horizontal right direction: the map's pole (`b = 1`).
@@ -45,7 +44,7 @@ pub struct Frame {
     pub height: f64,
 }
 
-impl Frame {
+impl DirectionMap {
     /// The unit direction at map point `(a, b)`.
     #[inline]
     pub fn direction(&self, a: f64, b: f64) -> Vec3 {
@@ -64,9 +63,9 @@ impl Frame {
     }
 
     /// A whole-sphere map looking along `forward`, with right/up as in the observer's camera.
-    pub fn looking(forward: Vec3) -> Frame {
+    pub fn looking(forward: Vec3) -> DirectionMap {
         let (f, right, up) = view_basis(forward);
-        Frame {
+        DirectionMap {
             forward: f,
             right,
             up,
@@ -78,52 +77,45 @@ impl Frame {
     }
 }
 
-/// The map of the directions from `observer`, cropped to where the glass and straw can appear.
-pub fn frame_for(observer: Vec3) -> Frame {
-    let r = GLASS_RADIUS;
-    frame_for_box(
-        observer,
-        (Vec3::new(-r, -r, 0.0), Vec3::new(r, r, STRAW_HEIGHT)),
-    )
-}
-
-/// The map of the directions from `observer`, cropped to where the box of corners `lo`, `hi`
-/// (holding everything that can be seen) can appear, looking at its centre.
-pub fn frame_for_box(observer: Vec3, (lo, hi): (Vec3, Vec3)) -> Frame {
-    let mut frame = Frame::looking(0.5 * (lo + hi) - observer);
-    // Project points spread over the box; the box is convex, so its surface bounds what can be
-    // seen.
-    const N: usize = 48;
-    let size = hi - lo;
-    let (mut a0, mut a1, mut b0, mut b1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for axis in 0..3 {
-        for side in [0.0, 1.0] {
-            for p in 0..=N {
-                for q in 0..=N {
-                    let mut unit = [0.0; 3];
-                    unit[axis] = side;
-                    unit[(axis + 1) % 3] = p as f64 / N as f64;
-                    unit[(axis + 2) % 3] = q as f64 / N as f64;
-                    let v = lo + Vec3::from_array(unit) * size - observer;
-                    let (a, b) = frame.coordinates(v.normalize());
-                    a0 = a0.min(a);
-                    a1 = a1.max(a);
-                    b0 = b0.min(b);
-                    b1 = b1.max(b);
+impl DirectionMap {
+    /// The map of the directions from `observer`, cropped to where the box of corners `lo`, `hi`
+    /// (holding everything that can be seen) can appear, looking at its centre.
+    pub fn of_box(observer: Vec3, (lo, hi): (Vec3, Vec3)) -> DirectionMap {
+        let mut frame = DirectionMap::looking(0.5 * (lo + hi) - observer);
+        // Project points spread over the box; the box is convex, so its surface bounds what can be
+        // seen.
+        const N: usize = 48;
+        let size = hi - lo;
+        let (mut a0, mut a1, mut b0, mut b1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for axis in 0..3 {
+            for side in [0.0, 1.0] {
+                for p in 0..=N {
+                    for q in 0..=N {
+                        let mut unit = [0.0; 3];
+                        unit[axis] = side;
+                        unit[(axis + 1) % 3] = p as f64 / N as f64;
+                        unit[(axis + 2) % 3] = q as f64 / N as f64;
+                        let v = lo + Vec3::from_array(unit) * size - observer;
+                        let (a, b) = frame.coordinates(v.normalize());
+                        a0 = a0.min(a);
+                        a1 = a1.max(a);
+                        b0 = b0.min(b);
+                        b1 = b1.max(b);
+                    }
                 }
             }
         }
+        // A margin of a few coarse cells; all the way round if the scene wraps behind the observer.
+        let pad = 0.02 * (a1 - a0).max(b1 - b0).max(f64::MIN_POSITIVE);
+        if a1.max(-a0) > 0.9 * PI {
+            (a0, a1) = (-PI, PI);
+        }
+        frame.a_min = (a0 - pad).max(-PI);
+        frame.width = (a1 + pad).min(PI) - frame.a_min;
+        frame.b_min = (b0 - pad).max(-1.0);
+        frame.height = (b1 + pad).min(1.0) - frame.b_min;
+        frame
     }
-    // A margin of a few coarse cells; all the way round if the scene wraps behind the observer.
-    let pad = 0.02 * (a1 - a0).max(b1 - b0).max(f64::MIN_POSITIVE);
-    if a1.max(-a0) > 0.9 * PI {
-        (a0, a1) = (-PI, PI);
-    }
-    frame.a_min = (a0 - pad).max(-PI);
-    frame.width = (a1 + pad).min(PI) - frame.a_min;
-    frame.b_min = (b0 - pad).max(-1.0);
-    frame.height = (b1 + pad).min(1.0) - frame.b_min;
-    frame
 }
 
 /// What a sampling run produced.
@@ -176,54 +168,16 @@ const COARSE_CELLS: f64 = 128.0;
 /// Levels of refinement allowed when the coarse grid sees no straw at all.
 const BLIND_LEVELS: u32 = 2;
 
-/// Something that traces the rays of an image: which rays reach an object, and the image point
-/// each makes. The assignment's glass ([`Tracer`]) and any scene file's world
-/// ([`crate::world::World`]) are sampled by the same code.
-pub trait ImageTracer: Sync {
-    /// Whether `ray`, from the observer, reaches an object (by the course's law).
-    fn reaches_object(&self, ray: Ray) -> bool;
-    /// The image point seen from `observer` along unit `u0`, if that ray reaches an object.
-    fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint>;
-    /// The corners of a box holding everything that can be seen.
-    fn scene_box(&self) -> (Vec3, Vec3);
-}
-
-impl ImageTracer for Tracer {
-    #[inline]
-    fn reaches_object(&self, ray: Ray) -> bool {
-        self.color(ray) > 0
-    }
-
-    #[inline]
-    fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
-        Tracer::image_point(self, observer, u0)
-    }
-
-    fn scene_box(&self) -> (Vec3, Vec3) {
-        let r = GLASS_RADIUS;
-        (Vec3::new(-r, -r, 0.0), Vec3::new(r, r, STRAW_HEIGHT))
-    }
-}
-
-/// Traces rays from `observer` and returns at least `min_points` image points of the straw (fewer
-/// only if the straw is all but invisible from there). `progress` is told the rays traced so far.
+/// Traces rays from `world`'s `observer` and returns at least `min_points` image points of its
+/// objects (fewer only if they are all but invisible from there). `progress` is told the rays
+/// traced so far.
 pub fn sample_image(
-    scene: &Scene,
+    world: &World,
     observer: Vec3,
     min_points: usize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> ImageCloud {
-    sample_image_of(&Tracer::new(scene), observer, min_points, progress)
-}
-
-/// [`sample_image`] for any [`ImageTracer`]: at least `min_points` image points of its objects.
-pub fn sample_image_of<T: ImageTracer>(
-    tracer: &T,
-    observer: Vec3,
-    min_points: usize,
-    progress: &(dyn Fn(u64) + Sync),
-) -> ImageCloud {
-    let frame = frame_for_box(observer, tracer.scene_box());
+    let frame = DirectionMap::of_box(observer, world.bounds());
     let longest = frame.width.max(frame.height);
     let mut spacing = longest / COARSE_CELLS;
     let mut rays = 0u64;
@@ -239,10 +193,13 @@ pub fn sample_image_of<T: ImageTracer>(
             .map(|&(i, j)| {
                 let a = frame.a_min + (i as f64 + 0.5) * spacing;
                 let b = frame.b_min + (j as f64 + 0.5) * spacing;
-                tracer.reaches_object(Ray {
-                    origin: observer,
-                    direction: frame.direction(a, b),
-                })
+                world
+                    .trace(Ray {
+                        origin: observer,
+                        direction: frame.direction(a, b),
+                    })
+                    .color()
+                    > 0
             })
             .collect()
     };
@@ -282,7 +239,7 @@ pub fn sample_image_of<T: ImageTracer>(
         // Final level: a uniform grid of spacing `h`, traced where the last level saw the straw.
         let mut h = target.min(spacing);
         loop {
-            let points = final_level(tracer, observer, &frame, &active, spacing, h, &mut rays);
+            let points = final_level(world, observer, &frame, &active, spacing, h, &mut rays);
             progress(rays);
             if points.len() >= min_points || h < 1e-7 * longest {
                 return ImageCloud {
@@ -297,7 +254,7 @@ pub fn sample_image_of<T: ImageTracer>(
 }
 
 /// Cells of the grid at `spacing`: `(nx, ny)`.
-fn grid_size(f: &Frame, spacing: f64) -> (u32, u32) {
+fn grid_size(f: &DirectionMap, spacing: f64) -> (u32, u32) {
     (
         (f.width / spacing).ceil().max(1.0) as u32,
         (f.height / spacing).ceil().max(1.0) as u32,
@@ -319,7 +276,7 @@ fn split(cells: &[Cell]) -> Vec<Cell> {
 ///
 /// Marks a bitmap of the grid (cheaper than hashing: one bit per cell, and reading the bits in
 /// order gives the cells already sorted as `(i, j)`).
-fn dilate(hits: &[Cell], frame: &Frame, spacing: f64) -> Vec<Cell> {
+fn dilate(hits: &[Cell], frame: &DirectionMap, spacing: f64) -> Vec<Cell> {
     let (nx, ny) = grid_size(frame, spacing);
     let (nx, ny) = (nx as usize, ny as usize);
     let mut bits = vec![0u64; (nx * ny).div_ceil(64)];
@@ -346,10 +303,10 @@ fn dilate(hits: &[Cell], frame: &Frame, spacing: f64) -> Vec<Cell> {
 
 /// Traces the points of the uniform grid of spacing `h` whose centres lie in `active` cells (of
 /// size `spacing`), and returns the image points, in cell order.
-fn final_level<T: ImageTracer>(
-    tracer: &T,
+fn final_level(
+    world: &World,
     observer: Vec3,
-    frame: &Frame,
+    frame: &DirectionMap,
     active: &[Cell],
     spacing: f64,
     h: f64,
@@ -383,7 +340,7 @@ fn final_level<T: ImageTracer>(
                             continue;
                         }
                         n += 1;
-                        if let Some(p) = tracer.image_point(observer, frame.direction(a, b)) {
+                        if let Some(p) = world.image_point(observer, frame.direction(a, b)) {
                             pts.push(p);
                         }
                     }

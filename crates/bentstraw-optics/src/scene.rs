@@ -2,7 +2,6 @@
 
 use std::fmt;
 
-use crate::geometry::{CylinderSide, Disk};
 use crate::Vec3;
 
 /// Radius of the glass `Rv` (m).
@@ -238,91 +237,6 @@ impl Scene {
     #[inline]
     pub fn has_water(&self) -> bool {
         self.water_height > 0.0
-    }
-
-    /// The water's side wall.
-    #[inline]
-    pub fn water_side(&self) -> CylinderSide {
-        CylinderSide {
-            cx: 0.0,
-            cy: 0.0,
-            radius: GLASS_RADIUS,
-            z_min: 0.0,
-            z_max: self.water_height,
-        }
-    }
-
-    /// The water's free surface, the disk `z = he`.
-    #[inline]
-    pub fn water_top(&self) -> Disk {
-        Disk {
-            cx: 0.0,
-            cy: 0.0,
-            z: self.water_height,
-            radius: GLASS_RADIUS,
-        }
-    }
-
-    /// The water's bottom face, the disk `z = 0`.
-    #[inline]
-    pub fn water_bottom(&self) -> Disk {
-        Disk {
-            cx: 0.0,
-            cy: 0.0,
-            z: 0.0,
-            radius: GLASS_RADIUS,
-        }
-    }
-
-    /// The straw's side.
-    #[inline]
-    pub fn straw_side(&self) -> CylinderSide {
-        CylinderSide {
-            cx: self.straw_x,
-            cy: self.straw_y,
-            radius: STRAW_RADIUS,
-            z_min: 0.0,
-            z_max: STRAW_HEIGHT,
-        }
-    }
-
-    /// The straw's top cap.
-    #[inline]
-    pub fn straw_top(&self) -> Disk {
-        Disk {
-            cx: self.straw_x,
-            cy: self.straw_y,
-            z: STRAW_HEIGHT,
-            radius: STRAW_RADIUS,
-        }
-    }
-
-    /// The straw's bottom cap, on the glass's bottom.
-    #[inline]
-    pub fn straw_bottom(&self) -> Disk {
-        Disk {
-            cx: self.straw_x,
-            cy: self.straw_y,
-            z: 0.0,
-            radius: STRAW_RADIUS,
-        }
-    }
-
-    /// Distance from `p` to the straw's surface (side, top cap or bottom cap), in metres.
-    pub fn distance_to_straw_surface(&self, p: Vec3) -> f64 {
-        let r = ((p.x - self.straw_x).powi(2) + (p.y - self.straw_y).powi(2)).sqrt();
-        let dr = r - STRAW_RADIUS; // > 0 outside the side
-        let dz_low = -p.z; // > 0 below the bottom
-        let dz_high = p.z - STRAW_HEIGHT; // > 0 above the top
-        let dz = dz_low.max(dz_high);
-        if dr <= 0.0 && dz <= 0.0 {
-            // Inside the solid: distance to the nearest face.
-            (-dr).min(-dz)
-        } else {
-            let a = dr.max(0.0);
-            let b = dz.max(0.0);
-            (a * a + b * b).sqrt()
-        }
     }
 }
 

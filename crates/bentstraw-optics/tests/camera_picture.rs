@@ -6,6 +6,7 @@ use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::{
     Scene, GLASS_RADIUS, REFERENCES, SCENE_CENTRE, SECTION_COUNT, STRAW_HEIGHT, WATER_INDEX,
 };
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 /// The pixel direction of docs/physics.md, written out with plain arrays (no glam), normalised.
@@ -145,7 +146,7 @@ fn straw_to_the_observers_right_appears_in_the_right_half_and_upright() {
     for (yp, right) in [(0.03, true), (-0.03, false)] {
         for n in [1.0, WATER_INDEX] {
             let scene = Scene::new(0.0, yp, 0.15, n, 10).unwrap();
-            let codes = course_picture(&scene, &cam);
+            let codes = course_picture(&World::assignment(&scene), &cam);
             let cols: Vec<usize> = codes
                 .iter()
                 .enumerate()
@@ -173,13 +174,13 @@ fn course_pixels_have_the_colour_of_the_image_point_along_their_ray() {
         let scene = r.scene(WATER_INDEX);
         let fov = framing_fov(r.observer, SCENE_CENTRE, w as f64 / h as f64);
         let cam = Camera::new(r.observer, SCENE_CENTRE, w, h, fov);
-        let codes = course_picture(&scene, &cam);
+        let codes = course_picture(&World::assignment(&scene), &cam);
         assert_eq!(codes.len(), (w * h) as usize);
         let mut straw = 0;
         for i in 0..h {
             for j in 0..w {
                 let u0 = cam.pixel_ray(i, j).direction;
-                let ip = scene.image_point(r.observer, u0);
+                let ip = World::assignment(&scene).image_point(r.observer, u0);
                 assert_eq!(codes[(i * w + j) as usize], ip.map_or(0, |p| p.color));
                 if let Some(p) = ip {
                     straw += 1;
@@ -207,8 +208,8 @@ fn the_sampled_point_cloud_falls_on_pixels_of_its_own_colour() {
         let scene = r.scene(WATER_INDEX);
         let fov = framing_fov(r.observer, SCENE_CENTRE, w as f64 / h as f64);
         let cam = Camera::new(r.observer, SCENE_CENTRE, w, h, fov);
-        let codes = course_picture(&scene, &cam);
-        let cloud = sample_image(&scene, r.observer, 3000, &|_| {});
+        let codes = course_picture(&World::assignment(&scene), &cam);
+        let cloud = sample_image(&World::assignment(&scene), r.observer, 3000, &|_| {});
         let (mut inside, mut agree, mut stray) = (0usize, 0usize, 0usize);
         for p in &cloud.points {
             if let Some((row, col)) = cam.project(p.position) {
@@ -298,8 +299,8 @@ fn fresnel_picture_equals_course_picture_without_refraction() {
     for r in REFERENCES {
         let scene = r.scene(1.0);
         let cam = Camera::new(r.observer, SCENE_CENTRE, w, h, 90f64.to_radians());
-        let codes = course_picture(&scene, &cam);
-        let weights = fresnel_picture(&scene, &cam, 0.0);
+        let codes = course_picture(&World::assignment(&scene), &cam);
+        let weights = fresnel_picture(&World::assignment(&scene), &cam, 0.0);
         for (code, wk) in codes.iter().zip(&weights) {
             for k in 0..SECTION_COUNT {
                 let want = if *code as usize == k + 1 { 1.0 } else { 0.0 };

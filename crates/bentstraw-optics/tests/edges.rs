@@ -8,7 +8,7 @@ use bentstraw_optics::camera::Camera;
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::{Scene, GLASS_RADIUS, SECTION_EDGES, STRAW_RADIUS};
-use bentstraw_optics::trace::Outcome;
+use bentstraw_optics::world::{Outcome, World};
 use bentstraw_optics::Vec3;
 use proptest::prelude::*;
 use support::reference::{RefOutcome, Reference};
@@ -24,13 +24,13 @@ fn single_ray(observer: Vec3, target: Vec3) -> Ray {
 /// The library's outcome agrees with the reference: same colour and events, same path length.
 fn assert_agrees(scene: &Scene, ray: Ray, what: &str) {
     let (want, margin) = Reference::new(scene).trace(ray);
-    let got = scene.trace(ray);
+    let got = World::assignment(scene).trace(ray);
     if margin < WELL_POSED {
         return;
     }
     match (got, want) {
         (
-            Outcome::Straw {
+            Outcome::Object {
                 color,
                 path_length,
                 events,
@@ -52,7 +52,7 @@ fn assert_agrees(scene: &Scene, ray: Ray, what: &str) {
             );
             assert!((point - p).length() <= tol, "{what}: point {point} vs {p}");
         }
-        (Outcome::Escaped { events }, RefOutcome::Escaped { events: e }) => {
+        (Outcome::Escaped { events, .. }, RefOutcome::Escaped { events: e }) => {
             assert_eq!(events, e, "{what}: ray {ray:?}")
         }
         (Outcome::Dropped, RefOutcome::Dropped) => {}
@@ -70,9 +70,9 @@ fn a_ray_refracted_at_the_surface_beside_the_straw_meets_its_near_side() {
         Vec3::new(0.3, 0.0, 0.4),
         Vec3::new(0.0050000003, 0.0, 0.1002),
     );
-    let Outcome::Straw {
+    let Outcome::Object {
         color, path_length, ..
-    } = scene.trace(ray)
+    } = World::assignment(&scene).trace(ray)
     else {
         panic!("reaches the straw")
     };
@@ -100,10 +100,10 @@ fn a_straw_touching_the_wall_is_seen_where_it_touches() {
         0.05369871435365617,
     );
     let ray = single_ray(observer, target);
-    assert_eq!(scene.trace(ray).color(), 1);
+    assert_eq!(World::assignment(&scene).trace(ray).color(), 1);
     assert_agrees(&scene, ray, "straw touching the wall");
     // And every image point of that scene is where the reference puts it.
-    let cloud = sample_image(&scene, observer, 4000, &|_| {});
+    let cloud = sample_image(&World::assignment(&scene), observer, 4000, &|_| {});
     assert!(cloud.points.len() >= 4000);
     for p in &cloud.points {
         assert_agrees(
@@ -164,7 +164,7 @@ proptest! {
     ) {
         let observer = observer_at(10f64.powf(log_d), az, el);
         prop_assume!(scene.validate_observer(observer).is_ok());
-        let cloud = sample_image(&scene, observer, 1500, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), observer, 1500, &|_| {});
         let reference = Reference::new(&scene);
         let mut checked = 0;
         for p in &cloud.points {
@@ -199,10 +199,10 @@ proptest! {
         let scene = scene.with_n_water(1.0).unwrap();
         let observer = observer_at(10f64.powf(log_d), az, el);
         prop_assume!(scene.validate_observer(observer).is_ok());
-        let cloud = sample_image(&scene, observer, 1000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), observer, 1000, &|_| {});
         prop_assert!(cloud.points.len() >= 1000);
         for p in &cloud.points {
-            let miss = scene.distance_to_straw_surface(p.position);
+            let miss = World::assignment(&scene).distance_to_objects(p.position);
             prop_assert!(miss <= 1e-9, "{miss:e} m off the straw, observer {observer}");
         }
     }
@@ -216,7 +216,7 @@ fn observers_very_far_away_still_see_the_straw() {
         .unwrap();
     for d in [1e3, 1e4, 1e5, 1e6, 1e8, 1e10] {
         let observer = Vec3::new(d, 0.0, 0.1);
-        let cloud = sample_image(&scene, observer, 1000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), observer, 1000, &|_| {});
         assert!(
             cloud.points.len() >= 1000,
             "{d}: {} points",
@@ -225,7 +225,7 @@ fn observers_very_far_away_still_see_the_straw() {
         // The position P = O + L·u0 itself is only as exact as a number of that size (ulp).
         let ulp = d * f64::EPSILON;
         for p in &cloud.points {
-            let miss = scene.distance_to_straw_surface(p.position);
+            let miss = World::assignment(&scene).distance_to_objects(p.position);
             assert!(miss <= 1e-9 + 4.0 * ulp, "{d}: {miss:e}");
         }
     }

@@ -15,8 +15,7 @@ use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::{
     Scene, GLASS_HEIGHT, GLASS_RADIUS, REFERENCES, STRAW_HEIGHT, STRAW_RADIUS,
 };
-use bentstraw_optics::trace::Outcome;
-use bentstraw_optics::tracer::Tracer;
+use bentstraw_optics::world::{Outcome, World, FRESNEL_SEGMENTS_PER_RAY};
 use bentstraw_optics::Vec3;
 use support::reference::{RefOutcome, Reference};
 
@@ -30,14 +29,14 @@ fn reference_trace(s: &Scene, ray: Ray) -> (RefOutcome, f64) {
 
 /// Compares one ray's outcome by the library's tracers against the reference; whether it was
 /// well posed enough to compare.
-fn check_ray(s: &Scene, tracer: &Tracer, ray: Ray) -> bool {
+fn check_ray(s: &Scene, tracer: &World, ray: Ray) -> bool {
     let (expected, margin) = reference_trace(s, ray);
     if margin < WELL_POSED {
         return false;
     }
     match (tracer.trace(ray), expected) {
         (
-            Outcome::Straw {
+            Outcome::Object {
                 color,
                 point,
                 path_length,
@@ -61,21 +60,20 @@ fn check_ray(s: &Scene, tracer: &Tracer, ray: Ray) -> bool {
                 "point {point} vs {p}, ray {ray:?}"
             );
         }
-        (Outcome::Escaped { events }, RefOutcome::Escaped { events: e }) => {
+        (Outcome::Escaped { events, .. }, RefOutcome::Escaped { events: e }) => {
             assert_eq!(events, e, "escaped, ray {ray:?}, scene {s:?}")
         }
         (Outcome::Dropped, RefOutcome::Dropped) => {}
         (got, want) => panic!("library {got:?}, reference {want:?}, ray {ray:?}, scene {s:?}"),
     }
-    assert_eq!(tracer.color(ray), expected.color());
-    assert_eq!(s.trace(ray).color(), expected.color());
+    assert_eq!(tracer.trace(ray).color(), expected.color());
     // Fresnel, in full and in the picture variant (escaping branches not followed): the
     // reference's weights to 1e-12.
     let (want, fresnel_margin) = Reference::new(s).fresnel(ray, 1e-4);
     if fresnel_margin >= WELL_POSED {
         for got in [
-            tracer.trace_fresnel(ray, 1e-4),
-            tracer.trace_fresnel_escaping(ray, 1e-4),
+            tracer.fresnel_steps::<false>(ray, 1e-4, FRESNEL_SEGMENTS_PER_RAY, |_| {}),
+            tracer.fresnel_steps::<true>(ray, 1e-4, FRESNEL_SEGMENTS_PER_RAY, |_| {}),
         ] {
             for (g, w) in got.iter().zip(want) {
                 assert!(
@@ -132,7 +130,7 @@ fn bench_views(w: u32, h: u32) -> Vec<(Scene, Camera)> {
 #[test]
 fn fast_tracer_matches_reference_on_benchmark_views() {
     for (scene, camera) in bench_views(160, 120) {
-        let tracer = Tracer::new(&scene);
+        let tracer = World::assignment(&scene);
         let mut hits = 0;
         for i in 0..camera.height {
             for j in 0..camera.width {
@@ -166,7 +164,7 @@ fn fast_tracer_matches_reference_on_random_rays() {
         };
         let events = 1 + (rng.next_f64() * 12.0) as u32;
         let scene = Scene::new(r * phi.cos(), r * phi.sin(), he, n, events).unwrap();
-        let tracer = Tracer::new(&scene);
+        let tracer = World::assignment(&scene);
         let mut shot = 0;
         while shot < 200 {
             let observer = Vec3::new(
@@ -205,7 +203,7 @@ fn fast_tracer_matches_reference_on_awkward_rays() {
         (-0.01, 0.02, 0.05),
     ] {
         let scene = Scene::with_defaults(xp, yp, he).unwrap();
-        let tracer = Tracer::new(&scene);
+        let tracer = World::assignment(&scene);
         for _ in 0..400 {
             let (x, y) = (rng.range(-0.05, 0.05), rng.range(-0.05, 0.05));
             // Straight down from above the straw, straight up from below the glass.
@@ -238,8 +236,8 @@ fn fast_tracer_matches_reference_on_awkward_rays() {
 #[test]
 fn pictures_match_reference_per_pixel() {
     for (scene, camera) in bench_views(96, 72) {
-        let codes = course_picture_exact(&scene, &camera);
-        let weights = fresnel_picture_exact(&scene, &camera, 1e-4);
+        let codes = course_picture_exact(&World::assignment(&scene), &camera);
+        let weights = fresnel_picture_exact(&World::assignment(&scene), &camera, 1e-4);
         for i in 0..camera.height {
             for j in 0..camera.width {
                 let k = (i * camera.width + j) as usize;
@@ -268,7 +266,7 @@ fn sampled_image_points_are_the_reference_image_points() {
     use bentstraw_optics::sampling::sample_image;
     for r in REFERENCES {
         let scene = r.scene(1.333);
-        let cloud = sample_image(&scene, r.observer, 3000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), r.observer, 3000, &|_| {});
         assert!(cloud.points.len() >= 3000, "simulation {}", r.number);
         for p in &cloud.points {
             // Each point is what the reference finds along the point's own direction.

@@ -7,8 +7,8 @@ use support::reference::Reference;
 
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::interface::{critical_angle, fresnel_reflectance, fresnel_reflectance_sp};
-use bentstraw_optics::scene::{Scene, GLASS_HEIGHT, GLASS_RADIUS, SECTION_COUNT, WATER_INDEX};
-use bentstraw_optics::trace::FresnelStep;
+use bentstraw_optics::scene::{Scene, GLASS_HEIGHT, GLASS_RADIUS, WATER_INDEX};
+use bentstraw_optics::world::{FresnelStep, World, COLOR_COUNT, FRESNEL_SEGMENTS_PER_RAY};
 use bentstraw_optics::Vec3;
 use proptest::prelude::*;
 
@@ -94,9 +94,14 @@ proptest! {
 }
 
 /// Every step of a Fresnel trace, with the returned weights.
-fn steps(scene: &Scene, ray: Ray, prune: f64) -> (Vec<FresnelStep>, [f64; SECTION_COUNT]) {
+fn steps(scene: &Scene, ray: Ray, prune: f64) -> (Vec<FresnelStep>, [f64; COLOR_COUNT]) {
     let mut all = Vec::new();
-    let w = scene.trace_fresnel_with(ray, prune, |s| all.push(s));
+    let w = World::assignment(scene).fresnel_steps::<false>(
+        ray,
+        prune,
+        FRESNEL_SEGMENTS_PER_RAY,
+        |s| all.push(s),
+    );
     (all, w)
 }
 
@@ -105,7 +110,7 @@ fn budget(all: &[FresnelStep]) -> (f64, f64, f64, f64) {
     let (mut straw, mut escaped, mut dropped, mut pruned) = (0.0, 0.0, 0.0, 0.0);
     for s in all {
         match *s {
-            FresnelStep::Straw { weight, .. } => straw += weight,
+            FresnelStep::Object { weight, .. } => straw += weight,
             FresnelStep::Escaped { weight, .. } => escaped += weight,
             FresnelStep::Dropped { weight } => dropped += weight,
             FresnelStep::Pruned { weight } => pruned += weight,
@@ -186,8 +191,13 @@ proptest! {
 fn straight_down_onto_the_top_cap_everything_is_blue() {
     let scene = Scene::with_defaults(0.01, -0.01, 0.15).unwrap();
     let ray = Ray::new(Vec3::new(0.011, -0.009, 0.4), Vec3::NEG_Z);
-    let w = scene.trace_fresnel(ray, 1e-4);
-    assert_eq!(w, [0.0, 0.0, 0.0, 0.0, 1.0]);
+    let w = World::assignment(&scene).fresnel_steps::<false>(
+        ray,
+        1e-4,
+        FRESNEL_SEGMENTS_PER_RAY,
+        |_| {},
+    );
+    assert_eq!(w, [0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
 }
 
 #[test]
@@ -245,7 +255,7 @@ fn a_long_chain_of_near_critical_reflections_loses_no_weight() {
     let (straw, escaped, dropped, pruned) = budget(&all);
     assert_eq!(pruned, 0.0);
     assert!((straw + escaped + dropped - 1.0).abs() < 1e-12);
-    assert_eq!(w, [0.0; SECTION_COUNT]);
+    assert_eq!(w, [0.0; COLOR_COUNT]);
 }
 
 /// Light trapped by total reflection (index 10, a thousand events allowed) would be followed a
@@ -261,7 +271,8 @@ fn fresnel_work_per_ray_is_bounded_and_accounted() {
         let ray = Ray::new(observer, aim - observer);
         for bound in [100, 1000] {
             let mut all = Vec::new();
-            let weights = scene.trace_fresnel_bounded(ray, 0.0, bound, |s| all.push(s));
+            let weights =
+                World::assignment(&scene).fresnel_steps::<false>(ray, 0.0, bound, |s| all.push(s));
             // Every event (a split or a total reflection) ends one of the segments followed.
             let events = all
                 .iter()

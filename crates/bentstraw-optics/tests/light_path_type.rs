@@ -1,12 +1,13 @@
 //! The kind of light path: entry face and total reflections, on rays whose path is known.
 
 use bentstraw_optics::geometry::Ray;
-use bentstraw_optics::light_path_type::{trace_path_type, Entry, LightPathType};
+use bentstraw_optics::light_path_type::{Entry, LightPathType};
 use bentstraw_optics::scene::Scene;
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 fn kind(scene: &Scene, from: Vec3, to: Vec3) -> (u8, LightPathType) {
-    let (outcome, kind) = trace_path_type(scene, scene, Ray::new(from, to - from));
+    let (outcome, kind) = World::assignment(scene).trace_path_type(Ray::new(from, to - from));
     (outcome.color(), kind)
 }
 
@@ -41,6 +42,7 @@ fn total_reflections_are_counted() {
     // more than the critical angle (48.6°) is totally reflected there.
     let scene = Scene::with_defaults(0.02, 0.01, 0.2).unwrap();
     let observer = Vec3::new(0.1, 0.0, -0.1);
+    let world = World::assignment(&scene);
     let mut seen = 0;
     for i in 0..400 {
         for j in 0..400 {
@@ -51,8 +53,8 @@ fn total_reflections_are_counted() {
             );
             let ray = Ray::new(observer, target - observer);
             let mut events = Vec::new();
-            let outcome = scene.trace_with(ray, |e| events.push(*e));
-            let (o2, k) = trace_path_type(&scene, &scene, ray);
+            let outcome = world.trace_with(ray, |e| events.push(*e));
+            let (o2, k) = world.trace_path_type(ray);
             assert_eq!(outcome, o2);
             let tir = events.iter().filter(|e| e.totally_reflected).count() as u32;
             assert_eq!(k.total_reflections, tir);
@@ -77,9 +79,6 @@ fn words_and_keys() {
         total_reflections: 2,
     };
     assert_eq!(k.key(), "wall+2");
-    assert_eq!(
-        k.to_string(),
-        "through the glass's wall, 2 total reflections"
-    );
+    assert_eq!(k.to_string(), "through the side wall, 2 total reflections");
     assert_eq!(LightPathType::DIRECT.key(), "direct");
 }

@@ -6,12 +6,14 @@ use bentstraw_optics::picture::{
     course_picture, course_picture_exact, fresnel_picture, fresnel_picture_exact,
 };
 use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE};
+use bentstraw_optics::world::{World, COLOR_COUNT};
 use bentstraw_optics::Vec3;
 
 /// Pixels that differ, and how many of them lie off every colour boundary of the exact picture.
 fn compare(scene: &Scene, camera: &Camera) -> (usize, usize) {
-    let fast = course_picture(scene, camera);
-    let exact = course_picture_exact(scene, camera);
+    let world = World::assignment(scene);
+    let fast = course_picture(&world, camera);
+    let exact = course_picture_exact(&world, camera);
     differing(&fast, &exact, camera.width as usize)
 }
 
@@ -69,11 +71,12 @@ fn packet_picture_matches_exact_on_other_scenes() {
 /// A light secondary branch (weight ~1e-3) that grazes a rim can go either way in single
 /// precision without the pixel being on a visible boundary; a heavy one cannot.
 fn compare_fresnel(scene: &Scene, camera: &Camera) -> (usize, usize, f64) {
-    let fast = fresnel_picture(scene, camera, 1e-4);
-    let exact = fresnel_picture_exact(scene, camera, 1e-4);
+    let world = World::assignment(scene);
+    let fast = fresnel_picture(&world, camera, 1e-4);
+    let exact = fresnel_picture_exact(&world, camera, 1e-4);
     let (w, h) = (camera.width as i64, camera.height as i64);
     let at = |i: i64, j: i64| exact[(i * w + j) as usize];
-    let gap = |a: [f64; 5], b: [f64; 5]| {
+    let gap = |a: [f64; COLOR_COUNT], b: [f64; COLOR_COUNT]| {
         a.iter()
             .zip(b)
             .map(|(x, y)| (x - y).abs())
@@ -147,7 +150,7 @@ fn packet_pictures_of_far_observers_match_exact() {
         let fov = 2.0 * (0.19 / d).atan();
         let camera = Camera::new(observer, SCENE_CENTRE, 320, 240, fov);
         check(&scene, &camera, &format!("course from {d} m"));
-        let straw_pixels = course_picture_exact(&scene, &camera)
+        let straw_pixels = course_picture_exact(&World::assignment(&scene), &camera)
             .iter()
             .filter(|&&c| c > 0)
             .count();
@@ -190,12 +193,8 @@ fn differing(fast: &[u8], exact: &[u8], w: usize) -> (usize, usize) {
 /// pixel but a few on colour boundaries, in course and in Fresnel mode (all eight codes).
 #[test]
 fn packet_pictures_of_every_gallery_scene_match_exact() {
-    use bentstraw_optics::picture::{
-        world_course_picture_exact, world_course_picture_into, world_fresnel_picture_exact,
-        world_fresnel_picture_into,
-    };
+    use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
     use bentstraw_optics::scene_file::SceneDescription;
-    use bentstraw_optics::world::World;
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
@@ -213,8 +212,8 @@ fn packet_pictures_of_every_gallery_scene_match_exact() {
         let camera = Camera::new(o.position, o.target, 240, 180, 40f64.to_radians());
         let total = (camera.width * camera.height) as usize;
         let mut fast = vec![0u8; total];
-        world_course_picture_into(&world, &camera, &mut fast);
-        let exact = world_course_picture_exact(&world, &camera);
+        course_picture_into(&world, &camera, &mut fast);
+        let exact = course_picture_exact(&world, &camera);
         let seen = exact.iter().filter(|&&c| c > 0).count();
         assert!(seen > total / 200, "{name}: objects on {seen} pixels");
         let (differ, off) = differing(&fast, &exact, camera.width as usize);
@@ -223,8 +222,8 @@ fn packet_pictures_of_every_gallery_scene_match_exact() {
         assert!(differ * 1000 < 5 * total, "{name}: {differ} pixels differ");
         // Fresnel: the weights on every code agree to 1e-3 on all but a few pixels.
         let mut weights = vec![[0.0; 8]; total];
-        world_fresnel_picture_into(&world, &camera, 1e-4, &mut weights);
-        let exact_w = world_fresnel_picture_exact(&world, &camera, 1e-4);
+        fresnel_picture_into(&world, &camera, 1e-4, &mut weights);
+        let exact_w = fresnel_picture_exact(&world, &camera, 1e-4);
         let close = weights
             .iter()
             .zip(&exact_w)

@@ -2,12 +2,13 @@
 
 use std::collections::HashSet;
 
-use bentstraw_optics::sampling::{frame_for, sample_image, Frame, ImageCloud};
+use bentstraw_optics::sampling::{sample_image, DirectionMap, ImageCloud};
 use bentstraw_optics::scene::REFERENCES;
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 /// The final-grid cell `(i, j)` a point's direction falls in.
-fn cell_of(frame: &Frame, d: Vec3, h: f64) -> (i64, i64) {
+fn cell_of(frame: &DirectionMap, d: Vec3, h: f64) -> (i64, i64) {
     let (a, b) = frame.coordinates(d);
     (
         ((a - frame.a_min) / h).floor() as i64,
@@ -18,7 +19,7 @@ fn cell_of(frame: &Frame, d: Vec3, h: f64) -> (i64, i64) {
 fn cloud(i: usize, n: f64, points: usize) -> (bentstraw_optics::scene::Scene, Vec3, ImageCloud) {
     let r = REFERENCES[i];
     let scene = r.scene(n);
-    let c = sample_image(&scene, r.observer, points, &|_| {});
+    let c = sample_image(&World::assignment(&scene), r.observer, points, &|_| {});
     (scene, r.observer, c)
 }
 
@@ -72,7 +73,7 @@ fn same_inputs_give_identical_points_in_the_same_order() {
 fn points_cover_the_straw_image_evenly_without_holes() {
     for i in 0..4 {
         let (scene, observer, c) = cloud(i, 1.333, 20_000);
-        let frame = frame_for(observer);
+        let frame = DirectionMap::of_box(observer, World::assignment(&scene).bounds());
         let h = c.spacing;
         // No clumps: one point per cell of a uniform grid of equal solid angles.
         let cells: HashSet<_> = c
@@ -99,7 +100,10 @@ fn points_cover_the_straw_image_evenly_without_holes() {
                 if a > frame.a_min + frame.width || b > frame.b_min + frame.height {
                     continue;
                 }
-                if scene.image_point(observer, frame.direction(a, b)).is_some() {
+                if World::assignment(&scene)
+                    .image_point(observer, frame.direction(a, b))
+                    .is_some()
+                {
                     total += 1;
                     if !cells.contains(&(ii, j)) {
                         missed += 1;
@@ -119,7 +123,7 @@ fn points_cover_the_straw_image_evenly_without_holes() {
 
 #[test]
 fn the_map_has_equal_areas_and_inverts() {
-    let frame = Frame::looking(Vec3::new(-1.0, 0.3, -0.2));
+    let frame = DirectionMap::looking(Vec3::new(-1.0, 0.3, -0.2));
     for (a, b) in [(0.0, 0.0), (0.4, -0.3), (-2.5, 0.9), (3.0, -0.99)] {
         let d = frame.direction(a, b);
         assert!((d.length() - 1.0).abs() < 1e-14);
@@ -145,7 +149,7 @@ fn a_far_observer_and_a_close_one_still_see_the_straw() {
         Vec3::new(0.0, 0.0, -0.05),
     ] {
         assert!(scene.validate_observer(observer).is_ok());
-        let c = sample_image(&scene, observer, 3000, &|_| {});
+        let c = sample_image(&World::assignment(&scene), observer, 3000, &|_| {});
         assert!(c.points.len() >= 3000, "{observer}: {}", c.points.len());
     }
 }

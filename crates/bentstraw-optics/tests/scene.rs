@@ -1,6 +1,7 @@
 //! The rules a valid simulation obeys, and the geometry helpers of the scene.
 
 use bentstraw_optics::scene::{section_at, Scene, SceneError, REFERENCES};
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 #[test]
@@ -75,11 +76,26 @@ fn sections_are_five_equal_bands_from_the_bottom() {
 #[test]
 fn distance_to_the_straw_surface() {
     let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
-    assert!((scene.distance_to_straw_surface(Vec3::new(0.005, 0.0, 0.1))).abs() < 1e-15);
-    assert!((scene.distance_to_straw_surface(Vec3::new(0.015, 0.0, 0.1)) - 0.01).abs() < 1e-15);
-    assert!((scene.distance_to_straw_surface(Vec3::new(0.0, 0.0, 0.3)) - 0.05).abs() < 1e-15);
-    assert!((scene.distance_to_straw_surface(Vec3::new(0.0, 0.0, 0.1)) - 0.005).abs() < 1e-15);
-    assert!((scene.distance_to_straw_surface(Vec3::new(0.008, 0.0, -0.004)) - 0.005).abs() < 1e-15);
+    assert!(
+        (World::assignment(&scene).distance_to_objects(Vec3::new(0.005, 0.0, 0.1))).abs() < 1e-15
+    );
+    assert!(
+        (World::assignment(&scene).distance_to_objects(Vec3::new(0.015, 0.0, 0.1)) - 0.01).abs()
+            < 1e-15
+    );
+    assert!(
+        (World::assignment(&scene).distance_to_objects(Vec3::new(0.0, 0.0, 0.3)) - 0.05).abs()
+            < 1e-15
+    );
+    assert!(
+        (World::assignment(&scene).distance_to_objects(Vec3::new(0.0, 0.0, 0.1)) - 0.005).abs()
+            < 1e-15
+    );
+    assert!(
+        (World::assignment(&scene).distance_to_objects(Vec3::new(0.008, 0.0, -0.004)) - 0.005)
+            .abs()
+            < 1e-15
+    );
 }
 
 /// Messages quote numbers so that they show why a rule fails, and never at absurd length.

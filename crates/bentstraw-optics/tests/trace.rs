@@ -3,14 +3,23 @@
 
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::scene::{Scene, GLASS_RADIUS, REFERENCES, STRAW_HEIGHT, STRAW_RADIUS};
-use bentstraw_optics::trace::{Event, Face, Outcome};
+use bentstraw_optics::world::{Event, Hit, Outcome, Part, Shape, World};
 use bentstraw_optics::Vec3;
 use proptest::prelude::*;
 
 fn events_of(scene: &Scene, ray: Ray) -> (Outcome, Vec<Event>) {
     let mut events = Vec::new();
-    let outcome = scene.trace_with(ray, |e| events.push(*e));
+    let outcome = World::assignment(scene).trace_with(ray, |e| events.push(*e));
     (outcome, events)
+}
+
+/// The water's face an event of the assignment's glass happens on, in the assignment's words.
+fn water_face(scene: &Scene, e: &Event) -> &'static str {
+    match World::assignment(scene).boundaries()[e.boundary].shape {
+        Shape::Upright { .. } => "side",
+        Shape::Horizontal { z: 0.0, .. } => "bottom",
+        _ => "top",
+    }
 }
 
 #[test]
@@ -19,15 +28,15 @@ fn the_straw_wins_the_tie_on_the_glass_bottom() {
     // face are at the same distance; the opaque straw wins.
     let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
     let ray = Ray::new(Vec3::new(0.02, 0.01, -0.1), Vec3::Z);
-    match scene.trace(ray) {
-        Outcome::Straw {
+    match World::assignment(&scene).trace(ray) {
+        Outcome::Object {
             color,
-            face,
+            part,
             path_length,
             events,
             ..
         } => {
-            assert_eq!((color, face, events), (1, Face::StrawBottom, 0));
+            assert_eq!((color, part, events), (1, Part::Bottom, 0));
             assert!((path_length - 0.1).abs() < 1e-15);
         }
         other => panic!("{other:?}"),
@@ -35,9 +44,9 @@ fn the_straw_wins_the_tie_on_the_glass_bottom() {
     // Just outside the footprint, the ray enters the water instead and climbs to the surface.
     let ray = Ray::new(Vec3::new(0.02 + STRAW_RADIUS + 1e-6, 0.01, -0.1), Vec3::Z);
     let (outcome, events) = events_of(&scene, ray);
-    assert_eq!(events[0].face, Face::WaterBottom);
-    assert_eq!(events[1].face, Face::WaterTop);
-    assert!(matches!(outcome, Outcome::Escaped { events: 2 }));
+    assert_eq!(water_face(&scene, &events[0]), "bottom");
+    assert_eq!(water_face(&scene, &events[1]), "top");
+    assert!(matches!(outcome, Outcome::Escaped { events: 2, .. }));
 }
 
 #[test]
@@ -53,10 +62,18 @@ fn colour_codes_follow_the_sections_from_the_bottom() {
         (0.249, 5),
     ] {
         let ray = Ray::new(Vec3::new(1.0, 0.0, z), Vec3::NEG_X);
-        assert_eq!(scene.trace(ray).color(), code, "z = {z}");
+        assert_eq!(
+            World::assignment(&scene).trace(ray).color(),
+            code,
+            "z = {z}"
+        );
     }
     let top = Ray::new(Vec3::new(0.001, 0.0, 1.0), Vec3::NEG_Z);
-    assert_eq!(scene.trace(top).color(), 5, "top cap is blue");
+    assert_eq!(
+        World::assignment(&scene).trace(top).color(),
+        5,
+        "top cap is blue"
+    );
 }
 
 #[test]
@@ -72,13 +89,16 @@ fn a_straw_on_the_axis_looks_n_times_wider_for_any_distance() {
                     continue; // at the threshold itself rounding decides
                 }
                 let ray = Ray::new(Vec3::new(distance, b, 0.1), Vec3::NEG_X);
-                let hit = matches!(scene.trace(ray), Outcome::Straw { .. });
+                let hit = matches!(World::assignment(&scene).trace(ray), Outcome::Object { .. });
                 assert_eq!(hit, b <= threshold, "n = {n}, D = {distance}, b = {b}");
             }
             // Right at both sides of the threshold.
             for (b, expect) in [(threshold - 1e-8, true), (threshold + 1e-8, false)] {
                 let ray = Ray::new(Vec3::new(distance, b, 0.1), Vec3::NEG_X);
-                assert_eq!(matches!(scene.trace(ray), Outcome::Straw { .. }), expect);
+                assert_eq!(
+                    matches!(World::assignment(&scene).trace(ray), Outcome::Object { .. }),
+                    expect
+                );
             }
         }
     }
@@ -88,10 +108,15 @@ fn a_straw_on_the_axis_looks_n_times_wider_for_any_distance() {
 fn with_n_water_1_every_image_point_lies_on_the_straw_surface() {
     for r in REFERENCES {
         let scene = r.scene(1.0);
-        let cloud = bentstraw_optics::sampling::sample_image(&scene, r.observer, 5000, &|_| {});
+        let cloud = bentstraw_optics::sampling::sample_image(
+            &World::assignment(&scene),
+            r.observer,
+            5000,
+            &|_| {},
+        );
         assert!(cloud.points.len() >= 5000);
         for p in &cloud.points {
-            let d = scene.distance_to_straw_surface(p.position);
+            let d = World::assignment(&scene).distance_to_objects(p.position);
             assert!(
                 d < 1e-12,
                 "reference {}: {} is {d} m off",
@@ -108,11 +133,16 @@ fn with_water_the_image_is_displaced_from_the_straw() {
     // The check above must be able to fail: with n = 1.333 the points under water are off the straw.
     let r = REFERENCES[1];
     let scene = r.scene(1.333);
-    let cloud = bentstraw_optics::sampling::sample_image(&scene, r.observer, 2000, &|_| {});
+    let cloud = bentstraw_optics::sampling::sample_image(
+        &World::assignment(&scene),
+        r.observer,
+        2000,
+        &|_| {},
+    );
     let off = cloud
         .points
         .iter()
-        .filter(|p| scene.distance_to_straw_surface(p.position) > 1e-3)
+        .filter(|p| World::assignment(&scene).distance_to_objects(p.position) > 1e-3)
         .count();
     assert!(
         off > cloud.points.len() / 4,
@@ -152,7 +182,7 @@ fn ray_with_events(scene: &Scene, k: u32) -> Ray {
             rng.next() * scene.water_height,
         );
         let ray = Ray::new(origin, target - origin);
-        if let Outcome::Straw { events, .. } = scene.trace(ray) {
+        if let Outcome::Object { events, .. } = World::assignment(scene).trace(ray) {
             if events == k {
                 return ray;
             }
@@ -167,19 +197,20 @@ fn the_event_limit_keeps_a_ray_with_exactly_that_many_events_and_drops_one_more(
     let generous = Scene::new(xp, yp, he, 1.333, 100).unwrap();
     let limit_10 = Scene::new(xp, yp, he, 1.333, 10).unwrap();
     let ten = ray_with_events(&generous, 10);
+    let (generous_world, limit_10) = (World::assignment(&generous), World::assignment(&limit_10));
     match limit_10.trace(ten) {
-        Outcome::Straw { events, .. } => assert_eq!(events, 10),
+        Outcome::Object { events, .. } => assert_eq!(events, 10),
         other => panic!("a 10-event ray must count: {other:?}"),
     }
     let eleven = ray_with_events(&generous, 11);
     assert!(matches!(
-        generous.trace(eleven),
-        Outcome::Straw { events: 11, .. }
+        generous_world.trace(eleven),
+        Outcome::Object { events: 11, .. }
     ));
     assert_eq!(limit_10.trace(eleven), Outcome::Dropped);
     // The default limit is 10.
     assert_eq!(
-        Scene::with_defaults(xp, yp, he).unwrap().trace(eleven),
+        World::assignment(&Scene::with_defaults(xp, yp, he).unwrap()).trace(eleven),
         Outcome::Dropped
     );
     // The events are the light guide's: one refraction in, then total reflections.
@@ -234,11 +265,10 @@ proptest! {
             // The segment to this event follows the previous direction.
             prop_assert!(((e.point - last).normalize() - e.incoming).length() < 1e-9);
             // The event lies on its face.
-            match e.face {
-                Face::WaterTop => prop_assert!((e.point.z - scene.water_height).abs() < 1e-12),
-                Face::WaterBottom => prop_assert!(e.point.z.abs() < 1e-12),
-                Face::WaterSide => prop_assert!((e.point.truncate().length() - GLASS_RADIUS).abs() < 1e-12),
-                _ => prop_assert!(false, "a straw face is not an event"),
+            match water_face(&scene, e) {
+                "top" => prop_assert!((e.point.z - scene.water_height).abs() < 1e-12),
+                "bottom" => prop_assert!(e.point.z.abs() < 1e-12),
+                _ => prop_assert!((e.point.truncate().length() - GLASS_RADIUS).abs() < 1e-12),
             }
             let (n1, n2) = if in_water { (scene.n_water, 1.0) } else { (1.0, scene.n_water) };
             prop_assert_eq!((e.n1, e.n2), (n1, n2));
@@ -256,14 +286,14 @@ proptest! {
             prop_assert!((e.outgoing.length() - 1.0).abs() < 1e-12);
             last = e.point;
         }
-        if let Outcome::Straw { point, path_length, events: n, color, .. } = outcome {
+        if let Outcome::Object { point, path_length, events: n, color, .. } = outcome {
             prop_assert_eq!(n as usize, events.len());
             length += (point - last).length();
             prop_assert!((path_length - length).abs() < 1e-12);
-            prop_assert!(scene.distance_to_straw_surface(point) < 1e-12);
+            prop_assert!(World::assignment(&scene).distance_to_objects(point) < 1e-12);
             prop_assert!((1..=5).contains(&color));
             // The image point is at the path length along the first direction.
-            let image = scene.image_point(observer, ray.direction).unwrap();
+            let image = World::assignment(&scene).image_point(observer, ray.direction).unwrap();
             prop_assert!(((image.position - observer).length() - path_length).abs() < 1e-12);
             prop_assert!(((image.position - observer).normalize() - ray.direction).length() < 1e-12);
         }
@@ -277,20 +307,23 @@ proptest! {
         prop_assume!(scene.validate_observer(observer).is_ok());
         let ray = Ray::new(observer, aim - observer);
         let (outcome, events) = events_of(&scene, ray);
-        let Outcome::Straw { point, face, .. } = outcome else { return Ok(()) };
+        let Outcome::Object { point, object, .. } = outcome else { return Ok(()) };
+        let world = World::assignment(&scene);
         let last_dir = events.last().map_or(ray.direction, |e| e.outgoing);
         // Start on the straw, in the water when the light came through it (the tracer's rays start
         // in air; here we follow the laws by hand, using only the scene's intersection, told which
         // face each piece starts on, and the interface laws).
         let mut back = Ray::new(point, -last_dir);
-        let mut left = Some(face);
+        let mut left = Some(world.object_code(object));
         let mut in_water = events.iter().filter(|e| !e.totally_reflected).count() % 2 == 1;
         for _ in 0..events.len() {
-            let hit = scene.nearest_intersection(&back, left).expect("the path back meets the water");
-            left = Some(hit.face);
-            prop_assert!(!hit.face.is_straw());
-            let p = back.at(hit.distance);
-            let normal = scene.water_normal(hit.face, p);
+            let hit = world.nearest(&back, left).expect("the path back meets the water");
+            let Hit::Boundary { t, index } = hit else {
+                return Err(TestCaseError::fail("the path back meets the straw"));
+            };
+            left = Some(world.surface_code(index));
+            let p = back.at(t);
+            let normal = world.boundaries()[index].normal(p);
             let (n1, n2) = if in_water { (scene.n_water, 1.0) } else { (1.0, scene.n_water) };
             let d = match bentstraw_optics::interface::refract(back.direction, normal, n1, n2) {
                 Some(t) => { in_water = !in_water; t.normalize() }

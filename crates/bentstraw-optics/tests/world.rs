@@ -8,10 +8,10 @@ mod support;
 use std::path::PathBuf;
 
 use bentstraw_optics::geometry::Ray;
-use bentstraw_optics::sampling::sample_image_of;
+use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::Scene;
 use bentstraw_optics::scene_file::SceneDescription;
-use bentstraw_optics::world::{World, WorldEvent, WorldOutcome, COIN_COLOR, PICTURE_COLOR};
+use bentstraw_optics::world::{Event, Outcome, World, COIN_COLOR, PICTURE_COLOR};
 use bentstraw_optics::Vec3;
 use proptest::prelude::*;
 use support::reference::{RefOutcome, Reference};
@@ -41,7 +41,7 @@ fn ray_to(from: Vec3, to: Vec3) -> Ray {
     Ray::new(from, to - from)
 }
 
-fn trace_events(world: &World, ray: Ray) -> (WorldOutcome, Vec<WorldEvent>) {
+fn trace_events(world: &World, ray: Ray) -> (Outcome, Vec<Event>) {
     let mut events = Vec::new();
     let outcome = world.trace_with(ray, |e| events.push(*e));
     (outcome, events)
@@ -91,7 +91,7 @@ fn flat_layers_shift_a_ray_as_snell_says() {
         let want_x = 0.04 - d_oil * tan(s_oil) - d_water * tan(s_water);
         let cos = |s: f64| (1.0 - s * s).sqrt();
         let want_l = 0.1 + d_oil / cos(s_oil) + d_water / cos(s_water);
-        let WorldOutcome::Object {
+        let Outcome::Object {
             color,
             point,
             path_length,
@@ -149,7 +149,7 @@ fn a_thick_bottom_shifts_light_from_below_and_the_coin_on_it_wins_the_tie() {
         let s = theta0.sin() / 1.5;
         let want_x = -0.01 - 0.008 * s / (1.0 - s * s).sqrt();
         let want_l = 0.1 + 0.008 / (1.0 - s * s).sqrt();
-        let WorldOutcome::Object {
+        let Outcome::Object {
             color,
             point,
             path_length,
@@ -245,7 +245,7 @@ fn with_index_one_everywhere_every_image_point_lies_on_its_object() {
             "{name}: no interface is left"
         );
         let observer = d.observer.unwrap().position;
-        let cloud = sample_image_of(&world, observer, 5000, &|_| {});
+        let cloud = sample_image(&world, observer, 5000, &|_| {});
         assert!(cloud.points.len() >= 5000, "{name}: {}", cloud.points.len());
         for p in &cloud.points {
             assert_eq!(p.events, 0);
@@ -302,7 +302,7 @@ fn a_glass_of_index_one_traces_like_walls_of_no_thickness() {
         Vec3::new(0.1, 0.0, -0.1),
         Vec3::new(0.05, 0.07, 0.16),
     ] {
-        let cloud = sample_image_of(&thick, observer, 5000, &|_| {});
+        let cloud = sample_image(&thick, observer, 5000, &|_| {});
         assert!(cloud.points.len() >= 5000);
         for p in &cloud.points {
             let q = thin
@@ -318,7 +318,7 @@ fn a_glass_of_index_one_traces_like_walls_of_no_thickness() {
 /// path length (to rounding).
 fn assert_same_images(a: &World, b: &World, observers: &[Vec3]) {
     for &observer in observers {
-        let cloud = sample_image_of(a, observer, 3000, &|_| {});
+        let cloud = sample_image(a, observer, 3000, &|_| {});
         assert!(cloud.points.len() >= 3000);
         for p in &cloud.points {
             let q = b
@@ -470,17 +470,17 @@ proptest! {
             clear += 1;
             match (world.trace(ray), want) {
                 (
-                    WorldOutcome::Object { color, path_length, events, .. },
+                    Outcome::Object { color, path_length, events, .. },
                     RefOutcome::Straw { color: c, length, events: e, .. },
                 ) => {
                     prop_assert_eq!((color, events), (c, e));
                     prop_assert!((path_length - length).abs() < 1e-9 + 1e-14 * length,
                         "L {} against {}", path_length, length);
                 }
-                (WorldOutcome::Escaped { events, .. }, RefOutcome::Escaped { events: e }) => {
+                (Outcome::Escaped { events, .. }, RefOutcome::Escaped { events: e }) => {
                     prop_assert_eq!(events, e)
                 }
-                (WorldOutcome::Dropped, RefOutcome::Dropped) => {}
+                (Outcome::Dropped, RefOutcome::Dropped) => {}
                 (got, want) => prop_assert!(false, "world {:?}, reference {:?}, ray {:?}", got, want, ray),
             }
         }
@@ -498,7 +498,7 @@ fn the_reversing_arrow_points_the_other_way_through_the_water() {
         d.liquids[0].index = n;
         let world = World::new(&d, 10);
         let observer = d.observer.unwrap().position;
-        let cloud = sample_image_of(&world, observer, 20000, &|_| {});
+        let cloud = sample_image(&world, observer, 20000, &|_| {});
         let card_y = d.cards[0].center.y;
         let (mut head, mut tail) = (Vec::new(), Vec::new());
         for p in cloud.points.iter().filter(|p| p.color == PICTURE_COLOR) {
@@ -543,7 +543,7 @@ fn a_leaning_straw_rests_on_the_rim_of_its_bottom_cap() {
     let inward = (Vec3::new(straw.x, straw.y, 0.0) - Vec3::new(foot.x, foot.y, 0.0)).normalize();
     let start = Vec3::new(foot.x, foot.y, -0.1) + 1e-4 * inward;
     let outcome = world.trace(Ray::new(start, Vec3::Z));
-    let WorldOutcome::Object { color, point, .. } = outcome else {
+    let Outcome::Object { color, point, .. } = outcome else {
         panic!("{outcome:?}")
     };
     assert_eq!(color, 1);
@@ -557,11 +557,11 @@ fn rays_that_miss_graze_or_pass_above_meet_nothing() {
     // Tangent to the outer wall: no refraction, no event.
     let tangent = world.trace(Ray::new(Vec3::new(0.04 + 1e-12, -1.0, 0.05), Vec3::Y));
     assert!(
-        matches!(tangent, WorldOutcome::Escaped { events: 0, .. }),
+        matches!(tangent, Outcome::Escaped { events: 0, .. }),
         "{tangent:?}"
     );
     let above = world.trace(Ray::new(Vec3::new(-1.0, 0.0, 0.5), Vec3::X));
-    assert!(matches!(above, WorldOutcome::Escaped { events: 0, .. }));
+    assert!(matches!(above, Outcome::Escaped { events: 0, .. }));
     // A ray from 100 km away is brought to the scene first: it still finds the straw.
     let far = Vec3::new(1e5, 0.0, 0.1);
     let hit = world.trace(ray_to(far, Vec3::new(0.012, 0.0, 0.1)));
@@ -603,7 +603,7 @@ fn fresnel_weights_and_escaping_light_add_up_to_one() {
 /// every colour, for rays aimed all over every gallery scene and from observers all around it.
 #[test]
 fn branches_leaving_through_the_hull_never_return() {
-    use bentstraw_optics::world::WorldFresnelStep;
+    use bentstraw_optics::world::FresnelStep;
     let mut skipped = 0usize;
     for name in GALLERY {
         let d = gallery(name);
@@ -627,7 +627,7 @@ fn branches_leaving_through_the_hull_never_return() {
             let ray = ray_to(observer, aim);
             let mut escaping = 0usize;
             let all = world.fresnel_steps::<false>(ray, 1e-9, 100_000, |step| {
-                escaping += usize::from(matches!(step, WorldFresnelStep::Escaped { .. }))
+                escaping += usize::from(matches!(step, FresnelStep::Escaped { .. }))
             });
             let kept = world.fresnel_steps::<true>(ray, 1e-9, 100_000, |_| {});
             for (a, b) in all.iter().zip(&kept) {
@@ -644,7 +644,7 @@ fn branches_leaving_through_the_hull_never_return() {
 
 #[test]
 fn the_eye_model_finds_the_apparent_depth_of_a_coin_under_flat_water() {
-    use bentstraw_optics::apparent::{ApparentPosition, Focus};
+    use bentstraw_optics::apparent::Focus;
     // A coin's top 0.118 m under the flat surface of a tank's water; the eye 0.18 m above the
     // surface. Straight down both foci are at the textbook apparent depth d/n; obliquely, at θ in
     // air and θ' in water, the sagittal focus (across the plane of incidence: the horizontal pupil
@@ -716,7 +716,7 @@ fn check_judges_a_worlds_points_and_finds_what_is_missing() {
     let d = gallery("leaning-straw.toml");
     let world = World::new(&d, 10);
     let observer = d.observer.unwrap().position;
-    let cloud = sample_image_of(&world, observer, 4000, &|_| {});
+    let cloud = sample_image(&world, observer, 4000, &|_| {});
     let claimed =
         |keep: &dyn Fn(&bentstraw_optics::image::ImagePoint) -> bool| -> Vec<ClaimedPoint> {
             cloud
@@ -1011,7 +1011,7 @@ mod random_scenes {
                 prop_assert!((w.iter().sum::<f64>() + rest - 1.0).abs() < 1e-12);
             }
             let flat = World::new(&without_refraction(d.clone()), 10);
-            let cloud = sample_image_of(&flat, observer, 1500, &|_| {});
+            let cloud = sample_image(&flat, observer, 1500, &|_| {});
             for p in &cloud.points {
                 prop_assert!((p.position - p.straw_point).length() < 1e-9);
             }

@@ -345,12 +345,13 @@ mod tests {
     use bentstraw_optics::check::{check_solution, DEFAULT_TOLERANCE};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
+    use bentstraw_optics::world::World;
 
     /// The figure of reference 2's own points, changed by `change`, as decoded pixels.
     fn figure(change: impl Fn(usize, &mut ClaimedPoint) -> bool) -> (image::RgbImage, i32) {
         let r = &REFERENCES[1];
         let scene = r.scene(1.333);
-        let cloud = sample_image(&scene, r.observer, 3000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), r.observer, 3000, &|_| {});
         let mut points = Vec::new();
         for (i, p) in cloud.points.iter().enumerate() {
             let mut c = ClaimedPoint {
@@ -361,7 +362,13 @@ mod tests {
                 points.push(c);
             }
         }
-        let report = check_solution(&scene, r.observer, &points, DEFAULT_TOLERANCE, 0.98);
+        let report = check_solution(
+            &World::assignment(&scene),
+            r.observer,
+            &points,
+            DEFAULT_TOLERANCE,
+            0.98,
+        );
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("f.png");
         write_check_figure(&path, &scene, r.observer, &points, &report, "t").unwrap();

@@ -3,10 +3,10 @@
 
 use std::path::Path;
 
-use bentstraw_optics::sampling::sample_image_of;
+use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
+use bentstraw_optics::shading::shaded_picture;
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
-use bentstraw_optics::world::picture::world_picture;
 use rayon::prelude::*;
 
 use crate::cli::CameraArgs;
@@ -110,7 +110,7 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
     picture.error = write_picture(&out.join(&picture_file), world)
         .err()
         .map(|e| e.0);
-    let cloud = sample_image_of(&world.world, world.observer, GALLERY_POINTS, &|_| {});
+    let cloud = sample_image(&world.world, world.observer, GALLERY_POINTS, &|_| {});
     let title = format!("{}: the image points (course model)", world.name);
     let mut points = Figure::image(
         &points_file,
@@ -179,7 +179,7 @@ fn write_picture(path: &Path, world: &FileWorld) -> CliResult {
     };
     files::write_bytes(
         path,
-        &png_bytes(&world_picture(&world.world, &camera, &options))?,
+        &png_bytes(&shaded_picture(&world.world, &camera, &options))?,
     )
 }
 

@@ -18,6 +18,8 @@ mod ray_diagram;
 mod report;
 mod scene_input;
 mod sketch;
+#[cfg(test)]
+mod test_support;
 mod validation;
 mod writers;
 

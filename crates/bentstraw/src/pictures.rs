@@ -6,10 +6,10 @@ use std::path::{Path, PathBuf};
 use bentstraw_optics::camera::{framing_fov, framing_target, Camera};
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::Scene;
 use bentstraw_optics::shading::{
     cloud_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
 };
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
@@ -47,7 +47,7 @@ fn report_camera(observer: Vec3) -> Camera {
 
 /// What `camera` sees of `scene` (Fresnel mode, checker backdrop) as PNG bytes, through the
 /// explorer's frame call (picture only).
-fn seen_png(scene: &Scene, camera: Camera) -> CliResult<Vec<u8>> {
+fn seen_png(world: &World, camera: Camera) -> CliResult<Vec<u8>> {
     let options = ShadingOptions {
         mode: ShadingMode::Fresnel {
             prune_below: REPORT_PRUNE,
@@ -62,13 +62,13 @@ fn seen_png(scene: &Scene, camera: Camera) -> CliResult<Vec<u8>> {
         shading: options,
         min_points: 0,
     };
-    draw_frame(scene, &request, &mut frame);
+    draw_frame(world, &request, &mut frame);
     png_bytes(&frame.picture)
 }
 
 /// Writes `path`: what `observer` sees through the report's camera.
-pub fn write_view_picture(path: &Path, scene: &Scene, observer: Vec3) -> CliResult {
-    files::write_bytes(path, &seen_png(scene, report_camera(observer))?)
+pub fn write_view_picture(path: &Path, world: &World, observer: Vec3) -> CliResult {
+    files::write_bytes(path, &seen_png(world, report_camera(observer))?)
 }
 
 /// Writes `<dir>/<stem>_observer.png` (what `observer` sees, Fresnel mode, camera framing the glass) and
@@ -77,7 +77,7 @@ pub fn write_view_picture(path: &Path, scene: &Scene, observer: Vec3) -> CliResu
 pub fn write_observer_pictures(
     dir: &Path,
     stem: &str,
-    scene: &Scene,
+    world: &World,
     observer: Vec3,
     points: &[ImagePoint],
 ) -> CliResult<(PathBuf, PathBuf)> {
@@ -86,8 +86,9 @@ pub fn write_observer_pictures(
     let cloud = dir.join(format!("{stem}_cloud.png"));
     files::check_writable(&view)?;
     files::check_writable(&cloud)?;
-    let seen = seen_png(scene, camera)?;
+    let seen = seen_png(world, camera)?;
     let splat = png_bytes(&cloud_picture(
+        world,
         &camera,
         points,
         splat_radius(&camera, points),
@@ -112,11 +113,17 @@ mod tests {
         let keep = std::env::var_os("BENTSTRAW_PICTURES_DIR").map(PathBuf::from);
         for r in REFERENCES {
             let scene = r.scene(WATER_INDEX);
-            let cloud = sample_image(&scene, r.observer, 20000, &|_| {});
+            let cloud = sample_image(&World::assignment(&scene), r.observer, 20000, &|_| {});
             let out = keep.clone().unwrap_or_else(|| dir.path().to_path_buf());
             let stem = format!("sim{}", r.number);
-            let (view, splat) =
-                write_observer_pictures(&out, &stem, &scene, r.observer, &cloud.points).unwrap();
+            let (view, splat) = write_observer_pictures(
+                &out,
+                &stem,
+                &World::assignment(&scene),
+                r.observer,
+                &cloud.points,
+            )
+            .unwrap();
             assert_eq!(view, out.join(format!("sim{}_observer.png", r.number)));
             assert_eq!(splat, out.join(format!("sim{}_cloud.png", r.number)));
             let a = image::open(&view).unwrap().to_rgb8();

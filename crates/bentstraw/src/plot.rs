@@ -1625,7 +1625,7 @@ pub(crate) mod tests {
     fn reference_figure_is_written_and_shows_every_colour_seen() {
         let r = REFERENCES[1];
         let scene = r.scene(1.333);
-        let cloud = sample_image(&scene, r.observer, 2000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), r.observer, 2000, &|_| {});
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("ref.png");
         write_cloud_figure(&path, &scene, r.observer, &cloud.points, "Reference 2").unwrap();
@@ -1653,7 +1653,7 @@ pub(crate) mod tests {
     fn hidden_dots_left_out_change_no_pixel() {
         let r = REFERENCES[2];
         let scene = r.scene(1.333);
-        let cloud = sample_image(&scene, r.observer, 20_000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), r.observer, 20_000, &|_| {});
         let panels = panels_of(&scene, r.observer, &cloud.points);
         let size = (FIGURE_WIDTH, 1400);
         for p in &panels {
@@ -1751,7 +1751,7 @@ pub(crate) mod tests {
     fn same_inputs_give_the_same_bytes() {
         let r = REFERENCES[2];
         let scene = r.scene(1.333);
-        let cloud = sample_image(&scene, r.observer, 3000, &|_| {});
+        let cloud = sample_image(&World::assignment(&scene), r.observer, 3000, &|_| {});
         // (A PDF's objects come out in an order that varies from run to run: not compared.)
         for name in ["a.png", "a.svg"] {
             let f =

@@ -11,10 +11,11 @@ use std::path::Path;
 
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
-use bentstraw_optics::ray_diagram::{diagram_rays, path_type_counts, DiagramRay, DiagramScene};
+use bentstraw_optics::ray_diagram::{diagram_rays, path_type_counts, DiagramRay};
 use bentstraw_optics::scene::{
     GLASS_HEIGHT, GLASS_RADIUS, SECTION_HEIGHT, SECTION_RGB, STRAW_HEIGHT, STRAW_RADIUS,
 };
+use bentstraw_optics::world::World;
 use bentstraw_optics::world::COLOR_RGB;
 use bentstraw_optics::Vec3;
 use plotters::coord::types::RangedCoordf64;
@@ -64,11 +65,11 @@ pub struct Diagram {
 
 impl Diagram {
     /// The diagram of `points` (an image seen from `observer`): about [`DIAGRAM_RAYS`] rays.
-    pub fn new(scene: &impl DiagramScene, observer: Vec3, points: &[ImagePoint]) -> Diagram {
+    pub fn new(world: &World, observer: Vec3, points: &[ImagePoint]) -> Diagram {
         Diagram {
             observer,
-            rays: diagram_rays(scene, observer, points, DIAGRAM_RAYS),
-            counts: path_type_counts(scene, observer, points),
+            rays: diagram_rays(world, observer, points, DIAGRAM_RAYS),
+            counts: path_type_counts(world, observer, points),
         }
     }
 
@@ -488,8 +489,8 @@ mod tests {
     fn diagram_of(number: usize) -> (Scene, Diagram) {
         let r = REFERENCES[number - 1];
         let scene = r.scene(1.333);
-        let cloud = sample_image(&scene, r.observer, 5000, &|_| {});
-        let d = Diagram::new(&scene, r.observer, &cloud.points);
+        let cloud = sample_image(&World::assignment(&scene), r.observer, 5000, &|_| {});
+        let d = Diagram::new(&World::assignment(&scene), r.observer, &cloud.points);
         (scene, d)
     }
 
@@ -500,7 +501,7 @@ mod tests {
         assert!((30..=60).contains(&d.rays.len()), "{} rays", d.rays.len());
         for r in &d.rays {
             let mut points = vec![d.observer];
-            let outcome = scene.trace_with(
+            let outcome = World::assignment(&scene).trace_with(
                 bentstraw_optics::geometry::Ray {
                     origin: d.observer,
                     direction: r.image.direction,

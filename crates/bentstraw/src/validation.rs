@@ -9,6 +9,7 @@ use std::path::Path;
 
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::{Scene, WATER_INDEX};
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -37,10 +38,10 @@ pub struct ValidationSeries {
 }
 
 /// Largest and median distance (m) from `points` to the straw's surface.
-pub fn distance_stats(scene: &Scene, points: &[Vec3]) -> (f64, f64) {
+pub fn distance_stats(world: &World, points: &[Vec3]) -> (f64, f64) {
     let mut d: Vec<f64> = points
         .iter()
-        .map(|p| scene.distance_to_straw_surface(*p))
+        .map(|p| world.distance_to_objects(*p))
         .collect();
     if d.is_empty() {
         return (f64::NAN, f64::NAN);
@@ -59,7 +60,7 @@ pub fn series(label: &str, scene: &Scene, observer: Vec3) -> ValidationSeries {
     let rows = indices()
         .into_iter()
         .map(|n| {
-            let s = scene.with_n_water(n).expect("indices are >= 1");
+            let s = World::assignment(&scene.with_n_water(n).expect("indices are >= 1"));
             let cloud = sample_image(&s, observer, VALIDATION_POINTS, &|_| {});
             // The points seen straight through air lie on the straw whatever the water: only
             // those whose light crossed the water tell.
@@ -226,7 +227,7 @@ mod tests {
             .iter()
             .map(|d| Vec3::new(0.005 + d, 0.0, 0.1))
             .collect();
-        let (max, median) = distance_stats(&scene, &pts);
+        let (max, median) = distance_stats(&World::assignment(&scene), &pts);
         assert!((max - 0.4).abs() < 1e-15 && (median - 0.2).abs() < 1e-15);
     }
 

@@ -8,9 +8,9 @@ use std::process::{Command, Output};
 
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::light_path_type::trace_path_type;
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::{Scene, REFERENCES};
+use bentstraw_optics::world::World;
 use serde_json::Value;
 
 fn bentstraw(dir: &Path, args: &[String]) -> Output {
@@ -62,7 +62,10 @@ fn check_json(dir: &Path, file: &Path, k: usize, extra: &[&str]) -> (i32, Value)
 fn own_points(k: usize, n: usize) -> (Scene, Vec<ImagePoint>) {
     let r = &REFERENCES[k - 1];
     let scene = r.scene(1.333);
-    (scene, sample_image(&scene, r.observer, n, &|_| {}).points)
+    (
+        scene,
+        sample_image(&World::assignment(&scene), r.observer, n, &|_| {}).points,
+    )
 }
 
 /// Writes points as `x<sep>y<sep>z<sep>color` lines with full precision, with an optional header.
@@ -233,7 +236,11 @@ fn points_past_the_first_total_reflection_removed_are_missing_as_total_reflectio
             origin: o,
             direction: p.direction,
         };
-        trace_path_type(&scene, &scene, ray).1.total_reflections > 0
+        World::assignment(&scene)
+            .trace_path_type(ray)
+            .1
+            .total_reflections
+            > 0
     };
     let kept: Vec<ImagePoint> = pts.iter().copied().filter(|p| !reflected(p)).collect();
     assert!(

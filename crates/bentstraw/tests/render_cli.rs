@@ -6,6 +6,7 @@ use std::process::{Command, Output};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::{Scene, SCENE_CENTRE};
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 const SCENE: [&str; 6] = [
@@ -67,7 +68,7 @@ fn writes_the_picture_and_one_course_ray_per_pixel() {
         30,
         100f64.to_radians(),
     );
-    let codes = course_picture_exact(&scene, &cam);
+    let codes = course_picture_exact(&World::assignment(&scene), &cam);
     let rows: Vec<&str> = lines.collect();
     assert_eq!(rows.len(), 1200);
     for (k, line) in rows.iter().enumerate() {
@@ -103,7 +104,11 @@ fn fresnel_raw_weights_read_back_exactly() {
     let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
     let eye = Vec3::new(0.1, 0.0, 0.1);
     let fov = bentstraw_optics::camera::framing_fov(eye, SCENE_CENTRE, 32.0 / 24.0);
-    let want = fresnel_picture_exact(&scene, &Camera::new(eye, SCENE_CENTRE, 32, 24, fov), 1e-4);
+    let want = fresnel_picture_exact(
+        &World::assignment(&scene),
+        &Camera::new(eye, SCENE_CENTRE, 32, 24, fov),
+        1e-4,
+    );
     let mut n = 0;
     for (k, line) in lines.enumerate() {
         let f: Vec<&str> = line.split(',').collect();

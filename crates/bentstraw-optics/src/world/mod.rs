@@ -16,19 +16,17 @@
 pub mod boundary;
 mod nearest;
 pub mod object;
-pub mod picture;
 mod trace;
 
-use crate::geometry::{Ray, BOUNDING_CENTRE, BOUNDING_RADIUS};
+use crate::geometry::Ray;
 use crate::image::ImagePoint;
-use crate::sampling::ImageTracer;
 use crate::scene::{Scene, SECTION_NAMES, SECTION_RGB};
 use crate::scene_file::{Container, SceneDescription};
 use crate::Vec3;
 
 pub use boundary::{Boundary, MediumId, Region, Shape};
 pub use object::{in_arrow, Object, Part, CARD_COLOR, COIN_COLOR, PICTURE_COLOR};
-pub use trace::WorldFresnelStep;
+pub use trace::{FresnelStep, FRESNEL_SEGMENTS_PER_PIXEL, FRESNEL_SEGMENTS_PER_RAY};
 
 /// The medium id of air.
 pub const AIR: MediumId = 0;
@@ -83,8 +81,9 @@ pub struct World {
     reach: f64,
     /// Whether any boundary is a vertical plane (rays then need the reciprocals of `dx`, `dy`).
     verticals: bool,
-    /// Whether this is the assignment's glass ([`World::assignment`]).
-    assignment: bool,
+    /// The radius and height of a glass whose walls have no thickness (pictures may draw its
+    /// outline: nothing else shows where it is).
+    thin_glass: Option<(f64, f64)>,
     /// Most events (refractions and total reflections) a ray may undergo.
     pub max_events: u32,
 }
@@ -123,7 +122,7 @@ pub enum Hit {
 
 /// One refraction or total reflection.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WorldEvent {
+pub struct Event {
     /// Where.
     pub point: Vec3,
     /// Which boundary.
@@ -144,7 +143,7 @@ pub struct WorldEvent {
 
 /// How a ray traced by the course's law ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum WorldOutcome {
+pub enum Outcome {
     /// It reached an object.
     Object {
         /// The colour code there.
@@ -171,11 +170,11 @@ pub enum WorldOutcome {
     Dropped,
 }
 
-impl WorldOutcome {
+impl Outcome {
     /// The colour code reached, 0 for none.
     pub fn color(&self) -> u8 {
         match self {
-            WorldOutcome::Object { color, .. } => *color,
+            Outcome::Object { color, .. } => *color,
             _ => 0,
         }
     }
@@ -184,7 +183,7 @@ impl WorldOutcome {
     /// `u0`, if it reached an object.
     pub fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
         match *self {
-            WorldOutcome::Object {
+            Outcome::Object {
                 color,
                 point,
                 path_length,
@@ -260,19 +259,14 @@ impl World {
 
     /// The assignment's scene as a world: the glass of radius 0.04 m with walls and bottom of no
     /// thickness, its water, its upright straw, traced exactly as the assignment says. Every
-    /// water face is an event, even where the water's index is 1, and distant rays are brought
-    /// to the sphere of radius 0.15 m around the scene's centre that its results were always
-    /// computed from.
+    /// water face is an event, even where the water's index is 1, so that the event limit counts
+    /// the same faces whatever the index.
     pub fn assignment(scene: &Scene) -> World {
-        let mut world = World::build(
+        World::build(
             &SceneDescription::assignment(scene),
             scene.max_events,
             SameIndex::LiquidFacesKept,
-        );
-        world.centre = BOUNDING_CENTRE;
-        world.radius = BOUNDING_RADIUS;
-        world.assignment = true;
-        world
+        )
     }
 
     fn build(scene: &SceneDescription, max_events: u32, same_index: SameIndex) -> World {
@@ -408,8 +402,12 @@ impl World {
             (lo.min(a), hi.max(b))
         });
         let centre = 0.5 * (lo + hi);
-        // A hair larger than the box's half diagonal, so rounding never puts a face outside it.
-        let radius = 0.5 * (hi - lo).length() * (1.0 + 1e-9) + 1e-12;
+        // Rays from afar start on a sphere round the box: its radius is the box's half diagonal
+        // rounded up to whole 5 cm (a hair more first, so rounding never puts a face outside it),
+        // so that the last digits of the box do not enter every distance. For the assignment's
+        // glass it is 0.15 m.
+        let half_diagonal = 0.5 * (hi - lo).length() * (1.0 + 1e-9) + 1e-12;
+        let radius = (half_diagonal * 20.0).ceil() / 20.0;
         let reach = boundaries
             .iter()
             .map(Boundary::reach)
@@ -458,7 +456,10 @@ impl World {
             radius,
             reach,
             verticals,
-            assignment: false,
+            thin_glass: match &scene.container {
+                Container::Glass(g) if g.wall == 0.0 => Some((g.radius, g.height)),
+                _ => None,
+            },
             max_events,
         }
     }
@@ -484,9 +485,10 @@ impl World {
         (self.lo, self.hi)
     }
 
-    /// Whether this is the assignment's glass (its glass, of index 1, is drawn as an outline).
-    pub fn is_assignment(&self) -> bool {
-        self.assignment
+    /// The radius and height of the glass, if its walls have no thickness: light does not see
+    /// them, so a picture may draw the glass's outline to show where it stands.
+    pub fn thin_glass(&self) -> Option<(f64, f64)> {
+        self.thin_glass
     }
 
     /// The centre and radius of a sphere holding everything (a ray from afar is first brought
@@ -516,28 +518,26 @@ impl World {
 }
 
 impl World {
+    /// How many colour codes the world's objects can show, counted from code 1: 5 for straws
+    /// alone (their bands), 6 with a coin, 8 with a card and its picture.
+    pub fn color_codes(&self) -> usize {
+        self.objects
+            .iter()
+            .map(|o| match o {
+                Object::Straw { .. } => 5,
+                Object::Coin(_) => COIN_COLOR as usize,
+                Object::Card { .. } => COLOR_COUNT,
+            })
+            .max()
+            .unwrap_or(0)
+    }
+
     /// Distance from `p` to the nearest object's surface (m).
     pub fn distance_to_objects(&self, p: Vec3) -> f64 {
         self.objects
             .iter()
             .map(|o| o.distance(p))
             .fold(f64::INFINITY, f64::min)
-    }
-}
-
-impl ImageTracer for World {
-    #[inline]
-    fn reaches_object(&self, ray: Ray) -> bool {
-        self.trace(ray).color() > 0
-    }
-
-    #[inline]
-    fn image_point(&self, observer: Vec3, u0: Vec3) -> Option<ImagePoint> {
-        World::image_point(self, observer, u0)
-    }
-
-    fn scene_box(&self) -> (Vec3, Vec3) {
-        (self.lo, self.hi)
     }
 }
 

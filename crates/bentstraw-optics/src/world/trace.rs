@@ -5,11 +5,22 @@ use crate::geometry::{enter_sphere, Ray};
 use crate::image::ImagePoint;
 use crate::lanes::{Mask, Real, V3};
 use crate::light_path_type::{Entry, LightPathType};
-use crate::trace::FRESNEL_SEGMENTS_PER_RAY;
 use crate::Vec3;
 
 use super::nearest::{Bend, Nearest};
-use super::{Part, Shape, World, WorldEvent, WorldOutcome, AIR, COLOR_COUNT};
+use super::{Event, Outcome, Part, Shape, World, AIR, COLOR_COUNT};
+
+/// Most straight ray segments a Fresnel trace follows for one ray from the eye, all its branches
+/// together (a picture's pixel with several samples shares [`FRESNEL_SEGMENTS_PER_PIXEL`]).
+///
+/// Without a bound the work has none: light trapped by total reflection (water of index 10, an
+/// event limit of 1000) bounces a thousand times in every branch. Past the bound, what is still
+/// travelling is dropped, exactly like light that would need an event past the limit; ordinary
+/// scenes use a few dozen segments per ray.
+pub const FRESNEL_SEGMENTS_PER_RAY: u32 = 2048;
+
+/// Most ray segments followed for one pixel of a picture, all its samples together.
+pub const FRESNEL_SEGMENTS_PER_PIXEL: u32 = 8192;
 
 /// How the rays of a [`Real`] traced by the course's law end.
 #[derive(Clone, Copy, Debug)]
@@ -150,12 +161,12 @@ impl World {
     }
 
     /// Traces `ray`, which starts in air outside every object, by the course's law.
-    pub fn trace(&self, ray: Ray) -> WorldOutcome {
+    pub fn trace(&self, ray: Ray) -> Outcome {
         self.trace_with(ray, |_| {})
     }
 
     /// [`World::trace`], telling `on_event` every refraction and total reflection, in order.
-    pub fn trace_with(&self, ray: Ray, on_event: impl FnMut(&WorldEvent)) -> WorldOutcome {
+    pub fn trace_with(&self, ray: Ray, on_event: impl FnMut(&Event)) -> Outcome {
         self.trace_limited(ray, self.max_events, on_event)
     }
 
@@ -164,11 +175,11 @@ impl World {
         &self,
         ray: Ray,
         max_events: u32,
-        mut on_event: impl FnMut(&WorldEvent),
-    ) -> WorldOutcome {
+        mut on_event: impl FnMut(&Event),
+    ) -> Outcome {
         // A distant ray is first brought to the scene (nothing lies before its sphere).
         let Some((start, length)) = enter_sphere(ray, self.centre, self.radius) else {
-            return WorldOutcome::Escaped { events: 0, ray };
+            return Outcome::Escaped { events: 0, ray };
         };
         let ends = self.follow_course::<f64>(
             start.origin.into(),
@@ -177,7 +188,7 @@ impl World {
             length,
             max_events,
             |e| {
-                on_event(&WorldEvent {
+                on_event(&Event {
                     point: e.point.into(),
                     boundary: e.boundary as usize,
                     normal: e.bend.normal.into(),
@@ -190,7 +201,7 @@ impl World {
             },
         );
         if ends.reached {
-            WorldOutcome::Object {
+            Outcome::Object {
                 color: ends.color as u8,
                 point: ends.point.into(),
                 path_length: ends.length,
@@ -199,9 +210,9 @@ impl World {
                 part: Part::from_code(ends.part),
             }
         } else if ends.dropped {
-            WorldOutcome::Dropped
+            Outcome::Dropped
         } else {
-            WorldOutcome::Escaped {
+            Outcome::Escaped {
                 events: ends.events as u32,
                 ray: Ray {
                     origin: ends.origin.into(),
@@ -223,7 +234,7 @@ impl World {
 
     /// How a ray enters the liquid (or the container) at event `e`, its first: through a surface
     /// from above, through a wall, through a bottom from below.
-    pub fn entry_of(&self, e: &WorldEvent) -> Entry {
+    pub fn entry_of(&self, e: &Event) -> Entry {
         match self.boundaries[e.boundary].shape {
             Shape::Horizontal { .. } if e.incoming.z < 0.0 => Entry::Top,
             Shape::Horizontal { .. } => Entry::Bottom,
@@ -231,18 +242,27 @@ impl World {
         }
     }
 
+    /// The kind of face boundary `index` is, in a teacher's words: a wall (a glass's or a tank's
+    /// side), the top surface (air above it: a liquid's free surface, a glass's rim), the bottom
+    /// (air below it), or the surface between two layers (or a liquid and the glass's floor).
+    pub fn face_name(&self, index: usize) -> &'static str {
+        let b = &self.boundaries[index];
+        match b.shape {
+            Shape::Horizontal { .. } if b.outer == AIR => "top surface",
+            Shape::Horizontal { .. } if b.inner == AIR => "bottom",
+            Shape::Horizontal { .. } => "surface between layers",
+            _ => "wall",
+        }
+    }
+
     /// Traces `ray` by the course's law and tells the kind of its light path: how it enters (its
     /// first event) and how many total reflections it undergoes.
-    pub fn trace_path_type(&self, ray: Ray) -> (WorldOutcome, LightPathType) {
+    pub fn trace_path_type(&self, ray: Ray) -> (Outcome, LightPathType) {
         self.trace_path_type_limited(ray, self.max_events)
     }
 
     /// [`World::trace_path_type`] with the event limit `max_events`.
-    pub fn trace_path_type_limited(
-        &self,
-        ray: Ray,
-        max_events: u32,
-    ) -> (WorldOutcome, LightPathType) {
+    pub fn trace_path_type_limited(&self, ray: Ray, max_events: u32) -> (Outcome, LightPathType) {
         let mut kind = LightPathType::DIRECT;
         let outcome = self.trace_limited(ray, max_events, |e| {
             kind.record_entry(self.entry_of(e), e.totally_reflected)
@@ -253,7 +273,7 @@ impl World {
 
 /// One step of Fresnel tracing ([`World::fresnel_steps`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum WorldFresnelStep {
+pub enum FresnelStep {
     /// A branch of weight `weight` split at boundary `boundary` into `reflected + refracted`.
     Split {
         /// Where.
@@ -335,7 +355,7 @@ impl World {
         ray: Ray,
         prune_below: f64,
         max_segments: u32,
-        mut on_step: impl FnMut(WorldFresnelStep),
+        mut on_step: impl FnMut(FresnelStep),
     ) -> [f64; COLOR_COUNT] {
         // Depth-first. At each split the branch going into (or staying in) the optically thinner
         // medium is followed first: in the glass of water it leaves the water and ends at once,
@@ -352,7 +372,7 @@ impl World {
         }
         let mut weights = [0.0; COLOR_COUNT];
         let Some((start, _)) = enter_sphere(ray, self.centre, self.radius) else {
-            on_step(WorldFresnelStep::Escaped {
+            on_step(FresnelStep::Escaped {
                 ray,
                 weight: 1.0,
                 events: 0,
@@ -375,9 +395,9 @@ impl World {
             loop {
                 if segments == max_segments {
                     // Out of work: this branch and every waiting one are dropped.
-                    on_step(WorldFresnelStep::Dropped { weight: b.weight });
+                    on_step(FresnelStep::Dropped { weight: b.weight });
                     for waiting in &stack[..top] {
-                        on_step(WorldFresnelStep::Dropped {
+                        on_step(FresnelStep::Dropped {
                             weight: waiting.weight,
                         });
                     }
@@ -389,7 +409,7 @@ impl World {
                     .nearest_lanes(o, d, true, b.left)
                     .filter(|h| h.t.is_finite());
                 let Some(hit) = hit else {
-                    on_step(WorldFresnelStep::Escaped {
+                    on_step(FresnelStep::Escaped {
                         // A branch that met nothing is the ray as it started, from the eye.
                         ray: if b.events == 0 { ray } else { b.ray },
                         weight: b.weight,
@@ -402,7 +422,7 @@ impl World {
                 if k >= first_object {
                     let color = hit.color(self, true) as u8;
                     weights[color as usize - 1] += b.weight;
-                    on_step(WorldFresnelStep::Object {
+                    on_step(FresnelStep::Object {
                         color,
                         point,
                         object: k - first_object,
@@ -413,7 +433,7 @@ impl World {
                     break;
                 }
                 if b.events == self.max_events {
-                    on_step(WorldFresnelStep::Dropped { weight: b.weight });
+                    on_step(FresnelStep::Dropped { weight: b.weight });
                     break;
                 }
                 b.events += 1;
@@ -423,7 +443,7 @@ impl World {
                     direction: bend.reflected.into(),
                 };
                 if bend.total {
-                    on_step(WorldFresnelStep::TotalReflection {
+                    on_step(FresnelStep::TotalReflection {
                         point,
                         boundary: k,
                         weight: b.weight,
@@ -435,7 +455,7 @@ impl World {
                 let r = bend.reflectance();
                 let mut wr = b.weight * r;
                 let mut wt = b.weight * (1.0 - r);
-                on_step(WorldFresnelStep::Split {
+                on_step(FresnelStep::Split {
                     point,
                     boundary: k,
                     normal: bend.normal.into(),
@@ -483,13 +503,13 @@ impl World {
                     stack[top] = later;
                     top += 1;
                 } else if !(SKIP_ESCAPING && later.weight == 0.0) {
-                    on_step(WorldFresnelStep::Pruned {
+                    on_step(FresnelStep::Pruned {
                         weight: later.weight,
                     });
                 }
                 if now.weight < prune_below || now.weight == 0.0 {
                     if !(SKIP_ESCAPING && now.weight == 0.0) {
-                        on_step(WorldFresnelStep::Pruned { weight: now.weight });
+                        on_step(FresnelStep::Pruned { weight: now.weight });
                     }
                     break;
                 }
@@ -515,8 +535,8 @@ impl World {
             prune_below,
             FRESNEL_SEGMENTS_PER_RAY,
             |step| match step {
-                WorldFresnelStep::Escaped { ray, weight, .. } => on_leave(Some(ray), weight),
-                WorldFresnelStep::Dropped { weight } | WorldFresnelStep::Pruned { weight } => {
+                FresnelStep::Escaped { ray, weight, .. } => on_leave(Some(ray), weight),
+                FresnelStep::Dropped { weight } | FresnelStep::Pruned { weight } => {
                     on_leave(None, weight)
                 }
                 _ => {}

@@ -7,9 +7,8 @@
 use std::time::Instant;
 
 use bentstraw_optics::camera::Camera;
-use bentstraw_optics::frame::{draw_frame, draw_world_frame, Frame, FrameRequest};
+use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
-use bentstraw_optics::picture::{world_course_picture_into, world_fresnel_picture_into};
 use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE, WATER_INDEX};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
@@ -33,19 +32,11 @@ const MAX_RAYS_PER_CASE: u64 = 1_000_000_000;
 /// Fresnel branches lighter than this are abandoned (the same default as `render --prune`).
 const BENCH_PRUNE: f64 = 1e-4;
 
-/// What a view shows: the assignment's glass (the fast tracers) or a scene file's world.
-enum Traced {
-    /// The assignment's kind of scene.
-    Spec(Scene),
-    /// Any other scene file.
-    World(Box<World>),
-}
-
 /// One view to time.
 struct View {
     /// Reference simulation number, or `None` for a view given on the command line.
     simulation: Option<u32>,
-    scene: Traced,
+    world: World,
     camera: Camera,
 }
 
@@ -166,19 +157,19 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
                 "a single view needs all three of --observer, --straw and --water-height, or a --scene file (give none to time the four reference views)",
             );
         }
-        let (scene, observer, target) = match args.view.source().resolve_any()? {
-            AnyScene::Spec(r) => (Traced::Spec(r.scene), r.observer, r.target),
+        let (world, observer, target) = match args.view.source().resolve_any()? {
+            AnyScene::Spec(r) => (World::assignment(&r.scene), r.observer, r.target),
             AnyScene::File(f) => {
                 let (lo, hi) = f.world.bounds();
                 let target = f.target.unwrap_or(0.5 * (lo + hi));
-                (Traced::World(Box::new(f.world)), f.observer, Some(target))
+                (f.world, f.observer, Some(target))
             }
         };
         let target = target_flag.or(target).unwrap_or(SCENE_CENTRE);
         let camera = camera_for(observer, target)?;
         return Ok(vec![View {
             simulation: None,
-            scene,
+            world,
             camera,
         }]);
     }
@@ -201,7 +192,7 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
             let camera = camera_for(r.observer, target_flag.unwrap_or(zoom))?;
             Ok(View {
                 simulation: Some(r.number),
-                scene: Traced::Spec(scene),
+                world: World::assignment(&scene),
                 camera,
             })
         })
@@ -215,27 +206,25 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
 fn time_picture(view: &View, mode: ModeArg, repeat: usize) -> f64 {
     let pixels = view.camera.width as usize * view.camera.height as usize;
     // Only the mode's buffer: at the largest size the weights alone take 1 GB.
+    // The weights of the colour codes the world can show: a straw's five bands, or all eight.
+    let straws_only = view.world.color_codes() <= SECTION_COUNT;
     let (mut codes, mut weights, mut all_weights) = match mode {
         ModeArg::Course => (vec![0u8; pixels], Vec::new(), Vec::new()),
-        ModeArg::Fresnel => match view.scene {
-            Traced::Spec(_) => (Vec::new(), vec![[0.0; SECTION_COUNT]; pixels], Vec::new()),
-            Traced::World(_) => (Vec::new(), Vec::new(), vec![[0.0; COLOR_COUNT]; pixels]),
-        },
+        ModeArg::Fresnel if straws_only => {
+            (Vec::new(), vec![[0.0; SECTION_COUNT]; pixels], Vec::new())
+        }
+        ModeArg::Fresnel => (Vec::new(), Vec::new(), vec![[0.0; COLOR_COUNT]; pixels]),
     };
+    let world = &view.world;
     let mut once = || -> f64 {
         let start = Instant::now();
-        match (mode, &view.scene) {
-            (ModeArg::Course, Traced::Spec(scene)) => {
-                course_picture_into(scene, &view.camera, &mut codes);
+        match mode {
+            ModeArg::Course => course_picture_into(world, &view.camera, &mut codes),
+            ModeArg::Fresnel if straws_only => {
+                fresnel_picture_into(world, &view.camera, BENCH_PRUNE, &mut weights)
             }
-            (ModeArg::Fresnel, Traced::Spec(scene)) => {
-                fresnel_picture_into(scene, &view.camera, BENCH_PRUNE, &mut weights);
-            }
-            (ModeArg::Course, Traced::World(world)) => {
-                world_course_picture_into(world, &view.camera, &mut codes);
-            }
-            (ModeArg::Fresnel, Traced::World(world)) => {
-                world_fresnel_picture_into(world, &view.camera, BENCH_PRUNE, &mut all_weights);
+            ModeArg::Fresnel => {
+                fresnel_picture_into(world, &view.camera, BENCH_PRUNE, &mut all_weights)
             }
         }
         std::hint::black_box((&codes, &weights, &all_weights));
@@ -267,10 +256,7 @@ fn time_frame(view: &View, mode: ModeArg, repeat: usize) -> f64 {
     let mut frame = Frame::default();
     let mut once = || -> f64 {
         let start = Instant::now();
-        match &view.scene {
-            Traced::Spec(scene) => draw_frame(scene, &request, &mut frame),
-            Traced::World(world) => draw_world_frame(world, &request, &mut frame),
-        }
+        draw_frame(&view.world, &request, &mut frame);
         std::hint::black_box(&frame.picture);
         start.elapsed().as_secs_f64()
     };

@@ -13,7 +13,7 @@ use bentstraw_optics::check::{MissingRegion, VerdictKind, REACH_CELLS};
 use bentstraw_optics::check::{DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{clip_text, number_text, Scene, SECTION_COUNT, SECTION_NAMES};
-use bentstraw_optics::world::COLOR_NAMES;
+use bentstraw_optics::world::{World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
@@ -100,7 +100,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
     let solution = read_solution_of(&args.file, colour_names(checked).len())?;
     let report = match checked {
         Inputs::Spec(scene) => check_solution(
-            scene,
+            &World::assignment(scene),
             observer,
             &solution.points,
             args.tolerance,
@@ -605,7 +605,7 @@ pub fn own_points_check(scene: &Scene, observer: Vec3, points: &[ImagePoint]) ->
         })
         .collect();
     let r = check_solution(
-        scene,
+        &World::assignment(scene),
         observer,
         &claimed,
         DEFAULT_TOLERANCE,

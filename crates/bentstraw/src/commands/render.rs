@@ -5,10 +5,10 @@ use std::path::Path;
 use std::time::Instant;
 
 use bentstraw_optics::camera::{framing_fov, framing_fov_box, Camera};
-use bentstraw_optics::frame::{draw_world_frame, Frame, FrameRequest};
+use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
+use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::{number_text, SCENE_CENTRE, SECTION_COUNT};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
-use bentstraw_optics::world::picture::{world_codes, world_weights};
 use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
@@ -132,7 +132,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
                     shading: options,
                     min_points: 0,
                 };
-                draw_world_frame(&world, &request, &mut frame);
+                draw_frame(&world, &request, &mut frame);
                 done.store(true, std::sync::atomic::Ordering::Relaxed);
                 watcher.thread().unpark();
             });
@@ -246,15 +246,17 @@ fn tell_rendered(args: &RenderArgs, camera: &Camera, start: Instant) {
 /// more than the milliseconds the single-precision picture path saves.
 fn write_raw(path: &Path, world: &World, camera: &Camera, mode: ModeArg, prune: f64) -> CliResult {
     match mode {
-        ModeArg::Course => write_raw_codes(path, camera, &world_codes(world, camera)),
-        // The assignment's straw has five sections; a scene file's objects eight codes.
-        ModeArg::Fresnel if world.is_assignment() => {
-            let all = world_weights(world, camera, prune);
+        ModeArg::Course => write_raw_codes(path, camera, &course_picture_exact(world, camera)),
+        // Straws alone show five colours (their bands); coins and cards, eight codes in all.
+        ModeArg::Fresnel if world.color_codes() <= SECTION_COUNT => {
+            let all = fresnel_picture_exact(world, camera, prune);
             let sections: Vec<[f64; SECTION_COUNT]> =
                 all.iter().map(|w| std::array::from_fn(|k| w[k])).collect();
             write_raw_weights(path, camera, &sections)
         }
-        ModeArg::Fresnel => write_raw_weights(path, camera, &world_weights(world, camera, prune)),
+        ModeArg::Fresnel => {
+            write_raw_weights(path, camera, &fresnel_picture_exact(world, camera, prune))
+        }
     }
 }
 

@@ -7,10 +7,9 @@ use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, ApparentPoint, StereoImage};
-use bentstraw_optics::sampling::{sample_image, sample_image_of, ImageCloud};
+use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::Scene;
-use bentstraw_optics::tracer::Tracer;
-use bentstraw_optics::world::COLOR_NAMES;
+use bentstraw_optics::world::{World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 
 use crate::cli::{ImageModelArg, SimulateArgs};
@@ -103,13 +102,17 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     let modelled = Instant::now();
     let eye = (both_models || args.image_model == ImageModelArg::Eye).then(|| {
         with_spinner("eye model", || match inputs {
-            Inputs::Spec(scene) => eye_model_points(&Tracer::new(scene), observer, &cloud.points),
+            Inputs::Spec(scene) => {
+                eye_model_points(&World::assignment(scene), observer, &cloud.points)
+            }
             Inputs::File(w) => eye_model_points(&w.world, observer, &cloud.points),
         })
     });
     let stereo = (both_models || args.image_model == ImageModelArg::Stereo).then(|| {
         with_spinner("stereo model", || match inputs {
-            Inputs::Spec(scene) => stereo_points(&Tracer::new(scene), observer, &cloud.points),
+            Inputs::Spec(scene) => {
+                stereo_points(&World::assignment(scene), observer, &cloud.points)
+            }
             Inputs::File(w) => stereo_points(&w.world, observer, &cloud.points),
         })
     });
@@ -150,7 +153,9 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     }
     if let Some(r) = &args.rays {
         let diagram = match inputs {
-            Inputs::Spec(scene) => ray_diagram::Diagram::new(scene, observer, &cloud.points),
+            Inputs::Spec(scene) => {
+                ray_diagram::Diagram::new(&World::assignment(scene), observer, &cloud.points)
+            }
             Inputs::File(w) => ray_diagram::Diagram::new(&w.world, observer, &cloud.points),
         };
         let title = format!("Ray diagram: {}", inputs_title(inputs, observer));
@@ -243,8 +248,10 @@ fn trace_with_spinner(inputs: Inputs, observer: Vec3, min_points: usize) -> Imag
         |bar| {
             let progress = |rays| bar.set_position(rays);
             match inputs {
-                Inputs::Spec(scene) => sample_image(scene, observer, min_points, &progress),
-                Inputs::File(w) => sample_image_of(&w.world, observer, min_points, &progress),
+                Inputs::Spec(scene) => {
+                    sample_image(&World::assignment(scene), observer, min_points, &progress)
+                }
+                Inputs::File(w) => sample_image(&w.world, observer, min_points, &progress),
             }
         },
     )

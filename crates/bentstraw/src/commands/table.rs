@@ -9,7 +9,8 @@ use std::time::{Duration, Instant};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX};
-use bentstraw_optics::tracer::Tracer;
+
+use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 
@@ -53,6 +54,8 @@ struct Job {
     reference: Reference,
     /// Its scene (reference geometry with this variant's index).
     scene: Scene,
+    /// That scene, built once for tracing.
+    world: World,
     /// File stem, e.g. `sim1_n1.05`.
     stem: String,
 }
@@ -125,6 +128,7 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
             VARIANTS.iter().map(move |&(n, suffix)| Job {
                 reference: *r,
                 scene: r.scene(n),
+                world: World::assignment(&r.scene(n)),
                 stem: format!("sim{}{suffix}", r.number),
             })
         })
@@ -235,7 +239,7 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
 fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let t0 = Instant::now();
-    let cloud = sample_image(scene, observer, points, &|_| {});
+    let cloud = sample_image(&job.world, observer, points, &|_| {});
     let traced = t0.elapsed();
 
     let t1 = Instant::now();
@@ -321,12 +325,13 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
 
 /// What the observer's eye sees (fresnel mode) beside the image points through the same camera.
 fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
-    let (scene, observer) = (&job.scene, job.reference.observer);
+    let observer = job.reference.observer;
     let seen = format!("{}_observer.png", job.stem);
     let splat = format!("{}_cloud.png", job.stem);
-    let error = pictures::write_observer_pictures(out, &job.stem, scene, observer, &cloud.points)
-        .err()
-        .map(|e| e.0);
+    let error =
+        pictures::write_observer_pictures(out, &job.stem, &job.world, observer, &cloud.points)
+            .err()
+            .map(|e| e.0);
     let mut picture = Figure::image(
         &seen,
         "What the observer sees: a pinhole camera at the observer, Fresnel reflection and \
@@ -352,7 +357,7 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
 fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let file = format!("{}_rays.svg", job.stem);
-    let diagram = Diagram::new(scene, observer, &cloud.points);
+    let diagram = Diagram::new(&job.world, observer, &cloud.points);
     let title = format!(
         "{} ray diagram: {}",
         simulation_heading(job),
@@ -406,6 +411,7 @@ const CLASSIC_WATER: f64 = 0.15;
 fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
     let scene = Scene::with_defaults(CLASSIC_STRAW.0, CLASSIC_STRAW.1, CLASSIC_WATER)
         .expect("the classic view is valid");
+    let world = World::assignment(&scene);
     let observer = CLASSIC_OBSERVER;
     let mut view = Figure::image(
         INTRO_FILES[0],
@@ -413,11 +419,11 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
          0,0.03 --water-height 0.15): below the water's surface the straw is shifted sideways and \
          looks wider; above it, it is seen straight.",
     );
-    view.error = pictures::write_view_picture(&out.join(INTRO_FILES[0]), &scene, observer)
+    view.error = pictures::write_view_picture(&out.join(INTRO_FILES[0]), &world, observer)
         .err()
         .map(|e| e.0);
-    let cloud = sample_image(&scene, observer, points.min(20_000), &|_| {});
-    let diagram = Diagram::new(&scene, observer, &cloud.points);
+    let cloud = sample_image(&world, observer, points.min(20_000), &|_| {});
+    let diagram = Diagram::new(&world, observer, &cloud.points);
     let mut rays = Figure::image(
         INTRO_FILES[1],
         "The same view as a ray diagram: each ray's broken path from the eye to the straw, and \
@@ -536,8 +542,8 @@ fn closing_sections(out: &Path) -> Vec<Section> {
 /// The course's, the eye's and the stereo image side by side, and how far apart they are.
 fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
-    let eye = eye_model_points(&Tracer::new(scene), observer, &cloud.points);
-    let stereo = stereo_points(&Tracer::new(scene), observer, &cloud.points);
+    let eye = eye_model_points(&job.world, observer, &cloud.points);
+    let stereo = stereo_points(&job.world, observer, &cloud.points);
     let mut figures = Vec::new();
     let mut placed = Vec::new();
     let mut links = Vec::new();
@@ -725,10 +731,11 @@ fn distance_note(scene: &Scene, cloud: &ImageCloud) -> String {
 
 /// Largest distance (m) of an image point from the straw's surface.
 fn max_distance_to_straw(scene: &Scene, cloud: &ImageCloud) -> f64 {
+    let world = World::assignment(scene);
     cloud
         .points
         .iter()
-        .map(|p| scene.distance_to_straw_surface(p.position))
+        .map(|p| world.distance_to_objects(p.position))
         .fold(0.0, f64::max)
 }
 

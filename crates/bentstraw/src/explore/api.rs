@@ -7,22 +7,19 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use bentstraw_optics::apparent::{
-    eye_model_points, stereo_point_each, stereo_points, ApparentPosition, Focus, PathTracer,
-};
+use bentstraw_optics::apparent::{eye_model_points, stereo_point_each, stereo_points, Focus};
 use bentstraw_optics::camera::Camera;
-use bentstraw_optics::frame::{draw_frame, draw_world_frame, Frame, FrameRequest};
+use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
-use bentstraw_optics::sampling::{sample_image, sample_image_of, ImageCloud};
+use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{clip_text, Scene, SceneError, DEFAULT_MAX_EVENTS, MAX_EVENTS_LIMIT};
 use bentstraw_optics::scene_file::Observer;
-use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
-use bentstraw_optics::trace::{Face, Outcome};
-use bentstraw_optics::tracer::Tracer;
-use bentstraw_optics::world::picture::world_picture;
-use bentstraw_optics::world::{Shape, World, WorldOutcome, COLOR_NAMES};
+use bentstraw_optics::shading::{
+    shaded_picture, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
+};
+use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
@@ -154,10 +151,28 @@ pub struct View {
 /// What a view shows: the assignment's glass, or a scene of the built-in gallery.
 #[derive(Debug, Clone)]
 pub enum Traced {
-    /// The assignment's kind of scene, from the page's values.
-    Spec(Scene),
+    /// The assignment's kind of scene, from the page's values, and its world.
+    Spec(Scene, Arc<World>),
     /// A scene of the gallery (its name, `scenes/NAME.toml`), seen from the page's observer.
     World(Arc<FileWorld>),
+}
+
+impl Traced {
+    /// The scene built for tracing.
+    pub fn world(&self) -> &World {
+        match self {
+            Traced::Spec(_, world) => world,
+            Traced::World(file) => &file.world,
+        }
+    }
+
+    /// The scene as the writers record it.
+    fn inputs(&self) -> Inputs<'_> {
+        match self {
+            Traced::Spec(scene, _) => Inputs::Spec(scene),
+            Traced::World(file) => Inputs::File(file),
+        }
+    }
 }
 
 /// The gallery scene named `name`, with its own observer moved to `observer` and the event limit
@@ -329,7 +344,10 @@ impl View {
             }
             None => {
                 let (scene, observer) = scene_args.scene_and_observer().map_err(|e| e.0)?;
-                (Traced::Spec(scene), observer)
+                (
+                    Traced::Spec(scene, Arc::new(World::assignment(&scene))),
+                    observer,
+                )
             }
         };
         let camera_args = CameraArgs {
@@ -349,7 +367,7 @@ impl View {
             }
         }
         let camera = match &scene {
-            Traced::Spec(_) => camera_from_args(&camera_args, observer),
+            Traced::Spec(..) => camera_from_args(&camera_args, observer),
             Traced::World(world) => world_camera(world, &camera_args),
         }
         .map_err(|e| e.0)?;
@@ -398,21 +416,9 @@ impl View {
         })
     }
 
-    /// The assignment's scene, when the view shows it.
-    #[cfg(test)]
-    pub fn spec_scene(&self) -> Option<&Scene> {
-        match &self.scene {
-            Traced::Spec(scene) => Some(scene),
-            Traced::World(_) => None,
-        }
-    }
-
     /// At least `points` image points of the view's scene, as `simulate` traces them.
     fn sample(&self, points: usize) -> ImageCloud {
-        match &self.scene {
-            Traced::Spec(scene) => sample_image(scene, self.observer, points, &|_| {}),
-            Traced::World(world) => sample_image_of(&world.world, self.observer, points, &|_| {}),
-        }
+        sample_image(self.scene.world(), self.observer, points, &|_| {})
     }
 
     fn shading(&self) -> ShadingOptions {
@@ -513,15 +519,10 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
     let started = std::time::Instant::now();
     // The colour codes a scene can show: the straw's five, or all eight in a scene file.
     let codes = match &view.scene {
-        Traced::Spec(scene) => {
-            draw_frame(scene, &request, frame);
-            5
-        }
-        Traced::World(world) => {
-            draw_world_frame(&world.world, &request, frame);
-            COLOR_NAMES.len()
-        }
+        Traced::Spec(..) => 5,
+        Traced::World(_) => COLOR_NAMES.len(),
     };
+    draw_frame(view.scene.world(), &request, frame);
     let ms = started.elapsed().as_secs_f64() * 1e3;
     *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) = Some((
         view.simulate_command("course"),
@@ -614,23 +615,17 @@ fn place(
     points: &[ImagePoint],
 ) -> Result<Vec<Option<(Vec3, u8)>>, Reply> {
     match model {
-        "eye" => Ok(match &view.scene {
-            Traced::Spec(s) => eye_model_points(&Tracer::new(s), view.observer, points),
-            Traced::World(w) => eye_model_points(&w.world, view.observer, points),
-        }
-        .iter()
-        .map(|p| Some((p.position?, p.image.color)))
-        .collect()),
-        "stereo" => Ok(match &view.scene {
-            Traced::Spec(s) => stereo_point_each(&Tracer::new(s), view.observer, points),
-            Traced::World(w) => stereo_point_each(&w.world, view.observer, points),
-        }
-        .iter()
-        .map(|p| {
-            let p = p.as_ref()?;
-            Some((p.position?, p.image.color))
-        })
-        .collect()),
+        "eye" => Ok(eye_model_points(view.scene.world(), view.observer, points)
+            .iter()
+            .map(|p| Some((p.position?, p.image.color)))
+            .collect()),
+        "stereo" => Ok(stereo_point_each(view.scene.world(), view.observer, points)
+            .iter()
+            .map(|p| {
+                let p = p.as_ref()?;
+                Some((p.position?, p.image.color))
+            })
+            .collect()),
         other => Err(Reply::text(
             400,
             format!(
@@ -741,33 +736,28 @@ pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, Stri
 
 /// The light path of the ray from the observer along unit `u0`, as the page shows it.
 pub fn ray_json(view: &View, u0: Vec3) -> Value {
-    let scene = match &view.scene {
-        Traced::Spec(scene) => scene,
-        Traced::World(world) => return world_ray_json(view, &world.world, u0),
-    };
+    let world = view.scene.world();
     let eye = view.observer;
     let mut events = Vec::new();
     let mut kind = LightPathType::DIRECT;
     let mut last = (eye, u0);
-    let outcome = scene.trace_with(
-        bentstraw_optics::geometry::Ray {
-            origin: eye,
-            direction: u0,
-        },
-        |e| {
-            kind.record(e);
-            let cos = e.incoming.dot(e.normal).abs().min(1.0);
-            events.push(json!({
-                "point": vec_json(e.point),
-                "face": match e.face { Face::WaterTop => "top (water surface)", Face::WaterBottom => "bottom", _ => "wall" },
-                "event": if e.totally_reflected { "total reflection" } else { "refraction" },
-                "incidence_deg": cos.acos().to_degrees(),
-                "n1": e.n1,
-                "n2": e.n2,
-            }));
-            last = (e.point, e.outgoing);
-        },
-    );
+    let ray = Ray {
+        origin: eye,
+        direction: u0,
+    };
+    let outcome = world.trace_with(ray, |e| {
+        kind.record_entry(world.entry_of(e), e.totally_reflected);
+        let cos = e.incoming.dot(e.normal).abs().min(1.0);
+        events.push(json!({
+            "point": vec_json(e.point),
+            "face": world.face_name(e.boundary),
+            "event": if e.totally_reflected { "total reflection" } else { "refraction" },
+            "incidence_deg": cos.acos().to_degrees(),
+            "n1": e.n1,
+            "n2": e.n2,
+        }));
+        last = (e.point, e.outgoing);
+    });
     let mut out = json!({
         "observer": vec_json(eye),
         "direction": vec_json(u0),
@@ -775,17 +765,15 @@ pub fn ray_json(view: &View, u0: Vec3) -> Value {
         "path": kind.to_string(),
         "path_key": kind.key(),
     });
-    match outcome {
-        Outcome::Straw { .. } => {
-            let image = ImagePoint::from_outcome(eye, u0, outcome).expect("reached the straw");
-            reached_json(&mut out, &Tracer::new(scene), eye, &image);
-        }
-        Outcome::Escaped { .. } => {
-            out["outcome"] = json!("escaped");
-            out["leaves"] = json!({"from": vec_json(last.0), "direction": vec_json(last.1)});
-        }
-        Outcome::Dropped => {
-            out["outcome"] = json!("dropped");
+    match outcome.image_point(eye, u0) {
+        Some(image) => reached_json(&mut out, world, eye, &image),
+        None => {
+            let ends = if outcome == Outcome::Dropped {
+                "dropped"
+            } else {
+                "escaped"
+            };
+            out["outcome"] = json!(ends);
             out["leaves"] = json!({"from": vec_json(last.0), "direction": vec_json(last.1)});
         }
     }
@@ -794,9 +782,9 @@ pub fn ray_json(view: &View, u0: Vec3) -> Value {
 
 /// The fields of a ray that reached an object: its colour, the object's point, the path length,
 /// the image point, and where the eye and stereo models put it.
-fn reached_json(out: &mut Value, scene: &impl PathTracer, eye: Vec3, image: &ImagePoint) {
-    let apparent = scene.apparent_point(eye, image);
-    let stereo = stereo_points(scene, eye, &[*image]);
+fn reached_json(out: &mut Value, world: &World, eye: Vec3, image: &ImagePoint) {
+    let apparent = world.apparent_point(eye, image);
+    let stereo = stereo_points(world, eye, &[*image]);
     out["outcome"] = json!("straw");
     out["color"] = json!(image.color);
     out["color_name"] = json!(color_name(image.color));
@@ -812,68 +800,13 @@ fn reached_json(out: &mut Value, scene: &impl PathTracer, eye: Vec3, image: &Ima
     out["gap_stereo"] = json!(sp.and_then(|p| p.gap_to_course()));
 }
 
-/// The light path of the ray from the observer along unit `u0` in a gallery scene, as the page
-/// shows it (the same fields as [`ray_json`]'s).
-fn world_ray_json(view: &View, world: &World, u0: Vec3) -> Value {
-    let eye = view.observer;
-    let mut events = Vec::new();
-    let mut last = (eye, u0);
-    let ray = Ray {
-        origin: eye,
-        direction: u0,
-    };
-    let outcome = world.trace_with(ray, |e| {
-        let cos = e.incoming.dot(e.normal).abs().min(1.0);
-        let face = match world.boundaries()[e.boundary].shape {
-            Shape::Horizontal { .. } => "horizontal surface",
-            _ => "wall",
-        };
-        events.push(json!({
-            "point": vec_json(e.point),
-            "face": face,
-            "event": if e.totally_reflected { "total reflection" } else { "refraction" },
-            "incidence_deg": cos.acos().to_degrees(),
-            "n1": e.n1,
-            "n2": e.n2,
-        }));
-        last = (e.point, e.outgoing);
-    });
-    let kind = world.trace_path_type(ray).1;
-    let mut out = json!({
-        "observer": vec_json(eye),
-        "direction": vec_json(u0),
-        "events": events,
-        "path": kind.to_string(),
-        "path_key": kind.key(),
-    });
-    match (outcome, world.image_point(eye, u0)) {
-        (WorldOutcome::Object { .. }, Some(image)) => {
-            reached_json(&mut out, world, eye, &image);
-        }
-        (WorldOutcome::Dropped, _) => {
-            out["outcome"] = json!("dropped");
-            out["leaves"] = json!({"from": vec_json(last.0), "direction": vec_json(last.1)});
-        }
-        _ => {
-            out["outcome"] = json!("escaped");
-            out["leaves"] = json!({"from": vec_json(last.0), "direction": vec_json(last.1)});
-        }
-    }
-    out
-}
-
 /// `GET /api/export?format=csv|ply|png` (`&model=eye|stereo` for the points): the file `simulate`
 /// or `render` would write for this view.
 pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, String> {
     let format = get(q, "format").unwrap_or("csv");
     let model = get(q, "model").unwrap_or("course");
     if format == "png" {
-        let picture = match &view.scene {
-            Traced::Spec(scene) => {
-                bentstraw_optics::shading::shaded_picture(scene, &view.camera, &view.shading())
-            }
-            Traced::World(world) => world_picture(&world.world, &view.camera, &view.shading()),
-        };
+        let picture = shaded_picture(view.scene.world(), &view.camera, &view.shading());
         let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.0)?);
         r.file_name = Some("view.png".into());
         return Ok(r);
@@ -888,30 +821,20 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     let cloud = view.sample(points);
     let eye;
     let stereo;
-    let set_model = match (model, &view.scene) {
-        ("eye", Traced::Spec(s)) => {
-            eye = eye_model_points(&Tracer::new(s), view.observer, &cloud.points);
+    let world = view.scene.world();
+    let set_model = match model {
+        "eye" => {
+            eye = eye_model_points(world, view.observer, &cloud.points);
             ModelPoints::Eye(&eye)
         }
-        ("eye", Traced::World(w)) => {
-            eye = eye_model_points(&w.world, view.observer, &cloud.points);
-            ModelPoints::Eye(&eye)
-        }
-        ("stereo", Traced::Spec(s)) => {
-            stereo = stereo_points(&Tracer::new(s), view.observer, &cloud.points);
-            ModelPoints::Stereo(&stereo)
-        }
-        ("stereo", Traced::World(w)) => {
-            stereo = stereo_points(&w.world, view.observer, &cloud.points);
+        "stereo" => {
+            stereo = stereo_points(world, view.observer, &cloud.points);
             ModelPoints::Stereo(&stereo)
         }
         _ => ModelPoints::Course,
     };
     let set = PointSet {
-        inputs: match &view.scene {
-            Traced::Spec(s) => Inputs::Spec(s),
-            Traced::World(w) => Inputs::File(w),
-        },
+        inputs: view.scene.inputs(),
         observer: view.observer,
         min_points: points,
         model: set_model,
@@ -1036,7 +959,7 @@ mod tests {
     #[test]
     fn models_place_every_kth_course_point() {
         let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=800"))).unwrap();
-        let cloud = sample_image(view.spec_scene().unwrap(), view.observer, 800, &|_| {}).points;
+        let cloud = sample_image(view.scene.world(), view.observer, 800, &|_| {}).points;
         let decode = |r: Reply| -> Vec<[f32; 3]> {
             assert_eq!(r.status, 200);
             let n = u32::from_le_bytes(r.body[0..4].try_into().unwrap()) as usize;
@@ -1053,15 +976,11 @@ mod tests {
         };
         let expect = |every: usize| -> Vec<[f32; 3]> {
             let some: Vec<ImagePoint> = cloud.iter().step_by(every).copied().collect();
-            eye_model_points(
-                &Tracer::new(view.spec_scene().unwrap()),
-                view.observer,
-                &some,
-            )
-            .iter()
-            .filter_map(|p| p.position)
-            .map(|q| [q.x as f32, q.y as f32, q.z as f32])
-            .collect()
+            eye_model_points(view.scene.world(), view.observer, &some)
+                .iter()
+                .filter_map(|p| p.position)
+                .map(|q| [q.x as f32, q.y as f32, q.z as f32])
+                .collect()
         };
         // Before any frame (traced afresh) and after this view's frame (its points reused).
         for with_frame in [false, true] {
@@ -1099,8 +1018,7 @@ mod tests {
         assert_eq!((4 + len) % 4, 0);
         let header: Value = serde_json::from_slice(&b[4..4 + len]).unwrap();
         let n = header["n"].as_u64().unwrap() as usize;
-        let expected =
-            sample_image(view.spec_scene().unwrap(), view.observer, 1500, &|_| {}).points;
+        let expected = sample_image(view.scene.world(), view.observer, 1500, &|_| {}).points;
         assert_eq!(n, expected.len());
         let start = 4 + len + 40 * 30 * 4;
         assert_eq!(b.len(), start + 12 * n + 2 * n);
@@ -1117,7 +1035,7 @@ mod tests {
     #[test]
     fn ray_of_a_point_is_that_point() {
         let view = View::from_query(&query(&format!("{REF2}&points=1000"))).unwrap();
-        let pts = sample_image(view.spec_scene().unwrap(), view.observer, 1000, &|_| {}).points;
+        let pts = sample_image(view.scene.world(), view.observer, 1000, &|_| {}).points;
         let r = ray_reply(&view, &query("point=17")).unwrap();
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         let p = pts[17];
