@@ -2,7 +2,9 @@
 
 use std::path::PathBuf;
 
-use bentstraw_optics::scene::clip_text;
+use bentstraw_outputs::camera::CameraSpec;
+use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
+use bentstraw_outputs::scene_input::SceneSource;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// bentstraw: what refraction does to a straw in a glass of water.
@@ -53,22 +55,6 @@ comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit 
         after_help = "Example:\n  bentstraw explore                       # opens http://127.0.0.1:8157/\n  bentstraw explore --port 0 --no-open --observer 0.3,0,0.1 --straw 0,0 --water-height 0.15"
     )]
     Explore(ExploreArgs),
-}
-
-/// The scene and observer as plain values, checked by `scene_and_observer` (the flags of
-/// [`SceneFlags`] and the explorer's queries both end here).
-#[derive(Debug, Clone)]
-pub struct SceneArgs {
-    /// Observer position X,Y,Z in metres.
-    pub observer: [f64; 3],
-    /// Straw axis XP,YP in metres.
-    pub straw: [f64; 2],
-    /// Water height in metres.
-    pub water_height: f64,
-    /// Refractive index of the water.
-    pub n_water: f64,
-    /// Most events (refractions and total reflections) a ray may undergo.
-    pub max_events: u32,
 }
 
 /// The scene and observer flags of `simulate`, `render` and `check`: the values, or a scene file
@@ -367,69 +353,40 @@ pub struct ExploreArgs {
     pub mode: ModeArg,
 }
 
-/// Parses `X,Y,Z` (three finite or non-finite numbers; finiteness is checked with the scene).
-pub fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
-    let v = parse_list(s, 3, "X,Y,Z")?;
-    Ok([v[0], v[1], v[2]])
-}
-
-/// Parses `X,Y`.
-pub fn parse_vec2(s: &str) -> Result<[f64; 2], String> {
-    let v = parse_list(s, 2, "XP,YP")?;
-    Ok([v[0], v[1]])
-}
-
-/// Longest user text quoted whole in a parser's message, in characters.
-pub const QUOTED_MAX: usize = 40;
-
-/// User text for a message, clipped so that a hostile value cannot flood the terminal.
-fn quoted(text: &str) -> String {
-    clip_text(text, QUOTED_MAX)
-}
-
-fn parse_list(s: &str, n: usize, form: &str) -> Result<Vec<f64>, String> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    if parts.len() != n {
-        return Err(format!(
-            "'{}' has {} number(s); expected {n}, as {form}",
-            quoted(s),
-            parts.len()
-        ));
-    }
-    parts
-        .iter()
-        .map(|p| {
-            p.parse::<f64>().map_err(|_| {
-                format!(
-                    "'{}' in '{}' is not a number (expected {form})",
-                    quoted(p),
-                    quoted(s)
-                )
-            })
-        })
-        .collect()
-}
-
-/// Parses `WxH` pixel sizes (both at least 1, at most 16384).
-pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("'{}' is not a size: expected WxH, e.g. 800x600", quoted(s)))?;
-    let parse = |t: &str| -> Result<u32, String> {
-        let v: i64 = t.trim().parse().map_err(|_| {
-            format!(
-                "'{}' in '{}' is not a whole number of pixels",
-                quoted(t),
-                quoted(s)
-            )
-        })?;
-        if !(1..=16384).contains(&v) {
-            return Err(format!(
-                "size '{}': each side must be between 1 and 16384 pixels, got {v}",
-                quoted(s)
-            ));
+impl SceneFlags {
+    /// The flags as a scene source.
+    pub fn source(&self) -> SceneSource {
+        SceneSource {
+            file: self.scene.clone(),
+            observer: self.observer,
+            straw: self.straw,
+            water_height: self.water_height,
+            n_water: self.n_water,
+            max_events: self.max_events,
         }
-        Ok(v as u32)
-    };
-    Ok((parse(w)?, parse(h)?))
+    }
+}
+
+impl OptionalSceneFlags {
+    /// The flags as a scene source.
+    pub fn source(&self) -> SceneSource {
+        SceneSource {
+            file: self.scene.clone(),
+            observer: self.observer,
+            straw: self.straw,
+            water_height: self.water_height,
+            n_water: self.n_water,
+            max_events: self.max_events,
+        }
+    }
+}
+
+impl From<&CameraArgs> for CameraSpec {
+    fn from(a: &CameraArgs) -> Self {
+        CameraSpec {
+            target: a.target,
+            fov: a.fov,
+            size: a.size,
+        }
+    }
 }

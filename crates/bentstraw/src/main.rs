@@ -2,33 +2,18 @@
 //!
 //! This crate parses arguments, writes files and draws pictures; all physics lives in the library.
 
-mod check_plot;
 mod cli;
 mod commands;
 mod error;
 mod explore;
-mod files;
-mod gallery;
-mod html;
-mod model_plots;
-mod pictures;
-mod plot;
 mod progress;
-mod ray_diagram;
-mod report;
-mod scene_input;
-mod sketch;
-#[cfg(test)]
-mod test_support;
-mod validation;
-mod writers;
 
 use bentstraw_optics::scene::clip_text;
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::Parser;
 
 fn main() {
-    files::remove_temporaries_on_interrupt();
+    progress::remove_temporaries_on_interrupt();
     let cli = match cli::Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => match e.kind() {
@@ -54,8 +39,11 @@ fn one_line(e: &clap::Error) -> String {
     let mut line = first_line(e);
     for kind in [ContextKind::InvalidValue, ContextKind::InvalidArg] {
         if let Some(ContextValue::String(value)) = e.get(kind) {
-            if value.chars().count() > cli::QUOTED_MAX {
-                line = line.replace(value.as_str(), &clip_text(value, cli::QUOTED_MAX));
+            if value.chars().count() > bentstraw_outputs::parse::QUOTED_MAX {
+                line = line.replace(
+                    value.as_str(),
+                    &clip_text(value, bentstraw_outputs::parse::QUOTED_MAX),
+                );
             }
         }
     }

@@ -47,3 +47,23 @@ pub fn with_progress<T>(
 pub fn tell(text: &str) {
     let _ = std::io::stderr().write_all(text.as_bytes());
 }
+
+/// Exit code after Ctrl-C or SIGTERM (128 + SIGINT, the shell's convention for an interruption).
+const INTERRUPTED_EXIT: i32 = 130;
+
+/// Makes Ctrl-C, SIGTERM and SIGHUP remove every live temporary output (and every folder this run
+/// made that is still empty) before the program ends with exit code 130.
+pub fn remove_temporaries_on_interrupt() {
+    let _ = ctrlc::set_handler(|| {
+        let replaced_none = bentstraw_outputs::files::remove_all_temporaries();
+        tell(&format!(
+            "interrupted{}\n",
+            if replaced_none {
+                ": no output file was replaced"
+            } else {
+                ""
+            }
+        ));
+        std::process::exit(INTERRUPTED_EXIT);
+    });
+}

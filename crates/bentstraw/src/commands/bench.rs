@@ -16,9 +16,9 @@ use bentstraw_optics::world::{World, COLOR_COUNT};
 use bentstraw_optics::Vec3;
 
 use crate::cli::{BenchArgs, ModeArg};
-use crate::commands::render;
 use crate::error::{fail, CliError, CliResult};
-use crate::scene_input::AnyScene;
+use bentstraw_outputs::camera;
+use bentstraw_outputs::scene_input::AnyScene;
 
 /// Vertical field of view of the benchmark views (degrees).
 const BENCH_FOV_DEG: f64 = 50.0;
@@ -139,11 +139,11 @@ pub fn run(args: &BenchArgs) -> CliResult {
 /// The views to time: the one given by the scene flags, or the four reference views.
 fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
     // The same rules as `render`'s camera, with the benchmark's defaults.
-    let (w, h) = render::checked_size(args.camera.size.unwrap_or(BENCH_SIZE))?;
-    let fov_deg = render::checked_fov_deg(args.camera.fov.unwrap_or(BENCH_FOV_DEG))?;
-    let target_flag = args.camera.target.map(render::checked_target).transpose()?;
+    let (w, h) = camera::checked_size(args.camera.size.unwrap_or(BENCH_SIZE))?;
+    let fov_deg = camera::checked_fov_deg(args.camera.fov.unwrap_or(BENCH_FOV_DEG))?;
+    let target_flag = args.camera.target.map(camera::checked_target).transpose()?;
     let camera_for = |eye: Vec3, target: Vec3| -> CliResult<Camera> {
-        render::check_target_away(target, eye)?;
+        camera::check_target_away(target, eye)?;
         Ok(Camera::new(eye, target, w, h, fov_deg.to_radians()))
     };
     let given = [

@@ -19,11 +19,11 @@ use serde_json::{json, Value};
 
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
-use crate::files::check_writable;
-use crate::plot::Sketch;
-use crate::report::Check;
-use crate::scene_input::AnyScene;
-use crate::writers::Inputs;
+use bentstraw_outputs::files::check_writable;
+use bentstraw_outputs::plot::Sketch;
+use bentstraw_outputs::report::Check;
+use bentstraw_outputs::scene_input::AnyScene;
+use bentstraw_outputs::writers::Inputs;
 
 /// Most points a solution may have (more is not a reasonable image: refuse rather than run for long).
 pub const MAX_POINTS: usize = 10_000_000;
@@ -93,7 +93,8 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
         )));
     }
     if let Some(p) = &args.plot {
-        crate::plot::FigureFormat::of(p).map_err(|e| CliError(format!("--plot {}", e.0)))?;
+        bentstraw_outputs::plot::FigureFormat::of(p)
+            .map_err(|e| CliError(format!("--plot {}", e)))?;
         check_writable(p)?;
     }
     let started = Instant::now();
@@ -122,7 +123,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
             if report.passes() { "pass" } else { "fail" }
         );
         let sketch = Sketch::from(checked);
-        crate::check_plot::write_check_figure(
+        bentstraw_outputs::check_plot::write_check_figure(
             p,
             sketch,
             observer,

@@ -32,24 +32,3 @@ pub fn run(cli: Cli) -> CliResult {
         Some(Command::Explore(a)) => crate::explore::run(&a),
     }
 }
-
-use bentstraw_optics::scene::Scene;
-use bentstraw_optics::Vec3;
-
-use crate::cli::SceneArgs;
-
-impl SceneArgs {
-    /// The scene and observer, checked against the rules of valid inputs.
-    pub fn scene_and_observer(&self) -> CliResult<(Scene, Vec3)> {
-        let scene = Scene::new(
-            self.straw[0],
-            self.straw[1],
-            self.water_height,
-            self.n_water,
-            self.max_events,
-        )?;
-        let observer = Vec3::from_array(self.observer);
-        scene.validate_observer(observer)?;
-        Ok((scene, observer))
-    }
-}

@@ -4,90 +4,21 @@
 use std::path::Path;
 use std::time::Instant;
 
-use bentstraw_optics::camera::{framing_fov, framing_fov_box, Camera};
+use bentstraw_optics::camera::Camera;
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
-use bentstraw_optics::scene::{number_text, SCENE_CENTRE, SECTION_COUNT};
+use bentstraw_optics::scene::{number_text, SECTION_COUNT};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
 use bentstraw_optics::world::World;
-use bentstraw_optics::Vec3;
 
-use crate::cli::{BackdropArg, CameraArgs, ModeArg, RenderArgs};
+use crate::cli::{BackdropArg, ModeArg, RenderArgs};
 use crate::error::{fail, CliResult};
-use crate::files::{self, Output, OutputSet};
-use crate::pictures::png_bytes;
 use crate::progress;
-use crate::scene_input::{AnyScene, FileWorld};
-
-/// Picture size when `--size` is not given.
-pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
-/// Most samples per pixel side accepted by `--samples`.
-pub const MAX_SAMPLES: u32 = 16;
-/// Most pixels in a picture (the renderer keeps a few dozen bytes per pixel in memory).
-pub const MAX_PIXELS: u64 = 25_000_000;
-
-/// The validated camera of `args` at `observer`: target (default the scene's centre) finite and
-/// away from the observer, field of view in (0°, 180°) (default: framing the glass and straw).
-pub fn camera_from_args(args: &CameraArgs, observer: Vec3) -> CliResult<Camera> {
-    let target = match args.target {
-        Some(t) => checked_target(t)?,
-        None => SCENE_CENTRE,
-    };
-    check_target_away(target, observer)?;
-    let (width, height) = checked_size(args.size.unwrap_or(DEFAULT_SIZE))?;
-    let fov = match args.fov {
-        Some(deg) => checked_fov_deg(deg)?.to_radians(),
-        None => framing_fov(observer, target, width as f64 / height as f64),
-    };
-    Ok(Camera::new(observer, target, width, height, fov))
-}
-
-/// `--target` as a point, if every coordinate is finite.
-pub fn checked_target(t: [f64; 3]) -> CliResult<Vec3> {
-    for (name, v) in ["X", "Y", "Z"].iter().zip(t) {
-        if !v.is_finite() {
-            return fail(format!(
-                "--target {name} = {} is not a finite number",
-                number_text(v)
-            ));
-        }
-    }
-    Ok(Vec3::from_array(t))
-}
-
-/// Refuses a camera target at the observer's position (the camera would look nowhere).
-pub fn check_target_away(target: Vec3, observer: Vec3) -> CliResult {
-    if (target - observer).length() < 1e-9 {
-        return fail(format!(
-            "--target ({}, {}, {}) is the observer's position: the camera must look somewhere else",
-            number_text(target.x),
-            number_text(target.y),
-            number_text(target.z)
-        ));
-    }
-    Ok(())
-}
-
-/// A picture size within [`MAX_PIXELS`] (the sides are checked by the `WxH` parser).
-pub fn checked_size((width, height): (u32, u32)) -> CliResult<(u32, u32)> {
-    if width as u64 * height as u64 > MAX_PIXELS {
-        return fail(format!(
-            "--size {width}x{height} is too large: a picture may have at most {MAX_PIXELS} pixels (e.g. 6000x4000)"
-        ));
-    }
-    Ok((width, height))
-}
-
-/// A vertical field of view in degrees, `0 < FOV < 180`.
-pub fn checked_fov_deg(deg: f64) -> CliResult<f64> {
-    if !deg.is_finite() || deg <= 0.0 || deg >= 180.0 {
-        return fail(format!(
-            "--fov {} is not allowed: the field of view must be a number of degrees with 0 < FOV < 180",
-            number_text(deg)
-        ));
-    }
-    Ok(deg)
-}
+use bentstraw_outputs::camera::{camera_from_args, world_camera, CameraSpec, MAX_SAMPLES};
+use bentstraw_outputs::files::{self, Output, OutputSet};
+use bentstraw_outputs::pictures::png_bytes;
+use bentstraw_outputs::scene_input::AnyScene;
+use bentstraw_outputs::writers::{write_raw_codes, write_raw_weights};
 
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> CliResult {
@@ -96,15 +27,15 @@ pub fn run(args: &RenderArgs) -> CliResult {
     let (world, camera) = match args.scene.source().resolve_any()? {
         AnyScene::Spec(resolved) => {
             // A scene file's target stands in for an absent --target.
-            let camera_args = CameraArgs {
+            let camera_args = CameraSpec {
                 target: args.camera.target.or(resolved.target.map(|t| t.to_array())),
-                ..args.camera.clone()
+                ..CameraSpec::from(&args.camera)
             };
             let camera = camera_from_args(&camera_args, resolved.observer)?;
             (World::assignment(&resolved.scene), camera)
         }
         AnyScene::File(file) => {
-            let camera = world_camera(&file, &args.camera)?;
+            let camera = world_camera(&file, &(&args.camera).into())?;
             (file.world, camera)
         }
     };
@@ -195,29 +126,6 @@ fn shading_and_outputs(args: &RenderArgs) -> CliResult<(ShadingOptions, OutputSe
     Ok((options, outputs))
 }
 
-/// The camera of `camera_args` for a scene file's world: aimed at `--target`, else the file's
-/// target, else the middle of the scene; framing the whole scene unless `--fov` is given.
-pub fn world_camera(world: &FileWorld, camera_args: &CameraArgs) -> CliResult<Camera> {
-    let (lo, hi) = world.world.bounds();
-    let target = camera_args
-        .target
-        .or(world.target.map(|t| t.to_array()))
-        .unwrap_or((0.5 * (lo + hi)).to_array());
-    let mut camera = camera_from_args(
-        &CameraArgs {
-            target: Some(target),
-            ..camera_args.clone()
-        },
-        world.observer,
-    )?;
-    if camera_args.fov.is_none() {
-        let aspect = camera.width as f64 / camera.height as f64;
-        let fov = framing_fov_box(world.observer, Vec3::from_array(target), (lo, hi), aspect);
-        camera.tan_half_fov = (fov / 2.0).tan();
-    }
-    Ok(camera)
-}
-
 /// The one line `render` says when done.
 fn tell_rendered(args: &RenderArgs, camera: &Camera, start: Instant) {
     let fov_deg = 2.0 * camera.tan_half_fov.atan().to_degrees();
@@ -244,7 +152,13 @@ fn tell_rendered(args: &RenderArgs, camera: &Camera, start: Instant) {
 ///
 /// Traced in double precision: a data file is for checking, where the last edge pixel matters
 /// more than the milliseconds the single-precision picture path saves.
-fn write_raw(path: &Path, world: &World, camera: &Camera, mode: ModeArg, prune: f64) -> CliResult {
+fn write_raw(
+    path: &Path,
+    world: &World,
+    camera: &Camera,
+    mode: ModeArg,
+    prune: f64,
+) -> bentstraw_outputs::Result {
     match mode {
         ModeArg::Course => write_raw_codes(path, camera, &course_picture_exact(world, camera)),
         // Straws alone show five colours (their bands); coins and cards, eight codes in all.
@@ -258,46 +172,4 @@ fn write_raw(path: &Path, world: &World, camera: &Camera, mode: ModeArg, prune: 
             write_raw_weights(path, camera, &fresnel_picture_exact(world, camera, prune))
         }
     }
-}
-
-/// Writes one colour code per pixel centre, row-major: `row,col,color`.
-fn write_raw_codes(path: &Path, camera: &Camera, codes: &[u8]) -> CliResult {
-    let w = camera.width as usize;
-    files::write_atomically(path, |out| {
-        writeln!(out, "row,col,color")?;
-        for (k, code) in codes.iter().enumerate() {
-            writeln!(out, "{},{},{code}", k / w, k % w)?;
-        }
-        Ok(())
-    })
-}
-
-/// Writes the weights of each pixel centre's ray on each colour code, row-major:
-/// `row,col,w1,…,wN`, each in the shortest form that reads back as the same `f64` (zeros as `0`).
-fn write_raw_weights<const N: usize>(
-    path: &Path,
-    camera: &Camera,
-    weights: &[[f64; N]],
-) -> CliResult {
-    let w = camera.width as usize;
-    let mut digits = ryu::Buffer::new();
-    files::write_atomically(path, |out| {
-        write!(out, "row,col")?;
-        for k in 1..=N {
-            write!(out, ",w{k}")?;
-        }
-        writeln!(out)?;
-        for (k, px) in weights.iter().enumerate() {
-            write!(out, "{},{}", k / w, k % w)?;
-            for v in px {
-                if *v == 0.0 {
-                    write!(out, ",0")?;
-                } else {
-                    write!(out, ",{}", digits.format_finite(*v))?;
-                }
-            }
-            writeln!(out)?;
-        }
-        Ok(())
-    })
 }

@@ -14,15 +14,16 @@ use bentstraw_optics::Vec3;
 
 use crate::cli::{ImageModelArg, SimulateArgs};
 use crate::error::{fail, CliResult};
-use crate::files::{Output, OutputSet};
-use crate::model_plots::{
+use crate::progress;
+use bentstraw_outputs::files::{Output, OutputSet};
+use bentstraw_outputs::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use crate::plot::Sketch;
-use crate::scene_input::AnyScene;
-use crate::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
-use crate::{html, plot, progress, ray_diagram};
+use bentstraw_outputs::plot::Sketch;
+use bentstraw_outputs::scene_input::AnyScene;
+use bentstraw_outputs::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
+use bentstraw_outputs::{html, plot, ray_diagram};
 
 /// Most image points `simulate` traces with the course model: measured at about 220 bytes a point
 /// for a CSV and 310 with the figure and the 3D view; at the limit a run takes 2.2–3.1 GB and

@@ -17,17 +17,20 @@ use rayon::prelude::*;
 use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
-use crate::files::{self, Output, OutputSet};
-use crate::gallery::{gallery_files, gallery_sections};
-use crate::model_plots::{
+use crate::progress;
+use bentstraw_outputs::files::{self, Output, OutputSet};
+use bentstraw_outputs::gallery::{gallery_files, gallery_sections};
+use bentstraw_outputs::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use crate::ray_diagram::{write_ray_diagram, Diagram};
-use crate::report::{self, Check, Figure, Link, Report, Section, SimulationEntry, Timing};
-use crate::validation::{self, write_validation_figure, ValidationSeries};
-use crate::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
-use crate::{html, pictures, plot, progress};
+use bentstraw_outputs::ray_diagram::{write_ray_diagram, Diagram};
+use bentstraw_outputs::report::{
+    self, Check, Figure, Link, Report, Section, SimulationEntry, Timing,
+};
+use bentstraw_outputs::validation::{self, write_validation_figure, ValidationSeries};
+use bentstraw_outputs::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
+use bentstraw_outputs::{html, pictures, plot};
 
 /// Most image points per simulation: the table traces twelve, and runs the eye and stereo models
 /// on four (measured on two cores: 16 s and 270 MB for 100 000 points, 35–80 s and 490 MB for
@@ -270,11 +273,15 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     let written = t1.elapsed();
 
     let mut figure = Figure::image(&png, CLOUD_CAPTION);
-    figure.error = plot_error.map(|e| e.0);
+    figure.error = plot_error.map(|e| e.to_string());
     figure.links = vec![
-        Link::new(&page, "rotatable 3D view", page_error.map(|e| e.0)),
-        Link::new(&csv, "points (CSV)", data_error.map(|e| e.0)),
-        Link::new(&svg, "figure as SVG", svg_error.map(|e| e.0)),
+        Link::new(
+            &page,
+            "rotatable 3D view",
+            page_error.map(|e| e.to_string()),
+        ),
+        Link::new(&csv, "points (CSV)", data_error.map(|e| e.to_string())),
+        Link::new(&svg, "figure as SVG", svg_error.map(|e| e.to_string())),
     ];
 
     let mut timings = vec![
@@ -331,7 +338,7 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let error =
         pictures::write_observer_pictures(out, &job.stem, &job.world, observer, &cloud.points)
             .err()
-            .map(|e| e.0);
+            .map(|e| e.to_string());
     let mut picture = Figure::image(
         &seen,
         "What the observer sees: a pinhole camera at the observer, Fresnel reflection and \
@@ -373,7 +380,7 @@ fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     );
     figure.error = write_ray_diagram(&out.join(&file), scene, &diagram, &title)
         .err()
-        .map(|e| e.0);
+        .map(|e| e.to_string());
     let total: usize = diagram.counts.iter().map(|c| c.1).sum::<usize>().max(1);
     let shares: Vec<String> = diagram
         .counts
@@ -421,7 +428,7 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
     );
     view.error = pictures::write_view_picture(&out.join(INTRO_FILES[0]), &world, observer)
         .err()
-        .map(|e| e.0);
+        .map(|e| e.to_string());
     let cloud = sample_image(&world, observer, points.min(20_000), &|_| {});
     let diagram = Diagram::new(&world, observer, &cloud.points);
     let mut rays = Figure::image(
@@ -437,7 +444,7 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
         &format!("Ray diagram: {}", simulation_title(&scene, observer)),
     )
     .err()
-    .map(|e| e.0);
+    .map(|e| e.to_string());
     vec![
         Section {
             title: "The broken straw".into(),
@@ -489,7 +496,7 @@ fn closing_sections(out: &Path) -> Vec<Section> {
     );
     figure.error = write_validation_figure(&out.join(VALIDATION_FILE), &series)
         .err()
-        .map(|e| e.0);
+        .map(|e| e.to_string());
     let mut table = vec![{
         let mut head = vec!["n_water".to_string()];
         for s in &series {
@@ -574,12 +581,12 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
             links.push(Link::new(
                 &page,
                 &format!("{} model, 3D view", model.name()),
-                page_error.map(|e| e.0),
+                page_error.map(|e| e.to_string()),
             ));
             links.push(Link::new(
                 &csv,
                 &format!("{} model, points (CSV)", model.name()),
-                data_error.map(|e| e.0),
+                data_error.map(|e| e.to_string()),
             ));
         }
         placed.push(points);
@@ -597,14 +604,14 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     );
     figure.error = write_model_comparison(&out.join(&compare), scene, observer, &clouds, &title)
         .err()
-        .map(|e| e.0);
+        .map(|e| e.to_string());
     let compare_svg = format!("{}_models.svg", job.stem);
     let svg_error =
         write_model_comparison(&out.join(&compare_svg), scene, observer, &clouds, &title).err();
     links.push(Link::new(
         &compare_svg,
         "figure as SVG",
-        svg_error.map(|e| e.0),
+        svg_error.map(|e| e.to_string()),
     ));
     figure.links = links;
     figures.push(figure);
@@ -624,14 +631,14 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     );
     figure.error = write_gap_plot(&out.join(&gap), &series, &gap_title)
         .err()
-        .map(|e| e.0);
+        .map(|e| e.to_string());
     let gap_svg = format!("{}_gap.svg", job.stem);
     figure.links = vec![Link::new(
         &gap_svg,
         "figure as SVG",
         write_gap_plot(&out.join(&gap_svg), &series, &gap_title)
             .err()
-            .map(|e| e.0),
+            .map(|e| e.to_string()),
     )];
     figures.push(figure);
 

@@ -23,13 +23,15 @@ use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
-use crate::cli::{parse_size, parse_vec2, parse_vec3, CameraArgs, SceneArgs};
-use crate::commands::render::{camera_from_args, world_camera, MAX_SAMPLES};
-use crate::gallery::{opening_comment, GALLERY};
-use crate::pictures::png_bytes;
-use crate::scene_input::{file_world, FileWorld};
-use crate::sketch::{object_outlines, world_wireframe};
-use crate::writers::{write_csv, write_model_csv, write_ply, Inputs, ModelPoints, PointSet};
+use bentstraw_outputs::camera::{camera_from_args, world_camera, CameraSpec, MAX_SAMPLES};
+use bentstraw_outputs::gallery::{opening_comment, GALLERY};
+use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
+use bentstraw_outputs::pictures::png_bytes;
+use bentstraw_outputs::scene_input::{file_world, FileWorld, SceneValues};
+use bentstraw_outputs::sketch::{object_outlines, world_wireframe};
+use bentstraw_outputs::writers::{
+    write_csv, write_model_csv, write_ply, Inputs, ModelPoints, PointSet,
+};
 
 /// Most image points one request may ask for (a million take about half a second).
 pub const MAX_POINTS: usize = 1_000_000;
@@ -133,9 +135,9 @@ pub struct View {
     /// The observer (validated).
     pub observer: Vec3,
     /// The scene's inputs as the command line takes them.
-    pub scene_args: SceneArgs,
+    pub scene_args: SceneValues,
     /// The camera's inputs as the command line takes them.
-    pub camera_args: CameraArgs,
+    pub camera_args: CameraSpec,
     /// The camera (validated).
     pub camera: Camera,
     /// Fresnel (true) or course picture.
@@ -208,9 +210,8 @@ fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Trac
 /// from its own eye, with the event limit `max_events`.
 fn named_world(name: &str, max_events: u32) -> Result<FileWorld, String> {
     Ok(match GALLERY.iter().find(|(stem, _)| *stem == name) {
-        Some((stem, text)) => {
-            file_world(&format!("scenes/{stem}.toml"), text, max_events).map_err(|e| e.0)?
-        }
+        Some((stem, text)) => file_world(&format!("scenes/{stem}.toml"), text, max_events)
+            .map_err(|e| e.to_string())?,
         None => match USER_SCENE.get() {
             Some(user) if name == USER_SCENE_NAME => {
                 let mut user = user.clone();
@@ -330,7 +331,7 @@ impl View {
             ),
             None => (required(q, "straw")?, required(q, "water-height")?),
         };
-        let scene_args = SceneArgs {
+        let scene_args = SceneValues {
             observer: flag(parse_vec3(observer_text), "observer", observer_text)?,
             straw: flag(parse_vec2(straw_text), "straw", straw_text)?,
             water_height: number(he_text, "water-height")?,
@@ -343,14 +344,15 @@ impl View {
                 (traced, Vec3::from_array(scene_args.observer))
             }
             None => {
-                let (scene, observer) = scene_args.scene_and_observer().map_err(|e| e.0)?;
+                let (scene, observer) =
+                    scene_args.scene_and_observer().map_err(|e| e.to_string())?;
                 (
                     Traced::Spec(scene, Arc::new(World::assignment(&scene))),
                     observer,
                 )
             }
         };
-        let camera_args = CameraArgs {
+        let camera_args = CameraSpec {
             target: get(q, "target")
                 .map(|t| flag(parse_vec3(t), "target", t))
                 .transpose()?,
@@ -370,7 +372,7 @@ impl View {
             Traced::Spec(..) => camera_from_args(&camera_args, observer),
             Traced::World(world) => world_camera(world, &camera_args),
         }
-        .map_err(|e| e.0)?;
+        .map_err(|e| e.to_string())?;
         let fresnel = match get(q, "mode").unwrap_or("fresnel") {
             "fresnel" => true,
             "course" => false,
@@ -807,7 +809,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     let model = get(q, "model").unwrap_or("course");
     if format == "png" {
         let picture = shaded_picture(view.scene.world(), &view.camera, &view.shading());
-        let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.0)?);
+        let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.to_string())?);
         r.file_name = Some("view.png".into());
         return Ok(r);
     }

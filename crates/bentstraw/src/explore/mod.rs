@@ -13,8 +13,8 @@ use bentstraw_optics::Vec3;
 
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
-use crate::gallery::GALLERY;
-use crate::scene_input::AnyScene;
+use bentstraw_outputs::gallery::GALLERY;
+use bentstraw_outputs::scene_input::AnyScene;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {

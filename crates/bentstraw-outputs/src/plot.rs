@@ -26,7 +26,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontTransform;
 use rayon::slice::ParallelSliceMut;
 
-use crate::error::{CliError, CliResult};
+use crate::error::{Error, Result};
 use crate::files;
 use crate::writers::Inputs;
 
@@ -585,7 +585,7 @@ pub fn write_cloud_figure<'a>(
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
-) -> CliResult {
+) -> Result {
     let bytes = render_cloud_figure(path, scene, observer, points, title)?;
     files::write_bytes(path, &bytes)
 }
@@ -597,7 +597,7 @@ pub(crate) fn render_cloud_figure<'a>(
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
-) -> CliResult<Vec<u8>> {
+) -> Result<Vec<u8>> {
     register_font();
     let scene = scene.into();
     let heading = cloud_heading(observer, points.len(), title);
@@ -819,7 +819,7 @@ pub const FIGURE_EXTENSIONS: &[&str] = &["png", "svg", "pdf"];
 
 impl FigureFormat {
     /// The format of `path` by its extension, or the one-line refusal naming the accepted ones.
-    pub fn of(path: &Path) -> CliResult<FigureFormat> {
+    pub fn of(path: &Path) -> Result<FigureFormat> {
         match path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
@@ -828,7 +828,7 @@ impl FigureFormat {
             Some("png") => Ok(FigureFormat::Png),
             Some("svg") => Ok(FigureFormat::Svg),
             Some("pdf") => Ok(FigureFormat::Pdf),
-            _ => Err(CliError(format!(
+            _ => Err(Error::Refused(format!(
                 "{}: a figure's file name must end in .png, .svg or .pdf",
                 files::shown(path)
             ))),
@@ -845,9 +845,9 @@ pub(crate) fn figure_bytes(
     size: (u32, u32),
     png_draw: impl FnOnce(&DrawingArea<BitMapBackend, plotters::coord::Shift>) -> Result<(), String>,
     svg_draw: impl FnOnce(&DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), String>,
-) -> CliResult<Vec<u8>> {
+) -> Result<Vec<u8>> {
     register_font();
-    let fail = |e: String| CliError(format!("cannot draw {}: {e}", files::shown(path)));
+    let fail = |e: String| Error::Encode(format!("cannot draw {}: {e}", files::shown(path)));
     match format {
         FigureFormat::Svg | FigureFormat::Pdf => {
             let mut text = String::new();
@@ -1781,7 +1781,9 @@ pub(crate) mod tests {
         ] {
             assert_eq!(FigureFormat::of(Path::new(name)).ok(), want, "{name}");
         }
-        let e = FigureFormat::of(Path::new("x.gif")).unwrap_err().0;
+        let e = FigureFormat::of(Path::new("x.gif"))
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("x.gif") && e.contains(".png, .svg or .pdf"),
             "{e}"

@@ -23,7 +23,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::error::CliResult;
+use crate::error::Result;
 use crate::files;
 use crate::plot::{
     figure_bytes, font, wrap, FigureFormat, Sketch, CAPTION, CAPTION_LINE, TEXT, TITLE,
@@ -91,7 +91,7 @@ pub fn write_ray_diagram<'a>(
     scene: impl Into<Sketch<'a>>,
     diagram: &Diagram,
     title: &str,
-) -> CliResult {
+) -> Result {
     let bytes = render(path, scene, diagram, title)?;
     files::write_bytes(path, &bytes)
 }
@@ -102,7 +102,7 @@ pub fn render<'a>(
     scene: impl Into<Sketch<'a>>,
     diagram: &Diagram,
     title: &str,
-) -> CliResult<Vec<u8>> {
+) -> Result<Vec<u8>> {
     let scene = scene.into();
     figure_bytes(
         path,

@@ -22,7 +22,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::error::CliResult;
+use crate::error::Result;
 use crate::files;
 use crate::plot::{
     axis_box, common_legend, draw_axis_labels, draw_dots, draw_legend_cell, draw_observer,
@@ -112,7 +112,7 @@ pub fn write_model_comparison<'a>(
     observer: Vec3,
     models: &[ModelCloud],
     title: &str,
-) -> CliResult {
+) -> Result {
     let bytes = render_model_comparison(path, scene.into(), observer, models, title)?;
     files::write_bytes(path, &bytes)
 }
@@ -232,7 +232,7 @@ fn render_model_comparison(
     observer: Vec3,
     models: &[ModelCloud],
     title: &str,
-) -> CliResult<Vec<u8>> {
+) -> Result<Vec<u8>> {
     let heading = comparison_heading(scene, observer, title);
     figure_bytes(
         path,
@@ -373,7 +373,7 @@ fn gap_decimals(top_mm: f64) -> usize {
 
 /// Plots the gap between the course's image points and each series' model against the height of the
 /// straw point, into `path` (PNG, SVG or PDF by its extension).
-pub fn write_gap_plot(path: &Path, series: &[GapSeries], title: &str) -> CliResult {
+pub fn write_gap_plot(path: &Path, series: &[GapSeries], title: &str) -> Result {
     let heading = Heading::new(title, "");
     let size = (GAP_CHART.0, GAP_CHART.1 + heading.height() as u32);
     let bytes = figure_bytes(

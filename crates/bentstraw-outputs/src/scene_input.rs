@@ -10,8 +10,7 @@ use bentstraw_optics::scene_file::{Observer, SceneDescription};
 use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
-use crate::cli::{OptionalSceneFlags, SceneArgs, SceneFlags};
-use crate::error::{fail, CliError, CliResult};
+use crate::error::{fail, Error, Result};
 use crate::files::shown;
 
 /// Largest scene file read (1 MB): a scene is a few dozen lines.
@@ -69,31 +68,35 @@ pub struct SceneSource {
     pub max_events: u32,
 }
 
-impl SceneFlags {
-    /// The flags as a scene source.
-    pub fn source(&self) -> SceneSource {
-        SceneSource {
-            file: self.scene.clone(),
-            observer: self.observer,
-            straw: self.straw,
-            water_height: self.water_height,
-            n_water: self.n_water,
-            max_events: self.max_events,
-        }
-    }
+/// The scene and observer as plain values, checked by [`SceneValues::scene_and_observer`] (the
+/// command line's flags and the explorer's queries both end here).
+#[derive(Debug, Clone)]
+pub struct SceneValues {
+    /// Observer position X,Y,Z in metres.
+    pub observer: [f64; 3],
+    /// Straw axis XP,YP in metres.
+    pub straw: [f64; 2],
+    /// Water height in metres.
+    pub water_height: f64,
+    /// Refractive index of the water.
+    pub n_water: f64,
+    /// Most events (refractions and total reflections) a ray may undergo.
+    pub max_events: u32,
 }
 
-impl OptionalSceneFlags {
-    /// The flags as a scene source.
-    pub fn source(&self) -> SceneSource {
-        SceneSource {
-            file: self.scene.clone(),
-            observer: self.observer,
-            straw: self.straw,
-            water_height: self.water_height,
-            n_water: self.n_water,
-            max_events: self.max_events,
-        }
+impl SceneValues {
+    /// The scene and observer, checked against the rules of valid inputs.
+    pub fn scene_and_observer(&self) -> Result<(Scene, Vec3)> {
+        let scene = Scene::new(
+            self.straw[0],
+            self.straw[1],
+            self.water_height,
+            self.n_water,
+            self.max_events,
+        )?;
+        let observer = Vec3::from_array(self.observer);
+        scene.validate_observer(observer)?;
+        Ok((scene, observer))
     }
 }
 
@@ -101,7 +104,7 @@ impl SceneSource {
     /// The validated scene and observer: from the flags alone as always, or from the scene file
     /// with the flags overriding it. Every value goes through the same rules as the flags'; a
     /// file of the assignment's kind gives exactly the scene the same flags give.
-    pub fn resolve_any(&self) -> CliResult<AnyScene> {
+    pub fn resolve_any(&self) -> Result<AnyScene> {
         let Some(path) = &self.file else {
             let (Some(observer), Some(straw), Some(water_height)) =
                 (self.observer, self.straw, self.water_height)
@@ -110,7 +113,7 @@ impl SceneSource {
                     "the scene needs --observer, --straw and --water-height, or a --scene file",
                 );
             };
-            let (scene, observer) = SceneArgs {
+            let (scene, observer) = SceneValues {
                 observer,
                 straw,
                 water_height,
@@ -150,7 +153,7 @@ impl SceneSource {
             }
         };
         if let Some(spec) = description.spec_scene() {
-            let (scene, observer) = SceneArgs {
+            let (scene, observer) = SceneValues {
                 observer,
                 straw: self.straw.unwrap_or([spec.straw_x, spec.straw_y]),
                 water_height: self.water_height.unwrap_or(spec.water_height),
@@ -177,7 +180,7 @@ impl SceneSource {
             description.liquids[0].index = n;
         }
         if self.max_events == 0 || self.max_events > MAX_EVENTS_LIMIT {
-            return Err(CliError(SceneError::MaxEvents(self.max_events).to_string()));
+            return Err(SceneError::MaxEvents(self.max_events).into());
         }
         let target = description.observer.map(|o| o.target);
         let position = Vec3::from_array(observer);
@@ -191,7 +194,7 @@ impl SceneSource {
         });
         let flagged = |e: bentstraw_optics::scene_file::SceneFileError| {
             let message = e.to_string();
-            CliError(format!("{name} with the flags given: {message}"))
+            Error::Refused(format!("{name} with the flags given: {message}"))
         };
         checked.validate().map_err(flagged)?;
         Ok(AnyScene::File(Box::new(FileWorld {
@@ -206,9 +209,9 @@ impl SceneSource {
 
 /// The world of a scene file's text named `name`, seen from its own `[observer]`, with the event
 /// limit `max_events` (for the built-in gallery).
-pub fn file_world(name: &str, text: &str, max_events: u32) -> CliResult<FileWorld> {
+pub fn file_world(name: &str, text: &str, max_events: u32) -> Result<FileWorld> {
     let description =
-        SceneDescription::from_toml(text).map_err(|e| CliError(format!("{name}: {e}")))?;
+        SceneDescription::from_toml(text).map_err(|e| Error::Refused(format!("{name}: {e}")))?;
     let Some(observer) = description.observer else {
         return fail(format!("{name} has no [observer]"));
     };
@@ -222,15 +225,19 @@ pub fn file_world(name: &str, text: &str, max_events: u32) -> CliResult<FileWorl
 }
 
 /// Reads and checks the scene file at `path`; every refusal names the file.
-pub fn read_scene_file(path: &Path) -> CliResult<SceneDescription> {
+pub fn read_scene_file(path: &Path) -> Result<SceneDescription> {
     let name = shown(path);
-    let cannot = |e: std::io::Error| CliError(format!("cannot read the scene file {name}: {e}"));
+    let cannot = |source: std::io::Error| Error::Io {
+        action: "read the scene file",
+        path: path.to_path_buf(),
+        source,
+    };
     let meta = std::fs::metadata(path).map_err(cannot)?;
     if meta.is_dir() {
         return fail(format!("cannot read the scene file {name}: it is a folder"));
     }
     let too_large = |bytes: u64| {
-        CliError(format!(
+        Error::Refused(format!(
             "the scene file {name} is {bytes} bytes: a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB), not read"
         ))
     };
@@ -246,10 +253,10 @@ pub fn read_scene_file(path: &Path) -> CliResult<SceneDescription> {
         return Err(too_large(bytes.len() as u64));
     }
     let text = String::from_utf8(bytes).map_err(|e| {
-        CliError(format!(
+        Error::Refused(format!(
             "the scene file {name} is not UTF-8 text: byte {} is not valid UTF-8",
             e.utf8_error().valid_up_to() + 1
         ))
     })?;
-    SceneDescription::from_toml(&text).map_err(|e| CliError(format!("{name}: {e}")))
+    SceneDescription::from_toml(&text).map_err(|e| Error::Refused(format!("{name}: {e}")))
 }

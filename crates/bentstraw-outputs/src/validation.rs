@@ -14,7 +14,7 @@ use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::error::CliResult;
+use crate::error::Result;
 use crate::files;
 use crate::plot::{figure_bytes, font, FigureFormat, Heading, FIGURE_WIDTH, TEXT};
 
@@ -94,7 +94,7 @@ const RGB: [RGBColor; 4] = [
 const FLOOR: f64 = 1e-18;
 
 /// Writes the figure to `path` (PNG, SVG or PDF by its extension).
-pub fn write_validation_figure(path: &Path, series: &[ValidationSeries]) -> CliResult {
+pub fn write_validation_figure(path: &Path, series: &[ValidationSeries]) -> Result {
     let heading = Heading::new(
         "Image points seen through the water: distance from the straw",
         "",

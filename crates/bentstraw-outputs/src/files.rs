@@ -19,14 +19,12 @@ use std::sync::{Mutex, MutexGuard};
 use bentstraw_optics::scene::clip_text;
 use tempfile::{Builder, TempPath};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{Error, Result};
 
 /// Longest file name (bytes) the usual file systems accept.
 const NAME_MAX: usize = 255;
 /// Longest path quoted in a message, in characters.
 const SHOWN_PATH_MAX: usize = 100;
-/// Exit code after Ctrl-C or SIGTERM (128 + SIGINT, the shell's convention for an interruption).
-const INTERRUPTED_EXIT: i32 = 130;
 
 /// One output a command is about to write.
 pub struct Output<'a> {
@@ -77,28 +75,17 @@ fn live() -> MutexGuard<'static, Registry> {
     LIVE.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// Makes Ctrl-C, SIGTERM and SIGHUP remove every live temporary (and every folder this run made
-/// that is still empty) before the program ends with exit code 130. A set being renamed into place
-/// holds the registry, so an interruption then waits until the whole set is in place.
-pub fn remove_temporaries_on_interrupt() {
-    let _ = ctrlc::set_handler(|| {
-        let mut reg = live();
-        let replaced_none = !reg.staged.is_empty();
-        reg.staged.clear();
-        for dir in reg.created.iter().rev() {
-            let _ = fs::remove_dir(dir);
-        }
-        let _ = writeln!(
-            io::stderr(),
-            "interrupted{}",
-            if replaced_none {
-                ": no output file was replaced"
-            } else {
-                ""
-            }
-        );
-        std::process::exit(INTERRUPTED_EXIT);
-    });
+/// Removes every live temporary (and every folder this run made that is still empty), for an
+/// interruption; says whether some output set was still live (then no output of it was replaced).
+/// A set being renamed into place holds the registry, so this waits until the whole set is in place.
+pub fn remove_all_temporaries() -> bool {
+    let mut reg = live();
+    let replaced_none = !reg.staged.is_empty();
+    reg.staged.clear();
+    for dir in reg.created.iter().rev() {
+        let _ = fs::remove_dir(dir);
+    }
+    replaced_none
 }
 
 /// A set of outputs replaced all together by [`OutputSet::commit`], or not at all.
@@ -110,13 +97,13 @@ pub struct OutputSet {
 impl OutputSet {
     /// Checks every output and makes its temporary, before any work; refuses with one line naming
     /// the output and the rule it breaks.
-    pub fn reserve(outputs: &[Output]) -> CliResult<OutputSet> {
+    pub fn reserve(outputs: &[Output]) -> Result<OutputSet> {
         let mut targets: Vec<(PathBuf, Option<FileId>)> = Vec::new();
         for (k, out) in outputs.iter().enumerate() {
             let (target, id) = resolve(out)?;
             for (j, (other, other_id)) in targets.iter().enumerate() {
                 if *other == target || (id.is_some() && id == *other_id) {
-                    return Err(CliError(format!(
+                    return Err(Error::Refused(format!(
                         "{} and {} are the same file: give different files",
                         named(&outputs[j]),
                         named(&outputs[k])
@@ -129,7 +116,7 @@ impl OutputSet {
         let mut reg = live();
         for (out, (target, _)) in outputs.iter().zip(&targets) {
             if reg.staged.iter().any(|s| s.target == *target) {
-                return Err(CliError(format!(
+                return Err(Error::Refused(format!(
                     "{}: this file is already being written",
                     named(out)
                 )));
@@ -146,7 +133,7 @@ impl OutputSet {
                     // Unlocked first: dropping the set removes the temporaries made so far.
                     drop(reg);
                     drop(set);
-                    return Err(CliError(format!(
+                    return Err(Error::Refused(format!(
                         "{}: cannot write into folder {} ({e})",
                         named(out),
                         shown(parent_dir(out.path))
@@ -167,20 +154,20 @@ impl OutputSet {
 
     /// Like [`OutputSet::reserve`], for outputs that are all of a run's files in `folder`: writing
     /// any other file there while the set lives is refused, so that no file escapes the set.
-    pub fn reserve_folder(folder: &Path, outputs: &[Output]) -> CliResult<OutputSet> {
+    pub fn reserve_folder(folder: &Path, outputs: &[Output]) -> Result<OutputSet> {
         let set = OutputSet::reserve(outputs)?;
         let folder = fs::canonicalize(folder)
-            .map_err(|e| CliError(format!("cannot open folder {} ({e})", shown(folder))))?;
+            .map_err(|e| Error::Refused(format!("cannot open folder {} ({e})", shown(folder))))?;
         live().claimed.push((set.id, folder));
         Ok(set)
     }
 
     /// Renames every temporary of the set into place, all or none: if one rename fails, the targets
     /// already replaced get their previous content back. Every target must have been written.
-    pub fn commit(self) -> CliResult {
+    pub fn commit(self) -> Result {
         let mut reg = live();
         if let Some(s) = reg.staged.iter().find(|s| s.set == self.id && !s.written) {
-            return Err(CliError(format!(
+            return Err(Error::Refused(format!(
                 "{} was not written: no output was replaced",
                 shown(&s.shown)
             )));
@@ -222,7 +209,7 @@ impl OutputSet {
             }
         }
         match failure {
-            Some(msg) => Err(CliError(format!("{msg}: no output was replaced"))),
+            Some(msg) => Err(Error::Refused(format!("{msg}: no output was replaced"))),
             None => Ok(()),
         }
     }
@@ -267,7 +254,7 @@ fn keep_previous(target: &Path) -> Previous {
 }
 
 /// Checks, before any work, that `path` can be written (see [`OutputSet::reserve`]).
-pub fn check_writable(path: &Path) -> CliResult {
+pub fn check_writable(path: &Path) -> Result {
     let out = Output {
         flag: "",
         path,
@@ -286,7 +273,7 @@ pub fn check_writable(path: &Path) -> CliResult {
 pub fn write_atomically(
     path: &Path,
     fill: impl FnOnce(&mut dyn Write) -> io::Result<()>,
-) -> CliResult {
+) -> Result {
     let out = Output {
         flag: "",
         path,
@@ -305,7 +292,7 @@ pub fn write_atomically(
             .iter()
             .any(|(_, f)| Some(f.as_path()) == folder)
         {
-            return Err(CliError(format!(
+            return Err(Error::Refused(format!(
                 "cannot write {}: it is not among the files reserved in its folder",
                 shown(path)
             )));
@@ -314,7 +301,11 @@ pub fn write_atomically(
     match held {
         Some((target, file)) => {
             let result = file.and_then(|f| fill_file(f, fill));
-            result.map_err(|e| CliError(format!("cannot write {}: {e}", shown(path))))?;
+            result.map_err(|source| Error::Io {
+                action: "write",
+                path: path.to_path_buf(),
+                source,
+            })?;
             if let Some(s) = live().staged.iter_mut().find(|s| s.target == target) {
                 s.written = true;
             }
@@ -329,13 +320,13 @@ pub fn write_atomically(
 }
 
 /// Writes bytes all-or-nothing (see [`write_atomically`]).
-pub fn write_bytes(path: &Path, bytes: &[u8]) -> CliResult {
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result {
     write_atomically(path, |w| w.write_all(bytes))
 }
 
 /// Makes folder `dir` and any missing parents; the ones made are removed again by
 /// [`remove_made_folders`] or an interruption, if still empty.
-pub fn make_folder(dir: &Path) -> CliResult<Vec<PathBuf>> {
+pub fn make_folder(dir: &Path) -> Result<Vec<PathBuf>> {
     let mut missing = Vec::new();
     let mut d = Some(dir);
     while let Some(p) = d.filter(|p| !p.as_os_str().is_empty() && !p.exists()) {
@@ -345,8 +336,11 @@ pub fn make_folder(dir: &Path) -> CliResult<Vec<PathBuf>> {
     missing.reverse();
     let mut reg = live();
     for p in &missing {
-        fs::create_dir(p)
-            .map_err(|e| CliError(format!("cannot create folder {}: {e}", shown(p))))?;
+        fs::create_dir(p).map_err(|source| Error::Io {
+            action: "create folder",
+            path: p.clone(),
+            source,
+        })?;
         reg.created.push(p.clone());
     }
     Ok(missing)
@@ -377,8 +371,8 @@ fn file_id(_: &fs::Metadata) -> Option<FileId> {
 
 /// Where `out` will be written, after checking that it may be: its folder exists, its name is not
 /// too long, and it is absent or a writable regular file (a link to one is followed).
-fn resolve(out: &Output) -> CliResult<(PathBuf, Option<FileId>)> {
-    let refusal = |rule: String| CliError(format!("{}: {rule}", named(out)));
+fn resolve(out: &Output) -> Result<(PathBuf, Option<FileId>)> {
+    let refusal = |rule: String| Error::Refused(format!("{}: {rule}", named(out)));
     let refuse = |rule: String| Err(refusal(rule));
     let Some(name) = out.path.file_name() else {
         return refuse("this is not a file name".into());
@@ -498,7 +492,7 @@ pub fn shown(path: &Path) -> String {
 }
 
 /// Checks that `out` ends in one of its allowed extensions.
-fn check_extension(out: &Output) -> CliResult {
+fn check_extension(out: &Output) -> Result {
     if out.extensions.is_empty() {
         return Ok(());
     }
@@ -515,7 +509,7 @@ fn check_extension(out: &Output) -> CliResult {
         Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
         _ => names.join(""),
     };
-    Err(CliError(format!(
+    Err(Error::Refused(format!(
         "{}: the file name must end in {expected}",
         named(out)
     )))
@@ -561,7 +555,7 @@ mod tests {
         })
         .unwrap_err();
         assert!(
-            err.0.contains("a.csv") && err.0.contains("no space left"),
+            err.to_string().contains("a.csv") && err.to_string().contains("no space left"),
             "{err}"
         );
         assert_eq!(fs::read(&a).unwrap(), b"old");
@@ -592,7 +586,7 @@ mod tests {
         fs::write(&a, b"old a").unwrap();
         let set = OutputSet::reserve(&[output(&a), output(&b)]).unwrap();
         write_bytes(&a, b"new a").unwrap();
-        assert!(set.commit().unwrap_err().0.contains("b.txt"));
+        assert!(set.commit().unwrap_err().to_string().contains("b.txt"));
         assert_eq!(fs::read(&a).unwrap(), b"old a");
         assert_eq!(names(dir.path()), ["a.txt"]);
         // Dropped without a commit: the same.
@@ -622,7 +616,7 @@ mod tests {
         fs::create_dir(&c).unwrap();
         let err = set.commit().unwrap_err();
         assert!(
-            err.0.contains("c.txt") && err.0.contains("no output was replaced"),
+            err.to_string().contains("c.txt") && err.to_string().contains("no output was replaced"),
             "{err}"
         );
         assert_eq!(fs::read(&a).unwrap(), b"old a");
@@ -637,7 +631,10 @@ mod tests {
         let (x, y) = (dir.path().join("x.txt"), dir.path().join("y.txt"));
         let set = OutputSet::reserve_folder(dir.path(), &[output(&x)]).unwrap();
         write_bytes(&x, b"x").unwrap();
-        assert!(write_bytes(&y, b"y").unwrap_err().0.contains("not among"));
+        assert!(write_bytes(&y, b"y")
+            .unwrap_err()
+            .to_string()
+            .contains("not among"));
         set.commit().unwrap();
         assert_eq!(names(dir.path()), ["x.txt"]);
         // Once committed, the folder is free again.
@@ -653,14 +650,14 @@ mod tests {
         let err = OutputSet::reserve(&[output(&a), output(&dotted)])
             .err()
             .unwrap();
-        assert!(err.0.contains("same file"), "{err}");
+        assert!(err.to_string().contains("same file"), "{err}");
         fs::write(&a, b"old").unwrap();
         let linked = dir.path().join("b.txt");
         fs::hard_link(&a, &linked).unwrap();
         let err = OutputSet::reserve(&[output(&a), output(&linked)])
             .err()
             .unwrap();
-        assert!(err.0.contains("same file"), "{err}");
+        assert!(err.to_string().contains("same file"), "{err}");
         assert_eq!(names(dir.path()), ["a.txt", "b.txt"]);
     }
 }

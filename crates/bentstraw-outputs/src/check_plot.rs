@@ -10,7 +10,7 @@ use bentstraw_optics::Vec3;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::error::CliResult;
+use crate::error::Result;
 use crate::files;
 use crate::plot::{
     axis_box, dashed, draw_axis_labels, draw_legend_cell, draw_observer, draw_panes,
@@ -54,7 +54,7 @@ pub fn write_check_figure<'a>(
     points: &[ClaimedPoint],
     report: &CheckReport,
     title: &str,
-) -> CliResult {
+) -> Result {
     let format = FigureFormat::of(path)?;
     let scene = scene.into();
     let heading = check_heading(report, title, colours(scene));

@@ -15,7 +15,7 @@ use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::json;
 
-use crate::error::CliResult;
+use crate::error::Result;
 use crate::files;
 use crate::plot::{
     axis_box, counts, degrees, figure_views, observer_direction, section_rgb8, whole,
@@ -52,7 +52,7 @@ pub fn write_cloud_viewer<'a>(
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
-) -> CliResult {
+) -> Result {
     let stem = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())

@@ -14,7 +14,7 @@ use bentstraw_optics::Vec3;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{Error, Result};
 use crate::files;
 
 /// Size of the report's observer pictures (pixels).
@@ -23,7 +23,7 @@ pub const REPORT_SIZE: (u32, u32) = (1600, 1200);
 pub const REPORT_PRUNE: f64 = 1e-4;
 
 /// The PNG encoding of `picture`.
-pub fn png_bytes(picture: &RgbPicture) -> CliResult<Vec<u8>> {
+pub fn png_bytes(picture: &RgbPicture) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
     PngEncoder::new(&mut bytes)
         .write_image(
@@ -32,7 +32,7 @@ pub fn png_bytes(picture: &RgbPicture) -> CliResult<Vec<u8>> {
             picture.height,
             ExtendedColorType::Rgb8,
         )
-        .map_err(|e| CliError(format!("cannot encode the picture as PNG: {e}")))?;
+        .map_err(|e| Error::Encode(format!("cannot encode the picture as PNG: {e}")))?;
     Ok(bytes)
 }
 
@@ -47,7 +47,7 @@ fn report_camera(observer: Vec3) -> Camera {
 
 /// What `camera` sees of `scene` (Fresnel mode, checker backdrop) as PNG bytes, through the
 /// explorer's frame call (picture only).
-fn seen_png(world: &World, camera: Camera) -> CliResult<Vec<u8>> {
+fn seen_png(world: &World, camera: Camera) -> Result<Vec<u8>> {
     let options = ShadingOptions {
         mode: ShadingMode::Fresnel {
             prune_below: REPORT_PRUNE,
@@ -67,7 +67,7 @@ fn seen_png(world: &World, camera: Camera) -> CliResult<Vec<u8>> {
 }
 
 /// Writes `path`: what `observer` sees through the report's camera.
-pub fn write_view_picture(path: &Path, world: &World, observer: Vec3) -> CliResult {
+pub fn write_view_picture(path: &Path, world: &World, observer: Vec3) -> Result {
     files::write_bytes(path, &seen_png(world, report_camera(observer))?)
 }
 
@@ -80,7 +80,7 @@ pub fn write_observer_pictures(
     world: &World,
     observer: Vec3,
     points: &[ImagePoint],
-) -> CliResult<(PathBuf, PathBuf)> {
+) -> Result<(PathBuf, PathBuf)> {
     let camera = report_camera(observer);
     let view = dir.join(format!("{stem}_observer.png"));
     let cloud = dir.join(format!("{stem}_cloud.png"));

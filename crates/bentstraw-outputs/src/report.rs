@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES};
 
-use crate::error::CliResult;
+use crate::error::Result;
 use crate::files::write_bytes;
 use crate::writers::section_rgb8;
 
@@ -156,7 +156,7 @@ impl Link {
 }
 
 /// Writes the report to `path`, all-or-nothing.
-pub fn write_report(path: &Path, report: &Report) -> CliResult {
+pub fn write_report(path: &Path, report: &Report) -> Result {
     write_bytes(path, render(report).as_bytes())
 }
 

@@ -9,9 +9,8 @@ use bentstraw_optics::shading::shaded_picture;
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
 use rayon::prelude::*;
 
-use crate::cli::CameraArgs;
-use crate::commands::render::world_camera;
-use crate::error::CliResult;
+use crate::camera::{world_camera, CameraSpec};
+use crate::error::Result;
 use crate::pictures::png_bytes;
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{Figure, Link, Section};
@@ -83,7 +82,7 @@ pub fn gallery_sections(out: &Path) -> Vec<Section> {
                 Err(e) => Section {
                     title: format!("Gallery: {stem}"),
                     figures: vec![Figure {
-                        error: Some(e.0),
+                        error: Some(e.to_string()),
                         ..Figure::image(&format!("gallery_{stem}_observer.png"), "")
                     }],
                     notes: vec![],
@@ -109,7 +108,7 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
     );
     picture.error = write_picture(&out.join(&picture_file), world)
         .err()
-        .map(|e| e.0);
+        .map(|e| e.to_string());
     let cloud = sample_image(&world.world, world.observer, GALLERY_POINTS, &|_| {});
     let title = format!("{}: the image points (course model)", world.name);
     let mut points = Figure::image(
@@ -130,11 +129,11 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
             &title,
         )
     };
-    points.error = draw(&points_file).err().map(|e| e.0);
+    points.error = draw(&points_file).err().map(|e| e.to_string());
     points.links.push(Link::new(
         &svg_file,
         "figure as SVG",
-        draw(&svg_file).err().map(|e| e.0),
+        draw(&svg_file).err().map(|e| e.to_string()),
     ));
     let rays_file = format!("gallery_{stem}_rays.svg");
     let mut rays = Figure::image(
@@ -151,7 +150,7 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
         &format!("Ray diagram: {}", world.name),
     )
     .err()
-    .map(|e| e.0);
+    .map(|e| e.to_string());
     Section {
         title: format!("Gallery: {}", stem.replace('-', " ")),
         figures: vec![picture, points, rays],
@@ -162,10 +161,10 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
 }
 
 /// The scene's picture from its own observer, 1000x750, Fresnel, as a PNG.
-fn write_picture(path: &Path, world: &FileWorld) -> CliResult {
+fn write_picture(path: &Path, world: &FileWorld) -> Result {
     let camera = world_camera(
         world,
-        &CameraArgs {
+        &CameraSpec {
             target: None,
             fov: None,
             size: Some((1000, 750)),

@@ -29,6 +29,7 @@ use std::io::{self, Write};
 use std::path::Path;
 
 use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
+use bentstraw_optics::camera::Camera;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::sampling::ImageCloud;
 use bentstraw_optics::scene::{clip_text, Scene, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
@@ -37,9 +38,9 @@ use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::cli::QUOTED_MAX;
-use crate::error::{CliError, CliResult};
+use crate::error::{Error, Result};
 use crate::files::{shown, write_atomically};
+use crate::parse::QUOTED_MAX;
 use crate::scene_input::FileWorld;
 
 /// A file format for image points.
@@ -55,7 +56,7 @@ pub enum PointFormat {
 
 impl PointFormat {
     /// The format named by `path`'s extension (`.csv`, `.json`, `.ply`, any case).
-    pub fn from_path(path: &Path) -> CliResult<Self> {
+    pub fn from_path(path: &Path) -> Result<Self> {
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -63,12 +64,12 @@ impl PointFormat {
             Some("csv") => Ok(PointFormat::Csv),
             Some("json") => Ok(PointFormat::Json),
             Some("ply") => Ok(PointFormat::Ply),
-            Some(other) => Err(CliError(format!(
+            Some(other) => Err(Error::Refused(format!(
                 "output file {} has extension '.{}': expected .csv, .json or .ply",
                 shown(path),
                 clip_text(other, QUOTED_MAX)
             ))),
-            None => Err(CliError(format!(
+            None => Err(Error::Refused(format!(
                 "output file {} has no extension: expected .csv, .json or .ply",
                 shown(path)
             ))),
@@ -264,7 +265,7 @@ impl Value {
 }
 
 /// Writes `set` to `path` in `format`, all-or-nothing.
-pub fn write_points(path: &Path, format: PointFormat, set: &PointSet) -> CliResult {
+pub fn write_points(path: &Path, format: PointFormat, set: &PointSet) -> Result {
     write_atomically(path, |w| match format {
         PointFormat::Csv if matches!(set.model, ModelPoints::Course) => {
             write_csv(w, &set.cloud.points)
@@ -588,6 +589,48 @@ fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io::
     write_ply_vertices(w, &set.placed_points())
 }
 
+/// Writes one colour code per pixel centre, row-major: `row,col,color`.
+pub fn write_raw_codes(path: &Path, camera: &Camera, codes: &[u8]) -> Result {
+    let w = camera.width as usize;
+    write_atomically(path, |out| {
+        writeln!(out, "row,col,color")?;
+        for (k, code) in codes.iter().enumerate() {
+            writeln!(out, "{},{},{code}", k / w, k % w)?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes the weights of each pixel centre's ray on each colour code, row-major:
+/// `row,col,w1,…,wN`, each in the shortest form that reads back as the same `f64` (zeros as `0`).
+pub fn write_raw_weights<const N: usize>(
+    path: &Path,
+    camera: &Camera,
+    weights: &[[f64; N]],
+) -> Result {
+    let w = camera.width as usize;
+    let mut digits = ryu::Buffer::new();
+    write_atomically(path, |out| {
+        write!(out, "row,col")?;
+        for k in 1..=N {
+            write!(out, ",w{k}")?;
+        }
+        writeln!(out)?;
+        for (k, px) in weights.iter().enumerate() {
+            write!(out, "{},{}", k / w, k % w)?;
+            for v in px {
+                if *v == 0.0 {
+                    write!(out, ",0")?;
+                } else {
+                    write!(out, ",{}", digits.format_finite(*v))?;
+                }
+            }
+            writeln!(out)?;
+        }
+        Ok(())
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -641,7 +684,9 @@ mod tests {
             PointFormat::from_path(Path::new("b.ply")).unwrap(),
             PointFormat::Ply
         );
-        let e = PointFormat::from_path(Path::new("b.txt")).unwrap_err().0;
+        let e = PointFormat::from_path(Path::new("b.txt"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("b.txt") && e.contains(".txt"), "{e}");
         assert!(PointFormat::from_path(Path::new("points")).is_err());
     }

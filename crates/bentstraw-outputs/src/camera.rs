@@ -1,0 +1,113 @@
+//! The camera of a picture: where it looks, how wide and how large, checked; plain values that
+//! the command line's flags and the explorer's queries both give.
+
+use bentstraw_optics::camera::{framing_fov, framing_fov_box, Camera};
+use bentstraw_optics::scene::{number_text, SCENE_CENTRE};
+use bentstraw_optics::Vec3;
+
+use crate::error::{fail, Result};
+use crate::scene_input::FileWorld;
+
+/// A camera as asked for: each value optional, a default chosen from the scene when absent.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CameraSpec {
+    /// The point looked at.
+    pub target: Option<[f64; 3]>,
+    /// Vertical field of view in degrees.
+    pub fov: Option<f64>,
+    /// Picture size in pixels.
+    pub size: Option<(u32, u32)>,
+}
+
+/// Picture size when `--size` is not given.
+pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
+/// Most samples per pixel side accepted by `--samples`.
+pub const MAX_SAMPLES: u32 = 16;
+/// Most pixels in a picture (the renderer keeps a few dozen bytes per pixel in memory).
+pub const MAX_PIXELS: u64 = 25_000_000;
+
+/// The validated camera of `args` at `observer`: target (default the scene's centre) finite and
+/// away from the observer, field of view in (0°, 180°) (default: framing the glass and straw).
+pub fn camera_from_args(args: &CameraSpec, observer: Vec3) -> Result<Camera> {
+    let target = match args.target {
+        Some(t) => checked_target(t)?,
+        None => SCENE_CENTRE,
+    };
+    check_target_away(target, observer)?;
+    let (width, height) = checked_size(args.size.unwrap_or(DEFAULT_SIZE))?;
+    let fov = match args.fov {
+        Some(deg) => checked_fov_deg(deg)?.to_radians(),
+        None => framing_fov(observer, target, width as f64 / height as f64),
+    };
+    Ok(Camera::new(observer, target, width, height, fov))
+}
+
+/// `--target` as a point, if every coordinate is finite.
+pub fn checked_target(t: [f64; 3]) -> Result<Vec3> {
+    for (name, v) in ["X", "Y", "Z"].iter().zip(t) {
+        if !v.is_finite() {
+            return fail(format!(
+                "--target {name} = {} is not a finite number",
+                number_text(v)
+            ));
+        }
+    }
+    Ok(Vec3::from_array(t))
+}
+
+/// Refuses a camera target at the observer's position (the camera would look nowhere).
+pub fn check_target_away(target: Vec3, observer: Vec3) -> Result {
+    if (target - observer).length() < 1e-9 {
+        return fail(format!(
+            "--target ({}, {}, {}) is the observer's position: the camera must look somewhere else",
+            number_text(target.x),
+            number_text(target.y),
+            number_text(target.z)
+        ));
+    }
+    Ok(())
+}
+
+/// A picture size within [`MAX_PIXELS`] (the sides are checked by the `WxH` parser).
+pub fn checked_size((width, height): (u32, u32)) -> Result<(u32, u32)> {
+    if width as u64 * height as u64 > MAX_PIXELS {
+        return fail(format!(
+            "--size {width}x{height} is too large: a picture may have at most {MAX_PIXELS} pixels (e.g. 6000x4000)"
+        ));
+    }
+    Ok((width, height))
+}
+
+/// A vertical field of view in degrees, `0 < FOV < 180`.
+pub fn checked_fov_deg(deg: f64) -> Result<f64> {
+    if !deg.is_finite() || deg <= 0.0 || deg >= 180.0 {
+        return fail(format!(
+            "--fov {} is not allowed: the field of view must be a number of degrees with 0 < FOV < 180",
+            number_text(deg)
+        ));
+    }
+    Ok(deg)
+}
+
+/// The camera of `camera_args` for a scene file's world: aimed at `--target`, else the file's
+/// target, else the middle of the scene; framing the whole scene unless `--fov` is given.
+pub fn world_camera(world: &FileWorld, camera_args: &CameraSpec) -> Result<Camera> {
+    let (lo, hi) = world.world.bounds();
+    let target = camera_args
+        .target
+        .or(world.target.map(|t| t.to_array()))
+        .unwrap_or((0.5 * (lo + hi)).to_array());
+    let mut camera = camera_from_args(
+        &CameraSpec {
+            target: Some(target),
+            ..*camera_args
+        },
+        world.observer,
+    )?;
+    if camera_args.fov.is_none() {
+        let aspect = camera.width as f64 / camera.height as f64;
+        let fov = framing_fov_box(world.observer, Vec3::from_array(target), (lo, hi), aspect);
+        camera.tan_half_fov = (fov / 2.0).tan();
+    }
+    Ok(camera)
+}

@@ -1,0 +1,66 @@
+//! The outputs library's one error type: every refusal and failure as one line for the user.
+
+use std::fmt;
+use std::io;
+use std::path::PathBuf;
+
+use bentstraw_optics::scene::SceneError;
+
+use crate::files::shown;
+
+/// Why an output could not be made or an input not be read, with the message the user sees.
+#[derive(Debug)]
+pub enum Error {
+    /// A rule broken (a value out of range, an output that may not be replaced…): its message.
+    Refused(String),
+    /// A file operation failed: `cannot {action} {path}: {source}`.
+    Io {
+        /// What was being done, e.g. `write` or `read the scene file`.
+        action: &'static str,
+        /// The file or folder.
+        path: PathBuf,
+        /// The system's reason.
+        source: io::Error,
+    },
+    /// A picture or figure could not be drawn or encoded (PNG, SVG, PDF): its message.
+    Encode(String),
+    /// The scene's values break the physics library's rules.
+    Scene(SceneError),
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Refused(message) | Error::Encode(message) => f.write_str(message),
+            Error::Io {
+                action,
+                path,
+                source,
+            } => write!(f, "cannot {action} {}: {source}", shown(path)),
+            Error::Scene(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Error::Io { source, .. } => Some(source),
+            _ => None,
+        }
+    }
+}
+
+impl From<SceneError> for Error {
+    fn from(e: SceneError) -> Self {
+        Error::Scene(e)
+    }
+}
+
+/// An [`Error::Refused`] from anything printable.
+pub fn fail<T>(msg: impl Into<String>) -> Result<T> {
+    Err(Error::Refused(msg.into()))
+}
+
+/// The library's result type.
+pub type Result<T = (), E = Error> = std::result::Result<T, E>;
