@@ -2,7 +2,6 @@
 //! machine. The page (embedded in the binary, no network needed) asks the server for frames; the
 //! server only checks inputs and calls the library.
 
-pub mod api;
 mod server;
 
 use std::io::Write;
@@ -10,6 +9,8 @@ use std::io::Write;
 use bentstraw_optics::scene::{Scene, WATER_INDEX};
 use bentstraw_optics::scene_file::SceneDescription;
 use bentstraw_optics::Vec3;
+
+use bentstraw_explore as api;
 
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};

@@ -13,7 +13,7 @@ use std::sync::{Arc, Mutex};
 use bentstraw_optics::frame::Frame;
 use tiny_http::{Header, Method, Request, Response, Server};
 
-use super::api::{self, Reply, MAX_URL};
+use bentstraw_explore::{self as api, Reply, MAX_URL};
 
 /// Frames computed at once (each is itself parallel over the cores).
 pub const WORKERS: usize = 2;

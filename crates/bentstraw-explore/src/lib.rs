@@ -1,8 +1,8 @@
-//! The explorer's API: a request's address in, a response (status, type, bytes) out.
+//! `bentstraw-explore`: the live explorer's API, a request's address in, a response out.
 //!
 //! Every value is read and checked as the command line reads and checks it (the same parsers, the
 //! same scene rules, the same camera rules), so the page shows the command line's messages. The
-//! physics is the library's: this module only turns numbers into bytes.
+//! physics is the library's: this crate only turns numbers into bytes.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
