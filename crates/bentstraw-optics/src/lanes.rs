@@ -277,9 +277,19 @@ impl Real for F8 {
     }
     #[inline(always)]
     fn values(self, live: M8, n: usize) -> impl Iterator<Item = (usize, M8)> {
-        (0..n).filter_map(move |k| {
-            let m = live.and(self.eq(F8::splat(k as f64)));
-            m.any().then_some((k, m))
+        // From the lanes themselves, not by trying every k below n: at most eight rounds (most
+        // packets hold one value), however many surfaces or objects the scene has.
+        let mut rest = live;
+        std::iter::from_fn(move || loop {
+            let lane = (0..LANES).find(|&k| rest.0[k] != 0)?;
+            let v = self.0[lane];
+            let m = rest.and(self.eq(F8(std::array::from_fn(|_| v))));
+            rest = rest.and_not(m);
+            rest.0[lane] = 0; // a NaN matches nothing, not even itself
+            let k = v as usize;
+            if k as f32 == v && k < n {
+                return Some((k, m));
+            }
         })
     }
     #[inline(always)]

@@ -22,6 +22,7 @@
 use crate::camera::Camera;
 use crate::geometry::{enter_sphere, Ray};
 use crate::lanes::{Mask, Real, F8, M8, V3};
+use crate::world::fresnel::{followed, split, SegmentBudget};
 use crate::world::FRESNEL_SEGMENTS_PER_RAY;
 use crate::world::{World, AIR};
 use crate::Vec3;
@@ -132,8 +133,13 @@ pub enum BranchEnd {
         /// The branch's weight.
         weight: f32,
     },
-    /// It would need more events than allowed.
+    /// It would need more events than allowed, or more segments than its ray may follow.
     Dropped {
+        /// The branch's weight.
+        weight: f32,
+    },
+    /// It was lighter than the pruning threshold, and abandoned.
+    Pruned {
         /// The branch's weight.
         weight: f32,
     },
@@ -474,11 +480,10 @@ impl<'w> PacketTracer<'w> {
         on_end: &mut E,
     ) {
         let world = self.world;
-        let prune = prune_below as f32;
         let eye = wave.eye;
         let segments = &mut wave.segments;
         segments.clear();
-        segments.resize(pixels, 1);
+        segments.resize(pixels, SegmentBudget::new(max_segments));
         let first_object = F8::splat(world.boundaries().len() as f64);
         let inf = F8::splat(f64::INFINITY);
         let (cur, next) = (&mut wave.current, &mut wave.next);
@@ -550,30 +555,34 @@ impl<'w> PacketTracer<'w> {
                 let medium = cur.load_code(&cur.medium, base);
                 let q = o.along(hit.t, d);
                 let b = world.bend_lanes(hit.code, on_boundary, q, d, medium);
-                let r = b.reflectance();
+                let w = F8(std::array::from_fn(|k| {
+                    if k < n {
+                        cur.w[base + k]
+                    } else {
+                        0.0
+                    }
+                }));
+                let (wr, wt) = split(w, b.reflectance(), b.total);
                 for k in 0..n {
                     if !on_boundary.lane(k) {
                         continue;
                     }
-                    let (w, pixel) = (cur.w[base + k], cur.pixel[base + k]);
-                    let total = b.total.lane(k);
-                    let (wr, wt) = if total {
-                        (w, 0.0)
-                    } else {
-                        (w * r.0[k], w - w * r.0[k])
-                    };
+                    let pixel = cur.pixel[base + k];
+                    let (wr, wt) = (wr.0[k], wt.0[k]);
                     let q = lane(&q, k);
                     let face = b.surface.0[k];
                     for (weight, directions, escapes, medium) in [
                         (wr, &b.reflected, b.reflected_escapes.lane(k), medium.0[k]),
                         (wt, &b.refracted, b.refracted_escapes.lane(k), b.beyond.0[k]),
                     ] {
-                        if weight <= 0.0 || weight < prune {
+                        if !followed(weight as f64, prune_below) {
+                            if weight > 0.0 {
+                                on_end(pixel as usize, BranchEnd::Pruned { weight });
+                            }
                             continue;
                         }
                         let dir = lane(directions, k);
-                        let used = &mut segments[pixel as usize];
-                        if !escapes && *used >= max_segments {
+                        if !escapes && !segments[pixel as usize].spend() {
                             // The pixel's work is spent: dropped, like light past the limit.
                             on_end(pixel as usize, BranchEnd::Dropped { weight });
                             continue;
@@ -588,7 +597,6 @@ impl<'w> PacketTracer<'w> {
                                 },
                             );
                         } else {
-                            *used += 1;
                             next.push(q, dir, weight, medium, pixel, face);
                         }
                     }
@@ -702,11 +710,52 @@ impl<'c> RowRays<'c> {
 pub struct FresnelWave {
     current: Branches,
     next: Branches,
-    /// Ray segments followed so far for each pixel of the row (bounded by
-    /// [`FRESNEL_SEGMENTS_PER_RAY`]).
-    segments: Vec<u32>,
+    /// The segments each pixel of the row may still follow (at most
+    /// [`FRESNEL_SEGMENTS_PER_RAY`] in all).
+    segments: Vec<SegmentBudget>,
     /// The eye of the rays being followed, in single precision.
     eye: [f32; 3],
+}
+
+thread_local! {
+    /// Waves kept by each thread between tasks and pictures (see [`FresnelWave::pooled`]).
+    static WAVES: std::cell::RefCell<Vec<FresnelWave>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+impl FresnelWave {
+    /// A wave of this thread's, grown by earlier rows and pictures, returned to the thread when
+    /// dropped: a parallel loop that makes one per task (rayon makes a task per split of the rows)
+    /// then allocates nothing once the first picture has grown them.
+    pub fn pooled() -> PooledWave {
+        PooledWave(Some(
+            WAVES.with(|w| w.borrow_mut().pop()).unwrap_or_default(),
+        ))
+    }
+}
+
+/// A [`FresnelWave`] borrowed from its thread's pool ([`FresnelWave::pooled`]).
+pub struct PooledWave(Option<FresnelWave>);
+
+impl std::ops::Deref for PooledWave {
+    type Target = FresnelWave;
+    fn deref(&self) -> &FresnelWave {
+        self.0.as_ref().expect("a pooled wave until it is dropped")
+    }
+}
+
+impl std::ops::DerefMut for PooledWave {
+    fn deref_mut(&mut self) -> &mut FresnelWave {
+        self.0.as_mut().expect("a pooled wave until it is dropped")
+    }
+}
+
+impl Drop for PooledWave {
+    fn drop(&mut self) {
+        if let Some(wave) = self.0.take() {
+            // A thread that is ending has no pool left: the wave is then simply freed.
+            let _ = WAVES.try_with(|w| w.borrow_mut().push(wave));
+        }
+    }
 }
 
 /// Fresnel branches, structure of arrays: origin and direction components, weight, the medium
@@ -794,6 +843,57 @@ mod tests {
     use super::*;
     use crate::scene::{REFERENCES, SECTION_COUNT};
     use crate::Vec3;
+
+    /// Every branch end of a Fresnel picture's rows is told, pruned and dropped light included:
+    /// each pixel's weights add up to its ray's, 1 (the same policy as the double-precision
+    /// tracer's, whose steps add up to 1 too).
+    #[test]
+    fn every_pixels_branch_weights_add_up_to_one() {
+        for r in REFERENCES {
+            let world = World::assignment(&r.scene(1.333));
+            let cam = Camera::new(
+                r.observer,
+                Vec3::new(r.straw.0, r.straw.1, 0.1),
+                97,
+                41,
+                0.9,
+            );
+            let tracer = PacketTracer::new(&world);
+            let mut wave = FresnelWave::default();
+            let (mut pruned, mut dropped) = (0.0f64, 0.0f64);
+            for i in 0..cam.height {
+                let mut sum = vec![0.0f64; cam.width as usize];
+                tracer.branch_ends_row(&cam, i, true, 1e-3, &mut wave, &mut |j, end| {
+                    sum[j] += match end {
+                        BranchEnd::Object { weight, .. } | BranchEnd::Escaped { weight, .. } => {
+                            weight as f64
+                        }
+                        BranchEnd::Dropped { weight } => {
+                            dropped += weight as f64;
+                            weight as f64
+                        }
+                        BranchEnd::Pruned { weight } => {
+                            pruned += weight as f64;
+                            weight as f64
+                        }
+                    };
+                });
+                for (j, s) in sum.iter().enumerate() {
+                    assert!(
+                        (s - 1.0).abs() < 1e-5,
+                        "reference {} pixel ({i}, {j}): {s}",
+                        r.number
+                    );
+                }
+            }
+            assert!(
+                pruned > 0.0,
+                "reference {}: some light is pruned at 1e-3",
+                r.number
+            );
+            let _ = dropped;
+        }
+    }
 
     /// Every build the processor can run gives the portable build's pixels (same IEEE operations).
     #[test]

@@ -84,7 +84,7 @@ pub fn fresnel_picture_into<const N: usize>(
     weights
         .par_chunks_mut(w)
         .enumerate()
-        .for_each_init(FresnelWave::default, |wave, (i, row)| {
+        .for_each_init(FresnelWave::pooled, |wave, (i, row)| {
             tracer.fresnel_row(camera, i as u32, prune_below, wave, row);
         });
 }

@@ -577,7 +577,7 @@ impl EndShader<'_> {
             BranchEnd::Dropped { weight } if !self.split => {
                 Some(([0.05; 3], weight as f64, Region::Scene))
             }
-            BranchEnd::Dropped { .. } => None,
+            BranchEnd::Dropped { .. } | BranchEnd::Pruned { .. } => None,
         }
     }
 }
@@ -669,7 +669,7 @@ pub fn shaded_picture_into(
             .zip(seen.par_chunks_mut(w))
             .enumerate()
             .for_each_init(
-                || (FresnelWave::default(), Vec::new(), Vec::new()),
+                || (FresnelWave::pooled(), Vec::new(), Vec::new()),
                 |(wave, sum, ends), (i, (row, seen_row))| {
                     if stopped() {
                         return;
@@ -738,7 +738,7 @@ pub fn shaded_picture_into(
         .for_each_init(
             || {
                 (
-                    FresnelWave::default(),
+                    FresnelWave::pooled(),
                     Vec::new(),
                     Vec::new(),
                     Vec::new(),

@@ -14,6 +14,7 @@
 //! double precision and for eight in single precision ([`crate::lanes`]).
 
 pub mod boundary;
+pub(crate) mod fresnel;
 mod nearest;
 pub mod object;
 mod trace;

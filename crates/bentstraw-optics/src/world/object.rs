@@ -144,24 +144,27 @@ impl SolidCylinder {
         let z1 = R::splat(c3 + self.length);
         let mut t = side.roots(inv_a).entering(&side, o.z, d.z, z0, z1);
         let mut part = R::splat(0.0);
-        // The caps, top then bottom: a point of the cap's plane within the radius.
-        let mut cap = |h: R, code: f64, surface: Option<u32>| {
+        // The caps, top then bottom: a point of the cap's plane within the radius. (A loop, not
+        // a closure called twice: a closure may be compiled apart, without the instruction set
+        // of the packet kernel that calls it.)
+        for (h, code, surface) in [
+            (z1, 2.0, self.cap_surfaces[1]),
+            (z0, 1.0, self.cap_surfaces[0]),
+        ] {
             let (num, ahead) = plane_ahead(h, o.z, d.z);
             let mut ahead = ahead.and(near);
             if let Some(s) = surface {
                 ahead = ahead.and_not(left.eq(R::splat(s as f64)));
             }
             if !ahead.any() {
-                return;
+                continue;
             }
             let tc = plane_distance_of(num, d.z, inv_dz);
             let (x, y) = (o.x + tc * d.x - cx, o.y + tc * d.y - cy);
             let m = ahead.and((x * x + y * y).le(r2)).and(tc.lt(t));
             t = R::select(m, tc, t);
             part = R::select(m, R::splat(code), part);
-        };
-        cap(z1, 2.0, self.cap_surfaces[1]);
-        cap(z0, 1.0, self.cap_surfaces[0]);
+        }
         let t = R::select(near, t, R::splat(f64::INFINITY));
         Some((t, part, o.z + t * d.z))
     }

@@ -7,6 +7,7 @@ use crate::lanes::{Mask, Real, V3};
 use crate::light_path_type::{Entry, LightPathType};
 use crate::Vec3;
 
+use super::fresnel::{followed, split, SegmentBudget};
 use super::nearest::{Bend, Nearest};
 use super::{Event, Outcome, Part, Shape, World, AIR, COLOR_COUNT};
 
@@ -388,22 +389,11 @@ impl World {
             left: -1.0,
         }; STACK];
         let mut top = 1usize;
-        let mut segments = 0u32;
+        let mut budget = SegmentBudget::new(max_segments);
         while top > 0 {
             top -= 1;
             let mut b = stack[top];
             loop {
-                if segments == max_segments {
-                    // Out of work: this branch and every waiting one are dropped.
-                    on_step(FresnelStep::Dropped { weight: b.weight });
-                    for waiting in &stack[..top] {
-                        on_step(FresnelStep::Dropped {
-                            weight: waiting.weight,
-                        });
-                    }
-                    return weights;
-                }
-                segments += 1;
                 let (o, d) = (V3::from(b.ray.origin), V3::from(b.ray.direction));
                 let hit = self
                     .nearest_lanes(o, d, true, b.left)
@@ -448,13 +438,16 @@ impl World {
                         boundary: k,
                         weight: b.weight,
                     });
+                    if !budget.spend() {
+                        // Out of work: dropped, like light past the event limit.
+                        on_step(FresnelStep::Dropped { weight: b.weight });
+                        break;
+                    }
                     b.ray = reflected;
                     b.left = bend.surface;
                     continue;
                 }
-                let r = bend.reflectance();
-                let mut wr = b.weight * r;
-                let mut wt = b.weight * (1.0 - r);
+                let (mut wr, mut wt) = split(b.weight, bend.reflectance(), false);
                 on_step(FresnelStep::Split {
                     point,
                     boundary: k,
@@ -499,18 +492,37 @@ impl World {
                 } else {
                     (refl, refr)
                 };
-                if later.weight >= prune_below && later.weight > 0.0 && top < STACK {
-                    stack[top] = later;
-                    top += 1;
-                } else if !(SKIP_ESCAPING && later.weight == 0.0) {
-                    on_step(FresnelStep::Pruned {
-                        weight: later.weight,
-                    });
-                }
-                if now.weight < prune_below || now.weight == 0.0 {
-                    if !(SKIP_ESCAPING && now.weight == 0.0) {
-                        on_step(FresnelStep::Pruned { weight: now.weight });
+                // A branch not followed is told as pruned (a weightless one adds nothing);
+                // one followed takes a segment of the ray's budget, or is dropped.
+                let mut follow = |branch: &Branch, on_step: &mut dyn FnMut(FresnelStep)| {
+                    if !followed(branch.weight, prune_below) {
+                        if branch.weight > 0.0 {
+                            on_step(FresnelStep::Pruned {
+                                weight: branch.weight,
+                            });
+                        }
+                        false
+                    } else if !budget.spend() {
+                        on_step(FresnelStep::Dropped {
+                            weight: branch.weight,
+                        });
+                        false
+                    } else {
+                        true
                     }
+                };
+                if follow(&later, &mut on_step) {
+                    if top < STACK {
+                        stack[top] = later;
+                        top += 1;
+                    } else {
+                        // No room to wait: abandoned.
+                        on_step(FresnelStep::Pruned {
+                            weight: later.weight,
+                        });
+                    }
+                }
+                if !follow(&now, &mut on_step) {
                     break;
                 }
                 b = now;
