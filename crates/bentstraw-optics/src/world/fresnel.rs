@@ -7,7 +7,7 @@
 //! to the ray's; and each ray from the eye may follow at most so many straight segments, all its
 //! branches together, after which what still travels is reported as dropped.
 
-use crate::lanes::{Mask, Real};
+use crate::lanes::Real;
 
 /// The weights `(reflected, refracted)` of a branch of weight `w` meeting an interface of
 /// reflectance `r` (all reflected where `total`).
@@ -56,7 +56,7 @@ impl SegmentBudget {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lanes::{F8, M8};
+    use crate::lanes::{Mask, F8, M8};
 
     #[test]
     fn a_split_keeps_the_weight_and_total_reflection_keeps_it_all() {
