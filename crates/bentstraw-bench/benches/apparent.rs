@@ -1,7 +1,7 @@
 //! Cost of the apparent-position models (eye and stereo) per image point, on reference
 //! simulation 1.
 //!
-//! Run: `cargo bench -p bentstraw-optics --bench apparent`
+//! Run: `cargo bench -p bentstraw-bench --bench apparent`
 
 use std::hint::black_box;
 

@@ -1,0 +1,1 @@
+//! Criterion benchmarks of bentstraw-optics: `cargo bench -p bentstraw-bench` (see `benches/`).
