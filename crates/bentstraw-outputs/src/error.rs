@@ -2,11 +2,17 @@
 
 use std::fmt;
 use std::io;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use bentstraw_optics::scene::SceneError;
+use bentstraw_optics::scene::{clip_text, SceneError};
 
-use crate::files::shown;
+/// Longest path quoted in a message, in characters.
+const SHOWN_PATH_MAX: usize = 100;
+
+/// A path for a message, clipped (a hostile 5 kB path must not flood the terminal).
+pub fn shown(path: &Path) -> String {
+    clip_text(&path.display().to_string(), SHOWN_PATH_MAX)
+}
 
 /// Why an output could not be made or an input not be read, with the message the user sees.
 #[derive(Debug)]

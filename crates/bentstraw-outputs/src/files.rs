@@ -16,16 +16,13 @@ use std::io::{self, BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 
-use bentstraw_optics::scene::clip_text;
 use tempfile::{Builder, TempPath};
 
+pub use crate::error::shown;
 use crate::error::{Error, Result};
 
 /// Longest file name (bytes) the usual file systems accept.
 const NAME_MAX: usize = 255;
-/// Longest path quoted in a message, in characters.
-const SHOWN_PATH_MAX: usize = 100;
-
 /// One output a command is about to write.
 pub struct Output<'a> {
     /// The option that names it in messages (`--output`), or empty.
@@ -484,11 +481,6 @@ fn named(out: &Output) -> String {
     } else {
         format!("{} {}", out.flag, shown(out.path))
     }
-}
-
-/// A path for a message, clipped (a hostile 5 kB path must not flood the terminal).
-pub fn shown(path: &Path) -> String {
-    clip_text(&path.display().to_string(), SHOWN_PATH_MAX)
 }
 
 /// Checks that `out` ends in one of its allowed extensions.

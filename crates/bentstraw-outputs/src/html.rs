@@ -19,9 +19,8 @@ use crate::error::Result;
 use crate::files;
 use crate::plot::{
     axis_box, counts, degrees, figure_views, observer_direction, section_rgb8, whole,
-    WIRE_VERTICALS,
 };
-use crate::sketch::{object_outlines, world_wireframe};
+use crate::sketch::{object_outlines, world_wireframe, WIRE_VERTICALS};
 
 /// The viewer's script, kept in its own file so it stays readable and lintable.
 const VIEWER_JS: &str = include_str!("../assets/viewer.js");

@@ -9,7 +9,7 @@
 //! along one axis of the scene, so that each panel has exactly one horizontal and one vertical
 //! scale, each a coordinate of the scene.
 
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 use std::sync::Once;
 
@@ -28,6 +28,7 @@ use rayon::slice::ParallelSliceMut;
 
 use crate::error::{Error, Result};
 use crate::files;
+use crate::sketch::{circle, object_outlines, water_segments, world_wireframe};
 use crate::writers::Inputs;
 
 /// Width of every figure in pixels (printed 8.5 cm wide: see [`TEXT`]).
@@ -39,10 +40,6 @@ static FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
 const FONT_FAMILY: &str = "sans-serif";
 static FONT_ONCE: Once = Once::new();
 
-/// Number of vertical lines of the water's wireframe.
-pub(crate) const WIRE_VERTICALS: usize = 30;
-/// Segments per circle of the wireframes.
-pub(crate) const CIRCLE_SEGMENTS: usize = 72;
 /// An observer farther out than this many times the scene's size is shown by an arrow, not to scale.
 pub(crate) const FAR_OBSERVER_FACTOR: f64 = 2.5;
 
@@ -382,34 +379,6 @@ pub(crate) fn tick_label(value: f64, step: f64) -> String {
     } else {
         s
     }
-}
-
-/// Points around the horizontal circle of radius `r` centred on `(cx, cy)` at height `z`.
-pub(crate) fn circle(cx: f64, cy: f64, r: f64, z: f64) -> Vec<Vec3> {
-    (0..=CIRCLE_SEGMENTS)
-        .map(|k| {
-            let t = 2.0 * PI * k as f64 / CIRCLE_SEGMENTS as f64;
-            Vec3::new(cx + r * t.cos(), cy + r * t.sin(), z)
-        })
-        .collect()
-}
-
-/// The water's wireframe as segments: top and bottom circles and [`WIRE_VERTICALS`] vertical lines.
-pub(crate) fn water_segments(scene: &Scene) -> Vec<[Vec3; 2]> {
-    let he = scene.water_height;
-    let mut segs = Vec::new();
-    for z in [0.0, he] {
-        let c = circle(0.0, 0.0, GLASS_RADIUS, z);
-        segs.extend(c.windows(2).map(|w| [w[0], w[1]]));
-    }
-    if he > 0.0 {
-        for k in 0..WIRE_VERTICALS {
-            let t = 2.0 * PI * k as f64 / WIRE_VERTICALS as f64;
-            let (x, y) = (GLASS_RADIUS * t.cos(), GLASS_RADIUS * t.sin());
-            segs.push([Vec3::new(x, y, 0.0), Vec3::new(x, y, he)]);
-        }
-    }
-    segs
 }
 
 /// Loads the shipped font into plotters, once.
@@ -1133,7 +1102,7 @@ pub(crate) fn draw_water<'a, DB: DrawingBackend>(
         ),
         Sketch::World(world) => {
             let (lo, hi) = world.bounds();
-            (0.5 * (lo + hi), crate::sketch::world_wireframe(world))
+            (0.5 * (lo + hi), world_wireframe(world))
         }
     };
     let axis_depth = proj.nearness(axis);
@@ -1161,7 +1130,7 @@ pub(crate) fn draw_straw_outline<'a, DB: DrawingBackend>(
     let scene = match scene.into() {
         Sketch::Spec(scene) => scene,
         Sketch::World(world) => {
-            for line in crate::sketch::object_outlines(world) {
+            for line in object_outlines(world) {
                 let px: Vec<(f64, f64)> = line.iter().map(|&p| proj.pixel(p)).collect();
                 dashed(root, &px, color)?;
             }
@@ -1543,6 +1512,7 @@ pub(crate) fn text_width(s: &str, size: f64) -> i32 {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::sketch::{CIRCLE_SEGMENTS, WIRE_VERTICALS};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
 

@@ -1,12 +1,45 @@
-//! What a figure draws of a scene file's world besides the points: the wireframe of its container
-//! and liquids (from the world's own boundaries) and the true outlines of its objects.
+//! What a figure draws of a scene besides the points: the assignment's water as a wireframe, a
+//! scene file's container and liquids (from the world's own boundaries) and its objects' true
+//! outlines.
 
 use std::f64::consts::PI;
 
+use bentstraw_optics::scene::{Scene, GLASS_RADIUS};
 use bentstraw_optics::world::{Boundary, Object, Region, Shape, World};
 use bentstraw_optics::Vec3;
 
-use crate::plot::{circle, CIRCLE_SEGMENTS, WIRE_VERTICALS};
+/// Number of vertical lines of the water's wireframe.
+pub(crate) const WIRE_VERTICALS: usize = 30;
+/// Segments per circle of the wireframes.
+pub(crate) const CIRCLE_SEGMENTS: usize = 72;
+
+/// Points around the horizontal circle of radius `r` centred on `(cx, cy)` at height `z`.
+pub(crate) fn circle(cx: f64, cy: f64, r: f64, z: f64) -> Vec<Vec3> {
+    (0..=CIRCLE_SEGMENTS)
+        .map(|k| {
+            let t = 2.0 * PI * k as f64 / CIRCLE_SEGMENTS as f64;
+            Vec3::new(cx + r * t.cos(), cy + r * t.sin(), z)
+        })
+        .collect()
+}
+
+/// The water's wireframe as segments: top and bottom circles and [`WIRE_VERTICALS`] vertical lines.
+pub(crate) fn water_segments(scene: &Scene) -> Vec<[Vec3; 2]> {
+    let he = scene.water_height;
+    let mut segs = Vec::new();
+    for z in [0.0, he] {
+        let c = circle(0.0, 0.0, GLASS_RADIUS, z);
+        segs.extend(c.windows(2).map(|w| [w[0], w[1]]));
+    }
+    if he > 0.0 {
+        for k in 0..WIRE_VERTICALS {
+            let t = 2.0 * PI * k as f64 / WIRE_VERTICALS as f64;
+            let (x, y) = (GLASS_RADIUS * t.cos(), GLASS_RADIUS * t.sin());
+            segs.push([Vec3::new(x, y, 0.0), Vec3::new(x, y, he)]);
+        }
+    }
+    segs
+}
 
 /// A ring of [`CIRCLE_SEGMENTS`] points around `centre` in the plane of unit `e1`, `e2`.
 fn ring(centre: Vec3, e1: Vec3, e2: Vec3, r: f64) -> Vec<Vec3> {
