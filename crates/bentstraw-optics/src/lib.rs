@@ -21,6 +21,8 @@
 //! The conventions (see `docs/physics.md` in the repository): SI units (metres),
 //! origin at the centre of the glass's base, `z` up.
 
+#![warn(missing_docs)]
+
 pub mod apparent;
 pub mod camera;
 pub mod check;
