@@ -14,7 +14,7 @@ use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
-use bentstraw_optics::scene::{clip_text, Scene, SceneError, DEFAULT_MAX_EVENTS, MAX_EVENTS_LIMIT};
+use bentstraw_optics::scene::{clip_text, SceneError, DEFAULT_MAX_EVENTS, MAX_EVENTS_LIMIT};
 use bentstraw_optics::scene_file::Observer;
 use bentstraw_optics::shading::{
     shaded_picture, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
@@ -27,11 +27,9 @@ use bentstraw_outputs::camera::{camera_from_args, world_camera, CameraSpec, MAX_
 use bentstraw_outputs::gallery::{opening_comment, GALLERY};
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
 use bentstraw_outputs::pictures::png_bytes;
-use bentstraw_outputs::scene_input::{file_world, FileWorld, SceneValues};
+use bentstraw_outputs::scene_input::{file_world, Loaded, SceneValues};
 use bentstraw_outputs::sketch::{object_outlines, world_wireframe};
-use bentstraw_outputs::writers::{
-    write_csv, write_model_csv, write_ply, Inputs, ModelPoints, PointSet,
-};
+use bentstraw_outputs::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
 
 /// Most image points one request may ask for (a million take about half a second).
 pub const MAX_POINTS: usize = 1_000_000;
@@ -131,7 +129,7 @@ fn percent_decode(s: &str) -> Result<String, String> {
 #[derive(Debug, Clone)]
 pub struct View {
     /// The scene (validated): the assignment's glass, or a gallery scene.
-    pub scene: Traced,
+    pub scene: Arc<Loaded>,
     /// The observer (validated).
     pub observer: Vec3,
     /// The scene's inputs as the command line takes them.
@@ -150,38 +148,11 @@ pub struct View {
     pub points: usize,
 }
 
-/// What a view shows: the assignment's glass, or a scene of the built-in gallery.
-#[derive(Debug, Clone)]
-pub enum Traced {
-    /// The assignment's kind of scene, from the page's values, and its world.
-    Spec(Scene, Arc<World>),
-    /// A scene of the gallery (its name, `scenes/NAME.toml`), seen from the page's observer.
-    World(Arc<FileWorld>),
-}
-
-impl Traced {
-    /// The scene built for tracing.
-    pub fn world(&self) -> &World {
-        match self {
-            Traced::Spec(_, world) => world,
-            Traced::World(file) => &file.world,
-        }
-    }
-
-    /// The scene as the writers record it.
-    fn inputs(&self) -> Inputs<'_> {
-        match self {
-            Traced::Spec(scene, _) => Inputs::Spec(scene),
-            Traced::World(file) => Inputs::File(file),
-        }
-    }
-}
-
 /// The gallery scene named `name`, with its own observer moved to `observer` and the event limit
 /// `max_events`, checked by the scene file's rules.
-fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Traced, String> {
+fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Loaded, String> {
     let mut world = named_world(name, max_events)?;
-    let file = world.name.clone();
+    let file = world.name().to_string();
     for (axis, v) in ["X", "Y", "Z"].iter().zip(observer) {
         if !v.is_finite() {
             return Err(format!("observer {axis} = {v} is not a finite number"));
@@ -189,8 +160,10 @@ fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Trac
     }
     let position = Vec3::from_array(observer);
     // The file's own rules hold already: only the eye moved.
-    world
-        .description
+    let Some(description) = &world.description else {
+        return Err(format!("{file} is not a scene file"));
+    };
+    description
         .check_observer(&Observer {
             position,
             target: world
@@ -203,20 +176,24 @@ fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Trac
         return Err(SceneError::MaxEvents(max_events).to_string());
     }
     world.observer = position;
-    Ok(Traced::World(Arc::new(world)))
+    Ok(world)
 }
 
 /// The scene the page names `name` (a gallery scene, or the file the explorer was started with),
 /// from its own eye, with the event limit `max_events`.
-fn named_world(name: &str, max_events: u32) -> Result<FileWorld, String> {
+fn named_world(name: &str, max_events: u32) -> Result<Loaded, String> {
     Ok(match GALLERY.iter().find(|(stem, _)| *stem == name) {
         Some((stem, text)) => file_world(&format!("scenes/{stem}.toml"), text, max_events)
             .map_err(|e| e.to_string())?,
         None => match USER_SCENE.get() {
             Some(user) if name == USER_SCENE_NAME => {
                 let mut user = user.clone();
-                if user.world.max_events != max_events {
-                    user.world = World::new(&user.description, max_events);
+                if let Some(d) = user
+                    .description
+                    .as_ref()
+                    .filter(|_| user.world.max_events != max_events)
+                {
+                    user.world = World::new(d, max_events);
                 }
                 user
             }
@@ -240,7 +217,7 @@ pub const USER_SCENE_NAME: &str = "file";
 
 /// The scene file `explore --scene` was started with, when it is neither the assignment's kind
 /// nor one of the gallery's: the page offers it beside the gallery (a request never names a file).
-pub static USER_SCENE: std::sync::OnceLock<FileWorld> = std::sync::OnceLock::new();
+pub static USER_SCENE: std::sync::OnceLock<Loaded> = std::sync::OnceLock::new();
 
 /// `GET /api/sketch?scene=NAME`: what the page draws of a scene besides its points, asked once
 /// per scene (not with every frame): the container's and liquids' wireframe as `[x, y, z, x, y,
@@ -277,7 +254,7 @@ pub fn scenes_reply() -> Reply {
     if let Some(user) = USER_SCENE.get() {
         list.push(json!({
             "name": USER_SCENE_NAME,
-            "title": clip_text(&user.name, 40),
+            "title": clip_text(user.name(), 40),
             "shows": "the scene file the explorer was started with",
             "observer": vec_json(user.observer),
         }));
@@ -340,16 +317,13 @@ impl View {
         };
         let (scene, observer) = match gallery {
             Some(name) => {
-                let traced = gallery_world(name, scene_args.observer, scene_args.max_events)?;
-                (traced, Vec3::from_array(scene_args.observer))
+                let loaded = gallery_world(name, scene_args.observer, scene_args.max_events)?;
+                (Arc::new(loaded), Vec3::from_array(scene_args.observer))
             }
             None => {
                 let (scene, observer) =
                     scene_args.scene_and_observer().map_err(|e| e.to_string())?;
-                (
-                    Traced::Spec(scene, Arc::new(World::assignment(&scene))),
-                    observer,
-                )
+                (Arc::new(Loaded::assignment(scene, observer)), observer)
             }
         };
         let camera_args = CameraSpec {
@@ -368,9 +342,9 @@ impl View {
                 ));
             }
         }
-        let camera = match &scene {
-            Traced::Spec(..) => camera_from_args(&camera_args, observer),
-            Traced::World(world) => world_camera(world, &camera_args),
+        let camera = match scene.assignment {
+            Some(_) => camera_from_args(&camera_args, observer),
+            None => world_camera(&scene, &camera_args),
         }
         .map_err(|e| e.to_string())?;
         let fresnel = match get(q, "mode").unwrap_or("fresnel") {
@@ -420,7 +394,7 @@ impl View {
 
     /// At least `points` image points of the view's scene, as `simulate` traces them.
     fn sample(&self, points: usize) -> ImageCloud {
-        sample_image(self.scene.world(), self.observer, points, &|_| {})
+        sample_image(&self.scene.world, self.observer, points, &|_| {})
     }
 
     fn shading(&self) -> ShadingOptions {
@@ -443,10 +417,13 @@ impl View {
     /// The scene flags, as `simulate` and `render` take them.
     fn scene_flags(&self) -> String {
         let a = &self.scene_args;
-        if let Traced::World(world) = &self.scene {
+        if self.scene.assignment.is_none() {
             let mut s = format!(
                 "--scene {} --observer {},{},{}",
-                world.name, a.observer[0], a.observer[1], a.observer[2]
+                self.scene.name(),
+                a.observer[0],
+                a.observer[1],
+                a.observer[2]
             );
             if a.max_events != 10 {
                 s += &format!(" --max-events {}", a.max_events);
@@ -520,11 +497,11 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
     };
     let started = std::time::Instant::now();
     // The colour codes a scene can show: the straw's five, or all eight in a scene file.
-    let codes = match &view.scene {
-        Traced::Spec(..) => 5,
-        Traced::World(_) => COLOR_NAMES.len(),
+    let codes = match view.scene.assignment {
+        Some(_) => 5,
+        None => COLOR_NAMES.len(),
     };
-    draw_frame(view.scene.world(), &request, frame);
+    draw_frame(&view.scene.world, &request, frame);
     let ms = started.elapsed().as_secs_f64() * 1e3;
     *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) = Some((
         view.simulate_command("course"),
@@ -617,11 +594,11 @@ fn place(
     points: &[ImagePoint],
 ) -> Result<Vec<Option<(Vec3, u8)>>, Reply> {
     match model {
-        "eye" => Ok(eye_model_points(view.scene.world(), view.observer, points)
+        "eye" => Ok(eye_model_points(&view.scene.world, view.observer, points)
             .iter()
             .map(|p| Some((p.position?, p.image.color)))
             .collect()),
-        "stereo" => Ok(stereo_point_each(view.scene.world(), view.observer, points)
+        "stereo" => Ok(stereo_point_each(&view.scene.world, view.observer, points)
             .iter()
             .map(|p| {
                 let p = p.as_ref()?;
@@ -738,7 +715,7 @@ pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, Stri
 
 /// The light path of the ray from the observer along unit `u0`, as the page shows it.
 pub fn ray_json(view: &View, u0: Vec3) -> Value {
-    let world = view.scene.world();
+    let world = &view.scene.world;
     let eye = view.observer;
     let mut events = Vec::new();
     let mut kind = LightPathType::DIRECT;
@@ -808,7 +785,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     let format = get(q, "format").unwrap_or("csv");
     let model = get(q, "model").unwrap_or("course");
     if format == "png" {
-        let picture = shaded_picture(view.scene.world(), &view.camera, &view.shading());
+        let picture = shaded_picture(&view.scene.world, &view.camera, &view.shading());
         let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.to_string())?);
         r.file_name = Some("view.png".into());
         return Ok(r);
@@ -823,7 +800,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     let cloud = view.sample(points);
     let eye;
     let stereo;
-    let world = view.scene.world();
+    let world = &view.scene.world;
     let set_model = match model {
         "eye" => {
             eye = eye_model_points(world, view.observer, &cloud.points);
@@ -836,8 +813,7 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
         _ => ModelPoints::Course,
     };
     let set = PointSet {
-        inputs: view.scene.inputs(),
-        observer: view.observer,
+        scene: &view.scene,
         min_points: points,
         model: set_model,
         cloud: &cloud,
@@ -961,7 +937,7 @@ mod tests {
     #[test]
     fn models_place_every_kth_course_point() {
         let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=800"))).unwrap();
-        let cloud = sample_image(view.scene.world(), view.observer, 800, &|_| {}).points;
+        let cloud = sample_image(&view.scene.world, view.observer, 800, &|_| {}).points;
         let decode = |r: Reply| -> Vec<[f32; 3]> {
             assert_eq!(r.status, 200);
             let n = u32::from_le_bytes(r.body[0..4].try_into().unwrap()) as usize;
@@ -978,7 +954,7 @@ mod tests {
         };
         let expect = |every: usize| -> Vec<[f32; 3]> {
             let some: Vec<ImagePoint> = cloud.iter().step_by(every).copied().collect();
-            eye_model_points(view.scene.world(), view.observer, &some)
+            eye_model_points(&view.scene.world, view.observer, &some)
                 .iter()
                 .filter_map(|p| p.position)
                 .map(|q| [q.x as f32, q.y as f32, q.z as f32])
@@ -1020,7 +996,7 @@ mod tests {
         assert_eq!((4 + len) % 4, 0);
         let header: Value = serde_json::from_slice(&b[4..4 + len]).unwrap();
         let n = header["n"].as_u64().unwrap() as usize;
-        let expected = sample_image(view.scene.world(), view.observer, 1500, &|_| {}).points;
+        let expected = sample_image(&view.scene.world, view.observer, 1500, &|_| {}).points;
         assert_eq!(n, expected.len());
         let start = 4 + len + 40 * 30 * 4;
         assert_eq!(b.len(), start + 12 * n + 2 * n);
@@ -1037,7 +1013,7 @@ mod tests {
     #[test]
     fn ray_of_a_point_is_that_point() {
         let view = View::from_query(&query(&format!("{REF2}&points=1000"))).unwrap();
-        let pts = sample_image(view.scene.world(), view.observer, 1000, &|_| {}).points;
+        let pts = sample_image(&view.scene.world, view.observer, 1000, &|_| {}).points;
         let r = ray_reply(&view, &query("point=17")).unwrap();
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         let p = pts[17];

@@ -6,7 +6,7 @@ use bentstraw_optics::scene::{number_text, SCENE_CENTRE};
 use bentstraw_optics::Vec3;
 
 use crate::error::{fail, Result};
-use crate::scene_input::FileWorld;
+use crate::scene_input::Loaded;
 
 /// A camera as asked for: each value optional, a default chosen from the scene when absent.
 #[derive(Clone, Copy, Debug, Default)]
@@ -91,7 +91,7 @@ pub fn checked_fov_deg(deg: f64) -> Result<f64> {
 
 /// The camera of `camera_args` for a scene file's world: aimed at `--target`, else the file's
 /// target, else the middle of the scene; framing the whole scene unless `--fov` is given.
-pub fn world_camera(world: &FileWorld, camera_args: &CameraSpec) -> Result<Camera> {
+pub fn world_camera(world: &Loaded, camera_args: &CameraSpec) -> Result<Camera> {
     let (lo, hi) = world.world.bounds();
     let target = camera_args
         .target

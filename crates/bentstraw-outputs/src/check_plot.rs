@@ -16,8 +16,9 @@ use crate::plot::{
     axis_box, dashed, draw_axis_labels, draw_legend_cell, draw_observer, draw_panes,
     draw_straw_outline, draw_water, figure_bytes, figure_views, font, layout, legend_cell,
     section_rgb8, three_view_size, AreaOn, DrawResultOn, FigureFormat, Heading, LegendMark, Panel,
-    Sketch, TEXT,
+    TEXT,
 };
+use crate::scene_input::Loaded;
 
 /// Most true-image samples and correct points drawn per panel in a PNG (an even subset beyond that).
 const MAX_DRAWN_PNG: (usize, usize) = (30_000, 40_000);
@@ -47,16 +48,15 @@ fn pale(code: u8) -> RGBColor {
 }
 
 /// Draws the check figure of `points` (the solution) and `report` into `path` (.png, .svg or .pdf).
-pub fn write_check_figure<'a>(
+pub fn write_check_figure(
     path: &Path,
-    scene: impl Into<Sketch<'a>>,
+    scene: &Loaded,
     observer: Vec3,
     points: &[ClaimedPoint],
     report: &CheckReport,
     title: &str,
 ) -> Result {
     let format = FigureFormat::of(path)?;
-    let scene = scene.into();
     let heading = check_heading(report, title, colours(scene));
     let bytes = figure_bytes(
         path,
@@ -111,10 +111,10 @@ fn check_heading(report: &CheckReport, title: &str, colours: usize) -> Heading {
 }
 
 /// How many colour codes the scene can show.
-fn colours(scene: Sketch) -> usize {
-    match scene {
-        Sketch::Spec(_) => SECTION_COUNT,
-        Sketch::World(_) => COLOR_COUNT,
+fn colours(scene: &Loaded) -> usize {
+    match (&scene.assignment, &scene.world) {
+        (Some(_), _) => SECTION_COUNT,
+        (None, _) => COLOR_COUNT,
     }
 }
 
@@ -134,7 +134,7 @@ fn stride(n: usize, max: usize) -> usize {
 /// The figure on any backend: the same code draws the PNG and the SVG.
 fn draw_check<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: Sketch,
+    scene: &Loaded,
     observer: Vec3,
     points: &[ClaimedPoint],
     report: &CheckReport,
@@ -255,13 +255,13 @@ fn draw_check_legend<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     report: &CheckReport,
     cell: (i32, i32, i32, i32),
-    scene: Sketch,
+    scene: &Loaded,
 ) -> DrawResultOn<DB> {
     let mut items: Vec<(LegendMark, String)> =
         vec![(LegendMark::None, "pale: true, full: correct".to_string())];
-    let names: &[&str] = match scene {
-        Sketch::Spec(_) => &SECTION_NAMES,
-        Sketch::World(_) => &COLOR_NAMES,
+    let names: &[&str] = match (&scene.assignment, &scene.world) {
+        (Some(_), _) => &SECTION_NAMES,
+        (None, _) => &COLOR_NAMES,
     };
     for (k, name) in names.iter().enumerate() {
         let full = section_rgb8(k as u8 + 1);
@@ -345,13 +345,12 @@ mod tests {
     use bentstraw_optics::check::{check_solution, DEFAULT_TOLERANCE};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
-    use bentstraw_optics::world::World;
 
     /// The figure of reference 2's own points, changed by `change`, as decoded pixels.
     fn figure(change: impl Fn(usize, &mut ClaimedPoint) -> bool) -> (image::RgbImage, i32) {
         let r = &REFERENCES[1];
-        let scene = r.scene(1.333);
-        let cloud = sample_image(&World::assignment(&scene), r.observer, 3000, &|_| {});
+        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let cloud = sample_image(&scene.world, r.observer, 3000, &|_| {});
         let mut points = Vec::new();
         for (i, p) in cloud.points.iter().enumerate() {
             let mut c = ClaimedPoint {
@@ -362,13 +361,7 @@ mod tests {
                 points.push(c);
             }
         }
-        let report = check_solution(
-            &World::assignment(&scene),
-            r.observer,
-            &points,
-            DEFAULT_TOLERANCE,
-            0.98,
-        );
+        let report = check_solution(&scene.world, r.observer, &points, DEFAULT_TOLERANCE, 0.98);
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("f.png");
         write_check_figure(&path, &scene, r.observer, &points, &report, "t").unwrap();

@@ -14,7 +14,7 @@ use crate::error::Result;
 use crate::pictures::png_bytes;
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{Figure, Link, Section};
-use crate::scene_input::{file_world, FileWorld};
+use crate::scene_input::{file_world, Loaded};
 use crate::{files, plot};
 
 /// The gallery's scene files beyond the assignment's own (`scenes/`): name and text.
@@ -95,7 +95,7 @@ pub fn gallery_sections(out: &Path) -> Vec<Section> {
 }
 
 /// The section of one gallery scene: its picture and its image points.
-fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Section {
+fn scene_section(out: &Path, stem: &str, text: &str, world: &Loaded) -> Section {
     let picture_file = format!("gallery_{stem}_observer.png");
     let points_file = format!("gallery_{stem}_points.png");
     let svg_file = format!("gallery_{stem}_points.svg");
@@ -110,7 +110,7 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
         .err()
         .map(|e| e.to_string());
     let cloud = sample_image(&world.world, world.observer, GALLERY_POINTS, &|_| {});
-    let title = format!("{}: the image points (course model)", world.name);
+    let title = format!("{}: the image points (course model)", world.name());
     let mut points = Figure::image(
         &points_file,
         &format!(
@@ -123,7 +123,7 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
     let draw = |file: &str| {
         plot::write_cloud_figure(
             &out.join(file),
-            &world.world,
+            world,
             world.observer,
             &cloud.points,
             &title,
@@ -145,9 +145,9 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
     let diagram = Diagram::new(&world.world, world.observer, &cloud.points);
     rays.error = write_ray_diagram(
         &out.join(&rays_file),
-        &world.world,
+        world,
         &diagram,
-        &format!("Ray diagram: {}", world.name),
+        &format!("Ray diagram: {}", world.name()),
     )
     .err()
     .map(|e| e.to_string());
@@ -161,7 +161,7 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &FileWorld) -> Secti
 }
 
 /// The scene's picture from its own observer, 1000x750, Fresnel, as a PNG.
-fn write_picture(path: &Path, world: &FileWorld) -> Result {
+fn write_picture(path: &Path, world: &Loaded) -> Result {
     let camera = world_camera(
         world,
         &CameraSpec {

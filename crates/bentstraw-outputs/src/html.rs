@@ -11,7 +11,7 @@ use bentstraw_optics::scene::{
     Scene, GLASS_RADIUS, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES, STRAW_HEIGHT,
     STRAW_RADIUS,
 };
-use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_NAMES};
+use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::json;
 
@@ -20,6 +20,7 @@ use crate::files;
 use crate::plot::{
     axis_box, counts, degrees, figure_views, observer_direction, section_rgb8, whole,
 };
+use crate::scene_input::Loaded;
 use crate::sketch::{object_outlines, world_wireframe, WIRE_VERTICALS};
 
 /// The viewer's script, kept in its own file so it stays readable and lintable.
@@ -27,27 +28,11 @@ const VIEWER_JS: &str = include_str!("../assets/viewer.js");
 /// The viewer's style sheet.
 const VIEWER_CSS: &str = include_str!("../assets/viewer.css");
 
-/// What a 3D view shows besides the points: the assignment's glass, or a scene file's world
-/// (with the file's name).
-#[derive(Clone, Copy)]
-pub enum Viewed<'a> {
-    /// The assignment's kind of scene.
-    Spec(&'a Scene),
-    /// A scene file's world, and the file's name.
-    World(&'a World, &'a str),
-}
-
-impl<'a> From<&'a Scene> for Viewed<'a> {
-    fn from(scene: &'a Scene) -> Self {
-        Viewed::Spec(scene)
-    }
-}
-
 /// Writes an interactive 3D view of `points`, the scene's wireframe and outlines and the observer
 /// to `path`.
-pub fn write_cloud_viewer<'a>(
+pub fn write_cloud_viewer(
     path: &Path,
-    scene: impl Into<Viewed<'a>>,
+    scene: &Loaded,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
@@ -61,20 +46,17 @@ pub fn write_cloud_viewer<'a>(
 }
 
 /// The whole HTML page.
-fn viewer_page<'a>(
-    scene: impl Into<Viewed<'a>>,
+fn viewer_page(
+    loaded: &Loaded,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
     file_stem: &str,
 ) -> String {
-    let scene = match scene.into() {
-        Viewed::Spec(scene) => scene,
-        Viewed::World(world, name) => {
-            return world_viewer_page(world, name, observer, points, title, file_stem)
-        }
+    let Some(scene) = &loaded.assignment else {
+        return world_viewer_page(loaded, observer, points, title, file_stem);
     };
-    let data = viewer_data(scene, observer, points, title, file_stem);
+    let data = viewer_data(loaded, scene, observer, points, title, file_stem);
     // In a <script> element only "</" could end the element early; JSON allows "<" as \u003c.
     let data = data.to_string().replace('<', "\\u003c");
     let n = counts(points);
@@ -89,7 +71,7 @@ fn viewer_page<'a>(
             hi = (k + 1) as f64 * SECTION_HEIGHT,
         ));
     }
-    let observer_note = if axis_box(scene, observer, points).observer_inside {
+    let observer_note = if axis_box(loaded, observer, points).observer_inside {
         "observer"
     } else {
         "observer (far: arrow points to it)"
@@ -153,13 +135,14 @@ fn viewer_page<'a>(
 
 /// The data the script draws: scene, box, views and the points, compactly encoded.
 fn viewer_data(
+    loaded: &Loaded,
     scene: &Scene,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
     file_stem: &str,
 ) -> serde_json::Value {
-    let bx = axis_box(scene, observer, points);
+    let bx = axis_box(loaded, observer, points);
     let origin = bx.centre();
     let (xyz, colors) = encoded_points(points, origin);
     let n = counts(points);
@@ -250,14 +233,14 @@ fn views_json(observer: Vec3) -> Vec<serde_json::Value> {
 /// The page of a scene file's world: the same viewer, with the world's wireframe (its
 /// boundaries) and its objects' true outlines instead of the glass and the straw.
 fn world_viewer_page(
-    world: &World,
-    name: &str,
+    loaded: &Loaded,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
     file_stem: &str,
 ) -> String {
-    let bx = axis_box(world, observer, points);
+    let (world, name) = (&loaded.world, loaded.name());
+    let bx = axis_box(loaded, observer, points);
     let origin = bx.centre();
     let (xyz, colors) = encoded_points(points, origin);
     let mut n = [0usize; COLOR_COUNT];
@@ -426,11 +409,12 @@ mod tests {
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
     use bentstraw_optics::scene_file::SceneDescription;
+    use bentstraw_optics::world::World;
 
     fn reference_page(title: &str) -> (Vec<ImagePoint>, String) {
         let r = REFERENCES[0];
-        let scene = r.scene(1.333);
-        let cloud = sample_image(&World::assignment(&scene), r.observer, 1500, &|_| {});
+        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let cloud = sample_image(&scene.world, r.observer, 1500, &|_| {});
         let page = viewer_page(&scene, r.observer, &cloud.points, title, "ref1");
         (cloud.points, page)
     }
@@ -550,7 +534,7 @@ mod tests {
 
     #[test]
     fn empty_cloud_still_gives_a_valid_page() {
-        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let page = viewer_page(&scene, Vec3::new(0.1, 0.0, 0.1), &[], "none", "x");
         let data = embedded_data(&page);
         assert_eq!(data["n"], 0);
@@ -560,7 +544,7 @@ mod tests {
     #[test]
     fn preset_views_are_the_figure_views() {
         let observer = Vec3::new(0.1, -0.05, 0.3);
-        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let data = embedded_data(&viewer_page(&scene, observer, &[], "v", "x"));
         let views = data["views"].as_array().unwrap();
         assert_eq!(views.len(), 4);
@@ -575,7 +559,7 @@ mod tests {
 
     #[test]
     fn far_observer_page_carries_the_arrow() {
-        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let page = viewer_page(&scene, Vec3::new(3.0, 1.0, 0.5), &[], "far", "x");
         let data = embedded_data(&page);
         assert_eq!(data["observerInside"], false);
@@ -584,7 +568,7 @@ mod tests {
 
     #[test]
     fn written_file_is_the_page() {
-        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("view.html");
         write_cloud_viewer(&path, &scene, Vec3::new(0.1, 0.0, 0.1), &[], "t").unwrap();
@@ -687,11 +671,18 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
             .join("../../scenes")
             .join(name);
         let d = SceneDescription::from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
-        let world = World::new(&d, 10);
         let observer = d.observer.unwrap().position;
-        let points = sample_image(&world, observer, 3000, &|_| {}).points;
-        let page = viewer_page(Viewed::World(&world, name), observer, &points, name, "w");
-        (world, points, page)
+        let loaded = Loaded {
+            name: Some(name.to_string()),
+            assignment: None,
+            world: World::new(&d, 10),
+            description: Some(d),
+            observer,
+            target: None,
+        };
+        let points = sample_image(&loaded.world, observer, 3000, &|_| {}).points;
+        let page = viewer_page(&loaded, observer, &points, name, "w");
+        (loaded.world, points, page)
     }
 
     /// A scene file's page carries its points exactly, a legend of the codes present with their

@@ -28,8 +28,9 @@ use crate::plot::{
     axis_box, common_legend, draw_axis_labels, draw_dots, draw_legend_cell, draw_observer,
     draw_panes, draw_straw_outline, draw_water, figure_bytes, figure_views, font, grid, num, rgb,
     section_rgb8, section_words, triple, visible_dots, AreaOn, AxisBox, FigureFormat, Heading,
-    LegendMark, Panel, Sketch, ViewDirection, CAPTION_LINE, FIGURE_WIDTH, LEGEND_LINE, TEXT, TITLE,
+    LegendMark, Panel, ViewDirection, CAPTION_LINE, FIGURE_WIDTH, LEGEND_LINE, TEXT, TITLE,
 };
+use crate::scene_input::Loaded;
 
 /// The three models' names in the comparison figure, in the order course, eye, stereo.
 pub const MODEL_NAMES: [&str; 3] = [
@@ -106,23 +107,23 @@ const FAR_POINT_LIMIT: f64 = 3.0 * GLASS_HEIGHT;
 
 /// Draws the models' clouds one above the other, same viewpoints and scales, into `path` (PNG,
 /// SVG or PDF by its extension).
-pub fn write_model_comparison<'a>(
+pub fn write_model_comparison(
     path: &Path,
-    scene: impl Into<Sketch<'a>>,
+    scene: &Loaded,
     observer: Vec3,
     models: &[ModelCloud],
     title: &str,
 ) -> Result {
-    let bytes = render_model_comparison(path, scene.into(), observer, models, title)?;
+    let bytes = render_model_comparison(path, scene, observer, models, title)?;
     files::write_bytes(path, &bytes)
 }
 
 /// Whether an image point is drawn in the comparison (finite and not absurdly far from the scene:
 /// for a scene file, three times its box's size from the box's middle).
-fn on_frame(scene: Sketch, p: &ImagePoint) -> bool {
-    let (centre, limit) = match scene {
-        Sketch::Spec(_) => (SCENE_CENTRE, FAR_POINT_LIMIT),
-        Sketch::World(w) => {
+fn on_frame(scene: &Loaded, p: &ImagePoint) -> bool {
+    let (centre, limit) = match (&scene.assignment, &scene.world) {
+        (Some(_), _) => (SCENE_CENTRE, FAR_POINT_LIMIT),
+        (None, w) => {
             let (lo, hi) = w.bounds();
             (0.5 * (lo + hi), 3.0 * (hi - lo).max_element())
         }
@@ -132,12 +133,7 @@ fn on_frame(scene: Sketch, p: &ImagePoint) -> bool {
 
 /// The one box shared by every panel: glass, straw, the observer when near, and every model's points
 /// on the frame. Also returns the count of points left off per model.
-fn shared_box<'a>(
-    scene: impl Into<Sketch<'a>>,
-    observer: Vec3,
-    models: &[ModelCloud],
-) -> (AxisBox, Vec<usize>) {
-    let scene = scene.into();
+fn shared_box(scene: &Loaded, observer: Vec3, models: &[ModelCloud]) -> (AxisBox, Vec<usize>) {
     let all: Vec<ImagePoint> = models
         .iter()
         .flat_map(|m| m.points.iter().copied().filter(|p| on_frame(scene, p)))
@@ -159,8 +155,8 @@ fn comparison_views(observer: Vec3) -> [(ViewDirection, String); COLUMNS] {
 }
 
 /// The comparison figure's heading.
-fn comparison_heading<'a>(scene: impl Into<Sketch<'a>>, observer: Vec3, title: &str) -> Heading {
-    let Sketch::Spec(scene) = scene.into() else {
+fn comparison_heading(scene: &Loaded, observer: Vec3, title: &str) -> Heading {
+    let Some(scene) = &scene.assignment else {
         return Heading::new(
             title,
             &format!(
@@ -228,7 +224,7 @@ fn comparison_layout(
 /// The comparison figure as the bytes of its file.
 fn render_model_comparison(
     path: &Path,
-    scene: Sketch,
+    scene: &Loaded,
     observer: Vec3,
     models: &[ModelCloud],
     title: &str,
@@ -246,7 +242,7 @@ fn render_model_comparison(
 /// The comparison figure on any backend.
 fn draw_comparison<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: Sketch,
+    scene: &Loaded,
     observer: Vec3,
     models: &[ModelCloud],
     heading: &Heading,
@@ -528,7 +524,7 @@ mod tests {
 
     /// The pixel rectangle of model `i`'s panel in column `c` (as the figure lays them out).
     fn panel_rect(
-        scene: &Scene,
+        scene: &Loaded,
         observer: Vec3,
         models: &[ModelCloud],
         i: usize,
@@ -546,7 +542,7 @@ mod tests {
         (t..t + h).any(|y| (l..l + w).any(|x| img.get_pixel(x, y).0 == c))
     }
 
-    fn render(scene: &Scene, observer: Vec3, models: &[ModelCloud]) -> image::RgbImage {
+    fn render(scene: &Loaded, observer: Vec3, models: &[ModelCloud]) -> image::RgbImage {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("models.png");
         write_model_comparison(&path, scene, observer, models, "test").unwrap();
@@ -555,7 +551,7 @@ mod tests {
 
     #[test]
     fn each_panel_shows_the_colours_of_its_own_points_only() {
-        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(0.1, 0.0, 0.1);
         let a = ring(0.02, 0.01, 1, 400);
         let b = ring(0.01, 0.01, 4, 400);
@@ -602,7 +598,7 @@ mod tests {
 
     #[test]
     fn equal_models_give_panels_equal_up_to_a_shift() {
-        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(0.0, 0.1, 0.1);
         let mut pts = ring(0.02, 0.01, 3, 500);
         pts.extend(ring(0.03, 0.02, 1, 500));
@@ -646,7 +642,7 @@ mod tests {
 
     #[test]
     fn shared_box_holds_every_model_and_leaves_off_only_far_points() {
-        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(0.1, 0.0, 0.1);
         let a = [point(Vec3::new(-0.09, 0.0, 0.1), 1)];
         let b = [
@@ -707,7 +703,7 @@ mod tests {
 
     #[test]
     fn empty_models_and_no_models_still_draw() {
-        let scene = Scene::with_defaults(0.0, 0.0, 0.0).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.0).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(5.0, 0.0, 0.3);
         for models in [
             vec![],

@@ -15,10 +15,10 @@ use std::sync::Once;
 
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{
-    Scene, GLASS_HEIGHT, GLASS_RADIUS, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES,
+    GLASS_HEIGHT, GLASS_RADIUS, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES,
     STRAW_HEIGHT, STRAW_RADIUS,
 };
-use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
+use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use image::ImageEncoder;
 use plotters::prelude::*;
@@ -28,8 +28,8 @@ use rayon::slice::ParallelSliceMut;
 
 use crate::error::{Error, Result};
 use crate::files;
+use crate::scene_input::Loaded;
 use crate::sketch::{circle, object_outlines, water_segments, world_wireframe};
-use crate::writers::Inputs;
 
 /// Width of every figure in pixels (printed 8.5 cm wide: see [`TEXT`]).
 pub const FIGURE_WIDTH: u32 = 1000;
@@ -86,47 +86,12 @@ impl AxisBox {
     }
 }
 
-/// What a figure draws of the scene besides the points: the assignment's glass and straw, or a
-/// scene file's container, liquids and objects.
-#[derive(Clone, Copy, Debug)]
-pub enum Sketch<'a> {
-    /// The assignment's kind of scene.
-    Spec(&'a Scene),
-    /// A scene file's world.
-    World(&'a World),
-}
-
-impl<'a> From<&'a Scene> for Sketch<'a> {
-    fn from(scene: &'a Scene) -> Self {
-        Sketch::Spec(scene)
-    }
-}
-
-impl<'a> From<&'a World> for Sketch<'a> {
-    fn from(world: &'a World) -> Self {
-        Sketch::World(world)
-    }
-}
-
-impl<'a> From<Inputs<'a>> for Sketch<'a> {
-    fn from(inputs: Inputs<'a>) -> Self {
-        match inputs {
-            Inputs::Spec(scene) => Sketch::Spec(scene),
-            Inputs::File(file) => Sketch::World(&file.world),
-        }
-    }
-}
-
 /// The axis box of a figure: tight around the scene (glass and straw, or a world's container and
 /// objects) and the points, with a margin; the observer is included unless that would make the
 /// box more than [`FAR_OBSERVER_FACTOR`] times larger.
-pub(crate) fn axis_box<'a>(
-    scene: impl Into<Sketch<'a>>,
-    observer: Vec3,
-    points: &[ImagePoint],
-) -> AxisBox {
-    let (mut lo, mut hi, centre) = match scene.into() {
-        Sketch::Spec(scene) => {
+pub(crate) fn axis_box(scene: &Loaded, observer: Vec3, points: &[ImagePoint]) -> AxisBox {
+    let (mut lo, mut hi, centre) = match (&scene.assignment, &scene.world) {
+        (Some(scene), _) => {
             let lo = Vec3::new(-GLASS_RADIUS, -GLASS_RADIUS, 0.0);
             let hi = Vec3::new(GLASS_RADIUS, GLASS_RADIUS, GLASS_HEIGHT);
             let straw = Vec3::new(scene.straw_x, scene.straw_y, 0.0);
@@ -136,7 +101,7 @@ pub(crate) fn axis_box<'a>(
                 SCENE_CENTRE,
             )
         }
-        Sketch::World(world) => {
+        (None, world) => {
             let (lo, hi) = world.bounds();
             (lo, hi, 0.5 * (lo + hi))
         }
@@ -548,9 +513,9 @@ pub(crate) fn three_view_size(heading: &Heading) -> (u32, u32) {
 
 /// Draws the classic three-view figure of `points` seen from `observer` into `path`: PNG, SVG or
 /// PDF by its extension.
-pub fn write_cloud_figure<'a>(
+pub fn write_cloud_figure(
     path: &Path,
-    scene: impl Into<Sketch<'a>>,
+    scene: &Loaded,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
@@ -560,15 +525,14 @@ pub fn write_cloud_figure<'a>(
 }
 
 /// The classic figure as the bytes of its file (format by `path`'s extension).
-pub(crate) fn render_cloud_figure<'a>(
+pub(crate) fn render_cloud_figure(
     path: &Path,
-    scene: impl Into<Sketch<'a>>,
+    scene: &Loaded,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
 ) -> Result<Vec<u8>> {
     register_font();
-    let scene = scene.into();
     let heading = cloud_heading(observer, points.len(), title);
     let size = three_view_size(&heading);
     figure_bytes(
@@ -597,7 +561,7 @@ pub(crate) fn cloud_heading(observer: Vec3, n: usize, title: &str) -> Heading {
 /// The classic figure on any backend.
 fn draw_cloud_figure<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: Sketch,
+    scene: &Loaded,
     observer: Vec3,
     points: &[ImagePoint],
     heading: &Heading,
@@ -620,7 +584,7 @@ fn draw_cloud_figure<DB: DrawingBackend>(
         draw_observer(root, p, &bx, observer, &dots).map_err(e)?;
     }
     let mut items: Vec<(LegendMark, String)>;
-    if let Sketch::Spec(_) = scene {
+    if scene.assignment.is_some() {
         let n = counts(points);
         items = vec![(LegendMark::None, "image points by section:".to_string())];
         items.extend((0..SECTION_COUNT).map(|k| {
@@ -1089,18 +1053,18 @@ fn tick_pixel(panel: &Panel, a: usize, v: f64) -> f64 {
 }
 
 /// The water's wireframe segments on the near (`front`) or far side of the glass's axis.
-pub(crate) fn draw_water<'a, DB: DrawingBackend>(
+pub(crate) fn draw_water<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     proj: &Projection,
-    scene: impl Into<Sketch<'a>>,
+    scene: &Loaded,
     front: bool,
 ) -> DrawResultOn<DB> {
-    let (axis, segments) = match scene.into() {
-        Sketch::Spec(scene) => (
+    let (axis, segments) = match (&scene.assignment, &scene.world) {
+        (Some(scene), _) => (
             Vec3::new(0.0, 0.0, scene.water_height / 2.0),
             water_segments(scene),
         ),
-        Sketch::World(world) => {
+        (None, world) => {
             let (lo, hi) = world.bounds();
             (0.5 * (lo + hi), world_wireframe(world))
         }
@@ -1121,15 +1085,15 @@ pub(crate) fn draw_water<'a, DB: DrawingBackend>(
 }
 
 /// The straw's true outline, dashed: its section boundaries and its two silhouette lines.
-pub(crate) fn draw_straw_outline<'a, DB: DrawingBackend>(
+pub(crate) fn draw_straw_outline<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     proj: &Projection,
-    scene: impl Into<Sketch<'a>>,
+    scene: &Loaded,
 ) -> DrawResultOn<DB> {
     let color = rgb(STRAW_OUTLINE_RGB);
-    let scene = match scene.into() {
-        Sketch::Spec(scene) => scene,
-        Sketch::World(world) => {
+    let scene = match (&scene.assignment, &scene.world) {
+        (Some(scene), _) => scene,
+        (None, world) => {
             for line in object_outlines(world) {
                 let px: Vec<(f64, f64)> = line.iter().map(|&p| proj.pixel(p)).collect();
                 dashed(root, &px, color)?;
@@ -1514,7 +1478,7 @@ pub(crate) mod tests {
     use super::*;
     use crate::sketch::{CIRCLE_SEGMENTS, WIRE_VERTICALS};
     use bentstraw_optics::sampling::sample_image;
-    use bentstraw_optics::scene::REFERENCES;
+    use bentstraw_optics::scene::{Scene, REFERENCES};
 
     /// A point of colour `color` at `position` (the other fields do not matter for drawing).
     pub(crate) fn point(position: Vec3, color: u8) -> ImagePoint {
@@ -1535,7 +1499,7 @@ pub(crate) mod tests {
     }
 
     /// The panels of the classic figure of `points`, as drawn under its heading.
-    fn panels_of(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> Vec<Panel> {
+    fn panels_of(scene: &Loaded, observer: Vec3, points: &[ImagePoint]) -> Vec<Panel> {
         let heading = cloud_heading(observer, points.len(), "t");
         layout(
             &axis_box(scene, observer, points),
@@ -1553,13 +1517,13 @@ pub(crate) mod tests {
         })
     }
 
-    fn png_of(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> image::RgbImage {
+    fn png_of(scene: &Loaded, observer: Vec3, points: &[ImagePoint]) -> image::RgbImage {
         decode(&render_cloud_figure(Path::new("f.png"), scene, observer, points, "t").unwrap())
     }
 
     #[test]
     fn figure_is_a_png_of_the_stated_size_showing_exactly_the_colours_present() {
-        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         // Sections 1, 2 and 4 only, on the straw's surface.
         let points: Vec<ImagePoint> = (0..300)
             .map(|i| {
@@ -1594,8 +1558,8 @@ pub(crate) mod tests {
     #[test]
     fn reference_figure_is_written_and_shows_every_colour_seen() {
         let r = REFERENCES[1];
-        let scene = r.scene(1.333);
-        let cloud = sample_image(&World::assignment(&scene), r.observer, 2000, &|_| {});
+        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let cloud = sample_image(&scene.world, r.observer, 2000, &|_| {});
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("ref.png");
         write_cloud_figure(&path, &scene, r.observer, &cloud.points, "Reference 2").unwrap();
@@ -1622,8 +1586,8 @@ pub(crate) mod tests {
     #[test]
     fn hidden_dots_left_out_change_no_pixel() {
         let r = REFERENCES[2];
-        let scene = r.scene(1.333);
-        let cloud = sample_image(&World::assignment(&scene), r.observer, 20_000, &|_| {});
+        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let cloud = sample_image(&scene.world, r.observer, 20_000, &|_| {});
         let panels = panels_of(&scene, r.observer, &cloud.points);
         let size = (FIGURE_WIDTH, 1400);
         for p in &panels {
@@ -1681,7 +1645,7 @@ pub(crate) mod tests {
 
     #[test]
     fn observer_is_a_black_dot_where_each_view_projects_it() {
-        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(-0.07, 0.06, 0.17);
         let img = png_of(&scene, observer, &[]);
         let bx = axis_box(&scene, observer, &[]);
@@ -1710,18 +1674,21 @@ pub(crate) mod tests {
 
     #[test]
     fn empty_glass_and_no_points_still_draw() {
-        let scene = Scene::with_defaults(0.01, 0.0, 0.0).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.01, 0.0, 0.0).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(0.0, -0.2, 0.3);
         let img = png_of(&scene, observer, &[]);
         assert_eq!(img.width(), FIGURE_WIDTH);
-        assert_eq!(water_segments(&scene).len(), 2 * CIRCLE_SEGMENTS);
+        assert_eq!(
+            water_segments(scene.assignment.as_ref().unwrap()).len(),
+            2 * CIRCLE_SEGMENTS
+        );
     }
 
     #[test]
     fn same_inputs_give_the_same_bytes() {
         let r = REFERENCES[2];
-        let scene = r.scene(1.333);
-        let cloud = sample_image(&World::assignment(&scene), r.observer, 3000, &|_| {});
+        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let cloud = sample_image(&scene.world, r.observer, 3000, &|_| {});
         // (A PDF's objects come out in an order that varies from run to run: not compared.)
         for name in ["a.png", "a.svg"] {
             let f =
@@ -1735,7 +1702,7 @@ pub(crate) mod tests {
 
     #[test]
     fn unwritable_path_is_an_error_not_a_panic() {
-        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let path = Path::new("/nonexistent-folder/fig.png");
         assert!(write_cloud_figure(path, &scene, Vec3::new(0.1, 0.0, 0.1), &[], "t").is_err());
     }
@@ -1773,7 +1740,7 @@ pub(crate) mod tests {
 
     #[test]
     fn axis_box_holds_glass_straw_points_and_a_near_observer() {
-        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let points = [
             point(Vec3::new(-0.2, 0.03, 0.12), 1),
             point(Vec3::new(0.01, 0.01, -0.05), 1),
@@ -1796,7 +1763,7 @@ pub(crate) mod tests {
 
     #[test]
     fn far_observer_gets_an_arrow_pointing_at_it_inside_the_box() {
-        let scene = Scene::with_defaults(0.0, 0.0, 0.15).unwrap();
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(5.0, -2.0, 1.0);
         let bx = axis_box(&scene, observer, &[]);
         assert!(!bx.observer_inside);
@@ -1900,8 +1867,11 @@ pub(crate) mod tests {
         let far = Vec3::new(3.0, -1.0, 0.4);
         for (scene, observer) in REFERENCES
             .iter()
-            .map(|r| (r.scene(1.333), r.observer))
-            .chain([(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), far)])
+            .map(|r| (Loaded::assignment(r.scene(1.333), r.observer), r.observer))
+            .chain([(
+                Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), far),
+                far,
+            )])
         {
             let bx = axis_box(&scene, observer, &[]);
             let panels = panels_of(&scene, observer, &[]);
@@ -1939,8 +1909,8 @@ pub(crate) mod tests {
 
     #[test]
     fn water_wireframe_has_two_circles_and_thirty_verticals() {
-        let scene = Scene::with_defaults(0.0, 0.0, 0.15).unwrap();
-        let segs = water_segments(&scene);
+        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.15).unwrap(), Vec3::ZERO);
+        let segs = water_segments(scene.assignment.as_ref().unwrap());
         let verticals: Vec<_> = segs
             .iter()
             .filter(|[a, b]| a.x == b.x && a.y == b.y)

@@ -25,9 +25,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::error::Result;
 use crate::files;
-use crate::plot::{
-    figure_bytes, font, wrap, FigureFormat, Sketch, CAPTION, CAPTION_LINE, TEXT, TITLE,
-};
+use crate::plot::{figure_bytes, font, wrap, FigureFormat, CAPTION, CAPTION_LINE, TEXT, TITLE};
+use crate::scene_input::Loaded;
 use crate::sketch::{object_outlines, world_wireframe};
 
 /// Width of the diagram (px).
@@ -86,24 +85,13 @@ impl Diagram {
 }
 
 /// Writes the diagram to `path`, `.png`, `.svg` or `.pdf` by its extension.
-pub fn write_ray_diagram<'a>(
-    path: &Path,
-    scene: impl Into<Sketch<'a>>,
-    diagram: &Diagram,
-    title: &str,
-) -> Result {
+pub fn write_ray_diagram(path: &Path, scene: &Loaded, diagram: &Diagram, title: &str) -> Result {
     let bytes = render(path, scene, diagram, title)?;
     files::write_bytes(path, &bytes)
 }
 
 /// The diagram as the bytes of a PNG, SVG or PDF file, by `path`'s extension.
-pub fn render<'a>(
-    path: &Path,
-    scene: impl Into<Sketch<'a>>,
-    diagram: &Diagram,
-    title: &str,
-) -> Result<Vec<u8>> {
-    let scene = scene.into();
+pub fn render(path: &Path, scene: &Loaded, diagram: &Diagram, title: &str) -> Result<Vec<u8>> {
     figure_bytes(
         path,
         FigureFormat::of(path)?,
@@ -143,7 +131,7 @@ impl View {
 
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    scene: Sketch,
+    scene: &Loaded,
     diagram: &Diagram,
     title: &str,
 ) -> Result<(), String> {
@@ -214,10 +202,10 @@ fn draw<DB: DrawingBackend>(
 
 /// Range of a panel: the glass, the straw, the observer, every ray vertex and image point, with a
 /// margin; widened so that one metre is as long across as up.
-fn ranges(scene: Sketch, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f64), (f64, f64)) {
+fn ranges(scene: &Loaded, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f64), (f64, f64)) {
     let mut pts: Vec<(f64, f64)> = Vec::new();
-    match scene {
-        Sketch::Spec(scene) => {
+    match (&scene.assignment, &scene.world) {
+        (Some(scene), _) => {
             for z in [0.0, STRAW_HEIGHT] {
                 for (x, y) in [(-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)] {
                     pts.push(view.project(Vec3::new(x * GLASS_RADIUS, y * GLASS_RADIUS, z)));
@@ -225,7 +213,7 @@ fn ranges(scene: Sketch, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f
             }
             pts.push(view.project(Vec3::new(scene.straw_x, scene.straw_y, 0.0)));
         }
-        Sketch::World(world) => {
+        (None, world) => {
             let (lo, hi) = world.bounds();
             for k in 0..8 {
                 let pick = |bit: i32, a: f64, b: f64| if k & bit == 0 { a } else { b };
@@ -270,7 +258,7 @@ fn ranges(scene: Sketch, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f
 #[allow(clippy::too_many_arguments)]
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    scene: Sketch,
+    scene: &Loaded,
     diagram: &Diagram,
     view: View,
     caption: [&str; 2],
@@ -325,9 +313,9 @@ fn draw_panel<DB: DrawingBackend>(
             })
             .collect()
     };
-    let scene = match scene {
-        Sketch::Spec(scene) => scene,
-        Sketch::World(world) => {
+    let scene = match (&scene.assignment, &scene.world) {
+        (Some(scene), _) => scene,
+        (None, world) => {
             // A scene file's world: its container's and liquids' wireframe, its objects' outlines.
             let wire: Vec<[Vec3; 2]> = world_wireframe(world);
             chart
@@ -484,13 +472,13 @@ fn tick(v: f64) -> String {
 mod tests {
     use super::*;
     use bentstraw_optics::sampling::sample_image;
-    use bentstraw_optics::scene::{Scene, REFERENCES};
+    use bentstraw_optics::scene::REFERENCES;
 
-    fn diagram_of(number: usize) -> (Scene, Diagram) {
+    fn diagram_of(number: usize) -> (Loaded, Diagram) {
         let r = REFERENCES[number - 1];
-        let scene = r.scene(1.333);
-        let cloud = sample_image(&World::assignment(&scene), r.observer, 5000, &|_| {});
-        let d = Diagram::new(&World::assignment(&scene), r.observer, &cloud.points);
+        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let cloud = sample_image(&scene.world, r.observer, 5000, &|_| {});
+        let d = Diagram::new(&scene.world, r.observer, &cloud.points);
         (scene, d)
     }
 
@@ -501,7 +489,7 @@ mod tests {
         assert!((30..=60).contains(&d.rays.len()), "{} rays", d.rays.len());
         for r in &d.rays {
             let mut points = vec![d.observer];
-            let outcome = World::assignment(&scene).trace_with(
+            let outcome = scene.world.trace_with(
                 bentstraw_optics::geometry::Ray {
                     origin: d.observer,
                     direction: r.image.direction,

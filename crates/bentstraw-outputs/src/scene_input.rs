@@ -16,39 +16,41 @@ use crate::files::shown;
 /// Largest scene file read (1 MB): a scene is a few dozen lines.
 pub const MAX_SCENE_FILE_BYTES: u64 = 1 << 20;
 
-/// The scene and observer of one run, with the target a scene file suggests.
-#[derive(Clone, Copy, Debug)]
-pub struct Resolved {
-    /// The validated scene.
-    pub scene: Scene,
-    /// The validated observer.
-    pub observer: Vec3,
-    /// The scene file's `[observer].target`, if it came from a file.
-    pub target: Option<Vec3>,
-}
-
-/// A scene file's world (not of the assignment's kind), ready to trace, with its observer.
+/// A scene ready to trace and draw, with its observer: the assignment's glass from its numbers
+/// (flags, or a file of its kind), or a scene file's world of any shapes and media.
 #[derive(Clone, Debug)]
-pub struct FileWorld {
-    /// The file's name as messages show it.
-    pub name: String,
-    /// The scene as the file describes it, the flags' overrides applied and checked.
-    pub description: SceneDescription,
+pub struct Loaded {
+    /// The scene file's name as messages show it, if the scene came from a file.
+    pub name: Option<String>,
+    /// The assignment's numbers, when the scene is of its kind.
+    pub assignment: Option<Scene>,
+    /// The scene file's description (the flags' overrides applied), when not of the assignment's kind.
+    pub description: Option<SceneDescription>,
     /// The scene ready for tracing.
     pub world: World,
     /// The validated observer.
     pub observer: Vec3,
-    /// The file's `[observer].target`, if any.
+    /// The scene file's `[observer].target`, if any.
     pub target: Option<Vec3>,
 }
 
-/// The scene of one run: the assignment's glass, or a scene file's world.
-#[derive(Clone, Debug)]
-pub enum AnyScene {
-    /// The assignment's kind of scene (flags, or a file of that kind).
-    Spec(Resolved),
-    /// Any other scene file.
-    File(Box<FileWorld>),
+impl Loaded {
+    /// The assignment's scene seen from `observer` (both already validated).
+    pub fn assignment(scene: Scene, observer: Vec3) -> Loaded {
+        Loaded {
+            name: None,
+            assignment: Some(scene),
+            description: None,
+            world: World::assignment(&scene),
+            observer,
+            target: None,
+        }
+    }
+
+    /// The scene file's name, or empty when the scene came from flags.
+    pub fn name(&self) -> &str {
+        self.name.as_deref().unwrap_or("")
+    }
 }
 
 /// The scene's inputs as the flags give them: a file, or the values, or a file and overrides.
@@ -104,7 +106,7 @@ impl SceneSource {
     /// The validated scene and observer: from the flags alone as always, or from the scene file
     /// with the flags overriding it. Every value goes through the same rules as the flags'; a
     /// file of the assignment's kind gives exactly the scene the same flags give.
-    pub fn resolve_any(&self) -> Result<AnyScene> {
+    pub fn load(&self) -> Result<Loaded> {
         let Some(path) = &self.file else {
             let (Some(observer), Some(straw), Some(water_height)) =
                 (self.observer, self.straw, self.water_height)
@@ -121,11 +123,7 @@ impl SceneSource {
                 max_events: self.max_events,
             }
             .scene_and_observer()?;
-            return Ok(AnyScene::Spec(Resolved {
-                scene,
-                observer,
-                target: None,
-            }));
+            return Ok(Loaded::assignment(scene, observer));
         };
         let name = shown(path);
         let mut description = read_scene_file(path)?;
@@ -161,11 +159,10 @@ impl SceneSource {
                 max_events: self.max_events,
             }
             .scene_and_observer()?;
-            return Ok(AnyScene::Spec(Resolved {
-                scene,
-                observer,
+            return Ok(Loaded {
                 target: description.observer.map(|o| o.target),
-            }));
+                ..Loaded::assignment(scene, observer)
+            });
         }
         // Any other scene: the overrides change the file's one straw and liquid, and the whole
         // scene, observer included, is checked again by the file's rules.
@@ -197,28 +194,30 @@ impl SceneSource {
             Error::Refused(format!("{name} with the flags given: {message}"))
         };
         checked.validate().map_err(flagged)?;
-        Ok(AnyScene::File(Box::new(FileWorld {
-            name,
+        Ok(Loaded {
+            name: Some(name),
+            assignment: None,
             world: World::new(&description, self.max_events),
-            description,
+            description: Some(description),
             observer: position,
             target,
-        })))
+        })
     }
 }
 
 /// The world of a scene file's text named `name`, seen from its own `[observer]`, with the event
 /// limit `max_events` (for the built-in gallery).
-pub fn file_world(name: &str, text: &str, max_events: u32) -> Result<FileWorld> {
+pub fn file_world(name: &str, text: &str, max_events: u32) -> Result<Loaded> {
     let description =
         SceneDescription::from_toml(text).map_err(|e| Error::Refused(format!("{name}: {e}")))?;
     let Some(observer) = description.observer else {
         return fail(format!("{name} has no [observer]"));
     };
-    Ok(FileWorld {
-        name: name.to_string(),
+    Ok(Loaded {
+        name: Some(name.to_string()),
+        assignment: None,
         world: World::new(&description, max_events),
-        description,
+        description: Some(description),
         observer: observer.position,
         target: Some(observer.target),
     })

@@ -32,7 +32,7 @@ use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::sampling::ImageCloud;
-use bentstraw_optics::scene::{clip_text, Scene, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
+use bentstraw_optics::scene::{clip_text, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
 use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
@@ -41,7 +41,7 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::files::{shown, write_atomically};
 use crate::parse::QUOTED_MAX;
-use crate::scene_input::FileWorld;
+use crate::scene_input::Loaded;
 
 /// A file format for image points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,22 +86,11 @@ impl PointFormat {
     }
 }
 
-/// The scene a simulation traced.
-#[derive(Clone, Copy, Debug)]
-pub enum Inputs<'a> {
-    /// The assignment's kind of scene.
-    Spec(&'a Scene),
-    /// A scene file's world.
-    File(&'a FileWorld),
-}
-
 /// A simulation's result with the inputs that produced it: everything a points file records.
 #[derive(Clone, Copy, Debug)]
 pub struct PointSet<'a> {
-    /// The scene traced.
-    pub inputs: Inputs<'a>,
-    /// The observer.
-    pub observer: Vec3,
+    /// The scene traced and its observer.
+    pub scene: &'a Loaded,
     /// The number of points asked for.
     pub min_points: usize,
     /// The apparent-position model's points (the course's are the cloud's own).
@@ -367,12 +356,11 @@ struct JsonColor {
 
 /// JSON: the inputs, statistics and colour legend, then one `[x, y, z, color]` array a line.
 pub fn write_json(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    let s = match set.inputs {
-        Inputs::Spec(s) => s,
-        Inputs::File(world) => return write_world_json(w, set, world),
+    let Some(s) = &set.scene.assignment else {
+        return write_world_json(w, set, set.scene);
     };
     let inputs = JsonInputs {
-        observer: set.observer.to_array(),
+        observer: set.scene.observer.to_array(),
         straw: [s.straw_x, s.straw_y],
         water_height: s.water_height,
         n_water: s.n_water,
@@ -445,11 +433,10 @@ pub fn section_rgb8(code: u8) -> [u8; 3] {
 
 /// PLY, binary little-endian: `double x, y, z`, `uchar red, green, blue`, `uchar color`.
 pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    let s = match set.inputs {
-        Inputs::Spec(s) => s,
-        Inputs::File(world) => return write_world_ply(w, set, world),
+    let Some(s) = &set.scene.assignment else {
+        return write_world_ply(w, set, set.scene);
     };
-    let o = set.observer;
+    let o = set.scene.observer;
     // The header is ASCII by the format's rules.
     writeln!(w, "ply")?;
     writeln!(w, "format binary_little_endian 1.0")?;
@@ -521,12 +508,16 @@ struct JsonWorldStats {
 /// JSON of a world's points: the inputs (the scene as TOML, every value written out), the
 /// statistics and the eight colours (codes 1..=8: a straw's five bands, a coin, a card, the
 /// picture on a card), then the points as the model's fields.
-fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io::Result<()> {
+fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &Loaded) -> io::Result<()> {
     let (cloud, min_points) = (set.cloud, set.min_points);
     let counts = cloud.counts_per_code();
     let inputs = JsonWorldInputs {
-        scene_file: &world.name,
-        scene: world.description.to_toml(),
+        scene_file: world.name(),
+        scene: world
+            .description
+            .as_ref()
+            .map(|d| d.to_toml())
+            .unwrap_or_default(),
         observer: world.observer.to_array(),
         max_events: world.world.max_events,
         min_points,
@@ -553,7 +544,7 @@ fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io:
 }
 
 /// PLY of a world's points: as [`write_ply`], the scene file named in a comment.
-fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io::Result<()> {
+fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &Loaded) -> io::Result<()> {
     let (cloud, min_points) = (set.cloud, set.min_points);
     let o = world.observer;
     writeln!(w, "ply")?;
@@ -566,7 +557,7 @@ fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &FileWorld) -> io::
     writeln!(w, "comment observer {} {} {}", o.x, o.y, o.z)?;
     // A comment is one line of ASCII: the file's name with anything else replaced.
     let name: String = world
-        .name
+        .name()
         .chars()
         .map(|c| if c.is_ascii_graphic() { c } else { '_' })
         .collect();
@@ -646,8 +637,8 @@ mod tests {
         }
     }
 
-    fn sample() -> (Scene, ImageCloud) {
-        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+    fn sample() -> (Loaded, ImageCloud) {
+        let scene = bentstraw_optics::scene::Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
         let cloud = ImageCloud {
             points: vec![
                 point(0.1 + 0.2, -1e-7, 0.123_456_789_012_345_68, 1),
@@ -657,13 +648,12 @@ mod tests {
             rays_traced: 12,
             spacing: 0.001,
         };
-        (scene, cloud)
+        (Loaded::assignment(scene, Vec3::new(0.0, 0.1, 0.1)), cloud)
     }
 
-    fn set<'a>(scene: &'a Scene, cloud: &'a ImageCloud) -> PointSet<'a> {
+    fn set<'a>(scene: &'a Loaded, cloud: &'a ImageCloud) -> PointSet<'a> {
         PointSet {
-            inputs: Inputs::Spec(scene),
-            observer: Vec3::new(0.0, 0.1, 0.1),
+            scene,
             min_points: 3,
             model: ModelPoints::Course,
             cloud,

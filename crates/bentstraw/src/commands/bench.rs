@@ -18,7 +18,6 @@ use bentstraw_optics::Vec3;
 use crate::cli::{BenchArgs, ModeArg};
 use crate::error::{fail, CliError, CliResult};
 use bentstraw_outputs::camera;
-use bentstraw_outputs::scene_input::AnyScene;
 
 /// Vertical field of view of the benchmark views (degrees).
 const BENCH_FOV_DEG: f64 = 50.0;
@@ -157,14 +156,15 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
                 "a single view needs all three of --observer, --straw and --water-height, or a --scene file (give none to time the four reference views)",
             );
         }
-        let (world, observer, target) = match args.view.source().resolve_any()? {
-            AnyScene::Spec(r) => (World::assignment(&r.scene), r.observer, r.target),
-            AnyScene::File(f) => {
-                let (lo, hi) = f.world.bounds();
-                let target = f.target.unwrap_or(0.5 * (lo + hi));
-                (f.world, f.observer, Some(target))
+        let loaded = args.view.source().load()?;
+        let target = match loaded.assignment {
+            Some(_) => loaded.target,
+            None => {
+                let (lo, hi) = loaded.world.bounds();
+                Some(loaded.target.unwrap_or(0.5 * (lo + hi)))
             }
         };
+        let (world, observer) = (loaded.world, loaded.observer);
         let target = target_flag.or(target).unwrap_or(SCENE_CENTRE);
         let camera = camera_for(observer, target)?;
         return Ok(vec![View {

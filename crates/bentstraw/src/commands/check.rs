@@ -20,10 +20,8 @@ use serde_json::{json, Value};
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
 use bentstraw_outputs::files::check_writable;
-use bentstraw_outputs::plot::Sketch;
 use bentstraw_outputs::report::Check;
-use bentstraw_outputs::scene_input::AnyScene;
-use bentstraw_outputs::writers::Inputs;
+use bentstraw_outputs::scene_input::Loaded;
 
 /// Most points a solution may have (more is not a reasonable image: refuse rather than run for long).
 pub const MAX_POINTS: usize = 10_000_000;
@@ -66,20 +64,17 @@ fn rounding_error(digits: usize, largest: f64) -> f64 {
 }
 
 /// The names of the colour codes the scene can show, code 1 first.
-fn colour_names(checked: Inputs) -> &'static [&'static str] {
-    match checked {
-        Inputs::Spec(_) => &SECTION_NAMES,
-        Inputs::File(_) => &COLOR_NAMES,
+fn colour_names(checked: &Loaded) -> &'static [&'static str] {
+    match checked.assignment {
+        Some(_) => &SECTION_NAMES,
+        None => &COLOR_NAMES,
     }
 }
 
 /// Runs `check`; `Ok(true)` for a pass, `Ok(false)` for a fail.
 pub fn run(args: &CheckArgs) -> CliResult<bool> {
-    let resolved = args.scene.source().resolve_any()?;
-    let (checked, observer) = match &resolved {
-        AnyScene::Spec(r) => (Inputs::Spec(&r.scene), r.observer),
-        AnyScene::File(f) => (Inputs::File(f), f.observer),
-    };
+    let loaded = args.scene.source().load()?;
+    let (checked, observer) = (&loaded, loaded.observer);
     if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
         return Err(CliError(format!(
             "--tolerance {} is not allowed: it must be a finite length > 0 (metres)",
@@ -99,22 +94,13 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
     }
     let started = Instant::now();
     let solution = read_solution_of(&args.file, colour_names(checked).len())?;
-    let report = match checked {
-        Inputs::Spec(scene) => check_solution(
-            &World::assignment(scene),
-            observer,
-            &solution.points,
-            args.tolerance,
-            args.min_coverage,
-        ),
-        Inputs::File(f) => check_solution(
-            &f.world,
-            observer,
-            &solution.points,
-            args.tolerance,
-            args.min_coverage,
-        ),
-    };
+    let report = check_solution(
+        &checked.world,
+        observer,
+        &solution.points,
+        args.tolerance,
+        args.min_coverage,
+    );
     let seconds = started.elapsed().as_secs_f64();
     if let Some(p) = &args.plot {
         let title = format!(
@@ -122,10 +108,9 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
             clip_text(&args.file.display().to_string(), 60),
             if report.passes() { "pass" } else { "fail" }
         );
-        let sketch = Sketch::from(checked);
         bentstraw_outputs::check_plot::write_check_figure(
             p,
-            sketch,
+            checked,
             observer,
             &solution.points,
             &report,
@@ -434,7 +419,7 @@ fn all_hints(solution: &Solution, r: &CheckReport) -> Vec<String> {
 /// The one-screen summary.
 fn summary(
     file: &str,
-    checked: Inputs,
+    checked: &Loaded,
     o: Vec3,
     solution: &Solution,
     r: &CheckReport,
@@ -444,19 +429,23 @@ fn summary(
     let mut t = String::new();
     let t_ = &r.tally;
     let _ = writeln!(t, "bentstraw check: {file}");
-    match checked {
-        Inputs::Spec(scene) => {
+    match &checked.assignment {
+        Some(scene) => {
             let _ = writeln!(
                 t,
                 "  scene           observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}, at most {} events",
                 o.x, o.y, o.z, scene.straw_x, scene.straw_y, scene.water_height, scene.n_water, scene.max_events
             );
         }
-        Inputs::File(f) => {
+        None => {
             let _ = writeln!(
                 t,
                 "  scene           {}, observer ({}, {}, {}) m, at most {} events",
-                f.name, o.x, o.y, o.z, f.world.max_events
+                checked.name(),
+                o.x,
+                o.y,
+                o.z,
+                checked.world.max_events
             );
         }
     }
@@ -525,7 +514,7 @@ fn summary(
         let c = &r.per_colour[k];
         let cov = &r.coverage.per_colour[k];
         // A scene file's colours neither claimed nor seen are left out (a card has no red).
-        if matches!(checked, Inputs::File(_)) && c.points == 0 && cov.true_samples == 0 {
+        if checked.assignment.is_none() && c.points == 0 && cov.true_samples == 0 {
             continue;
         }
         let cov_text = if cov.true_samples == 0 {
@@ -641,7 +630,7 @@ pub fn own_points_check(scene: &Scene, observer: Vec3, points: &[ImagePoint]) ->
 /// The JSON object of `--json`.
 fn json_report(
     file: &str,
-    checked: Inputs,
+    checked: &Loaded,
     o: Vec3,
     solution: &Solution,
     r: &CheckReport,
@@ -732,16 +721,16 @@ fn json_report(
         "true_samples": r.truth.points.len(),
         "seconds": seconds,
     });
-    match checked {
-        Inputs::Spec(scene) => {
+    match &checked.assignment {
+        Some(scene) => {
             v["straw"] = json!([scene.straw_x, scene.straw_y]);
             v["water_height"] = json!(scene.water_height);
             v["n_water"] = json!(scene.n_water);
             v["max_events"] = json!(scene.max_events);
         }
-        Inputs::File(f) => {
-            v["scene_file"] = json!(f.name);
-            v["max_events"] = json!(f.world.max_events);
+        None => {
+            v["scene_file"] = json!(checked.name());
+            v["max_events"] = json!(checked.world.max_events);
         }
     }
     v

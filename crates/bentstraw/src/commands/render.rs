@@ -17,28 +17,25 @@ use crate::progress;
 use bentstraw_outputs::camera::{camera_from_args, world_camera, CameraSpec, MAX_SAMPLES};
 use bentstraw_outputs::files::{self, Output, OutputSet};
 use bentstraw_outputs::pictures::png_bytes;
-use bentstraw_outputs::scene_input::AnyScene;
 use bentstraw_outputs::writers::{write_raw_codes, write_raw_weights};
 
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> CliResult {
     let start = Instant::now();
     // Everything is checked before any work, so bad input leaves no file.
-    let (world, camera) = match args.scene.source().resolve_any()? {
-        AnyScene::Spec(resolved) => {
+    let loaded = args.scene.source().load()?;
+    let camera = match loaded.assignment {
+        Some(_) => {
             // A scene file's target stands in for an absent --target.
             let camera_args = CameraSpec {
-                target: args.camera.target.or(resolved.target.map(|t| t.to_array())),
+                target: args.camera.target.or(loaded.target.map(|t| t.to_array())),
                 ..CameraSpec::from(&args.camera)
             };
-            let camera = camera_from_args(&camera_args, resolved.observer)?;
-            (World::assignment(&resolved.scene), camera)
+            camera_from_args(&camera_args, loaded.observer)?
         }
-        AnyScene::File(file) => {
-            let camera = world_camera(&file, &(&args.camera).into())?;
-            (file.world, camera)
-        }
+        None => world_camera(&loaded, &(&args.camera).into())?,
     };
+    let world = loaded.world;
     let (options, outputs) = shading_and_outputs(args)?;
     // The explorer's frame call, picture only: the command line draws as fast as the live view,
     // with a bar (after a second) whose estimate follows the rows drawn.

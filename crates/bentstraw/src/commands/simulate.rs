@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, ApparentPoint, StereoImage};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::Scene;
-use bentstraw_optics::world::{World, COLOR_NAMES};
+use bentstraw_optics::world::COLOR_NAMES;
 use bentstraw_optics::Vec3;
 
 use crate::cli::{ImageModelArg, SimulateArgs};
@@ -20,9 +20,8 @@ use bentstraw_outputs::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use bentstraw_outputs::plot::Sketch;
-use bentstraw_outputs::scene_input::AnyScene;
-use bentstraw_outputs::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
+use bentstraw_outputs::scene_input::Loaded;
+use bentstraw_outputs::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use bentstraw_outputs::{html, plot, ray_diagram};
 
 /// Most image points `simulate` traces with the course model: measured at about 220 bytes a point
@@ -37,14 +36,11 @@ pub const MAX_MODEL_POINTS: usize = 2_000_000;
 /// for a scene file's world.
 pub fn run(args: &SimulateArgs) -> CliResult {
     // 1. Validate everything, trace nothing yet.
-    let resolved = args.scene.source().resolve_any()?;
+    let loaded = args.scene.source().load()?;
     if args.points == 0 {
         return fail("--points 0 is not allowed: ask for at least 1 image point");
     }
-    let (inputs, observer) = match &resolved {
-        AnyScene::Spec(r) => (Inputs::Spec(&r.scene), r.observer),
-        AnyScene::File(world) => (Inputs::File(world), world.observer),
-    };
+    let (scene, observer) = (&loaded, loaded.observer);
     // The model comparison and the gap plot need both the eye and the stereo model.
     let both_models = args.models_plot.is_some() || args.gap_plot.is_some();
     let (most, per_point, model_name) = match args.image_model {
@@ -96,25 +92,19 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 
     // 2. Trace.
     let started = Instant::now();
-    let cloud = trace_with_spinner(inputs, observer, args.points);
+    let cloud = trace_with_spinner(scene, args.points);
     let traced = started.elapsed();
 
     // 3. The apparent-position model, if not the course's.
     let modelled = Instant::now();
     let eye = (both_models || args.image_model == ImageModelArg::Eye).then(|| {
-        with_spinner("eye model", || match inputs {
-            Inputs::Spec(scene) => {
-                eye_model_points(&World::assignment(scene), observer, &cloud.points)
-            }
-            Inputs::File(w) => eye_model_points(&w.world, observer, &cloud.points),
+        with_spinner("eye model", || {
+            eye_model_points(&scene.world, observer, &cloud.points)
         })
     });
     let stereo = (both_models || args.image_model == ImageModelArg::Stereo).then(|| {
-        with_spinner("stereo model", || match inputs {
-            Inputs::Spec(scene) => {
-                stereo_points(&World::assignment(scene), observer, &cloud.points)
-            }
-            Inputs::File(w) => stereo_points(&w.world, observer, &cloud.points),
+        with_spinner("stereo model", || {
+            stereo_points(&scene.world, observer, &cloud.points)
         })
     });
     let model = match (args.image_model, &eye, &stereo) {
@@ -126,44 +116,29 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 
     // 4. Write.
     let set = PointSet {
-        inputs,
-        observer,
+        scene,
         min_points: args.points,
         model,
         cloud: &cloud,
     };
-    let sketch = Sketch::from(inputs);
-    let title = format!(
-        "{} ({} model)",
-        inputs_title(inputs, observer),
-        model.name()
-    );
+    let title = format!("{} ({} model)", inputs_title(scene), model.name());
     write_points(&args.output, format, &set)?;
     if args.plot.is_some() || args.html.is_some() {
         let placed = set.placed_points();
         if let Some(p) = &args.plot {
-            plot::write_cloud_figure(p, sketch, observer, &placed, &title)?;
+            plot::write_cloud_figure(p, scene, observer, &placed, &title)?;
         }
         if let Some(h) = &args.html {
-            let viewed = match inputs {
-                Inputs::Spec(scene) => html::Viewed::Spec(scene),
-                Inputs::File(w) => html::Viewed::World(&w.world, &w.name),
-            };
-            html::write_cloud_viewer(h, viewed, observer, &placed, &title)?;
+            html::write_cloud_viewer(h, scene, observer, &placed, &title)?;
         }
     }
     if let Some(r) = &args.rays {
-        let diagram = match inputs {
-            Inputs::Spec(scene) => {
-                ray_diagram::Diagram::new(&World::assignment(scene), observer, &cloud.points)
-            }
-            Inputs::File(w) => ray_diagram::Diagram::new(&w.world, observer, &cloud.points),
-        };
-        let title = format!("Ray diagram: {}", inputs_title(inputs, observer));
-        ray_diagram::write_ray_diagram(r, sketch, &diagram, &title)?;
+        let diagram = ray_diagram::Diagram::new(&scene.world, observer, &cloud.points);
+        let title = format!("Ray diagram: {}", inputs_title(scene));
+        ray_diagram::write_ray_diagram(r, scene, &diagram, &title)?;
     }
     if let (Some(eye), Some(stereo)) = (&eye, &stereo) {
-        write_model_figures(args, &set, sketch, eye, stereo)?;
+        write_model_figures(args, &set, eye, stereo)?;
     }
     outputs.commit()?;
     let total = started.elapsed();
@@ -200,11 +175,10 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 fn write_model_figures(
     args: &SimulateArgs,
     set: &PointSet,
-    sketch: Sketch,
     eye: &[ApparentPoint],
     stereo: &StereoImage,
 ) -> CliResult {
-    let inputs = inputs_title(set.inputs, set.observer);
+    let inputs = inputs_title(set.scene);
     if let Some(path) = &args.models_plot {
         let placed = [
             ModelPoints::Course,
@@ -217,12 +191,12 @@ fn write_model_figures(
             .zip(&placed)
             .map(|(name, points)| ModelCloud { name, points })
             .collect();
-        let what = match set.inputs {
-            Inputs::Spec(_) => "the straw appears",
-            Inputs::File(_) => "the objects appear",
+        let what = match set.scene.assignment {
+            Some(_) => "the straw appears",
+            None => "the objects appear",
         };
         let title = format!("Where {what}: {inputs}");
-        write_model_comparison(path, sketch, set.observer, &clouds, &title)?;
+        write_model_comparison(path, set.scene, set.scene.observer, &clouds, &title)?;
     }
     if let Some(path) = &args.gap_plot {
         let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
@@ -242,30 +216,29 @@ fn with_spinner<T>(what: &str, work: impl FnOnce() -> T) -> T {
 }
 
 /// Samples the image of the scene's objects, with a spinner counting rays when it takes a while.
-fn trace_with_spinner(inputs: Inputs, observer: Vec3, min_points: usize) -> ImageCloud {
+fn trace_with_spinner(scene: &Loaded, min_points: usize) -> ImageCloud {
     progress::with_progress(
         None,
         "{spinner} tracing rays: {human_pos} so far  [{elapsed}]",
         |bar| {
             let progress = |rays| bar.set_position(rays);
-            match inputs {
-                Inputs::Spec(scene) => {
-                    sample_image(&World::assignment(scene), observer, min_points, &progress)
-                }
-                Inputs::File(w) => sample_image(&w.world, observer, min_points, &progress),
-            }
+            sample_image(&scene.world, scene.observer, min_points, &progress)
         },
     )
 }
 
 /// The inputs in words, for figures' titles: the assignment's values, or a scene file's name and
 /// the observer.
-fn inputs_title(inputs: Inputs, observer: Vec3) -> String {
-    match inputs {
-        Inputs::Spec(scene) => simulation_title(scene, observer),
-        Inputs::File(w) => format!(
+fn inputs_title(scene: &Loaded) -> String {
+    let observer = scene.observer;
+    match &scene.assignment {
+        Some(numbers) => simulation_title(numbers, observer),
+        None => format!(
             "{}, observer ({}, {}, {}) m",
-            w.name, observer.x, observer.y, observer.z
+            scene.name(),
+            observer.x,
+            observer.y,
+            observer.z
         ),
     }
 }
@@ -286,11 +259,11 @@ pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
 
 /// The one-screen summary printed on stderr; `written` names the files written, one a line.
 pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[String]) -> String {
-    let (o, cloud) = (set.observer, set.cloud);
+    let (o, cloud) = (set.scene.observer, set.cloud);
     let mut t = String::new();
     // What was traced: the assignment's glass by its values, a scene file by its name.
-    let (object, counts): (&str, Vec<(usize, usize)>) = match set.inputs {
-        Inputs::Spec(s) => {
+    let (object, counts): (&str, Vec<(usize, usize)>) = match &set.scene.assignment {
+        Some(s) => {
             let _ = writeln!(
                 t,
                 "bentstraw simulate: the straw's virtual image ({} model)",
@@ -307,15 +280,15 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
             let counts = cloud.counts_per_color().into_iter().enumerate().collect();
             ("the straw", counts)
         }
-        Inputs::File(world) => {
+        None => {
             let _ = writeln!(
                 t,
                 "bentstraw simulate: the virtual image of {} ({} model)",
-                world.name,
+                set.scene.name(),
                 set.image_model()
             );
             let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
-            let _ = writeln!(t, "  event limit     {}", world.world.max_events);
+            let _ = writeln!(t, "  event limit     {}", set.scene.world.max_events);
             // The colours the image has (a card has no red).
             let counts = cloud.counts_per_code().into_iter().enumerate();
             ("an object", counts.filter(|c| c.1 > 0).collect())
@@ -349,9 +322,9 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
         }
     }
     if cloud.points.len() < set.min_points {
-        let invisible = match set.inputs {
-            Inputs::Spec(_) => "the straw is",
-            Inputs::File(_) => "the objects are",
+        let invisible = match set.scene.assignment {
+            Some(_) => "the straw is",
+            None => "the objects are",
         };
         let _ = writeln!(
             t,

@@ -28,8 +28,9 @@ use bentstraw_outputs::ray_diagram::{write_ray_diagram, Diagram};
 use bentstraw_outputs::report::{
     self, Check, Figure, Link, Report, Section, SimulationEntry, Timing,
 };
+use bentstraw_outputs::scene_input::Loaded;
 use bentstraw_outputs::validation::{self, write_validation_figure, ValidationSeries};
-use bentstraw_outputs::writers::{write_points, Inputs, ModelPoints, PointFormat, PointSet};
+use bentstraw_outputs::writers::{write_points, ModelPoints, PointFormat, PointSet};
 use bentstraw_outputs::{html, pictures, plot};
 
 /// Most image points per simulation: the table traces twelve, and runs the eye and stereo models
@@ -57,8 +58,8 @@ struct Job {
     reference: Reference,
     /// Its scene (reference geometry with this variant's index).
     scene: Scene,
-    /// That scene, built once for tracing.
-    world: World,
+    /// That scene seen from the reference's observer, built once for tracing and drawing.
+    loaded: Loaded,
     /// File stem, e.g. `sim1_n1.05`.
     stem: String,
 }
@@ -131,7 +132,7 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
             VARIANTS.iter().map(move |&(n, suffix)| Job {
                 reference: *r,
                 scene: r.scene(n),
-                world: World::assignment(&r.scene(n)),
+                loaded: Loaded::assignment(r.scene(n), r.observer),
                 stem: format!("sim{}{suffix}", r.number),
             })
         })
@@ -242,13 +243,12 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
 fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let t0 = Instant::now();
-    let cloud = sample_image(&job.world, observer, points, &|_| {});
+    let cloud = sample_image(&job.loaded.world, observer, points, &|_| {});
     let traced = t0.elapsed();
 
     let t1 = Instant::now();
     let set = PointSet {
-        inputs: Inputs::Spec(scene),
-        observer,
+        scene: &job.loaded,
         min_points: points,
         model: ModelPoints::Course,
         cloud: &cloud,
@@ -262,14 +262,27 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     let png = format!("{}.png", job.stem);
     let page = format!("{}.html", job.stem);
     let data_error = write_points(&out.join(&csv), PointFormat::Csv, &set).err();
-    let plot_error =
-        plot::write_cloud_figure(&out.join(&png), scene, observer, &cloud.points, &title).err();
+    let figure = |file: &str| {
+        plot::write_cloud_figure(
+            &out.join(file),
+            &job.loaded,
+            observer,
+            &cloud.points,
+            &title,
+        )
+    };
+    let plot_error = figure(&png).err();
     // The same figure as a vector drawing, for print.
     let svg = format!("{}.svg", job.stem);
-    let svg_error =
-        plot::write_cloud_figure(&out.join(&svg), scene, observer, &cloud.points, &title).err();
-    let page_error =
-        html::write_cloud_viewer(&out.join(&page), scene, observer, &cloud.points, &title).err();
+    let svg_error = figure(&svg).err();
+    let page_error = html::write_cloud_viewer(
+        &out.join(&page),
+        &job.loaded,
+        observer,
+        &cloud.points,
+        &title,
+    )
+    .err();
     let written = t1.elapsed();
 
     let mut figure = Figure::image(&png, CLOUD_CAPTION);
@@ -335,10 +348,15 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let observer = job.reference.observer;
     let seen = format!("{}_observer.png", job.stem);
     let splat = format!("{}_cloud.png", job.stem);
-    let error =
-        pictures::write_observer_pictures(out, &job.stem, &job.world, observer, &cloud.points)
-            .err()
-            .map(|e| e.to_string());
+    let error = pictures::write_observer_pictures(
+        out,
+        &job.stem,
+        &job.loaded.world,
+        observer,
+        &cloud.points,
+    )
+    .err()
+    .map(|e| e.to_string());
     let mut picture = Figure::image(
         &seen,
         "What the observer sees: a pinhole camera at the observer, Fresnel reflection and \
@@ -364,7 +382,7 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
 fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let file = format!("{}_rays.svg", job.stem);
-    let diagram = Diagram::new(&job.world, observer, &cloud.points);
+    let diagram = Diagram::new(&job.loaded.world, observer, &cloud.points);
     let title = format!(
         "{} ray diagram: {}",
         simulation_heading(job),
@@ -378,7 +396,7 @@ fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
          to the ray's image point. Side view in the vertical plane through the glass's axis and \
          the observer (the observer to the right), and top view.",
     );
-    figure.error = write_ray_diagram(&out.join(&file), scene, &diagram, &title)
+    figure.error = write_ray_diagram(&out.join(&file), &job.loaded, &diagram, &title)
         .err()
         .map(|e| e.to_string());
     let total: usize = diagram.counts.iter().map(|c| c.1).sum::<usize>().max(1);
@@ -418,19 +436,20 @@ const CLASSIC_WATER: f64 = 0.15;
 fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
     let scene = Scene::with_defaults(CLASSIC_STRAW.0, CLASSIC_STRAW.1, CLASSIC_WATER)
         .expect("the classic view is valid");
-    let world = World::assignment(&scene);
     let observer = CLASSIC_OBSERVER;
+    let loaded = Loaded::assignment(scene, observer);
+    let world = &loaded.world;
     let mut view = Figure::image(
         INTRO_FILES[0],
         "What an eye 30 cm from the glass sees (bentstraw render --observer 0.3,0,0.25 --straw \
          0,0.03 --water-height 0.15): below the water's surface the straw is shifted sideways and \
          looks wider; above it, it is seen straight.",
     );
-    view.error = pictures::write_view_picture(&out.join(INTRO_FILES[0]), &world, observer)
+    view.error = pictures::write_view_picture(&out.join(INTRO_FILES[0]), world, observer)
         .err()
         .map(|e| e.to_string());
-    let cloud = sample_image(&world, observer, points.min(20_000), &|_| {});
-    let diagram = Diagram::new(&world, observer, &cloud.points);
+    let cloud = sample_image(world, observer, points.min(20_000), &|_| {});
+    let diagram = Diagram::new(world, observer, &cloud.points);
     let mut rays = Figure::image(
         INTRO_FILES[1],
         "The same view as a ray diagram: each ray's broken path from the eye to the straw, and \
@@ -439,7 +458,7 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
     );
     rays.error = write_ray_diagram(
         &out.join(INTRO_FILES[1]),
-        &scene,
+        &loaded,
         &diagram,
         &format!("Ray diagram: {}", simulation_title(&scene, observer)),
     )
@@ -549,8 +568,8 @@ fn closing_sections(out: &Path) -> Vec<Section> {
 /// The course's, the eye's and the stereo image side by side, and how far apart they are.
 fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
-    let eye = eye_model_points(&job.world, observer, &cloud.points);
-    let stereo = stereo_points(&job.world, observer, &cloud.points);
+    let eye = eye_model_points(&job.loaded.world, observer, &cloud.points);
+    let stereo = stereo_points(&job.loaded.world, observer, &cloud.points);
     let mut figures = Vec::new();
     let mut placed = Vec::new();
     let mut links = Vec::new();
@@ -560,8 +579,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         ModelPoints::Stereo(&stereo),
     ] {
         let set = PointSet {
-            inputs: Inputs::Spec(scene),
-            observer,
+            scene: &job.loaded,
             min_points: cloud.points.len(),
             model,
             cloud,
@@ -577,7 +595,8 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
             );
             let data_error = write_points(&out.join(&csv), PointFormat::Csv, &set).err();
             let page_error =
-                html::write_cloud_viewer(&out.join(&page), scene, observer, &points, &title).err();
+                html::write_cloud_viewer(&out.join(&page), &job.loaded, observer, &points, &title)
+                    .err();
             links.push(Link::new(
                 &page,
                 &format!("{} model, 3D view", model.name()),
@@ -602,12 +621,19 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         &compare,
         "The same straw points placed by the three models, seen from the same side and scale.",
     );
-    figure.error = write_model_comparison(&out.join(&compare), scene, observer, &clouds, &title)
-        .err()
-        .map(|e| e.to_string());
+    figure.error =
+        write_model_comparison(&out.join(&compare), &job.loaded, observer, &clouds, &title)
+            .err()
+            .map(|e| e.to_string());
     let compare_svg = format!("{}_models.svg", job.stem);
-    let svg_error =
-        write_model_comparison(&out.join(&compare_svg), scene, observer, &clouds, &title).err();
+    let svg_error = write_model_comparison(
+        &out.join(&compare_svg),
+        &job.loaded,
+        observer,
+        &clouds,
+        &title,
+    )
+    .err();
     links.push(Link::new(
         &compare_svg,
         "figure as SVG",

@@ -15,7 +15,6 @@ use bentstraw_explore as api;
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
 use bentstraw_outputs::gallery::GALLERY;
-use bentstraw_outputs::scene_input::AnyScene;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -64,11 +63,13 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         crate::cli::ModeArg::Fresnel => "fresnel",
     };
     let (scene, o) = if v.scene.is_some() {
-        match v.source().resolve_any()? {
-            AnyScene::Spec(r) => (r.scene, r.observer),
+        let loaded = v.source().load()?;
+        match loaded.assignment {
+            Some(scene) => (scene, loaded.observer),
             // A scene of the built-in gallery starts the page on it; another is refused, saying
             // what the page offers.
-            AnyScene::File(f) => {
+            None => {
+                let f = loaded;
                 let o = f.observer;
                 let query = |stem: &str| {
                     format!(
@@ -79,7 +80,8 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
                 // A scene of the built-in gallery starts the page on it; any other file is
                 // offered beside the gallery, as it is (the page cannot name files).
                 if let Some((stem, _)) = GALLERY.iter().find(|(_, text)| {
-                    SceneDescription::from_toml(text).is_ok_and(|d| d == f.description)
+                    SceneDescription::from_toml(text)
+                        .is_ok_and(|d| Some(&d) == f.description.as_ref())
                 }) {
                     return Ok(query(stem));
                 }
@@ -87,10 +89,10 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
                     return fail(format!(
                         "explore shows {} as the file has it: --straw, --water-height and --n-water \
                          change only the assignment's kind of scene here (edit the file instead)",
-                        f.name
+                        f.name()
                     ));
                 }
-                let _ = api::USER_SCENE.set(*f);
+                let _ = api::USER_SCENE.set(f);
                 return Ok(query(api::USER_SCENE_NAME));
             }
         }
