@@ -4,6 +4,8 @@
 //! same scene rules, the same camera rules), so the page shows the command line's messages. The
 //! physics is the library's: this crate only turns numbers into bytes.
 
+#![warn(missing_docs)]
+
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 

@@ -3,6 +3,8 @@
 //! diagrams, the rotatable HTML view and the report. No argument parsing: the command line and the
 //! explorer give plain values.
 
+#![warn(missing_docs)]
+
 pub mod camera;
 pub mod check_plot;
 pub mod error;
