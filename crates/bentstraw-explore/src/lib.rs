@@ -16,8 +16,8 @@ use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
-use bentstraw_optics::scene::{clip_text, SceneError, DEFAULT_MAX_EVENTS, MAX_EVENTS_LIMIT};
-use bentstraw_optics::scene_file::Observer;
+use bentstraw_optics::scene::{clip_text, DEFAULT_MAX_EVENTS};
+use bentstraw_optics::scene_file::{Observer, SceneDescription};
 use bentstraw_optics::shading::{
     shaded_picture, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
 };
@@ -25,11 +25,15 @@ use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
+pub mod page;
+
 use bentstraw_outputs::camera::{camera_from_args, world_camera, CameraSpec, MAX_SAMPLES};
 use bentstraw_outputs::gallery::{opening_comment, GALLERY};
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
 use bentstraw_outputs::pictures::png_bytes;
-use bentstraw_outputs::scene_input::{file_world, Loaded, SceneValues};
+use bentstraw_outputs::scene_input::{
+    file_world, parse_scene_text, Loaded, SceneSource, SceneValues,
+};
 use bentstraw_outputs::sketch::{object_outlines, world_wireframe};
 use bentstraw_outputs::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
 
@@ -38,8 +42,9 @@ pub const MAX_POINTS: usize = 1_000_000;
 /// Most pixels of a picture the explorer draws (4K); the command line allows more, but a page
 /// never shows more than its screen.
 pub const MAX_PICTURE_PIXELS: u64 = 3840 * 2160;
-/// Longest request address accepted (bytes).
-pub const MAX_URL: usize = 4096;
+/// Longest request address accepted (bytes): room for a scene file of a few kilobytes, which
+/// travels in the address (`scene-file`).
+pub const MAX_URL: usize = 16 * 1024;
 /// Most parameters in one address.
 const MAX_PARAMS: usize = 40;
 /// Fresnel branches lighter than this are abandoned (the command line's default).
@@ -130,8 +135,11 @@ fn percent_decode(s: &str) -> Result<String, String> {
 /// Everything that defines a view: the scene, the observer, the picture and the points.
 #[derive(Debug, Clone)]
 pub struct View {
-    /// The scene (validated): the assignment's glass, or a gallery scene.
+    /// The scene (validated): the assignment's glass, a gallery scene or the page's scene file.
     pub scene: Arc<Loaded>,
+    /// The text of the page's scene file, when the scene is one (it is part of what names the
+    /// view: two files are both called [`PAGE_SCENE_FILE`]).
+    pub page_file: Option<String>,
     /// The observer (validated).
     pub observer: Vec3,
     /// The scene's inputs as the command line takes them.
@@ -150,83 +158,47 @@ pub struct View {
     pub points: usize,
 }
 
-/// The gallery scene named `name`, with its own observer moved to `observer` and the event limit
-/// `max_events`, checked by the scene file's rules.
-fn gallery_world(name: &str, observer: [f64; 3], max_events: u32) -> Result<Loaded, String> {
-    let mut world = named_world(name, max_events)?;
-    let file = world.name().to_string();
-    for (axis, v) in ["X", "Y", "Z"].iter().zip(observer) {
-        if !v.is_finite() {
-            return Err(format!("observer {axis} = {v} is not a finite number"));
-        }
-    }
-    let position = Vec3::from_array(observer);
-    // The file's own rules hold already: only the eye moved.
-    let Some(description) = &world.description else {
-        return Err(format!("{file} is not a scene file"));
-    };
-    description
-        .check_observer(&Observer {
-            position,
-            target: world
-                .target
-                .filter(|t| *t != position)
-                .unwrap_or(position + Vec3::Z),
-        })
-        .map_err(|e| format!("{file} with this observer: {e}"))?;
-    if max_events == 0 || max_events > MAX_EVENTS_LIMIT {
-        return Err(SceneError::MaxEvents(max_events).to_string());
-    }
-    world.observer = position;
-    Ok(world)
-}
+/// The name a scene file the page holds (its text in the query's `scene-file`) goes by in
+/// messages and commands.
+pub const PAGE_SCENE_FILE: &str = "scene.toml";
 
-/// The scene the page names `name` (a gallery scene, or the file the explorer was started with),
-/// from its own eye, with the event limit `max_events`.
-fn named_world(name: &str, max_events: u32) -> Result<Loaded, String> {
-    Ok(match GALLERY.iter().find(|(stem, _)| *stem == name) {
-        Some((stem, text)) => file_world(&format!("scenes/{stem}.toml"), text, max_events)
-            .map_err(|e| e.to_string())?,
-        None => match USER_SCENE.get() {
-            Some(user) if name == USER_SCENE_NAME => {
-                let mut user = user.clone();
-                if let Some(d) = user
-                    .description
-                    .as_ref()
-                    .filter(|_| user.world.max_events != max_events)
-                {
-                    user.world = World::new(d, max_events);
-                }
-                user
-            }
-            _ => {
-                let mut names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
-                if USER_SCENE.get().is_some() {
-                    names.push(USER_SCENE_NAME);
-                }
-                return Err(format!(
+/// The scene file a query names, as its name and text: a scene of the gallery (`scene=NAME`) or
+/// a file's whole text (`scene-file=TEXT`, named [`PAGE_SCENE_FILE`]); `None` for the
+/// assignment's glass given by its numbers.
+fn scene_text(q: &HashMap<String, String>) -> Result<Option<(String, &str)>, String> {
+    let gallery = get(q, "scene").filter(|s| !s.is_empty());
+    match (gallery, get(q, "scene-file")) {
+        (Some(_), Some(_)) => Err(
+            "give either 'scene' (a scene of the gallery) or 'scene-file' (a scene file's text), not both"
+                .into(),
+        ),
+        (None, Some(text)) => Ok(Some((PAGE_SCENE_FILE.to_string(), text))),
+        (Some(name), None) => match GALLERY.iter().find(|(stem, _)| *stem == name) {
+            Some((stem, text)) => Ok(Some((format!("scenes/{stem}.toml"), text))),
+            None => {
+                let names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
+                Err(format!(
                     "invalid value '{}' for 'scene' [possible values: {}]",
                     clip_text(name, 40),
                     names.join(", ")
-                ));
+                ))
             }
         },
-    })
+        (None, None) => Ok(None),
+    }
 }
 
-/// The name the page uses for the scene file `explore --scene` was started with.
-pub const USER_SCENE_NAME: &str = "file";
-
-/// The scene file `explore --scene` was started with, when it is neither the assignment's kind
-/// nor one of the gallery's: the page offers it beside the gallery (a request never names a file).
-pub static USER_SCENE: std::sync::OnceLock<Loaded> = std::sync::OnceLock::new();
-
-/// `GET /api/sketch?scene=NAME`: what the page draws of a scene besides its points, asked once
-/// per scene (not with every frame): the container's and liquids' wireframe as `[x, y, z, x, y,
-/// z]` segments, the objects' outlines as flat polylines, and the box holding them.
+/// `GET /api/sketch?scene=NAME` (or `scene-file=TEXT`): what the page draws of a scene besides
+/// its points, asked once per scene (not with every frame): the container's and liquids'
+/// wireframe as `[x, y, z, x, y, z]` segments, the objects' outlines as flat polylines, the box
+/// holding them, and the file's own observer.
 pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
-    let file = named_world(required(q, "scene")?, DEFAULT_MAX_EVENTS)?;
-    let w = &file.world;
+    let Some((name, text)) = scene_text(q)? else {
+        return Err("missing required parameter 'scene'".into());
+    };
+    let description = parse_scene_text(&name, text).map_err(|e| e.to_string())?;
+    let world = World::new(&description, DEFAULT_MAX_EVENTS);
+    let w = &world;
     let flat = |p: &[Vec3]| -> Vec<f64> { p.iter().flat_map(|q| q.to_array()).collect() };
     let wireframe: Vec<f64> = world_wireframe(w).iter().flat_map(|s| flat(s)).collect();
     let outlines: Vec<Vec<f64>> = object_outlines(w).iter().map(|l| flat(l)).collect();
@@ -235,13 +207,13 @@ pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
         "wireframe": wireframe,
         "outlines": outlines,
         "bounds": [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
+        "observer": description.observer.map_or(Value::Null, |o| vec_json(o.position)),
     })))
 }
 
-/// `GET /api/scenes`: the gallery's scenes (and the file the explorer was started with): name,
-/// what it shows, its own observer.
+/// `GET /api/scenes`: the gallery's scenes: name, what it shows, its own observer.
 pub fn scenes_reply() -> Reply {
-    let mut list: Vec<Value> = GALLERY
+    let list: Vec<Value> = GALLERY
         .iter()
         .filter_map(|(stem, text)| {
             let w = file_world(stem, text, DEFAULT_MAX_EVENTS).ok()?;
@@ -253,14 +225,6 @@ pub fn scenes_reply() -> Reply {
             }))
         })
         .collect();
-    if let Some(user) = USER_SCENE.get() {
-        list.push(json!({
-            "name": USER_SCENE_NAME,
-            "title": clip_text(user.name(), 40),
-            "shows": "the scene file the explorer was started with",
-            "observer": vec_json(user.observer),
-        }));
-    }
     Reply::json(&Value::Array(list))
 }
 
@@ -301,9 +265,9 @@ impl View {
     /// line's message for the first value that breaks a rule.
     pub fn from_query(q: &HashMap<String, String>) -> Result<View, String> {
         let observer_text = required(q, "observer")?;
-        let gallery = get(q, "scene").filter(|s| !s.is_empty());
-        // A gallery scene needs no straw or water: its file has them.
-        let (straw_text, he_text) = match gallery {
+        let file = scene_text(q)?;
+        // A scene file needs no straw or water: it has them.
+        let (straw_text, he_text) = match file {
             Some(_) => (
                 get(q, "straw").unwrap_or("0,0"),
                 get(q, "water-height").unwrap_or("0.1"),
@@ -317,10 +281,17 @@ impl View {
             n_water: get(q, "n-water").map_or(Ok(1.333), |t| number(t, "n-water"))?,
             max_events: get(q, "max-events").map_or(Ok(10), |t| number(t, "max-events"))?,
         };
-        let (scene, observer) = match gallery {
-            Some(name) => {
-                let loaded = gallery_world(name, scene_args.observer, scene_args.max_events)?;
-                (Arc::new(loaded), Vec3::from_array(scene_args.observer))
+        let (scene, observer) = match &file {
+            // As `--scene FILE --observer X,Y,Z` reads it: the file's rules, the eye moved.
+            Some((name, text)) => {
+                let source = SceneSource {
+                    observer: Some(scene_args.observer),
+                    max_events: scene_args.max_events,
+                    ..SceneSource::default()
+                };
+                let loaded = source.load_text(name, text).map_err(|e| e.to_string())?;
+                let observer = loaded.observer;
+                (Arc::new(loaded), observer)
             }
             None => {
                 let (scene, observer) =
@@ -328,6 +299,7 @@ impl View {
                 (Arc::new(Loaded::assignment(scene, observer)), observer)
             }
         };
+        let page_file = get(q, "scene-file").map(str::to_string);
         let camera_args = CameraSpec {
             target: get(q, "target")
                 .map(|t| flag(parse_vec3(t), "target", t))
@@ -383,6 +355,7 @@ impl View {
         }
         Ok(View {
             scene,
+            page_file,
             observer,
             scene_args,
             camera_args,
@@ -416,52 +389,64 @@ impl View {
         }
     }
 
-    /// The scene flags, as `simulate` and `render` take them.
-    fn scene_flags(&self) -> String {
+    /// The scene's arguments, as `simulate` and `render` take them.
+    fn scene_flags(&self) -> Vec<String> {
         let a = &self.scene_args;
-        if self.scene.assignment.is_none() {
-            let mut s = format!(
-                "--scene {} --observer {},{},{}",
-                self.scene.name(),
-                a.observer[0],
-                a.observer[1],
-                a.observer[2]
-            );
-            if a.max_events != 10 {
-                s += &format!(" --max-events {}", a.max_events);
-            }
-            return s;
-        }
-        let mut s = format!(
-            "--observer {},{},{} --straw {},{} --water-height {}",
-            a.observer[0], a.observer[1], a.observer[2], a.straw[0], a.straw[1], a.water_height
-        );
-        if a.n_water != 1.333 {
-            s += &format!(" --n-water {}", a.n_water);
+        let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+        let observer = list(&a.observer);
+        let mut s: Vec<String> = match &self.scene.name {
+            Some(name) => vec![
+                "--scene".into(),
+                name.clone(),
+                "--observer".into(),
+                observer,
+            ],
+            None => vec![
+                "--observer".into(),
+                observer,
+                "--straw".into(),
+                list(&a.straw),
+                "--water-height".into(),
+                a.water_height.to_string(),
+            ],
+        };
+        if self.scene.name.is_none() && a.n_water != 1.333 {
+            s.extend(["--n-water".into(), a.n_water.to_string()]);
         }
         if a.max_events != 10 {
-            s += &format!(" --max-events {}", a.max_events);
+            s.extend(["--max-events".into(), a.max_events.to_string()]);
         }
+        s
+    }
+
+    /// The arguments of the `bentstraw simulate` command that writes this view's points (or
+    /// `model`'s) into `view.csv`.
+    pub fn simulate_args(&self, model: &str) -> Vec<String> {
+        let mut s = vec!["simulate".to_string()];
+        s.extend(self.scene_flags());
+        s.extend(["--points".into(), self.points.max(1).to_string()]);
+        if model != "course" {
+            s.extend(["--image-model".into(), model.to_string()]);
+        }
+        s.extend(["--output".into(), "view.csv".into()]);
         s
     }
 
     /// The `bentstraw simulate` command line that writes this view's points.
     pub fn simulate_command(&self, model: &str) -> String {
-        let mut s = format!(
-            "bentstraw simulate {} --points {}",
-            self.scene_flags(),
-            self.points.max(1)
-        );
-        if model != "course" {
-            s += &format!(" --image-model {model}");
-        }
-        s + " --output view.csv"
+        format!("bentstraw {}", self.simulate_args(model).join(" "))
+    }
+
+    /// What names this view's points: its `simulate` command, and the page's scene file.
+    fn points_key(&self) -> String {
+        let file = self.page_file.as_deref().unwrap_or("");
+        format!("{}\n{file}", self.simulate_command("course"))
     }
 
     /// The `bentstraw render` command line that draws this view's picture.
     pub fn render_command(&self) -> String {
         let c = &self.camera_args;
-        let mut s = format!("bentstraw render {}", self.scene_flags());
+        let mut s = format!("bentstraw render {}", self.scene_flags().join(" "));
         if let Some(t) = c.target {
             s += &format!(" --target {},{},{}", t[0], t[1], t[2]);
         }
@@ -497,6 +482,8 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
         shading: view.shading(),
         min_points: view.points,
     };
+    // WebAssembly in a page has no clock here: the worker times its own calls.
+    #[cfg(not(target_arch = "wasm32"))]
     let started = std::time::Instant::now();
     // The colour codes a scene can show: the straw's five, or all eight in a scene file.
     let codes = match view.scene.assignment {
@@ -504,11 +491,12 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
         None => COLOR_NAMES.len(),
     };
     draw_frame(&view.scene.world, &request, frame);
+    #[cfg(not(target_arch = "wasm32"))]
     let ms = started.elapsed().as_secs_f64() * 1e3;
-    *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) = Some((
-        view.simulate_command("course"),
-        Arc::new(frame.points.clone()),
-    ));
+    #[cfg(target_arch = "wasm32")]
+    let ms = 0.0;
+    *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) =
+        Some((view.points_key(), Arc::new(frame.points.clone())));
     let counts = frame.path_counts();
     let kinds: Vec<LightPathType> = counts.iter().map(|c| c.0).collect();
     let mut per_color = vec![0usize; codes];
@@ -522,9 +510,10 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
         "rays_traced": frame.rays_traced,
         "points_per_color": per_color,
         "paths": counts.iter().map(|(k, n)| json!({"key": k.key(), "words": k.to_string(), "count": n})).collect::<Vec<_>>(),
-        "fov_deg": 2.0 * view.camera.tan_half_fov.atan().to_degrees(),
+        "fov_deg": 2.0 * libm::atan(view.camera.tan_half_fov).to_degrees(),
         "ms": ms,
         "simulate": view.simulate_command("course"),
+        "simulate_args": view.simulate_args("course"),
         "render": view.render_command(),
     });
     let kind_of = frame
@@ -572,7 +561,7 @@ pub const MAX_EVERY: usize = 64;
 
 /// The course image points of `view`: the last frame's when it was this view's.
 fn course_points(view: &View) -> Arc<Vec<ImagePoint>> {
-    let key = view.simulate_command("course");
+    let key = view.points_key();
     let last = LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((k, points)) = last.as_ref() {
         if *k == key {
@@ -623,7 +612,7 @@ fn place(
 pub fn model_reply(view: &View, model: &str, every: usize) -> Reply {
     let all = course_points(view);
     let every = every.max(1);
-    let key = format!("{} {model}", view.simulate_command("course"));
+    let key = format!("{} {model}", view.points_key());
     // A coarser answer for this view, if one was given: its points are taken from it.
     let coarser = LAST_MODELS
         .lock()
@@ -733,7 +722,7 @@ pub fn ray_json(view: &View, u0: Vec3) -> Value {
             "point": vec_json(e.point),
             "face": world.face_name(e.boundary),
             "event": if e.totally_reflected { "total reflection" } else { "refraction" },
-            "incidence_deg": cos.acos().to_degrees(),
+            "incidence_deg": libm::acos(cos).to_degrees(),
             "n1": e.n1,
             "n2": e.n2,
         }));
@@ -847,6 +836,47 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     Ok(r)
 }
 
+/// `GET /api/scene-file`: the view's scene as the text of a scene file, its `[observer]` the
+/// view's eye (the assignment's glass too, as a file of its kind).
+pub fn scene_file_reply(view: &View) -> Result<Reply, String> {
+    let mut description = match (&view.scene.description, &view.scene.assignment) {
+        (Some(d), _) => d.clone(),
+        (None, Some(scene)) => SceneDescription::assignment(scene),
+        (None, None) => return Err("this scene has no description".into()),
+    };
+    // Where the camera looks: the file's target, the page's, or the middle of the scene.
+    let target = view
+        .scene
+        .target
+        .or(view.camera_args.target.map(Vec3::from_array))
+        .unwrap_or_else(|| view.scene.world.bounding_sphere().0);
+    description.observer = Some(Observer {
+        position: view.observer,
+        target: if target == view.observer {
+            view.observer + Vec3::Z
+        } else {
+            target
+        },
+    });
+    let mut r = Reply::bytes("application/toml", description.to_toml().into_bytes());
+    r.file_name = Some(PAGE_SCENE_FILE.into());
+    Ok(r)
+}
+
+/// `text` written as one value of a query (`%XX` for everything but letters, digits and `-._~`),
+/// as [`parse_query`] reads it back.
+pub fn query_value(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() * 3 / 2);
+    for b in text.bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~".contains(&b) {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
 /// The answer to `GET path?query` for the API routes (`/api/...`), with a reusable frame.
 pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
     if path == "/api/scenes" {
@@ -876,6 +906,7 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
         },
         "/api/ray" => ray_reply(&view, &q),
         "/api/export" => export_reply(&view, &q),
+        "/api/scene-file" => scene_file_reply(&view),
         _ => return Reply::text(404, format!("no such route: {}", clip_text(path, 60))),
     };
     result.unwrap_or_else(|e| Reply::text(400, e))
@@ -1075,19 +1106,53 @@ mod tests {
         assert!(String::from_utf8_lossy(&inside.body).contains("inside or on the container"));
     }
 
-    /// The scene file the explorer was started with is served under its own name.
+    /// A scene file's text in the query is read as `--scene scene.toml` reads the file: the
+    /// same points as the gallery's copy of it, its rules' messages, and the view's scene written
+    /// back as a file gives the same view.
     #[test]
-    fn the_started_file_is_served_beside_the_gallery() {
-        let text = GALLERY[3].1.replace("half_x = 0.10", "half_x = 0.12");
-        let _ = USER_SCENE.set(file_world("mine.toml", &text, DEFAULT_MAX_EVENTS).unwrap());
+    fn a_scene_files_text_is_the_scene_of_the_view() {
         let mut f = Frame::default();
-        let q = "scene=file&observer=0,-0.35,0.12&size=40x30&points=500";
-        let r = handle("/api/frame", q, &mut f);
-        assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
-        let scenes: Value =
-            serde_json::from_slice(&handle("/api/scenes", "", &mut f).body).unwrap();
-        assert_eq!(scenes.as_array().unwrap().len(), GALLERY.len() + 1);
-        assert_eq!(scenes[GALLERY.len()]["name"], json!("file"));
+        let (stem, text) = GALLERY[3];
+        let view = "observer=0.05,-0.35,0.12&points=500";
+        let gallery = format!("/api/export?scene={stem}&{view}&format=csv");
+        let own = format!("scene-file={}&{view}&format=csv", query_value(text));
+        let a = handle("/api/export", gallery.split_once('?').unwrap().1, &mut f);
+        let b = handle("/api/export", &own, &mut f);
+        assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
+        assert_eq!(a.body, b.body);
+        // What the view's scene writes back is the same scene.
+        let file = handle("/api/scene-file", &own, &mut f);
+        assert_eq!(file.status, 200);
+        let written = String::from_utf8(file.body).unwrap();
+        let again = format!("scene-file={}&{view}&format=csv", query_value(&written));
+        assert_eq!(handle("/api/export", &again, &mut f).body, b.body);
+        // The assignment's glass is written as a file of its kind: the same points again.
+        let glass = format!("{REF2}&points=500&format=csv");
+        let file = handle("/api/scene-file", &glass, &mut f);
+        let written = String::from_utf8(file.body).unwrap();
+        assert!(written.contains("[[straw]]"), "{written}");
+        let from_file = format!(
+            "scene-file={}&observer=0.1,0,0.1&points=500&format=csv",
+            query_value(&written)
+        );
+        assert_eq!(
+            handle("/api/export", &from_file, &mut f).body,
+            handle("/api/export", &glass, &mut f).body
+        );
+        // A broken rule: the command line's message, naming the page's file.
+        let broken = text.replace("half_x = 0.10", "half_x = -0.10");
+        assert_ne!(broken, text);
+        let r = handle(
+            "/api/frame",
+            &format!("scene-file={}&{view}", query_value(&broken)),
+            &mut f,
+        );
+        assert_eq!(r.status, 400);
+        let message = String::from_utf8(r.body).unwrap();
+        assert!(message.starts_with("scene.toml"), "{message}");
+        // Not both a gallery scene and a file.
+        let both = format!("scene={stem}&scene-file=x&{view}");
+        assert_eq!(handle("/api/frame", &both, &mut f).status, 400);
     }
 
     #[test]

@@ -703,17 +703,16 @@ impl World {
             (None, w0.cross(ul).length()) // parallel lines of sight
         };
         let baseline = (eyes.right - eyes.left).normalize();
-        let vertical_disparity = ur
-            .dot(baseline.cross(ul).normalize())
-            .clamp(-1.0, 1.0)
-            .asin();
+        let vertical_disparity =
+            libm::asin(ur.dot(baseline.cross(ul).normalize()).clamp(-1.0, 1.0));
         let q = path.straw_point;
-        let straw_angle = (q - eyes.left)
-            .normalize()
-            .dot((q - eyes.right).normalize())
-            .clamp(-1.0, 1.0)
-            .acos();
-        let disparity = b.clamp(-1.0, 1.0).acos() - straw_angle;
+        let straw_angle = libm::acos(
+            (q - eyes.left)
+                .normalize()
+                .dot((q - eyes.right).normalize())
+                .clamp(-1.0, 1.0),
+        );
+        let disparity = libm::acos(b.clamp(-1.0, 1.0)) - straw_angle;
         Some(StereoPoint {
             image: *image,
             position,

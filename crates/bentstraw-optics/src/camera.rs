@@ -56,7 +56,7 @@ impl Camera {
             up,
             width,
             height,
-            tan_half_fov: (fov_y / 2.0).tan(),
+            tan_half_fov: libm::tan(fov_y / 2.0),
         }
     }
 
@@ -108,7 +108,7 @@ fn scene_extent(eye: Vec3, target: Vec3) -> Option<(f64, f64, f64, f64)> {
     for k in 0..STEPS {
         let a = k as f64 * std::f64::consts::TAU / STEPS as f64;
         for z in [0.0, STRAW_HEIGHT] {
-            let v = Vec3::new(GLASS_RADIUS * a.cos(), GLASS_RADIUS * a.sin(), z) - eye;
+            let v = Vec3::new(GLASS_RADIUS * libm::cos(a), GLASS_RADIUS * libm::sin(a), z) - eye;
             let depth = v.dot(cam.forward);
             if depth <= 1e-9 {
                 return None;
@@ -131,7 +131,7 @@ pub fn framing_fov(eye: Vec3, target: Vec3, aspect: f64) -> f64 {
         return MAX_FRAMING_FOV;
     };
     let half = y0.abs().max(y1.abs()).max(x0.abs().max(x1.abs()) / aspect);
-    (2.0 * (half * (1.0 + FRAMING_MARGIN)).atan()).min(MAX_FRAMING_FOV)
+    (2.0 * libm::atan(half * (1.0 + FRAMING_MARGIN))).min(MAX_FRAMING_FOV)
 }
 
 /// The vertical field of view (radians) that frames the box of corners `lo`, `hi` (its eight
@@ -155,7 +155,7 @@ pub fn framing_fov_box(eye: Vec3, target: Vec3, (lo, hi): (Vec3, Vec3), aspect: 
             .max((v.dot(cam.up) / depth).abs())
             .max((v.dot(cam.right) / depth).abs() / aspect);
     }
-    (2.0 * (half * (1.0 + FRAMING_MARGIN)).atan()).min(MAX_FRAMING_FOV)
+    (2.0 * libm::atan(half * (1.0 + FRAMING_MARGIN))).min(MAX_FRAMING_FOV)
 }
 
 /// A target for a camera at `eye` that centres the picture of the glass and the straw (rather than
@@ -171,7 +171,7 @@ pub fn framing_target(eye: Vec3) -> Vec3 {
             break;
         };
         let cam = Camera::new(eye, target, 1, 1, std::f64::consts::FRAC_PI_2);
-        let mid = |a: f64, b: f64| (0.5 * (a.atan() + b.atan())).tan();
+        let mid = |a: f64, b: f64| libm::tan(0.5 * (libm::atan(a) + libm::atan(b)));
         let forward = (cam.forward + mid(x0, x1) * cam.right + mid(y0, y1) * cam.up).normalize();
         let next = eye + (centre - eye).length() * forward;
         if scene_extent(eye, next).is_none() {

@@ -149,5 +149,5 @@ pub fn fresnel_reflectance_sp(n1: f64, n2: f64, cos_i: f64) -> (f64, f64) {
 /// Critical angle (radians) for light going from index `n1` into a lower index `n2`; `None` if
 /// `n1 <= n2` (no total reflection possible).
 pub fn critical_angle(n1: f64, n2: f64) -> Option<f64> {
-    (n1 > n2).then(|| (n2 / n1).asin())
+    (n1 > n2).then(|| libm::asin(n2 / n1))
 }

@@ -49,7 +49,7 @@ impl DirectionMap {
     #[inline]
     pub fn direction(&self, a: f64, b: f64) -> Vec3 {
         let c = (1.0 - b * b).max(0.0).sqrt();
-        let (sin_a, cos_a) = a.sin_cos();
+        let (sin_a, cos_a) = libm::sincos(a);
         c * (cos_a * self.forward + sin_a * self.up) + b * self.right
     }
 
@@ -57,7 +57,7 @@ impl DirectionMap {
     #[inline]
     pub fn coordinates(&self, d: Vec3) -> (f64, f64) {
         (
-            d.dot(self.up).atan2(d.dot(self.forward)),
+            libm::atan2(d.dot(self.up), d.dot(self.forward)),
             d.dot(self.right).clamp(-1.0, 1.0),
         )
     }

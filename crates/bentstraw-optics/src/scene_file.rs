@@ -167,7 +167,7 @@ fn segment_distance_to_origin(a: (f64, f64), b: (f64, f64)) -> f64 {
     } else {
         0.0
     };
-    (a.0 + s * dx).hypot(a.1 + s * dy)
+    libm::hypot(a.0 + s * dx, a.1 + s * dy)
 }
 
 /// Whether the segment `a`–`b` has points strictly inside `|x| < hx, |y| < hy` (Liang–Barsky).
@@ -294,20 +294,28 @@ impl Straw {
     /// Unit vector along its axis, bottom to top: `(sin t cos a, sin t sin a, cos t)`.
     pub fn axis(&self) -> Vec3 {
         let (t, a) = (self.tilt_deg.to_radians(), self.azimuth_deg.to_radians());
-        Vec3::new(t.sin() * a.cos(), t.sin() * a.sin(), t.cos())
+        Vec3::new(
+            libm::sin(t) * libm::cos(a),
+            libm::sin(t) * libm::sin(a),
+            libm::cos(t),
+        )
     }
 
     /// Its bottom cap's centre when it rests on a floor at height `floor`: the cap's rim touches
     /// the floor at its lowest point, so the centre is `radius·sin(tilt)` above it.
     pub fn bottom_centre(&self, floor: f64) -> Vec3 {
         let t = self.tilt_deg.to_radians();
-        Vec3::new(self.x, self.y, floor + self.radius * t.sin())
+        Vec3::new(self.x, self.y, floor + self.radius * libm::sin(t))
     }
 
     /// The unit vector in the bottom cap's plane pointing most steeply down (towards the lean).
     fn downhill(&self) -> Vec3 {
         let (t, a) = (self.tilt_deg.to_radians(), self.azimuth_deg.to_radians());
-        Vec3::new(t.cos() * a.cos(), t.cos() * a.sin(), -t.sin())
+        Vec3::new(
+            libm::cos(t) * libm::cos(a),
+            libm::cos(t) * libm::sin(a),
+            -libm::sin(t),
+        )
     }
 
     /// The point where it touches the floor: the lowest point of its bottom cap's rim.
@@ -325,13 +333,13 @@ impl Straw {
         let axis = self.axis();
         let e1 = self.downhill();
         let e2 = Vec3::new(
-            -self.azimuth_deg.to_radians().sin(),
-            self.azimuth_deg.to_radians().cos(),
+            -libm::sin(self.azimuth_deg.to_radians()),
+            libm::cos(self.azimuth_deg.to_radians()),
             0.0,
         );
         (0..RIM_SAMPLES).flat_map(move |k| {
             let phi = std::f64::consts::TAU * k as f64 / RIM_SAMPLES as f64;
-            let rim = c + self.radius * (phi.cos() * e1 + phi.sin() * e2);
+            let rim = c + self.radius * (libm::cos(phi) * e1 + libm::sin(phi) * e2);
             let s_top = ((z_top - rim.z) / axis.z).min(self.length);
             let ends = if rim.z > z_top {
                 [None, None]
@@ -403,7 +411,7 @@ impl Card {
     fn ends(&self) -> ((f64, f64), (f64, f64)) {
         let f = self.facing_deg.to_radians();
         // To the right of someone facing the card's front, who looks along −(cos f, sin f).
-        let (ux, uy) = (-f.sin(), f.cos());
+        let (ux, uy) = (-libm::sin(f), libm::cos(f));
         let h = self.width / 2.0;
         (
             (self.center.x - h * ux, self.center.y - h * uy),
@@ -688,7 +696,7 @@ impl SceneDescription {
             .collect();
         for (j, b) in footprints.iter().enumerate() {
             for a in &footprints[..j] {
-                let gap = (a.1 - b.1).hypot(a.2 - b.2);
+                let gap = libm::hypot(a.1 - b.1, a.2 - b.2);
                 if gap < a.3 + b.3 {
                     return Err(refuse_key(
                         &b.0,

@@ -104,7 +104,7 @@ pub fn srgb_to_linear(c: f64) -> f64 {
     if c <= 0.04045 {
         c / 12.92
     } else {
-        ((c + 0.055) / 1.055).powf(2.4)
+        libm::pow((c + 0.055) / 1.055, 2.4)
     }
 }
 
@@ -115,7 +115,7 @@ pub fn linear_to_srgb(c: f64) -> f64 {
     if c <= 0.0031308 {
         12.92 * c
     } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
+        1.055 * libm::pow(c, 1.0 / 2.4) - 0.055
     }
 }
 
@@ -901,13 +901,13 @@ fn outline_mask(mask: &mut Vec<f32>, camera: &Camera, (radius, height): (f64, f6
     mask.resize(w * h, 0.0);
     let eye = camera.eye;
     let eye_r = (eye.x * eye.x + eye.y * eye.y).sqrt();
-    let circle = |a: f64, z: f64| Vec3::new(radius * a.cos(), radius * a.sin(), z);
+    let circle = |a: f64, z: f64| Vec3::new(radius * libm::cos(a), radius * libm::sin(a), z);
     for (z, seen_inside) in [(height, eye.z > height), (0.0, eye.z < 0.0)] {
         for k in 0..STEPS {
             let a0 = k as f64 * std::f64::consts::TAU / STEPS as f64;
             let a1 = (k + 1) as f64 * std::f64::consts::TAU / STEPS as f64;
             let mid = 0.5 * (a0 + a1);
-            let near_side = eye.x * mid.cos() + eye.y * mid.sin() > radius;
+            let near_side = eye.x * libm::cos(mid) + eye.y * libm::sin(mid) > radius;
             let alpha = if seen_inside || near_side {
                 STRONG
             } else {
@@ -917,8 +917,8 @@ fn outline_mask(mask: &mut Vec<f32>, camera: &Camera, (radius, height): (f64, f6
         }
     }
     if eye_r > radius {
-        let towards = eye.y.atan2(eye.x);
-        let half = (radius / eye_r).acos();
+        let towards = libm::atan2(eye.y, eye.x);
+        let half = libm::acos(radius / eye_r);
         for a in [towards - half, towards + half] {
             stroke(
                 mask,

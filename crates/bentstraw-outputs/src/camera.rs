@@ -107,7 +107,7 @@ pub fn world_camera(world: &Loaded, camera_args: &CameraSpec) -> Result<Camera> 
     if camera_args.fov.is_none() {
         let aspect = camera.width as f64 / camera.height as f64;
         let fov = framing_fov_box(world.observer, Vec3::from_array(target), (lo, hi), aspect);
-        camera.tan_half_fov = (fov / 2.0).tan();
+        camera.tan_half_fov = libm::tan(fov / 2.0);
     }
     Ok(camera)
 }

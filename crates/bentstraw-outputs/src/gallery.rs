@@ -1,21 +1,4 @@
-//! The gallery of classic demonstrations, built into the program, and its part of the report:
-//! for each scene file its picture, its image points and its ray diagram.
-
-use std::path::Path;
-
-use bentstraw_optics::sampling::sample_image;
-use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
-use bentstraw_optics::shading::shaded_picture;
-use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
-use rayon::prelude::*;
-
-use crate::camera::{world_camera, CameraSpec};
-use crate::error::Result;
-use crate::pictures::png_bytes;
-use crate::ray_diagram::{write_ray_diagram, Diagram};
-use crate::report::{Figure, Link, Section};
-use crate::scene_input::{file_world, Loaded};
-use crate::{files, plot};
+//! The gallery of classic demonstrations, built into the program: its scene files, by name.
 
 /// The gallery's scene files beyond the assignment's own (`scenes/`): name and text.
 pub const GALLERY: [(&str, &str); 6] = [
@@ -45,24 +28,6 @@ pub const GALLERY: [(&str, &str); 6] = [
     ),
 ];
 
-/// Image points per gallery scene in the report.
-const GALLERY_POINTS: usize = 20_000;
-
-/// The files the gallery writes into the report's folder.
-pub fn gallery_files() -> Vec<String> {
-    GALLERY
-        .iter()
-        .flat_map(|(stem, _)| {
-            [
-                format!("gallery_{stem}_observer.png"),
-                format!("gallery_{stem}_points.png"),
-                format!("gallery_{stem}_points.svg"),
-                format!("gallery_{stem}_rays.svg"),
-            ]
-        })
-        .collect()
-}
-
 /// What a scene file says it shows: its opening comment, as one paragraph.
 pub fn opening_comment(text: &str) -> String {
     text.lines()
@@ -72,119 +37,11 @@ pub fn opening_comment(text: &str) -> String {
         .join(" ")
 }
 
-/// The report's sections of the gallery, one per scene, its files written into `out`.
-pub fn gallery_sections(out: &Path) -> Vec<Section> {
-    GALLERY
-        .par_iter()
-        .map(|(stem, text)| {
-            match file_world(&format!("scenes/{stem}.toml"), text, DEFAULT_MAX_EVENTS) {
-                Ok(world) => scene_section(out, stem, text, &world),
-                Err(e) => Section {
-                    title: format!("Gallery: {stem}"),
-                    figures: vec![Figure {
-                        error: Some(e.to_string()),
-                        ..Figure::image(&format!("gallery_{stem}_observer.png"), "")
-                    }],
-                    notes: vec![],
-                    side_by_side: false,
-                    table: vec![],
-                },
-            }
-        })
-        .collect()
-}
-
-/// The section of one gallery scene: its picture and its image points.
-fn scene_section(out: &Path, stem: &str, text: &str, world: &Loaded) -> Section {
-    let picture_file = format!("gallery_{stem}_observer.png");
-    let points_file = format!("gallery_{stem}_points.png");
-    let svg_file = format!("gallery_{stem}_points.svg");
-    let mut picture = Figure::image(
-        &picture_file,
-        &format!(
-            "What the eye sees (bentstraw render --scene scenes/{stem}.toml): Fresnel reflection \
-             and refraction at every surface, the checkerboard behind."
-        ),
-    );
-    picture.error = write_picture(&out.join(&picture_file), world)
-        .err()
-        .map(|e| e.to_string());
-    let cloud = sample_image(&world.world, world.observer, GALLERY_POINTS, &|_| {});
-    let title = format!("{}: the image points (course model)", world.name());
-    let mut points = Figure::image(
-        &points_file,
-        &format!(
-            "Where each piece appears (bentstraw simulate --scene scenes/{stem}.toml --plot \
-             points.png): {} image points P = O + L·u0, the container and liquids as a \
-             wireframe, the objects' true outlines dashed.",
-            cloud.points.len()
-        ),
-    );
-    let draw = |file: &str| {
-        plot::write_cloud_figure(
-            &out.join(file),
-            world,
-            world.observer,
-            &cloud.points,
-            &title,
-        )
-    };
-    points.error = draw(&points_file).err().map(|e| e.to_string());
-    points.links.push(Link::new(
-        &svg_file,
-        "figure as SVG",
-        draw(&svg_file).err().map(|e| e.to_string()),
-    ));
-    let rays_file = format!("gallery_{stem}_rays.svg");
-    let mut rays = Figure::image(
-        &rays_file,
-        "Which light path makes which piece (bentstraw simulate --rays): broken paths from the \
-         eye, refractions (o) and total reflections (x), the dashed line of sight to each image \
-         point.",
-    );
-    let diagram = Diagram::new(&world.world, world.observer, &cloud.points);
-    rays.error = write_ray_diagram(
-        &out.join(&rays_file),
-        world,
-        &diagram,
-        &format!("Ray diagram: {}", world.name()),
-    )
-    .err()
-    .map(|e| e.to_string());
-    Section {
-        title: format!("Gallery: {}", stem.replace('-', " ")),
-        figures: vec![picture, points, rays],
-        notes: vec![opening_comment(text)],
-        side_by_side: true,
-        table: vec![],
-    }
-}
-
-/// The scene's picture from its own observer, 1000x750, Fresnel, as a PNG.
-fn write_picture(path: &Path, world: &Loaded) -> Result {
-    let camera = world_camera(
-        world,
-        &CameraSpec {
-            target: None,
-            fov: None,
-            size: Some((1000, 750)),
-        },
-    )?;
-    let options = ShadingOptions {
-        mode: ShadingMode::Fresnel { prune_below: 1e-4 },
-        backdrop: Backdrop::Checker,
-        samples: 3,
-        outline: false,
-    };
-    files::write_bytes(
-        path,
-        &png_bytes(&shaded_picture(&world.world, &camera, &options))?,
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene_input::file_world;
+    use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
 
     #[test]
     fn every_gallery_scene_is_valid_and_says_what_it_shows() {

@@ -1,26 +1,36 @@
 //! `bentstraw-outputs`: everything bentstraw writes or reads besides arguments: scene files read
 //! and checked, image points written (CSV, JSON, PLY), figures (PNG, SVG, PDF), pictures, ray
-//! diagrams, the rotatable HTML view and the report. No argument parsing: the command line and the
+//! diagrams, the rotatable HTML view and the report (figures, behind the default feature `figures`,
+//! which needs a native target). No argument parsing: the command line and the
 //! explorer give plain values.
 
 #![warn(missing_docs)]
 
 pub mod camera;
+#[cfg(feature = "figures")]
 pub mod check_plot;
 pub mod error;
 pub mod files;
 pub mod gallery;
+#[cfg(feature = "figures")]
+pub mod gallery_report;
+#[cfg(feature = "figures")]
 pub mod html;
+#[cfg(feature = "figures")]
 pub mod model_plots;
 pub mod parse;
 pub mod pictures;
+#[cfg(feature = "figures")]
 pub mod plot;
+#[cfg(feature = "figures")]
 pub mod ray_diagram;
+#[cfg(feature = "figures")]
 pub mod report;
 pub mod scene_input;
 pub mod sketch;
 #[cfg(test)]
 mod test_support;
+#[cfg(feature = "figures")]
 pub mod validation;
 pub mod writers;
 

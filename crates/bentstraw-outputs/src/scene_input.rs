@@ -125,8 +125,17 @@ impl SceneSource {
             .scene_and_observer()?;
             return Ok(Loaded::assignment(scene, observer));
         };
-        let name = shown(path);
-        let mut description = read_scene_file(path)?;
+        self.load_description(shown(path), read_scene_file(path)?)
+    }
+
+    /// [`SceneSource::load`] for the scene file whose text is `text` and whose name, as messages
+    /// show it, is `name` (the page's scene files; `self.file` is not read).
+    pub fn load_text(&self, name: &str, text: &str) -> Result<Loaded> {
+        self.load_description(name.to_string(), parse_scene_text(name, text)?)
+    }
+
+    /// The scene file `name` read as `description`, the flags applied and checked.
+    fn load_description(&self, name: String, mut description: SceneDescription) -> Result<Loaded> {
         let overrides: Vec<&str> = [
             (self.straw.is_some(), "--straw"),
             (self.water_height.is_some(), "--water-height"),
@@ -208,8 +217,7 @@ impl SceneSource {
 /// The world of a scene file's text named `name`, seen from its own `[observer]`, with the event
 /// limit `max_events` (for the built-in gallery).
 pub fn file_world(name: &str, text: &str, max_events: u32) -> Result<Loaded> {
-    let description =
-        SceneDescription::from_toml(text).map_err(|e| Error::Refused(format!("{name}: {e}")))?;
+    let description = parse_scene_text(name, text)?;
     let Some(observer) = description.observer else {
         return fail(format!("{name} has no [observer]"));
     };
@@ -225,6 +233,12 @@ pub fn file_world(name: &str, text: &str, max_events: u32) -> Result<Loaded> {
 
 /// Reads and checks the scene file at `path`; every refusal names the file.
 pub fn read_scene_file(path: &Path) -> Result<SceneDescription> {
+    parse_scene_text(&shown(path), &read_scene_text(path)?)
+}
+
+/// The text of the scene file at `path` (at most [`MAX_SCENE_FILE_BYTES`], UTF-8), not checked
+/// further; every refusal names the file.
+pub fn read_scene_text(path: &Path) -> Result<String> {
     let name = shown(path);
     let cannot = |source: std::io::Error| Error::Io {
         action: "read the scene file",
@@ -251,11 +265,22 @@ pub fn read_scene_file(path: &Path) -> Result<SceneDescription> {
     if bytes.len() as u64 > MAX_SCENE_FILE_BYTES {
         return Err(too_large(bytes.len() as u64));
     }
-    let text = String::from_utf8(bytes).map_err(|e| {
+    String::from_utf8(bytes).map_err(|e| {
         Error::Refused(format!(
             "the scene file {name} is not UTF-8 text: byte {} is not valid UTF-8",
             e.utf8_error().valid_up_to() + 1
         ))
-    })?;
-    SceneDescription::from_toml(&text).map_err(|e| Error::Refused(format!("{name}: {e}")))
+    })
+}
+
+/// The scene file named `name` whose text is `text`, read and checked by the scene file's rules
+/// (at most [`MAX_SCENE_FILE_BYTES`]); every refusal names the file.
+pub fn parse_scene_text(name: &str, text: &str) -> Result<SceneDescription> {
+    if text.len() as u64 > MAX_SCENE_FILE_BYTES {
+        return fail(format!(
+            "the scene file {name} is {} bytes: a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB), not read",
+            text.len()
+        ));
+    }
+    SceneDescription::from_toml(text).map_err(|e| Error::Refused(format!("{name}: {e}")))
 }

@@ -4,6 +4,7 @@
 
 use std::f64::consts::PI;
 
+#[cfg(feature = "figures")]
 use bentstraw_optics::scene::{Scene, GLASS_RADIUS};
 use bentstraw_optics::world::{Boundary, Object, Region, Shape, World};
 use bentstraw_optics::Vec3;
@@ -24,6 +25,7 @@ pub(crate) fn circle(cx: f64, cy: f64, r: f64, z: f64) -> Vec<Vec3> {
 }
 
 /// The water's wireframe as segments: top and bottom circles and [`WIRE_VERTICALS`] vertical lines.
+#[cfg(feature = "figures")]
 pub(crate) fn water_segments(scene: &Scene) -> Vec<[Vec3; 2]> {
     let he = scene.water_height;
     let mut segs = Vec::new();

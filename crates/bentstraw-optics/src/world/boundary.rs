@@ -63,9 +63,9 @@ impl Region {
     /// The largest distance of a point of the region from the `z` axis.
     fn reach(&self) -> f64 {
         match *self {
-            Region::Disk { cx, cy, radius } => cx.hypot(cy) + radius,
+            Region::Disk { cx, cy, radius } => libm::hypot(cx, cy) + radius,
             Region::Annulus { outer2, .. } => outer2.sqrt(),
-            Region::Rectangle { half_x, half_y } => half_x.hypot(half_y),
+            Region::Rectangle { half_x, half_y } => libm::hypot(half_x, half_y),
         }
     }
 }
@@ -305,8 +305,8 @@ impl Boundary {
     pub(crate) fn reach(&self) -> f64 {
         match self.shape {
             Shape::Horizontal { region, .. } => region.reach(),
-            Shape::Upright { cx, cy, radius, .. } => cx.hypot(cy) + radius,
-            Shape::Vertical { at, half, .. } => at.hypot(half),
+            Shape::Upright { cx, cy, radius, .. } => libm::hypot(cx, cy) + radius,
+            Shape::Vertical { at, half, .. } => libm::hypot(at, half),
         }
     }
 

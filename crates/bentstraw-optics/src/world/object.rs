@@ -178,7 +178,7 @@ impl SolidCylinder {
         if dr <= 0.0 && dz <= 0.0 {
             (-dr).min(-dz)
         } else {
-            dr.max(0.0).hypot(dz.max(0.0))
+            libm::hypot(dr.max(0.0), dz.max(0.0))
         }
     }
 
@@ -247,7 +247,7 @@ impl Object {
     /// A card.
     pub fn card(c: &Card) -> Object {
         let f = c.facing_deg.to_radians();
-        let front = Vec3::new(f.cos(), f.sin(), 0.0);
+        let front = Vec3::new(libm::cos(f), libm::sin(f), 0.0);
         Object::Card {
             centre: c.center,
             front,
@@ -359,7 +359,7 @@ impl Object {
                 let q = p - *centre;
                 let du = (q.dot(*right).abs() - width / 2.0).max(0.0);
                 let dv = (q.z.abs() - height / 2.0).max(0.0);
-                q.dot(*front).hypot(du.hypot(dv))
+                libm::hypot(q.dot(*front), libm::hypot(du, dv))
             }
         }
     }
@@ -375,7 +375,7 @@ impl Object {
 
     /// The largest distance of a point of the object from the `z` axis (at most a hair more).
     pub(crate) fn reach(&self) -> f64 {
-        let from_axis = |p: Vec3| p.x.hypot(p.y);
+        let from_axis = |p: Vec3| libm::hypot(p.x, p.y);
         match self {
             Object::Straw { solid, .. } | Object::Coin(solid) => {
                 let top = solid.base + solid.length * solid.axis;

@@ -19,7 +19,7 @@ use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
 use crate::progress;
 use bentstraw_outputs::files::{self, Output, OutputSet};
-use bentstraw_outputs::gallery::{gallery_files, gallery_sections};
+use bentstraw_outputs::gallery_report::{gallery_files, gallery_sections};
 use bentstraw_outputs::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
