@@ -1,5 +1,7 @@
-// bentstraw explore: the page. All physics is bentstraw's (the server calls the library); this
-// script only keeps the state (in the address), asks for frames and draws them.
+// bentstraw explore: the page. All physics is bentstraw's engine: `bentstraw explore` answers the
+// page's requests over HTTP, the static site answers the very same requests with the engine
+// compiled to WebAssembly in Web Workers. This script only keeps the state (in the address), asks
+// for frames and draws them.
 "use strict";
 
 // ---- the scene's fixed sizes (the glass and the straw), for drawing outlines only ----
@@ -32,6 +34,7 @@ const PRESETS = [
 // ---- state: everything the address holds ----
 const state = {
   scene: "", // "" the assignment's glass, else a scene of the gallery (scenes/NAME.toml)
+  file: "", // the text of the page's own scene file (scene.toml), when it shows one
   observer: [0.1, 0, 0.1], straw: [0.02, 0.01], he: 0.15, n: 1.333, events: 10, points: 20000,
   mode: "fresnel", backdrop: "checker", color: "section", models: ["course"],
   view: [-35, 22, 1], pick: "",
@@ -40,10 +43,45 @@ const state = {
 /** Shortest text of a number rounded to 0.1 µm (no float noise in addresses and commands). */
 function num(x) { return String(Math.round(x * 1e7) / 1e7); }
 
-/** The server's query for the state (names as the command line's flags). */
+// ---- a scene file in the address: deflate (raw), then base64url ----
+const MAX_FILE_BYTES = 1 << 20; // a scene file is at most 1 MB, as on the command line
+const fileCode = { text: "", code: "" }; // the last file packed, and its code
+async function streamBytes(bytes, stream) {
+  const out = new Response(new Blob([bytes]).stream().pipeThrough(stream));
+  return new Uint8Array(await out.arrayBuffer());
+}
+async function packFile(text) {
+  if (fileCode.text === text) return fileCode.code;
+  const z = await streamBytes(new TextEncoder().encode(text), new CompressionStream("deflate-raw"));
+  let bin = "";
+  for (const b of z) bin += String.fromCharCode(b);
+  fileCode.text = text;
+  fileCode.code = btoa(bin).replace(/\+/g, "-").replace(/\//g, "_").replace(/=+$/, "");
+  return fileCode.code;
+}
+async function unpackFile(code) {
+  const bin = atob(code.replace(/-/g, "+").replace(/_/g, "/"));
+  if (bin.length > MAX_FILE_BYTES) throw new Error("the packed file is larger than 1 MB");
+  const z = Uint8Array.from(bin, (c) => c.charCodeAt(0));
+  // Unpacked a piece at a time, stopping past 1 MB: a link cannot make the page unpack more.
+  const reader = new Blob([z]).stream().pipeThrough(new DecompressionStream("deflate-raw")).getReader();
+  const parts = [];
+  let size = 0;
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    size += value.length;
+    if (size > MAX_FILE_BYTES) { reader.cancel(); throw new Error("the scene file is larger than 1 MB"); }
+    parts.push(value);
+  }
+  return new TextDecoder("utf-8", { fatal: true }).decode(await new Blob(parts).arrayBuffer());
+}
+
+/** The engine's query for the state (names as the command line's flags). */
 function viewQuery(s, extra) {
   const p = new URLSearchParams();
-  if (s.scene) p.set("scene", s.scene);
+  if (s.file) p.set("scene-file", s.file);
+  else if (s.scene) p.set("scene", s.scene);
   p.set("observer", s.observer.map(num).join(","));
   p.set("straw", s.straw.map(num).join(","));
   p.set("water-height", num(s.he));
@@ -56,9 +94,10 @@ function viewQuery(s, extra) {
   return p.toString();
 }
 
-/** The address's fragment for the state. */
+/** The address's fragment for the state: a scene file travels compressed (`file`). */
 function stateHash(s) {
   const p = new URLSearchParams(viewQuery(s));
+  if (s.file) { p.delete("scene-file"); p.set("file", fileCode.text === s.file ? fileCode.code : ""); }
   p.set("color", s.color);
   p.set("models", s.models.join(","));
   p.set("view", s.view.map((x) => Math.round(x * 100) / 100).join(","));
@@ -66,11 +105,17 @@ function stateHash(s) {
   return "#" + p.toString();
 }
 
-/** Reads a query or fragment into the state; values are kept as text-parsed numbers, checked by the server. */
-function readParams(text, s) {
+/** Reads a query or fragment into the state; values are kept as text-parsed numbers, checked by
+ * the engine. A compressed scene file (`file`) is unpacked before the state changes. */
+async function readParams(text, s) {
   const p = new URLSearchParams(text.replace(/^[#?]/, ""));
   const list = (v) => v.split(",").map(Number);
   s.scene = p.get("scene") || "";
+  s.file = p.get("scene-file") || "";
+  if (p.get("file")) {
+    try { s.file = await unpackFile(p.get("file")); } catch (e) { s.file = ""; showError("this link's scene file cannot be read: " + e.message); }
+  }
+  if (s.file) { s.scene = ""; await packFile(s.file); }
   if (p.has("observer")) s.observer = list(p.get("observer"));
   if (p.has("straw")) s.straw = list(p.get("straw"));
   if (p.has("water-height")) s.he = Number(p.get("water-height"));
@@ -105,8 +150,91 @@ function fromOrbit(az, el, dist) {
 const $ = (id) => document.getElementById(id);
 const pictureCanvas = $("picture"), cloudCanvas = $("cloud"), sideCanvas = $("map-side"), topCanvas = $("map-top");
 
-// ---- talking to the server: at most one request per channel in flight; newer input waits for it
-// and is then sent as one request for the latest state (intermediate states are dropped) ----
+// ---- the engine: bentstraw explore's server over HTTP, or the WebAssembly engine in Web Workers;
+// the same requests, the same answers (as `Response`s) ----
+const ENGINE = document.body.dataset.engine === "wasm" ? "wasm" : "server";
+const wasm = ENGINE === "wasm" ? wasmEngine() : null;
+
+/** The engine compiled to WebAssembly, one Web Worker per channel (so a picture never waits for
+ * a model). Everything it needs is fetched once, at the start: afterwards the page needs no
+ * network. A request superseded while it runs stops its worker at once; a fresh one takes over. */
+function wasmEngine() {
+  const files = Promise.all([
+    // Compiled while it downloads; a host that does not call it application/wasm gets it compiled after.
+    WebAssembly.compileStreaming(fetch("pkg/bentstraw_web_bg.wasm")).catch(() =>
+      fetch("pkg/bentstraw_web_bg.wasm").then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b))),
+    fetch("pkg/bentstraw_web.js").then((r) => r.text()),
+    fetch("worker.js").then((r) => r.text()),
+  ]).then(([module, glue, worker]) => ({ module, url: URL.createObjectURL(new Blob([glue, "\n", worker], { type: "text/javascript" })) }));
+  const workers = {};
+  let nextId = 1;
+  function spawn(name, f) {
+    const w = { worker: new Worker(f.url), current: null, queue: [] };
+    w.worker.postMessage({ module: f.module });
+    w.worker.onmessage = (e) => {
+      const m = e.data, job = w.current;
+      if (!job || job.id !== m.id) return;
+      w.current = null;
+      const headers = { "Content-Type": m.contentType };
+      if (m.fileName) headers["Content-Disposition"] = `attachment; filename="${m.fileName}"`;
+      const r = new Response(m.body, { status: m.status, headers });
+      r.engineMs = m.ms;
+      if (m.broken) restart(name, f);
+      job.resolve(r);
+      pump(name, f);
+    };
+    w.worker.onerror = (e) => {
+      const job = w.current;
+      w.current = null;
+      restart(name, f);
+      if (job) job.reject(new Error(e.message || "the engine stopped"));
+    };
+    return w;
+  }
+  function restart(name, f) {
+    const old = workers[name];
+    if (old) old.worker.terminate();
+    const w = spawn(name, f);
+    if (old) w.queue = old.queue;
+    workers[name] = w;
+    pump(name, f);
+  }
+  function pump(name, f) {
+    const w = workers[name];
+    if (!w || w.current || !w.queue.length) return;
+    w.current = w.queue.shift();
+    w.worker.postMessage({ id: w.current.id, path: w.current.path, query: w.current.query });
+  }
+  return {
+    ready: files.then(() => true),
+    async request(name, path, query, signal) {
+      const f = await files;
+      if (!workers[name]) workers[name] = spawn(name, f);
+      return new Promise((resolve, reject) => {
+        const job = { id: nextId++, path, query, resolve, reject };
+        if (signal) {
+          signal.addEventListener("abort", () => {
+            const w = workers[name];
+            if (w.current === job) { w.current = null; restart(name, f); }
+            else w.queue = w.queue.filter((j) => j !== job);
+            resolve(null);
+          });
+        }
+        workers[name].queue.push(job);
+        pump(name, f);
+      });
+    },
+  };
+}
+
+/** Asks the engine for `route?query` on channel `name`: a `Response`, or null if aborted. */
+function engineFetch(name, route, query, signal) {
+  if (wasm) return wasm.request(name, route, query, signal);
+  return fetch(`${route}?${query}`, { signal });
+}
+
+// ---- at most one request per channel in flight; newer input waits for it and is then sent as
+// one request for the latest state (intermediate states are dropped) ----
 const clientId = Math.random().toString(36).slice(2, 10);
 const channels = {};
 function channel(name) {
@@ -121,9 +249,9 @@ async function ask(name, route, query) {
   const controller = new AbortController();
   ch.controller = controller;
   ch.seq += 1;
-  const url = `${route}?${query}&chan=${clientId}-${name}&seq=${ch.seq}`;
   try {
-    const r = await fetch(url, { signal: controller.signal });
+    const r = await engineFetch(name, route, `${query}&chan=${clientId}-${name}&seq=${ch.seq}`, controller.signal);
+    if (r === null) return null;
     if (r.status === 409 || controller.signal.aborted) return null;
     return r;
   } catch (e) {
@@ -212,6 +340,7 @@ async function sendFrame(quick) {
   const received = performance.now();
   frame = decodeFrame(bytes, quick);
   frame.query = query;
+  frame.engineMs = r.engineMs || 0;
   showError("");
   const t = performance.now();
   paintAll();
@@ -284,7 +413,8 @@ function paintAll() {
   drawCloud();
   drawLegend();
   const h = frame.header;
-  $("status").textContent = `${h.width}x${h.height} picture, ${h.n} image points from ${h.rays_traced} rays, field of view ${h.fov_deg.toFixed(1)}°, ${h.ms.toFixed(0)} ms on the server`;
+  const where = wasm ? `${frame.engineMs.toFixed(0)} ms in this page (WebAssembly)` : `${h.ms.toFixed(0)} ms on the server`;
+  $("status").textContent = `${h.width}x${h.height} picture, ${h.n} image points from ${h.rays_traced} rays, field of view ${h.fov_deg.toFixed(1)}°, ${where}`;
   if (!$("commands").hidden) showCommands();
 }
 
@@ -322,19 +452,26 @@ function cloudProjection(w, h) {
   };
 }
 
-/** What the page draws of each gallery scene (wireframe, outlines, box), asked once per scene. */
+/** What the page draws of each scene file (wireframe, outlines, box), asked once per scene. */
 const sketches = {};
+/** The key of the state's scene file among the sketches: a gallery name, or the file's text. */
+const sceneKey = (s) => (s.file ? "file:" + s.file : s.scene);
+function sceneQuery(s) {
+  const p = new URLSearchParams();
+  if (s.file) p.set("scene-file", s.file); else p.set("scene", s.scene);
+  return p.toString();
+}
 function fetchSketch(name) {
   if (sketches[name]) return;
   sketches[name] = "pending";
-  fetch("/api/sketch?scene=" + encodeURIComponent(name)).then((r) => (r.ok ? r.json() : null)).then((sc) => {
+  engineFetch("sketch", "/api/sketch", sceneQuery(state)).then((r) => (r.ok ? r.json() : null)).then((sc) => {
     if (!sc) { delete sketches[name]; return; }
     const pt = (a, i) => [a[i], a[i + 1], a[i + 2]];
     const wire = [];
     for (let i = 0; i + 5 < sc.wireframe.length; i += 6) wire.push([pt(sc.wireframe, i), pt(sc.wireframe, i + 3)]);
     const outlines = sc.outlines.map((l) => Array.from({ length: l.length / 3 }, (_, i) => pt(l, 3 * i)));
     sketches[name] = { wire, outlines, bounds: sc.bounds };
-    if (state.scene === name) { drawMaps(); drawCloud(); }
+    if (sceneKey(state) === name) { drawMaps(); drawCloud(); }
   });
 }
 
@@ -348,9 +485,10 @@ function sceneBox() {
 
 /** A gallery scene's wireframe (pairs of points), outlines (polylines) and box, once its sketch has come. */
 function sceneLines() {
-  if (!state.scene) return null;
-  const sc = sketches[state.scene];
-  if (sc === undefined) fetchSketch(state.scene);
+  if (!state.scene && !state.file) return null;
+  const key = sceneKey(state);
+  const sc = sketches[key];
+  if (sc === undefined) fetchSketch(key);
   return sc && sc !== "pending" ? sc : null;
 }
 
@@ -462,7 +600,7 @@ function drawLegend() {
   };
   if (!frame) return;
   if (state.color === "path") frame.header.paths.forEach((p, i) => item(PATH_COLORS[i % PATH_COLORS.length], p.words, p.count));
-  else frame.header.points_per_color.forEach((c, i) => { if ((i < 5 && !state.scene) || c > 0) item(SECTION_RGB[i], `${i + 1} ${SECTION_NAMES[i]}`, c); });
+  else frame.header.points_per_color.forEach((c, i) => { if ((i < 5 && !state.scene && !state.file) || c > 0) item(SECTION_RGB[i], `${i + 1} ${SECTION_NAMES[i]}`, c); });
   const modelCount = (m) => (!m || m.pending ? "…" : m.all ? m.color.length : `${m.color.length}, more coming`);
   if (state.models.includes("eye")) item("rgba(0,0,0,.3)", "eye model: faint, smaller", modelCount(models.eye));
   if (state.models.includes("stereo")) item("rgba(0,0,0,.3)", "stereo model: faint, smaller", modelCount(models.stereo));
@@ -698,9 +836,10 @@ function showReadout() {
 
 // ---- controls ----
 function syncControls() {
-  $("scene").value = state.scene;
-  // A gallery scene's liquids and straws are its file's: the water's sliders are the glass's.
-  $("he").disabled = $("n").disabled = Boolean(state.scene);
+  fileOption();
+  $("scene").value = state.file ? "file" : state.scene;
+  // A scene file's liquids and straws are its own: the water's sliders are the glass's.
+  $("he").disabled = $("n").disabled = Boolean(state.scene || state.file);
   $("he").value = state.he; $("he-out").textContent = num(state.he) + " m";
   $("n").value = state.n; $("n-out").textContent = num(state.n);
   $("events").value = state.events; $("events-out").textContent = String(state.events);
@@ -725,25 +864,38 @@ PRESETS.forEach((p, i) => { const o = document.createElement("option"); o.value 
 $("preset").addEventListener("change", (e) => {
   const p = PRESETS[Number(e.target.value)];
   if (!p) return;
-  Object.assign(state, { scene: "", n: 1.333, events: 10, color: "section" }, p.v);
+  Object.assign(state, { scene: "", file: "", n: 1.333, events: 10, color: "section" }, p.v);
   state.observer = p.v.observer.slice(); state.straw = p.v.straw.slice();
   changed();
 });
 
-// The gallery's scenes, from the server: choosing one moves the eye to the view it is meant for.
+/** The scene chooser's entry for the page's own scene file, while it shows one. */
+function fileOption() {
+  let o = $("scene").querySelector('option[value="file"]');
+  if (state.file && !o) {
+    o = document.createElement("option");
+    o.value = "file"; o.textContent = "your scene file (scene.toml)";
+    $("scene").appendChild(o);
+  }
+  if (!state.file && o) o.remove();
+}
+
+// The gallery's scenes, from the engine: choosing one moves the eye to the view it is meant for.
 let gallery = [];
-fetch("/api/scenes").then((r) => r.json()).then((list) => {
+engineFetch("scenes", "/api/scenes", "").then((r) => r.json()).then((list) => {
   gallery = list;
   for (const g of list) {
     const o = document.createElement("option");
     o.value = g.name; o.textContent = g.title; o.title = g.shows;
     $("scene").appendChild(o);
   }
-  $("scene").value = state.scene;
+  syncControls();
   document.body.dataset.scenes = String(list.length);
 });
 $("scene").addEventListener("change", (e) => {
+  if (e.target.value === "file") return;
   state.scene = e.target.value;
+  state.file = "";
   const g = gallery.find((x) => x.name === state.scene);
   state.observer = g ? g.observer.slice() : [0.1, 0, 0.1];
   $("preset").value = "";
@@ -752,16 +904,21 @@ $("scene").addEventListener("change", (e) => {
 });
 
 $("copy-link").addEventListener("click", async () => {
-  const link = location.href;
+  const link = window.bentstraw.link();
   document.body.dataset.link = link;
   try { await navigator.clipboard.writeText(link); $("status").textContent = "link copied: " + link; } catch (_) { prompt("Copy this link:", link); }
 });
-function download(format, model) {
+/** Saves the file `simulate` or `render` would write for this view, computed by the engine. */
+async function download(format, model) {
   const [w, h] = pictureSize();
+  const r = await engineFetch("export", "/api/export", viewQuery(state, { format, size: `${w}x${h}`, model: model || "course" }));
+  if (!r.ok) { showError(await r.text()); return; }
+  const name = (r.headers.get("Content-Disposition") || "").match(/filename="([^"]+)"/);
   const a = document.createElement("a");
-  a.href = "/api/export?" + viewQuery(state, { format, size: `${w}x${h}`, model: model || "course" });
-  a.download = "";
+  a.href = URL.createObjectURL(await r.blob());
+  a.download = name ? name[1] : "view";
   document.body.appendChild(a); a.click(); a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 10000);
 }
 $("export-png").addEventListener("click", () => download("png"));
 $("export-csv").addEventListener("click", () => download("csv"));
@@ -776,11 +933,64 @@ function showCommands() {
 $("show-commands").addEventListener("click", () => { const c = $("commands"); c.hidden = !c.hidden; showCommands(); });
 
 window.addEventListener("resize", () => { drawMaps(); drawCloud(); clearTimeout(fullTimer); fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 200); });
-window.addEventListener("hashchange", () => { readParams(location.hash, state); syncControls(); drawMaps(); requestFrame(false); });
+window.addEventListener("hashchange", async () => {
+  if (location.hash === stateHash(state)) return; // the page's own change of the address
+  await readParams(location.hash, state); syncControls(); drawMaps(); requestFrame(false);
+});
+
+// ---- the hook for tests and scripts: window.bentstraw (see the README) ----
+/** Resolves when the full-quality frame of the current state is painted. */
+function settled() {
+  return new Promise((resolve) => {
+    const check = () => (window.bentstraw.busy() ? setTimeout(check, 20) : resolve());
+    check();
+  });
+}
+/** The engine's answer as text, or a rejection with its message. */
+async function answerText(r) {
+  const text = await r.text();
+  if (!r.ok) throw new Error(text);
+  return text;
+}
+Object.assign(window.bentstraw, {
+  /** The current image points, as the CSV text `bentstraw simulate` writes. */
+  async points() { await settled(); return answerText(await engineFetch("hook", "/api/export", viewQuery(state, { format: "csv" }))); },
+  /** The arguments of the `bentstraw simulate` command giving those points (a page's own scene file is scene.toml). */
+  async command() { await settled(); return frame.header.simulate_args.slice(); },
+  /** The current scene as the text of a scene file, its [observer] the current eye. */
+  async scene() { return answerText(await engineFetch("hook", "/api/scene-file", viewQuery(state))); },
+  /** Shows the scene file `toml` (from its own [observer], if it has one); rejects with the
+   * command line's message if a rule is broken, and the page shows it. */
+  async setScene(toml) {
+    const sketch = await engineFetch("hook", "/api/sketch", new URLSearchParams({ "scene-file": toml }).toString());
+    let observer = state.observer;
+    try {
+      const sc = JSON.parse(await answerText(sketch));
+      if (sc.observer) observer = sc.observer;
+      // The whole view checked by the same rules as `simulate --scene scene.toml --observer …`.
+      await answerText(await engineFetch("hook", "/api/scene-file", viewQuery({ ...state, file: toml, scene: "", observer })));
+    } catch (e) {
+      showError(e.message);
+      document.body.dataset.refused = String(Number(document.body.dataset.refused || 0) + 1);
+      throw e;
+    }
+    await packFile(toml);
+    Object.assign(state, { file: toml, scene: "", observer: observer.slice() });
+    frame = null;
+    changed();
+    await settled();
+  },
+  /** The address that restores this view, its scene included. */
+  link() { return location.origin + location.pathname + stateHash(state); },
+  engine: ENGINE,
+});
 
 // ---- start: the address's state, else the command line's ----
-readParams(document.body.dataset.initial || "", state);
-if (location.hash.length > 1) readParams(location.hash, state);
-syncControls();
-drawMaps();
-sendFrame(false);
+(async () => {
+  await readParams(document.body.dataset.initial || "", state);
+  if (location.hash.length > 1) await readParams(location.hash, state);
+  if (state.file) history.replaceState(null, "", stateHash(state));
+  syncControls();
+  drawMaps();
+  sendFrame(false);
+})();

@@ -62,7 +62,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         crate::cli::ModeArg::Course => "course",
         crate::cli::ModeArg::Fresnel => "fresnel",
     };
-    let (scene, o) = if v.scene.is_some() {
+    let (scene, o) = if let Some(path) = &v.scene {
         let loaded = v.source().load()?;
         match loaded.assignment {
             Some(scene) => (scene, loaded.observer),
@@ -77,8 +77,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
                         o.x, o.y, o.z, v.max_events, a.points
                     )
                 };
-                // A scene of the built-in gallery starts the page on it; any other file is
-                // offered beside the gallery, as it is (the page cannot name files).
+                // A scene of the built-in gallery starts the page on it by name.
                 if let Some((stem, _)) = GALLERY.iter().find(|(_, text)| {
                     SceneDescription::from_toml(text)
                         .is_ok_and(|d| Some(&d) == f.description.as_ref())
@@ -92,8 +91,17 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
                         f.name()
                     ));
                 }
-                let _ = api::USER_SCENE.set(f);
-                return Ok(query(api::USER_SCENE_NAME));
+                // Any other file travels with the view, as the page's own scene file.
+                let text = bentstraw_outputs::scene_input::read_scene_text(path)?;
+                return Ok(format!(
+                    "scene-file={}&observer={},{},{}&max-events={}&points={}&mode={mode}",
+                    api::query_value(&text),
+                    o.x,
+                    o.y,
+                    o.z,
+                    v.max_events,
+                    a.points
+                ));
             }
         }
     } else {

@@ -22,11 +22,6 @@ pub const QUEUE: usize = 4;
 /// Most channels (page × kind of request) whose latest sequence number is remembered.
 const MAX_CHANNELS: usize = 256;
 
-/// The page, with `__INITIAL_VIEW__` replaced by the starting view's query.
-const PAGE: &str = include_str!("../../assets/explorer.html");
-const SCRIPT: &str = include_str!("../../assets/explorer.js");
-const STYLE: &str = include_str!("../../assets/explorer.css");
-
 /// Per channel: the latest sequence number seen, and the job being computed (its number and its
 /// frame's stop flag).
 #[derive(Default)]
@@ -48,7 +43,7 @@ struct Job {
 /// Serves the explorer on `server` until the process ends; `initial` is the query of the view the
 /// page starts with (when its address holds none).
 pub fn serve(server: Server, initial: &str) {
-    let page = PAGE.replace("__INITIAL_VIEW__", &html_attribute(initial));
+    let page = api::page::index_html(initial, api::page::Engine::Server);
     let latest: Latest = Arc::default();
     let (tx, rx) = sync_channel::<Job>(QUEUE);
     let rx = Arc::new(Mutex::new(rx));
@@ -73,16 +68,19 @@ pub fn serve(server: Server, initial: &str) {
         let (path, query) = url.split_once('?').unwrap_or((&url, ""));
         let reply = match path {
             "/" | "/index.html" => Some(asset("text/html; charset=utf-8", &page)),
-            "/explorer.js" => Some(asset("text/javascript; charset=utf-8", SCRIPT)),
-            "/explorer.css" => Some(asset("text/css; charset=utf-8", STYLE)),
             p if p.starts_with("/api/") => None,
-            p => Some(Reply::text(
-                404,
-                format!(
-                    "no such page: {}",
-                    bentstraw_optics::scene::clip_text(p, 60)
-                ),
-            )),
+            p => Some(
+                match api::page::PAGE_FILES.iter().find(|f| p[1..] == *f.name) {
+                    Some(f) => asset(f.content_type, f.text),
+                    None => Reply::text(
+                        404,
+                        format!(
+                            "no such page: {}",
+                            bentstraw_optics::scene::clip_text(p, 60)
+                        ),
+                    ),
+                },
+            ),
         };
         if let Some(reply) = reply {
             respond(request, reply);
@@ -211,12 +209,4 @@ fn respond(request: Request, reply: Reply) {
     }
     // The page may have gone (a cancelled request): nothing to do about it.
     let _ = request.respond(response);
-}
-
-/// `text` safe inside a double-quoted HTML attribute.
-fn html_attribute(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('"', "&quot;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }

@@ -1,0 +1,67 @@
+//! The explorer's engine in the page: the same [`bentstraw_explore::handle`] that
+//! `bentstraw explore` serves over HTTP, compiled to WebAssembly and called by a Web Worker with
+//! the same path and query. One API, two carriers: the page cannot tell them apart, and the
+//! numbers are the same to the bit (see `docs/physics.md` for the physics itself).
+
+#![warn(missing_docs)]
+
+use std::cell::RefCell;
+
+use bentstraw_optics::frame::Frame;
+use wasm_bindgen::prelude::*;
+
+thread_local! {
+    /// The worker's picture buffers, kept from one frame to the next (a worker is one thread).
+    static FRAME: RefCell<Frame> = RefCell::new(Frame::default());
+}
+
+/// A finished answer, as the page reads an HTTP response: status, type, body, download name.
+#[wasm_bindgen]
+pub struct Reply {
+    status: u16,
+    content_type: String,
+    body: Vec<u8>,
+    file_name: Option<String>,
+}
+
+#[wasm_bindgen]
+impl Reply {
+    /// The HTTP status the server would send (200, or 400 with the rule broken as text).
+    #[wasm_bindgen(getter)]
+    pub fn status(&self) -> u16 {
+        self.status
+    }
+
+    /// The `Content-Type` the server would send.
+    #[wasm_bindgen(getter, js_name = contentType)]
+    pub fn content_type(&self) -> String {
+        self.content_type.clone()
+    }
+
+    /// The body (taken: a second call gives nothing).
+    #[wasm_bindgen(js_name = takeBody)]
+    pub fn take_body(&mut self) -> Vec<u8> {
+        std::mem::take(&mut self.body)
+    }
+
+    /// The file name of a download, if the answer is one.
+    #[wasm_bindgen(getter, js_name = fileName)]
+    pub fn file_name(&self) -> Option<String> {
+        self.file_name.clone()
+    }
+}
+
+/// The answer to the API request `path?query` (for example `/api/frame`, `observer=0.1,0,0.1&…`).
+#[wasm_bindgen]
+pub fn handle(path: &str, query: &str) -> Reply {
+    let reply = FRAME.with(|frame| {
+        let mut frame = frame.borrow_mut();
+        bentstraw_explore::handle(path, query, &mut frame)
+    });
+    Reply {
+        status: reply.status,
+        content_type: reply.content_type.to_string(),
+        body: reply.body,
+        file_name: reply.file_name,
+    }
+}

@@ -1,0 +1,131 @@
+//! Project tasks, run as `cargo xtask TASK`:
+//!
+//! - `cargo xtask site [DIR]` builds the static site (default `target/site`): the explorer's page,
+//!   its scripts, and the engine compiled to WebAssembly (with SIMD), plain files that any static
+//!   host serves. It needs the `wasm32-unknown-unknown` target and `wasm-bindgen` of the version
+//!   the engine is built against.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+use bentstraw_explore::page::{index_html, Engine, PAGE_FILES};
+
+/// The `wasm-bindgen` the engine's crate is pinned to (its command must be the same version).
+const WASM_BINDGEN: &str = "0.2.130";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
+        ["site"] => site(Path::new("target/site")),
+        ["site", dir] => site(Path::new(dir)),
+        _ => Err("usage: cargo xtask site [DIR]   (builds the static site into DIR, default target/site)".into()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Builds the site into `dir`: written into a fresh folder beside it, then renamed into place,
+/// so `dir` is either the old site or the whole new one.
+fn site(dir: &Path) -> Result<(), String> {
+    let root = workspace_root();
+    let build = root.join("target/site-build");
+    // Its own target folder: the WebAssembly build's settings never rebuild the native one's.
+    run(
+        Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+            .current_dir(&root)
+            .args(["build", "--release", "--locked", "-p", "bentstraw-web"])
+            .args(["--target", "wasm32-unknown-unknown", "--target-dir"])
+            .arg(&build)
+            .env(
+                "CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS",
+                "-C target-feature=+simd128",
+            )
+            .env("CARGO_PROFILE_RELEASE_DEBUG", "0"),
+    )?;
+    let version = Command::new("wasm-bindgen")
+        .arg("--version")
+        .output()
+        .map_err(|e| format!("cannot run wasm-bindgen ({e}): install it with `cargo install wasm-bindgen-cli --version {WASM_BINDGEN}`"))?;
+    let version = String::from_utf8_lossy(&version.stdout);
+    if version.split_whitespace().nth(1) != Some(WASM_BINDGEN) {
+        return Err(format!(
+            "wasm-bindgen {} is installed, the engine needs {WASM_BINDGEN}: `cargo install wasm-bindgen-cli --version {WASM_BINDGEN}`",
+            version.trim()
+        ));
+    }
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent)
+        .map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
+    let fresh = parent.join(format!(
+        ".{}.new",
+        dir.file_name()
+            .map_or("site".into(), |n| n.to_string_lossy())
+    ));
+    let _ = std::fs::remove_dir_all(&fresh);
+    run(Command::new("wasm-bindgen")
+        .args(["--target", "no-modules", "--no-typescript", "--out-dir"])
+        .arg(fresh.join("pkg"))
+        .arg(build.join("wasm32-unknown-unknown/release/bentstraw_web.wasm")))?;
+    let write = |name: &str, text: &str| {
+        std::fs::write(fresh.join(name), text).map_err(|e| format!("cannot write {name}: {e}"))
+    };
+    write("index.html", &index_html("", Engine::Wasm))?;
+    for f in PAGE_FILES {
+        write(f.name, f.text)?;
+    }
+    // GitHub Pages serves the files as they are (no Jekyll).
+    write(".nojekyll", "")?;
+    let _ = std::fs::remove_dir_all(dir);
+    std::fs::rename(&fresh, dir)
+        .map_err(|e| format!("cannot move the site into {}: {e}", dir.display()))?;
+    let bytes = folder_bytes(dir);
+    println!(
+        "site written to {} ({:.1} MB): serve it with `python3 -m http.server -d {}`",
+        dir.display(),
+        bytes as f64 / 1e6,
+        dir.display()
+    );
+    Ok(())
+}
+
+/// The workspace's root (this crate's parent).
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lies in the workspace")
+        .to_path_buf()
+}
+
+/// Runs `command`, an error naming it if it fails.
+fn run(command: &mut Command) -> Result<(), String> {
+    let shown = format!("{command:?}");
+    let status = command
+        .status()
+        .map_err(|e| format!("cannot run {shown}: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("{shown} failed ({status})"))
+    }
+}
+
+/// Bytes of every file under `dir`.
+fn folder_bytes(dir: &Path) -> u64 {
+    std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| match e.file_type() {
+            Ok(t) if t.is_dir() => folder_bytes(&e.path()),
+            _ => e.metadata().map_or(0, |m| m.len()),
+        })
+        .sum()
+}
