@@ -44,7 +44,8 @@ export async function openPage(browser, url, viewport = { width: 1400, height: 9
   // for a round trip to this script, and the latency benchmark would measure that).
   page.on("request", (r) => {
     const u = r.url();
-    if (!u.startsWith(origin) && !u.startsWith("data:")) problems.push("request off the server: " + u);
+    // The page's own workers are made from its files, as blob: addresses of its origin.
+    if (!u.startsWith(origin) && !u.startsWith("data:") && !u.startsWith("blob:" + origin)) problems.push("request off the server: " + u);
   });
   page.on("console", (m) => { if (m.type() === "error") problems.push("console error: " + m.text()); });
   page.on("pageerror", (e) => problems.push("page error: " + e.message));
@@ -77,4 +78,23 @@ export function percentile(values, p) {
   const v = [...values].sort((a, b) => a - b);
   if (!v.length) return NaN;
   return v[Math.min(v.length - 1, Math.ceil((p / 100) * v.length) - 1)];
+}
+
+/** The static site built by `cargo xtask site`: $SITE, else target/site. */
+export const SITE = process.env.SITE || path.join(ROOT, "target/site");
+
+/** Serves `dir` with Python's plain static server on a free port; resolves to { url, stop }. */
+export function startStaticServer(dir = SITE) {
+  const child = spawn("python3", ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"], { stdio: ["ignore", "pipe", "pipe"] });
+  let stderr = "";
+  child.stderr.on("data", (d) => { stderr += d; });
+  process.on("exit", () => child.kill());
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error("the static server printed no port: " + stderr)), 15000);
+    child.stdout.on("data", (d) => {
+      const m = /port (\d+)/.exec(String(d));
+      if (m) { clearTimeout(timer); resolve({ url: `http://127.0.0.1:${m[1]}/`, child, stop: () => child.kill(), log: () => stderr }); }
+    });
+    child.on("exit", (code) => reject(new Error(`the static server exited with ${code}: ${stderr}`)));
+  });
 }

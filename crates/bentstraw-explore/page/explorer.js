@@ -355,6 +355,7 @@ async function sendFrame(quick) {
   if (quick) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 150); }
   else {
     document.body.dataset.ready = "1";
+    window.bentstraw.fullPaintedAt = performance.now();
     requestModels();
     if (state.pick && !path) restorePick();
   }
@@ -979,6 +980,17 @@ Object.assign(window.bentstraw, {
     frame = null;
     changed();
     await settled();
+  },
+  /** One request to the engine, for measuring it: its status, the time the engine took (in the
+   * worker, or the server's own for a frame), the time seen by the page, the answer's size. */
+  async request(path, query) {
+    const t = performance.now();
+    const r = await engineFetch("measure", path, query);
+    const body = await r.arrayBuffer();
+    const ms = performance.now() - t;
+    let server = null;
+    if (path === "/api/frame" && r.ok) server = decodeFrame(body, false).header.ms;
+    return { status: r.status, engineMs: wasm ? r.engineMs : server, ms, bytes: body.byteLength };
   },
   /** The address that restores this view, its scene included. */
   link() { return location.origin + location.pathname + stateHash(state); },

@@ -600,7 +600,7 @@ fn explore_starts_on_a_scene_file() {
         "{}",
         &tank[..tank.len().min(2000)]
     );
-    // Any other scene file is offered beside the gallery, as the file has it.
+    // Any other scene file travels with the view, its text in the page's starting address.
     let dir = tempfile::tempdir().unwrap();
     let mine = dir.path().join("mine.toml");
     std::fs::write(
@@ -611,7 +611,12 @@ fn explore_starts_on_a_scene_file() {
     )
     .unwrap();
     let page = page_on(&mine.display().to_string(), &[]);
-    assert!(page.contains("scene=file&amp;observer="));
+    assert!(
+        page.contains("scene-file=%23%20The%20textbook"),
+        "{}",
+        &page[..page.len().min(2000)]
+    );
+    assert!(page.contains("half_x%20%3D%200.12"));
     // Its values are the file's: the flags that change the assignment's scene are refused here.
     let out = run(
         dir.path(),

@@ -1,0 +1,216 @@
+// End-to-end tests of the static site (`cargo xtask site`) in headless Chromium, served by a
+// plain static server (Python's http.server): no bentstraw process, every number computed by the
+// engine compiled to WebAssembly in the page. Run: npm run test:site (after `cargo xtask site`).
+import { test, before, after } from "node:test";
+import assert from "node:assert/strict";
+import { existsSync, mkdtempSync, readFileSync, readdirSync, statSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+import { spawn } from "node:child_process";
+import { launch, openPage, waitReady, BIN, SITE, startStaticServer } from "./harness.mjs";
+
+let server, browser;
+before(async () => {
+  assert.ok(existsSync(path.join(SITE, "index.html")), `no site at ${SITE}: run cargo xtask site`);
+  server = await startStaticServer();
+  browser = await launch();
+});
+after(async () => { await browser?.close(); server?.stop(); });
+
+/** Runs the bentstraw command line in `dir`; resolves to { code, stdout, stderr }. */
+function cli(args, dir) {
+  return new Promise((resolve) => {
+    const child = spawn(BIN, args, { cwd: dir, stdio: ["ignore", "pipe", "pipe"] });
+    let stdout = "", stderr = "";
+    child.stdout.on("data", (d) => { stdout += d; });
+    child.stderr.on("data", (d) => { stderr += d; });
+    child.on("exit", (code) => resolve({ code, stdout, stderr }));
+  });
+}
+
+/** The page's points against the bytes `bentstraw simulate` writes for the page's own command
+ * (its scene file, if any, written as scene.toml beside it). */
+async function assertPointsAreSimulates(page, label) {
+  const [csv, args, toml] = await page.evaluate(async () => [await window.bentstraw.points(), await window.bentstraw.command(), window.bentstraw.state.file]);
+  const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-site-"));
+  if (args.includes("scene.toml")) writeFileSync(path.join(dir, "scene.toml"), toml);
+  const scenes = args.indexOf("--scene");
+  // A gallery scene is named by its path in the project.
+  if (scenes >= 0 && args[scenes + 1].startsWith("scenes/")) args[scenes + 1] = path.join(SITE, "..", "..", args[scenes + 1]);
+  const r = await cli(args, dir);
+  assert.equal(r.code, 0, `${label}: ${args.join(" ")}: ${r.stderr}`);
+  const expected = readFileSync(path.join(dir, "view.csv"), "utf8");
+  assert.ok(expected.length > 1000, label);
+  assert.ok(csv === expected, `${label}: the page's ${csv.length} bytes differ from simulate's ${expected.length} (${args.join(" ")})`);
+  return { csv, args };
+}
+
+/** Drags the mouse across the eye's picture in `steps` moves. */
+async function drag(page, steps, dx, dy) {
+  const box = await page.locator("#picture").boundingBox();
+  let x = box.x + box.width / 2, y = box.y + box.height / 2;
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let i = 0; i < steps; i++) { x += dx; y += dy; await page.mouse.move(x, y); await page.waitForTimeout(16); }
+  await page.mouse.up();
+}
+
+// A scene of my own: two straws, one leaning, in a thick glass of oil; seen from the front.
+const MY_SCENE = `# Two straws in a thick glass of oil.
+[container]
+shape = "glass"
+radius = 0.045
+height = 0.18
+wall = 0.003
+bottom = 0.006
+index = 1.52
+
+[[liquid]]
+name = "oil"
+index = 1.47
+top = 0.12
+
+[[straw]]
+x = 0.01
+y = -0.008
+tilt = 8.0
+azimuth = 200.0
+radius = 0.004
+length = 0.22
+
+[[straw]]
+x = -0.015
+y = 0.012
+radius = 0.005
+length = 0.2
+
+[observer]
+position = [0.18, 0.04, 0.09]
+target = [0.0, 0.0, 0.08]
+`;
+
+test("the site is plain files within 6 MB, the engine in WebAssembly with SIMD", () => {
+  const sizes = (dir) => readdirSync(dir).reduce((n, f) => { const p = path.join(dir, f); return n + (statSync(p).isDirectory() ? sizes(p) : statSync(p).size); }, 0);
+  const total = sizes(SITE);
+  assert.ok(total < 6e6, `${total} bytes`);
+  for (const f of ["index.html", "explorer.js", "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"]) assert.ok(existsSync(path.join(SITE, f)), f);
+  // SIMD: the module uses v128 instructions (prefix 0xfd) — it fails to validate without SIMD.
+  const wasm = readFileSync(path.join(SITE, "pkg/bentstraw_web_bg.wasm"));
+  assert.ok(WebAssembly.validate(wasm));
+  assert.ok(wasm.includes(Buffer.from([0xfd, 0x0c])) || wasm.includes(Buffer.from([0xfd, 0x00])), "no SIMD instruction found");
+});
+
+test("the page computes in the browser: no request outside the site, none to an API, still working offline", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  const requests = [];
+  page.on("request", (r) => requests.push(r.url()));
+  await page.goto(server.url);
+  await waitReady(page);
+  assert.equal(await page.evaluate(() => window.bentstraw.engine), "wasm");
+  assert.deepEqual(requests.filter((u) => u.includes("/api/")), []);
+  // Offline now: a drag still gives new frames, and the points still come.
+  await context.setOffline(true);
+  const frames = await page.evaluate(() => window.bentstraw.frames);
+  await drag(page, 10, 6, -1);
+  await waitReady(page, frames);
+  assert.ok((await page.evaluate(() => window.bentstraw.points())).startsWith("x,y,z,color\n"));
+  await context.setOffline(false);
+  assert.deepEqual(requests.filter((u) => u.includes("/api/")), []);
+  assert.deepEqual(problems, []);
+  await page.screenshot({ path: path.join(tmpdir(), "bentstraw-site-desktop.png") });
+  await context.close();
+});
+
+test("the points are simulate's to the byte: at the start, after a long drag", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  const first = await assertPointsAreSimulates(page, "default view");
+  const frames = await page.evaluate(() => window.bentstraw.frames);
+  await drag(page, 60, 5, 1.5);
+  await waitReady(page, frames);
+  const { args } = await assertPointsAreSimulates(page, "after a long drag");
+  assert.notDeepEqual(args, first.args);
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
+test("a scene file set through the hook: simulate's points; its link reopens the view in a fresh browser", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  await page.evaluate((t) => window.bentstraw.setScene(t), MY_SCENE);
+  await waitReady(page);
+  const { csv, args } = await assertPointsAreSimulates(page, "my scene file");
+  assert.ok(args.includes("scene.toml"));
+  assert.deepEqual(args.slice(args.indexOf("--observer"), args.indexOf("--observer") + 2), ["--observer", "0.18,0.04,0.09"]);
+  // The scene written back is a scene file of the same scene.
+  const written = await page.evaluate(() => window.bentstraw.scene());
+  assert.match(written, /index = 1\.47/);
+  const link = await page.evaluate(() => window.bentstraw.link());
+  assert.ok(link.length < 2000, `${link.length} characters`);
+  await page.screenshot({ path: path.join(tmpdir(), "bentstraw-site-scene.png") });
+  assert.deepEqual(problems, []);
+  await context.close();
+  // A new browser, as a student's: the same view, the same points.
+  const other = await launch();
+  try {
+    const fresh = await openPage(other, server.url);
+    await fresh.page.goto(link);
+    await waitReady(fresh.page);
+    assert.equal(await fresh.page.evaluate(() => window.bentstraw.points()), csv);
+    assert.equal(await fresh.page.evaluate(() => window.bentstraw.state.file), MY_SCENE);
+    assert.deepEqual(fresh.problems, []);
+  } finally {
+    await other.close();
+  }
+});
+
+test("a gallery scene's link is short and reopens it", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  await page.waitForFunction(() => Number(document.body.dataset.scenes || 0) >= 6);
+  await page.selectOption("#scene", "leaning-straw");
+  await waitReady(page);
+  const link = await page.evaluate(() => window.bentstraw.link());
+  assert.ok(link.length < 300, `${link.length} characters: ${link}`);
+  await assertPointsAreSimulates(page, "leaning straw");
+  const again = await openPage(browser, server.url);
+  await again.page.goto(link);
+  await waitReady(again.page);
+  assert.equal(await again.page.evaluate(() => window.bentstraw.state.scene), "leaning-straw");
+  assert.deepEqual(problems, []);
+  assert.deepEqual(again.problems, []);
+  await context.close();
+  await again.context.close();
+});
+
+test("a broken rule is refused with the command line's message, shown on the page", async () => {
+  const { page, context } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  const broken = MY_SCENE.replace("index = 1.47", "index = 0.8");
+  const message = await page.evaluate((t) => window.bentstraw.setScene(t).then(() => "accepted", (e) => e.message), broken);
+  const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-site-"));
+  writeFileSync(path.join(dir, "scene.toml"), broken);
+  const r = await cli(["simulate", "--scene", "scene.toml", "--points", "100", "--output", "view.csv"], dir);
+  assert.notEqual(r.code, 0);
+  assert.ok(message !== "accepted" && r.stderr.includes(message), `page: ${message}\ncommand line: ${r.stderr}`);
+  await page.waitForFunction(() => !document.getElementById("error").hidden);
+  assert.equal(await page.locator("#error").textContent(), message);
+  // The view stays the assignment's.
+  assert.equal(await page.evaluate(() => window.bentstraw.state.file), "");
+  await page.screenshot({ path: path.join(tmpdir(), "bentstraw-site-refusal.png") });
+  await context.close();
+});
+
+test("on a phone's screen the page works", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, { width: 390, height: 844 });
+  await page.goto(server.url);
+  await waitReady(page);
+  assert.ok(await page.evaluate(() => window.bentstraw.frame.header.n) > 1000);
+  await page.screenshot({ path: path.join(tmpdir(), "bentstraw-site-phone.png"), fullPage: true });
+  assert.deepEqual(problems, []);
+  await context.close();
+});
