@@ -15,6 +15,10 @@ const PATH_COLORS = ["#222222", "#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff
 // times fewer image points (the full frame, when the input stops, has them all).
 const QUICK = 4;
 const QUICK_POINTS = 6;
+// The full frame is asked for this long after the last quick one: soon, in the page's own engine
+// (a full frame superseded by new input is stopped at once); later from the server, whose two
+// threads every open page shares.
+const FULL_AFTER_MS = document.body.dataset.engine === "wasm" ? 40 : 150;
 // The centre the eye orbits round: the middle of the glass.
 const ORBIT = [0, 0, 0.1];
 
@@ -83,9 +87,12 @@ function viewQuery(s, extra) {
   if (s.file) p.set("scene-file", s.file);
   else if (s.scene) p.set("scene", s.scene);
   p.set("observer", s.observer.map(num).join(","));
-  p.set("straw", s.straw.map(num).join(","));
-  p.set("water-height", num(s.he));
-  p.set("n-water", num(s.n));
+  // A scene file has its own straws and liquids: only the assignment's glass takes these.
+  if (!s.scene && !s.file) {
+    p.set("straw", s.straw.map(num).join(","));
+    p.set("water-height", num(s.he));
+    p.set("n-water", num(s.n));
+  }
   p.set("max-events", String(s.events));
   p.set("points", String(s.points));
   p.set("mode", s.mode);
@@ -241,16 +248,17 @@ function channel(name) {
   return channels[name] || (channels[name] = { seq: 0, controller: null, busy: false, pending: null });
 }
 
-/** Fetches `url` on channel `name`, aborting what that channel had in flight; resolves to the
- * response or null when superseded. */
-async function ask(name, route, query) {
+/** Asks for `route?query` on channel `name`, aborting what that channel had in flight; resolves
+ * to the response or null when superseded. In the page's own engine, `worker` names the worker
+ * that computes it (the channel's by default). */
+async function ask(name, route, query, worker) {
   const ch = channel(name);
   if (ch.controller) ch.controller.abort();
   const controller = new AbortController();
   ch.controller = controller;
   ch.seq += 1;
   try {
-    const r = await engineFetch(name, route, `${query}&chan=${clientId}-${name}&seq=${ch.seq}`, controller.signal);
+    const r = await engineFetch(worker || name, route, `${query}&chan=${clientId}-${name}&seq=${ch.seq}`, controller.signal);
     if (r === null) return null;
     if (r.status === 409 || controller.signal.aborted) return null;
     return r;
@@ -322,7 +330,9 @@ async function sendFrame(quick) {
   dirty = false;
   const sent = performance.now();
   let r;
-  try { r = await ask("frame", "/api/frame", query); } catch (e) { showError("the server does not answer: " + e.message); inFlight = null; return; }
+  // In the page's engine, full frames have a worker of their own: one superseded by a drag is
+  // stopped without holding up the quick frames, which the other core computes meanwhile.
+  try { r = await ask("frame", "/api/frame", query, quick ? "frame" : "frame-full"); } catch (e) { showError("the server does not answer: " + e.message); inFlight = null; return; }
   // Not painted: its inputs still wait (for the request that replaced it, or the retry).
   const unpainted = () => { if (since !== null && (inputSince === null || since < inputSince)) inputSince = since; };
   if (r === null) { unpainted(); return; } // superseded by a newer request
@@ -352,7 +362,7 @@ async function sendFrame(quick) {
     document.body.dataset.frames = String(window.bentstraw.frames);
   });
   if (dirty) { sendFrame(true); return; }
-  if (quick) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 150); }
+  if (quick) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, FULL_AFTER_MS); }
   else {
     document.body.dataset.ready = "1";
     window.bentstraw.fullPaintedAt = performance.now();
