@@ -123,6 +123,19 @@ test("the page computes in the browser: no request outside the site, none to an 
   await context.close();
 });
 
+test("a page opened once opens again without a network", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  await page.evaluate(() => navigator.serviceWorker.ready);
+  await context.setOffline(true);
+  await page.reload();
+  await waitReady(page);
+  assert.ok((await page.evaluate(() => window.bentstraw.points())).startsWith("x,y,z,color\n"));
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("the points are simulate's to the byte: at the start, after a long drag", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);

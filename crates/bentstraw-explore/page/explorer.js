@@ -161,6 +161,8 @@ const pictureCanvas = $("picture"), cloudCanvas = $("cloud"), sideCanvas = $("ma
 // the same requests, the same answers (as `Response`s) ----
 const ENGINE = document.body.dataset.engine === "wasm" ? "wasm" : "server";
 const wasm = ENGINE === "wasm" ? wasmEngine() : null;
+// The site keeps a copy of itself, to open again without a network.
+if (wasm && "serviceWorker" in navigator) navigator.serviceWorker.register("sw.js").catch(() => {});
 
 /** The engine compiled to WebAssembly, one Web Worker per channel (so a picture never waits for
  * a model). Everything it needs is fetched once, at the start: afterwards the page needs no

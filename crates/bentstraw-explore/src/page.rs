@@ -26,7 +26,7 @@ pub struct PageFile {
 const INDEX: &str = include_str!("../page/index.html");
 
 /// The page's files other than its HTML ([`index_html`]).
-pub const PAGE_FILES: [PageFile; 3] = [
+pub const PAGE_FILES: [PageFile; 4] = [
     PageFile {
         name: "explorer.js",
         content_type: "text/javascript; charset=utf-8",
@@ -41,6 +41,13 @@ pub const PAGE_FILES: [PageFile; 3] = [
         name: "worker.js",
         content_type: "text/javascript; charset=utf-8",
         text: include_str!("../page/worker.js"),
+    },
+    // The static site's copy of itself for opening without a network (the server's page does
+    // not register it: it needs the server anyway).
+    PageFile {
+        name: "sw.js",
+        content_type: "text/javascript; charset=utf-8",
+        text: include_str!("../page/sw.js"),
     },
 ];
 
@@ -75,7 +82,8 @@ mod tests {
         assert!(html.contains("data-initial=\"observer=1,0,0&amp;x=&quot;&lt;b&gt;&quot;\""));
         assert!(!html.contains("__"));
         for f in PAGE_FILES {
-            assert!(html.contains(f.name) || f.name == "worker.js", "{}", f.name);
+            let loaded_by_script = ["worker.js", "sw.js"].contains(&f.name);
+            assert!(html.contains(f.name) || loaded_by_script, "{}", f.name);
         }
     }
 }
