@@ -67,6 +67,7 @@ const [a, b] = [await engineTimes(site.url), await engineTimes(native1.url)];
 console.log("\nengine time per frame (800x600, 20 000 points), median of " + REPEAT);
 console.log("view               WebAssembly ms   native 1 thread ms   WebAssembly / native speed");
 for (const k of Object.keys(a)) console.log(`${k.padEnd(18)} ${a[k].toFixed(1).padStart(14)} ${b[k].toFixed(1).padStart(20)} ${(b[k] / a[k] * 100).toFixed(0).padStart(24)} %`);
+if (process.env.ONLY === "engine") { await browser.close(); site.stop(); native.stop(); native1.stop(); process.exit(0); }
 console.log("\nthe page, dragging in the picture (120 moves at 60 Hz)");
 console.log("engine            mode      picture   first picture ms  quick frames  p50 ms  p95 ms  full frame after the input stops ms");
 for (const mode of ["course", "fresnel"]) {

@@ -220,6 +220,22 @@ test("a broken rule is refused with the command line's message, shown on the pag
   await context.close();
 });
 
+test("a long drag down never puts the eye into the glass: it slides round it", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  const frames = await page.evaluate(() => window.bentstraw.frames);
+  await drag(page, 50, 0, 5); // 250 px down: the eye orbits up over the glass
+  await waitReady(page, frames);
+  const o = await page.evaluate(() => window.bentstraw.state.observer);
+  assert.ok(!(Math.hypot(o[0], o[1]) <= 0.04 && o[2] >= 0 && o[2] <= 0.2), `eye at ${o}`);
+  assert.equal(await page.locator("#error").isHidden(), true);
+  assert.equal(await page.evaluate(() => window.bentstraw.frame.quick), false);
+  await assertPointsAreSimulates(page, "after a drag over the glass");
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("on a phone's screen the page works", async () => {
   const { page, context, problems } = await openPage(browser, server.url, { width: 390, height: 844 });
   await page.goto(server.url);

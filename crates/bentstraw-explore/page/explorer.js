@@ -713,12 +713,44 @@ function onDrag(el, { start, move, click }) {
   });
 }
 
+/** Point `p` moved out of what the eye may not enter (the glass; a scene file's box), the
+ * shortest way and 1 mm clear: a drag slides the eye round the glass instead of into it. */
+function outside(p) {
+  const clear = 1e-3;
+  const round = (q) => q.map((x) => Math.round(x * 1e5) / 1e5);
+  if (!state.scene && !state.file) {
+    const r = Math.hypot(p[0], p[1]);
+    if (r > GLASS_R || p[2] < 0 || p[2] > GLASS_H) return round(p);
+    const k = r > 0 ? (GLASS_R + clear) / r : 0;
+    const ways = [
+      [GLASS_R + clear - r, r > 0 ? [p[0] * k, p[1] * k, p[2]] : [GLASS_R + clear, 0, p[2]]],
+      [p[2] + clear, [p[0], p[1], -clear]],
+      [GLASS_H + clear - p[2], [p[0], p[1], GLASS_H + clear]],
+    ];
+    return round(ways.sort((a, b) => a[0] - b[0])[0][1]);
+  }
+  const lines = sceneLines();
+  if (!lines) return round(p);
+  const b = lines.bounds;
+  if ([0, 1, 2].some((i) => p[i] < b[i] || p[i] > b[i + 3])) return round(p);
+  let best = null;
+  for (let i = 0; i < 3; i++) {
+    for (const [edge, side] of [[b[i], -1], [b[i + 3], 1]]) {
+      const q = p.slice();
+      q[i] = edge + side * clear;
+      const d = Math.abs(q[i] - p[i]);
+      if (!best || d < best[0]) best = [d, q];
+    }
+  }
+  return round(best[1]);
+}
+
 /** Moves the eye round the orbit centre by `daz`, `del` degrees and distance factor `f`. */
 function orbitBy(daz, del, f) {
   const o = orbitOf(state.observer);
   const el = Math.max(-89, Math.min(89, o.el + del));
   const dist = Math.max(0.045, Math.min(3, o.dist * f));
-  state.observer = fromOrbit(o.az + daz, el, dist).map((x) => Math.round(x * 1e5) / 1e5);
+  state.observer = outside(fromOrbit(o.az + daz, el, dist));
   changed();
 }
 
@@ -779,7 +811,7 @@ onDrag(topCanvas, {
       const lim = GLASS_R - STRAW_R - 1e-4, d = Math.hypot(x, y), f = d > lim ? lim / d : 1;
       state.straw = [x * f, y * f].map((v) => Math.round(v * 1e5) / 1e5);
     } else {
-      state.observer = [x, y, state.observer[2]].map((v) => Math.round(v * 1e5) / 1e5);
+      state.observer = outside([x, y, state.observer[2]]);
     }
     changed();
   },
@@ -790,7 +822,7 @@ onDrag(sideCanvas, {
     const [s, z] = sideCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
     const o = state.observer, az = Math.atan2(o[1], o[0]);
     const d = Math.max(0.001, s);
-    state.observer = [d * Math.cos(az), d * Math.sin(az), z].map((v) => Math.round(v * 1e5) / 1e5);
+    state.observer = outside([d * Math.cos(az), d * Math.sin(az), z]);
     changed();
   },
 });
