@@ -1,13 +1,22 @@
-// End-to-end tests of `bentstraw explore` in headless Chromium (run: npm test).
+// End-to-end tests of the explorer in headless Chromium (run: npm test): the page served by
+// `bentstraw explore`, or with EXPLORE_ON=site the same page from the static site (cargo xtask
+// site) served by a plain static server, every answer computed by the engine in WebAssembly.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { mkdtempSync, readFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
-import { startServer, launch, openPage, waitReady, runCli, ROOT } from "./harness.mjs";
+import { startServer, startStaticServer, launch, openPage, waitReady, runCli, ROOT } from "./harness.mjs";
+
+/** The page from the static site (its engine in WebAssembly) instead of `bentstraw explore`. */
+const ON_SITE = process.env.EXPLORE_ON === "site";
+/** What only the server has (its HTTP API, its command line) is tested with the server. */
+const SERVER_ONLY = { skip: ON_SITE && "the static site has no server" };
+/** Where a screenshot goes: the README's pictures come from the server's page. */
+const shot = (name) => (ON_SITE ? path.join(tmpdir(), "bentstraw-site-" + name) : path.join(ROOT, "docs", name));
 
 let server, browser;
-before(async () => { server = await startServer(); browser = await launch(); });
+before(async () => { server = ON_SITE ? await startStaticServer() : await startServer(); browser = await launch(); });
 after(async () => { await browser?.close(); server?.stop(); });
 
 const REF2 = { observer: "0.1,0,0.1", straw: "0.02,0.01", he: "0.15" };
@@ -79,7 +88,7 @@ test("a preset loads a reference simulation whose points are simulate's", async 
   const exported = await page.evaluate(async () => {
     const q = new URLSearchParams(location.hash.slice(1));
     q.set("format", "csv");
-    return (await fetch("/api/export?" + q)).text();
+    return (await engineFetch("test", "/api/export", q.toString())).text();
   });
   assert.equal(exported, readFileSync(csv, "utf8"));
   // The page's command line for the points is the one just run.
@@ -88,7 +97,7 @@ test("a preset loads a reference simulation whose points are simulate's", async 
   await page.click("#show-commands");
   assert.match(await page.textContent("#cmd-render"), /^bentstraw render --observer 0\.1,0,0\.3 .*--mode fresnel --backdrop checker --output view\.png$/);
   await page.selectOption("#color-by", "path");
-  await page.screenshot({ path: path.join(ROOT, "docs/explorer-paths.png") });
+  await page.screenshot({ path: shot("explorer-paths.png") });
   assert.deepEqual(problems, []);
   await context.close();
 });
@@ -173,7 +182,7 @@ test("clicking a point of the cloud shows its path with simulate's numbers", asy
   await page.mouse.click(hit[0], hit[1]);
   await page.waitForFunction(() => (document.body.dataset.picked || "").startsWith("point:") && document.body.dataset.picked !== "point:1234");
   assert.equal(await page.evaluate(() => window.bentstraw.path.outcome), "straw");
-  await page.screenshot({ path: path.join(ROOT, "docs/explorer.png") });
+  await page.screenshot({ path: shot("explorer.png") });
   assert.deepEqual(problems, []);
   await context.close();
 });
@@ -213,7 +222,7 @@ test("the scene chooser shows a gallery scene whose points and paths are simulat
   p.image_point.forEach((v, i) => assert.ok(Math.abs(v - [x, y, z][i]) < 1e-12));
   // The water's sliders belong to the assignment's glass: off for a gallery scene.
   assert.equal(await page.locator("#he").isDisabled(), true);
-  await page.screenshot({ path: path.join(ROOT, "docs/explorer-gallery.png") });
+  await page.screenshot({ path: shot("explorer-gallery.png") });
   // Back to the glass: the sliders are live again.
   const f2 = await page.evaluate(() => window.bentstraw.frames);
   await page.selectOption("#scene", "");
@@ -262,7 +271,7 @@ test("an invalid parameter in the address shows the command line's message", asy
   await context.close();
 });
 
-test("the server survives a burst of malformed requests", async () => {
+test("the server survives a burst of malformed requests", SERVER_ONLY, async () => {
   const base = server.url;
   const good = "observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&size=64x48&points=500";
   const bad = [
@@ -283,7 +292,7 @@ test("the server survives a burst of malformed requests", async () => {
   assert.equal(after.status, 200);
 });
 
-test("a busy port is named in one line, exit code 2; Ctrl-C stops the server", async () => {
+test("a busy port is named in one line, exit code 2; Ctrl-C stops the server", SERVER_ONLY, async () => {
   const port = new URL(server.url).port;
   const r = await runCli(["explore", "--no-open", "--port", port]);
   assert.equal(r.code, 2);

@@ -181,6 +181,28 @@ test("a scene file set through the hook: simulate's points; its link reopens the
   }
 });
 
+test("the exported picture is render's PNG to the byte", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url + "#observer=0.1,0,0.3&straw=0.02,0.01&water-height=0.2&mode=fresnel");
+  await waitReady(page);
+  const [png, render] = await page.evaluate(async () => {
+    const h = window.bentstraw.frame.header;
+    const r = await engineFetch("test", "/api/export", viewQuery(state, { format: "png", size: `${h.width}x${h.height}` }));
+    const bytes = new Uint8Array(await r.arrayBuffer());
+    let bin = "";
+    for (const b of bytes) bin += String.fromCharCode(b);
+    return [btoa(bin), h.render];
+  });
+  const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-site-"));
+  const args = render.split(" ").slice(1);
+  const r = await cli(args, dir);
+  assert.equal(r.code, 0, r.stderr);
+  const expected = readFileSync(path.join(dir, "view.png"));
+  assert.ok(Buffer.from(png, "base64").equals(expected), `${render}: the page's PNG differs from render's`);
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("a gallery scene's link is short and reopens it", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);
