@@ -918,7 +918,7 @@ mod tests {
     #[test]
     fn eye_model_through_flat_surface_gives_plane_foci() {
         let scene = Scene::with_defaults(0.0, 0.0, 0.15).unwrap();
-        let he = scene.water_height;
+        let he = scene.water_height();
         let l = 0.2;
         for (theta_w, d) in [(0.01, 0.05), (0.2, 0.05), (0.45, 0.04), (0.7, 0.03)] {
             let (theta, sagittal, tangential) = plane_foci(d, theta_w);
@@ -1028,7 +1028,7 @@ mod tests {
     #[test]
     fn stereo_through_flat_surface_matches_fermat() {
         let scene = Scene::with_defaults(0.0, 0.0, 0.15).unwrap();
-        let he = scene.water_height;
+        let he = scene.water_height();
         for (theta_w, d) in [(0.2, 0.05), (0.45, 0.04)] {
             let theta = (N * f64::sin(theta_w)).asin();
             let q = Vec3::new(STRAW_RADIUS, 0.0, he - d);
@@ -1443,8 +1443,8 @@ mod tests {
                         return Ok(());
                     }
                     let target = Vec3::new(
-                        scene.straw_x + STRAW_RADIUS * at.cos(),
-                        scene.straw_y + STRAW_RADIUS * at.sin(),
+                        scene.straw_x() + STRAW_RADIUS * at.cos(),
+                        scene.straw_y() + STRAW_RADIUS * at.sin(),
                         zt,
                     );
                     let u0 = (target - eye).normalize();

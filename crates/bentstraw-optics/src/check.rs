@@ -54,7 +54,7 @@ pub enum Reach {
 /// of its light path.
 fn reach(world: &World, ray: Ray, max_events: Option<u32>) -> (Reach, LightPathType) {
     let (outcome, path) =
-        world.trace_path_type_limited(ray, max_events.unwrap_or(world.max_events));
+        world.trace_path_type_limited(ray, max_events.unwrap_or(world.max_events()));
     let reach = match outcome {
         Outcome::Object {
             color,
@@ -1119,9 +1119,8 @@ mod tests {
     #[test]
     fn a_point_needing_more_events_is_told_apart_from_no_straw() {
         // Points of reference 2 that need 2 or more events, judged with a limit of 1.
-        let (scene, o, pts) = own_points(1, 3000);
-        let mut strict = scene.clone();
-        strict.max_events = 1;
+        let (_, o, pts) = own_points(1, 3000);
+        let strict = World::assignment(&REFERENCES[1].scene(1.333).with_max_events(1).unwrap());
         let tracer = strict.clone();
         let deep: Vec<&ImagePoint> = pts.iter().filter(|p| p.events >= 2).collect();
         assert!(!deep.is_empty());

@@ -197,7 +197,7 @@ impl<'w> PacketTracer<'w> {
             let (o, d, alive) = rays.packet(p);
             let ends = self
                 .world
-                .follow_course(o, d, alive, zero, self.world.max_events, |_| {});
+                .follow_course(o, d, alive, zero, self.world.max_events(), |_| {});
             let code = F8::select(ends.reached, ends.color, zero);
             for (c, x) in chunk.iter_mut().zip(code.0) {
                 *c = x as u8;
@@ -350,7 +350,7 @@ impl<'w> PacketTracer<'w> {
     ) {
         let ends =
             self.world
-                .follow_course(o, d, alive, F8::splat(0.0), self.world.max_events, |_| {});
+                .follow_course(o, d, alive, F8::splat(0.0), self.world.max_events(), |_| {});
         for k in 0..n {
             let end = if ends.reached.lane(k) {
                 BranchEnd::Object {
@@ -487,7 +487,7 @@ impl<'w> PacketTracer<'w> {
         let first_object = F8::splat(world.boundaries().len() as f64);
         let inf = F8::splat(f64::INFINITY);
         let (cur, next) = (&mut wave.current, &mut wave.next);
-        for event in 0..=world.max_events {
+        for event in 0..=world.max_events() {
             if cur.len() == 0 {
                 break;
             }
@@ -545,11 +545,11 @@ impl<'w> PacketTracer<'w> {
                         );
                     } else if !on_boundary.lane(k) {
                         escape(k, on_end);
-                    } else if event == world.max_events {
+                    } else if event == world.max_events() {
                         on_end(pixel, BranchEnd::Dropped { weight: w });
                     }
                 }
-                if event == world.max_events || !on_boundary.any() {
+                if event == world.max_events() || !on_boundary.any() {
                     continue;
                 }
                 let medium = cur.load_code(&cur.medium, base);

@@ -148,22 +148,54 @@ pub fn require_finite(name: &'static str, value: f64) -> Result<f64, SceneError>
     }
 }
 
-/// The glass of water with the straw in it: everything a ray can meet.
+/// The glass of water with the straw in it: everything a ray can meet. Made only by
+/// [`Scene::new`], so every scene obeys the rules of valid inputs (its numbers are read, not set).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scene {
-    /// Axis of the straw, `x` (m).
-    pub straw_x: f64,
-    /// Axis of the straw, `y` (m).
-    pub straw_y: f64,
-    /// Height of the water surface `he` (m).
-    pub water_height: f64,
-    /// Refractive index of the water.
-    pub n_water: f64,
-    /// Most events (refractions and total reflections) a ray may undergo.
-    pub max_events: u32,
+    straw_x: f64,
+    straw_y: f64,
+    water_height: f64,
+    n_water: f64,
+    max_events: u32,
 }
 
 impl Scene {
+    /// Axis of the straw, `x` (m).
+    pub fn straw_x(&self) -> f64 {
+        self.straw_x
+    }
+
+    /// Axis of the straw, `y` (m).
+    pub fn straw_y(&self) -> f64 {
+        self.straw_y
+    }
+
+    /// Height of the water surface `he` (m).
+    pub fn water_height(&self) -> f64 {
+        self.water_height
+    }
+
+    /// Refractive index of the water.
+    pub fn n_water(&self) -> f64 {
+        self.n_water
+    }
+
+    /// Most events (refractions and total reflections) a ray may undergo.
+    pub fn max_events(&self) -> u32 {
+        self.max_events
+    }
+
+    /// The same scene with the event limit `max_events` (checked like [`Scene::new`]'s).
+    pub fn with_max_events(&self, max_events: u32) -> Result<Scene, SceneError> {
+        Scene::new(
+            self.straw_x,
+            self.straw_y,
+            self.water_height,
+            self.n_water,
+            max_events,
+        )
+    }
+
     /// A validated scene: straw axis `(xp, yp)`, water height `he`, index `n_water`,
     /// event limit `max_events`.
     pub fn new(

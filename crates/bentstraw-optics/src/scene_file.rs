@@ -879,15 +879,15 @@ impl SceneDescription {
             liquids: if scene.has_water() {
                 vec![Liquid {
                     name: "water".to_string(),
-                    index: scene.n_water,
-                    top: scene.water_height,
+                    index: scene.n_water(),
+                    top: scene.water_height(),
                 }]
             } else {
                 vec![]
             },
             straws: vec![Straw {
-                x: scene.straw_x,
-                y: scene.straw_y,
+                x: scene.straw_x(),
+                y: scene.straw_y(),
                 tilt_deg: 0.0,
                 azimuth_deg: 0.0,
                 radius: STRAW_RADIUS,

@@ -179,7 +179,7 @@ fn ray_with_events(scene: &Scene, k: u32) -> Ray {
         let target = Vec3::new(
             (rng.next() - 0.5) * 2.0 * GLASS_RADIUS,
             (rng.next() - 0.5) * 2.0 * GLASS_RADIUS,
-            rng.next() * scene.water_height,
+            rng.next() * scene.water_height(),
         );
         let ray = Ray::new(origin, target - origin);
         if let Outcome::Object { events, .. } = World::assignment(scene).trace(ray) {
@@ -266,11 +266,11 @@ proptest! {
             prop_assert!(((e.point - last).normalize() - e.incoming).length() < 1e-9);
             // The event lies on its face.
             match water_face(&scene, e) {
-                "top" => prop_assert!((e.point.z - scene.water_height).abs() < 1e-12),
+                "top" => prop_assert!((e.point.z - scene.water_height()).abs() < 1e-12),
                 "bottom" => prop_assert!(e.point.z.abs() < 1e-12),
                 _ => prop_assert!((e.point.truncate().length() - GLASS_RADIUS).abs() < 1e-12),
             }
-            let (n1, n2) = if in_water { (scene.n_water, 1.0) } else { (1.0, scene.n_water) };
+            let (n1, n2) = if in_water { (scene.n_water(), 1.0) } else { (1.0, scene.n_water()) };
             prop_assert_eq!((e.n1, e.n2), (n1, n2));
             let sin_i = sin_angle(e.incoming, e.normal);
             let tir = n1 / n2 * sin_i > 1.0;
@@ -324,7 +324,7 @@ proptest! {
             left = Some(world.surface_code(index));
             let p = back.at(t);
             let normal = world.boundaries()[index].normal(p);
-            let (n1, n2) = if in_water { (scene.n_water, 1.0) } else { (1.0, scene.n_water) };
+            let (n1, n2) = if in_water { (scene.n_water(), 1.0) } else { (1.0, scene.n_water()) };
             let d = match bentstraw_optics::interface::refract(back.direction, normal, n1, n2) {
                 Some(t) => { in_water = !in_water; t.normalize() }
                 None => bentstraw_optics::interface::reflect(back.direction, normal),

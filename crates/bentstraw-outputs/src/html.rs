@@ -125,10 +125,10 @@ fn viewer_page(
         ox = observer.x,
         oy = observer.y,
         oz = observer.z,
-        sx = scene.straw_x,
-        sy = scene.straw_y,
-        he = scene.water_height,
-        nw = scene.n_water,
+        sx = scene.straw_x(),
+        sy = scene.straw_y(),
+        he = scene.water_height(),
+        nw = scene.n_water(),
         count = points.len(),
     )
 }
@@ -172,17 +172,17 @@ fn viewer_data(
         "arrow": bx.observer_arrow.map(|(a, b)| [v3(a), v3(b)]),
         "water": {
             "radius": GLASS_RADIUS,
-            "height": scene.water_height,
+            "height": scene.water_height(),
             "verticals": WIRE_VERTICALS,
         },
         "straw": {
-            "x": scene.straw_x,
-            "y": scene.straw_y,
+            "x": scene.straw_x(),
+            "y": scene.straw_y(),
             "radius": STRAW_RADIUS,
             "height": STRAW_HEIGHT,
             "sectionHeight": SECTION_HEIGHT,
         },
-        "nWater": scene.n_water,
+        "nWater": scene.n_water(),
         "sections": sections,
         "views": views,
     })

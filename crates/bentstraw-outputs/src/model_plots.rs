@@ -171,10 +171,10 @@ fn comparison_heading(scene: &Loaded, observer: Vec3, title: &str) -> Heading {
             "observer {} m · straw axis ({}, {}) m · water height {} m · n_water = {} · same box \
              and scale in every panel of a column, lengths in metres",
             triple(observer),
-            num(scene.straw_x),
-            num(scene.straw_y),
-            num(scene.water_height),
-            num(scene.n_water),
+            num(scene.straw_x()),
+            num(scene.straw_y()),
+            num(scene.water_height()),
+            num(scene.n_water()),
         ),
     )
 }

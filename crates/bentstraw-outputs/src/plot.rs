@@ -94,7 +94,7 @@ pub(crate) fn axis_box(scene: &Loaded, observer: Vec3, points: &[ImagePoint]) ->
         (Some(scene), _) => {
             let lo = Vec3::new(-GLASS_RADIUS, -GLASS_RADIUS, 0.0);
             let hi = Vec3::new(GLASS_RADIUS, GLASS_RADIUS, GLASS_HEIGHT);
-            let straw = Vec3::new(scene.straw_x, scene.straw_y, 0.0);
+            let straw = Vec3::new(scene.straw_x(), scene.straw_y(), 0.0);
             (
                 lo.min(straw - Vec3::new(STRAW_RADIUS, STRAW_RADIUS, 0.0)),
                 hi.max(straw + Vec3::new(STRAW_RADIUS, STRAW_RADIUS, STRAW_HEIGHT)),
@@ -1061,7 +1061,7 @@ pub(crate) fn draw_water<DB: DrawingBackend>(
 ) -> DrawResultOn<DB> {
     let (axis, segments) = match (&scene.assignment, &scene.world) {
         (Some(scene), _) => (
-            Vec3::new(0.0, 0.0, scene.water_height / 2.0),
+            Vec3::new(0.0, 0.0, scene.water_height() / 2.0),
             water_segments(scene),
         ),
         (None, world) => {
@@ -1103,8 +1103,8 @@ pub(crate) fn draw_straw_outline<DB: DrawingBackend>(
     };
     for k in 0..=SECTION_COUNT {
         let c = circle(
-            scene.straw_x,
-            scene.straw_y,
+            scene.straw_x(),
+            scene.straw_y(),
             STRAW_RADIUS,
             k as f64 * SECTION_HEIGHT,
         );
@@ -1112,7 +1112,7 @@ pub(crate) fn draw_straw_outline<DB: DrawingBackend>(
         dashed(root, &px, color)?;
     }
     let side = STRAW_RADIUS * proj.right;
-    let axis = Vec3::new(scene.straw_x, scene.straw_y, 0.0);
+    let axis = Vec3::new(scene.straw_x(), scene.straw_y(), 0.0);
     for s in [-1.0, 1.0] {
         let a = axis + s * side;
         let b = a + Vec3::new(0.0, 0.0, STRAW_HEIGHT);

@@ -211,7 +211,7 @@ fn ranges(scene: &Loaded, diagram: &Diagram, view: View, aspect: f64) -> ((f64, 
                     pts.push(view.project(Vec3::new(x * GLASS_RADIUS, y * GLASS_RADIUS, z)));
                 }
             }
-            pts.push(view.project(Vec3::new(scene.straw_x, scene.straw_y, 0.0)));
+            pts.push(view.project(Vec3::new(scene.straw_x(), scene.straw_y(), 0.0)));
         }
         (None, world) => {
             let (lo, hi) = world.bounds();
@@ -340,7 +340,7 @@ fn draw_panel<DB: DrawingBackend>(
             if scene.has_water() {
                 chart
                     .draw_series(std::iter::once(Rectangle::new(
-                        [(-rv, 0.0), (rv, scene.water_height)],
+                        [(-rv, 0.0), (rv, scene.water_height())],
                         water.filled(),
                     )))
                     .map_err(e)?;
@@ -357,7 +357,7 @@ fn draw_panel<DB: DrawingBackend>(
                 )))
                 .map_err(e)?;
             // The straw as seen from the side, its five bands in their colours.
-            let c = scene.straw_x * axis.x + scene.straw_y * axis.y;
+            let c = scene.straw_x() * axis.x + scene.straw_y() * axis.y;
             for (k, rgb) in SECTION_RGB.iter().enumerate() {
                 let [r, g, b] = rgb.map(|v| (v * 255.0).round() as u8);
                 chart
@@ -388,7 +388,7 @@ fn draw_panel<DB: DrawingBackend>(
                 .map_err(e)?;
             chart
                 .draw_series(std::iter::once(Polygon::new(
-                    circle(scene.straw_x, scene.straw_y, STRAW_RADIUS),
+                    circle(scene.straw_x(), scene.straw_y(), STRAW_RADIUS),
                     RGBColor(150, 150, 150).mix(0.6).filled(),
                 )))
                 .map_err(e)?;

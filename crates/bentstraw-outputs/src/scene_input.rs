@@ -162,9 +162,9 @@ impl SceneSource {
         if let Some(spec) = description.spec_scene() {
             let (scene, observer) = SceneValues {
                 observer,
-                straw: self.straw.unwrap_or([spec.straw_x, spec.straw_y]),
-                water_height: self.water_height.unwrap_or(spec.water_height),
-                n_water: self.n_water.unwrap_or(spec.n_water),
+                straw: self.straw.unwrap_or([spec.straw_x(), spec.straw_y()]),
+                water_height: self.water_height.unwrap_or(spec.water_height()),
+                n_water: self.n_water.unwrap_or(spec.n_water()),
                 max_events: self.max_events,
             }
             .scene_and_observer()?;

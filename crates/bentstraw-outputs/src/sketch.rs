@@ -27,7 +27,7 @@ pub(crate) fn circle(cx: f64, cy: f64, r: f64, z: f64) -> Vec<Vec3> {
 /// The water's wireframe as segments: top and bottom circles and [`WIRE_VERTICALS`] vertical lines.
 #[cfg(feature = "figures")]
 pub(crate) fn water_segments(scene: &Scene) -> Vec<[Vec3; 2]> {
-    let he = scene.water_height;
+    let he = scene.water_height();
     let mut segs = Vec::new();
     for z in [0.0, he] {
         let c = circle(0.0, 0.0, GLASS_RADIUS, z);

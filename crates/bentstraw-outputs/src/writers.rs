@@ -361,10 +361,10 @@ pub fn write_json(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
     };
     let inputs = JsonInputs {
         observer: set.scene.observer.to_array(),
-        straw: [s.straw_x, s.straw_y],
-        water_height: s.water_height,
-        n_water: s.n_water,
-        max_events: s.max_events,
+        straw: [s.straw_x(), s.straw_y()],
+        water_height: s.water_height(),
+        n_water: s.n_water(),
+        max_events: s.max_events(),
         min_points: set.min_points,
     };
     let c = set.cloud.counts_per_color();
@@ -449,7 +449,11 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
     writeln!(
         w,
         "comment straw {} {} water_height {} n_water {} max_events {}",
-        s.straw_x, s.straw_y, s.water_height, s.n_water, s.max_events
+        s.straw_x(),
+        s.straw_y(),
+        s.water_height(),
+        s.n_water(),
+        s.max_events()
     )?;
     writeln!(
         w,
@@ -519,7 +523,7 @@ fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &Loaded) -> io::Re
             .map(|d| d.to_toml())
             .unwrap_or_default(),
         observer: world.observer.to_array(),
-        max_events: world.world.max_events,
+        max_events: world.world.max_events(),
         min_points,
     };
     let stats = JsonWorldStats {
@@ -564,7 +568,7 @@ fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &Loaded) -> io::Res
     writeln!(
         w,
         "comment scene_file {name} max_events {}",
-        world.world.max_events
+        world.world.max_events()
     )?;
     writeln!(
         w,

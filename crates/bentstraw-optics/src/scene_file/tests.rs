@@ -60,8 +60,8 @@ fn an_empty_glass_is_allowed_and_is_the_assignment_scene_without_water() {
     let scene = d
         .spec_scene()
         .expect("an empty glass of the assignment's size");
-    assert_eq!(scene.water_height, 0.0);
-    assert_eq!((scene.straw_x, scene.straw_y), (0.01, 0.0));
+    assert_eq!(scene.water_height(), 0.0);
+    assert_eq!((scene.straw_x(), scene.straw_y()), (0.01, 0.0));
 }
 
 #[test]

@@ -86,7 +86,7 @@ pub struct World {
     /// outline: nothing else shows where it is).
     thin_glass: Option<(f64, f64)>,
     /// Most events (refractions and total reflections) a ray may undergo.
-    pub max_events: u32,
+    max_events: u32,
 }
 
 /// Which faces between media of the same index are kept as events.
@@ -251,6 +251,11 @@ fn wall_pieces(
 }
 
 impl World {
+    /// Most events (refractions and total reflections) a ray may undergo.
+    pub fn max_events(&self) -> u32 {
+        self.max_events
+    }
+
     /// The world a valid scene description describes, with event limit `max_events`. A face
     /// between media of the same index is no interface (light crosses it unbent, and it is no
     /// event): a glass of index 1 traces exactly like walls of no thickness.
@@ -265,7 +270,7 @@ impl World {
     pub fn assignment(scene: &Scene) -> World {
         World::build(
             &SceneDescription::assignment(scene),
-            scene.max_events,
+            scene.max_events(),
             SameIndex::LiquidFacesKept,
         )
     }

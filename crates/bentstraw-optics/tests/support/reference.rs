@@ -122,12 +122,12 @@ impl Reference {
     /// The reference for `scene`.
     pub fn new(scene: &Scene) -> Reference {
         Reference {
-            xp: t(scene.straw_x),
-            yp: t(scene.straw_y),
-            he: t(scene.water_height),
-            n: t(scene.n_water),
-            has_water: scene.water_height > 0.0,
-            max_events: scene.max_events,
+            xp: t(scene.straw_x()),
+            yp: t(scene.straw_y()),
+            he: t(scene.water_height()),
+            n: t(scene.n_water()),
+            has_water: scene.water_height() > 0.0,
+            max_events: scene.max_events(),
         }
     }
 

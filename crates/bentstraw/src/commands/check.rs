@@ -434,7 +434,7 @@ fn summary(
             let _ = writeln!(
                 t,
                 "  scene           observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}, at most {} events",
-                o.x, o.y, o.z, scene.straw_x, scene.straw_y, scene.water_height, scene.n_water, scene.max_events
+                o.x, o.y, o.z, scene.straw_x(), scene.straw_y(), scene.water_height(), scene.n_water(), scene.max_events()
             );
         }
         None => {
@@ -445,7 +445,7 @@ fn summary(
                 o.x,
                 o.y,
                 o.z,
-                checked.world.max_events
+                checked.world.max_events()
             );
         }
     }
@@ -723,14 +723,14 @@ fn json_report(
     });
     match &checked.assignment {
         Some(scene) => {
-            v["straw"] = json!([scene.straw_x, scene.straw_y]);
-            v["water_height"] = json!(scene.water_height);
-            v["n_water"] = json!(scene.n_water);
-            v["max_events"] = json!(scene.max_events);
+            v["straw"] = json!([scene.straw_x(), scene.straw_y()]);
+            v["water_height"] = json!(scene.water_height());
+            v["n_water"] = json!(scene.n_water());
+            v["max_events"] = json!(scene.max_events());
         }
         None => {
             v["scene_file"] = json!(checked.name());
-            v["max_events"] = json!(checked.world.max_events);
+            v["max_events"] = json!(checked.world.max_events());
         }
     }
     v

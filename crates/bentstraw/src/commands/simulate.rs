@@ -250,10 +250,10 @@ pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
         observer.x,
         observer.y,
         observer.z,
-        scene.straw_x,
-        scene.straw_y,
-        scene.water_height,
-        scene.n_water
+        scene.straw_x(),
+        scene.straw_y(),
+        scene.water_height(),
+        scene.n_water()
     )
 }
 
@@ -270,13 +270,14 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
                 set.image_model()
             );
             let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
-            let _ = writeln!(t, "  straw axis      ({}, {}) m", s.straw_x, s.straw_y);
+            let _ = writeln!(t, "  straw axis      ({}, {}) m", s.straw_x(), s.straw_y());
             let _ = writeln!(
                 t,
                 "  water           height {} m, index {}",
-                s.water_height, s.n_water
+                s.water_height(),
+                s.n_water()
             );
-            let _ = writeln!(t, "  event limit     {}", s.max_events);
+            let _ = writeln!(t, "  event limit     {}", s.max_events());
             let counts = cloud.counts_per_color().into_iter().enumerate().collect();
             ("the straw", counts)
         }
@@ -288,7 +289,7 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
                 set.image_model()
             );
             let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
-            let _ = writeln!(t, "  event limit     {}", set.scene.world.max_events);
+            let _ = writeln!(t, "  event limit     {}", set.scene.world.max_events());
             // The colours the image has (a card has no red).
             let counts = cloud.counts_per_code().into_iter().enumerate();
             ("an object", counts.filter(|c| c.1 > 0).collect())

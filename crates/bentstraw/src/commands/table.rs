@@ -74,7 +74,7 @@ impl Job {
             format!("{stem}.svg"),
             format!("{stem}.html"),
         ];
-        if self.scene.n_water == WATER_INDEX {
+        if self.scene.n_water() == WATER_INDEX {
             for suffix in [
                 "_observer.png",
                 "_cloud.png",
@@ -310,7 +310,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     }];
     // The reference simulations proper (not the index checks) also get the observer's picture and
     // the apparent-position models.
-    if scene.n_water == WATER_INDEX {
+    if scene.n_water() == WATER_INDEX {
         let t = Instant::now();
         sections.push(observer_section(job, out, &cloud));
         timings.push(Timing::new("observer's picture", t.elapsed()));
@@ -327,7 +327,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         reference: job.reference.number,
         heading: simulation_heading(job),
         inputs: inputs(scene, observer),
-        n_water: scene.n_water,
+        n_water: scene.n_water(),
         rays: cloud.rays_traced,
         points: cloud.points.len(),
         counts: cloud.counts_per_color(),
@@ -699,7 +699,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
 
 /// "Simulation 1", "Simulation 1, check n_water = 1", …
 fn simulation_heading(job: &Job) -> String {
-    let n = job.scene.n_water;
+    let n = job.scene.n_water();
     if n == WATER_INDEX {
         format!("Simulation {}", job.reference.number)
     } else {
@@ -713,17 +713,17 @@ fn inputs(scene: &Scene, o: Vec3) -> Vec<(String, String)> {
         ("observer".into(), format!("({}, {}, {}) m", o.x, o.y, o.z)),
         (
             "straw axis".into(),
-            format!("({}, {}) m", scene.straw_x, scene.straw_y),
+            format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
         ),
-        ("water height".into(), format!("{} m", scene.water_height)),
-        ("water index".into(), format!("{}", scene.n_water)),
-        ("event limit".into(), format!("{}", scene.max_events)),
+        ("water height".into(), format!("{} m", scene.water_height())),
+        ("water index".into(), format!("{}", scene.n_water())),
+        ("event limit".into(), format!("{}", scene.max_events())),
     ]
 }
 
 /// The built-in check for `n_water = 1`: every image point lies on the straw.
 fn check(scene: &Scene, cloud: &ImageCloud) -> Option<Check> {
-    if scene.n_water != 1.0 {
+    if scene.n_water() != 1.0 {
         return None;
     }
     let max = max_distance_to_straw(scene, cloud);
@@ -758,7 +758,7 @@ fn distance_note(scene: &Scene, cloud: &ImageCloud) -> String {
         "The image points lie up to {:.3} mm from the straw's surface (n_water = {}; with \
          n_water = 1 they would lie on it).",
         1e3 * max_distance_to_straw(scene, cloud),
-        scene.n_water
+        scene.n_water()
     )
 }
 

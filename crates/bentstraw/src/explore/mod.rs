@@ -6,15 +6,15 @@ mod server;
 
 use std::io::Write;
 
-use bentstraw_optics::scene::{Scene, WATER_INDEX};
+use bentstraw_optics::scene::WATER_INDEX;
 use bentstraw_optics::scene_file::SceneDescription;
-use bentstraw_optics::Vec3;
 
 use bentstraw_explore as api;
 
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
 use bentstraw_outputs::gallery::GALLERY;
+use bentstraw_outputs::scene_input::SceneValues;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -62,10 +62,16 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         crate::cli::ModeArg::Course => "course",
         crate::cli::ModeArg::Fresnel => "fresnel",
     };
-    let (scene, o) = if let Some(path) = &v.scene {
+    let values = if let Some(path) = &v.scene {
         let loaded = v.source().load()?;
         match loaded.assignment {
-            Some(scene) => (scene, loaded.observer),
+            Some(scene) => SceneValues {
+                observer: loaded.observer.to_array(),
+                straw: [scene.straw_x(), scene.straw_y()],
+                water_height: scene.water_height(),
+                n_water: scene.n_water(),
+                max_events: scene.max_events(),
+            },
             // A scene of the built-in gallery starts the page on it; another is refused, saying
             // what the page offers.
             None => {
@@ -107,26 +113,25 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
     } else {
         let o = v.observer.unwrap_or([0.1, 0.0, 0.1]);
         let [x, y] = v.straw.unwrap_or([0.02, 0.01]);
-        // Checked with the page's own rules by the caller.
-        let scene = Scene {
-            straw_x: x,
-            straw_y: y,
+        // Checked by the caller, with the page's own rules and messages.
+        SceneValues {
+            observer: o,
+            straw: [x, y],
             water_height: v.water_height.unwrap_or(0.15),
             n_water: v.n_water.unwrap_or(WATER_INDEX),
             max_events: v.max_events,
-        };
-        (scene, Vec3::from_array(o))
+        }
     };
     Ok(format!(
         "observer={},{},{}&straw={},{}&water-height={}&n-water={}&max-events={}&points={}&mode={mode}",
-        o.x,
-        o.y,
-        o.z,
-        scene.straw_x,
-        scene.straw_y,
-        scene.water_height,
-        scene.n_water,
-        scene.max_events,
+        values.observer[0],
+        values.observer[1],
+        values.observer[2],
+        values.straw[0],
+        values.straw[1],
+        values.water_height,
+        values.n_water,
+        values.max_events,
         a.points,
     ))
 }
