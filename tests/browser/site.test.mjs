@@ -34,9 +34,6 @@ async function assertPointsAreSimulates(page, label) {
   const [csv, args, toml] = await page.evaluate(async () => [await window.bentstraw.points(), await window.bentstraw.command(), window.bentstraw.state.file]);
   const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-site-"));
   if (args.includes("scene.toml")) writeFileSync(path.join(dir, "scene.toml"), toml);
-  const scenes = args.indexOf("--scene");
-  // A gallery scene is named by its path in the project.
-  if (scenes >= 0 && args[scenes + 1].startsWith("scenes/")) args[scenes + 1] = path.join(SITE, "..", "..", args[scenes + 1]);
   const r = await cli(args, dir);
   assert.equal(r.code, 0, `${label}: ${args.join(" ")}: ${r.stderr}`);
   const expected = readFileSync(path.join(dir, "view.csv"), "utf8");

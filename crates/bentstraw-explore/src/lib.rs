@@ -174,7 +174,8 @@ fn scene_text(q: &HashMap<String, String>) -> Result<Option<(String, &str)>, Str
         ),
         (None, Some(text)) => Ok(Some((PAGE_SCENE_FILE.to_string(), text))),
         (Some(name), None) => match GALLERY.iter().find(|(stem, _)| *stem == name) {
-            Some((stem, text)) => Ok(Some((format!("scenes/{stem}.toml"), text))),
+            // Named as the command line finds it from any folder (the gallery is built in).
+            Some((stem, text)) => Ok(Some((stem.to_string(), text))),
             None => {
                 let names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
                 Err(format!(
@@ -1085,7 +1086,7 @@ mod tests {
         assert!(header["simulate"]
             .as_str()
             .unwrap()
-            .contains("--scene scenes/reversing-arrow.toml --observer 0.3,0,0.1"));
+            .contains("--scene reversing-arrow --observer 0.3,0,0.1"));
         let ray = handle("/api/ray", &format!("{q}&point=10"), &mut f);
         assert_eq!(ray.status, 200);
         let ray: Value = serde_json::from_slice(&ray.body).unwrap();

@@ -12,6 +12,7 @@ use bentstraw_optics::Vec3;
 
 use crate::error::{fail, Error, Result};
 use crate::files::shown;
+use crate::gallery::GALLERY;
 
 /// Largest scene file read (1 MB): a scene is a few dozen lines.
 pub const MAX_SCENE_FILE_BYTES: u64 = 1 << 20;
@@ -125,6 +126,9 @@ impl SceneSource {
             .scene_and_observer()?;
             return Ok(Loaded::assignment(scene, observer));
         };
+        if let Some((stem, text)) = built_in(path) {
+            return self.load_text(stem, text);
+        }
         self.load_description(shown(path), read_scene_file(path)?)
     }
 
@@ -229,6 +233,17 @@ pub fn file_world(name: &str, text: &str, max_events: u32) -> Result<Loaded> {
         observer: observer.position,
         target: Some(observer.target),
     })
+}
+
+/// The gallery's scene `path` names, when no such file exists: `leaning-straw` or
+/// `leaning-straw.toml` from any folder (a file of that name, where there is one, wins).
+pub fn built_in(path: &Path) -> Option<(&'static str, &'static str)> {
+    if path.exists() || path.components().count() != 1 {
+        return None;
+    }
+    let name = path.to_str()?;
+    let stem = name.strip_suffix(".toml").unwrap_or(name);
+    GALLERY.iter().find(|(s, _)| *s == stem).copied()
 }
 
 /// Reads and checks the scene file at `path`; every refusal names the file.

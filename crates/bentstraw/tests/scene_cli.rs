@@ -723,3 +723,35 @@ fn bench_times_any_scene_file() {
         }
     }
 }
+
+/// The gallery is built in: `--scene leaning-straw` (or `leaning-straw.toml`) works from any
+/// folder and gives the file's points; a file of that name in the folder wins.
+#[test]
+fn a_gallery_scene_is_named_from_any_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let points = |scene: &str, out: &str| {
+        let o = run(
+            dir.path(),
+            &[
+                "simulate", "--scene", scene, "--points", "300", "--output", out,
+            ],
+        );
+        succeeded(&o);
+        std::fs::read(dir.path().join(out)).unwrap()
+    };
+    let from_file = points(&gallery("leaning-straw.toml"), "file.csv");
+    assert_eq!(points("leaning-straw", "name.csv"), from_file);
+    assert_eq!(points("leaning-straw.toml", "toml.csv"), from_file);
+    // A file of that name, where there is one, is the one read.
+    let own = std::fs::read_to_string(gallery("leaning-straw.toml"))
+        .unwrap()
+        .replace("tilt = 15.0", "tilt = 10.0");
+    std::fs::write(dir.path().join("leaning-straw.toml"), own).unwrap();
+    assert_ne!(points("leaning-straw.toml", "own.csv"), from_file);
+    // An unknown name is still a missing file.
+    let o = run(
+        dir.path(),
+        &["simulate", "--scene", "teapot", "--points", "10"],
+    );
+    assert!(!o.status.success());
+}
