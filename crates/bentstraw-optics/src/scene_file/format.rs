@@ -96,7 +96,8 @@ struct FileCard {
 #[serde(deny_unknown_fields)]
 struct FileObserver {
     position: [f64; 3],
-    target: [f64; 3],
+    #[serde(default)]
+    target: Option<[f64; 3]>,
 }
 
 /// `path` (serde's, counting from 0) as the messages write it, counting entries from 1.
@@ -265,6 +266,8 @@ impl SceneDescription {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
+        // Without a target, the eye looks at the middle of the container.
+        let middle = Vec3::new(0.0, 0.0, container.height() / 2.0);
         Ok(SceneDescription {
             container,
             liquids: file
@@ -301,7 +304,7 @@ impl SceneDescription {
             cards,
             observer: file.observer.map(|o| Observer {
                 position: Vec3::from_array(o.position),
-                target: Vec3::from_array(o.target),
+                target: o.target.map_or(middle, Vec3::from_array),
             }),
         })
     }
@@ -373,7 +376,7 @@ impl SceneDescription {
                 .collect(),
             observer: self.observer.map(|o| FileObserver {
                 position: o.position.to_array(),
-                target: o.target.to_array(),
+                target: Some(o.target.to_array()),
             }),
         };
         // Tables of numbers and strings always have a TOML form.

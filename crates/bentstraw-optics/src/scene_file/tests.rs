@@ -726,3 +726,14 @@ proptest::proptest! {
         proptest::prop_assert_eq!(by_file, by_rules);
     }
 }
+
+/// An `[observer]` with a position alone looks at the middle of the container.
+#[test]
+fn an_observer_without_a_target_looks_at_the_containers_middle() {
+    let d = parsed(&glass_with("[observer]\nposition = [0.3, 0, 0.1]\n"));
+    let o = d.observer.unwrap();
+    assert_eq!(o.position, Vec3::new(0.3, 0.0, 0.1));
+    assert_eq!(o.target, Vec3::new(0.0, 0.0, 0.1));
+    // Written back, the target is written out and read again.
+    assert_eq!(parsed(&d.to_toml()), d);
+}
