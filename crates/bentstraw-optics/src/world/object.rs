@@ -272,13 +272,15 @@ impl Object {
         left: R,
     ) -> Option<(R, R, R)> {
         match self {
-            Object::Straw { solid, .. } => {
+            // One solid's entry for both (inlined once: a smaller packet kernel).
+            Object::Straw { solid, .. } | Object::Coin(solid) => {
                 let (t, part, along) = solid.entry(o, d, inv, alive, left)?;
-                Some((t, part, along - R::splat(solid.base_in_frame[2])))
-            }
-            Object::Coin(solid) => {
-                let (t, part, _) = solid.entry(o, d, inv, alive, left)?;
-                Some((t, part, R::splat(COIN_COLOR as f64)))
+                let tag = if let Object::Straw { .. } = self {
+                    along - R::splat(solid.base_in_frame[2])
+                } else {
+                    R::splat(COIN_COLOR as f64)
+                };
+                Some((t, part, tag))
             }
             Object::Card {
                 centre,
