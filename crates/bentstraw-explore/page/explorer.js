@@ -18,7 +18,7 @@ const QUICK_POINTS = 6;
 // The full frame is asked for this long after the last quick one: soon, in the page's own engine
 // (a full frame superseded by new input is stopped at once); later from the server, whose two
 // threads every open page shares.
-const FULL_AFTER_MS = document.body.dataset.engine === "wasm" ? 40 : 150;
+const FULL_AFTER_MS = document.body.dataset.engine === "wasm" ? 80 : 150;
 // The centre the eye orbits round: the middle of the glass.
 const ORBIT = [0, 0, 0.1];
 
