@@ -2,6 +2,8 @@
 //! native engine behind `/api/…`; the static site (`cargo xtask site`) ships it with the engine
 //! compiled to WebAssembly, run by Web Workers. The page sends the same requests to either.
 
+use bentstraw_outputs::escape::escape_html;
+
 /// Which engine answers the page's requests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Engine {
@@ -59,16 +61,8 @@ pub fn index_html(initial: &str, engine: Engine) -> String {
         Engine::Wasm => "wasm",
     };
     INDEX
-        .replace("__INITIAL_VIEW__", &html_attribute(initial))
+        .replace("__INITIAL_VIEW__", &escape_html(initial))
         .replace("__ENGINE__", engine)
-}
-
-/// `text` safe inside a double-quoted HTML attribute.
-fn html_attribute(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('"', "&quot;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }
 
 #[cfg(test)]

@@ -16,6 +16,7 @@ use bentstraw_optics::Vec3;
 use serde_json::json;
 
 use crate::error::Result;
+use crate::escape::escape_html;
 use crate::files;
 use crate::plot::{
     axis_box, counts, degrees, figure_views, observer_direction, section_rgb8, whole,
@@ -382,22 +383,6 @@ pub(crate) fn base64(bytes: &[u8]) -> String {
             } else {
                 out.push('=');
             }
-        }
-    }
-    out
-}
-
-/// Text made safe for HTML element content and attribute values.
-fn escape_html(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
         }
     }
     out

@@ -10,6 +10,7 @@ pub mod camera;
 #[cfg(feature = "figures")]
 pub mod check_plot;
 pub mod error;
+pub mod escape;
 pub mod files;
 pub mod gallery;
 #[cfg(feature = "figures")]

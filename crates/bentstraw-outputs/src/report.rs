@@ -12,6 +12,7 @@ use std::time::Duration;
 use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES};
 
 use crate::error::Result;
+use crate::escape::escape_html;
 use crate::files::write_bytes;
 use crate::writers::section_rgb8;
 
@@ -160,22 +161,6 @@ pub fn write_report(path: &Path, report: &Report) -> Result {
     write_bytes(path, render(report).as_bytes())
 }
 
-/// Escapes text for HTML content and attribute values.
-pub fn escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            _ => out.push(c),
-        }
-    }
-    out
-}
-
 const CSS: &str = r#"
 :root { --ink:#1d2330; --muted:#5b6475; --line:#e2e6ee; --bg:#f6f7fb; --card:#fff; --accent:#2456a6; --ok:#1d7a3a; --bad:#b3261e; }
 * { box-sizing: border-box; }
@@ -241,13 +226,13 @@ pub fn render(report: &Report) -> String {
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
          <title>{}</title>\n<style>{CSS}</style>\n</head>\n<body>\n",
-        escape(&report.title)
+        escape_html(&report.title)
     );
     let _ = write!(
         h,
         "<header>\n<h1>{}</h1>\n<p>{}</p>\n</header>\n",
-        escape(&report.title),
-        escape(&report.subtitle)
+        escape_html(&report.title),
+        escape_html(&report.subtitle)
     );
 
     // Consecutive simulations of the same reference form one group.
@@ -260,19 +245,19 @@ pub fn render(report: &Report) -> String {
     }
     h.push_str("<nav>");
     for (k, sec) in report.intro.iter().enumerate() {
-        let _ = write!(h, "<a href=\"#intro{k}\">{}</a>", escape(&sec.title));
+        let _ = write!(h, "<a href=\"#intro{k}\">{}</a>", escape_html(&sec.title));
     }
     h.push_str("<a href=\"#overview\">Overview</a>");
     for (r, _) in &groups {
         let _ = write!(h, "<a href=\"#reference{r}\">Simulation {r}</a>");
     }
     for (k, sec) in report.closing.iter().enumerate() {
-        let _ = write!(h, "<a href=\"#closing{k}\">{}</a>", escape(&sec.title));
+        let _ = write!(h, "<a href=\"#closing{k}\">{}</a>", escape_html(&sec.title));
     }
     h.push_str("<a href=\"#conventions\">Conventions</a></nav>\n<main>\n");
 
     for (k, sec) in report.intro.iter().enumerate() {
-        let _ = writeln!(h, "<h2 id=\"intro{k}\">{}</h2>", escape(&sec.title));
+        let _ = writeln!(h, "<h2 id=\"intro{k}\">{}</h2>", escape_html(&sec.title));
         render_section_body(&mut h, sec);
     }
     render_overview(&mut h, report);
@@ -283,7 +268,7 @@ pub fn render(report: &Report) -> String {
         }
     }
     for (k, sec) in report.closing.iter().enumerate() {
-        let _ = writeln!(h, "<h2 id=\"closing{k}\">{}</h2>", escape(&sec.title));
+        let _ = writeln!(h, "<h2 id=\"closing{k}\">{}</h2>", escape_html(&sec.title));
         render_section_body(&mut h, sec);
     }
     h.push_str("</main>\n");
@@ -324,7 +309,7 @@ fn render_overview(h: &mut String, report: &Report) {
             s.rays,
             s.points,
             100.0 * s.hit_ratio,
-            id = escape(&s.id)
+            id = escape_html(&s.id)
         );
         for c in s.counts {
             let _ = write!(h, "<td>{c}</td>");
@@ -334,7 +319,7 @@ fn render_overview(h: &mut String, report: &Report) {
             Some(c) => format!(
                 "<span class=\"badge {}\">{}</span>",
                 if c.passed { "pass" } else { "fail" },
-                escape(&c.short)
+                escape_html(&c.short)
             ),
             None => String::new(),
         };
@@ -351,15 +336,15 @@ fn render_simulation(h: &mut String, s: &SimulationEntry) {
     let _ = write!(
         h,
         "<article class=\"sim\" id=\"{}\">\n<h3>{}</h3>\n<div class=\"facts\">\n<table>",
-        escape(&s.id),
-        escape(&s.heading)
+        escape_html(&s.id),
+        escape_html(&s.heading)
     );
     for (label, value) in &s.inputs {
         let _ = write!(
             h,
             "<tr><td>{}</td><td>{}</td></tr>",
-            escape(label),
-            escape(value)
+            escape_html(label),
+            escape_html(value)
         );
     }
     let _ = write!(
@@ -385,7 +370,7 @@ fn render_simulation(h: &mut String, s: &SimulationEntry) {
             h,
             "<p class=\"check {}\">{}</p>",
             if c.passed { "pass" } else { "fail" },
-            escape(&c.text)
+            escape_html(&c.text)
         );
     }
     if let Some(c) = &s.solution_check {
@@ -393,17 +378,17 @@ fn render_simulation(h: &mut String, s: &SimulationEntry) {
             h,
             "<p class=\"check {} solution\">Checked as a solution (<code>bentstraw check</code>): {}</p>",
             if c.passed { "pass" } else { "fail" },
-            escape(&c.text)
+            escape_html(&c.text)
         );
     }
     let timings: Vec<String> = s
         .timings
         .iter()
-        .map(|t| format!("{} {}", escape(&t.label), seconds(t.duration)))
+        .map(|t| format!("{} {}", escape_html(&t.label), seconds(t.duration)))
         .collect();
     let _ = writeln!(h, "<p class=\"timing\">Time: {}</p>", timings.join(" · "));
     for sec in &s.sections {
-        let _ = writeln!(h, "<h4>{}</h4>", escape(&sec.title));
+        let _ = writeln!(h, "<h4>{}</h4>", escape_html(&sec.title));
         render_section_body(h, sec);
     }
     h.push_str("</article>\n");
@@ -424,18 +409,18 @@ fn render_section_body(h: &mut String, sec: &Section) {
         h.push_str("</div>\n");
     }
     for n in &sec.notes {
-        let _ = writeln!(h, "<p>{}</p>", escape(n));
+        let _ = writeln!(h, "<p>{}</p>", escape_html(n));
     }
     if let Some((head, rows)) = sec.table.split_first() {
         h.push_str("<div class=\"overview\"><table>\n<tr>");
         for c in head {
-            let _ = write!(h, "<th>{}</th>", escape(c));
+            let _ = write!(h, "<th>{}</th>", escape_html(c));
         }
         h.push_str("</tr>\n");
         for row in rows {
             h.push_str("<tr>");
             for c in row {
-                let _ = write!(h, "<td>{}</td>", escape(c));
+                let _ = write!(h, "<td>{}</td>", escape_html(c));
             }
             h.push_str("</tr>\n");
         }
@@ -449,13 +434,13 @@ fn render_figure(h: &mut String, f: &Figure) {
         None => {
             let img = format!(
                 "<img src=\"{}\" alt=\"{}\" loading=\"lazy\">",
-                escape(&f.file),
-                escape(&f.caption)
+                escape_html(&f.file),
+                escape_html(&f.caption)
             );
             // Clicking the picture opens its first companion (the rotatable 3D view).
             match f.links.iter().find(|l| l.error.is_none()) {
                 Some(l) => {
-                    let _ = writeln!(h, "<a href=\"{}\">{img}</a>", escape(&l.file));
+                    let _ = writeln!(h, "<a href=\"{}\">{img}</a>", escape_html(&l.file));
                 }
                 None => {
                     let _ = writeln!(h, "{img}");
@@ -466,8 +451,8 @@ fn render_figure(h: &mut String, f: &Figure) {
             let _ = writeln!(
                 h,
                 "<div class=\"missing\">{} could not be written: {}</div>",
-                escape(&f.file),
-                escape(e)
+                escape_html(&f.file),
+                escape_html(e)
             );
         }
     }
@@ -475,11 +460,15 @@ fn render_figure(h: &mut String, f: &Figure) {
         .links
         .iter()
         .map(|l| match &l.error {
-            None => format!("<a href=\"{}\">{}</a>", escape(&l.file), escape(&l.label)),
-            Some(e) => format!("{} not written ({})", escape(&l.label), escape(e)),
+            None => format!(
+                "<a href=\"{}\">{}</a>",
+                escape_html(&l.file),
+                escape_html(&l.label)
+            ),
+            Some(e) => format!("{} not written ({})", escape_html(&l.label), escape_html(e)),
         })
         .collect();
-    let _ = write!(h, "<figcaption>{}", escape(&f.caption));
+    let _ = write!(h, "<figcaption>{}", escape_html(&f.caption));
     if !links.is_empty() {
         let _ = write!(h, " — {}", links.join(" · "));
     }
