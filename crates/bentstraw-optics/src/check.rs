@@ -1120,7 +1120,9 @@ mod tests {
     fn a_point_needing_more_events_is_told_apart_from_no_straw() {
         // Points of reference 2 that need 2 or more events, judged with a limit of 1.
         let (_, o, pts) = own_points(1, 3000);
-        let strict = World::assignment(&REFERENCES[1].scene(1.333).with_max_events(1).unwrap());
+        let r = &REFERENCES[1];
+        let strict =
+            World::assignment(&Scene::new(r.straw.0, r.straw.1, r.water_height, 1.333, 1).unwrap());
         let tracer = strict.clone();
         let deep: Vec<&ImagePoint> = pts.iter().filter(|p| p.events >= 2).collect();
         assert!(!deep.is_empty());

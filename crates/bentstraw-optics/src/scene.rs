@@ -185,17 +185,6 @@ impl Scene {
         self.max_events
     }
 
-    /// The same scene with the event limit `max_events` (checked like [`Scene::new`]'s).
-    pub fn with_max_events(&self, max_events: u32) -> Result<Scene, SceneError> {
-        Scene::new(
-            self.straw_x,
-            self.straw_y,
-            self.water_height,
-            self.n_water,
-            max_events,
-        )
-    }
-
     /// A validated scene: straw axis `(xp, yp)`, water height `he`, index `n_water`,
     /// event limit `max_events`.
     pub fn new(
