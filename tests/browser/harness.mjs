@@ -9,21 +9,27 @@ export const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), "
 /** The bentstraw binary: $BENTSTRAW, else the release build. */
 export const BIN = process.env.BENTSTRAW || path.join(ROOT, "target/release/bentstraw");
 
-/** Starts `bentstraw explore --no-open --port 0 ...args`; resolves to { url, stop }. */
-export function startServer(args = []) {
-  const child = spawn(BIN, ["explore", "--no-open", "--port", "0", ...args], { stdio: ["ignore", "pipe", "pipe"] });
+/** Starts `command args` and waits until its output names its address (`pattern`'s match, made
+ * into a URL by `url`); resolves to { url, child, stop, stderr }. The process never outlives a
+ * test run, even one cut short. */
+function startListening(command, args, pattern, url, what) {
+  const child = spawn(command, args, { stdio: ["ignore", "pipe", "pipe"] });
   let stderr = "";
   child.stderr.on("data", (d) => { stderr += d; });
-  // Never leave a server behind, even when a test run is cut short.
   process.on("exit", () => child.kill());
   return new Promise((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error("no address printed: " + stderr)), 15000);
+    const timer = setTimeout(() => reject(new Error(`${what} printed no address: ${stderr}`)), 15000);
     child.stdout.on("data", (d) => {
-      const m = /http:\/\/\S+\//.exec(String(d));
-      if (m) { clearTimeout(timer); resolve({ url: m[0], child, stop: () => child.kill("SIGINT"), stderr: () => stderr }); }
+      const m = pattern.exec(String(d));
+      if (m) { clearTimeout(timer); resolve({ url: url(m), child, stop: () => child.kill("SIGINT"), stderr: () => stderr }); }
     });
-    child.on("exit", (code) => reject(new Error(`explore exited with ${code}: ${stderr}`)));
+    child.on("exit", (code) => reject(new Error(`${what} exited with ${code}: ${stderr}`)));
   });
+}
+
+/** Starts `bentstraw explore --no-open --port 0 ...args`; resolves to { url, stop }. */
+export function startServer(args = []) {
+  return startListening(BIN, ["explore", "--no-open", "--port", "0", ...args], /http:\/\/\S+\//, (m) => m[0], "explore");
 }
 
 /** Headless Chromium as the project runs it. */
@@ -85,16 +91,6 @@ export const SITE = process.env.SITE || path.join(ROOT, "target/site");
 
 /** Serves `dir` with Python's plain static server on a free port; resolves to { url, stop }. */
 export function startStaticServer(dir = SITE) {
-  const child = spawn("python3", ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"], { stdio: ["ignore", "pipe", "pipe"] });
-  let stderr = "";
-  child.stderr.on("data", (d) => { stderr += d; });
-  process.on("exit", () => child.kill());
-  return new Promise((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error("the static server printed no port: " + stderr)), 15000);
-    child.stdout.on("data", (d) => {
-      const m = /port (\d+)/.exec(String(d));
-      if (m) { clearTimeout(timer); resolve({ url: `http://127.0.0.1:${m[1]}/`, child, stop: () => child.kill(), log: () => stderr }); }
-    });
-    child.on("exit", (code) => reject(new Error(`the static server exited with ${code}: ${stderr}`)));
-  });
+  const args = ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"];
+  return startListening("python3", args, /port (\d+)/, (m) => `http://127.0.0.1:${m[1]}/`, "the static server");
 }
