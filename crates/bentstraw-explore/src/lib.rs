@@ -300,7 +300,9 @@ impl View {
                 (Arc::new(Loaded::assignment(scene, observer)), observer)
             }
         };
-        let page_file = get(q, "scene-file").map(str::to_string);
+        let page_file = file
+            .filter(|(name, _)| name == PAGE_SCENE_FILE)
+            .map(|(_, text)| text.to_string());
         let camera_args = CameraSpec {
             target: get(q, "target")
                 .map(|t| flag(parse_vec3(t), "target", t))
