@@ -307,3 +307,197 @@ test("a busy port is named in one line, exit code 2; Ctrl-C stops the server", S
   const how = await ended;
   assert.ok(how.signal === "SIGINT" || how.code === 0 || how.code === 130, JSON.stringify(how));
 });
+
+// ---- languages: English and French ----
+/** The page's texts marked data-i18n / data-i18n-title against language `lang`'s table:
+ * a list of the differences (empty if none). */
+const i18nMismatches = (page, lang) => page.evaluate((lang) => {
+  const wrong = [];
+  const table = I18N[lang];
+  for (const el of document.querySelectorAll("[data-i18n]")) {
+    const key = touchKey(el.dataset.i18n);
+    const text = el.textContent;
+    if (!text.trim()) wrong.push(`${key}: empty`);
+    else if (text !== table[key]) wrong.push(`${key}: "${text}", not "${table[key]}"`);
+    else if (I18N.en[key] !== I18N.fr[key] && text === I18N[lang === "fr" ? "en" : "fr"][key]) wrong.push(`${key}: left in the other language`);
+  }
+  for (const el of document.querySelectorAll("[data-i18n-title]")) {
+    const key = el.dataset.i18nTitle;
+    if (el.title !== table[key]) wrong.push(`title ${key}: "${el.title}", not "${table[key]}"`);
+  }
+  return wrong;
+}, lang);
+
+test("a French browser gets the page in French; EN switches it to English, remembered", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, undefined, { locale: "fr-FR" });
+  await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=20000");
+  await waitReady(page);
+  assert.equal(await page.evaluate(() => document.documentElement.lang), "fr");
+  assert.equal(await page.inputValue("#lang"), "fr");
+  assert.equal(await page.title(), "bentstraw explore — la paille dans le verre, en direct");
+  const text = (sel) => page.locator(sel).first().textContent();
+  assert.equal(await text('[data-i18n="eye.heading"]'), "Ce que voit l'œil");
+  assert.equal(await text('[data-i18n="cloud.heading"]'), "Où la paille apparaît");
+  assert.equal(await text('[data-i18n="readout.heading"]'), "Le chemin de la lumière");
+  assert.equal(await text("#copy-link"), "Copier le lien");
+  assert.equal(await text('#mode option[value="course"]'), "cours (un seul rayon)");
+  assert.equal(await text('#preset option[value="2"]'), "Référence 3 : œil au-dessus, (0,1 ; 0 ; 0,3)");
+  assert.equal(await page.getAttribute('label:has(#he)', "title"), "Hauteur d'eau he, de 0 à 0,2 m");
+  assert.equal(await text("#he-out"), "0,15 m");
+  assert.match(await text("#readout"), /Cliquer sur l'image ou sur un point du nuage/);
+  assert.match(await text("#status"), /points images issus de \d+ rayons, champ de vision/);
+  assert.deepEqual(await i18nMismatches(page, "fr"), []);
+  // The readout of a clicked ray and the legend, in French.
+  await page.evaluate(() => window.bentstraw.pickPoint(1234));
+  await page.waitForFunction(() => document.body.dataset.picked === "point:1234");
+  const table = await text("#readout");
+  assert.match(table, /longueur du chemin L/);
+  assert.match(table, /événement 1(réfraction|réflexion totale) (à la paroi|à la surface libre|au fond), angle d'incidence/);
+  assert.match(table, /point image \(cours\)\(-?0,\d{4} ; /);
+  assert.match(await text("#legend"), /1 rouge/);
+  await page.selectOption("#color-by", "path");
+  assert.match(await text("#legend"), /par la paroi latérale/);
+  // EN: every text back in English, the readout too; the choice goes into the address and is kept.
+  await page.selectOption("#lang", "en");
+  assert.equal(await page.evaluate(() => document.documentElement.lang), "en");
+  assert.deepEqual(await i18nMismatches(page, "en"), []);
+  assert.equal(await text('[data-i18n="eye.heading"]'), "What the eye sees");
+  assert.match(await text("#readout"), /path length L/);
+  assert.match(await text("#legend"), /through the side wall/);
+  assert.match(await text("#status"), /image points from \d+ rays/);
+  assert.equal(await text("#he-out"), "0.15 m");
+  assert.match(page.url(), /[#&]lang=en(&|$)/);
+  assert.match(await page.evaluate(() => window.bentstraw.link()), /[#&]lang=en(&|$)/);
+  const again = await context.newPage();
+  await again.goto(server.url);
+  await waitReady(again);
+  assert.equal(await again.evaluate(() => document.documentElement.lang), "en");
+  // A link copied in French opens in French.
+  await again.evaluate(() => { location.hash = location.hash.replace(/lang=en/, "") + "&lang=fr"; });
+  await again.waitForFunction(() => document.documentElement.lang === "fr");
+  assert.deepEqual(await i18nMismatches(again, "fr"), []);
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
+test("the English and French tables have the same keys, and hold every text the page asks for", async () => {
+  const { page, context } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  const [en, fr] = await page.evaluate(() => [Object.keys(I18N.en).sort(), Object.keys(I18N.fr).sort()]);
+  assert.deepEqual(fr, en);
+  const empty = await page.evaluate(() => Object.entries(I18N).flatMap(([l, tb]) => Object.entries(tb).filter(([k, v]) => !v && !k.startsWith("focus.in_front")).map(([k]) => `${l} ${k}`)));
+  assert.deepEqual(empty, []);
+  // Every key explorer.js and index.html name is in the table.
+  const dir = path.join(ROOT, "crates/bentstraw-explore/page");
+  const js = readFileSync(path.join(dir, "explorer.js"), "utf8"), html = readFileSync(path.join(dir, "index.html"), "utf8");
+  const named = [...js.matchAll(/\bt\("([^"]+)"/g), ...js.matchAll(/\bkey: "([^"]+)"/g), ...html.matchAll(/data-i18n(?:-title)?="([^"]+)"/g)].map((m) => m[1]);
+  assert.ok(named.length > 50, `${named.length} keys named`);
+  // (A key made up at run time, t("colour." + code), is checked by its beginning.)
+  assert.deepEqual(named.filter((k) => (k.endsWith(".") ? !en.some((e) => e.startsWith(k)) : !en.includes(k))), []);
+  await context.close();
+});
+
+// ---- phones ----
+const PHONE = { isMobile: true, hasTouch: true, deviceScaleFactor: 3 };
+
+/** One finger from (x0, y0) to (x1, y1) in `steps` moves, through the browser's touch input. */
+async function swipe(cdp, page, [x0, y0], [x1, y1], steps = 12) {
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: [{ x: x0, y: y0 }] });
+  for (let i = 1; i <= steps; i++) {
+    const k = i / steps;
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: [{ x: x0 + k * (x1 - x0), y: y0 + k * (y1 - y0) }] });
+    await page.waitForTimeout(16);
+  }
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
+}
+
+test("on a phone: no sideways scrolling, controls a finger can hit, a swipe scrolls, a pinch zooms", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, { width: 390, height: 844 }, PHONE);
+  await page.goto(server.url);
+  await waitReady(page);
+  assert.ok(await page.evaluate(() => window.matchMedia("(pointer: coarse)").matches));
+  assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
+  // Every visible control at least 44 px tall.
+  const small = await page.evaluate(() => [...document.querySelectorAll("button, select, input[type=range], label:has(input[type=checkbox])")]
+    .filter((el) => el.getClientRects().length && getComputedStyle(el).visibility !== "hidden")
+    .map((el) => [el.id || el.textContent.trim().slice(0, 20), el.getBoundingClientRect().height])
+    .filter(([, h]) => h < 44));
+  assert.deepEqual(small, []);
+  // The hints name the touch gestures.
+  assert.match(await page.textContent('[data-i18n="eye.hint"]'), /drag sideways .* pinch/);
+  // The picture at the screen's resolution: its box times the density (3 here, capped at 2).
+  const sizes = await page.evaluate(() => {
+    const c = document.getElementById("picture"), r = c.getBoundingClientRect();
+    return { w: c.width, h: c.height, cw: r.width, ch: r.height, dpr: devicePixelRatio };
+  });
+  assert.equal(sizes.dpr, 3);
+  assert.ok(Math.abs(sizes.w - Math.round(sizes.cw * 2)) <= 1 && Math.abs(sizes.h - Math.round(sizes.ch * 2)) <= 1, JSON.stringify(sizes));
+  const cloud = await page.evaluate(() => { const c = document.getElementById("cloud"); return [c.width, Math.round(c.getBoundingClientRect().width * 3)]; });
+  assert.equal(cloud[0], cloud[1]);
+  // A vertical swipe on the picture scrolls the page and leaves the eye where it is.
+  const cdp = await context.newCDPSession(page);
+  const box = await page.locator("#picture").boundingBox();
+  const command = await page.evaluate(() => window.bentstraw.command());
+  const observer = await page.evaluate(() => window.bentstraw.state.observer.slice());
+  const frames = await page.evaluate(() => window.bentstraw.frames);
+  const cx = box.x + box.width / 2, cy = box.y + box.height * 0.8;
+  await swipe(cdp, page, [cx, cy], [cx, cy - 300]);
+  await page.waitForTimeout(400);
+  assert.ok(await page.evaluate(() => window.scrollY) > 100, "the page did not scroll");
+  assert.deepEqual(await page.evaluate(() => window.bentstraw.state.observer), observer);
+  assert.equal(await page.evaluate(() => window.bentstraw.frames), frames);
+  assert.deepEqual(await page.evaluate(() => window.bentstraw.command()), command);
+  // A sideways drag turns the eye round the glass, at the same distance.
+  await page.evaluate(() => window.scrollTo(0, 0));
+  const b2 = await page.locator("#picture").boundingBox();
+  const my = b2.y + b2.height / 2;
+  await swipe(cdp, page, [b2.x + 60, my], [b2.x + 260, my]);
+  await waitReady(page, frames);
+  const turned = await page.evaluate(() => window.bentstraw.state.observer.slice());
+  const dist = (o) => Math.hypot(o[0], o[1], o[2] - 0.1);
+  assert.notDeepEqual(turned, observer);
+  assert.ok(Math.abs(dist(turned) - dist(observer)) < 1e-3);
+  assert.equal(await page.evaluate(() => window.scrollY), 0);
+  // Two fingers spreading bring the eye nearer.
+  const f2 = await page.evaluate(() => window.bentstraw.frames);
+  const mx = b2.x + b2.width / 2;
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: [{ x: mx - 30, y: my, id: 1 }, { x: mx + 30, y: my, id: 2 }] });
+  for (let i = 1; i <= 10; i++) {
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: [{ x: mx - 30 - 8 * i, y: my, id: 1 }, { x: mx + 30 + 8 * i, y: my, id: 2 }] });
+    await page.waitForTimeout(16);
+  }
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
+  await waitReady(page, f2);
+  const nearer = await page.evaluate(() => window.bentstraw.state.observer.slice());
+  assert.ok(dist(nearer) < 0.8 * dist(turned), `${dist(nearer)} vs ${dist(turned)}`);
+  // The same in the 3D view: its zoom grows.
+  const zoom = await page.evaluate(() => window.bentstraw.state.view[2]);
+  await page.locator("#cloud").scrollIntoViewIfNeeded();
+  const c = await page.locator("#cloud").boundingBox();
+  const [qx, qy] = [c.x + c.width / 2, c.y + c.height / 2];
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: [{ x: qx - 20, y: qy, id: 1 }, { x: qx + 20, y: qy, id: 2 }] });
+  for (let i = 1; i <= 10; i++) {
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: [{ x: qx - 20 - 6 * i, y: qy, id: 1 }, { x: qx + 20 + 6 * i, y: qy, id: 2 }] });
+    await page.waitForTimeout(16);
+  }
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
+  assert.ok(await page.evaluate(() => window.bentstraw.state.view[2]) > 1.5 * zoom);
+  await page.screenshot({ path: path.join(tmpdir(), (ON_SITE ? "bentstraw-site-" : "bentstraw-") + "phone.png") });
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
+test("the picture goes full screen and back, with its label in the page's language", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, undefined, { locale: "fr-FR" });
+  await page.goto(server.url);
+  await waitReady(page);
+  assert.equal(await page.textContent("#fullscreen"), "Plein écran");
+  await page.click("#fullscreen");
+  await page.waitForFunction(() => document.fullscreenElement?.id === "eye-panel");
+  assert.equal(await page.textContent("#fullscreen"), "Quitter le plein écran");
+  await page.click("#fullscreen");
+  await page.waitForFunction(() => document.fullscreenElement === null);
+  assert.equal(await page.textContent("#fullscreen"), "Plein écran");
+  assert.deepEqual(problems, []);
+  await context.close();
+});

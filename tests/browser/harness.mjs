@@ -40,9 +40,10 @@ export function launch() {
   });
 }
 
-/** A page on `url` that records console errors, failed requests and any request off the server. */
-export async function openPage(browser, url, viewport = { width: 1400, height: 900 }) {
-  const context = await browser.newContext({ viewport });
+/** A page on `url` that records console errors, failed requests and any request off the server;
+ * `options` are the browser context's (a locale, a phone's touch screen…). */
+export async function openPage(browser, url, viewport = { width: 1400, height: 900 }, options = {}) {
+  const context = await browser.newContext({ viewport, ...options });
   const page = await context.newPage();
   const problems = [];
   const origin = new URL(url).origin;

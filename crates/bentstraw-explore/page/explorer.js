@@ -8,7 +8,6 @@
 const GLASS_R = 0.04, GLASS_H = 0.20, STRAW_R = 0.005, STRAW_H = 0.25;
 // Colour codes 1..5 a straw's sections; in the gallery's scenes also 6 a coin, 7 a card, 8 its arrow.
 const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff", "#c79938", "#edebe0", "#1f1f24"];
-const SECTION_NAMES = ["red", "orange", "magenta", "green", "blue", "coin", "card", "arrow"];
 // Colours of the kinds of light path, in the server's order of kinds (direct, top, wall, bottom…).
 const PATH_COLORS = ["#222222", "#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
 // Quick frames (while dragging) have this many times fewer pixels along each side, and this many
@@ -22,17 +21,18 @@ const FULL_AFTER_MS = document.body.dataset.engine === "wasm" ? 80 : 150;
 // The centre the eye orbits round: the middle of the glass.
 const ORBIT = [0, 0, 0.1];
 
+// Their names are the texts "preset.0", "preset.1"… (i18n.js).
 const PRESETS = [
-  { name: "Reference 1: eye at (0, 0.1, 0.1)", v: { observer: [0, 0.1, 0.1], straw: [0.02, 0.01], he: 0.15 } },
-  { name: "Reference 2: eye at (0.1, 0, 0.1)", v: { observer: [0.1, 0, 0.1], straw: [0.02, 0.01], he: 0.15 } },
-  { name: "Reference 3: eye above, (0.1, 0, 0.3)", v: { observer: [0.1, 0, 0.3], straw: [0.02, 0.01], he: 0.2 } },
-  { name: "Reference 4: eye below, (0.1, 0, -0.1)", v: { observer: [0.1, 0, -0.1], straw: [0, 0], he: 0.2 } },
-  { name: "The broken straw, from the side at 0.3 m", v: { observer: [0.3, 0, 0.16], straw: [0, 0.025], he: 0.12 } },
-  { name: "Straw on the axis: n times wider", v: { observer: [0.3, 0, 0.07], straw: [0, 0], he: 0.15 } },
-  { name: "The straw vanishing near the wall", v: { observer: [0.3, 0, 0.07], straw: [0, 0.034], he: 0.15 } },
-  { name: "From above", v: { observer: [0.03, 0, 0.45], straw: [0.02, 0.01], he: 0.15 } },
-  { name: "From below", v: { observer: [0.06, 0, -0.25], straw: [0.02, 0.01], he: 0.15 } },
-  { name: "Displaced pieces made by total reflection", v: { observer: [0.1, 0, 0.3], straw: [0.02, 0.01], he: 0.2, color: "path" } },
+  { v: { observer: [0, 0.1, 0.1], straw: [0.02, 0.01], he: 0.15 } },
+  { v: { observer: [0.1, 0, 0.1], straw: [0.02, 0.01], he: 0.15 } },
+  { v: { observer: [0.1, 0, 0.3], straw: [0.02, 0.01], he: 0.2 } },
+  { v: { observer: [0.1, 0, -0.1], straw: [0, 0], he: 0.2 } },
+  { v: { observer: [0.3, 0, 0.16], straw: [0, 0.025], he: 0.12 } },
+  { v: { observer: [0.3, 0, 0.07], straw: [0, 0], he: 0.15 } },
+  { v: { observer: [0.3, 0, 0.07], straw: [0, 0.034], he: 0.15 } },
+  { v: { observer: [0.03, 0, 0.45], straw: [0.02, 0.01], he: 0.15 } },
+  { v: { observer: [0.06, 0, -0.25], straw: [0.02, 0.01], he: 0.15 } },
+  { v: { observer: [0.1, 0, 0.3], straw: [0.02, 0.01], he: 0.2, color: "path" } },
 ];
 
 // ---- state: everything the address holds ----
@@ -65,7 +65,7 @@ async function packFile(text) {
 }
 async function unpackFile(code) {
   const bin = atob(code.replace(/-/g, "+").replace(/_/g, "/"));
-  if (bin.length > MAX_FILE_BYTES) throw new Error("the packed file is larger than 1 MB");
+  if (bin.length > MAX_FILE_BYTES) throw new Error(t("error.packed-size"));
   const z = Uint8Array.from(bin, (c) => c.charCodeAt(0));
   // Unpacked a piece at a time, stopping past 1 MB: a link cannot make the page unpack more.
   const reader = new Blob([z]).stream().pipeThrough(new DecompressionStream("deflate-raw")).getReader();
@@ -75,7 +75,7 @@ async function unpackFile(code) {
     const { done, value } = await reader.read();
     if (done) break;
     size += value.length;
-    if (size > MAX_FILE_BYTES) { reader.cancel(); throw new Error("the scene file is larger than 1 MB"); }
+    if (size > MAX_FILE_BYTES) { reader.cancel(); throw new Error(t("error.file-size")); }
     parts.push(value);
   }
   return new TextDecoder("utf-8", { fatal: true }).decode(await new Blob(parts).arrayBuffer());
@@ -109,6 +109,7 @@ function stateHash(s) {
   p.set("models", s.models.join(","));
   p.set("view", s.view.map((x) => Math.round(x * 100) / 100).join(","));
   if (s.pick) p.set("pick", s.pick);
+  p.set("lang", LANG);
   return "#" + p.toString();
 }
 
@@ -120,7 +121,7 @@ async function readParams(text, s) {
   s.scene = p.get("scene") || "";
   s.file = p.get("scene-file") || "";
   if (p.get("file")) {
-    try { s.file = await unpackFile(p.get("file")); } catch (e) { s.file = ""; showError("this link's scene file cannot be read: " + e.message); }
+    try { s.file = await unpackFile(p.get("file")); } catch (e) { s.file = ""; showError({ key: "error.link-file", params: { message: e.message } }); }
   }
   if (s.file) { s.scene = ""; await packFile(s.file); }
   if (p.has("observer")) s.observer = list(p.get("observer"));
@@ -135,6 +136,8 @@ async function readParams(text, s) {
   if (p.has("models")) s.models = p.get("models").split(",").filter(Boolean);
   if (p.has("view")) { const v = list(p.get("view")); if (v.length === 3 && v.every(Number.isFinite)) s.view = v; }
   s.pick = p.get("pick") || "";
+  // The page's language (not the view's): a link opens in the language it was copied in.
+  if (p.has("lang") && p.get("lang") !== LANG && setLang(p.get("lang"), false)) relabel();
 }
 
 // ---- vectors and the orbit ----
@@ -186,7 +189,8 @@ function wasmEngine() {
       w.current = null;
       const headers = { "Content-Type": m.contentType };
       if (m.fileName) headers["Content-Disposition"] = `attachment; filename="${m.fileName}"`;
-      const r = new Response(m.body, { status: m.status, headers });
+      // A crash's message is the page's own, in the page's language.
+      const r = new Response(m.broken ? t("error.engine-broken") : m.body, { status: m.status, headers });
       r.engineMs = m.ms;
       if (m.broken) restart(name, f);
       job.resolve(r);
@@ -196,7 +200,7 @@ function wasmEngine() {
       const job = w.current;
       w.current = null;
       restart(name, f);
-      if (job) job.reject(new Error(e.message || "the engine stopped"));
+      if (job) job.reject(new Error(e.message || t("error.engine-stopped")));
     };
     return w;
   }
@@ -289,11 +293,16 @@ window.bentstraw = {
   busy: () => inFlight !== null || fullPending || dirty || (frame !== null && frame.quick),
 };
 
-/** Picture size for the eye panel (full quality) in pixels. */
+/** Picture size for the eye panel (full quality) in the screen's pixels: its box times the
+ * screen's density, at most 2 (a phone's 3 would cost over twice the time for little to see)
+ * and at most 1600x1200; the third number is the density used. */
 function pictureSize() {
   const r = pictureCanvas.getBoundingClientRect();
-  const w = Math.max(40, Math.min(1600, Math.round(r.width))), h = Math.max(30, Math.min(1200, Math.round(r.height)));
-  return [w, h];
+  let d = Math.min(2, Math.max(1, window.devicePixelRatio || 1));
+  // Within the cap, with the box's shape, while the density is above 1.
+  d = Math.max(1, Math.min(d, 1600 / Math.max(1, r.width), 1200 / Math.max(1, r.height)));
+  const w = Math.max(40, Math.min(1600, Math.round(r.width * d))), h = Math.max(30, Math.min(1200, Math.round(r.height * d)));
+  return [w, h, d];
 }
 
 /** Called on every change of the state by the user. */
@@ -305,7 +314,7 @@ function changed(options) {
   drawMaps();
   if (!(options && options.keepPath)) {
     path = null; state.pick = "";
-    $("readout").innerHTML = '<p class="hint">Click the picture or a point of the cloud.</p>';
+    showHint();
   }
   // The models' points belong to the previous view: they come back with the full frame.
   models = { eye: null, stereo: null };
@@ -320,8 +329,9 @@ function requestFrame(quick) {
 }
 
 async function sendFrame(quick) {
-  const [w, h] = pictureSize();
-  const size = quick ? [Math.max(40, Math.round(w / QUICK)), Math.max(30, Math.round(h / QUICK))] : [w, h];
+  const [w, h, d] = pictureSize();
+  // Quick frames are QUICK times coarser than the box in CSS pixels, whatever the screen's density.
+  const size = quick ? [Math.max(40, Math.round(w / (QUICK * d))), Math.max(30, Math.round(h / (QUICK * d)))] : [w, h];
   const extra = { size: `${size[0]}x${size[1]}`, samples: quick ? 1 : 3 };
   if (quick) extra.points = Math.max(1000, Math.round(state.points / QUICK_POINTS));
   const query = viewQuery(state, extra);
@@ -334,7 +344,7 @@ async function sendFrame(quick) {
   let r;
   // In the page's engine, full frames have a worker of their own: one superseded by a drag is
   // stopped without holding up the quick frames, which the other core computes meanwhile.
-  try { r = await ask("frame", "/api/frame", query, quick ? "frame" : "frame-full"); } catch (e) { showError("the server does not answer: " + e.message); inFlight = null; return; }
+  try { r = await ask("frame", "/api/frame", query, quick ? "frame" : "frame-full"); } catch (e) { showError({ key: "error.no-answer", params: { message: e.message } }); inFlight = null; return; }
   // Not painted: its inputs still wait (for the request that replaced it, or the retry).
   const unpainted = () => { if (since !== null && (inputSince === null || since < inputSince)) inputSince = since; };
   if (r === null) { unpainted(); return; } // superseded by a newer request
@@ -414,8 +424,13 @@ async function requestModel(m) {
   }
 }
 
-function showError(text) {
+/** Shows an error: the engine's message (text, as it comes), or one of the page's own
+ * ({ key, params }, in the page's language, translated again when the language changes). */
+let errorShown = "";
+function showError(error) {
+  errorShown = error;
   const e = $("error");
+  const text = typeof error === "string" ? error : t(error.key, error.params);
   e.textContent = text;
   e.hidden = !text;
 }
@@ -425,10 +440,16 @@ function paintAll() {
   drawPicture();
   drawCloud();
   drawLegend();
-  const h = frame.header;
-  const where = wasm ? `${frame.engineMs.toFixed(0)} ms in this page (WebAssembly)` : `${h.ms.toFixed(0)} ms on the server`;
-  $("status").textContent = `${h.width}x${h.height} picture, ${h.n} image points from ${h.rays_traced} rays, field of view ${h.fov_deg.toFixed(1)}°, ${where}`;
+  showStatus();
   if (!$("commands").hidden) showCommands();
+}
+
+/** The status line: the frame's size, its points and the time it took. */
+function showStatus() {
+  if (!frame) return;
+  const h = frame.header;
+  const where = wasm ? t("status.wasm", { ms: frame.engineMs.toFixed(0) }) : t("status.server", { ms: h.ms.toFixed(0) });
+  $("status").textContent = t("status.frame", { w: h.width, h: h.height, n: h.n, rays: h.rays_traced, fov: localNumber(h.fov_deg.toFixed(1)), where });
 }
 
 function drawPicture() {
@@ -582,9 +603,9 @@ function drawPath(ctx, pr) {
     ctx.setLineDash([6, 4]); ctx.lineWidth = 1.5; ctx.strokeStyle = "#555";
     const [x0, y0] = pr.p(path.observer), [x1, y1] = pr.p(path.image_point);
     ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1); ctx.stroke(); ctx.setLineDash([]);
-    marker(ctx, pr.p(path.image_point), "image", "#111");
-    if (path.eye_point) marker(ctx, pr.p(path.eye_point), "eye", "#0a7");
-    if (path.stereo_point) marker(ctx, pr.p(path.stereo_point), "stereo", "#a50");
+    marker(ctx, pr.p(path.image_point), t("mark.image"), "#111");
+    if (path.eye_point) marker(ctx, pr.p(path.eye_point), t("mark.eye"), "#0a7");
+    if (path.stereo_point) marker(ctx, pr.p(path.stereo_point), t("mark.stereo"), "#a50");
   }
   for (const e of path.events) {
     const [x, y] = pr.p(e.point);
@@ -612,11 +633,11 @@ function drawLegend() {
     ul.appendChild(li);
   };
   if (!frame) return;
-  if (state.color === "path") frame.header.paths.forEach((p, i) => item(PATH_COLORS[i % PATH_COLORS.length], p.words, p.count));
-  else frame.header.points_per_color.forEach((c, i) => { if ((i < 5 && !state.scene && !state.file) || c > 0) item(SECTION_RGB[i], `${i + 1} ${SECTION_NAMES[i]}`, c); });
-  const modelCount = (m) => (!m || m.pending ? "…" : m.all ? m.color.length : `${m.color.length}, more coming`);
-  if (state.models.includes("eye")) item("rgba(0,0,0,.3)", "eye model: faint, smaller", modelCount(models.eye));
-  if (state.models.includes("stereo")) item("rgba(0,0,0,.3)", "stereo model: faint, smaller", modelCount(models.stereo));
+  if (state.color === "path") frame.header.paths.forEach((p, i) => item(PATH_COLORS[i % PATH_COLORS.length], pathWords(p.key, p.words), p.count));
+  else frame.header.points_per_color.forEach((c, i) => { if ((i < 5 && !state.scene && !state.file) || c > 0) item(SECTION_RGB[i], `${i + 1} ${colourName(i + 1)}`, c); });
+  const modelCount = (m) => (!m || m.pending ? "…" : m.all ? m.color.length : t("legend.more", { n: m.color.length }));
+  if (state.models.includes("eye")) item("rgba(0,0,0,.3)", t("legend.eye"), modelCount(models.eye));
+  if (state.models.includes("stereo")) item("rgba(0,0,0,.3)", t("legend.stereo"), modelCount(models.stereo));
 }
 
 // ---- the map: side (plane through the axis and the eye) and top ----
@@ -651,7 +672,7 @@ function drawMaps() {
     const az = Math.atan2(o[1], o[0]);
     const u = [Math.cos(az), Math.sin(az)];
     const P = (s, z) => [w / 2 + k * s, h / 2 - k * (z - 0.1)];
-    ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText("side", 6, 14);
+    ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.side"), 6, 14);
     if (lines) {
       // A gallery scene, seen along the eye's azimuth: `s` across, z up.
       drawLines(ctx, lines, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]));
@@ -677,7 +698,7 @@ function drawMaps() {
     ctx.clearRect(0, 0, w, h);
     const k = mapScale(w, h, g.extent);
     const P = (x, y) => [w / 2 + k * y, h / 2 + k * x]; // x down, y right: the eye of reference 2 below the glass
-    ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText("from above (x down, y right)", 6, 14);
+    ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.top"), 6, 14);
     if (lines) drawLines(ctx, lines, (q) => P(q[0], q[1]));
     else {
       ctx.fillStyle = state.he > 0 ? "rgba(74,127,193,0.25)" : "transparent"; ctx.strokeStyle = "#4a7fc1";
@@ -694,23 +715,68 @@ function drawMaps() {
 }
 
 // ---- input ----
-/** Pointer dragging on `el`: `move(dx, dy, event)` while dragging, `click(event)` for a click. */
-function onDrag(el, { start, move, click }) {
-  let last = null, moved = 0;
+/** Pointer input on `el` (mouse, pen, fingers): `move(dx, dy, event)` while dragging,
+ * `click(event)` for a click or a tap, `pinch(ratio, event)` while two fingers spread (ratio > 1)
+ * or close. A finger's drag is the page's only once it goes sideways: the canvases let the
+ * browser scroll the page with a vertical swipe (touch-action: pan-y). With two fingers,
+ * `twoFingers` says whether their middle's movement drags too. */
+function onDrag(el, { start, move, click, pinch, twoFingers }) {
+  const pointers = new Map(); // pointerId → [x, y]
+  let last = null, moved = 0, engaged = false, spread = null, multi = false;
+  const middle = () => {
+    const [a, b] = [...pointers.values()];
+    return { at: [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], spread: Math.hypot(a[0] - b[0], a[1] - b[1]) };
+  };
   el.addEventListener("pointerdown", (e) => {
-    last = [e.clientX, e.clientY]; moved = 0; el.setPointerCapture(e.pointerId);
-    if (start) start(e);
+    if (e.pointerType === "mouse" && e.button !== 0) return;
+    pointers.set(e.pointerId, [e.clientX, e.clientY]);
+    try { el.setPointerCapture(e.pointerId); } catch (_) { /* already gone */ }
+    if (pointers.size === 1) {
+      last = [e.clientX, e.clientY]; moved = 0; multi = false;
+      // A mouse or a pen drags at once; a finger once it has gone sideways.
+      engaged = e.pointerType !== "touch";
+      if (start) start(e);
+    } else if (pointers.size === 2) {
+      const m = middle();
+      multi = true; engaged = true; last = m.at; spread = m.spread;
+    }
   });
   el.addEventListener("pointermove", (e) => {
+    if (!pointers.has(e.pointerId)) return;
+    pointers.set(e.pointerId, [e.clientX, e.clientY]);
+    if (pointers.size >= 2) {
+      const m = middle();
+      if (pinch && spread > 0 && m.spread > 0) pinch(m.spread / spread, e);
+      if (twoFingers && move) move(m.at[0] - last[0], m.at[1] - last[1], e);
+      last = m.at; spread = m.spread;
+      return;
+    }
     if (!last) return;
     const dx = e.clientX - last[0], dy = e.clientY - last[1];
+    if (!engaged) {
+      // A finger: wait until its way is clear (its move so far is dx, dy); a vertical swipe is
+      // the browser's, which scrolls the page.
+      moved = Math.hypot(dx, dy);
+      if (moved < 8) return;
+      if (Math.abs(dy) > Math.abs(dx)) { pointers.delete(e.pointerId); last = null; return; }
+      engaged = true;
+    }
     last = [e.clientX, e.clientY]; moved += Math.abs(dx) + Math.abs(dy);
     if (moved > 3) move(dx, dy, e);
   });
-  el.addEventListener("pointerup", (e) => {
-    if (last && moved <= 3 && click) click(e);
-    last = null;
-  });
+  const end = (e) => {
+    if (!pointers.has(e.pointerId)) return;
+    pointers.delete(e.pointerId);
+    if (pointers.size === 0) {
+      if (e.type === "pointerup" && last && !multi && (!engaged || moved <= 3) && click) click(e);
+      last = null;
+    } else if (pointers.size === 1) {
+      // From two fingers back to one: it drags on from where it is, never clicks.
+      last = [...pointers.values()][0];
+    }
+  };
+  el.addEventListener("pointerup", end);
+  el.addEventListener("pointercancel", end);
 }
 
 /** Point `p` moved out of what the eye may not enter (the glass; a scene file's box), the
@@ -754,8 +820,12 @@ function orbitBy(daz, del, f) {
   changed();
 }
 
+/** Two fingers spreading by `ratio` bring the eye nearer (closing: farther). */
+const pinchEye = (ratio) => orbitBy(0, 0, 1 / ratio);
 onDrag(pictureCanvas, {
   move: (dx, dy) => orbitBy(-0.4 * dx, 0.4 * dy, 1),
+  pinch: pinchEye,
+  twoFingers: true,
   click: (e) => {
     if (!frame) return;
     const r = pictureCanvas.getBoundingClientRect();
@@ -771,7 +841,14 @@ for (const el of [pictureCanvas, sideCanvas, topCanvas]) {
   el.addEventListener("wheel", (e) => { e.preventDefault(); orbitBy(0, 0, Math.exp(0.0015 * e.deltaY)); }, { passive: false });
 }
 
+/** The 3D view's zoom times `f`, within its bounds. */
+function zoomCloud(f) {
+  state.view[2] = Math.max(0.1, Math.min(40, state.view[2] * f));
+  history.replaceState(null, "", stateHash(state)); drawCloud();
+}
 onDrag(cloudCanvas, {
+  pinch: zoomCloud,
+  twoFingers: true,
   move: (dx, dy) => {
     state.view[0] -= 0.5 * dx; state.view[1] = Math.max(-89, Math.min(89, state.view[1] + 0.5 * dy));
     history.replaceState(null, "", stateHash(state)); drawCloud();
@@ -790,14 +867,11 @@ onDrag(cloudCanvas, {
     if (best >= 0) pick(`point:${best}`);
   },
 });
-cloudCanvas.addEventListener("wheel", (e) => {
-  e.preventDefault();
-  state.view[2] = Math.max(0.1, Math.min(40, state.view[2] * Math.exp(-0.0015 * e.deltaY)));
-  history.replaceState(null, "", stateHash(state)); drawCloud();
-}, { passive: false });
+cloudCanvas.addEventListener("wheel", (e) => { e.preventDefault(); zoomCloud(Math.exp(-0.0015 * e.deltaY)); }, { passive: false });
 
 let dragging = null;
 onDrag(topCanvas, {
+  pinch: pinchEye,
   start: (e) => {
     const r = topCanvas.getBoundingClientRect(), x = e.clientX - r.left, y = e.clientY - r.top;
     const near = (p) => p && Math.hypot(p[0] - x, p[1] - y) < 14;
@@ -817,6 +891,7 @@ onDrag(topCanvas, {
   },
 });
 onDrag(sideCanvas, {
+  pinch: pinchEye,
   move: (dx, dy, e) => {
     const r = sideCanvas.getBoundingClientRect();
     const [s, z] = sideCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
@@ -835,7 +910,7 @@ async function pick(what) {
   if (what.startsWith("point:")) extra = { point: what.slice(6) };
   else {
     const [row, col, size] = what.slice(3).split(",");
-    extra = { row, col, size: size || pictureSize().join("x") };
+    extra = { row, col, size: size || pictureSize().slice(0, 2).join("x") };
   }
   const r = await ask("ray", "/api/ray", viewQuery(state, extra));
   if (!r) return;
@@ -854,27 +929,53 @@ window.bentstraw.screenOfPoint = (k) => {
   return [r.left + x, r.top + y];
 };
 
-const m = (x) => (x == null ? "—" : Number(x).toFixed(4) + " m");
-const v3 = (p) => (p ? `(${p.map((x) => x.toFixed(4)).join(", ")})` : "—");
-const focus = (f) => (f.distance == null ? f.kind.replace("_", " ") : (f.kind === "in_front" ? "" : f.kind.replace("_", " ") + " ") + Number(f.distance).toFixed(4) + " m");
+// ---- the engine's words in the page's language, from the keys its answers give ----
+/** A colour code's name (1 red … 5 blue; 6 coin, 7 card, 8 arrow). */
+const colourName = (code) => t("colour." + code);
+/** A light path's words from its key ("wall", "top+2"…), else the engine's own words. */
+function pathWords(key, words) {
+  const m = /^(direct|top|wall|bottom)(?:\+(\d+))?$/.exec(key || "");
+  if (!m) return words;
+  const k = Number(m[2] || 0);
+  return t("path." + m[1]) + (k === 0 ? "" : k === 1 ? t("path.reflection.1") : t("path.reflection.k", { k }));
+}
+/** A text of the engine from a known set (`prefix.text`), else the text as it came. */
+function known(prefix, text) { return (prefix + "." + text) in I18N.en ? t(prefix + "." + text) : text; }
+
+const m = (x) => (x == null ? "—" : localNumber(Number(x).toFixed(4)) + " m");
+const v3 = (p) => (p ? `(${p.map((x) => localNumber(x.toFixed(4))).join(LANG === "fr" ? " ; " : ", ")})` : "—");
+const focus = (f) => {
+  const kind = known("focus", f.kind);
+  return f.distance == null ? kind : (kind ? kind + " " : "") + localNumber(Number(f.distance).toFixed(4)) + " m";
+};
+const escapeHtml = (s) => String(s).replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" })[c]);
+
+/** The readout's hint, before anything is clicked. */
+function showHint() {
+  $("readout").innerHTML = '<p class="hint" data-i18n="readout.hint"></p>';
+  applyI18n($("readout"));
+}
 
 function showReadout() {
   const el = $("readout");
   const rows = [];
-  const row = (a, b) => rows.push(`<tr><td>${a}</td><td>${b}</td></tr>`);
-  if (path.outcome === "straw") row("colour", `<span class="swatch-inline" style="color:${SECTION_RGB[path.color - 1]}">■</span> ${path.color} ${path.color_name}`);
-  else row("outcome", path.outcome === "escaped" ? "the ray misses the straw" : "dropped: it would need more events than allowed");
-  row("light path", path.path);
-  path.events.forEach((e, i) => row(`event ${i + 1}`, `${e.event} at the ${e.face}, incidence ${e.incidence_deg.toFixed(2)}°, n ${e.n1} → ${e.n2}`));
+  const row = (a, b) => rows.push(`<tr><td>${escapeHtml(a)}</td><td>${b}</td></tr>`);
+  if (path.outcome === "straw") row(t("ro.colour"), `<span class="swatch-inline" style="color:${SECTION_RGB[path.color - 1]}">■</span> ${path.color} ${escapeHtml(colourName(path.color))}`);
+  else row(t("ro.outcome"), escapeHtml(path.outcome === "escaped" ? t("ro.escaped") : t("ro.dropped")));
+  row(t("ro.path"), escapeHtml(pathWords(path.path_key, path.path)));
+  path.events.forEach((e, i) => {
+    const face = (("face." + e.face) in I18N.en) ? t("face." + e.face) : t("face.other", { face: e.face });
+    row(t("ro.event", { i: i + 1 }), escapeHtml(t("ro.event.text", { event: known("event", e.event), face, angle: localNumber(e.incidence_deg.toFixed(2)), n1: localNumber(e.n1), n2: localNumber(e.n2) })));
+  });
   if (path.outcome === "straw") {
-    row("path length L", m(path.path_length));
-    row("straw point", v3(path.straw_point));
-    row("image point (course)", v3(path.image_point));
-    row("s_h, s_v", `${focus(path.s_h)}, ${focus(path.s_v)}`);
-    row("eye model point", v3(path.eye_point));
-    row("gap course–eye", m(path.gap_eye));
-    row("stereo model point", v3(path.stereo_point));
-    row("gap course–stereo", m(path.gap_stereo));
+    row(t("ro.length"), m(path.path_length));
+    row(t("ro.straw-point"), v3(path.straw_point));
+    row(t("ro.image-point"), v3(path.image_point));
+    row("s_h, s_v", `${focus(path.s_h)}${LANG === "fr" ? " ; " : ", "}${focus(path.s_v)}`);
+    row(t("ro.eye-point"), v3(path.eye_point));
+    row(t("ro.gap-eye"), m(path.gap_eye));
+    row(t("ro.stereo-point"), v3(path.stereo_point));
+    row(t("ro.gap-stereo"), m(path.gap_stereo));
   }
   el.innerHTML = `<table id="path-table">${rows.join("")}</table>`;
 }
@@ -885,8 +986,8 @@ function syncControls() {
   $("scene").value = state.file ? "file" : state.scene;
   // A scene file's liquids and straws are its own: the water's sliders are the glass's.
   $("he").disabled = $("n").disabled = Boolean(state.scene || state.file);
-  $("he").value = state.he; $("he-out").textContent = num(state.he) + " m";
-  $("n").value = state.n; $("n-out").textContent = num(state.n);
+  $("he").value = state.he; $("he-out").textContent = localNumber(num(state.he)) + " m";
+  $("n").value = state.n; $("n-out").textContent = localNumber(num(state.n));
   $("events").value = state.events; $("events-out").textContent = String(state.events);
   $("mode").value = state.mode; $("backdrop").value = state.backdrop; $("color-by").value = state.color;
   for (const k of ["course", "eye", "stereo"]) $("show-" + k).checked = state.models.includes(k);
@@ -905,7 +1006,7 @@ for (const k of ["course", "eye", "stereo"]) {
     drawCloud(); drawLegend(); requestModels();
   });
 }
-PRESETS.forEach((p, i) => { const o = document.createElement("option"); o.value = String(i); o.textContent = p.name; $("preset").appendChild(o); });
+PRESETS.forEach((p, i) => { const o = document.createElement("option"); o.value = String(i); o.dataset.i18n = "preset." + i; o.textContent = t("preset." + i); $("preset").appendChild(o); });
 $("preset").addEventListener("change", (e) => {
   const p = PRESETS[Number(e.target.value)];
   if (!p) return;
@@ -919,7 +1020,7 @@ function fileOption() {
   let o = $("scene").querySelector('option[value="file"]');
   if (state.file && !o) {
     o = document.createElement("option");
-    o.value = "file"; o.textContent = "your scene file (scene.toml)";
+    o.value = "file"; o.dataset.i18n = "scene.file"; o.textContent = t("scene.file");
     $("scene").appendChild(o);
   }
   if (!state.file && o) o.remove();
@@ -951,7 +1052,7 @@ $("scene").addEventListener("change", (e) => {
 $("copy-link").addEventListener("click", async () => {
   const link = window.bentstraw.link();
   document.body.dataset.link = link;
-  try { await navigator.clipboard.writeText(link); $("status").textContent = "link copied: " + link; } catch (_) { prompt("Copy this link:", link); }
+  try { await navigator.clipboard.writeText(link); $("status").textContent = t("status.copied", { link }); } catch (_) { prompt(t("prompt.copy"), link); }
 });
 /** Saves the file `simulate` or `render` would write for this view, computed by the engine. */
 async function download(format, model) {
@@ -971,11 +1072,47 @@ $("export-ply").addEventListener("click", () => download("ply"));
 function showCommands() {
   if (!frame) return;
   const c = $("commands");
-  c.innerHTML = "<b>Reproduce this view on the command line</b><code id=\"cmd-simulate\"></code><code id=\"cmd-render\"></code>";
+  c.innerHTML = "<b data-i18n=\"commands.heading\"></b><code id=\"cmd-simulate\"></code><code id=\"cmd-render\"></code>";
+  applyI18n(c);
   $("cmd-simulate").textContent = frame.header.simulate;
   $("cmd-render").textContent = frame.header.render;
 }
 $("show-commands").addEventListener("click", () => { const c = $("commands"); c.hidden = !c.hidden; showCommands(); });
+
+// ---- the page's language (i18n.js): English or French ----
+/** Writes again every text the page has drawn or written in the former language. */
+function relabel() {
+  $("lang").value = LANG;
+  applyI18n();
+  if (path) showReadout(); else if (!state.pick) showHint();
+  if (typeof errorShown !== "string") showError(errorShown);
+  if (!$("commands").hidden) showCommands();
+  showStatus();
+  syncControls();
+  drawMaps(); drawCloud(); drawLegend();
+  fullscreenLabel();
+}
+$("lang").value = LANG;
+$("lang").addEventListener("change", (e) => {
+  if (!setLang(e.target.value, true)) return;
+  relabel();
+  history.replaceState(null, "", stateHash(state));
+});
+
+// ---- full screen (for a projector): the picture's panel alone ----
+const eyePanel = $("eye-panel");
+function fullscreenLabel() {
+  $("fullscreen").textContent = t(document.fullscreenElement ? "fullscreen.leave" : "fullscreen");
+}
+if (document.fullscreenEnabled) {
+  $("fullscreen").hidden = false;
+  $("fullscreen").addEventListener("click", () => {
+    if (document.fullscreenElement) document.exitFullscreen().catch(() => {});
+    else eyePanel.requestFullscreen().catch(() => {});
+  });
+  // The picture is asked for again at the new size (by the window's resize).
+  document.addEventListener("fullscreenchange", () => { fullscreenLabel(); window.dispatchEvent(new Event("resize")); });
+}
 
 window.addEventListener("resize", () => { drawMaps(); drawCloud(); clearTimeout(fullTimer); fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(false); }, 200); });
 window.addEventListener("hashchange", async () => {

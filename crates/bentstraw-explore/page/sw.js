@@ -3,7 +3,7 @@
 // the site is picked up whenever the network is there; the copy when it is not.
 "use strict";
 const CACHE = "bentstraw-site";
-const FILES = ["./", "index.html", "explorer.js", "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"];
+const FILES = ["./", "index.html", "i18n.js", "explorer.js", "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"];
 
 self.addEventListener("install", (e) => {
   e.waitUntil(caches.open(CACHE).then((c) => c.addAll(FILES)).then(() => self.skipWaiting()));

@@ -28,7 +28,13 @@ pub struct PageFile {
 const INDEX: &str = include_str!("../page/index.html");
 
 /// The page's files other than its HTML ([`index_html`]).
-pub const PAGE_FILES: [PageFile; 4] = [
+pub const PAGE_FILES: [PageFile; 5] = [
+    // The page's texts in English and in French (loaded before explorer.js).
+    PageFile {
+        name: "i18n.js",
+        content_type: "text/javascript; charset=utf-8",
+        text: include_str!("../page/i18n.js"),
+    },
     PageFile {
         name: "explorer.js",
         content_type: "text/javascript; charset=utf-8",
