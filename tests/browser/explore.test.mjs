@@ -492,12 +492,17 @@ test("the picture goes full screen and back, with its label in the page's langua
   await page.goto(server.url);
   await waitReady(page);
   assert.equal(await page.textContent("#fullscreen"), "Plein écran");
+  // (The label changes with the fullscreenchange event, which may come a moment after the
+  // element has become full screen.)
+  const width = await page.evaluate(() => window.bentstraw.frame.header.width);
   await page.click("#fullscreen");
   await page.waitForFunction(() => document.fullscreenElement?.id === "eye-panel");
-  assert.equal(await page.textContent("#fullscreen"), "Quitter le plein écran");
+  await page.waitForFunction(() => document.getElementById("fullscreen").textContent === "Quitter le plein écran");
+  // The picture is asked for again, at the whole screen's size.
+  await page.waitForFunction((w) => window.bentstraw.frame.header.width > w && !window.bentstraw.busy(), width);
   await page.click("#fullscreen");
   await page.waitForFunction(() => document.fullscreenElement === null);
-  assert.equal(await page.textContent("#fullscreen"), "Plein écran");
+  await page.waitForFunction(() => document.getElementById("fullscreen").textContent === "Plein écran");
   assert.deepEqual(problems, []);
   await context.close();
 });

@@ -183,7 +183,7 @@ const I18N = {
     "map.hint": "faire glisser l'œil (●) ou, vue de dessus, la paille · molette : plus près/plus loin",
     "map.hint.touch": "glisser l'œil (●) ou, vue de dessus, la paille, en partant latéralement · pincer : plus près/plus loin",
     "map.side": "de côté",
-    "map.top": "vue de dessus (x vers le bas, y vers la droite)",
+    "map.top": "vue de dessus (x ↓, y →)",
     "readout.heading": "Le chemin de la lumière",
     "readout.hint": "Cliquer sur l'image ou sur un point du nuage.",
     "readout.hint.touch": "Toucher l'image ou un point du nuage.",
