@@ -27,7 +27,7 @@ fn gallery(name: &str) -> SceneDescription {
     scene(&std::fs::read_to_string(path).expect("a gallery file"))
 }
 
-const GALLERY: [&str; 7] = [
+const GALLERY: [&str; 17] = [
     "spec.toml",
     "leaning-straw.toml",
     "real-glass.toml",
@@ -35,6 +35,16 @@ const GALLERY: [&str; 7] = [
     "tank-pencil.toml",
     "coin-in-glass.toml",
     "reversing-arrow.toml",
+    "vanishing-glass.toml",
+    "two-straws.toml",
+    "oil-on-water-above.toml",
+    "appearing-coin.toml",
+    "apparent-depth.toml",
+    "mirror-surface.toml",
+    "near-and-far-arrow.toml",
+    "pencil-at-a-slant.toml",
+    "leaning-straw-above.toml",
+    "dense-liquid.toml",
 ];
 
 fn ray_to(from: Vec3, to: Vec3) -> Ray {

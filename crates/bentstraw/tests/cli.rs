@@ -396,7 +396,7 @@ pub fn table_writes_every_simulation_and_the_report(out: &Output, folder: &Path)
         .starts_with(b"\x89PNG"));
     let files = fs::read_dir(folder).unwrap().count();
     // 12 × (csv, png, svg, html), 4 × 11 pictures, model files and ray diagrams, the opening
-    // view and its ray diagram, the validation figure, the report, and 6 gallery scenes × (their
+    // view and its ray diagram, the validation figure, the report, and 16 gallery scenes × (their
     // picture, their points as PNG and SVG, their ray diagram).
     for f in [
         "classic_view.png",
@@ -412,7 +412,7 @@ pub fn table_writes_every_simulation_and_the_report(out: &Output, folder: &Path)
     }
     assert_eq!(
         files,
-        12 * 4 + 4 * 11 + 2 + 1 + 1 + 6 * 4,
+        12 * 4 + 4 * 11 + 2 + 1 + 1 + 16 * 4,
         "unexpected files in the table's folder"
     );
     assert!(!err.contains("could not be written"), "{err}");

@@ -337,6 +337,16 @@ fn every_gallery_scene_is_simulated_and_rendered() {
         "tank-pencil",
         "coin-in-glass",
         "reversing-arrow",
+        "vanishing-glass",
+        "two-straws",
+        "oil-on-water-above",
+        "appearing-coin",
+        "apparent-depth",
+        "mirror-surface",
+        "near-and-far-arrow",
+        "pencil-at-a-slant",
+        "leaning-straw-above",
+        "dense-liquid",
     ] {
         let file = gallery(&format!("{name}.toml"));
         for (ext, check) in [("csv", true), ("ply", false), ("json", false)] {
