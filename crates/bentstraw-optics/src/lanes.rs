@@ -485,6 +485,27 @@ mod tests {
         );
     }
 
+    /// `values` gives each whole number the live lanes hold once, with exactly its lanes, and
+    /// skips the lanes that are not live, out of range, not whole, or NaN.
+    #[test]
+    fn values_are_each_number_with_its_lanes() {
+        let codes = F8([2.0, 0.0, 2.0, 7.0, f32::NAN, 1.5, 0.0, 2.0]);
+        let live = M8([
+            u32::MAX,
+            u32::MAX,
+            u32::MAX,
+            u32::MAX,
+            u32::MAX,
+            u32::MAX,
+            u32::MAX,
+            0,
+        ]);
+        let lanes = |m: M8| (0..LANES).filter(|&k| m.lane(k)).collect::<Vec<_>>();
+        let got: Vec<_> = codes.values(live, 5).map(|(k, m)| (k, lanes(m))).collect();
+        assert_eq!(got, vec![(2, vec![0, 2]), (0, vec![1, 6])]);
+        assert_eq!(codes.values(M8::splat(false), 5).count(), 0);
+    }
+
     /// Normalising is glam's (a reciprocal of the length, then products): the same bits.
     #[test]
     fn normalize_is_glams() {
