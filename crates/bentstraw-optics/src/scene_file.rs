@@ -31,20 +31,78 @@ pub const MAX_ENTRIES: usize = 1000;
 /// is short of the true one by at most `radius·(1 − cos(π/N))`, about 1.5 nm for a 5 mm straw.
 const RIM_SAMPLES: usize = 4096;
 
-/// Why a scene file is not valid: one line naming the key, the value and the rule.
+/// Why a scene file is not valid: every rule it breaks, each a line naming the key, the value
+/// and the rule (the rules that do not depend on one another are all checked, so that a file is
+/// mended in one go).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneFileError {
-    /// The key as a TOML path (`straw[2].tilt`), empty when the text is not TOML at all.
+    /// The first broken rule's key as a TOML path (`straw[2].tilt`), empty when the text is not
+    /// TOML at all.
     pub key: String,
     /// The line of the file where TOML's parser stopped, for errors of syntax and type.
     pub line: Option<usize>,
-    /// The whole message.
+    /// The first broken rule's message.
     pub message: String,
+    /// The other broken rules, in the file's order.
+    pub more: Vec<SceneFileError>,
+}
+
+impl SceneFileError {
+    /// Every broken rule, the first included.
+    pub fn rules(&self) -> impl Iterator<Item = &SceneFileError> {
+        std::iter::once(self).chain(&self.more)
+    }
+
+    /// One error of the broken rules `all` (at least one).
+    fn all(mut all: Vec<SceneFileError>) -> Option<SceneFileError> {
+        if all.is_empty() {
+            return None;
+        }
+        let more: Vec<SceneFileError> = all.drain(1..).flat_map(|e| e.into_rules()).collect();
+        let mut first = all.pop()?;
+        first.more.extend(more);
+        Some(first)
+    }
+
+    /// The broken rules, each on its own.
+    fn into_rules(mut self) -> Vec<SceneFileError> {
+        let more = std::mem::take(&mut self.more);
+        std::iter::once(self).chain(more).collect()
+    }
+}
+
+/// The broken rules found by checks that do not depend on one another.
+#[derive(Default)]
+struct Broken(Vec<SceneFileError>);
+
+impl Broken {
+    /// Keeps `check`'s refusal, if any; says whether it passed.
+    fn check(&mut self, check: Result<(), SceneFileError>) -> bool {
+        match check {
+            Ok(()) => true,
+            Err(e) => {
+                self.0.push(e);
+                false
+            }
+        }
+    }
+
+    /// `Ok` when nothing is broken, else every broken rule.
+    fn done(self) -> Result<(), SceneFileError> {
+        SceneFileError::all(self.0).map_or(Ok(()), Err)
+    }
 }
 
 impl fmt::Display for SceneFileError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
+        if self.more.is_empty() {
+            return f.write_str(&self.message);
+        }
+        write!(f, "{} rules are broken:", 1 + self.more.len())?;
+        for e in self.rules() {
+            write!(f, "\n  {}", e.message)?;
+        }
+        Ok(())
     }
 }
 
@@ -56,6 +114,7 @@ fn refuse(key: &str, value: f64, rule: &str) -> SceneFileError {
         key: key.to_string(),
         line: None,
         message: format!("{key} = {}: {rule}", number_text(value)),
+        more: Vec::new(),
     }
 }
 
@@ -65,6 +124,7 @@ fn refuse_key(key: &str, rule: &str) -> SceneFileError {
         key: key.to_string(),
         line: None,
         message: format!("{key}: {rule}"),
+        more: Vec::new(),
     }
 }
 
@@ -450,8 +510,14 @@ impl SceneDescription {
     /// Checks every rule of a scene: finite numbers, positive sizes, liquids stacked inside the
     /// walls, straws and coins on the floor inside the walls and not overlapping, cards clear of
     /// the container, the observer outside the container and the objects.
+    ///
+    /// Every rule that does not depend on another is checked, and all that are broken are
+    /// reported at once: each object's own rules, object by object; the container first (the
+    /// other rules are about fitting in it), the overlaps and the observer once every object is
+    /// valid.
     pub fn validate(&self) -> Result<(), SceneFileError> {
         self.validate_container()?;
+        let mut broken = Broken::default();
         for (kind, count) in [
             ("liquid", self.liquids.len()),
             ("straw", self.straws.len()),
@@ -459,18 +525,31 @@ impl SceneDescription {
             ("card", self.cards.len()),
         ] {
             if count > MAX_ENTRIES {
-                return Err(refuse_key(
+                broken.check(Err(refuse_key(
                     kind,
                     &format!("the file lists {count} of them: at most {MAX_ENTRIES} are allowed"),
-                ));
+                )));
             }
         }
-        self.validate_liquids()?;
-        self.validate_straws()?;
-        self.validate_coins()?;
-        self.validate_cards()?;
-        self.validate_overlaps()?;
-        self.validate_observer()
+        // Too many entries: checking them one by one is what the bound is there to prevent.
+        if !broken.0.is_empty() {
+            return broken.done();
+        }
+        self.validate_liquids(&mut broken);
+        for (i, s) in self.straws.iter().enumerate() {
+            broken.check(self.validate_straw(i, s));
+        }
+        for (i, c) in self.coins.iter().enumerate() {
+            broken.check(self.validate_coin(i, c));
+        }
+        for (i, c) in self.cards.iter().enumerate() {
+            broken.check(self.validate_card(i, c));
+        }
+        if broken.0.is_empty() {
+            broken.check(self.validate_overlaps());
+            broken.check(self.validate_observer());
+        }
+        broken.done()
     }
 
     fn validate_container(&self) -> Result<(), SceneFileError> {
@@ -518,11 +597,23 @@ impl SceneDescription {
         Ok(())
     }
 
-    fn validate_liquids(&self) -> Result<(), SceneFileError> {
+    /// Each liquid's rules; a layer that breaks one is left out of the next layer's "above the
+    /// layer below" rule, which then compares with the last good one.
+    fn validate_liquids(&self, broken: &mut Broken) {
         let floor = self.container.floor();
-        let height = self.container.height();
         let mut below = floor;
         for (i, l) in self.liquids.iter().enumerate() {
+            if broken.check(self.validate_liquid(i, l, below)) {
+                below = l.top;
+            }
+        }
+    }
+
+    /// Liquid `i`'s rules, with the top of the last good layer below it at `below`.
+    fn validate_liquid(&self, i: usize, l: &Liquid, below: f64) -> Result<(), SceneFileError> {
+        let floor = self.container.floor();
+        let height = self.container.height();
+        {
             let key = |k: &str| format!("liquid[{}].{k}", i + 1);
             finite(&key("index"), l.index)?;
             if l.index < 1.0 {
@@ -557,14 +648,14 @@ impl SceneDescription {
                     ),
                 ));
             }
-            below = l.top;
         }
         Ok(())
     }
 
-    fn validate_straws(&self) -> Result<(), SceneFileError> {
+    /// Straw `i`'s own rules.
+    fn validate_straw(&self, i: usize, s: &Straw) -> Result<(), SceneFileError> {
         let floor = self.container.floor();
-        for (i, s) in self.straws.iter().enumerate() {
+        {
             let key = |k: &str| format!("straw[{}].{k}", i + 1);
             finite(&key("x"), s.x)?;
             finite(&key("y"), s.y)?;
@@ -619,9 +710,10 @@ impl SceneDescription {
         Ok(())
     }
 
-    fn validate_coins(&self) -> Result<(), SceneFileError> {
+    /// Coin `i`'s own rules.
+    fn validate_coin(&self, i: usize, c: &Coin) -> Result<(), SceneFileError> {
         let floor = self.container.floor();
-        for (i, c) in self.coins.iter().enumerate() {
+        {
             let key = |k: &str| format!("coin[{}].{k}", i + 1);
             finite(&key("x"), c.x)?;
             finite(&key("y"), c.y)?;
@@ -649,8 +741,9 @@ impl SceneDescription {
         Ok(())
     }
 
-    fn validate_cards(&self) -> Result<(), SceneFileError> {
-        for (i, c) in self.cards.iter().enumerate() {
+    /// Card `i`'s own rules.
+    fn validate_card(&self, i: usize, c: &Card) -> Result<(), SceneFileError> {
+        {
             let key = |k: &str| format!("card[{}].{k}", i + 1);
             for v in c.center.to_array() {
                 finite(&key("center"), v)?;

@@ -14,7 +14,8 @@ const QUOTED_MAX: usize = 40;
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct FileScene {
-    container: FileContainer,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    container: Option<FileContainer>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     liquid: Vec<FileLiquid>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -30,14 +31,16 @@ struct FileScene {
 #[derive(Deserialize, Serialize, Default)]
 #[serde(deny_unknown_fields)]
 struct FileContainer {
-    shape: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    shape: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     radius: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     half_x: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     half_y: Option<f64>,
-    height: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    height: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     wall: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -49,16 +52,21 @@ struct FileContainer {
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct FileLiquid {
-    name: String,
-    index: f64,
-    top: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    name: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    index: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    top: Option<f64>,
 }
 
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct FileStraw {
-    x: f64,
-    y: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    x: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    y: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     tilt: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -72,8 +80,10 @@ struct FileStraw {
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct FileCoin {
-    x: f64,
-    y: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    x: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    y: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     radius: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -83,11 +93,14 @@ struct FileCoin {
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct FileCard {
-    center: [f64; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    center: Option<[f64; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     facing: Option<f64>,
-    width: f64,
-    height: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    width: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    height: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     picture: Option<String>,
 }
@@ -95,7 +108,8 @@ struct FileCard {
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct FileObserver {
-    position: [f64; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    position: Option<[f64; 3]>,
     #[serde(default)]
     target: Option<[f64; 3]>,
 }
@@ -161,7 +175,12 @@ fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError 
         None => String::new(),
     };
     let message = format!("{place}{key}{what}");
-    SceneFileError { key, line, message }
+    SceneFileError {
+        key,
+        line,
+        message,
+        more: Vec::new(),
+    }
 }
 
 impl SceneDescription {
@@ -180,131 +199,198 @@ impl SceneDescription {
     }
 
     /// The file's form with its defaults filled in; the keys of the other shape are refused here,
-    /// as the description has no place for them.
+    /// as the description has no place for them. Every key missing or misplaced is reported at
+    /// once.
     fn from_file(file: FileScene) -> Result<SceneDescription, SceneFileError> {
-        let c = &file.container;
-        let given = |key: &str, value: Option<f64>, rule: &str| match value {
-            Some(v) => Err(refuse(&format!("container.{key}"), v, rule)),
-            None => Ok(()),
-        };
-        let need = |key: &str, value: Option<f64>, shape: &str| {
-            value.ok_or_else(|| {
-                refuse_key(
-                    &format!("container.{key}"),
-                    &format!("is missing: a {shape} needs it"),
-                )
+        let mut broken = Vec::new();
+        // A required key: its value, or a refusal kept and a stand-in to go on with.
+        let need = |key: String, rule: &str| refuse_key(&key, rule);
+        let required = "is missing: it is required";
+        let get = |key: String, value: Option<f64>, broken: &mut Vec<SceneFileError>| {
+            value.unwrap_or_else(|| {
+                broken.push(need(key, required));
+                0.0
             })
         };
-        let container = match c.shape.as_str() {
-            "glass" => {
+        let Some(c) = &file.container else {
+            return Err(refuse_key(
+                "container",
+                "is missing: a scene needs its [container]",
+            ));
+        };
+        let given = |key: &str, value: Option<f64>, rule: &str, broken: &mut Vec<_>| {
+            if let Some(v) = value {
+                broken.push(refuse(&format!("container.{key}"), v, rule));
+            }
+        };
+        let shape_of = |key: &str, value: Option<f64>, shape: &str, broken: &mut Vec<_>| {
+            value.unwrap_or_else(|| {
+                broken.push(refuse_key(
+                    &format!("container.{key}"),
+                    &format!("is missing: a {shape} needs it"),
+                ));
+                0.0
+            })
+        };
+        let height = get("container.height".into(), c.height, &mut broken);
+        let container = match c.shape.as_deref() {
+            Some("glass") => {
                 let not_glass = "a glass has no half widths (they are a tank's): give its radius";
-                given("half_x", c.half_x, not_glass)?;
-                given("half_y", c.half_y, not_glass)?;
-                Container::Glass(Glass {
-                    radius: need("radius", c.radius, "glass")?,
-                    height: c.height,
+                given("half_x", c.half_x, not_glass, &mut broken);
+                given("half_y", c.half_y, not_glass, &mut broken);
+                Some(Container::Glass(Glass {
+                    radius: shape_of("radius", c.radius, "glass", &mut broken),
+                    height,
                     wall: c.wall.unwrap_or(0.0),
                     bottom: c.bottom.unwrap_or(0.0),
                     index: c.index.unwrap_or(DEFAULT_CONTAINER_INDEX),
-                })
+                }))
             }
-            "tank" => {
+            Some("tank") => {
                 given(
                     "radius",
                     c.radius,
                     "a tank has no radius (a glass has): give its half widths half_x and half_y",
-                )?;
+                    &mut broken,
+                );
                 let thin =
                     "a tank's walls and bottom have zero thickness (only a glass's may be thick)";
-                given("wall", c.wall, thin)?;
-                given("bottom", c.bottom, thin)?;
+                given("wall", c.wall, thin, &mut broken);
+                given("bottom", c.bottom, thin, &mut broken);
                 given(
                     "index",
                     c.index,
                     "a tank's walls have zero thickness, so it has no index of its own",
-                )?;
-                Container::Tank(Tank {
-                    half_x: need("half_x", c.half_x, "tank")?,
-                    half_y: need("half_y", c.half_y, "tank")?,
-                    height: c.height,
-                })
+                    &mut broken,
+                );
+                Some(Container::Tank(Tank {
+                    half_x: shape_of("half_x", c.half_x, "tank", &mut broken),
+                    half_y: shape_of("half_y", c.half_y, "tank", &mut broken),
+                    height,
+                }))
             }
-            other => {
-                return Err(refuse_key(
+            Some(other) => {
+                broken.push(refuse_key(
                     "container.shape",
                     &format!(
                         "\"{}\" is not a shape: it must be \"glass\" or \"tank\"",
                         clip_text(other, QUOTED_MAX)
                     ),
-                ))
+                ));
+                None
+            }
+            None => {
+                broken.push(refuse_key(
+                    "container.shape",
+                    "is missing: it must be \"glass\" or \"tank\"",
+                ));
+                None
             }
         };
-        let cards = file
-            .card
+        let liquids: Vec<Liquid> = file
+            .liquid
+            .into_iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let key = |k: &str| format!("liquid[{}].{k}", i + 1);
+                if l.name.is_none() {
+                    broken.push(need(key("name"), required));
+                }
+                Liquid {
+                    name: l.name.unwrap_or_default(),
+                    index: get(key("index"), l.index, &mut broken),
+                    top: get(key("top"), l.top, &mut broken),
+                }
+            })
+            .collect();
+        let straws: Vec<Straw> = file
+            .straw
             .iter()
             .enumerate()
-            .map(|(i, c)| {
-                let picture = match c.picture.as_deref().unwrap_or("arrow") {
-                    "arrow" => Picture::Arrow,
-                    "none" => Picture::None,
-                    other => {
-                        return Err(refuse_key(
-                            &format!("card[{}].picture", i + 1),
-                            &format!(
-                                "\"{}\" is not a picture: it must be \"arrow\" or \"none\"",
-                                clip_text(other, QUOTED_MAX)
-                            ),
-                        ))
-                    }
-                };
-                Ok(Card {
-                    center: Vec3::from_array(c.center),
-                    facing_deg: c.facing.unwrap_or(0.0),
-                    width: c.width,
-                    height: c.height,
-                    picture,
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        // Without a target, the eye looks at the middle of the container.
-        let middle = Vec3::new(0.0, 0.0, container.height() / 2.0);
-        Ok(SceneDescription {
-            container,
-            liquids: file
-                .liquid
-                .into_iter()
-                .map(|l| Liquid {
-                    name: l.name,
-                    index: l.index,
-                    top: l.top,
-                })
-                .collect(),
-            straws: file
-                .straw
-                .iter()
-                .map(|s| Straw {
-                    x: s.x,
-                    y: s.y,
+            .map(|(i, s)| {
+                let key = |k: &str| format!("straw[{}].{k}", i + 1);
+                Straw {
+                    x: get(key("x"), s.x, &mut broken),
+                    y: get(key("y"), s.y, &mut broken),
                     tilt_deg: s.tilt.unwrap_or(0.0),
                     azimuth_deg: s.azimuth.unwrap_or(0.0),
                     radius: s.radius.unwrap_or(STRAW_RADIUS),
                     length: s.length.unwrap_or(STRAW_HEIGHT),
-                })
-                .collect(),
-            coins: file
-                .coin
-                .iter()
-                .map(|c| Coin {
-                    x: c.x,
-                    y: c.y,
+                }
+            })
+            .collect();
+        let coins: Vec<Coin> = file
+            .coin
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let key = |k: &str| format!("coin[{}].{k}", i + 1);
+                Coin {
+                    x: get(key("x"), c.x, &mut broken),
+                    y: get(key("y"), c.y, &mut broken),
                     radius: c.radius.unwrap_or(DEFAULT_COIN_RADIUS),
                     thickness: c.thickness.unwrap_or(DEFAULT_COIN_THICKNESS),
-                })
-                .collect(),
+                }
+            })
+            .collect();
+        let cards: Vec<Card> = file
+            .card
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let key = |k: &str| format!("card[{}].{k}", i + 1);
+                let picture = match c.picture.as_deref().unwrap_or("arrow") {
+                    "arrow" => Picture::Arrow,
+                    "none" => Picture::None,
+                    other => {
+                        broken.push(refuse_key(
+                            &key("picture"),
+                            &format!(
+                                "\"{}\" is not a picture: it must be \"arrow\" or \"none\"",
+                                clip_text(other, QUOTED_MAX)
+                            ),
+                        ));
+                        Picture::None
+                    }
+                };
+                if c.center.is_none() {
+                    broken.push(need(key("center"), required));
+                }
+                Card {
+                    center: Vec3::from_array(c.center.unwrap_or_default()),
+                    facing_deg: c.facing.unwrap_or(0.0),
+                    width: get(key("width"), c.width, &mut broken),
+                    height: get(key("height"), c.height, &mut broken),
+                    picture,
+                }
+            })
+            .collect();
+        let observer = file.observer.as_ref().map(|o| {
+            if o.position.is_none() {
+                broken.push(need("observer.position".into(), required));
+            }
+            (o.position.unwrap_or_default(), o.target)
+        });
+        if let Some(e) = SceneFileError::all(broken) {
+            return Err(e);
+        }
+        let Some(container) = container else {
+            return Err(refuse_key(
+                "container.shape",
+                "it must be \"glass\" or \"tank\"",
+            ));
+        };
+        // Without a target, the eye looks at the middle of the container.
+        let middle = Vec3::new(0.0, 0.0, container.height() / 2.0);
+        Ok(SceneDescription {
+            container,
+            liquids,
+            straws,
+            coins,
             cards,
-            observer: file.observer.map(|o| Observer {
-                position: Vec3::from_array(o.position),
-                target: o.target.map_or(middle, Vec3::from_array),
+            observer: observer.map(|(position, target)| Observer {
+                position: Vec3::from_array(position),
+                target: target.map_or(middle, Vec3::from_array),
             }),
         })
     }
@@ -314,39 +400,39 @@ impl SceneDescription {
     pub fn to_toml(&self) -> String {
         let container = match &self.container {
             Container::Glass(g) => FileContainer {
-                shape: "glass".into(),
+                shape: Some("glass".into()),
                 radius: Some(g.radius),
-                height: g.height,
+                height: Some(g.height),
                 wall: Some(g.wall),
                 bottom: Some(g.bottom),
                 index: Some(g.index),
                 ..FileContainer::default()
             },
             Container::Tank(t) => FileContainer {
-                shape: "tank".into(),
+                shape: Some("tank".into()),
                 half_x: Some(t.half_x),
                 half_y: Some(t.half_y),
-                height: t.height,
+                height: Some(t.height),
                 ..FileContainer::default()
             },
         };
         let file = FileScene {
-            container,
+            container: Some(container),
             liquid: self
                 .liquids
                 .iter()
                 .map(|l| FileLiquid {
-                    name: l.name.clone(),
-                    index: l.index,
-                    top: l.top,
+                    name: Some(l.name.clone()),
+                    index: Some(l.index),
+                    top: Some(l.top),
                 })
                 .collect(),
             straw: self
                 .straws
                 .iter()
                 .map(|s| FileStraw {
-                    x: s.x,
-                    y: s.y,
+                    x: Some(s.x),
+                    y: Some(s.y),
                     tilt: Some(s.tilt_deg),
                     azimuth: Some(s.azimuth_deg),
                     radius: Some(s.radius),
@@ -357,8 +443,8 @@ impl SceneDescription {
                 .coins
                 .iter()
                 .map(|c| FileCoin {
-                    x: c.x,
-                    y: c.y,
+                    x: Some(c.x),
+                    y: Some(c.y),
                     radius: Some(c.radius),
                     thickness: Some(c.thickness),
                 })
@@ -367,15 +453,15 @@ impl SceneDescription {
                 .cards
                 .iter()
                 .map(|c| FileCard {
-                    center: c.center.to_array(),
+                    center: Some(c.center.to_array()),
                     facing: Some(c.facing_deg),
-                    width: c.width,
-                    height: c.height,
+                    width: Some(c.width),
+                    height: Some(c.height),
                     picture: Some(c.picture.word().to_string()),
                 })
                 .collect(),
             observer: self.observer.map(|o| FileObserver {
-                position: o.position.to_array(),
+                position: Some(o.position.to_array()),
                 target: Some(o.target.to_array()),
             }),
         };

@@ -737,3 +737,63 @@ fn an_observer_without_a_target_looks_at_the_containers_middle() {
     // Written back, the target is written out and read again.
     assert_eq!(parsed(&d.to_toml()), d);
 }
+
+/// Rules that do not depend on one another are all reported at once, each on its own line with
+/// its key, so that a file is mended in one go.
+#[test]
+fn every_independent_broken_rule_is_reported_at_once() {
+    let text = glass_with(
+        "\n[[liquid]]\nname = \"oil\"\nindex = 0.5\ntop = 0.18\n\n[[straw]]\nx = 0\ny = 0\ntilt = 95\n\n[[coin]]\nx = 0.02\ny = 0\nradius = -1\n\n[[card]]\ncenter = [0, 0.1, 0.05]\nwidth = 0\nheight = 0.05\n",
+    );
+    let e = SceneDescription::from_toml(&text).expect_err("four rules are broken");
+    let keys: Vec<&str> = e.rules().map(|r| r.key.as_str()).collect();
+    assert_eq!(
+        keys,
+        [
+            "liquid[2].index",
+            "straw[1].tilt",
+            "coin[1].radius",
+            "card[1].width"
+        ]
+    );
+    let shown = e.to_string();
+    assert!(shown.starts_with("4 rules are broken:"), "{shown}");
+    for r in e.rules() {
+        assert!(!r.message.contains('\n'), "{}", r.message);
+        assert!(shown.contains(&r.message), "{shown}");
+    }
+    // One broken rule is one line, as before.
+    let one = SceneDescription::from_toml(&glass_with("[[straw]]\nx = 0\ny = 0\ntilt = 95\n"))
+        .unwrap_err();
+    assert!(one.more.is_empty() && !one.to_string().contains('\n'));
+}
+
+/// Every missing key is named at once, and a missing key does not hide a misplaced one.
+#[test]
+fn every_missing_key_is_named_at_once() {
+    let text = "[container]\nshape = \"glass\"\nradius = 0.04\nhalf_x = 0.1\n\n[[liquid]]\nindex = 1.333\n\n[[straw]]\nx = 0\n\n[observer]\ntarget = [0, 0, 0.1]\n";
+    let e = SceneDescription::from_toml(text).expect_err("keys are missing");
+    let keys: Vec<&str> = e.rules().map(|r| r.key.as_str()).collect();
+    assert_eq!(
+        keys,
+        [
+            "container.height",
+            "container.half_x",
+            "liquid[1].name",
+            "liquid[1].top",
+            "straw[1].y",
+            "observer.position"
+        ]
+    );
+    assert!(e.rules().all(|r| !r.message.is_empty()));
+}
+
+/// A layer that breaks a rule does not make the next layer's good top a second refusal: the
+/// next is compared with the last good layer below it.
+#[test]
+fn a_bad_layer_is_reported_once() {
+    let text = glass_with("\n[[liquid]]\nname = \"oil\"\nindex = 0.5\ntop = 0.18\n\n[[liquid]]\nname = \"air-ish\"\nindex = 1.1\ntop = 0.19\n");
+    let e = SceneDescription::from_toml(&text).expect_err("one layer is broken");
+    let keys: Vec<&str> = e.rules().map(|r| r.key.as_str()).collect();
+    assert_eq!(keys, ["liquid[2].index"]);
+}
