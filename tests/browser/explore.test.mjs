@@ -533,9 +533,14 @@ test("the scene file's box: the view follows a typed scene (simulate's points), 
   const glass = await boxText(page);
   assert.match(glass, /\[container\]/);
   assert.match(glass, /index = 1\.333/);
+  // A slider: the box follows the view.
+  let frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.locator("#n").fill("1.5");
+  await waitReady(page, frames);
+  assert.match(await boxText(page), /index = 1\.5\b/);
   // A gallery scene: the box follows the menu.
   await page.waitForFunction(() => Number(document.body.dataset.scenes || 0) >= 6);
-  let frames = await page.evaluate(() => window.bentstraw.frames);
+  frames = await page.evaluate(() => window.bentstraw.frames);
   await page.selectOption("#scene", "two-straws");
   await waitReady(page, frames);
   const gallery = await boxText(page);
