@@ -3,7 +3,7 @@
 // site) served by a plain static server, every answer computed by the engine in WebAssembly.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { mkdtempSync, readFileSync } from "node:fs";
+import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
 import { startServer, startStaticServer, launch, openPage, waitReady, runCli, ROOT } from "./harness.mjs";
@@ -505,4 +505,146 @@ test("the picture goes full screen and back, with its label in the page's langua
   await page.waitForFunction(() => document.getElementById("fullscreen").textContent === "Plein écran");
   assert.deepEqual(problems, []);
   await context.close();
+});
+
+// ---- the scene file's text box ----
+/** The box's text, once the page has shown the view's scene in it. */
+async function boxText(page) {
+  const expected = await page.evaluate(() => (window.bentstraw.state.file || window.bentstraw.scene()));
+  await page.waitForFunction((t) => document.getElementById("scene-text").value === t, expected);
+  return expected;
+}
+/** `simulate --scene FILE --points 20000` on `text` saved to a file: its CSV, or its refusal. */
+async function simulateText(text) {
+  const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-edit-"));
+  writeFileSync(path.join(dir, "scene.toml"), text);
+  const csv = path.join(dir, "view.csv");
+  // Run in its folder, so that its messages name the file scene.toml, as the page's do.
+  const r = await runCli(["simulate", "--scene", "scene.toml", "--points", "20000", "--output", csv], dir);
+  return r.code === 0 ? { csv: readFileSync(csv, "utf8") } : { code: r.code, message: r.stderr.trim().replace(/^error: /, "") };
+}
+
+test("the scene file's box: the view follows a typed scene (simulate's points), refuses a broken one, undoes, saves, opens", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  await page.click("#scene-edit summary");
+  // The assignment's glass is a scene file too: the box shows it.
+  const glass = await boxText(page);
+  assert.match(glass, /\[container\]/);
+  assert.match(glass, /index = 1\.333/);
+  // A slider: the box follows the view.
+  let frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.locator("#n").fill("1.5");
+  await waitReady(page, frames);
+  assert.match(await boxText(page), /index = 1\.5\b/);
+  // A gallery scene: the box follows the menu.
+  await page.waitForFunction(() => Number(document.body.dataset.scenes || 0) >= 6);
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.selectOption("#scene", "two-straws");
+  await waitReady(page, frames);
+  const gallery = await boxText(page);
+  assert.notEqual(gallery, glass);
+  const galleryPoints = await page.evaluate(() => window.bentstraw.points());
+  // Typed: the second straw moved, a denser liquid. The view follows, its points simulate's.
+  const edited = gallery.replace("index = 1.333", "index = 1.45").replace(/y = 0\.024\b/, "y = 0.015");
+  assert.notEqual(edited, gallery);
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.fill("#scene-text", edited);
+  await page.waitForFunction((t) => window.bentstraw.state.file === t, edited);
+  await waitReady(page, frames);
+  const editedPoints = await page.evaluate(() => window.bentstraw.points());
+  const sim = await simulateText(edited);
+  assert.ok(sim.csv, sim.message);
+  assert.equal(editedPoints, sim.csv);
+  assert.notEqual(editedPoints, galleryPoints);
+  assert.equal(await page.inputValue("#scene-text"), edited);
+  // Broken: the command line's message under the box; the view and the box's text stay.
+  const broken = edited.replace("index = 1.45", "index = 0.8").replace(/radius = 0\.04\b/, "radius = -0.04");
+  const refusal = await simulateText(broken);
+  assert.equal(refusal.code, 2);
+  const refusedBefore = await page.evaluate(() => Number(document.body.dataset.refused || 0));
+  const framesBefore = await page.evaluate(() => window.bentstraw.frames);
+  await page.fill("#scene-text", broken);
+  await page.waitForFunction(() => !document.getElementById("scene-errors").hidden);
+  const lines = await page.locator("#scene-errors li").allTextContents();
+  assert.deepEqual(lines, refusal.message.split("\n").filter((l) => l.trim()));
+  assert.equal(await page.evaluate(() => Number(document.body.dataset.refused)), refusedBefore + 1);
+  assert.equal(await page.inputValue("#scene-text"), broken);
+  assert.equal(await page.evaluate(() => window.bentstraw.state.file), edited);
+  assert.equal(await page.evaluate(() => window.bentstraw.frames), framesBefore);
+  assert.equal(await page.evaluate(() => window.bentstraw.points()), editedPoints);
+  // Undo (the button): the gallery scene, its text and its points again; redo (Ctrl+Shift+Z
+  // outside the box): the typed scene.
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.click("#scene-undo");
+  await waitReady(page, frames);
+  assert.equal(await page.evaluate(() => window.bentstraw.state.scene), "two-straws");
+  assert.equal(await page.inputValue("#scene-text"), gallery);
+  assert.ok(await page.locator("#scene-errors").isHidden());
+  assert.equal(await page.evaluate(() => window.bentstraw.points()), galleryPoints);
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.locator("#picture").focus();
+  await page.evaluate(() => document.activeElement.blur());
+  await page.keyboard.press("Control+Shift+Z");
+  await waitReady(page, frames);
+  assert.equal(await page.evaluate(() => window.bentstraw.state.file), edited);
+  assert.equal(await page.inputValue("#scene-text"), edited);
+  assert.equal(await page.evaluate(() => window.bentstraw.points()), editedPoints);
+  // Ctrl+Z: back to the gallery's scene.
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.keyboard.press("Control+Z");
+  await waitReady(page, frames);
+  assert.equal(await page.evaluate(() => window.bentstraw.state.scene), "two-straws");
+  assert.equal(await page.inputValue("#scene-text"), gallery);
+  // Save: the box's text, as scene.toml.
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click("#scene-save")]);
+  assert.equal(download.suggestedFilename(), "scene.toml");
+  assert.equal(readFileSync(await download.path(), "utf8"), gallery);
+  // Open: a file of this computer, into the box and the view.
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.setInputFiles("#scene-input", { name: "mine.toml", mimeType: "text/plain", buffer: Buffer.from(edited) });
+  await page.waitForFunction((t) => window.bentstraw.state.file === t, edited);
+  await waitReady(page, frames);
+  assert.equal(await page.inputValue("#scene-text"), edited);
+  assert.equal(await page.evaluate(() => window.bentstraw.points()), editedPoints);
+  // A file over 1 MB is not opened: the page's message, the view as it was.
+  await page.setInputFiles("#scene-input", { name: "huge.toml", mimeType: "text/plain", buffer: Buffer.alloc((1 << 20) + 1, 35) });
+  await page.waitForFunction(() => !document.getElementById("scene-errors").hidden);
+  assert.equal(await page.textContent("#scene-errors"), "huge.toml is larger than 1 MB: it was not opened");
+  assert.equal(await page.inputValue("#scene-text"), edited);
+  // (The refused text's answer, 400, is the browser's only complaint.)
+  assert.deepEqual(problems.filter((p) => !/status of 400/.test(p)), []);
+  await context.close();
+});
+
+test("the scene file's box on a laptop and a phone, in English and French", async () => {
+  const dir = ON_SITE ? path.join(tmpdir(), "shots-edit-site") : "/tmp/shots-edit";
+  mkdirSync(dir, { recursive: true });
+  for (const [name, viewport, options] of [["laptop", { width: 1500, height: 1000 }, {}], ["phone", { width: 390, height: 844 }, PHONE]]) {
+    for (const lang of ["en", "fr"]) {
+      const { page, context, problems } = await openPage(browser, server.url, viewport, { ...options, locale: lang === "fr" ? "fr-FR" : "en-US" });
+      await page.goto(server.url + "#scene=two-straws&observer=0.25,0,0.17");
+      await waitReady(page);
+      await page.click("#scene-edit summary");
+      const text = await boxText(page);
+      assert.match(text, /\[\[straw\]\]/);
+      assert.equal(await page.textContent("#scene-save"), lang === "fr" ? "Enregistrer" : "Save");
+      // A broken rule, shown under the box.
+      await page.fill("#scene-text", text.replace("index = 1.333", "index = 0.8"));
+      await page.waitForFunction(() => !document.getElementById("scene-errors").hidden);
+      await page.locator("#scene-errors").scrollIntoViewIfNeeded();
+      // Every control of the panel a finger can hit on a phone; no sideways scrolling.
+      if (name === "phone") {
+        const small = await page.evaluate(() => [...document.querySelectorAll("#scene-edit summary, #scene-edit button")]
+          .map((el) => [el.id || el.textContent.trim(), el.getBoundingClientRect().height]).filter(([, h]) => h < 44));
+        assert.deepEqual(small, []);
+        assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
+        await page.locator("#scene-edit").screenshot({ path: path.join(dir, `${name}-${lang}-panel.png`) });
+      }
+      await page.screenshot({ path: path.join(dir, `${name}-${lang}.png`) });
+      assert.deepEqual(problems.filter((p) => !/status of 400/.test(p)), []);
+      await context.close();
+    }
+  }
 });

@@ -69,10 +69,10 @@ export async function waitReady(page, sinceFrames = -1) {
   await page.waitForFunction((n) => document.body.dataset.ready === "1" && Number(document.body.dataset.frames || 0) > n && !window.bentstraw.busy(), sinceFrames, { timeout: 60000 });
 }
 
-/** Runs the bentstraw command line; resolves to { code, stdout, stderr }. */
-export function runCli(args) {
+/** Runs the bentstraw command line (in the folder `cwd`, if given); resolves to { code, stdout, stderr }. */
+export function runCli(args, cwd) {
   return new Promise((resolve) => {
-    const child = spawn(BIN, args, { stdio: ["ignore", "pipe", "pipe"] });
+    const child = spawn(BIN, args, { stdio: ["ignore", "pipe", "pipe"], cwd });
     let stdout = "", stderr = "";
     child.stdout.on("data", (d) => { stdout += d; });
     child.stderr.on("data", (d) => { stderr += d; });
