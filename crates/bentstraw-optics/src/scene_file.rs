@@ -24,6 +24,9 @@ pub const DEFAULT_CONTAINER_INDEX: f64 = 1.5;
 pub const DEFAULT_COIN_RADIUS: f64 = 0.0115;
 /// A coin's thickness when the file gives none.
 pub const DEFAULT_COIN_THICKNESS: f64 = 0.0019;
+/// The largest size (m) of a container, straw or coin that does not look like centimetres
+/// written as metres ([`SceneDescription::hints`]): bigger than any tabletop demonstration.
+pub const LARGEST_LIKELY_SIZE: f64 = 1.0;
 /// Most entries of one kind (liquids, straws, coins or cards) a file may list: the overlap checks
 /// compare every pair, so this bounds the time a file can take to check.
 pub const MAX_ENTRIES: usize = 1000;
@@ -898,6 +901,44 @@ impl SceneDescription {
             ));
         }
         Ok(())
+    }
+
+    /// Numbers that break no rule but look like a slip, each with what the file probably meant:
+    /// a size above [`LARGEST_LIKELY_SIZE`] reads like centimetres written as metres (`radius =
+    /// 4` is a glass 8 m wide, its straw a speck in it). Empty when nothing looks wrong.
+    pub fn hints(&self) -> Vec<String> {
+        let mut sizes: Vec<(String, f64)> = Vec::new();
+        match &self.container {
+            Container::Glass(g) => {
+                sizes.push(("container.radius".into(), g.radius));
+                sizes.push(("container.height".into(), g.height));
+            }
+            Container::Tank(t) => {
+                sizes.push(("container.half_x".into(), t.half_x));
+                sizes.push(("container.half_y".into(), t.half_y));
+                sizes.push(("container.height".into(), t.height));
+            }
+        }
+        for (i, s) in self.straws.iter().enumerate() {
+            sizes.push((format!("straw[{}].radius", i + 1), s.radius));
+            sizes.push((format!("straw[{}].length", i + 1), s.length));
+        }
+        for (i, c) in self.coins.iter().enumerate() {
+            sizes.push((format!("coin[{}].radius", i + 1), c.radius));
+        }
+        sizes
+            .into_iter()
+            .filter(|&(_, v)| v > LARGEST_LIKELY_SIZE)
+            .map(|(key, v)| {
+                format!(
+                    "{key} = {}: lengths are in metres, so this is {} m; if you meant {} cm, write {}",
+                    number_text(v),
+                    number_text(v),
+                    number_text(v),
+                    number_text(v / 100.0)
+                )
+            })
+            .collect()
     }
 
     /// What this scene has that the assignment's scene has not, in words ("a straw tilted 15°"),

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use bentstraw_outputs::camera::CameraSpec;
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
-use bentstraw_outputs::scene_input::SceneSource;
+use bentstraw_outputs::scene_input::{Loaded, SceneSource};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// bentstraw: what refraction does to a straw in a glass of water.
@@ -353,6 +353,18 @@ pub struct ExploreArgs {
     /// The picture's mode to start with
     #[arg(long, value_enum, default_value_t = ModeArg::Fresnel)]
     pub mode: ModeArg,
+}
+
+/// The scene of `source`, loaded, with a hint on standard error for each number of its scene
+/// file that breaks no rule but looks like a slip (centimetres written as metres).
+pub fn load_scene(source: &SceneSource) -> bentstraw_outputs::Result<Loaded> {
+    let loaded = source.load()?;
+    if let (Some(name), Some(description)) = (&loaded.name, &loaded.description) {
+        for hint in description.hints() {
+            eprintln!("hint: {name}: {hint}");
+        }
+    }
+    Ok(loaded)
 }
 
 impl SceneFlags {

@@ -765,3 +765,47 @@ fn a_gallery_scene_is_named_from_any_folder() {
     );
     assert!(!o.status.success());
 }
+
+/// A file whose sizes read like centimetres is traced as written, with a hint on standard
+/// error naming the key and what to write; several broken rules are refused together.
+#[test]
+fn centimetres_get_a_hint_and_broken_rules_come_together() {
+    let dir = tempfile::tempdir().unwrap();
+    let big = "[container]\nshape = \"glass\"\nradius = 4\nheight = 20\n\n[[straw]]\nx = 0\ny = 0\n\n[observer]\nposition = [30, 0, 10]\n";
+    std::fs::write(dir.path().join("big.toml"), big).unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "simulate", "--scene", "big.toml", "--points", "200", "--output", "big.csv",
+        ],
+    );
+    succeeded(&out);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("hint: big.toml: container.radius = 4: lengths are in metres"),
+        "{err}"
+    );
+    assert!(err.contains("write 0.04"), "{err}");
+    let broken = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n\n[[liquid]]\nname = \"water\"\nindex = 0.5\ntop = 0.1\n\n[[straw]]\nx = 0\ny = 0\ntilt = 95\n";
+    std::fs::write(dir.path().join("broken.toml"), broken).unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "simulate",
+            "--scene",
+            "broken.toml",
+            "--observer",
+            "0.3,0,0.1",
+            "--output",
+            "b.csv",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("2 rules are broken:"), "{err}");
+    assert!(
+        err.contains("liquid[1].index = 0.5") && err.contains("straw[1].tilt = 95"),
+        "{err}"
+    );
+    assert!(!dir.path().join("b.csv").exists());
+}

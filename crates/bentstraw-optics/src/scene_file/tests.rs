@@ -797,3 +797,18 @@ fn a_bad_layer_is_reported_once() {
     let keys: Vec<&str> = e.rules().map(|r| r.key.as_str()).collect();
     assert_eq!(keys, ["liquid[2].index"]);
 }
+
+/// Sizes that read like centimetres get a hint naming the key, the size in metres and what to
+/// write instead; a tabletop scene gets none.
+#[test]
+fn centimetres_written_as_metres_get_a_hint() {
+    let text = "[container]\nshape = \"glass\"\nradius = 4\nheight = 20\n\n[[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 15\n\n[[straw]]\nx = 0\ny = 0\n";
+    let hints = parsed(text).hints();
+    assert_eq!(hints.len(), 2, "{hints:?}");
+    assert!(hints[0].starts_with("container.radius = 4:"), "{hints:?}");
+    assert!(hints[0].contains("write 0.04"), "{hints:?}");
+    assert!(hints[1].starts_with("container.height = 20:"), "{hints:?}");
+    assert!(parsed(&glass_with("[[straw]]\nx = 0\ny = 0\n"))
+        .hints()
+        .is_empty());
+}

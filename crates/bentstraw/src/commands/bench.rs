@@ -156,7 +156,7 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
                 "a single view needs all three of --observer, --straw and --water-height, or a --scene file (give none to time the four reference views)",
             );
         }
-        let loaded = args.view.source().load()?;
+        let loaded = crate::cli::load_scene(&args.view.source())?;
         let target = match loaded.assignment {
             Some(_) => loaded.target,
             None => {

@@ -73,7 +73,7 @@ fn colour_names(checked: &Loaded) -> &'static [&'static str] {
 
 /// Runs `check`; `Ok(true)` for a pass, `Ok(false)` for a fail.
 pub fn run(args: &CheckArgs) -> CliResult<bool> {
-    let loaded = args.scene.source().load()?;
+    let loaded = crate::cli::load_scene(&args.scene.source())?;
     let (checked, observer) = (&loaded, loaded.observer);
     if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
         return Err(CliError(format!(

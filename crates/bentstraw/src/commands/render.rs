@@ -23,7 +23,7 @@ use bentstraw_outputs::writers::{write_raw_codes, write_raw_weights};
 pub fn run(args: &RenderArgs) -> CliResult {
     let start = Instant::now();
     // Everything is checked before any work, so bad input leaves no file.
-    let loaded = args.scene.source().load()?;
+    let loaded = crate::cli::load_scene(&args.scene.source())?;
     let camera = match loaded.assignment {
         Some(_) => {
             // A scene file's target stands in for an absent --target.

@@ -36,7 +36,7 @@ pub const MAX_MODEL_POINTS: usize = 2_000_000;
 /// for a scene file's world.
 pub fn run(args: &SimulateArgs) -> CliResult {
     // 1. Validate everything, trace nothing yet.
-    let loaded = args.scene.source().load()?;
+    let loaded = crate::cli::load_scene(&args.scene.source())?;
     if args.points == 0 {
         return fail("--points 0 is not allowed: ask for at least 1 image point");
     }

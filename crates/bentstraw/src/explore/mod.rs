@@ -63,7 +63,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         crate::cli::ModeArg::Fresnel => "fresnel",
     };
     let values = if let Some(path) = &v.scene {
-        let loaded = v.source().load()?;
+        let loaded = crate::cli::load_scene(&v.source())?;
         match loaded.assignment {
             Some(scene) => SceneValues {
                 observer: loaded.observer.to_array(),
