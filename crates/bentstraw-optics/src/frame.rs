@@ -8,10 +8,9 @@
 use crate::parallel::*;
 
 use crate::camera::Camera;
-use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::light_path_type::LightPathType;
-use crate::sampling::sample_image;
+use crate::sampling::{light_path_types, sample_image};
 use crate::shading::{shaded_picture_into, RgbPicture, ShadingBuffers, ShadingOptions};
 use crate::world::World;
 
@@ -93,16 +92,7 @@ pub fn draw_frame(world: &World, request: &FrameRequest, frame: &mut Frame) {
             let cloud = sample_image(world, observer, request.min_points, &|_| {});
             *points = cloud.points;
             *rays_traced = cloud.rays_traced;
-            points
-                .par_iter()
-                .map(|p| {
-                    let ray = Ray {
-                        origin: observer,
-                        direction: p.direction,
-                    };
-                    world.trace_path_type(ray).1
-                })
-                .collect_into_vec(paths);
+            light_path_types(world, observer, points, |p| p.direction, paths);
         },
     );
 }

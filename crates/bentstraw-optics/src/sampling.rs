@@ -22,6 +22,7 @@ use crate::parallel::*;
 use crate::camera::view_basis;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
+use crate::light_path_type::LightPathType;
 use crate::world::World;
 use crate::Vec3;
 
@@ -167,6 +168,28 @@ type Cell = (u32, u32);
 const COARSE_CELLS: f64 = 128.0;
 /// Levels of refinement allowed when the coarse grid sees no straw at all.
 const BLIND_LEVELS: u32 = 2;
+
+/// The kind of light path that makes each of `points` (image points seen from `observer`, or
+/// anything `direction` gives a ray's first direction `u0` of), in order, into `paths`: the ray
+/// of each traced again, its entry face and total reflections noted.
+pub fn light_path_types<P: Sync>(
+    world: &World,
+    observer: Vec3,
+    points: &[P],
+    direction: impl Fn(&P) -> Vec3 + Sync + Send,
+    paths: &mut Vec<LightPathType>,
+) {
+    points
+        .par_iter()
+        .map(|p| {
+            let ray = Ray {
+                origin: observer,
+                direction: direction(p),
+            };
+            world.trace_path_type(ray).1
+        })
+        .collect_into_vec(paths);
+}
 
 /// Traces rays from `world`'s `observer` and returns at least `min_points` image points of its
 /// objects (fewer only if they are all but invisible from there). `progress` is told the rays

@@ -23,6 +23,8 @@ pub struct CameraSpec {
 pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
 /// Most samples per pixel side accepted by `--samples`.
 pub const MAX_SAMPLES: u32 = 16;
+/// Most pixels on a side of a picture.
+pub const MAX_SIDE: u32 = 16384;
 /// Most pixels in a picture (the renderer keeps a few dozen bytes per pixel in memory).
 pub const MAX_PIXELS: u64 = 25_000_000;
 
@@ -70,6 +72,11 @@ pub fn check_target_away(target: Vec3, observer: Vec3) -> Result {
 
 /// A picture size within [`MAX_PIXELS`] (the sides are checked by the `WxH` parser).
 pub fn checked_size((width, height): (u32, u32)) -> Result<(u32, u32)> {
+    if !(1..=MAX_SIDE).contains(&width) || !(1..=MAX_SIDE).contains(&height) {
+        return fail(format!(
+            "--size {width}x{height} is not allowed: each side must be between 1 and {MAX_SIDE} pixels"
+        ));
+    }
     if width as u64 * height as u64 > MAX_PIXELS {
         return fail(format!(
             "--size {width}x{height} is too large: a picture may have at most {MAX_PIXELS} pixels (e.g. 6000x4000)"
@@ -87,6 +94,22 @@ pub fn checked_fov_deg(deg: f64) -> Result<f64> {
         ));
     }
     Ok(deg)
+}
+
+/// The camera of `spec` for the loaded scene at its observer: the assignment's glass framed as
+/// always (a scene file's target standing in for an absent one), any other scene's world framed
+/// whole. `render`, the Python package and the page ask for pictures through it.
+pub fn scene_camera(loaded: &Loaded, spec: &CameraSpec) -> Result<Camera> {
+    match loaded.assignment {
+        Some(_) => camera_from_args(
+            &CameraSpec {
+                target: spec.target.or(loaded.target.map(|t| t.to_array())),
+                ..*spec
+            },
+            loaded.observer,
+        ),
+        None => world_camera(loaded, spec),
+    }
 }
 
 /// The camera of `camera_args` for a scene file's world: aimed at `--target`, else the file's

@@ -29,6 +29,7 @@ pub mod ray_diagram;
 pub mod report;
 pub mod scene_input;
 pub mod sketch;
+pub mod solution;
 #[cfg(test)]
 mod test_support;
 #[cfg(feature = "figures")]

@@ -3,6 +3,8 @@
 
 use bentstraw_optics::scene::clip_text;
 
+use crate::camera::MAX_SIDE;
+
 /// Parses `X,Y,Z` (three finite or non-finite numbers; finiteness is checked with the scene).
 pub fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
     let v = parse_list(s, 3, "X,Y,Z")?;
@@ -46,7 +48,7 @@ fn parse_list(s: &str, n: usize, form: &str) -> Result<Vec<f64>, String> {
         .collect()
 }
 
-/// Parses `WxH` pixel sizes (both at least 1, at most 16384).
+/// Parses `WxH` pixel sizes (both at least 1, at most [`MAX_SIDE`]).
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
@@ -59,9 +61,9 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
                 quoted(s)
             )
         })?;
-        if !(1..=16384).contains(&v) {
+        if !(1..=i64::from(MAX_SIDE)).contains(&v) {
             return Err(format!(
-                "size '{}': each side must be between 1 and 16384 pixels, got {v}",
+                "size '{}': each side must be between 1 and {MAX_SIDE} pixels, got {v}",
                 quoted(s)
             ));
         }

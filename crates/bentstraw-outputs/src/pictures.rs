@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use bentstraw_optics::camera::{framing_fov, framing_target, Camera};
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::image::ImagePoint;
+use bentstraw_optics::scene::number_text;
 use bentstraw_optics::shading::{
     cloud_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
 };
@@ -14,6 +15,7 @@ use bentstraw_optics::Vec3;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 
+use crate::camera::MAX_SAMPLES;
 use crate::error::{Error, Result};
 use crate::files;
 
@@ -34,6 +36,59 @@ pub fn png_bytes(picture: &RgbPicture) -> Result<Vec<u8>> {
         )
         .map_err(|e| Error::Encode(format!("cannot encode the picture as PNG: {e}")))?;
     Ok(bytes)
+}
+
+/// The shading of a picture as asked for (`fresnel` or the course's one colour per sample, the
+/// pruning weight, a checker backdrop or none, samples per pixel side), or a refusal naming every
+/// value outside its rule.
+pub fn checked_shading(
+    fresnel: bool,
+    prune: f64,
+    checker: bool,
+    samples: u32,
+) -> Result<ShadingOptions> {
+    let mut broken = Vec::new();
+    if !prune.is_finite() || !(0.0..1.0).contains(&prune) {
+        broken.push(format!(
+            "--prune {} is not allowed: the pruning weight must satisfy 0 <= W < 1",
+            number_text(prune)
+        ));
+    }
+    if !(1..=MAX_SAMPLES).contains(&samples) {
+        broken.push(format!(
+            "--samples {samples} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}"
+        ));
+    }
+    if !broken.is_empty() {
+        return Err(Error::Refused(broken.join("\n")));
+    }
+    Ok(ShadingOptions {
+        mode: if fresnel {
+            ShadingMode::Fresnel { prune_below: prune }
+        } else {
+            ShadingMode::Course
+        },
+        backdrop: if checker {
+            Backdrop::Checker
+        } else {
+            Backdrop::Plain
+        },
+        samples,
+        outline: true,
+    })
+}
+
+/// The picture `camera` takes of `world` with `shading`, drawn by the explorer's frame call
+/// (picture only): what `render` writes, the page shows and the Python package returns.
+pub fn picture(world: &World, camera: Camera, shading: ShadingOptions) -> RgbPicture {
+    let mut frame = Frame::default();
+    let request = FrameRequest {
+        camera,
+        shading,
+        min_points: 0,
+    };
+    draw_frame(world, &request, &mut frame);
+    std::mem::take(&mut frame.picture)
 }
 
 /// The report's camera at `observer`: [`REPORT_SIZE`], aimed at the glass (not at its box's

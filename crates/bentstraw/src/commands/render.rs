@@ -7,16 +7,16 @@ use std::time::Instant;
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
-use bentstraw_optics::scene::{number_text, SECTION_COUNT};
-use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
+use bentstraw_optics::scene::SECTION_COUNT;
+use bentstraw_optics::shading::ShadingOptions;
 use bentstraw_optics::world::World;
 
 use crate::cli::{BackdropArg, ModeArg, RenderArgs};
-use crate::error::{fail, CliResult};
+use crate::error::CliResult;
 use crate::progress;
-use bentstraw_outputs::camera::{camera_from_args, world_camera, CameraSpec, MAX_SAMPLES};
+use bentstraw_outputs::camera::scene_camera;
 use bentstraw_outputs::files::{self, Output, OutputSet};
-use bentstraw_outputs::pictures::png_bytes;
+use bentstraw_outputs::pictures::{checked_shading, png_bytes};
 use bentstraw_outputs::writers::{write_raw_codes, write_raw_weights};
 
 /// Runs `render`.
@@ -24,17 +24,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
     let start = Instant::now();
     // Everything is checked before any work, so bad input leaves no file.
     let loaded = crate::cli::load_scene(&args.scene.source())?;
-    let camera = match loaded.assignment {
-        Some(_) => {
-            // A scene file's target stands in for an absent --target.
-            let camera_args = CameraSpec {
-                target: args.camera.target.or(loaded.target.map(|t| t.to_array())),
-                ..CameraSpec::from(&args.camera)
-            };
-            camera_from_args(&camera_args, loaded.observer)?
-        }
-        None => world_camera(&loaded, &(&args.camera).into())?,
-    };
+    let camera = scene_camera(&loaded, &(&args.camera).into())?;
     let world = loaded.world;
     let (options, outputs) = shading_and_outputs(args)?;
     // The explorer's frame call, picture only: the command line draws as fast as the live view,
@@ -80,18 +70,12 @@ pub fn run(args: &RenderArgs) -> CliResult {
 /// The shading options of `args`, checked, and its outputs reserved (the previous picture and raw
 /// file stay until both new ones are complete).
 fn shading_and_outputs(args: &RenderArgs) -> CliResult<(ShadingOptions, OutputSet)> {
-    if !args.prune.is_finite() || !(0.0..1.0).contains(&args.prune) {
-        return fail(format!(
-            "--prune {} is not allowed: the pruning weight must satisfy 0 <= W < 1",
-            number_text(args.prune)
-        ));
-    }
-    if !(1..=MAX_SAMPLES).contains(&args.samples) {
-        return fail(format!(
-            "--samples {} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}",
-            args.samples
-        ));
-    }
+    let options = checked_shading(
+        args.mode == ModeArg::Fresnel,
+        args.prune,
+        args.backdrop == BackdropArg::Checker,
+        args.samples,
+    )?;
     let mut outputs = vec![Output {
         flag: "--output",
         path: &args.output,
@@ -105,21 +89,6 @@ fn shading_and_outputs(args: &RenderArgs) -> CliResult<(ShadingOptions, OutputSe
         });
     }
     let outputs = OutputSet::reserve(&outputs)?;
-    let mode = match args.mode {
-        ModeArg::Course => ShadingMode::Course,
-        ModeArg::Fresnel => ShadingMode::Fresnel {
-            prune_below: args.prune,
-        },
-    };
-    let options = ShadingOptions {
-        mode,
-        backdrop: match args.backdrop {
-            BackdropArg::None => Backdrop::Plain,
-            BackdropArg::Checker => Backdrop::Checker,
-        },
-        samples: args.samples,
-        outline: true,
-    };
     Ok((options, outputs))
 }
 

@@ -13,7 +13,7 @@ use bentstraw_optics::world::COLOR_NAMES;
 use bentstraw_optics::Vec3;
 
 use crate::cli::{ImageModelArg, SimulateArgs};
-use crate::error::{fail, CliResult};
+use crate::error::CliResult;
 use crate::progress;
 use bentstraw_outputs::files::{Output, OutputSet};
 use bentstraw_outputs::model_plots::{
@@ -21,45 +21,26 @@ use bentstraw_outputs::model_plots::{
     ModelCloud, MODEL_NAMES,
 };
 use bentstraw_outputs::scene_input::Loaded;
-use bentstraw_outputs::writers::{write_points, ModelPoints, PointFormat, PointSet};
+use bentstraw_outputs::writers::{
+    check_points_asked, write_points, ModelPoints, PointFormat, PointSet,
+};
 use bentstraw_outputs::{html, plot, ray_diagram};
-
-/// Most image points `simulate` traces with the course model: measured at about 220 bytes a point
-/// for a CSV and 310 with the figure and the 3D view; at the limit a run takes 2.2–3.1 GB and
-/// 27–38 s (two cores).
-pub const MAX_POINTS: usize = 10_000_000;
-/// Most image points with the eye or stereo model: about 600 bytes and 10–30 µs a point (two
-/// cores), so at most ~1.2 GB and a minute.
-pub const MAX_MODEL_POINTS: usize = 2_000_000;
 
 /// Runs `simulate`: the same steps for the assignment's glass (traced by its fast tracers) and
 /// for a scene file's world.
 pub fn run(args: &SimulateArgs) -> CliResult {
     // 1. Validate everything, trace nothing yet.
     let loaded = crate::cli::load_scene(&args.scene.source())?;
-    if args.points == 0 {
-        return fail("--points 0 is not allowed: ask for at least 1 image point");
-    }
     let (scene, observer) = (&loaded, loaded.observer);
     // The model comparison and the gap plot need both the eye and the stereo model.
     let both_models = args.models_plot.is_some() || args.gap_plot.is_some();
-    let (most, per_point, model_name) = match args.image_model {
-        _ if both_models => (
-            MAX_MODEL_POINTS,
-            "about 600 bytes",
-            "eye and stereo (--models-plot, --gap-plot)",
-        ),
-        ImageModelArg::Course => (MAX_POINTS, "about 300 bytes", "course"),
-        ImageModelArg::Eye => (MAX_MODEL_POINTS, "about 600 bytes", "eye"),
-        ImageModelArg::Stereo => (MAX_MODEL_POINTS, "about 600 bytes", "stereo"),
+    let models = match args.image_model {
+        _ if both_models => "eye and stereo (--models-plot, --gap-plot)",
+        ImageModelArg::Course => "course",
+        ImageModelArg::Eye => "eye",
+        ImageModelArg::Stereo => "stereo",
     };
-    if args.points > most {
-        return fail(format!(
-            "--points {} is too many for the {} model: at most {most} image points, as each \
-             takes {per_point} of memory until the files are written",
-            args.points, model_name
-        ));
-    }
+    check_points_asked(args.points, models)?;
     let format = PointFormat::from_path(&args.output)?;
     let mut outputs = vec![Output {
         flag: "--output",
