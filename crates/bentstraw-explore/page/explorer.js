@@ -561,6 +561,7 @@ function drawCloud() {
     for (let z = 0; z <= STRAW_H + 1e-9; z += 0.05) line(circle(sx, sy, STRAW_R, z), "#888", 1, [2, 3]);
     for (const a of [0, Math.PI / 2, Math.PI, 1.5 * Math.PI]) line([[sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), 0], [sx + STRAW_R * Math.cos(a), sy + STRAW_R * Math.sin(a), STRAW_H]], "#888", 1, [2, 3]);
   }
+  drawAxes(ctx, pr);
   // The points: written as pixels into an offscreen layer (tens of thousands of fillRect calls
   // would cost more than the frame itself), then laid over the outlines.
   const d = window.devicePixelRatio || 1;
@@ -590,6 +591,24 @@ function drawCloud() {
   const [ox, oy] = pr.p(state.observer);
   ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ox, oy, 5, 0, 2 * Math.PI); ctx.fill();
   if (path) drawPath(ctx, pr);
+}
+
+/** Colours of the axes in the 3D view (none of the straw's or the light paths' colours). */
+const AXIS_RGB = { x: [190, 30, 60], y: [20, 130, 70], z: [40, 60, 190] };
+/** Length of each axis drawn, metres. */
+const AXIS_LENGTH = 0.05;
+
+/** The scene's axes from the origin (the middle of the container's outer base), 5 cm each, each
+ * named at its tip: a turned view still says which way is up and which is x. */
+function drawAxes(ctx, pr) {
+  const [x0, y0] = pr.p([0, 0, 0]);
+  for (const [name, tip] of [["x", [AXIS_LENGTH, 0, 0]], ["y", [0, AXIS_LENGTH, 0]], ["z", [0, 0, AXIS_LENGTH]]]) {
+    const [x1, y1] = pr.p(tip);
+    const c = `rgb(${AXIS_RGB[name].join(",")})`;
+    ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1);
+    ctx.strokeStyle = c; ctx.lineWidth = 2; ctx.setLineDash([]); ctx.stroke();
+    ctx.fillStyle = c; ctx.font = "bold 12px sans-serif"; ctx.fillText(name, x1 + 3, y1 - 3);
+  }
 }
 
 /** The clicked ray: the broken path (solid), the course's line of sight to its image point
@@ -966,7 +985,7 @@ function showReadout() {
   row(t("ro.path"), escapeHtml(pathWords(path.path_key, path.path)));
   path.events.forEach((e, i) => {
     const face = (("face." + e.face) in I18N.en) ? t("face." + e.face) : t("face.other", { face: e.face });
-    row(t("ro.event", { i: i + 1 }), escapeHtml(t("ro.event.text", { event: known("event", e.event), face, angle: localNumber(e.incidence_deg.toFixed(2)), n1: localNumber(e.n1), n2: localNumber(e.n2) })));
+    row(t("ro.event", { i: i + 1 }), escapeHtml(t("ro.event.text", { event: known("event", e.event), face, angle: localNumber(e.incidence_deg.toFixed(2)), out: localNumber(e.outgoing_deg.toFixed(2)), n1: localNumber(e.n1), n2: localNumber(e.n2) })));
   });
   if (path.outcome === "straw") {
     row(t("ro.length"), m(path.path_length));

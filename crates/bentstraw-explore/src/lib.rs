@@ -704,13 +704,14 @@ pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, Stri
         }
         view.camera.direction_at(row, col).normalize()
     };
-    Ok(Reply::json(&ray_json(view, u0)))
+    Ok(Reply::json(&ray_json(&view.scene.world, view.observer, u0)))
 }
 
-/// The light path of the ray from the observer along unit `u0`, as the page shows it.
-pub fn ray_json(view: &View, u0: Vec3) -> Value {
-    let world = &view.scene.world;
-    let eye = view.observer;
+/// The light path of the ray from `eye` along unit `u0` through `world`, as the page shows it
+/// (and the Python package's `trace` returns): each event with its face, angle and indices, the
+/// kind of path, and where it ends: the object's point, the path length and the image point of
+/// each model, or where it leaves.
+pub fn ray_json(world: &World, eye: Vec3, u0: Vec3) -> Value {
     let mut events = Vec::new();
     let mut kind = LightPathType::DIRECT;
     let mut last = (eye, u0);
@@ -721,11 +722,15 @@ pub fn ray_json(view: &View, u0: Vec3) -> Value {
     let outcome = world.trace_with(ray, |e| {
         kind.record_entry(world.entry_of(e), e.totally_reflected);
         let cos = e.incoming.dot(e.normal).abs().min(1.0);
+        // The angle the outgoing ray makes with the normal: the refraction angle (Snell), or
+        // the reflection angle, equal to the incidence, when totally reflected.
+        let cos_out = e.outgoing.dot(e.normal).abs().min(1.0);
         events.push(json!({
             "point": vec_json(e.point),
             "face": world.face_name(e.boundary),
             "event": if e.totally_reflected { "total reflection" } else { "refraction" },
             "incidence_deg": libm::acos(cos).to_degrees(),
+            "outgoing_deg": libm::acos(cos_out).to_degrees(),
             "n1": e.n1,
             "n2": e.n2,
         }));
