@@ -41,6 +41,29 @@ test("the page loads offline, with no console error and no failed request", asyn
   await context.close();
 });
 
+test("the 3D view draws the scene's axes, each in its own colour", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  // Pixels of each axis's colour (its line and its letter): none of the straw's, the paths' or
+  // the wireframe's colours comes within the tolerance.
+  const counts = await page.evaluate(() => {
+    const c = document.getElementById("cloud");
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    const want = { x: [190, 30, 60], y: [20, 130, 70], z: [40, 60, 190] };
+    const n = { x: 0, y: 0, z: 0 };
+    for (let i = 0; i < d.length; i += 4) {
+      for (const [k, w] of Object.entries(want)) {
+        if (Math.abs(d[i] - w[0]) + Math.abs(d[i + 1] - w[1]) + Math.abs(d[i + 2] - w[2]) < 12) n[k]++;
+      }
+    }
+    return n;
+  });
+  for (const k of ["x", "y", "z"]) assert.ok(counts[k] >= 10, `axis ${k}: ${counts[k]} pixels of its colour`);
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("dragging in the picture moves the observer and changes the picture", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);
