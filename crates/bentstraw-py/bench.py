@@ -1,0 +1,48 @@
+"""A million image points from Python and from the command line, side by side in one run.
+
+    python crates/bentstraw-py/bench.py [POINTS] [ROUNDS]
+
+Each round runs `bentstraw simulate` (its own tracing time, as it reports it, and its whole
+run, CSV written) and `bentstraw.simulate` (the call, numpy arrays out), alternately, and prints
+the medians and the ratio Python / command line. The command line is $BENTSTRAW (default: the
+workspace's release build).
+"""
+
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import bentstraw
+
+ROOT = Path(__file__).resolve().parents[2]
+BENTSTRAW = os.environ.get("BENTSTRAW", str(ROOT / "target" / "release" / "bentstraw"))
+POINTS = int(sys.argv[1]) if len(sys.argv) > 1 else 1_000_000
+ROUNDS = int(sys.argv[2]) if len(sys.argv) > 2 else 5
+REF2 = dict(observer=(0.1, 0, 0.1), straw=(0.02, 0.01), water_height=0.15)
+FLAGS = ["--observer", "0.1,0,0.1", "--straw", "0.02,0.01", "--water-height", "0.15"]
+
+cli_tracing, cli_total, python = [], [], []
+with tempfile.TemporaryDirectory() as tmp:
+    for _ in range(ROUNDS):
+        started = time.perf_counter()
+        p = subprocess.run(
+            [BENTSTRAW, "simulate", *FLAGS, "--points", str(POINTS), "--output", f"{tmp}/points.csv"],
+            capture_output=True, text=True, check=True,
+        )
+        cli_total.append(time.perf_counter() - started)
+        cli_tracing.append(float(re.search(r"time\s+([0-9.]+) s tracing", p.stderr).group(1)))
+        started = time.perf_counter()
+        sim = bentstraw.simulate(**REF2, points=POINTS)
+        python.append(time.perf_counter() - started)
+
+m = statistics.median
+print(f"{len(sim)} image points, {ROUNDS} rounds, medians:")
+print(f"  command line, tracing         {m(cli_tracing):.3f} s")
+print(f"  command line, whole run (CSV) {m(cli_total):.3f} s")
+print(f"  Python, bentstraw.simulate    {m(python):.3f} s")
+print(f"  ratio Python / command line's tracing: {m(python) / m(cli_tracing):.2f}")

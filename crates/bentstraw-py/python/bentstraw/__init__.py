@@ -1,0 +1,482 @@
+"""bentstraw: see what refraction does to what we see.
+
+A five-colour straw stands in a glass of water; you look at it from anywhere. bentstraw traces
+rays from your eye through the water (Snell's law, total internal reflection, at most 10 events
+by default) and gives the straw's *virtual image*: image points, the picture your eye gets, a
+check of anyone's image points, and the light path of any one ray. The numbers are exactly those
+of the command line ``bentstraw`` with the same inputs: the same engine, called the same way.
+
+All lengths are in metres. A scene is either the assignment's glass given by its numbers::
+
+    import bentstraw
+    sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+    sim.xyz        # (N, 3) image points
+    sim.color      # (N,) colour codes, 1 red ... 5 blue
+
+or a scene file (a path, a gallery name such as ``"leaning-straw"``, or a :class:`Scene`)::
+
+    sim = bentstraw.simulate("leaning-straw")
+
+The physics (how rays bend, what an image point is, the three apparent-position models) is
+explained in the project's ``docs/physics.md``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import warnings
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _engine
+
+__all__ = [
+    "Scene",
+    "Simulation",
+    "simulate",
+    "render",
+    "check",
+    "trace",
+    "gallery",
+    "WATER_INDEX",
+    "DEFAULT_MAX_EVENTS",
+    "DEFAULT_TOLERANCE",
+    "DEFAULT_MIN_COVERAGE",
+    "COLOR_NAMES",
+    "COLOR_RGB",
+    "__version__",
+]
+
+__version__: str = _engine.VERSION
+#: The refractive index of water when none is given.
+WATER_INDEX: float = _engine.WATER_INDEX
+#: Most events (refractions and total reflections) a ray may undergo, by default.
+DEFAULT_MAX_EVENTS: int = _engine.DEFAULT_MAX_EVENTS
+#: Largest error of a point's path length that :func:`check` still judges correct (m).
+DEFAULT_TOLERANCE: float = _engine.DEFAULT_TOLERANCE
+#: Smallest share of each colour's true image a complete solution covers.
+DEFAULT_MIN_COVERAGE: float = _engine.DEFAULT_MIN_COVERAGE
+#: The names of the colour codes 1, 2, ...: a straw's five sections, then a coin, a card, an arrow.
+COLOR_NAMES: Tuple[str, ...] = tuple(_engine.COLOR_NAMES)
+#: The colours of the codes 1, 2, ... as RGB in 0..1, as the figures draw them: ``COLOR_RGB[code - 1]``.
+COLOR_RGB: np.ndarray = np.array(_engine.COLOR_RGB, dtype=np.float64)
+COLOR_RGB.flags.writeable = False
+
+Vector3 = Sequence[float]
+Vector2 = Sequence[float]
+
+
+class Scene:
+    """A scene file's text, checked: glasses, tanks, liquids, straws, coins and cards.
+
+    Make one with :meth:`Scene.load` (a file), :meth:`Scene.from_toml` (text) or
+    :meth:`Scene.gallery` (one of the built-in demonstrations), and pass it as ``scene=`` to
+    :func:`simulate`, :func:`render`, :func:`check` or :func:`trace`.
+
+    >>> scene = bentstraw.Scene.gallery("leaning-straw")
+    >>> scene.name
+    'leaning-straw'
+    """
+
+    __slots__ = ("_name", "_text")
+
+    def __init__(self, text: str, name: str = "scene.toml") -> None:
+        """The scene file ``text`` (TOML), named ``name`` in messages; refused with a
+        ``ValueError`` listing every broken rule."""
+        _engine.check_scene(name, text)
+        self._name = name
+        self._text = text
+
+    @classmethod
+    def load(cls, path: Union[str, "os.PathLike[str]"]) -> "Scene":
+        """The scene file at ``path`` (at most 1 MB of UTF-8 TOML), read and checked.
+
+        >>> scene = bentstraw.Scene.load("scenes/leaning-straw.toml")
+        """
+        name, text = _engine.read_scene(os.fspath(path))
+        scene = cls.__new__(cls)
+        scene._name, scene._text = name, text
+        return scene
+
+    @classmethod
+    def from_toml(cls, text: str, name: str = "scene.toml") -> "Scene":
+        """The scene file whose text is ``text``, checked (``name`` names it in messages).
+
+        >>> text = open("scenes/leaning-straw.toml").read().replace("tilt = 15.0", "tilt = 10.0")
+        >>> bentstraw.Scene.from_toml(text, name="ten-degrees.toml")
+        Scene('ten-degrees.toml')
+        """
+        return cls(text, name)
+
+    @classmethod
+    def gallery(cls, name: str) -> "Scene":
+        """The gallery's demonstration ``name`` (see :func:`gallery` for the names).
+
+        >>> bentstraw.Scene.gallery("reversing-arrow").name
+        'reversing-arrow'
+        """
+        for stem, text in _engine.gallery():
+            if stem == name or stem + ".toml" == name:
+                scene = cls.__new__(cls)
+                scene._name, scene._text = stem, text
+                return scene
+        names = ", ".join(stem for stem, _ in _engine.gallery())
+        raise ValueError(f"no gallery scene is called {name!r}: the gallery has {names}")
+
+    @property
+    def name(self) -> str:
+        """The scene's name as messages show it."""
+        return self._name
+
+    @property
+    def text(self) -> str:
+        """The scene file's text (TOML)."""
+        return self._text
+
+    def __repr__(self) -> str:
+        return f"Scene({self._name!r})"
+
+
+def gallery() -> List[str]:
+    """The names of the gallery's demonstrations, each usable as ``scene=NAME``.
+
+    >>> "leaning-straw" in bentstraw.gallery()
+    True
+    """
+    return [stem for stem, _ in _engine.gallery()]
+
+
+SceneLike = Union[None, str, "os.PathLike[str]", Scene]
+
+
+def _load(
+    scene: SceneLike,
+    observer: Optional[Vector3],
+    straw: Optional[Vector2],
+    water_height: Optional[float],
+    n_water: Optional[float],
+    max_events: int,
+) -> Any:
+    """The scene loaded by the engine as the command line's flags would give it; its hints
+    (numbers that look like slips) as warnings."""
+    path = text = None
+    if isinstance(scene, Scene):
+        text = (scene.name, scene.text)
+    elif scene is not None:
+        if not isinstance(scene, (str, os.PathLike)):
+            raise TypeError(
+                f"scene must be a path, a gallery name or a bentstraw.Scene, not {type(scene).__name__}"
+            )
+        path = os.fspath(scene)
+    loaded = _engine.load(
+        path,
+        text,
+        _vector(observer, 3, "observer"),
+        _vector(straw, 2, "straw"),
+        _number(water_height, "water_height"),
+        _number(n_water, "n_water"),
+        _count(max_events, "max_events"),
+    )
+    for hint in loaded.hints:
+        warnings.warn(hint, UserWarning, stacklevel=3)
+    return loaded
+
+
+def _vector(v: Optional[Sequence[float]], n: int, name: str) -> Optional[Tuple[float, ...]]:
+    """``v`` as ``n`` floats (or None), or a ValueError naming it."""
+    if v is None:
+        return None
+    try:
+        values = tuple(float(x) for x in v)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be {n} numbers, not {v!r}") from None
+    if len(values) != n:
+        raise ValueError(f"{name} must be {n} numbers, not {len(values)}: {v!r}")
+    return values
+
+
+def _size(size: Sequence[int]) -> Tuple[int, int]:
+    """``size`` as two whole numbers of pixels >= 0 (the engine checks the rest of the rule)."""
+    w, h = _vector(size, 2, "size")  # type: ignore[misc]
+    if not (w.is_integer() and h.is_integer() and 0 <= w < 2**31 and 0 <= h < 2**31):
+        raise ValueError(
+            f"size {tuple(size)!r} is not allowed: each side must be a whole number of pixels "
+            "between 1 and 16384"
+        )
+    return int(w), int(h)
+
+
+def _number(v: Optional[float], name: str) -> Optional[float]:
+    if v is None:
+        return None
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, not {v!r}") from None
+
+
+def _count(v: int, name: str) -> int:
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
+        raise ValueError(f"{name} must be a whole number >= 0, not {v!r}")
+    return int(v)
+
+
+class Simulation:
+    """The image points of a scene seen from one observer, as :func:`simulate` returns them.
+
+    One row per point, in the order ``bentstraw simulate`` writes them:
+
+    - ``xyz`` — ``(N, 3)`` float64: where the point appears in the chosen model (the course's
+      ``O + L·u0``, the eye's or the stereo point); ``nan`` where the eye model places none.
+    - ``color`` — ``(N,)`` int64: the colour code of the object the light came from (1 red,
+      2 orange, 3 magenta, 4 green, 5 blue; 6 a coin, 7 a card, 8 the arrow on it;
+      ``COLOR_RGB[color - 1]`` is each point's colour for a plot).
+    - ``path`` — ``(N,)`` str: the kind of light path (``"direct"``, ``"top"``, ``"wall"``,
+      ``"bottom"``, with ``"+k"`` for k total reflections); ``path_index`` indexes
+      ``path_keys`` and ``path_words`` (the same in words). Found on first use: each point's
+      ray traced once more.
+    - ``image_xyz``, ``direction``, ``path_length``, ``object_point``, ``events``: the course's
+      image point (for the course model the very array ``xyz``, not a copy), the ray's first direction ``u0``, its broken length ``L``, the point of the
+      object it reached and how many events it underwent.
+    - eye model: ``s_h``, ``s_v`` (the two foci's signed distances, m), ``s_h_kind``,
+      ``s_v_kind``, ``gap``; stereo model: ``disparity``, ``vertical_disparity``,
+      ``miss_distance``, ``gap``, and ``skipped`` (points one eye only sees).
+
+    >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+    >>> sim.xyz.shape[1], sim.color.dtype
+    (3, dtype('int64'))
+    """
+
+    #: ``(N, 3)`` float64: where each point appears in the chosen model (m); nan where none.
+    xyz: np.ndarray
+    #: ``(N,)`` int64: the colour code of the object each point's light came from.
+    color: np.ndarray
+    #: ``(N, 3)``: the course's image point ``O + L·u0`` of each point's ray (m).
+    image_xyz: np.ndarray
+    #: ``(N, 3)``: the unit direction ``u0`` in which the eye looks for each point.
+    direction: np.ndarray
+    #: ``(N,)``: the length ``L`` of each ray's broken path from the eye to the object (m).
+    path_length: np.ndarray
+    #: ``(N, 3)``: the point of the object each ray really reached (m).
+    object_point: np.ndarray
+    #: ``(N,)`` int64: the events (refractions and total reflections) on each ray's way.
+    events: np.ndarray
+    #: Rays traced in all, to find the points.
+    rays_traced: int
+    #: Angular spacing of the rays (≈ rad).
+    spacing: float
+    #: Share of the traced rays that reached an object.
+    hit_ratio: float
+    #: Image points traced (the stereo model keeps those both eyes see).
+    image_points: int
+    #: Eye model: the horizontal and vertical foci's signed distances from the eye (m; nan where
+    #: not defined, inf at infinity), their kinds, and each point's gap to the course's point (m).
+    s_h: Optional[np.ndarray] = None
+    s_v: Optional[np.ndarray] = None
+    s_h_kind: Optional[List[str]] = None
+    s_v_kind: Optional[List[str]] = None
+    gap: Optional[np.ndarray] = None
+    #: Stereo model: the binocular and vertical disparities (rad), the lines of sight's closest
+    #: distance (m), and how many points one eye only sees.
+    disparity: Optional[np.ndarray] = None
+    vertical_disparity: Optional[np.ndarray] = None
+    miss_distance: Optional[np.ndarray] = None
+    skipped: Optional[int] = None
+
+    def __init__(self, fields: Dict[str, Any], scene: Any, image_model: str) -> None:
+        self.__dict__.update(fields)
+        self._scene = scene
+        self._paths: Optional[Dict[str, Any]] = None
+        observer = tuple(scene.observer)
+        scene_name = scene.name
+        #: The observer's eye (m).
+        self.observer = observer
+        #: The apparent-position model: ``"course"``, ``"eye"`` or ``"stereo"``.
+        self.image_model = image_model
+        #: The scene file's name, or None for the assignment's glass given by its numbers.
+        self.scene_name = scene_name
+
+    def _light_paths(self) -> Dict[str, Any]:
+        # Each point's ray traced once more, on first use (it costs about as much as the points).
+        if self._paths is None:
+            self._paths = _engine.light_paths(self._scene, self.direction)
+        return self._paths
+
+    @property
+    def path_index(self) -> np.ndarray:
+        """``(N,)`` int64: each point's kind of light path, an index into ``path_keys``."""
+        return self._light_paths()["path_index"]
+
+    @property
+    def path_keys(self) -> List[str]:
+        """The kinds of light path present, as short keys (``"direct"``, ``"wall+1"``, ...),
+        sorted: direct first, then by entry face and number of total reflections."""
+        return self._light_paths()["path_keys"]
+
+    @property
+    def path_words(self) -> List[str]:
+        """The same kinds in words (``"through the side wall, 1 total reflection"``)."""
+        return self._light_paths()["path_words"]
+
+    @property
+    def path(self) -> np.ndarray:
+        """``(N,)`` str: the kind of light path of each point, as its key."""
+        if not self.path_keys:
+            return np.empty(0, dtype=str)
+        return np.asarray(self.path_keys, dtype=str)[self.path_index]
+
+    def __len__(self) -> int:
+        return len(self.color)
+
+    def __repr__(self) -> str:
+        where = self.scene_name or "the glass"
+        return (f"<Simulation of {where} from {self.observer}: {len(self)} points, "
+                f"{self.image_model} model>")
+
+
+def simulate(
+    scene: SceneLike = None,
+    *,
+    observer: Optional[Vector3] = None,
+    straw: Optional[Vector2] = None,
+    water_height: Optional[float] = None,
+    n_water: Optional[float] = None,
+    max_events: int = DEFAULT_MAX_EVENTS,
+    points: int = 20000,
+    image_model: str = "course",
+) -> Simulation:
+    """The straw's virtual image: at least ``points`` image points seen from ``observer``.
+
+    The scene is the assignment's glass given by ``straw=(xp, yp)``, ``water_height`` and
+    ``n_water`` (default 1.333), or ``scene``: a scene file's path, a gallery name or a
+    :class:`Scene` (its own ``[observer]`` unless ``observer`` is given; ``straw``,
+    ``water_height`` and ``n_water`` change its one straw and liquid). ``image_model`` places
+    each point by the course's convention (``"course"``: along the first ray, as far as the
+    light travelled), by a small eye's astigmatic foci (``"eye"``) or by two eyes 65 mm apart
+    (``"stereo"``). The points are those ``bentstraw simulate`` writes for the same inputs, bit
+    for bit. A broken rule raises ``ValueError`` with the command line's message.
+
+    >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+    >>> import matplotlib.pyplot as plt
+    >>> ax = plt.figure().add_subplot(projection="3d")
+    >>> _ = ax.scatter(*sim.xyz.T, c=sim.color, cmap="rainbow", s=1)
+    """
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    fields = _engine.simulate(loaded, _count(points, "points"), image_model)
+    return Simulation(fields, loaded, image_model)
+
+
+def render(
+    scene: SceneLike = None,
+    *,
+    observer: Optional[Vector3] = None,
+    straw: Optional[Vector2] = None,
+    water_height: Optional[float] = None,
+    n_water: Optional[float] = None,
+    max_events: int = DEFAULT_MAX_EVENTS,
+    size: Tuple[int, int] = (800, 600),
+    target: Optional[Vector3] = None,
+    fov: Optional[float] = None,
+    mode: str = "fresnel",
+    prune: float = 1e-4,
+    backdrop: str = "checker",
+    samples: int = 3,
+    weights: bool = False,
+) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
+    """The picture the observer's eye gets: an ``(h, w, 3)`` uint8 array, the pixels of the PNG
+    ``bentstraw render`` writes for the same inputs.
+
+    ``size=(w, h)`` in pixels; ``target`` the point looked at and ``fov`` the vertical field of
+    view in degrees (both framed from the scene by default); ``mode="fresnel"`` shares each
+    ray's light between reflection and refraction by Fresnel's equations (branches lighter than
+    ``prune`` abandoned), ``"course"`` follows one ray; ``backdrop`` is ``"checker"`` or
+    ``"none"``; ``samples`` per pixel side at edges. With ``weights=True`` returns
+    ``(picture, raw)``: one ray per pixel centre as ``render --raw`` writes it, ``raw`` an
+    ``(h, w)`` array of colour codes (course) or an ``(h, w, k)`` array of each colour code's
+    weight (Fresnel).
+
+    >>> picture = bentstraw.render(observer=(0.3, 0, 0.25), straw=(0, 0.03), water_height=0.15)
+    >>> import matplotlib.pyplot as plt
+    >>> picture.shape
+    (600, 800, 3)
+    >>> _ = plt.imshow(picture)
+    """
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    size_ = None if size is None else _size(size)
+    out = _engine.render(
+        loaded, size_, _vector(target, 3, "target"), _number(fov, "fov"), mode,
+        float(prune), backdrop, _count(samples, "samples"), bool(weights),
+    )
+    if not weights:
+        return out["pixels"]
+    return out["pixels"], out["codes"] if "codes" in out else out["weights"]
+
+
+def check(
+    xyz: Any,
+    color: Any,
+    scene: SceneLike = None,
+    *,
+    observer: Optional[Vector3] = None,
+    straw: Optional[Vector2] = None,
+    water_height: Optional[float] = None,
+    n_water: Optional[float] = None,
+    max_events: int = DEFAULT_MAX_EVENTS,
+    tolerance: float = DEFAULT_TOLERANCE,
+    min_coverage: float = DEFAULT_MIN_COVERAGE,
+    worst: int = 10,
+) -> Dict[str, Any]:
+    """Judges image points ``xyz`` (``(N, 3)``, m) of colour codes ``color`` (``(N,)``) seen
+    from ``observer``: a dict with the fields of ``bentstraw check --json`` and the same values
+    (``"verdict"`` is ``"pass"`` or ``"fail"``; the counts per kind and per colour; the coverage
+    of the true image; the missing regions; the worst points, their ``"line"`` being the row's
+    index + 1; hints).
+
+    >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+    >>> bentstraw.check(sim.xyz, sim.color, observer=(0.1, 0, 0.1), straw=(0, 0.02),
+    ...                 water_height=0.1)["verdict"]
+    'pass'
+    """
+    points = np.ascontiguousarray(np.asarray(xyz, dtype=np.float64))
+    codes = np.ascontiguousarray(np.asarray(color, dtype=np.float64))
+    if points.ndim != 2 or points.shape[1:] != (3,):
+        raise ValueError(f"xyz has shape {points.shape}: it must be (N, 3), points x, y, z in metres")
+    if codes.ndim != 1:
+        raise ValueError(f"color has shape {codes.shape}: it must be (N,), one colour code per point")
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    report = _engine.check(loaded, points, codes, _number(tolerance, "tolerance"),
+                           _number(min_coverage, "min_coverage"), _count(worst, "worst"))
+    return json.loads(report)
+
+
+def trace(
+    scene: SceneLike = None,
+    *,
+    observer: Optional[Vector3] = None,
+    straw: Optional[Vector2] = None,
+    water_height: Optional[float] = None,
+    n_water: Optional[float] = None,
+    max_events: int = DEFAULT_MAX_EVENTS,
+    direction: Optional[Vector3] = None,
+    toward: Optional[Vector3] = None,
+) -> Dict[str, Any]:
+    """The light path of one ray from the observer, along ``direction`` or toward the point
+    ``toward``, as the explorer shows a clicked ray: a dict with its ``"events"`` (each with its
+    point, face, ``"refraction"`` or ``"total reflection"``, the angles of incidence and of the
+    outgoing ray in degrees, and the indices), the kind of ``"path"``, and where it ends: the
+    ``"straw_point"`` reached, the ``"path_length"``, the ``"image_point"`` and the eye's and
+    stereo points — or ``"outcome": "escaped"`` with where it ``"leaves"``.
+
+    >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+    >>> ray = bentstraw.trace(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1,
+    ...                       direction=sim.direction[0])
+    >>> ray["path"], [e["event"] for e in ray["events"]]
+    ('through the side wall, 1 total reflection', ['refraction', 'total reflection'])
+    >>> bool(ray["path_length"] == sim.path_length[0])
+    True
+    """
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    return json.loads(_engine.trace(loaded, _vector(direction, 3, "direction"),
+                                    _vector(toward, 3, "toward")))

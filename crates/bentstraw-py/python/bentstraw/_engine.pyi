@@ -1,0 +1,67 @@
+"""Type stubs of the compiled engine (``bentstraw._engine``); use the functions of ``bentstraw``."""
+
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+VERSION: str
+WATER_INDEX: float
+DEFAULT_MAX_EVENTS: int
+DEFAULT_TOLERANCE: float
+DEFAULT_MIN_COVERAGE: float
+COLOR_NAMES: List[str]
+COLOR_RGB: List[List[float]]
+
+class LoadedScene:
+    """A scene loaded and checked, with its observer."""
+
+    @property
+    def observer(self) -> Tuple[float, float, float]: ...
+    @property
+    def name(self) -> Optional[str]: ...
+    @property
+    def max_events(self) -> int: ...
+    @property
+    def color_names(self) -> List[str]: ...
+    @property
+    def hints(self) -> List[str]: ...
+
+def load(
+    path: Optional[str],
+    text: Optional[Tuple[str, str]],
+    observer: Optional[Tuple[float, float, float]],
+    straw: Optional[Tuple[float, float]],
+    water_height: Optional[float],
+    n_water: Optional[float],
+    max_events: int,
+) -> LoadedScene: ...
+def read_scene(path: str) -> Tuple[str, str]: ...
+def check_scene(name: str, text: str) -> None: ...
+def gallery() -> List[Tuple[str, str]]: ...
+def simulate(scene: LoadedScene, points: int, image_model: str) -> Dict[str, Any]: ...
+def light_paths(scene: LoadedScene, direction: npt.NDArray[np.float64]) -> Dict[str, Any]: ...
+def render(
+    scene: LoadedScene,
+    size: Optional[Tuple[int, int]],
+    target: Optional[Tuple[float, float, float]],
+    fov: Optional[float],
+    mode: str,
+    prune: float,
+    backdrop: str,
+    samples: int,
+    raw: bool,
+) -> Dict[str, Any]: ...
+def check(
+    scene: LoadedScene,
+    xyz: npt.NDArray[np.float64],
+    color: npt.NDArray[np.float64],
+    tolerance: float,
+    min_coverage: float,
+    worst: int,
+) -> str: ...
+def trace(
+    scene: LoadedScene,
+    direction: Optional[Tuple[float, float, float]],
+    toward: Optional[Tuple[float, float, float]],
+) -> str: ...

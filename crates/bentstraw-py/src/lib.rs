@@ -1,0 +1,599 @@
+//! `bentstraw._engine`: the compiled part of the Python package. Each call loads the scene the
+//! way the command line does ([`SceneSource`]), runs the same library calls as `simulate`,
+//! `render`, `check` and the explorer's clicked ray, with the interpreter's lock released while
+//! it works, and hands the results to Python as numpy arrays that take over the engine's own
+//! buffers (no copy). The friendly functions, their defaults and documentation are in
+//! `python/bentstraw/__init__.py`; the physics is explained in `docs/physics.md`.
+
+#![warn(missing_docs)]
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use bentstraw_optics::apparent::{eye_model_points, stereo_points};
+use bentstraw_optics::check::check_solution;
+use bentstraw_optics::image::ImagePoint;
+use bentstraw_optics::light_path_type::LightPathType;
+use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
+use bentstraw_optics::sampling::{light_path_types, sample_image};
+use bentstraw_optics::scene::number_text;
+use bentstraw_optics::world::{COLOR_NAMES, COLOR_RGB};
+use bentstraw_optics::Vec3;
+use bentstraw_outputs::camera::{scene_camera, CameraSpec};
+use bentstraw_outputs::gallery::GALLERY;
+use bentstraw_outputs::pictures::{checked_shading, picture};
+use bentstraw_outputs::scene_input::{parse_scene_text, read_scene_text, Loaded, SceneSource};
+use bentstraw_outputs::solution::{colour_names, json_report, solution_of_points, CheckOptions};
+use bentstraw_outputs::writers::check_points_asked;
+use bentstraw_outputs::Error;
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The Python exception for a library error: a broken rule is a `ValueError` with the command
+/// line's message; a file that cannot be read, an `OSError`.
+fn python_error(e: Error) -> PyErr {
+    match &e {
+        Error::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
+            PyFileNotFoundError::new_err(e.to_string())
+        }
+        Error::Io { .. } => PyOSError::new_err(e.to_string()),
+        _ => PyValueError::new_err(e.to_string()),
+    }
+}
+
+/// A scene loaded and checked, with its observer: what every call traces.
+#[pyclass(frozen, module = "bentstraw._engine")]
+struct LoadedScene {
+    loaded: Loaded,
+}
+
+#[pymethods]
+impl LoadedScene {
+    /// The observer's eye (m).
+    #[getter]
+    fn observer(&self) -> [f64; 3] {
+        self.loaded.observer.to_array()
+    }
+
+    /// The scene file's name, or `None` for the assignment's glass given by its numbers.
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.loaded.name.clone()
+    }
+
+    /// Most events (refractions and total reflections) a ray may undergo.
+    #[getter]
+    fn max_events(&self) -> u32 {
+        self.loaded.world.max_events()
+    }
+
+    /// The names of the colour codes the scene can show, code 1 first.
+    #[getter]
+    fn color_names(&self) -> Vec<&'static str> {
+        colour_names(&self.loaded).to_vec()
+    }
+
+    /// The scene file's hints: numbers that break no rule but look like a slip.
+    #[getter]
+    fn hints(&self) -> Vec<String> {
+        match (&self.loaded.name, &self.loaded.description) {
+            (Some(name), Some(d)) => d.hints().iter().map(|h| format!("{name}: {h}")).collect(),
+            _ => Vec::new(),
+        }
+    }
+}
+
+/// Loads the scene as the command line's flags give it: a scene file's path or a gallery name
+/// (`path`), or a scene file's text (`text` = (name, text)), or the assignment's numbers; the
+/// other values override the file's where given.
+#[pyfunction]
+#[pyo3(signature = (path, text, observer, straw, water_height, n_water, max_events))]
+fn load(
+    path: Option<PathBuf>,
+    text: Option<(String, String)>,
+    observer: Option<[f64; 3]>,
+    straw: Option<[f64; 2]>,
+    water_height: Option<f64>,
+    n_water: Option<f64>,
+    max_events: u32,
+) -> PyResult<LoadedScene> {
+    let source = SceneSource {
+        file: path,
+        observer,
+        straw,
+        water_height,
+        n_water,
+        max_events,
+    };
+    let loaded = match text {
+        Some((name, text)) => source.load_text(&name, &text),
+        None => source.load(),
+    };
+    Ok(LoadedScene {
+        loaded: loaded.map_err(python_error)?,
+    })
+}
+
+/// The text of the scene file at `path`, read (at most 1 MB, UTF-8) and checked by the scene
+/// file's rules, with its name as messages show it.
+#[pyfunction]
+fn read_scene(path: PathBuf) -> PyResult<(String, String)> {
+    let text = read_scene_text(&path).map_err(python_error)?;
+    let name = bentstraw_outputs::files::shown(&path);
+    parse_scene_text(&name, &text).map_err(python_error)?;
+    Ok((name, text))
+}
+
+/// Checks the scene file text `text` named `name` by the scene file's rules.
+#[pyfunction]
+fn check_scene(name: &str, text: &str) -> PyResult<()> {
+    parse_scene_text(name, text).map_err(python_error)?;
+    Ok(())
+}
+
+/// The gallery's scenes: (name, text of the scene file), in the gallery's order.
+#[pyfunction]
+fn gallery() -> Vec<(&'static str, &'static str)> {
+    GALLERY.to_vec()
+}
+
+/// A column of numbers as a numpy array that owns `values` (no copy).
+fn column<'py, T: numpy::Element>(py: Python<'py>, values: Vec<T>) -> Bound<'py, PyArray1<T>> {
+    PyArray1::from_vec(py, values)
+}
+
+/// Traces the image points of `scene` as `simulate` does: at least `points` of them, placed by
+/// `image_model` (`course`, `eye` or `stereo`), with each one's ray (see [`light_paths`] for
+/// the kind of light path of each).
+#[pyfunction]
+fn simulate<'py>(
+    py: Python<'py>,
+    scene: &LoadedScene,
+    points: usize,
+    image_model: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    if !matches!(image_model, "course" | "eye" | "stereo") {
+        return Err(PyValueError::new_err(format!(
+            "image_model '{}' is not allowed: it must be course, eye or stereo",
+            bentstraw_optics::scene::clip_text(image_model, 40)
+        )));
+    }
+    check_points_asked(points, image_model).map_err(python_error)?;
+    let loaded = &scene.loaded;
+    let (world, observer) = (&loaded.world, loaded.observer);
+    // The traced points, one row per point the model writes: for the course and the eye model
+    // every image point; for the stereo model, those both eyes see. The columns are made while
+    // other Python threads run; numpy then takes them over as they are.
+    let (stats, columns, extra) = py.detach(|| {
+        let mut cloud = sample_image(world, observer, points, &|_| {});
+        let stats = (
+            cloud.rays_traced,
+            cloud.spacing,
+            cloud.hit_ratio(),
+            cloud.points.len(),
+        );
+        let (placed, images, extra): (Option<Vec<Option<Vec3>>>, Vec<ImagePoint>, ModelColumns) =
+            match image_model {
+                "eye" => {
+                    let eye = eye_model_points(world, observer, &cloud.points);
+                    let columns = ModelColumns::Eye {
+                        s_h: eye
+                            .iter()
+                            .map(|p| nan_if_none(p.s_h.signed_distance()))
+                            .collect(),
+                        s_v: eye
+                            .iter()
+                            .map(|p| nan_if_none(p.s_v.signed_distance()))
+                            .collect(),
+                        s_h_kind: eye.iter().map(|p| p.s_h.kind()).collect(),
+                        s_v_kind: eye.iter().map(|p| p.s_v.kind()).collect(),
+                        gap: eye.iter().map(|p| nan_if_none(p.gap_to_course())).collect(),
+                    };
+                    let placed = eye.iter().map(|p| p.position).collect();
+                    (Some(placed), eye.iter().map(|p| p.image).collect(), columns)
+                }
+                "stereo" => {
+                    let stereo = stereo_points(world, observer, &cloud.points);
+                    let s = &stereo.points;
+                    let columns = ModelColumns::Stereo {
+                        disparity: s.iter().map(|p| p.disparity).collect(),
+                        vertical_disparity: s.iter().map(|p| p.vertical_disparity).collect(),
+                        miss_distance: s.iter().map(|p| p.miss_distance).collect(),
+                        gap: s.iter().map(|p| nan_if_none(p.gap_to_course())).collect(),
+                        skipped: stereo.skipped,
+                    };
+                    let placed = s.iter().map(|p| p.position).collect();
+                    (Some(placed), s.iter().map(|p| p.image).collect(), columns)
+                }
+                // The course's points are the image points themselves.
+                _ => (
+                    None,
+                    std::mem::take(&mut cloud.points),
+                    ModelColumns::Course,
+                ),
+            };
+        (stats, Columns::of(placed.as_deref(), &images), extra)
+    });
+
+    let out = PyDict::new(py);
+    let n = columns.color.len();
+    let rows = |flat: Vec<f64>| -> PyResult<Bound<'py, PyAny>> {
+        Ok(PyArray1::from_vec(py, flat).reshape([n, 3])?.into_any())
+    };
+    let image_xyz = rows(columns.image_xyz)?;
+    match columns.xyz {
+        Some(xyz) => out.set_item("xyz", rows(xyz)?)?,
+        // The course's points are where its image points are: one array under both names.
+        None => out.set_item("xyz", &image_xyz)?,
+    }
+    out.set_item("image_xyz", image_xyz)?;
+    out.set_item("color", column(py, columns.color))?;
+    out.set_item("direction", rows(columns.direction)?)?;
+    out.set_item("path_length", column(py, columns.path_length))?;
+    out.set_item("object_point", rows(columns.object_point)?)?;
+    out.set_item("events", column(py, columns.events))?;
+    match extra {
+        ModelColumns::Course => {}
+        ModelColumns::Eye {
+            s_h,
+            s_v,
+            s_h_kind,
+            s_v_kind,
+            gap,
+        } => {
+            out.set_item("s_h", column(py, s_h))?;
+            out.set_item("s_v", column(py, s_v))?;
+            out.set_item("s_h_kind", s_h_kind)?;
+            out.set_item("s_v_kind", s_v_kind)?;
+            out.set_item("gap", column(py, gap))?;
+        }
+        ModelColumns::Stereo {
+            disparity,
+            vertical_disparity,
+            miss_distance,
+            gap,
+            skipped,
+        } => {
+            out.set_item("disparity", column(py, disparity))?;
+            out.set_item("vertical_disparity", column(py, vertical_disparity))?;
+            out.set_item("miss_distance", column(py, miss_distance))?;
+            out.set_item("gap", column(py, gap))?;
+            out.set_item("skipped", skipped)?;
+        }
+    }
+    let (rays_traced, spacing, hit_ratio, image_points) = stats;
+    out.set_item("rays_traced", rays_traced)?;
+    out.set_item("spacing", spacing)?;
+    out.set_item("hit_ratio", hit_ratio)?;
+    out.set_item("image_points", image_points)?;
+    Ok(out)
+}
+
+/// The kind of light path of each ray from the scene's observer along `direction` (n × 3, unit
+/// vectors such as a simulation's `u0`): `path_index` (n) into `path_keys` and `path_words`,
+/// the kinds present, sorted (direct first, then by entry face and total reflections).
+#[pyfunction]
+fn light_paths<'py>(
+    py: Python<'py>,
+    scene: &LoadedScene,
+    direction: PyReadonlyArray2<'_, f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let direction = direction.as_array();
+    if direction.ncols() != 3 {
+        return Err(PyValueError::new_err(format!(
+            "direction has {} columns: it must be an (n, 3) array of unit vectors",
+            direction.ncols()
+        )));
+    }
+    let directions: Vec<Vec3> = direction
+        .rows()
+        .into_iter()
+        .map(|r| Vec3::new(r[0], r[1], r[2]))
+        .collect();
+    let loaded = &scene.loaded;
+    let paths = py.detach(|| {
+        let mut paths = Vec::new();
+        light_path_types(
+            &loaded.world,
+            loaded.observer,
+            &directions,
+            |d| *d,
+            &mut paths,
+        );
+        paths
+    });
+    let out = PyDict::new(py);
+    // The kinds of light path as small integers into a list of their names (sorted: direct
+    // first, then by entry face and number of total reflections).
+    let kinds: BTreeMap<LightPathType, usize> = paths.iter().map(|k| (*k, 0)).collect();
+    let index: BTreeMap<LightPathType, usize> =
+        kinds.keys().enumerate().map(|(i, k)| (*k, i)).collect();
+    out.set_item(
+        "path_index",
+        column(py, paths.iter().map(|k| index[k] as i64).collect()),
+    )?;
+    out.set_item(
+        "path_keys",
+        index.keys().map(|k| k.key()).collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "path_words",
+        index.keys().map(|k| k.to_string()).collect::<Vec<_>>(),
+    )?;
+    Ok(out)
+}
+
+/// The columns every model gives each point, flat (three numbers a row for vectors).
+struct Columns {
+    /// Where the model places each point (NaN where it places none); `None` for the course's
+    /// convention, whose points are the image points.
+    xyz: Option<Vec<f64>>,
+    /// The course's image point `O + L·u0`.
+    image_xyz: Vec<f64>,
+    /// The colour code of the object reached.
+    color: Vec<i64>,
+    /// The ray's first direction `u0`.
+    direction: Vec<f64>,
+    /// The broken path's length `L`.
+    path_length: Vec<f64>,
+    /// The object's point reached.
+    object_point: Vec<f64>,
+    /// Refractions and total reflections on the way.
+    events: Vec<i64>,
+}
+
+impl Columns {
+    /// The columns of `images`, placed at `placed` by a model (or where they are).
+    fn of(placed: Option<&[Option<Vec3>]>, images: &[ImagePoint]) -> Columns {
+        let flat = |v: &mut Vec<f64>, p: Vec3| v.extend_from_slice(&p.to_array());
+        let n = images.len();
+        let mut c = Columns {
+            xyz: placed.map(|placed| {
+                let mut xyz = Vec::with_capacity(3 * n);
+                for p in placed {
+                    flat(&mut xyz, p.unwrap_or(Vec3::NAN));
+                }
+                xyz
+            }),
+            image_xyz: Vec::with_capacity(3 * n),
+            color: Vec::with_capacity(n),
+            direction: Vec::with_capacity(3 * n),
+            path_length: Vec::with_capacity(n),
+            object_point: Vec::with_capacity(3 * n),
+            events: Vec::with_capacity(n),
+        };
+        for p in images {
+            flat(&mut c.image_xyz, p.position);
+            c.color.push(i64::from(p.color));
+            flat(&mut c.direction, p.direction);
+            c.path_length.push(p.path_length);
+            flat(&mut c.object_point, p.straw_point);
+            c.events.push(i64::from(p.events));
+        }
+        c
+    }
+}
+
+/// The columns an apparent-position model adds to each point.
+enum ModelColumns {
+    /// The course's convention adds none.
+    Course,
+    /// The eye model's foci (m; NaN where not defined) and their kinds, and the gap to the
+    /// course's point.
+    Eye {
+        s_h: Vec<f64>,
+        s_v: Vec<f64>,
+        s_h_kind: Vec<&'static str>,
+        s_v_kind: Vec<&'static str>,
+        gap: Vec<f64>,
+    },
+    /// The stereo model's disparities (rad), the lines of sight's miss distance (m) and the gap
+    /// to the course's point, and how many points one eye only sees.
+    Stereo {
+        disparity: Vec<f64>,
+        vertical_disparity: Vec<f64>,
+        miss_distance: Vec<f64>,
+        gap: Vec<f64>,
+        skipped: usize,
+    },
+}
+
+/// A number, or NaN where it is not defined.
+fn nan_if_none(v: Option<f64>) -> f64 {
+    v.unwrap_or(f64::NAN)
+}
+
+/// The observer's picture of `scene` as `render` draws it: `(height, width, 3)` bytes, the PNG's
+/// pixels; with `raw`, also one ray per pixel centre as `render --raw` writes it: the colour code
+/// met (course mode) or the weight of each colour code (Fresnel mode).
+#[pyfunction]
+#[pyo3(signature = (scene, size, target, fov, mode, prune, backdrop, samples, raw))]
+#[allow(clippy::too_many_arguments)]
+fn render<'py>(
+    py: Python<'py>,
+    scene: &LoadedScene,
+    size: Option<(u32, u32)>,
+    target: Option<[f64; 3]>,
+    fov: Option<f64>,
+    mode: &str,
+    prune: f64,
+    backdrop: &str,
+    samples: u32,
+    raw: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut broken = Vec::new();
+    if !matches!(mode, "fresnel" | "course") {
+        broken.push(format!(
+            "mode '{}' is not allowed: it must be fresnel or course",
+            bentstraw_optics::scene::clip_text(mode, 40)
+        ));
+    }
+    if !matches!(backdrop, "checker" | "none") {
+        broken.push(format!(
+            "backdrop '{}' is not allowed: it must be checker or none",
+            bentstraw_optics::scene::clip_text(backdrop, 40)
+        ));
+    }
+    if !broken.is_empty() {
+        return Err(PyValueError::new_err(broken.join("\n")));
+    }
+    let loaded = &scene.loaded;
+    let spec = CameraSpec { target, fov, size };
+    let camera = scene_camera(loaded, &spec).map_err(python_error)?;
+    let fresnel = mode == "fresnel";
+    let shading =
+        checked_shading(fresnel, prune, backdrop == "checker", samples).map_err(python_error)?;
+    let world = &loaded.world;
+    let (image, codes, weights) = py.detach(|| {
+        let image = picture(world, camera, shading);
+        let (codes, weights) = match (raw, fresnel) {
+            (false, _) => (None, None),
+            (true, false) => (Some(course_picture_exact(world, &camera)), None),
+            (true, true) => (None, Some(fresnel_picture_exact(world, &camera, prune))),
+        };
+        (image, codes, weights)
+    });
+    let (w, h) = (image.width as usize, image.height as usize);
+    let out = PyDict::new(py);
+    out.set_item(
+        "pixels",
+        PyArray1::from_vec(py, image.pixels).reshape([h, w, 3])?,
+    )?;
+    if let Some(codes) = codes {
+        out.set_item("codes", PyArray1::from_vec(py, codes).reshape([h, w])?)?;
+    }
+    if let Some(weights) = weights {
+        // As many weights per pixel as the scene has colour codes (five for straws alone).
+        let k = world.color_codes();
+        let flat: Vec<f64> = weights
+            .iter()
+            .flat_map(|p| p[..k].iter().copied())
+            .collect();
+        out.set_item("weights", PyArray1::from_vec(py, flat).reshape([h, w, k])?)?;
+    }
+    out.set_item("fov_deg", 2.0 * camera.tan_half_fov.atan().to_degrees())?;
+    Ok(out)
+}
+
+/// Judges the points `xyz` (n × 3, m) of colour codes `color` (n) as `check --json` does a
+/// solution file, seen from the scene's observer: the report as JSON text.
+#[pyfunction]
+fn check(
+    py: Python<'_>,
+    scene: &LoadedScene,
+    xyz: PyReadonlyArray2<'_, f64>,
+    color: PyReadonlyArray1<'_, f64>,
+    tolerance: f64,
+    min_coverage: f64,
+    worst: usize,
+) -> PyResult<String> {
+    let options = CheckOptions {
+        tolerance,
+        min_coverage,
+        worst,
+    };
+    options.validate().map_err(python_error)?;
+    let loaded = &scene.loaded;
+    let xyz = xyz.as_array();
+    if xyz.ncols() != 3 {
+        return Err(PyValueError::new_err(format!(
+            "xyz has {} columns: it must be an (n, 3) array of points x, y, z in metres",
+            xyz.ncols()
+        )));
+    }
+    let points: Vec<[f64; 3]> = xyz.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect();
+    let colors: Vec<f64> = color.as_array().iter().copied().collect();
+    let solution = solution_of_points(&points, &colors, colour_names(loaded).len())
+        .map_err(PyValueError::new_err)?;
+    let started = std::time::Instant::now();
+    let report = py.detach(|| {
+        check_solution(
+            &loaded.world,
+            loaded.observer,
+            &solution.points,
+            tolerance,
+            min_coverage,
+        )
+    });
+    let seconds = started.elapsed().as_secs_f64();
+    let v = json_report("(arrays)", loaded, &solution, &report, &options, seconds);
+    Ok(v.to_string())
+}
+
+/// The light path of one ray from the scene's observer, along `direction` or toward the point
+/// `toward`, as the explorer shows a clicked ray: JSON text.
+#[pyfunction]
+#[pyo3(signature = (scene, direction, toward))]
+fn trace(
+    scene: &LoadedScene,
+    direction: Option<[f64; 3]>,
+    toward: Option<[f64; 3]>,
+) -> PyResult<String> {
+    let eye = scene.loaded.observer;
+    let u = match (direction, toward) {
+        (Some(d), None) => Vec3::from_array(d),
+        (None, Some(p)) => Vec3::from_array(p) - eye,
+        _ => {
+            return Err(PyValueError::new_err(
+                "give the ray's direction or a point toward which it goes (toward), not both",
+            ))
+        }
+    };
+    let what = if direction.is_some() {
+        "direction"
+    } else {
+        "toward: the point"
+    };
+    if !u.is_finite() || u.length() == 0.0 || !u.length().is_finite() {
+        let v = direction.or(toward).unwrap_or_default();
+        return Err(PyValueError::new_err(format!(
+            "{what} ({}, {}, {}) gives no direction: it must be finite and away from the eye",
+            number_text(v[0]),
+            number_text(v[1]),
+            number_text(v[2])
+        )));
+    }
+    // A direction already of unit length (to rounding), such as an image point's `u0`, is used
+    // as given, so that its ray is traced exactly as it was.
+    let u0 = if (u.length_squared() - 1.0).abs() <= 4.0 * f64::EPSILON {
+        u
+    } else {
+        u.normalize()
+    };
+    let v = bentstraw_explore::ray_json(&scene.loaded.world, eye, u0);
+    Ok(v.to_string())
+}
+
+/// The compiled part of the `bentstraw` package.
+#[pymodule]
+fn _engine(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<LoadedScene>()?;
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(read_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(check_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(gallery, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(light_paths, m)?)?;
+    m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_function(wrap_pyfunction!(trace, m)?)?;
+    m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
+    m.add("WATER_INDEX", bentstraw_optics::scene::WATER_INDEX)?;
+    m.add(
+        "DEFAULT_MAX_EVENTS",
+        bentstraw_optics::scene::DEFAULT_MAX_EVENTS,
+    )?;
+    m.add(
+        "DEFAULT_TOLERANCE",
+        bentstraw_optics::check::DEFAULT_TOLERANCE,
+    )?;
+    m.add(
+        "DEFAULT_MIN_COVERAGE",
+        bentstraw_optics::check::DEFAULT_MIN_COVERAGE,
+    )?;
+    m.add("COLOR_NAMES", COLOR_NAMES.to_vec())?;
+    m.add("COLOR_RGB", COLOR_RGB.to_vec())?;
+    Ok(())
+}

@@ -1,0 +1,337 @@
+"""The Python package against the command line: the same inputs give the same numbers, bit for
+bit (points, pictures, raw weights, verdicts), and broken rules the same messages.
+
+The command line is the program at $BENTSTRAW (default: the workspace's release build).
+"""
+
+import csv
+import json
+import math
+import os
+import struct
+import subprocess
+import threading
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import bentstraw
+
+ROOT = Path(__file__).resolve().parents[3]
+BENTSTRAW = os.environ.get("BENTSTRAW", str(ROOT / "target" / "release" / "bentstraw"))
+REF2 = dict(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+REF2_FLAGS = ["--observer", "0.1,0,0.1", "--straw", "0,0.02", "--water-height", "0.1"]
+
+
+def run(*args, ok=True):
+    """Runs the command line; its completed process."""
+    assert Path(BENTSTRAW).is_file(), f"the command line is needed at {BENTSTRAW}"
+    p = subprocess.run([BENTSTRAW, *map(str, args)], capture_output=True, text=True)
+    if ok:
+        assert p.returncode == 0, p.stderr
+    return p
+
+
+def read_points(path):
+    """A points CSV as (header, rows of strings)."""
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], rows[1:]
+
+
+def number(text):
+    """A CSV number: empty is not defined (nan)."""
+    return float(text) if text != "" else math.nan
+
+
+def same_bits(a, b):
+    """Equal to the bit, nan equal to nan."""
+    a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+    return a.shape == b.shape and np.array_equal(a.view(np.uint64), b.view(np.uint64))
+
+
+def simulated(tmp_path, flags, **kwargs):
+    """The command line's points for `flags` and the package's for `kwargs`."""
+    out = tmp_path / "points.csv"
+    run("simulate", *flags, "--output", out)
+    return read_points(out), bentstraw.simulate(**kwargs)
+
+
+def assert_same_points(header, rows, sim):
+    xyz = np.array([[number(r[0]), number(r[1]), number(r[2])] for r in rows])
+    assert same_bits(sim.xyz, xyz.reshape(-1, 3))
+    assert np.array_equal(sim.color, [int(r[3]) for r in rows])
+    for k, name in enumerate(header[4:], start=4):
+        values = [r[k] for r in rows]
+        got = getattr(sim, name)
+        if isinstance(got, list):
+            assert got == values, name
+        else:
+            assert same_bits(got, [number(v) for v in values]), name
+
+
+@pytest.mark.parametrize(
+    "flags, kwargs",
+    [
+        (REF2_FLAGS, REF2),
+        (
+            REF2_FLAGS + ["--n-water", "1.5", "--max-events", "4", "--points", "5000"],
+            dict(REF2, n_water=1.5, max_events=4, points=5000),
+        ),
+        (REF2_FLAGS + ["--image-model", "eye", "--points", "3000"], dict(REF2, image_model="eye", points=3000)),
+        (
+            REF2_FLAGS + ["--image-model", "stereo", "--points", "3000"],
+            dict(REF2, image_model="stereo", points=3000),
+        ),
+        (["--scene", "leaning-straw", "--points", "4000"], dict(scene="leaning-straw", points=4000)),
+        (
+            ["--scene", "reversing-arrow", "--observer", "0,-0.4,0.1", "--image-model", "eye", "--points", "2000"],
+            dict(scene="reversing-arrow", observer=(0, -0.4, 0.1), image_model="eye", points=2000),
+        ),
+    ],
+)
+def test_points_are_the_command_lines_bit_for_bit(tmp_path, flags, kwargs):
+    (header, rows), sim = simulated(tmp_path, flags, **kwargs)
+    assert len(rows) == len(sim) > 100
+    assert_same_points(header, rows, sim)
+
+
+def test_a_scene_file_by_path_from_text_and_by_name_gives_the_same_points(tmp_path):
+    text = (ROOT / "scenes" / "leaning-straw.toml").read_text()
+    mine = tmp_path / "mine.toml"
+    mine.write_text(text)
+    (header, rows), by_path = simulated(tmp_path, ["--scene", mine, "--points", "3000"], scene=mine, points=3000)
+    assert_same_points(header, rows, by_path)
+    for scene in [str(mine), bentstraw.Scene.load(mine), bentstraw.Scene.from_toml(text, name="mine.toml"),
+                  bentstraw.Scene.gallery("leaning-straw"), "leaning-straw"]:
+        assert_same_points(header, rows, bentstraw.simulate(scene, points=3000))
+
+
+def test_each_point_knows_its_light_path_and_the_ray_traced_alone_agrees():
+    sim = bentstraw.simulate(**REF2, points=2000)
+    assert set(sim.path) <= set(sim.path_keys) and len(sim.path) == len(sim)
+    # Reference 2 sees the straw through the wall directly and after a total reflection.
+    assert {"wall", "wall+1"} <= set(sim.path)
+    for k in [0, len(sim) // 2, len(sim) - 1]:
+        ray = bentstraw.trace(**REF2, direction=sim.direction[k])
+        assert ray["path_key"] == sim.path[k]
+        assert ray["path_length"] == sim.path_length[k]
+        assert ray["image_point"] == list(sim.image_xyz[k])
+        assert ray["color"] == sim.color[k]
+        assert len(ray["events"]) == sim.events[k]
+        # Snell's law at every refraction the ray reports.
+        for e in ray["events"]:
+            if e["event"] == "refraction":
+                a, b = math.radians(e["incidence_deg"]), math.radians(e["outgoing_deg"])
+                assert abs(e["n1"] * math.sin(a) - e["n2"] * math.sin(b)) < 1e-12
+
+
+def decode_png(data):
+    """The pixels of an 8-bit RGB PNG (non-interlaced), as an (h, w, 3) array."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    pos, idat, width = 8, b"", None
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos : pos + 8])
+        body = data[pos + 8 : pos + 8 + n]
+        if kind == b"IHDR":
+            width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
+            assert (depth, colour, interlace) == (8, 2, 0)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, stride = zlib.decompress(idat), 3 * width
+    out = np.zeros((height, stride), dtype=np.uint8)
+    prev = np.zeros(stride, dtype=np.int32)
+    for y in range(height):
+        f, line = raw[y * (stride + 1)], np.frombuffer(raw, np.uint8, stride, y * (stride + 1) + 1).astype(np.int32)
+        cur = np.zeros(stride, dtype=np.int32)
+        for x in range(stride):
+            a = cur[x - 3] if x >= 3 else 0
+            b, c = prev[x], (prev[x - 3] if x >= 3 else 0)
+            if f == 0:
+                p = 0
+            elif f == 1:
+                p = a
+            elif f == 2:
+                p = b
+            elif f == 3:
+                p = (a + b) // 2
+            else:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                p = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+            cur[x] = (line[x] + p) & 0xFF
+        out[y], prev = cur, cur
+    return out.reshape(height, width, 3)
+
+
+@pytest.mark.parametrize(
+    "flags, kwargs",
+    [
+        (["--observer", "0.3,0,0.25", "--straw", "0,0.03", "--water-height", "0.15"],
+         dict(observer=(0.3, 0, 0.25), straw=(0, 0.03), water_height=0.15)),
+        (["--scene", "oil-on-water", "--mode", "course", "--backdrop", "none", "--samples", "1", "--fov", "30"],
+         dict(scene="oil-on-water", mode="course", backdrop="none", samples=1, fov=30)),
+    ],
+)
+def test_pictures_are_the_pngs_pixel_for_pixel_and_raw_weights_the_csvs(tmp_path, flags, kwargs):
+    png, raw = tmp_path / "view.png", tmp_path / "raw.csv"
+    run("render", *flags, "--size", "96x72", "--output", png, "--raw", raw)
+    picture, weights = bentstraw.render(**kwargs, size=(96, 72), weights=True)
+    assert picture.shape == (72, 96, 3) and picture.dtype == np.uint8
+    assert np.array_equal(picture, decode_png(png.read_bytes()))
+    assert np.array_equal(bentstraw.render(**kwargs, size=(96, 72)), picture)
+    with open(raw, newline="") as f:
+        rows = list(csv.reader(f))[1:]
+    values = np.array([[float(v) for v in r[2:]] for r in rows])
+    if weights.ndim == 2:  # course: a colour code per pixel
+        assert np.array_equal(weights.reshape(-1), values[:, 0])
+    else:
+        assert same_bits(weights.reshape(len(rows), -1), values)
+
+
+def test_check_gives_the_command_lines_verdicts(tmp_path):
+    sim = bentstraw.simulate(**REF2, points=3000)
+    faulty = sim.xyz.copy()
+    faulty[::7, 2] += 0.004  # a student who got some lengths wrong
+    colors = sim.color.copy()
+    colors[::11] = 5 - colors[::11] + 1  # and some colours
+    for xyz, color in [(sim.xyz, sim.color), (faulty, colors), (sim.xyz[::40], sim.color[::40])]:
+        path = tmp_path / "solution.csv"
+        np.savetxt(path, np.column_stack([xyz, color]), delimiter=",", fmt=["%.17g"] * 3 + ["%d"])
+        cli = json.loads(run("check", path, *REF2_FLAGS, "--json", ok=False).stdout)
+        mine = bentstraw.check(xyz, color, **REF2)
+        for key in ["seconds", "file"]:
+            cli.pop(key), mine.pop(key)
+        assert mine == cli
+    assert bentstraw.check(sim.xyz, sim.color, **REF2)["verdict"] == "pass"
+    assert bentstraw.check(faulty, colors, **REF2)["verdict"] == "fail"
+
+
+@pytest.mark.parametrize(
+    "call, words",
+    [
+        (lambda: bentstraw.simulate(**dict(REF2, water_height=-1)), "water height -1 m"),
+        (lambda: bentstraw.simulate(observer=(0, 0, 0.1), straw=(0, 0.02), water_height=0.1), "observer"),
+        (lambda: bentstraw.simulate(**REF2, points=0), "--points 0"),
+        (lambda: bentstraw.simulate(**REF2, points=3_000_000, image_model="eye"), "--points 3000000"),
+        (lambda: bentstraw.simulate(**REF2, image_model="retina"), "image_model 'retina'"),
+        (lambda: bentstraw.simulate(**dict(REF2, max_events=0)), "0"),
+        (lambda: bentstraw.simulate(observer=(0.1, 0, 0.1)), "--water-height"),
+        (lambda: bentstraw.render(**REF2, mode="photon"), "mode 'photon'"),
+        (lambda: bentstraw.render(**REF2, samples=17, prune=2), "--prune 2"),
+        (lambda: bentstraw.render(**REF2, size=(0, 10)), "0"),
+        (lambda: bentstraw.check([[0, 0, 0]], [9], **REF2), "point 0: colour 9"),
+        (lambda: bentstraw.check([[0, 0, math.nan]], [1], **REF2), "point 0: z = NaN"),
+        (lambda: bentstraw.check([[0, 0, 0]], [1, 2], **REF2), "1 points but 2 colours"),
+        (lambda: bentstraw.check([[0, 0]], [1], **REF2), "(N, 3)"),
+        (lambda: bentstraw.check([[0, 0, 0]], [1], **REF2, tolerance=-1, min_coverage=2), "--tolerance -1"),
+        (lambda: bentstraw.trace(**REF2, direction=(0, 0, 0)), "direction (0, 0, 0)"),
+        (lambda: bentstraw.trace(**REF2, direction=(1, 0, 0), toward=(0, 0, 0)), "not both"),
+        (lambda: bentstraw.Scene.from_toml('[container]\nshape = "glass"\nradius = -1\nheight = 0.2\n'), "radius"),
+        (lambda: bentstraw.render(**REF2, size=(-3, 10)), "size (-3, 10)"),
+        (lambda: bentstraw.Scene.gallery("teapot"), "teapot"),
+    ],
+)
+def test_a_broken_rule_raises_value_error_naming_the_value(call, words):
+    with pytest.raises(ValueError) as e:
+        call()
+    assert words in str(e.value)
+
+
+def test_the_command_lines_messages_and_every_broken_rule_at_once(tmp_path):
+    p = run("simulate", *REF2_FLAGS[:4], "--water-height", "-1", "--output", tmp_path / "x.csv", ok=False)
+    with pytest.raises(ValueError) as e:
+        bentstraw.simulate(**dict(REF2, water_height=-1))
+    assert str(e.value) in p.stderr
+    with pytest.raises(ValueError) as e:
+        bentstraw.check([[0, 0, 0]], [1], **REF2, tolerance=-1, min_coverage=2)
+    assert "--tolerance -1" in str(e.value) and "--min-coverage 2" in str(e.value)
+    with pytest.raises(FileNotFoundError):
+        bentstraw.Scene.load(tmp_path / "absent.toml")
+    with pytest.raises(FileNotFoundError, match="no-such-scene"):
+        bentstraw.simulate("no-such-scene")
+
+
+def test_centimetres_get_a_warning():
+    big = '[container]\nshape = "glass"\nradius = 4\nheight = 20\n\n[[straw]]\nx = 0\ny = 0\n\n[observer]\nposition = [30, 0, 10]\n'
+    with pytest.warns(UserWarning, match="big.toml: container.radius = 4: lengths are in metres"):
+        bentstraw.simulate(bentstraw.Scene.from_toml(big, name="big.toml"), points=100)
+
+
+def test_the_engine_lets_other_python_threads_run_while_it_works():
+    """The lock is released during the work: a Python thread keeps counting meanwhile, and two
+    simulations in two threads give each the points it gives alone."""
+    alone = bentstraw.simulate(**REF2, points=200_000)
+    counted, done = [0], threading.Event()
+
+    def count():
+        while not done.is_set():
+            counted[0] += 1
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    before = counted[0]
+    bentstraw.simulate(**REF2, points=200_000)
+    during = counted[0] - before
+    done.set()
+    counter.join()
+    assert during > 1000, f"the counting thread ran {during} times during the simulation"
+
+    results = [None, None]
+
+    def simulate(k):
+        results[k] = bentstraw.simulate(**REF2, points=200_000)
+
+    threads = [threading.Thread(target=simulate, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for r in results:
+        assert same_bits(r.xyz, alone.xyz) and np.array_equal(r.color, alone.color)
+
+
+def test_arrays_are_the_engines_buffers_not_copies():
+    sim = bentstraw.simulate(**REF2, points=1000)
+    for a in [sim.xyz, sim.color, sim.path_length, sim.direction]:
+        # Each array's memory is held by the engine's buffer it took over, not by another array.
+        base = a
+        while isinstance(base, np.ndarray) and base.base is not None:
+            base = base.base
+        assert not isinstance(base, np.ndarray), type(base)
+    assert sim.xyz.flags["C_CONTIGUOUS"] and sim.xyz.dtype == np.float64 and sim.color.dtype == np.int64
+
+
+def test_the_gallery_and_its_scenes():
+    names = bentstraw.gallery()
+    assert len(names) >= 16 and "leaning-straw" in names and "reversing-arrow" in names
+    for name in names:
+        assert bentstraw.Scene.gallery(name).name == name
+
+
+def test_the_docstrings_examples_run_as_written(monkeypatch):
+    import doctest
+
+    import matplotlib  # noqa: F401  (the examples draw: the tests need it, as the notebook does)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    monkeypatch.chdir(ROOT)
+    result = doctest.testmod(bentstraw, extraglobs={"bentstraw": bentstraw}, optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0 and result.attempted >= 20, result
+
+
+def test_the_notebook_runs_top_to_bottom():
+    import nbclient
+    import nbformat
+
+    path = ROOT / "crates" / "bentstraw-py" / "examples" / "bentstraw.ipynb"
+    notebook = nbformat.read(path, as_version=4)
+    client = nbclient.NotebookClient(
+        notebook, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}
+    )
+    client.execute()  # raises on the first cell that fails
+    text = "".join(
+        o.get("text", "") for c in notebook.cells if c.cell_type == "code" for o in c.get("outputs", [])
+    )
+    assert "fail -" in text and "the reference's own points: pass" in text
