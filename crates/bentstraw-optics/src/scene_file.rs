@@ -27,9 +27,22 @@ pub const DEFAULT_COIN_THICKNESS: f64 = 0.0019;
 /// The largest size (m) of a container, straw or coin that does not look like centimetres
 /// written as metres ([`SceneDescription::hints`]): bigger than any tabletop demonstration.
 pub const LARGEST_LIKELY_SIZE: f64 = 1.0;
-/// Most entries of one kind (liquids, straws, coins or cards) a file may list: the overlap checks
-/// compare every pair, so this bounds the time a file can take to check.
-pub const MAX_ENTRIES: usize = 1000;
+/// Most liquid layers a file may list: every ray is tested against each layer's faces, so this
+/// bounds the time a picture takes.
+pub const MAX_LIQUIDS: usize = 32;
+/// Most objects (straws, coins and cards together) a file may list: every ray is tested against
+/// each, and the overlap checks compare pairs, so this bounds the time a file takes to check and
+/// to trace (seconds, not hours).
+pub const MAX_OBJECTS: usize = 100;
+/// Smallest size (m) of anything in a scene, a micrometre: below it, squared sizes lose their
+/// precision and objects vanish from the rays that should meet them.
+pub const MIN_SIZE: f64 = 1e-6;
+/// Largest length or coordinate (m) in a scene, a thousand kilometres: beyond it, squared
+/// distances lose the precision of the sizes beside them.
+pub const MAX_LENGTH: f64 = 1e6;
+/// Smallest tilt (degrees) of a leaning straw: a straw tilted less is upright to within a
+/// nanometre over its length, and is written `tilt = 0`.
+pub const MIN_TILT_DEG: f64 = 1e-6;
 /// Points around a tilted straw's circumference where its extent is measured: the extent found
 /// is short of the true one by at most `radius·(1 − cos(π/N))`, about 1.5 nm for a 5 mm straw.
 const RIM_SAMPLES: usize = 4096;
@@ -470,6 +483,20 @@ pub struct Card {
 }
 
 impl Card {
+    /// Whether the point `p` lies on the card (within a nanometre of its plane, inside its
+    /// edges): an eye there would see from inside the card.
+    fn touches(&self, p: Vec3) -> bool {
+        let f = self.facing_deg.to_radians();
+        let (front, right) = (
+            Vec3::new(libm::cos(f), libm::sin(f), 0.0),
+            Vec3::new(-libm::sin(f), libm::cos(f), 0.0),
+        );
+        let d = p - self.center;
+        d.dot(front).abs() <= 1e-9
+            && d.dot(right).abs() <= self.width / 2.0
+            && d.z.abs() <= self.height / 2.0
+    }
+
     /// The horizontal ends of its bottom edge: left and right as seen from its front.
     fn ends(&self) -> ((f64, f64), (f64, f64)) {
         let f = self.facing_deg.to_radians();
@@ -521,18 +548,23 @@ impl SceneDescription {
     pub fn validate(&self) -> Result<(), SceneFileError> {
         self.validate_container()?;
         let mut broken = Broken::default();
-        for (kind, count) in [
-            ("liquid", self.liquids.len()),
-            ("straw", self.straws.len()),
-            ("coin", self.coins.len()),
-            ("card", self.cards.len()),
-        ] {
-            if count > MAX_ENTRIES {
-                broken.check(Err(refuse_key(
-                    kind,
-                    &format!("the file lists {count} of them: at most {MAX_ENTRIES} are allowed"),
-                )));
-            }
+        let objects = self.straws.len() + self.coins.len() + self.cards.len();
+        if self.liquids.len() > MAX_LIQUIDS {
+            broken.check(Err(refuse_key(
+                "liquid",
+                &format!(
+                    "the file lists {} layers: at most {MAX_LIQUIDS} are allowed, as every ray is tested against each",
+                    self.liquids.len()
+                ),
+            )));
+        }
+        if objects > MAX_OBJECTS {
+            broken.check(Err(refuse_key(
+                "straw, coin, card",
+                &format!(
+                    "the file lists {objects} objects: at most {MAX_OBJECTS} straws, coins and cards together are allowed, as every ray is tested against each"
+                ),
+            )));
         }
         // Too many entries: checking them one by one is what the bound is there to prevent.
         if !broken.0.is_empty() {
@@ -626,7 +658,7 @@ impl SceneDescription {
                     "a refractive index must be >= 1",
                 ));
             }
-            finite(&key("top"), l.top)?;
+            length(&key("top"), l.top)?;
             if l.top <= below {
                 let rule = if i == 0 {
                     format!(
@@ -660,8 +692,8 @@ impl SceneDescription {
         let floor = self.container.floor();
         {
             let key = |k: &str| format!("straw[{}].{k}", i + 1);
-            finite(&key("x"), s.x)?;
-            finite(&key("y"), s.y)?;
+            length(&key("x"), s.x)?;
+            length(&key("y"), s.y)?;
             finite(&key("tilt"), s.tilt_deg)?;
             finite(&key("azimuth"), s.azimuth_deg)?;
             positive(&key("radius"), s.radius)?;
@@ -671,6 +703,15 @@ impl SceneDescription {
                     &key("tilt"),
                     s.tilt_deg,
                     "the tilt from the vertical must satisfy 0 <= tilt < 90 (degrees)",
+                ));
+            }
+            if s.tilt_deg > 0.0 && s.tilt_deg < MIN_TILT_DEG {
+                return Err(refuse(
+                    &key("tilt"),
+                    s.tilt_deg,
+                    &format!(
+                        "a tilt below {MIN_TILT_DEG}° leans the straw by less than a nanometre: write tilt = 0 for an upright straw"
+                    ),
                 ));
             }
             // Upright, it stands on its whole cap: the cap's centre must be on the floor (its
@@ -718,8 +759,8 @@ impl SceneDescription {
         let floor = self.container.floor();
         {
             let key = |k: &str| format!("coin[{}].{k}", i + 1);
-            finite(&key("x"), c.x)?;
-            finite(&key("y"), c.y)?;
+            length(&key("x"), c.x)?;
+            length(&key("y"), c.y)?;
             positive(&key("radius"), c.radius)?;
             positive(&key("thickness"), c.thickness)?;
             if !self.container.holds_disk(c.x, c.y, c.radius) {
@@ -749,7 +790,7 @@ impl SceneDescription {
         {
             let key = |k: &str| format!("card[{}].{k}", i + 1);
             for v in c.center.to_array() {
-                finite(&key("center"), v)?;
+                length(&key("center"), v)?;
             }
             finite(&key("facing"), c.facing_deg)?;
             positive(&key("width"), c.width)?;
@@ -814,6 +855,15 @@ impl SceneDescription {
                 if s.tilt_deg == 0.0 {
                     continue; // upright, its shadow is its footprint, checked above
                 }
+                // Far apart, they cannot meet: the straw's part below the coin's top lies within
+                // `reach` of the point below its bottom cap's centre. Only near pairs pay for
+                // the exact test, so a scene of many objects is checked in near-linear time.
+                let (sin, cos) = libm::sincos(s.tilt_deg.to_radians());
+                let reach = s.radius + sin * s.length.min((c.thickness + s.radius) / cos);
+                let foot = s.bottom_centre(self.container.floor());
+                if libm::hypot(c.x - foot.x, c.y - foot.y) > (reach + c.radius) * (1.0 + 1e-9) {
+                    continue;
+                }
                 let low: Vec<(f64, f64)> = s
                     .outline_below(self.container.floor(), self.container.floor() + c.thickness)
                     .collect();
@@ -871,7 +921,7 @@ impl SceneDescription {
     pub fn check_observer(&self, o: &Observer) -> Result<(), SceneFileError> {
         for (name, p) in [("position", o.position), ("target", o.target)] {
             for v in p.to_array() {
-                finite(&format!("observer.{name}"), v)?;
+                length(&format!("observer.{name}"), v)?;
             }
         }
         let p = o.position;
@@ -892,6 +942,12 @@ impl SceneDescription {
             return Err(refuse_key(
                 "observer.position",
                 &format!("{at} is inside straw[{}]", i + 1),
+            ));
+        }
+        if let Some(i) = self.cards.iter().position(|c| c.touches(p)) {
+            return Err(refuse_key(
+                "observer.position",
+                &format!("{at} is on card[{}]: the eye must be off it", i + 1),
             ));
         }
         if o.target == p {
@@ -1059,23 +1115,49 @@ fn finite(key: &str, value: f64) -> Result<(), SceneFileError> {
     }
 }
 
-/// Checks that a size is finite and > 0.
+/// Checks that a length or coordinate is finite and at most [`MAX_LENGTH`] in size.
+fn length(key: &str, value: f64) -> Result<(), SceneFileError> {
+    finite(key, value)?;
+    if value.abs() <= MAX_LENGTH {
+        Ok(())
+    } else {
+        Err(refuse(
+            key,
+            value,
+            &format!("a length or position must be at most {MAX_LENGTH} in size (metres)"),
+        ))
+    }
+}
+
+/// Checks that a size is finite, at least [`MIN_SIZE`] and at most [`MAX_LENGTH`].
 fn positive(key: &str, value: f64) -> Result<(), SceneFileError> {
     finite(key, value)?;
-    if value > 0.0 {
+    if (MIN_SIZE..=MAX_LENGTH).contains(&value) {
         Ok(())
+    } else if value > 0.0 {
+        Err(refuse(
+            key,
+            value,
+            &format!("a size must be between {MIN_SIZE} and {MAX_LENGTH} (metres)"),
+        ))
     } else {
         Err(refuse(key, value, "a size must be > 0 (metres)"))
     }
 }
 
-/// Checks that a thickness is finite and >= 0.
+/// Checks that a thickness is finite and 0, or a size between [`MIN_SIZE`] and [`MAX_LENGTH`].
 fn at_least_zero(key: &str, value: f64) -> Result<(), SceneFileError> {
     finite(key, value)?;
-    if value >= 0.0 {
+    if value < 0.0 {
+        Err(refuse(key, value, "a thickness must be >= 0 (metres)"))
+    } else if value == 0.0 || (MIN_SIZE..=MAX_LENGTH).contains(&value) {
         Ok(())
     } else {
-        Err(refuse(key, value, "a thickness must be >= 0 (metres)"))
+        Err(refuse(
+            key,
+            value,
+            &format!("a thickness must be 0, or between {MIN_SIZE} and {MAX_LENGTH} (metres)"),
+        ))
     }
 }
 

@@ -514,6 +514,27 @@ fn parent_dir(path: &Path) -> &Path {
     }
 }
 
+/// Why the thing at `meta` cannot be read as an input file, if it cannot: a folder, or a device,
+/// a pipe or a socket (which may never end, or never start: `/dev/zero`, a FIFO no one writes).
+pub fn not_a_file(meta: &fs::Metadata) -> Option<&'static str> {
+    if meta.is_dir() {
+        Some("it is a folder")
+    } else if !meta.is_file() {
+        Some("it is not a regular file (a device, a pipe or a socket): save its content to a file")
+    } else {
+        None
+    }
+}
+
+/// The bytes of the file at `path` if it holds at most `limit` of them, else `None`: read no
+/// further than one byte past the limit, whatever its size said when it was opened (it may grow).
+pub fn read_at_most(path: &Path, limit: u64) -> io::Result<Option<Vec<u8>>> {
+    use std::io::Read as _;
+    let mut bytes = Vec::new();
+    File::open(path)?.take(limit + 1).read_to_end(&mut bytes)?;
+    Ok((bytes.len() as u64 <= limit).then_some(bytes))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

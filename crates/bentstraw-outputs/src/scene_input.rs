@@ -2,7 +2,6 @@
 //! the result turned into the scene to trace: the assignment's glass when the file is of its kind
 //! (traced by the fast tracers, exactly as the same flags), else a world of any shapes and media.
 
-use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
 use bentstraw_optics::scene::{Scene, SceneError, MAX_EVENTS_LIMIT, WATER_INDEX};
@@ -11,7 +10,7 @@ use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 use crate::error::{fail, Error, Result};
-use crate::files::shown;
+use crate::files::{not_a_file, read_at_most, shown};
 use crate::gallery::GALLERY;
 
 /// Largest scene file read (1 MB): a scene is a few dozen lines.
@@ -261,8 +260,8 @@ pub fn read_scene_text(path: &Path) -> Result<String> {
         source,
     };
     let meta = std::fs::metadata(path).map_err(cannot)?;
-    if meta.is_dir() {
-        return fail(format!("cannot read the scene file {name}: it is a folder"));
+    if let Some(why) = not_a_file(&meta) {
+        return fail(format!("cannot read the scene file {name}: {why}"));
     }
     let too_large = |bytes: u64| {
         Error::Refused(format!(
@@ -272,14 +271,10 @@ pub fn read_scene_text(path: &Path) -> Result<String> {
     if meta.len() > MAX_SCENE_FILE_BYTES {
         return Err(too_large(meta.len()));
     }
-    // Read at most one byte past the limit, in case it grew (or is a device that never ends).
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_SCENE_FILE_BYTES + 1).read_to_end(&mut bytes))
-        .map_err(cannot)?;
-    if bytes.len() as u64 > MAX_SCENE_FILE_BYTES {
-        return Err(too_large(bytes.len() as u64));
-    }
+    // At most one byte past the limit, in case it grew since.
+    let bytes = read_at_most(path, MAX_SCENE_FILE_BYTES)
+        .map_err(cannot)?
+        .ok_or_else(|| too_large(MAX_SCENE_FILE_BYTES + 1))?;
     String::from_utf8(bytes).map_err(|e| {
         Error::Refused(format!(
             "the scene file {name} is not UTF-8 text: byte {} is not valid UTF-8",

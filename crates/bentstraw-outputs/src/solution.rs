@@ -13,6 +13,7 @@ use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
 use crate::error::{Error, Result};
+use crate::files::{not_a_file, read_at_most};
 use crate::scene_input::Loaded;
 
 /// How strictly a solution is judged, and how much of it the report lists.
@@ -49,10 +50,11 @@ impl CheckOptions {
     }
 }
 
-/// Most points a solution may have (more is not a reasonable image: refuse rather than run for long).
-pub const MAX_POINTS: usize = 10_000_000;
-/// Largest file read (bytes): ten million points of generous width.
-pub const MAX_FILE_BYTES: u64 = 2 << 30;
+/// Most points a solution may have: more is not a reasonable image (a simulation makes 20 000 by
+/// default); judging one costs about 200 bytes of memory, so at most ~400 MB.
+pub const MAX_POINTS: usize = 2_000_000;
+/// Largest solution file read (bytes, 128 MiB): two million points of generous width.
+pub const MAX_FILE_BYTES: u64 = 128 << 20;
 /// How many characters of a user's text an error quotes.
 const QUOTE: usize = 40;
 
@@ -101,22 +103,23 @@ pub fn colour_names(checked: &Loaded) -> &'static [&'static str] {
 /// scene whose colour codes go from 1 to `codes`.
 pub fn read_solution_of(path: &Path, codes: usize) -> Result<Solution> {
     let name = clip_text(&path.display().to_string(), 80);
-    let meta =
-        std::fs::metadata(path).map_err(|e| Error::Refused(format!("cannot read {name}: {e}")))?;
-    if meta.is_dir() {
-        return Err(Error::Refused(format!(
-            "cannot read {name}: it is a folder"
-        )));
+    let cannot = |e: std::io::Error| Error::Refused(format!("cannot read {name}: {e}"));
+    let meta = std::fs::metadata(path).map_err(cannot)?;
+    if let Some(why) = not_a_file(&meta) {
+        return Err(Error::Refused(format!("cannot read {name}: {why}")));
     }
+    let too_large = |bytes: u64| {
+        Error::Refused(format!(
+            "{name} is {bytes} bytes or more: larger than any reasonable image (at most \
+             {MAX_FILE_BYTES} bytes, {MAX_POINTS} points), not read"
+        ))
+    };
     if meta.len() > MAX_FILE_BYTES {
-        return Err(Error::Refused(format!(
-            "{name} is {} bytes: larger than any reasonable image ({} points at most), not read",
-            meta.len(),
-            MAX_POINTS
-        )));
+        return Err(too_large(meta.len()));
     }
-    let bytes =
-        std::fs::read(path).map_err(|e| Error::Refused(format!("cannot read {name}: {e}")))?;
+    let bytes = read_at_most(path, MAX_FILE_BYTES)
+        .map_err(cannot)?
+        .ok_or_else(|| too_large(MAX_FILE_BYTES + 1))?;
     parse_solution_of(&bytes, codes).map_err(|e| Error::Refused(format!("{name}: {e}")))
 }
 

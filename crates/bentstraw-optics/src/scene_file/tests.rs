@@ -637,11 +637,79 @@ fn the_observer_must_be_outside_the_container_and_the_straws() {
 }
 
 #[test]
-fn too_many_entries_are_refused() {
-    let coins: String = (0..=MAX_ENTRIES)
+fn too_many_layers_or_objects_are_refused_at_once() {
+    let coins: String = (0..=MAX_OBJECTS)
         .map(|_| "[[coin]]\nx = 0\ny = 0\n")
         .collect();
-    refused(&glass_with(&coins), "coin", "1001");
+    refused(&glass_with(&coins), "straw, coin, card", "101 objects");
+    let layers: String = (1..=MAX_LIQUIDS + 1)
+        .map(|k| {
+            format!(
+                "[[liquid]]\nname = \"l{k}\"\nindex = 1.3\ntop = {}\n",
+                0.001 * k as f64
+            )
+        })
+        .collect();
+    let text = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n".to_string() + &layers;
+    refused(&text, "liquid", "33 layers");
+}
+
+#[test]
+fn many_leaning_straws_beside_coins_pass_and_a_coin_under_one_does_not() {
+    // Well apart: no pair overlaps, so every pair is looked at (the far ones only by their
+    // distance, which must never skip a pair that meets).
+    let mut text =
+        String::from("[container]\nshape = \"tank\"\nhalf_x = 2\nhalf_y = 2\nheight = 0.3\n");
+    for k in 0..50 {
+        let y = -1.8 + 0.072 * k as f64;
+        text += &format!(
+            "[[straw]]\nx = 0\ny = {y}\ntilt = 80\nlength = 0.1\n[[coin]]\nx = 1\ny = {y}\n"
+        );
+    }
+    let scene = SceneDescription::from_toml(&text).unwrap();
+    assert_eq!((scene.straws.len(), scene.coins.len()), (50, 50));
+    // A coin 3 mm under the first straw's low end (see the test of a straw leaning low over a
+    // coin): refused.
+    let t = f64::to_radians(80.0);
+    let under_x = 0.005 * t.cos() + 0.0019 * t.tan() - 3e-3 + 0.0115;
+    let under = text.replacen(
+        "[[coin]]\nx = 1\ny = -1.8\n",
+        &format!("[[coin]]\nx = {under_x}\ny = -1.8\n"),
+        1,
+    );
+    refused(&under, "coin[1]", "straw[1] leans on it");
+}
+
+#[test]
+fn numbers_that_would_lose_the_objects_are_refused() {
+    refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\ntilt = 1e-160\n"),
+        "straw[1].tilt",
+        "write tilt = 0",
+    );
+    refused(
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 1e155\n",
+        "container.height",
+        "between",
+    );
+    refused(
+        &glass_with("[[straw]]\nx = 0\ny = 0\nradius = 1e-200\n"),
+        "straw[1].radius",
+        "between",
+    );
+    refused(
+        &glass_with("[[straw]]\nx = 2e6\ny = 0\n"),
+        "straw[1].x",
+        "at most",
+    );
+    // An eye on a card sees from inside it.
+    refused(
+        &glass_with(
+            "[[card]]\ncenter = [0, -0.1, 0.1]\nfacing = 90\nwidth = 0.1\nheight = 0.1\n\n[observer]\nposition = [0.01, -0.1, 0.12]\ntarget = [0, 0, 0.1]\n",
+        ),
+        "observer.position",
+        "card[1]",
+    );
 }
 
 #[test]
