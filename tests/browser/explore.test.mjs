@@ -64,6 +64,57 @@ test("the 3D view draws the scene's axes, each in its own colour", async () => {
   await context.close();
 });
 
+test("the map from above runs x to the right and y up, as the report's top views", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  // Where the eye's black dot is on the map from above, against the map's centre (the glass's axis).
+  const eyeOffset = () => page.evaluate(() => {
+    const c = document.getElementById("map-top");
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let sx = 0, sy = 0, n = 0;
+    for (let y = 20; y < c.height; y++) for (let x = 0; x < c.width; x++) {
+      const i = 4 * (y * c.width + x);
+      if (d[i + 3] > 250 && d[i] < 20 && d[i + 1] < 20 && d[i + 2] < 20) { sx += x; sy += y; n++; }
+    }
+    return { dx: sx / n - c.width / 2, dy: sy / n - c.height / 2, n };
+  });
+  for (const [observer, sign] of [["0.1,0,0.1", [1, 0]], ["0,0.1,0.1", [0, -1]], ["-0.1,0,0.1", [-1, 0]]]) {
+    await page.goto(`${server.url}#observer=${observer}&straw=0.02,0.01&water-height=0.15`);
+    await page.reload(); // a new address, not only a new fragment
+    await waitReady(page);
+    const { dx, dy, n } = await eyeOffset();
+    assert.ok(n > 20, `the eye's dot: ${n} pixels`);
+    // +x to the right, +y up (the canvas's y grows downwards).
+    for (const [got, want] of [[dx, sign[0]], [dy, sign[1]]]) {
+      if (want === 0) assert.ok(Math.abs(got) < 4, `${observer}: ${dx}, ${dy}`);
+      else assert.ok(Math.sign(got) === want && Math.abs(got) > 20, `${observer}: ${dx}, ${dy}`);
+    }
+  }
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
+test("a kind of light path has the same colour in every view, whatever its share", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  const legend = () => page.evaluate(() => [...document.querySelectorAll("#legend li")].map((li) => [
+    li.children[1].textContent, getComputedStyle(li.children[0]).backgroundColor]));
+  const seen = new Map();
+  // Reference 2 (mostly through the wall) and an eye above the water (mostly through the surface).
+  for (const observer of ["0.1,0,0.1", "0.05,0,0.3", "0.3,0,0.05"]) {
+    await page.goto(`${server.url}#observer=${observer}&straw=0.02,0.01&water-height=0.15&color=path`);
+    await page.reload();
+    await waitReady(page);
+    for (const [words, colour] of await legend()) {
+      if (seen.has(words)) assert.equal(colour, seen.get(words), `${words} from ${observer}`);
+      seen.set(words, colour);
+    }
+  }
+  assert.equal(seen.get("through the side wall"), "rgb(255, 127, 14)");
+  assert.ok(seen.size >= 3, [...seen.keys()].join("; "));
+  assert.equal(new Set(seen.values()).size, seen.size, "one colour per kind");
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("dragging in the picture moves the observer and changes the picture", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);
@@ -206,6 +257,44 @@ test("clicking a point of the cloud shows its path with simulate's numbers", asy
   await page.waitForFunction(() => (document.body.dataset.picked || "").startsWith("point:") && document.body.dataset.picked !== "point:1234");
   assert.equal(await page.evaluate(() => window.bentstraw.path.outcome), "straw");
   await page.screenshot({ path: shot("explorer.png") });
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
+test("a clicked ray is drawn on the picture and on both maps, each event marked", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15");
+  await waitReady(page);
+  // Pixels of the events' marks (a refraction's #1f77b4, a total reflection's #d62728) on each
+  // canvas, before and after the click.
+  const marks = () => page.evaluate(() => Object.fromEntries(["picture", "map-side", "map-top"].map((id) => {
+    const c = document.getElementById(id);
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    const near = (i, [r, g, b]) => Math.abs(d[i] - r) + Math.abs(d[i + 1] - g) + Math.abs(d[i + 2] - b) < 10;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (near(i, [31, 119, 180]) || near(i, [214, 39, 40])) n++;
+    return [id, n];
+  })));
+  const before = await marks();
+  // A point seen through the wall after a total reflection: three events at least.
+  const k = await page.evaluate(() => {
+    const f = window.bentstraw.frame;
+    for (let i = 0; i < f.color.length; i++) if (/total/.test(f.header.paths[f.kind[i]].words)) return i;
+    return 0;
+  });
+  await page.evaluate((k) => window.bentstraw.pickPoint(k), k);
+  await page.waitForFunction((k) => document.body.dataset.picked === "point:" + k, k);
+  const p = await page.evaluate(() => window.bentstraw.path);
+  assert.ok(p.events.some((e) => e.event === "total reflection"), JSON.stringify(p.events));
+  const after = await marks();
+  for (const id of ["picture", "map-side", "map-top"]) assert.ok(after[id] >= before[id] + 10, `${id}: ${before[id]} → ${after[id]}`);
+  // Each event gives both angles: of incidence and of the ray leaving (Snell's law between them).
+  for (const e of p.events.filter((e) => e.event === "refraction")) {
+    const [a, b] = [e.incidence_deg, e.outgoing_deg].map((x) => x * Math.PI / 180);
+    assert.ok(Math.abs(e.n1 * Math.sin(a) - e.n2 * Math.sin(b)) < 1e-12, JSON.stringify(e));
+  }
+  assert.match(await page.textContent("#readout"), /incidence [0-9.]+° → [0-9.]+°/);
+  await page.screenshot({ path: path.join(tmpdir(), (ON_SITE ? "bentstraw-site-" : "bentstraw-") + "clicked-ray.png") });
   assert.deepEqual(problems, []);
   await context.close();
 });

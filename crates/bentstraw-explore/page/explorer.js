@@ -8,8 +8,6 @@
 const GLASS_R = 0.04, GLASS_H = 0.20, STRAW_R = 0.005, STRAW_H = 0.25;
 // Colour codes 1..5 a straw's sections; in the gallery's scenes also 6 a coin, 7 a card, 8 its arrow.
 const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff", "#c79938", "#edebe0", "#1f1f24"];
-// Colours of the kinds of light path, in the server's order of kinds (direct, top, wall, bottom…).
-const PATH_COLORS = ["#222222", "#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b", "#e377c2", "#17becf", "#bcbd22"];
 // Quick frames (while dragging) have this many times fewer pixels along each side, and this many
 // times fewer image points (the full frame, when the input stops, has them all).
 const QUICK = 4;
@@ -459,6 +457,27 @@ function drawPicture() {
   pictureCanvas.width = width; pictureCanvas.height = height;
   const ctx = pictureCanvas.getContext("2d");
   ctx.putImageData(new ImageData(frame.rgba, width, height), 0, 0);
+  // The clicked ray where the eye sees it: its first stretch is the eye's line of sight (a point
+  // here), the rest bends inside the liquid. Only over the picture of the same eye.
+  const c = frame.header.camera;
+  if (path && c && dot(sub(path.observer, c.eye), sub(path.observer, c.eye)) < 1e-18) {
+    const scaleUp = width / Math.max(1, pictureCanvas.getBoundingClientRect().width);
+    drawPath(ctx, pictureProjection(), { labels: false, size: scaleUp });
+  }
+}
+
+/** The picture's projection (its camera's, as the engine's): a 3D point to the frame's pixels,
+ * null behind the eye. */
+function pictureProjection() {
+  const c = frame.header.camera, w = frame.header.width, h = frame.header.height;
+  return {
+    p: (q) => {
+      const v = sub(q, c.eye), z = dot(v, c.forward);
+      if (z <= 1e-12) return null;
+      const sx = dot(v, c.right) / z / (c.tan_half_fov * (w / h)), sy = dot(v, c.up) / z / c.tan_half_fov;
+      return [(sx + 1) * w / 2, (1 - sy) * h / 2];
+    },
+  };
 }
 
 /** Canvas sized to its box (in CSS pixels times the screen's density). */
@@ -570,13 +589,15 @@ function drawCloud() {
   const px = new Uint32Array(layerPixels.data.buffer);
   px.fill(0);
   const drawSet = (xyz, color, kind, alpha) => {
-    const palette = (state.color === "path" && kind ? PATH_COLORS : SECTION_RGB).map((c) => rgba32(c, alpha));
+    // A kind of light path has one colour everywhere (the engine's): each point's kind indexes
+    // the frame's list of kinds.
+    const palette = (state.color === "path" && kind ? frame.header.paths.map((p) => p.rgb) : SECTION_RGB).map((c) => rgba32(c, alpha));
     const r = Math.max(1, Math.round(1.2 * d));
     for (let i = 0; i < color.length; i++) {
       const [x, y] = pr.p([xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]]);
       const cx = Math.round(x * d), cy = Math.round(y * d);
       if (cx < r || cy < r || cx >= W - r || cy >= H - r) continue;
-      const c = palette[kind ? kind[i] % palette.length : color[i] - 1];
+      const c = palette[kind ? kind[i] : color[i] - 1];
       for (let a = -r; a < r; a++) px.fill(c, (cy + a) * W + cx - r, (cy + a) * W + cx + r);
     }
   };
@@ -613,33 +634,67 @@ function drawAxes(ctx, pr) {
 
 /** The clicked ray: the broken path (solid), the course's line of sight to its image point
  * (dashed), events marked (circle: refraction, square: total reflection), the models' points. */
-function drawPath(ctx, pr) {
+/** The clicked ray through the projection `pr` (a 3D point to the canvas, or null where it
+ * cannot be drawn): its broken path, each event marked (a disk for a refraction, a square for a
+ * total reflection), and with `labels` the image points of the three models, named without
+ * overlapping. `size` scales lines and marks (a canvas in the screen's pixels). */
+function drawPath(ctx, pr, { labels = true, size = 1 } = {}) {
   const pts = [path.observer, ...path.events.map((e) => e.point)];
   if (path.outcome === "straw") pts.push(path.straw_point);
   else if (path.leaves) pts.push(add(path.leaves.from, scale(path.leaves.direction, 0.15)));
-  ctx.lineWidth = 2.5; ctx.strokeStyle = "#111";
-  ctx.beginPath(); pts.forEach((q, i) => { const [x, y] = pr.p(q); if (i) ctx.lineTo(x, y); else ctx.moveTo(x, y); }); ctx.stroke();
-  if (path.image_point) {
-    ctx.setLineDash([6, 4]); ctx.lineWidth = 1.5; ctx.strokeStyle = "#555";
-    const [x0, y0] = pr.p(path.observer), [x1, y1] = pr.p(path.image_point);
-    ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1); ctx.stroke(); ctx.setLineDash([]);
-    marker(ctx, pr.p(path.image_point), t("mark.image"), "#111");
-    if (path.eye_point) marker(ctx, pr.p(path.eye_point), t("mark.eye"), "#0a7");
-    if (path.stereo_point) marker(ctx, pr.p(path.stereo_point), t("mark.stereo"), "#a50");
-  }
-  for (const e of path.events) {
-    const [x, y] = pr.p(e.point);
-    ctx.fillStyle = e.event === "refraction" ? "#1f77b4" : "#d62728";
+  const polyline = (points) => {
     ctx.beginPath();
-    if (e.event === "refraction") ctx.arc(x, y, 4.5, 0, 2 * Math.PI); else ctx.rect(x - 4.5, y - 4.5, 9, 9);
-    ctx.fill();
+    let open = false;
+    for (const q of points) {
+      const at = pr.p(q);
+      if (!at) { open = false; continue; }
+      if (open) ctx.lineTo(...at); else ctx.moveTo(...at);
+      open = true;
+    }
+    ctx.stroke();
+  };
+  // A light halo under the line, so that it reads on a dark or busy picture too.
+  ctx.lineCap = "round";
+  ctx.lineWidth = 5 * size; ctx.strokeStyle = "rgba(255,255,255,0.7)"; polyline(pts);
+  ctx.lineWidth = 2.5 * size; ctx.strokeStyle = "#111"; polyline(pts);
+  if (path.image_point && labels) {
+    ctx.setLineDash([6 * size, 4 * size]); ctx.lineWidth = 1.5 * size; ctx.strokeStyle = "#555";
+    polyline([path.observer, path.image_point]); ctx.setLineDash([]);
+    const placed = [];
+    marker(ctx, pr.p(path.image_point), t("mark.image"), "#111", placed);
+    if (path.eye_point) marker(ctx, pr.p(path.eye_point), t("mark.eye"), "#0a7", placed);
+    if (path.stereo_point) marker(ctx, pr.p(path.stereo_point), t("mark.stereo"), "#a50", placed);
+  }
+  // Total reflections' squares first, refractions' disks over them: where two events fall on one
+  // spot of the picture, both still show.
+  const ordered = [...path.events].sort((a, b) => (a.event === "refraction") - (b.event === "refraction"));
+  for (const e of ordered) {
+    const at = pr.p(e.point);
+    if (!at) continue;
+    const [x, y] = at, r = 4.5 * size;
+    ctx.fillStyle = e.event === "refraction" ? "#1f77b4" : "#d62728";
+    ctx.strokeStyle = "#fff"; ctx.lineWidth = size;
+    ctx.beginPath();
+    if (e.event === "refraction") ctx.arc(x, y, r, 0, 2 * Math.PI); else ctx.rect(x - r, y - r, 2 * r, 2 * r);
+    ctx.fill(); ctx.stroke();
   }
 }
 
-function marker(ctx, [x, y], label, colour) {
+/** A cross at `at` and its label beside it, moved down past the labels already `placed` (boxes
+ * [x0, y0, x1, y1]) so that none covers another. */
+function marker(ctx, at, label, colour, placed) {
+  if (!at) return;
+  const [x, y] = at;
   ctx.strokeStyle = colour; ctx.lineWidth = 2;
   ctx.beginPath(); ctx.moveTo(x - 6, y - 6); ctx.lineTo(x + 6, y + 6); ctx.moveTo(x - 6, y + 6); ctx.lineTo(x + 6, y - 6); ctx.stroke();
-  ctx.fillStyle = colour; ctx.font = "12px system-ui, sans-serif"; ctx.fillText(label, x + 8, y - 6);
+  ctx.font = "12px system-ui, sans-serif";
+  const w = ctx.measureText(label).width;
+  let ly = y - 6;
+  const hits = (b) => b[0] < x + 8 + w && x + 8 < b[2] && b[1] < ly + 3 && ly - 12 < b[3];
+  while (placed.some(hits)) ly += 14;
+  placed.push([x + 8, ly - 12, x + 8 + w, ly + 3]);
+  ctx.fillStyle = "rgba(255,255,255,0.8)"; ctx.fillRect(x + 7, ly - 11, w + 2, 14);
+  ctx.fillStyle = colour; ctx.fillText(label, x + 8, ly);
 }
 
 function drawLegend() {
@@ -653,7 +708,7 @@ function drawLegend() {
     ul.appendChild(li);
   };
   if (!frame) return;
-  if (state.color === "path") frame.header.paths.forEach((p, i) => item(PATH_COLORS[i % PATH_COLORS.length], pathWords(p.key, p.words), p.count));
+  if (state.color === "path") frame.header.paths.forEach((p) => item(p.rgb, pathWords(p.key, p.words), p.count));
   else frame.header.points_per_color.forEach((c, i) => { if ((i < 5 && !state.scene && !state.file) || c > 0) item(SECTION_RGB[i], `${i + 1} ${colourName(i + 1)}`, c); });
   const modelCount = (m) => (!m || m.pending ? "…" : m.all ? m.color.length : t("legend.more", { n: m.color.length }));
   if (state.models.includes("eye")) item("rgba(0,0,0,.3)", t("legend.eye"), modelCount(models.eye));
@@ -709,6 +764,7 @@ function drawMaps() {
     ctx.strokeStyle = "#999"; ctx.beginPath(); ctx.moveTo(0, P(0, 0)[1]); ctx.lineTo(w, P(0, 0)[1]); ctx.stroke();
     const [ex, ey] = P(Math.hypot(o[0], o[1]), o[2]);
     ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
+    if (path) drawPath(ctx, { p: (q) => P(q[0] * u[0] + q[1] * u[1], q[2]) }, { labels: false, size: 0.8 });
     sideCanvas.mapInverse = (x, y) => [(x - w / 2) / k, 0.1 - (y - h / 2) / k];
     sideCanvas.eyeAt = [ex, ey];
   }
@@ -717,7 +773,7 @@ function drawMaps() {
     const { ctx, w, h } = fit(topCanvas);
     ctx.clearRect(0, 0, w, h);
     const k = mapScale(w, h, g.extent);
-    const P = (x, y) => [w / 2 + k * y, h / 2 + k * x]; // x down, y right: the eye of reference 2 below the glass
+    const P = (x, y) => [w / 2 + k * x, h / 2 - k * y]; // x right, y up: as the report's top views
     ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.top"), 6, 14);
     if (lines) drawLines(ctx, lines, (q) => P(q[0], q[1]));
     else {
@@ -728,7 +784,8 @@ function drawMaps() {
     const [ex, ey] = P(o[0], o[1]);
     ctx.strokeStyle = "rgba(0,0,0,.35)"; ctx.beginPath(); ctx.moveTo(ex, ey); ctx.lineTo(...P(0, 0)); ctx.stroke();
     ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
-    topCanvas.mapInverse = (x, y) => [(y - h / 2) / k, (x - w / 2) / k];
+    if (path) drawPath(ctx, { p: (q) => P(q[0], q[1]) }, { labels: false, size: 0.8 });
+    topCanvas.mapInverse = (x, y) => [(x - w / 2) / k, (h / 2 - y) / k];
     topCanvas.eyeAt = [ex, ey];
     topCanvas.strawAt = lines ? null : P(sx, sy);
   }
@@ -938,7 +995,7 @@ async function pick(what) {
   path = await r.json();
   showReadout();
   document.body.dataset.picked = what;
-  drawCloud();
+  drawPicture(); drawCloud(); drawMaps();
 }
 function restorePick() { if (state.pick) pick(state.pick); }
 window.bentstraw.pickPoint = (k) => pick(`point:${k}`);

@@ -512,8 +512,17 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
         "n": frame.points.len(),
         "rays_traced": frame.rays_traced,
         "points_per_color": per_color,
-        "paths": counts.iter().map(|(k, n)| json!({"key": k.key(), "words": k.to_string(), "count": n})).collect::<Vec<_>>(),
+        "paths": counts.iter().map(|(k, n)| json!({"key": k.key(), "words": k.to_string(), "count": n, "rgb": k.hex()})).collect::<Vec<_>>(),
         "fov_deg": 2.0 * libm::atan(view.camera.tan_half_fov).to_degrees(),
+        // The picture's pinhole camera, so that the page draws 3D points (a clicked ray) where
+        // the picture shows them.
+        "camera": {
+            "eye": vec_json(view.camera.eye),
+            "forward": vec_json(view.camera.forward),
+            "right": vec_json(view.camera.right),
+            "up": vec_json(view.camera.up),
+            "tan_half_fov": view.camera.tan_half_fov,
+        },
         "ms": ms,
         "simulate": view.simulate_command("course"),
         "simulate_args": view.simulate_args("course"),

@@ -63,6 +63,31 @@ impl LightPathType {
             k => format!("{base}+{k}"),
         }
     }
+
+    /// The colour every figure and the page draw this kind of path in, whatever else the
+    /// picture shows: one hue per entry face (direct grey, surface blue, wall orange, bottom
+    /// green), another once the light has been totally reflected (purple, red, brown), darker
+    /// with each further reflection.
+    pub fn rgb(&self) -> [u8; 3] {
+        let base: [u8; 3] = match (self.entry, self.total_reflections) {
+            (Entry::Direct, _) => [70, 70, 70],
+            (Entry::Top, 0) => [31, 119, 180],
+            (Entry::Top, _) => [148, 103, 189],
+            (Entry::Wall, 0) => [255, 127, 14],
+            (Entry::Wall, _) => [214, 39, 40],
+            (Entry::Bottom, 0) => [44, 160, 44],
+            (Entry::Bottom, _) => [140, 86, 75],
+        };
+        // Each reflection past the first darkens by a quarter, down to a third of the hue.
+        let darker = 0.75f64.powi(self.total_reflections.saturating_sub(1).min(4) as i32);
+        base.map(|c| (c as f64 * darker).round() as u8)
+    }
+
+    /// [`LightPathType::rgb`] as CSS and SVG write it: `#rrggbb`.
+    pub fn hex(&self) -> String {
+        let [r, g, b] = self.rgb();
+        format!("#{r:02x}{g:02x}{b:02x}")
+    }
 }
 
 impl fmt::Display for LightPathType {

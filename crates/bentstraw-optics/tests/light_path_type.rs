@@ -82,3 +82,48 @@ fn words_and_keys() {
     assert_eq!(k.to_string(), "through the side wall, 2 total reflections");
     assert_eq!(LightPathType::DIRECT.key(), "direct");
 }
+
+#[test]
+fn each_kind_of_path_has_one_colour_of_its_own_in_every_figure() {
+    let mut kinds = vec![LightPathType::DIRECT];
+    for entry in [Entry::Top, Entry::Wall, Entry::Bottom] {
+        for total_reflections in 0..=3 {
+            kinds.push(LightPathType {
+                entry,
+                total_reflections,
+            });
+        }
+    }
+    // Different kinds, different colours, far enough apart to tell (at least 40 of 255 in
+    // some channel).
+    for (i, a) in kinds.iter().enumerate() {
+        for b in &kinds[..i] {
+            let (ca, cb) = (a.rgb(), b.rgb());
+            let gap = (0..3).map(|c| ca[c].abs_diff(cb[c])).max().unwrap();
+            assert!(gap >= 20, "{a} {ca:?} and {b} {cb:?}");
+        }
+    }
+    // Fixed, not ranked by share: the same kind is the same colour whatever else is seen.
+    let wall = LightPathType {
+        entry: Entry::Wall,
+        total_reflections: 0,
+    };
+    assert_eq!(wall.hex(), "#ff7f0e");
+    assert_eq!(LightPathType::DIRECT.hex(), "#464646");
+    let twice = LightPathType {
+        entry: Entry::Wall,
+        total_reflections: 2,
+    };
+    // A further reflection darkens the reflected hue.
+    assert!(twice
+        .rgb()
+        .iter()
+        .zip(
+            LightPathType {
+                total_reflections: 1,
+                ..twice
+            }
+            .rgb()
+        )
+        .all(|(a, b)| *a <= b));
+}

@@ -40,18 +40,6 @@ const SMALL_TEXT: f64 = TEXT;
 /// Height of a line of the legend (px).
 const LEGEND_LINE: i32 = 42;
 
-/// Colours of the kinds of light path, in the order of the legend (most common first).
-const KIND_RGB: [(u8, u8, u8); 8] = [
-    (31, 119, 180),
-    (214, 39, 40),
-    (44, 160, 44),
-    (148, 103, 189),
-    (255, 127, 14),
-    (23, 190, 207),
-    (140, 86, 75),
-    (227, 119, 194),
-];
-
 /// What a diagram shows: the rays drawn, and the image points per kind of light path.
 pub struct Diagram {
     /// The observer.
@@ -72,14 +60,9 @@ impl Diagram {
         }
     }
 
-    /// The colour of kind `k` (by its rank in the legend).
+    /// The colour of kind `k`: the same in every figure (see [`LightPathType::rgb`]).
     fn color_of(&self, kind: LightPathType) -> RGBColor {
-        let rank = self
-            .counts
-            .iter()
-            .position(|(k, _)| *k == kind)
-            .unwrap_or(0);
-        let (r, g, b) = KIND_RGB[rank % KIND_RGB.len()];
+        let [r, g, b] = kind.rgb();
         RGBColor(r, g, b)
     }
 }
@@ -537,9 +520,10 @@ mod tests {
         assert!(texts.iter().any(|t| t.contains("side view")));
         assert!(texts.iter().any(|t| t.contains("top view")));
         // Solid ray paths: width 3 polylines in a kind's colour, one per ray and view.
-        let colours: Vec<String> = KIND_RGB
+        let colours: Vec<String> = d
+            .counts
             .iter()
-            .map(|(r, g, b)| format!("#{r:02X}{g:02X}{b:02X}"))
+            .map(|(k, _)| k.hex().to_uppercase())
             .collect();
         let solid = doc
             .descendants()
