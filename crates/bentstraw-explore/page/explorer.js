@@ -37,7 +37,8 @@ const PRESETS = [
 const state = {
   scene: "", // "" the assignment's glass, else a scene of the gallery (scenes/NAME.toml)
   file: "", // the text of the page's own scene file (scene.toml), when it shows one
-  observer: [0.1, 0, 0.1], straw: [0.02, 0.01], he: 0.15, n: 1.333, events: 10, points: 20000,
+  // The first view shows the effect: the straw seen from the side, broken at the water's surface.
+  observer: [0.3, 0, 0.25], straw: [0, 0.03], he: 0.15, n: 1.333, events: 10, points: 20000,
   mode: "fresnel", backdrop: "checker", color: "section", models: ["course"],
   view: [-35, 22, 1], pick: "",
 };

@@ -55,7 +55,8 @@ pub fn run(args: &ExploreArgs) -> CliResult {
 }
 
 /// The query of the view given on the command line (flags as the page's parameters): a scene file
-/// and the flags that override it, or the flags, or the second reference view by default.
+/// and the flags that override it, or the flags, or by default the broken straw seen from the side
+/// (as the page starts).
 fn initial_query(a: &ExploreArgs) -> CliResult<String> {
     let v = &a.view;
     let mode = match a.mode {
@@ -111,8 +112,8 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
             }
         }
     } else {
-        let o = v.observer.unwrap_or([0.1, 0.0, 0.1]);
-        let [x, y] = v.straw.unwrap_or([0.02, 0.01]);
+        let o = v.observer.unwrap_or([0.3, 0.0, 0.25]);
+        let [x, y] = v.straw.unwrap_or([0.0, 0.03]);
         // Checked by the caller, with the page's own rules and messages.
         SceneValues {
             observer: o,
