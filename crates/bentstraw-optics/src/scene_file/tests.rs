@@ -650,7 +650,8 @@ fn too_many_layers_or_objects_are_refused_at_once() {
             )
         })
         .collect();
-    let text = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n".to_string() + &layers;
+    let text =
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n".to_string() + &layers;
     refused(&text, "liquid", "33 layers");
 }
 
