@@ -263,18 +263,18 @@ pub fn read_scene_text(path: &Path) -> Result<String> {
     if let Some(why) = not_a_file(&meta) {
         return fail(format!("cannot read the scene file {name}: {why}"));
     }
-    let too_large = |bytes: u64| {
+    let too_large = |size: String| {
         Error::Refused(format!(
-            "the scene file {name} is {bytes} bytes: a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB), not read"
+            "the scene file {name} is {size}: a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB), not read"
         ))
     };
     if meta.len() > MAX_SCENE_FILE_BYTES {
-        return Err(too_large(meta.len()));
+        return Err(too_large(format!("{} bytes", meta.len())));
     }
     // At most one byte past the limit, in case it grew since.
     let bytes = read_at_most(path, MAX_SCENE_FILE_BYTES)
         .map_err(cannot)?
-        .ok_or_else(|| too_large(MAX_SCENE_FILE_BYTES + 1))?;
+        .ok_or_else(|| too_large(format!("more than {MAX_SCENE_FILE_BYTES} bytes (it grew)")))?;
     String::from_utf8(bytes).map_err(|e| {
         Error::Refused(format!(
             "the scene file {name} is not UTF-8 text: byte {} is not valid UTF-8",

@@ -108,18 +108,18 @@ pub fn read_solution_of(path: &Path, codes: usize) -> Result<Solution> {
     if let Some(why) = not_a_file(&meta) {
         return Err(Error::Refused(format!("cannot read {name}: {why}")));
     }
-    let too_large = |bytes: u64| {
+    let too_large = |size: String| {
         Error::Refused(format!(
-            "{name} is {bytes} bytes or more: larger than any reasonable image (at most \
-             {MAX_FILE_BYTES} bytes, {MAX_POINTS} points), not read"
+            "{name} is {size}: larger than any reasonable image (at most {MAX_FILE_BYTES} bytes, \
+             {MAX_POINTS} points), not read"
         ))
     };
     if meta.len() > MAX_FILE_BYTES {
-        return Err(too_large(meta.len()));
+        return Err(too_large(format!("{} bytes", meta.len())));
     }
     let bytes = read_at_most(path, MAX_FILE_BYTES)
         .map_err(cannot)?
-        .ok_or_else(|| too_large(MAX_FILE_BYTES + 1))?;
+        .ok_or_else(|| too_large(format!("more than {MAX_FILE_BYTES} bytes (it grew)")))?;
     parse_solution_of(&bytes, codes).map_err(|e| Error::Refused(format!("{name}: {e}")))
 }
 

@@ -453,3 +453,33 @@ fn a_file_saved_with_five_digits_gets_a_hint_about_precision() {
     let (_, v) = check_json(dir.path(), &file, 2, &["--tolerance", "3e-5"]);
     assert_eq!(v["wrong_length"].as_u64(), Some(0), "{v}");
 }
+
+#[test]
+fn devices_pipes_and_huge_files_are_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let refused = |o: &Output, words: &str| {
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(words), "{err}");
+        assert!(o.stdout.is_empty());
+    };
+    // A device that never ends: refused before a byte is read.
+    refused(
+        &check(d, Path::new("/dev/zero"), 2, &[]),
+        "not a regular file",
+    );
+    // A named pipe no one writes to: opening it would wait forever.
+    let made = Command::new("mkfifo").arg(d.join("pipe.csv")).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo is needed");
+    refused(&check(d, &d.join("pipe.csv"), 2, &[]), "not a regular file");
+    let scene_pipe = bentstraw(
+        d,
+        &["simulate", "--scene", "pipe.csv", "--output", "x.csv"].map(String::from),
+    );
+    refused(&scene_pipe, "not a regular file");
+    // A 2 GiB file (sparse: it costs no disk): refused by its size, not read.
+    let big = fs::File::create(d.join("big.csv")).unwrap();
+    big.set_len(2 << 30).unwrap();
+    refused(&check(d, &d.join("big.csv"), 2, &[]), "2147483648 bytes");
+}
