@@ -881,3 +881,60 @@ fn centimetres_written_as_metres_get_a_hint() {
         .hints()
         .is_empty());
 }
+
+/// Numbers a hostile or careless file may hold: zero, signs, the edges of the rules, the tiny
+/// and the huge, and TOML's infinities and NaN.
+const HOSTILE: [&str; 18] = [
+    "0", "-0.0", "1e-300", "1e-7", "1e-6", "0.001", "0.005", "0.04", "0.15", "1", "4", "89.999",
+    "1e6", "1e7", "1e155", "1.7e308", "inf", "nan",
+];
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(400))]
+
+    /// Any bytes are read or refused with a message, never a panic.
+    #[test]
+    fn any_text_is_read_or_refused_without_a_panic(
+        bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..300),
+    ) {
+        let _ = SceneDescription::from_toml(&String::from_utf8_lossy(&bytes));
+    }
+
+    /// A file of the right layout holding hostile numbers is refused, or is a scene whose world
+    /// is built and traced from its eye without a panic, every ray ending (it meets something,
+    /// escapes, or runs out of events).
+    #[test]
+    fn hostile_numbers_are_refused_or_traced(
+        picks in proptest::collection::vec(0..HOSTILE.len(), 24),
+        tank in proptest::prelude::any::<bool>(),
+        (liquids, straws, coins, cards) in (0usize..3, 0usize..3, 0usize..2, 0usize..2),
+    ) {
+        let mut k = 0;
+        let mut n = || { k += 1; HOSTILE[picks[(k - 1) % picks.len()]] };
+        let mut text = if tank {
+            format!("[container]\nshape = \"tank\"\nhalf_x = {}\nhalf_y = {}\nheight = {}\n", n(), n(), n())
+        } else {
+            format!("[container]\nshape = \"glass\"\nradius = {}\nheight = {}\nwall = {}\n", n(), n(), n())
+        };
+        for i in 0..liquids {
+            text += &format!("[[liquid]]\nname = \"l{i}\"\nindex = {}\ntop = {}\n", n(), n());
+        }
+        for _ in 0..straws {
+            text += &format!("[[straw]]\nx = {}\ny = {}\ntilt = {}\nradius = {}\n", n(), n(), n(), n());
+        }
+        for _ in 0..coins {
+            text += &format!("[[coin]]\nx = {}\ny = {}\nthickness = {}\n", n(), n(), n());
+        }
+        for _ in 0..cards {
+            text += &format!("[[card]]\ncenter = [{}, {}, {}]\nwidth = {}\nheight = {}\n", n(), n(), n(), n(), n());
+        }
+        text += &format!("[observer]\nposition = [{}, {}, {}]\n", n(), n(), n());
+        if let Ok(scene) = SceneDescription::from_toml(&text) {
+            let world = crate::world::World::new(&scene, 10);
+            let eye = scene.observer.expect("an observer was given").position;
+            for d in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Z, Vec3::new(-1.0, 0.3, -0.2).normalize()] {
+                let _ = world.trace(crate::geometry::Ray::new(eye, d));
+            }
+        }
+    }
+}
