@@ -332,9 +332,17 @@ test("the scene chooser shows a gallery scene whose points and paths are simulat
   const o = [0.3, 0, 0.1];
   assert.ok(Math.abs(p.path_length - Math.hypot(x - o[0], y - o[1], z - o[2])) < 1e-12, `${p.path_length}`);
   p.image_point.forEach((v, i) => assert.ok(Math.abs(v - [x, y, z][i]) < 1e-12));
-  // The water's sliders belong to the assignment's glass: off for a gallery scene.
+  // The water's sliders belong to the assignment's glass: off for a gallery scene, showing the
+  // scene's own bottom liquid.
   assert.equal(await page.locator("#he").isDisabled(), true);
+  await page.waitForFunction(() => document.getElementById("n-out").textContent === "1.333");
+  assert.equal(await page.textContent("#he-out"), "0.19 m");
   await page.screenshot({ path: shot("explorer-gallery.png") });
+  // Oil on water: the water below, its own values.
+  const f1 = await page.evaluate(() => window.bentstraw.frames);
+  await page.selectOption("#scene", "oil-on-water");
+  await waitReady(page, f1);
+  await page.waitForFunction(() => document.getElementById("he-out").textContent === "0.1 m");
   // Back to the glass: the sliders are live again.
   const f2 = await page.evaluate(() => window.bentstraw.frames);
   await page.selectOption("#scene", "");

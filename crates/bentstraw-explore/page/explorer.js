@@ -525,8 +525,8 @@ function fetchSketch(name) {
     const wire = [];
     for (let i = 0; i + 5 < sc.wireframe.length; i += 6) wire.push([pt(sc.wireframe, i), pt(sc.wireframe, i + 3)]);
     const outlines = sc.outlines.map((l) => Array.from({ length: l.length / 3 }, (_, i) => pt(l, 3 * i)));
-    sketches[name] = { wire, outlines, bounds: sc.bounds };
-    if (sceneKey(state) === name) { drawMaps(); drawCloud(); }
+    sketches[name] = { wire, outlines, bounds: sc.bounds, liquids: sc.liquids || [] };
+    if (sceneKey(state) === name) { drawMaps(); drawCloud(); syncControls(); }
   });
 }
 
@@ -1063,9 +1063,15 @@ function syncControls() {
   fileOption();
   $("scene").value = state.file ? "file" : state.scene;
   // A scene file's liquids and straws are its own: the water's sliders are the glass's.
-  $("he").disabled = $("n").disabled = Boolean(state.scene || state.file);
-  $("he").value = state.he; $("he-out").textContent = localNumber(num(state.he)) + " m";
-  $("n").value = state.n; $("n-out").textContent = localNumber(num(state.n));
+  const fromFile = Boolean(state.scene || state.file);
+  $("he").disabled = $("n").disabled = fromFile;
+  // A scene file's sliders show its own bottom liquid (its surface, its index), or none.
+  const lines = fromFile ? sceneLines() : null;
+  const liquid = lines && lines.liquids.length ? lines.liquids[0] : null;
+  const [he, n] = fromFile ? (liquid ? [liquid.top, liquid.index] : [null, null]) : [state.he, state.n];
+  if (he !== null) { $("he").value = he; $("n").value = n; }
+  $("he-out").textContent = he === null ? "—" : localNumber(num(he)) + " m";
+  $("n-out").textContent = n === null ? "—" : localNumber(num(n));
   $("events").value = state.events; $("events-out").textContent = String(state.events);
   $("mode").value = state.mode; $("backdrop").value = state.backdrop; $("color-by").value = state.color;
   for (const k of ["course", "eye", "stereo"]) $("show-" + k).checked = state.models.includes(k);

@@ -209,6 +209,8 @@ pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
         "outlines": outlines,
         "bounds": [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
         "observer": description.observer.map_or(Value::Null, |o| vec_json(o.position)),
+        // The layers, bottom first, so that the page shows the scene's own liquid values.
+        "liquids": description.liquids.iter().map(|l| json!({"name": l.name, "index": l.index, "top": l.top})).collect::<Vec<_>>(),
     })))
 }
 
