@@ -198,7 +198,7 @@ pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
         return Err("missing required parameter 'scene'".into());
     };
     let description = parse_scene_text(&name, text).map_err(|e| e.to_string())?;
-    let world = World::new(&description, DEFAULT_MAX_EVENTS);
+    let world = World::new(&description, DEFAULT_MAX_EVENTS).map_err(|e| e.to_string())?;
     let w = &world;
     let flat = |p: &[Vec3]| -> Vec<f64> { p.iter().flat_map(|q| q.to_array()).collect() };
     let wireframe: Vec<f64> = world_wireframe(w).iter().flat_map(|s| flat(s)).collect();

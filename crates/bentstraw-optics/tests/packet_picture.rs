@@ -207,7 +207,7 @@ fn packet_pictures_of_every_gallery_scene_match_exact() {
         let name = path.file_stem().unwrap().to_string_lossy();
         let text = std::fs::read_to_string(&path).unwrap();
         let d = SceneDescription::from_toml(&text).unwrap();
-        let world = World::new(&d, 10);
+        let world = World::new(&d, 10).expect("a valid scene");
         let o = d.observer.unwrap();
         let camera = Camera::new(o.position, o.target, 240, 180, 40f64.to_radians());
         let total = (camera.width * camera.height) as usize;

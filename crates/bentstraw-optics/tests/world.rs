@@ -90,7 +90,8 @@ fn flat_layers_shift_a_ray_as_snell_says() {
             "#,
         ),
         10,
-    );
+    )
+    .expect("a valid scene");
     for theta0 in [0.0f64, 0.1, 0.3, 0.6, 0.7] {
         let entry = Vec3::new(0.04, 0.0, 0.15);
         let o = entry + 0.1 * Vec3::new(theta0.sin(), 0.0, theta0.cos());
@@ -151,7 +152,8 @@ fn a_thick_bottom_shifts_light_from_below_and_the_coin_on_it_wins_the_tie() {
             "#,
         ),
         10,
-    );
+    )
+    .expect("a valid scene");
     for theta0 in [0.0f64, 0.2, 0.5, 1.0] {
         let entry = Vec3::new(-0.01, 0.0, 0.0);
         let o = entry - 0.1 * Vec3::new(-theta0.sin(), 0.0, theta0.cos());
@@ -180,7 +182,7 @@ fn a_thick_bottom_shifts_light_from_below_and_the_coin_on_it_wins_the_tie() {
 fn light_runs_down_a_thick_wall_by_total_reflection() {
     // A ray entering the rim of the 2.5 mm wall almost straight down meets the wall's faces
     // at grazing incidence, beyond the critical angles towards air (41.8°) and water (62.7°).
-    let world = World::new(&gallery("real-glass.toml"), 1000);
+    let world = World::new(&gallery("real-glass.toml"), 1000).expect("a valid scene");
     // 10° from the vertical in air, 6.6° in the glass: a reflection every 2 cm of height.
     let entry = Vec3::new(0.03875, 0.0, 0.12);
     let tilt = 10f64.to_radians();
@@ -207,7 +209,7 @@ fn light_runs_down_a_thick_wall_by_total_reflection() {
 fn snell_holds_at_every_event_in_every_gallery_scene() {
     for name in GALLERY {
         let d = gallery(name);
-        let world = World::new(&d, 10);
+        let world = World::new(&d, 10).expect("a valid scene");
         let observer = d.observer.unwrap().position;
         let (lo, hi) = world.bounds();
         let mut checked = 0;
@@ -249,7 +251,7 @@ fn without_refraction(mut d: SceneDescription) -> SceneDescription {
 fn with_index_one_everywhere_every_image_point_lies_on_its_object() {
     for name in GALLERY {
         let d = without_refraction(gallery(name));
-        let world = World::new(&d, 10);
+        let world = World::new(&d, 10).expect("a valid scene");
         assert!(
             world.boundaries().is_empty(),
             "{name}: no interface is left"
@@ -286,7 +288,8 @@ fn a_glass_of_index_one_traces_like_walls_of_no_thickness() {
             "#,
         ),
         10,
-    );
+    )
+    .expect("a valid scene");
     let thin = World::new(
         &scene(
             r#"
@@ -304,7 +307,8 @@ fn a_glass_of_index_one_traces_like_walls_of_no_thickness() {
             "#,
         ),
         10,
-    );
+    )
+    .expect("a valid scene");
     for observer in [
         Vec3::new(0.1, 0.0, 0.1),
         Vec3::new(0.0, 0.1, 0.1),
@@ -375,7 +379,10 @@ fn two_layers_of_the_same_index_trace_like_one() {
         "",
     );
     assert_eq!(scene(&one).liquids.len(), 1);
-    let (two, one) = (World::new(&scene(two), 10), World::new(&scene(&one), 10));
+    let (two, one) = (
+        World::new(&scene(two), 10).expect("a valid scene"),
+        World::new(&scene(&one), 10).expect("a valid scene"),
+    );
     assert_same_images(&two, &one, &AROUND);
     assert_same_images(&one, &two, &AROUND);
 }
@@ -411,8 +418,8 @@ fn a_glass_of_its_liquids_index_vanishes() {
     );
     assert_ne!(cylinder, vanishing);
     let (a, b) = (
-        World::new(&scene(vanishing), 10),
-        World::new(&scene(&cylinder), 10),
+        World::new(&scene(vanishing), 10).expect("a valid scene"),
+        World::new(&scene(&cylinder), 10).expect("a valid scene"),
     );
     let eyes = [
         Vec3::new(0.2, 0.0, 0.06),
@@ -454,7 +461,7 @@ proptest! {
         dist in 0.06f64..3.0, azimuth in 0.0f64..std::f64::consts::TAU, oz in -0.5f64..0.6, seed in 0u64..1000,
     ) {
         let (x, y) = (r * phi.cos(), r * phi.sin());
-        let world = World::new(&spec_as_data(x, y, he, n), 10);
+        let world = World::new(&spec_as_data(x, y, he, n), 10).expect("a valid scene");
         let reference = Reference::new(&Scene::new(x, y, he, n, 10).unwrap());
         let observer = Vec3::new(dist * azimuth.cos(), dist * azimuth.sin(), oz);
         prop_assume!(observer.x.hypot(observer.y) > 0.045 || !(0.0..=0.25).contains(&oz));
@@ -497,7 +504,7 @@ fn the_reversing_arrow_points_the_other_way_through_the_water() {
     for (n, reversed) in [(1.333, true), (1.0, false)] {
         let mut d = gallery("reversing-arrow.toml");
         d.liquids[0].index = n;
-        let world = World::new(&d, 10);
+        let world = World::new(&d, 10).expect("a valid scene");
         let observer = d.observer.unwrap().position;
         let cloud = sample_image(&world, observer, 20000, &|_| {});
         let card_y = d.cards[0].center.y;
@@ -531,7 +538,7 @@ fn the_reversing_arrow_points_the_other_way_through_the_water() {
 fn a_leaning_straw_rests_on_the_rim_of_its_bottom_cap() {
     let d = gallery("leaning-straw.toml");
     let straw = d.straws[0];
-    let world = World::new(&d, 10);
+    let world = World::new(&d, 10).expect("a valid scene");
     let (lo, _) = world.objects()[0].bounds();
     let foot = straw.foot(0.0);
     assert!(
@@ -554,7 +561,7 @@ fn a_leaning_straw_rests_on_the_rim_of_its_bottom_cap() {
 
 #[test]
 fn rays_that_miss_graze_or_pass_above_meet_nothing() {
-    let world = World::new(&gallery("real-glass.toml"), 10);
+    let world = World::new(&gallery("real-glass.toml"), 10).expect("a valid scene");
     // Tangent to the outer wall: no refraction, no event.
     let tangent = world.trace(Ray::new(Vec3::new(0.04 + 1e-12, -1.0, 0.05), Vec3::Y));
     assert!(
@@ -573,7 +580,7 @@ fn rays_that_miss_graze_or_pass_above_meet_nothing() {
 fn fresnel_weights_and_escaping_light_add_up_to_one() {
     for name in ["real-glass.toml", "oil-on-water.toml", "tank-pencil.toml"] {
         let d = gallery(name);
-        let world = World::new(&d, 1000);
+        let world = World::new(&d, 1000).expect("a valid scene");
         let observer = d.observer.unwrap().position;
         let (lo, hi) = world.bounds();
         let mut all_lost = 0.0;
@@ -608,7 +615,7 @@ fn branches_leaving_through_the_hull_never_return() {
     let mut skipped = 0usize;
     for name in GALLERY {
         let d = gallery(name);
-        let world = World::new(&d, 10);
+        let world = World::new(&d, 10).expect("a valid scene");
         let (lo, hi) = world.bounds();
         let centre = (lo + hi) * 0.5;
         let reach = (hi - lo).length();
@@ -671,7 +678,8 @@ fn the_eye_model_finds_the_apparent_depth_of_a_coin_under_flat_water() {
             "#
         )),
         10,
-    );
+    )
+    .expect("a valid scene");
     let d = 0.12 - 0.002;
     for theta in [0.0f64, 0.2, 0.4] {
         let surface = Vec3::new(0.0, 0.0, 0.12);
@@ -699,7 +707,7 @@ fn the_eye_model_finds_the_apparent_depth_of_a_coin_under_flat_water() {
     }
     // The same through the round glass of the gallery's coin, looking straight down.
     let d = gallery("coin-in-glass.toml");
-    let world = World::new(&d, 10);
+    let world = World::new(&d, 10).expect("a valid scene");
     let top = d.liquids[0].top;
     let coin_top = d.container.floor() + d.coins[0].thickness;
     let eye = Vec3::new(d.coins[0].x, d.coins[0].y, top + 0.2);
@@ -715,7 +723,7 @@ fn check_judges_a_worlds_points_and_finds_what_is_missing() {
     use bentstraw_optics::check::{check_solution, ClaimedPoint, DEFAULT_TOLERANCE};
     use bentstraw_optics::light_path_type::Entry;
     let d = gallery("leaning-straw.toml");
-    let world = World::new(&d, 10);
+    let world = World::new(&d, 10).expect("a valid scene");
     let observer = d.observer.unwrap().position;
     let cloud = sample_image(&world, observer, 4000, &|_| {});
     let claimed =
@@ -944,7 +952,7 @@ mod random_scenes {
         /// equal indices was crossed), and no event lies between equal indices.
         #[test]
         fn equal_indices_are_one_medium(d in equal_index_scene()) {
-            let world = World::new(&d, 10);
+            let world = World::new(&d, 10).expect("a valid scene");
             let (lo, hi) = world.bounds();
             let mut checked = 0;
             for observer in [
@@ -991,7 +999,7 @@ mod random_scenes {
         /// up to 1, and with every index 1 every image point on its object.
         #[test]
         fn any_valid_scene_obeys_the_laws(d in scene()) {
-            let world = World::new(&d, 10);
+            let world = World::new(&d, 10).expect("a valid scene");
             let observer = d.observer.unwrap().position;
             let (lo, hi) = world.bounds();
             for k in 0..200u32 {
@@ -1011,11 +1019,24 @@ mod random_scenes {
                 let w = world.trace_fresnel(ray, 1e-6, |_, x| rest += x);
                 prop_assert!((w.iter().sum::<f64>() + rest - 1.0).abs() < 1e-12);
             }
-            let flat = World::new(&without_refraction(d.clone()), 10);
+            let flat = World::new(&without_refraction(d.clone()), 10).expect("a valid scene");
             let cloud = sample_image(&flat, observer, 1500, &|_| {});
             for p in &cloud.points {
                 prop_assert!((p.position - p.straw_point).length() < 1e-9);
             }
         }
     }
+}
+
+/// A description changed in code past its rules (its fields are public) makes no world: it is
+/// refused as the same file would be.
+#[test]
+fn a_description_changed_past_its_rules_makes_no_world() {
+    let mut d = gallery("leaning-straw.toml");
+    assert!(World::new(&d, 10).is_ok());
+    d.straws[0].x = 1.0; // outside the glass
+    let e = World::new(&d, 10).expect_err("refused");
+    assert!(e.to_string().contains("straw[1]"), "{e}");
+    d.straws[0].x = f64::NAN;
+    assert!(World::new(&d, 10).is_err());
 }

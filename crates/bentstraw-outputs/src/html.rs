@@ -660,7 +660,7 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
         let loaded = Loaded {
             name: Some(name.to_string()),
             assignment: None,
-            world: World::new(&d, 10),
+            world: World::new(&d, 10).expect("a valid scene"),
             description: Some(d),
             observer,
             target: None,

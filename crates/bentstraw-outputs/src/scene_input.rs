@@ -205,11 +205,12 @@ impl SceneSource {
             let message = e.to_string();
             Error::Refused(format!("{name} with the flags given: {message}"))
         };
-        checked.validate().map_err(flagged)?;
+        // The world of the scene as the flags make it, checked by every rule of a file.
+        let world = World::new(&checked, self.max_events).map_err(flagged)?;
         Ok(Loaded {
             name: Some(name),
             assignment: None,
-            world: World::new(&description, self.max_events),
+            world,
             description: Some(description),
             observer: position,
             target,
@@ -227,7 +228,8 @@ pub fn file_world(name: &str, text: &str, max_events: u32) -> Result<Loaded> {
     Ok(Loaded {
         name: Some(name.to_string()),
         assignment: None,
-        world: World::new(&description, max_events),
+        world: World::new(&description, max_events)
+            .map_err(|e| Error::Refused(format!("{name}: {e}")))?,
         description: Some(description),
         observer: observer.position,
         target: Some(observer.target),

@@ -930,7 +930,7 @@ proptest::proptest! {
         }
         text += &format!("[observer]\nposition = [{}, {}, {}]\n", n(), n(), n());
         if let Ok(scene) = SceneDescription::from_toml(&text) {
-            let world = crate::world::World::new(&scene, 10);
+            let world = crate::world::World::new(&scene, 10).expect("a valid scene");
             let eye = scene.observer.expect("an observer was given").position;
             for d in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Z, Vec3::new(-1.0, 0.3, -0.2).normalize()] {
                 let _ = world.trace(crate::geometry::Ray::new(eye, d));

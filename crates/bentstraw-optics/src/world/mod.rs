@@ -22,7 +22,7 @@ mod trace;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::scene::{Scene, SECTION_NAMES, SECTION_RGB};
-use crate::scene_file::{Container, SceneDescription};
+use crate::scene_file::{Container, SceneDescription, SceneFileError};
 use crate::Vec3;
 
 pub use boundary::{Boundary, MediumId, Region, Shape};
@@ -256,11 +256,14 @@ impl World {
         self.max_events
     }
 
-    /// The world a valid scene description describes, with event limit `max_events`. A face
-    /// between media of the same index is no interface (light crosses it unbent, and it is no
-    /// event): a glass of index 1 traces exactly like walls of no thickness.
-    pub fn new(scene: &SceneDescription, max_events: u32) -> World {
-        World::build(scene, max_events, SameIndex::Dropped)
+    /// The world `scene` describes, with event limit `max_events`, once the scene is checked by
+    /// every rule of a scene file (its fields are public: a description built in code is
+    /// checked here as a file's is when read). A face between media of the same index is no
+    /// interface (light crosses it unbent, and it is no event): a glass of index 1 traces
+    /// exactly like walls of no thickness.
+    pub fn new(scene: &SceneDescription, max_events: u32) -> Result<World, SceneFileError> {
+        scene.validate()?;
+        Ok(World::build(scene, max_events, SameIndex::Dropped))
     }
 
     /// The assignment's scene as a world: the glass of radius 0.04 m with walls and bottom of no
