@@ -36,12 +36,14 @@ pub fn gallery_files() -> Vec<String> {
         .collect()
 }
 
-/// The report's sections of the gallery, one per scene, its files written into `out`.
-pub fn gallery_sections(out: &Path) -> Vec<Section> {
+/// The report's sections of the gallery, one per scene, its files written into `out`; `done` is
+/// called as each scene's section is ready (for a progress bar).
+pub fn gallery_sections(out: &Path, done: &(dyn Fn() + Sync)) -> Vec<Section> {
     GALLERY
         .par_iter()
         .map(|(stem, text)| {
-            match file_world(&format!("scenes/{stem}.toml"), text, DEFAULT_MAX_EVENTS) {
+            let section = match file_world(&format!("scenes/{stem}.toml"), text, DEFAULT_MAX_EVENTS)
+            {
                 Ok(world) => scene_section(out, stem, text, &world),
                 Err(e) => Section {
                     title: format!("Gallery: {stem}"),
@@ -53,7 +55,9 @@ pub fn gallery_sections(out: &Path) -> Vec<Section> {
                     side_by_side: false,
                     table: vec![],
                 },
-            }
+            };
+            done();
+            section
         })
         .collect()
 }

@@ -19,6 +19,7 @@ use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
 use crate::progress;
 use bentstraw_outputs::files::{self, Output, OutputSet};
+use bentstraw_outputs::gallery::GALLERY;
 use bentstraw_outputs::gallery_report::{gallery_files, gallery_sections};
 use bentstraw_outputs::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
@@ -156,23 +157,31 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
     let outputs = OutputSet::reserve_folder(out, &outputs)?;
 
     let started = Instant::now();
-    let entries: Vec<SimulationEntry> = progress::with_progress(
-        Some(jobs.len() as u64),
-        "simulating {bar:30} {pos}/{len}  [{elapsed}, about {eta} left]",
+    // One bar over the whole job: the simulations, the gallery's scenes, then the rest.
+    let steps = (jobs.len() + GALLERY.len() + 1) as u64;
+    let (entries, intro, closing) = progress::with_progress(
+        Some(steps),
+        "{msg:22} {bar:30} {pos}/{len}  [{elapsed}, about {eta} left]",
         |bar| {
+            bar.set_message("simulations");
             // In parallel: the figures are drawn on one thread each, so this is where cores help.
-            jobs.par_iter()
+            let entries: Vec<SimulationEntry> = jobs
+                .par_iter()
                 .map(|job| {
                     let entry = run_job(job, out, args.points);
                     bar.inc(1);
                     entry
                 })
-                .collect()
+                .collect();
+            bar.set_message("gallery");
+            let mut closing = gallery_sections(out, &|| bar.inc(1));
+            bar.set_message("method and validation");
+            let intro = intro_sections(out, args.points);
+            closing.extend(closing_sections(out));
+            bar.inc(1);
+            (entries, intro, closing)
         },
     );
-    let intro = intro_sections(out, args.points);
-    let mut closing = gallery_sections(out);
-    closing.extend(closing_sections(out));
     let elapsed = started.elapsed();
 
     let report = Report {
