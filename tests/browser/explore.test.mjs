@@ -115,6 +115,29 @@ test("a kind of light path has the same colour in every view, whatever its share
   await context.close();
 });
 
+test("the 3D view's legend covers none of its points", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  for (const hash of ["", "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&color=path", "#scene=reversing-arrow&observer=0.3,0,0.1"]) {
+    await page.goto(server.url + hash);
+    await page.reload();
+    await waitReady(page);
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    const covered = await page.evaluate(() => {
+      const l = document.getElementById("legend").getBoundingClientRect();
+      const n = window.bentstraw.frame.color.length;
+      let inside = 0;
+      for (let i = 0; i < n; i += 5) {
+        const [x, y] = window.bentstraw.screenOfPoint(i);
+        if (x >= l.left && x <= l.right && y >= l.top && y <= l.bottom) inside++;
+      }
+      return inside;
+    });
+    assert.equal(covered, 0, `${hash || "the first view"}: ${covered} points under the legend`);
+  }
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("dragging in the picture moves the observer and changes the picture", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);

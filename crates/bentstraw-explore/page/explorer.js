@@ -500,10 +500,19 @@ function cloudProjection(w, h) {
   const toward = [Math.cos(e) * Math.cos(a), Math.cos(e) * Math.sin(a), Math.sin(e)];
   const box = sceneBox();
   const centre = box.centre;
-  const k = zoom * Math.min(w, h) / box.size;
+  // The legend keeps the panel's bottom-left corner: the scene is drawn in the larger room beside
+  // it, to its right or above it, so that it covers no point.
+  const legend = $("legend").getBoundingClientRect(), cloud = cloudCanvas.getBoundingClientRect();
+  let [x0, x1, y1] = [0, w, h];
+  if (legend.width > 0 && legend.height > 0) {
+    const aside = Math.min(w, legend.right - cloud.left + 6), above = Math.max(0, legend.top - cloud.top - 6);
+    if (Math.min(w - aside, h) >= Math.min(w, above)) x0 = aside; else y1 = above;
+  }
+  const k = zoom * Math.min(x1 - x0, y1) / box.size;
+  const cx = (x0 + x1) / 2, cy = y1 / 2;
   return {
     toward,
-    p(q) { const d = sub(q, centre); return [w / 2 + k * dot(d, right), h / 2 - k * dot(d, up)]; },
+    p(q) { const d = sub(q, centre); return [cx + k * dot(d, right), cy - k * dot(d, up)]; },
   };
 }
 
