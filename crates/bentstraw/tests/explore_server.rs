@@ -23,13 +23,18 @@ impl Server {
         Server::start_with(Command::new(env!("CARGO_BIN_EXE_bentstraw")), args)
     }
 
-    /// The same, its limit of open files lowered to `files` (as a user's `ulimit -n`).
-    fn start_with_file_limit(files: u32, args: &[&str]) -> Server {
-        let mut sh = Command::new("sh");
-        sh.arg("-c")
-            .arg(format!("ulimit -n {files} && exec \"$0\" \"$@\""))
+    /// The same, its limit of open files lowered to `files` (as a user's `ulimit -n`), with
+    /// `taken` of them already open (inherited from the shell, as a careless parent leaves them).
+    #[cfg(unix)]
+    fn start_with_file_limit(files: u32, taken: u32, args: &[&str]) -> Server {
+        let mut bash = Command::new("bash");
+        bash.arg("-c")
+            .arg(format!(
+                "for i in $(seq {taken}); do exec {{f}}</dev/null; done; \
+                 ulimit -n {files} && exec \"$0\" \"$@\""
+            ))
             .arg(env!("CARGO_BIN_EXE_bentstraw"));
-        Server::start_with(sh, args)
+        Server::start_with(bash, args)
     }
 
     fn start_with(mut command: Command, args: &[&str]) -> Server {
@@ -201,8 +206,9 @@ fn frame_within(server: &Server, limit: Duration) {
 /// More idle connections than the process may open files: the server neither exits nor stops
 /// answering; a new client gets the page at once.
 #[test]
+#[cfg(unix)]
 fn more_connections_than_files_leave_the_server_serving() {
-    let mut server = Server::start_with_file_limit(256, &[]);
+    let mut server = Server::start_with_file_limit(256, 0, &[]);
     let mut idle = Vec::new();
     for _ in 0..300 {
         if let Ok(s) = TcpStream::connect_timeout(&server.addr(), Duration::from_secs(3)) {
@@ -224,6 +230,27 @@ fn more_connections_than_files_leave_the_server_serving() {
     assert!(fds <= 256, "{fds} files open");
     drop(idle);
     assert_eq!(server.get("/api/scenes", "").status, 200);
+    assert!(server.alive());
+}
+
+/// Descriptors running out while accepting (most of them taken before the server started):
+/// the server waits it out and makes room, and a new client is served.
+#[test]
+#[cfg(unix)]
+fn running_out_of_descriptors_is_survived() {
+    let mut server = Server::start_with_file_limit(64, 40, &[]);
+    let idle: Vec<TcpStream> = (0..100)
+        .filter_map(|_| TcpStream::connect_timeout(&server.addr(), Duration::from_secs(3)).ok())
+        .collect();
+    assert!(idle.len() >= 64, "{} connections opened", idle.len());
+    let started = Instant::now();
+    assert_eq!(server.get("/", "").status, 200);
+    assert!(
+        started.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        started.elapsed()
+    );
+    frame_within(&server, Duration::from_secs(10));
     assert!(server.alive());
 }
 

@@ -3,7 +3,8 @@
 //! - at most [`max_connections`] connections at once (fewer under a low limit of open files);
 //!   when they are all taken, the one idle the longest is closed to make room, and if none is
 //!   idle new ones wait in the listening backlog. An error accepting one (no file descriptor
-//!   left, say) is waited out, never fatal;
+//!   left, say) is waited out, never fatal, and lowers the number kept to what the process can
+//!   really open;
 //! - every connection is bounded in time (a request's head within [`HEAD_TIMEOUT`], each write
 //!   taken within [`guard::WRITE_TIMEOUT`]) and in size (a request line within
 //!   [`guard::MAX_REQUEST_LINE`], else 414; a head within [`MAX_HEAD`], else 431), answered by its
@@ -28,7 +29,7 @@ use hyper::{Method, Request, Response};
 use hyper_util::rt::{TokioIo, TokioTimer};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::{Notify, OwnedSemaphorePermit, Semaphore};
+use tokio::sync::{Notify, Semaphore};
 
 use bentstraw_explore::{self as api, Reply, MAX_URL};
 use bentstraw_optics::frame::Frame;
@@ -49,7 +50,9 @@ pub const MAX_HEAD: usize = 48 * 1024;
 /// Most header lines in a request.
 const MAX_HEADERS: usize = 64;
 /// Pause after an error accepting a connection (no descriptor left, say), so as not to spin.
-const ACCEPT_PAUSE: Duration = Duration::from_millis(100);
+const ACCEPT_PAUSE: Duration = Duration::from_millis(20);
+/// Fewest connections kept however often descriptors run out.
+const MIN_CONNECTIONS: usize = 8;
 /// After a refusal the client may still be sending: what comes is read and dropped for this
 /// long (at most [`LINGER_BYTES`]), so that it reads the refusal rather than a reset.
 const LINGER: Duration = Duration::from_secs(2);
@@ -68,8 +71,8 @@ pub fn max_connections() -> usize {
         if unsafe { libc::getrlimit(libc::RLIMIT_NOFILE, &mut limit) } == 0
             && limit.rlim_cur != libc::RLIM_INFINITY
         {
-            let room = (limit.rlim_cur as u64).saturating_sub(SPARE_FILES);
-            return (room.min(MAX_CONNECTIONS as u64) as usize).max(4);
+            let room = limit.rlim_cur.saturating_sub(SPARE_FILES as libc::rlim_t);
+            return (room.min(MAX_CONNECTIONS as libc::rlim_t) as usize).max(MIN_CONNECTIONS);
         }
     }
     MAX_CONNECTIONS
@@ -177,39 +180,46 @@ pub fn serve(listener: std::net::TcpListener, initial: &str) -> std::io::Result<
 
 /// Accepts connections for ever, each answered by a task of its own.
 async fn accept_loop(listener: TcpListener, app: Arc<App>) {
-    let slots = Arc::new(Semaphore::new(max_connections()));
+    let mut limit = max_connections();
+    let slots = Arc::new(Semaphore::new(limit));
     let conns = Arc::new(Conns::default());
     loop {
-        let permit = match Arc::clone(&slots).try_acquire_owned() {
-            Ok(permit) => permit,
+        let slot = match Arc::clone(&slots).try_acquire_owned() {
+            Ok(slot) => slot,
             Err(_) => {
                 // All taken: make room by closing an idle one; if none is, wait for one to end
                 // (new connections wait in the backlog meanwhile).
                 conns.evict_oldest_idle();
                 match Arc::clone(&slots).acquire_owned().await {
-                    Ok(permit) => permit,
+                    Ok(slot) => slot,
                     Err(_) => return,
                 }
             }
         };
-        let stream = loop {
-            match listener.accept().await {
-                Ok((stream, _)) => break stream,
-                // A connection reset before it was accepted: the next one.
-                Err(e) if is_connection_error(&e) => continue,
-                // Out of descriptors (or memory): wait a moment, freeing one if possible.
-                Err(_) => {
-                    conns.evict_oldest_idle();
-                    tokio::time::sleep(ACCEPT_PAUSE).await;
+        let stream = match listener.accept().await {
+            Ok((stream, _)) => stream,
+            // A connection reset before it was accepted: the next one.
+            Err(e) if is_connection_error(&e) => continue,
+            // Out of descriptors (or memory): the connections open are all this process can
+            // have, so one fewer is kept from now on (and the one idle the longest makes room).
+            Err(_) => {
+                if limit > MIN_CONNECTIONS {
+                    slot.forget();
+                    limit -= 1;
                 }
+                conns.evict_oldest_idle();
+                tokio::time::sleep(ACCEPT_PAUSE).await;
+                continue;
             }
         };
         let (id, conn) = conns.add();
         let app = Arc::clone(&app);
         let conns = Arc::clone(&conns);
         tokio::spawn(async move {
-            connection(stream, &app, conn, permit).await;
+            connection(stream, &app, conn).await;
+            // Out of the list before the slot is free: it is not chosen to make room again.
             conns.remove(id);
+            drop(slot);
         });
     }
 }
@@ -223,12 +233,7 @@ fn is_connection_error(e: &std::io::Error) -> bool {
 }
 
 /// Answers the requests of one connection until it closes, times out or is evicted.
-async fn connection(
-    stream: TcpStream,
-    app: &Arc<App>,
-    conn: Arc<Conn>,
-    _slot: OwnedSemaphorePermit,
-) {
+async fn connection(stream: TcpStream, app: &Arc<App>, conn: Arc<Conn>) {
     // Frames go out as soon as they are written: without this, a frame's last pieces wait for
     // the browser's delayed acknowledgement (Nagle's algorithm), up to 40 ms a frame.
     let _ = stream.set_nodelay(true);
@@ -336,7 +341,8 @@ impl App {
         let reply = match path {
             "/" | "/index.html" => asset("text/html; charset=utf-8", &self.page),
             _ if api => return self.api(path, query).await,
-            p => match api::page::PAGE_FILES.iter().find(|f| p[1..] == *f.name) {
+            p => match (api::page::PAGE_FILES.iter()).find(|f| p.strip_prefix('/') == Some(f.name))
+            {
                 Some(f) => asset(f.content_type, f.text),
                 None => Reply::text(
                     404,
