@@ -399,13 +399,20 @@ fn bentstraw_explore_max_url() -> usize {
 fn work_of_clients_that_left_is_abandoned_and_overload_gets_503() {
     let server = Server::start(&[]);
     let export = heavy_export();
-    // Two at work and four waiting fill the server.
-    let mut held: Vec<TcpStream> = Vec::new();
-    for _ in 0..6 {
-        held.push(send_only(&server, &export));
-        std::thread::sleep(Duration::from_millis(100));
-    }
+    // Two at work and four waiting fill the server, even when they come all at once.
+    let held: Vec<TcpStream> = (0..6).map(|_| send_only(&server, &export)).collect();
     std::thread::sleep(Duration::from_millis(500));
+    for s in &held {
+        s.set_nonblocking(true).unwrap();
+        let mut early = [0u8; 64];
+        match (&*s).read(&mut early) {
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {}
+            other => panic!(
+                "one of the six was answered at once: {other:?} {}",
+                String::from_utf8_lossy(&early)
+            ),
+        }
+    }
     let started = Instant::now();
     let a = server.get(&export, "");
     assert_eq!(a.status, 503, "{}", a.text());

@@ -71,9 +71,18 @@ struct Channel {
     pending: Vec<(u64, Weak<Ticket>)>,
 }
 
+/// The requests waiting, and how many are being worked on.
+#[derive(Default)]
+struct Queue {
+    jobs: VecDeque<Job>,
+    /// Requests a worker has taken and not yet answered: the queue is full when these and
+    /// those waiting make [`WORKERS`] + [`QUEUE`] (whether or not the workers have woken yet).
+    running: usize,
+}
+
 /// The workers and their queue.
 pub struct Pool {
-    queue: Mutex<VecDeque<Job>>,
+    queue: Mutex<Queue>,
     ready: Condvar,
     channels: Mutex<HashMap<String, Channel>>,
 }
@@ -107,7 +116,7 @@ impl Pool {
     /// The pool, its workers started.
     pub fn start() -> std::io::Result<Arc<Pool>> {
         let pool = Arc::new(Pool {
-            queue: Mutex::new(VecDeque::new()),
+            queue: Mutex::new(Queue::default()),
             ready: Condvar::new(),
             channels: Mutex::new(HashMap::new()),
         });
@@ -153,11 +162,11 @@ impl Pool {
         let (tx, rx) = oneshot::channel();
         let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
         // Requests given up leave the queue now, not when a worker comes to them.
-        queue.retain(|job| job.ticket.fate() == WANTED);
-        if queue.len() >= QUEUE {
+        queue.jobs.retain(|job| job.ticket.fate() == WANTED);
+        if queue.jobs.len() + queue.running >= QUEUE + WORKERS {
             return Err(busy());
         }
-        queue.push_back(Job {
+        queue.jobs.push_back(Job {
             path: path.to_string(),
             query: query.to_string(),
             ticket: Arc::clone(&ticket),
@@ -175,43 +184,56 @@ impl Pool {
             let job = {
                 let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
                 loop {
-                    match queue.pop_front() {
-                        Some(job) => break job,
+                    match queue.jobs.pop_front() {
+                        Some(job) => {
+                            queue.running += 1;
+                            break job;
+                        }
                         None => queue = self.ready.wait(queue).unwrap_or_else(|e| e.into_inner()),
                     }
                 }
             };
-            let stop = frame.stop_flag();
-            {
-                let mut running = job.ticket.running.lock().unwrap_or_else(|e| e.into_inner());
-                match job.ticket.fate() {
-                    WANTED => {}
-                    STALE => {
-                        let _ = job.answer.send(stale());
-                        continue;
-                    }
-                    _ => continue,
-                }
-                // Cleared under the lock: giving the request up can only set it from now on.
-                stop.store(false, Ordering::Relaxed);
-                *running = Some(Arc::clone(&stop));
-            }
-            let reply = catch_unwind(AssertUnwindSafe(|| {
-                api::handle(&job.path, &job.query, &mut frame)
-            }))
-            .unwrap_or_else(|_| {
-                frame = Frame::default();
-                Reply::text(500, "internal error while computing this view")
-            });
-            *job.ticket.running.lock().unwrap_or_else(|e| e.into_inner()) = None;
-            // Abandoned half-way: what was computed is not what was asked for.
-            let reply = if stop.swap(false, Ordering::Relaxed) {
-                stale()
-            } else {
-                reply
-            };
+            let Job {
+                path,
+                query,
+                ticket,
+                answer,
+            } = job;
+            let reply = compute(&path, &query, &ticket, &mut frame);
+            // Free before answering: the client's next request finds room.
+            self.queue.lock().unwrap_or_else(|e| e.into_inner()).running -= 1;
             // A client that left reads nothing: that is fine.
-            let _ = job.answer.send(reply);
+            if let Some(reply) = reply {
+                let _ = answer.send(reply);
+            }
         }
     }
+}
+
+/// The answer to `path?query` computed with `frame`'s buffers, or none if its client left; 409
+/// if it was superseded, before or while it was computed.
+fn compute(path: &str, query: &str, ticket: &Ticket, frame: &mut Frame) -> Option<Reply> {
+    let stop = frame.stop_flag();
+    {
+        let mut running = ticket.running.lock().unwrap_or_else(|e| e.into_inner());
+        match ticket.fate() {
+            WANTED => {}
+            STALE => return Some(stale()),
+            _ => return None,
+        }
+        // Cleared under the lock: giving the request up can only set it from now on.
+        stop.store(false, Ordering::Relaxed);
+        *running = Some(Arc::clone(&stop));
+    }
+    let reply =
+        catch_unwind(AssertUnwindSafe(|| api::handle(path, query, frame))).unwrap_or_else(|_| {
+            *frame = Frame::default();
+            Reply::text(500, "internal error while computing this view")
+        });
+    *ticket.running.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    // Abandoned half-way: what was computed is not what was asked for.
+    if stop.swap(false, Ordering::Relaxed) {
+        return (ticket.fate() == STALE).then(stale);
+    }
+    Some(reply)
 }
