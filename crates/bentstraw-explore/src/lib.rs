@@ -7,9 +7,12 @@
 #![warn(missing_docs)]
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
-use bentstraw_optics::apparent::{eye_model_points, stereo_point_each, stereo_points, Focus};
+use bentstraw_optics::apparent::{
+    eye_model_points_until, stereo_point_each_until, stereo_points, stereo_points_until, Focus,
+};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::geometry::Ray;
@@ -18,9 +21,7 @@ use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{clip_text, DEFAULT_MAX_EVENTS};
 use bentstraw_optics::scene_file::{Observer, SceneDescription};
-use bentstraw_optics::shading::{
-    shaded_picture, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
-};
+use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
 use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
@@ -592,18 +593,29 @@ fn course_points(view: &View) -> Arc<Vec<ImagePoint>> {
 type ModelAnswer = (String, usize, Arc<Vec<Option<(Vec3, u8)>>>);
 static LAST_MODELS: Mutex<Vec<ModelAnswer>> = Mutex::new(Vec::new());
 
-/// Where `model` places each of `points` (`None`: not placed), or the refusal of an unknown model.
+/// The answer to a request abandoned half-way (its stop flag set): what was computed is not
+/// what was asked for.
+fn stopped() -> Reply {
+    Reply::text(409, "stale: this request was abandoned")
+}
+
+/// Where `model` places each of `points` (`None`: not placed), or the refusal of an unknown model
+/// (or of one abandoned because `stop` was set).
 fn place(
     view: &View,
     model: &str,
     points: &[ImagePoint],
+    stop: &AtomicBool,
 ) -> Result<Vec<Option<(Vec3, u8)>>, Reply> {
+    let (world, eye) = (&view.scene.world, view.observer);
     match model {
-        "eye" => Ok(eye_model_points(&view.scene.world, view.observer, points)
+        "eye" => Ok(eye_model_points_until(world, eye, points, stop)
+            .ok_or_else(stopped)?
             .iter()
             .map(|p| Some((p.position?, p.image.color)))
             .collect()),
-        "stereo" => Ok(stereo_point_each(&view.scene.world, view.observer, points)
+        "stereo" => Ok(stereo_point_each_until(world, eye, points, stop)
+            .ok_or_else(stopped)?
             .iter()
             .map(|p| {
                 let p = p.as_ref()?;
@@ -622,8 +634,9 @@ fn place(
 
 /// `GET /api/model?model=eye|stereo[&every=K]`: the model's points as `u32` count, `3n` `f32`, `n`
 /// colours (the points the model places; the others are left out). With `every=K`, only every
-/// K-th course point is placed: a quick first answer the page refines.
-pub fn model_reply(view: &View, model: &str, every: usize) -> Reply {
+/// K-th course point is placed: a quick first answer the page refines. Setting `stop` abandons it
+/// (a 409 answer).
+pub fn model_reply(view: &View, model: &str, every: usize, stop: &AtomicBool) -> Reply {
     let all = course_points(view);
     let every = every.max(1);
     let key = format!("{} {model}", view.points_key());
@@ -645,7 +658,7 @@ pub fn model_reply(view: &View, model: &str, every: usize) -> Reply {
         .filter(|&&i| !known(i))
         .map(|&i| all[i])
         .collect();
-    let mut fresh = match place(view, model, &todo) {
+    let mut fresh = match place(view, model, &todo, stop) {
         Ok(p) => p.into_iter(),
         Err(refusal) => return refusal,
     };
@@ -790,12 +803,29 @@ fn reached_json(out: &mut Value, world: &World, eye: Vec3, image: &ImagePoint) {
 }
 
 /// `GET /api/export?format=csv|ply|png` (`&model=eye|stereo` for the points): the file `simulate`
-/// or `render` would write for this view.
-pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, String> {
+/// or `render` would write for this view. Setting `stop` abandons the picture or the model's
+/// points half-way (a 409 answer).
+pub fn export_reply(
+    view: &View,
+    q: &HashMap<String, String>,
+    stop: &Arc<AtomicBool>,
+) -> Result<Reply, String> {
     let format = get(q, "format").unwrap_or("csv");
     let model = get(q, "model").unwrap_or("course");
     if format == "png" {
-        let picture = shaded_picture(&view.scene.world, &view.camera, &view.shading());
+        // In buffers of its own (a 4K picture's are large, and freed after), drawn as `render`
+        // draws it, and abandoned row by row like a frame.
+        let mut scratch = Frame::with_stop_flag(Arc::clone(stop));
+        let request = FrameRequest {
+            camera: view.camera,
+            shading: view.shading(),
+            min_points: 0,
+        };
+        draw_frame(&view.scene.world, &request, &mut scratch);
+        if stop.load(Ordering::Relaxed) {
+            return Ok(stopped());
+        }
+        let picture = scratch.picture;
         let mut r = Reply::bytes("image/png", png_bytes(&picture).map_err(|e| e.to_string())?);
         r.file_name = Some("view.png".into());
         return Ok(r);
@@ -812,14 +842,20 @@ pub fn export_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, S
     let stereo;
     let world = &view.scene.world;
     let set_model = match model {
-        "eye" => {
-            eye = eye_model_points(world, view.observer, &cloud.points);
-            ModelPoints::Eye(&eye)
-        }
-        "stereo" => {
-            stereo = stereo_points(world, view.observer, &cloud.points);
-            ModelPoints::Stereo(&stereo)
-        }
+        "eye" => match eye_model_points_until(world, view.observer, &cloud.points, stop) {
+            Some(points) => {
+                eye = points;
+                ModelPoints::Eye(&eye)
+            }
+            None => return Ok(stopped()),
+        },
+        "stereo" => match stereo_points_until(world, view.observer, &cloud.points, stop) {
+            Some(points) => {
+                stereo = points;
+                ModelPoints::Stereo(&stereo)
+            }
+            None => return Ok(stopped()),
+        },
         _ => ModelPoints::Course,
     };
     let set = PointSet {
@@ -896,7 +932,9 @@ pub fn query_value(text: &str) -> String {
     out
 }
 
-/// The answer to `GET path?query` for the API routes (`/api/...`), with a reusable frame.
+/// The answer to `GET path?query` for the API routes (`/api/...`), with a reusable frame. Another
+/// thread may set the frame's [`Frame::stop_flag`] to abandon the work half-way (frames, models,
+/// exports): the answer is then incomplete, and the caller throws it away.
 pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
     if path == "/api/scenes" {
         return scenes_reply();
@@ -915,16 +953,19 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
     let result = match path {
         "/api/frame" => Ok(frame_reply(&view, frame)),
         "/api/model" => match get(&q, "every").map_or(Ok(1), |t| number::<usize>(t, "every")) {
-            Ok(k) if (1..=MAX_EVERY).contains(&k) => {
-                Ok(model_reply(&view, get(&q, "model").unwrap_or("eye"), k))
-            }
+            Ok(k) if (1..=MAX_EVERY).contains(&k) => Ok(model_reply(
+                &view,
+                get(&q, "model").unwrap_or("eye"),
+                k,
+                &frame.stop_flag(),
+            )),
             Ok(k) => Err(format!(
                 "every={k} is not allowed: a model places every K-th point, 1 <= K <= {MAX_EVERY}"
             )),
             Err(e) => Err(e),
         },
         "/api/ray" => ray_reply(&view, &q),
-        "/api/export" => export_reply(&view, &q),
+        "/api/export" => export_reply(&view, &q, &frame.stop_flag()),
         "/api/scene-file" => scene_file_reply(&view),
         _ => return Reply::text(404, format!("no such route: {}", clip_text(path, 60))),
     };
@@ -1006,7 +1047,7 @@ mod tests {
         };
         let expect = |every: usize| -> Vec<[f32; 3]> {
             let some: Vec<ImagePoint> = cloud.iter().step_by(every).copied().collect();
-            eye_model_points(&view.scene.world, view.observer, &some)
+            bentstraw_optics::apparent::eye_model_points(&view.scene.world, view.observer, &some)
                 .iter()
                 .filter_map(|p| p.position)
                 .map(|q| [q.x as f32, q.y as f32, q.z as f32])
@@ -1019,7 +1060,7 @@ mod tests {
             }
             // Whole, coarse, then whole again from the coarse answer's points.
             for every in [1, 4, 1] {
-                let got = decode(model_reply(&view, "eye", every));
+                let got = decode(model_reply(&view, "eye", every, &AtomicBool::new(false)));
                 assert!(got.len() > 800 / every / 2);
                 assert_eq!(
                     got,
@@ -1174,6 +1215,38 @@ mod tests {
         assert_eq!(handle("/api/frame", &both, &mut f).status, 400);
     }
 
+    /// Work whose stop flag is set is abandoned (409); not set, the PNG is `render`'s picture.
+    #[test]
+    fn stopped_exports_and_models_are_abandoned() {
+        let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=300"))).unwrap();
+        let go = Arc::new(AtomicBool::new(false));
+        let png = export_reply(&view, &query("format=png"), &go).unwrap();
+        let picture = bentstraw_optics::shading::shaded_picture(
+            &view.scene.world,
+            &view.camera,
+            &view.shading(),
+        );
+        assert_eq!(png.body, png_bytes(&picture).unwrap());
+        let stop = Arc::new(AtomicBool::new(true));
+        for format in [
+            "format=png",
+            "format=csv&model=eye",
+            "format=ply&model=stereo",
+        ] {
+            let r = export_reply(&view, &query(format), &stop).unwrap();
+            assert_eq!(r.status, 409, "{format}");
+        }
+        for model in ["eye", "stereo"] {
+            assert_eq!(model_reply(&view, model, 1, &stop).status, 409, "{model}");
+            assert_eq!(model_reply(&view, model, 1, &go).status, 200, "{model}");
+        }
+        // Through `handle`: the frame's flag.
+        let mut frame = Frame::default();
+        frame.stop_flag().store(true, Ordering::Relaxed);
+        let q = format!("{REF2}&size=40x30&points=300&format=png");
+        assert_eq!(handle("/api/export", &q, &mut frame).status, 409);
+    }
+
     #[test]
     fn unknown_routes_and_formats_are_refused() {
         let mut f = Frame::default();
@@ -1269,6 +1342,28 @@ mod tests {
             fn any_text_parses_or_is_refused(q in "[ -~]{0,300}") {
                 let _ = parse_query(&q);
                 let _ = handle("/api/frame", &q, &mut Frame::default());
+            }
+
+            /// Any path with any query (good views among them) gets a success or a refusal of
+            /// one line, never a panic.
+            #[test]
+            fn any_path_gets_an_answer(
+                path in prop_oneof![
+                    Just("/api/frame".to_string()),
+                    Just("/api/scene-file".to_string()),
+                    "/api/[a-z-]{0,12}",
+                    "[ -~]{0,30}",
+                ],
+                raw in prop_oneof![Just(REF2.to_string()), "[ -~]{0,120}"],
+                q in query(),
+            ) {
+                let q = format!("{raw}&{q}&points=50&size=16x12&chan=x&seq=1");
+                let r = handle(&path, &q, &mut Frame::default());
+                prop_assert!([200, 400, 404].contains(&r.status), "{} for {path}?{q}", r.status);
+                if r.status != 200 {
+                    let text = String::from_utf8(r.body).unwrap();
+                    prop_assert!(!text.is_empty() && !text.contains('\n'), "{text:?}");
+                }
             }
         }
     }

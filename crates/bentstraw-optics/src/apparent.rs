@@ -68,6 +68,8 @@
 //! assert_eq!(stereo.points.len() + stereo.skipped, cloud.points.len());
 //! ```
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use crate::parallel::*;
 
 use crate::geometry::Ray;
@@ -188,6 +190,16 @@ pub struct ApparentPoint {
 }
 
 impl ApparentPoint {
+    /// The point of `image` whose foci were not sought (a stopped computation's filler).
+    fn unresolved(image: &ImagePoint) -> ApparentPoint {
+        ApparentPoint {
+            image: *image,
+            s_h: Focus::Unresolved,
+            s_v: Focus::Unresolved,
+            position: None,
+        }
+    }
+
     /// Distance of the apparent point from the eye along `u0`, the mean `(s_h + s_v)/2` (m).
     pub fn apparent_distance(&self) -> Option<f64> {
         Some(0.5 * (self.s_h.distance()? + self.s_v.distance()?))
@@ -732,21 +744,52 @@ pub fn eye_model_points(
     observer: Vec3,
     points: &[ImagePoint],
 ) -> Vec<ApparentPoint> {
-    points
+    eye_model_points_until(world, observer, points, &AtomicBool::new(false)).expect("never stopped")
+}
+
+/// [`eye_model_points`], abandoned as soon as another thread sets `stop` (`None` then): a live
+/// view whose request has gone or was superseded. The points are the same when it is not set.
+pub fn eye_model_points_until(
+    world: &World,
+    observer: Vec3,
+    points: &[ImagePoint],
+    stop: &AtomicBool,
+) -> Option<Vec<ApparentPoint>> {
+    // One relaxed load per point is nothing beside a point's Newton iterations; once stopped,
+    // the remaining points cost only that load.
+    let all = points
         .par_iter()
-        .map(|p| world.apparent_point(observer, p))
-        .collect()
+        .map(|p| {
+            if stop.load(Ordering::Relaxed) {
+                ApparentPoint::unresolved(p)
+            } else {
+                world.apparent_point(observer, p)
+            }
+        })
+        .collect();
+    (!stop.load(Ordering::Relaxed)).then_some(all)
 }
 
 /// The stereo model's points for `points` (image points seen from `observer`), seen by the eyes
 /// [`StereoEyes::around`] the observer, in the input's order; in parallel.
 pub fn stereo_points(world: &World, observer: Vec3, points: &[ImagePoint]) -> StereoImage {
-    let all = stereo_point_each(world, observer, points);
+    stereo_points_until(world, observer, points, &AtomicBool::new(false)).expect("never stopped")
+}
+
+/// [`stereo_points`], abandoned as soon as another thread sets `stop` (`None` then). The points
+/// are the same when it is not set.
+pub fn stereo_points_until(
+    world: &World,
+    observer: Vec3,
+    points: &[ImagePoint],
+    stop: &AtomicBool,
+) -> Option<StereoImage> {
+    let all = stereo_point_each_until(world, observer, points, stop)?;
     let skipped = all.iter().filter(|p| p.is_none()).count();
-    StereoImage {
+    Some(StereoImage {
         points: all.into_iter().flatten().collect(),
         skipped,
-    }
+    })
 }
 
 /// The stereo model's point for each of `points` (image points seen from `observer`), seen by the
@@ -757,11 +800,30 @@ pub fn stereo_point_each(
     observer: Vec3,
     points: &[ImagePoint],
 ) -> Vec<Option<StereoPoint>> {
+    stereo_point_each_until(world, observer, points, &AtomicBool::new(false))
+        .expect("never stopped")
+}
+
+/// [`stereo_point_each`], abandoned as soon as another thread sets `stop` (`None` then). The
+/// points are the same when it is not set.
+pub fn stereo_point_each_until(
+    world: &World,
+    observer: Vec3,
+    points: &[ImagePoint],
+    stop: &AtomicBool,
+) -> Option<Vec<Option<StereoPoint>>> {
     let eyes = StereoEyes::around(observer);
-    points
+    let all = points
         .par_iter()
-        .map(|p| world.stereo_point(&eyes, observer, p))
-        .collect()
+        .map(|p| {
+            if stop.load(Ordering::Relaxed) {
+                None
+            } else {
+                world.stereo_point(&eyes, observer, p)
+            }
+        })
+        .collect();
+    (!stop.load(Ordering::Relaxed)).then_some(all)
 }
 
 /// Both models' images of the same course image points.
@@ -1506,5 +1568,38 @@ mod tests {
             assert!(k > last);
             last = k;
         }
+    }
+
+    /// The stoppable models give the point-by-point answers when not stopped, and nothing once
+    /// the flag is set.
+    #[test]
+    fn stopped_models_give_nothing_and_unstopped_ones_every_point() {
+        let r = REFERENCES[1];
+        let world = World::assignment(&r.scene(N));
+        let eye = r.observer;
+        let cloud = sample_image(&world, eye, 300, &|_| {});
+        let go = AtomicBool::new(false);
+        let eye_points = eye_model_points_until(&world, eye, &cloud.points, &go).unwrap();
+        let one_by_one: Vec<ApparentPoint> = cloud
+            .points
+            .iter()
+            .map(|p| world.apparent_point(eye, p))
+            .collect();
+        assert_eq!(eye_points, one_by_one);
+        let eyes = StereoEyes::around(eye);
+        let stereo = stereo_point_each_until(&world, eye, &cloud.points, &go).unwrap();
+        let stereo_one_by_one: Vec<Option<StereoPoint>> = cloud
+            .points
+            .iter()
+            .map(|p| world.stereo_point(&eyes, eye, p))
+            .collect();
+        assert_eq!(stereo, stereo_one_by_one);
+        assert_eq!(
+            stereo_points_until(&world, eye, &cloud.points, &go),
+            Some(stereo_points(&world, eye, &cloud.points))
+        );
+        let stop = AtomicBool::new(true);
+        assert!(eye_model_points_until(&world, eye, &cloud.points, &stop).is_none());
+        assert!(stereo_points_until(&world, eye, &cloud.points, &stop).is_none());
     }
 }

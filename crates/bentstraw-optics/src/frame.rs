@@ -53,6 +53,15 @@ impl Frame {
         self.shading.stop_flag()
     }
 
+    /// An empty frame with `stop` as its stop flag: a one-off picture (an export) drawn in its
+    /// own buffers, freed afterwards, yet abandoned by the same flag as the frame it came from.
+    pub fn with_stop_flag(stop: std::sync::Arc<std::sync::atomic::AtomicBool>) -> Frame {
+        Frame {
+            shading: ShadingBuffers::with_stop_flag(stop),
+            ..Frame::default()
+        }
+    }
+
     /// Points per kind of light path, sorted by kind (direct first, then by entry face and
     /// number of total reflections).
     pub fn path_counts(&self) -> Vec<(LightPathType, usize)> {

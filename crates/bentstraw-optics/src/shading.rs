@@ -610,6 +610,14 @@ impl ShadingBuffers {
     pub fn stop_flag(&self) -> Arc<AtomicBool> {
         Arc::clone(&self.stop)
     }
+
+    /// Empty buffers whose drawing is abandoned when `stop` is set (another picture's flag).
+    pub fn with_stop_flag(stop: Arc<AtomicBool>) -> ShadingBuffers {
+        ShadingBuffers {
+            stop,
+            ..ShadingBuffers::default()
+        }
+    }
 }
 
 /// The colour of the glass's outline (sRGB).

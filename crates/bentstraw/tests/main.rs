@@ -9,6 +9,7 @@
 mod bench_cli;
 mod check_cli;
 mod cli;
+mod explore_server;
 mod figures_cli;
 mod outputs_cli;
 mod render_cli;

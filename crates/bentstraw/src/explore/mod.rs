@@ -2,7 +2,10 @@
 //! machine. The page (embedded in the binary, no network needed) asks the server for frames; the
 //! server only checks inputs and calls the library.
 
+mod guard;
+mod origin;
 mod server;
+mod work;
 
 use std::io::Write;
 
@@ -22,8 +25,13 @@ pub fn run(args: &ExploreArgs) -> CliResult {
     // The starting view obeys the same rules as the page's: refuse it before listening.
     let q = api::parse_query(&initial).map_err(crate::error::CliError)?;
     api::View::from_query(&q).map_err(crate::error::CliError)?;
-    let address = format!("{}:{}", args.host, args.port);
-    let listener = match std::net::TcpListener::bind(&address) {
+    // `[::1]` as a URL writes it, or `::1`.
+    let host = args
+        .host
+        .strip_prefix('[')
+        .and_then(|h| h.strip_suffix(']'))
+        .unwrap_or(&args.host);
+    let listener = match std::net::TcpListener::bind((host, args.port)) {
         Ok(l) => l,
         Err(e) if e.kind() == std::io::ErrorKind::AddrInUse => {
             return fail(format!(
@@ -31,27 +39,34 @@ pub fn run(args: &ExploreArgs) -> CliResult {
                 args.port, args.host
             ))
         }
-        Err(e) => return fail(format!("cannot listen on {address}: {e}")),
+        Err(e) => return fail(format!("cannot listen on {}:{}: {e}", args.host, args.port)),
     };
-    // Frames go out as soon as they are written: without this, a frame's last pieces wait for
-    // the browser's delayed acknowledgement (Nagle's algorithm), up to 40 ms a frame. Connections
-    // accepted from the listener inherit it.
-    let _ = socket2::SockRef::from(&listener).set_tcp_nodelay(true);
-    let server = tiny_http::Server::from_listener(listener, None)
-        .map_err(|e| crate::error::CliError(format!("cannot listen on {address}: {e}")))?;
-    let port = server
-        .server_addr()
-        .to_ip()
-        .map(|a| a.port())
-        .unwrap_or(args.port);
-    let url = format!("http://{}:{port}/", args.host);
+    let cannot =
+        |e: std::io::Error| crate::error::CliError(format!("cannot listen on {}: {e}", args.host));
+    let bound = listener.local_addr().map_err(cannot)?;
+    if !bound.ip().is_loopback() {
+        crate::progress::tell(&format!(
+            "warning: listening on {}: anyone who can reach this machine over the network can use the explorer and make it compute (--host 127.0.0.1 keeps it to this machine)\n",
+            server::url_host(bound)
+        ));
+    }
+    // Every address includes this machine's own: the browser here opens that one.
+    let shown = if bound.ip().is_unspecified() {
+        let loopback: std::net::IpAddr = match bound {
+            std::net::SocketAddr::V4(_) => std::net::Ipv4Addr::LOCALHOST.into(),
+            std::net::SocketAddr::V6(_) => std::net::Ipv6Addr::LOCALHOST.into(),
+        };
+        std::net::SocketAddr::new(loopback, bound.port())
+    } else {
+        bound
+    };
+    let url = format!("http://{}:{}/", server::url_host(shown), shown.port());
     println!("bentstraw explore: open {url}  (Ctrl-C stops the server)");
     let _ = std::io::stdout().flush();
     if !args.no_open {
         open_browser(&url);
     }
-    server::serve(server, &initial);
-    Ok(())
+    server::serve(listener, &initial).map_err(cannot)
 }
 
 /// The query of the view given on the command line (flags as the page's parameters): a scene file

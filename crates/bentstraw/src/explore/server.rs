@@ -1,181 +1,393 @@
-//! The explorer's web server: one thread takes requests and answers the cheap ones (the page, its
-//! script, refusals); a fixed pool of workers computes frames from a short queue. A full queue
-//! answers 503 at once, and work superseded by a newer request of the same page (its sequence
-//! number) answers 409 without being computed; a frame already being drawn when it is superseded
-//! is abandoned, so a fast drag never piles up work nor waits for a view it has left.
+//! The explorer's web server (hyper on tokio), built so that no client can stop it or freeze it:
+//!
+//! - at most [`max_connections`] connections at once (fewer under a low limit of open files);
+//!   when they are all taken, the one idle the longest is closed to make room, and if none is
+//!   idle new ones wait in the listening backlog. An error accepting one (no file descriptor
+//!   left, say) is waited out, never fatal, and lowers the number kept to what the process can
+//!   really open;
+//! - every connection is bounded in time (a request's head within [`HEAD_TIMEOUT`], each write
+//!   taken within [`guard::WRITE_TIMEOUT`]) and in size (a request line within
+//!   [`guard::MAX_REQUEST_LINE`], else 414; a head within [`MAX_HEAD`], else 431), answered by its
+//!   own task: the accepting loop writes nothing;
+//! - the heavy requests go to a small pool of workers ([`work`]), 503 with `Retry-After` when its
+//!   queue is full, and are abandoned when their client leaves or is superseded; everything else
+//!   (the page, its files, the scene list, a scene's sketch, refusals) is answered at once;
+//! - only this machine's pages are served ([`origin`]): a foreign `Host` or `Origin` gets 403.
 
-use std::collections::HashMap;
-use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{sync_channel, Receiver, TrySendError};
-use std::sync::{Arc, Mutex};
+use std::collections::BTreeMap;
+use std::convert::Infallible;
+use std::net::SocketAddr;
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::Duration;
 
-use bentstraw_optics::frame::Frame;
-use tiny_http::{Header, Method, Request, Response, Server};
+use bytes::Bytes;
+use http_body_util::Full;
+use hyper::body::Incoming;
+use hyper::header::{self, HeaderValue};
+use hyper::{Method, Request, Response};
+use hyper_util::rt::{TokioIo, TokioTimer};
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::net::{TcpListener, TcpStream};
+use tokio::sync::{Notify, Semaphore};
 
 use bentstraw_explore::{self as api, Reply, MAX_URL};
+use bentstraw_optics::frame::Frame;
 
-/// Frames computed at once (each is itself parallel over the cores).
-pub const WORKERS: usize = 2;
-/// Requests waiting for a worker, beyond which the server answers 503.
-pub const QUEUE: usize = 4;
-/// Most channels (page × kind of request) whose latest sequence number is remembered.
-const MAX_CHANNELS: usize = 256;
+use super::guard::{self, Guarded};
+use super::origin::Local;
+use super::work::Pool;
 
-/// Per channel: the latest sequence number seen, and the job being computed (its number and its
-/// frame's stop flag).
-#[derive(Default)]
-struct Channel {
-    newest: u64,
-    running: Option<(u64, Arc<AtomicBool>)>,
-}
+/// Most connections open at once, when the limit of open files allows it.
+pub const MAX_CONNECTIONS: usize = 256;
+/// File descriptors left for everything but connections (standard streams, the listener, the
+/// runtime's own, a browser being started).
+const SPARE_FILES: u64 = 32;
+/// Time a client has to send a request's head; also how long a connection may stay idle.
+pub const HEAD_TIMEOUT: Duration = Duration::from_secs(15);
+/// Longest request head (request line and headers); hyper answers 431 beyond it.
+pub const MAX_HEAD: usize = 48 * 1024;
+/// Most header lines in a request.
+const MAX_HEADERS: usize = 64;
+/// Pause after an error accepting a connection (no descriptor left, say), so as not to spin.
+const ACCEPT_PAUSE: Duration = Duration::from_millis(20);
+/// Fewest connections kept however often descriptors run out.
+const MIN_CONNECTIONS: usize = 8;
+/// After a refusal the client may still be sending: what comes is read and dropped for this
+/// long (at most [`LINGER_BYTES`]), so that it reads the refusal rather than a reset.
+const LINGER: Duration = Duration::from_secs(2);
+const LINGER_BYTES: usize = 4 << 20;
 
-/// The channels, by name.
-type Latest = Arc<Mutex<HashMap<String, Channel>>>;
-
-struct Job {
-    request: Request,
-    path: String,
-    query: String,
-    ticket: Option<(String, u64)>,
-}
-
-/// Serves the explorer on `server` until the process ends; `initial` is the query of the view the
-/// page starts with (when its address holds none).
-pub fn serve(server: Server, initial: &str) {
-    let page = api::page::index_html(initial, api::page::Engine::Server);
-    let latest: Latest = Arc::default();
-    let (tx, rx) = sync_channel::<Job>(QUEUE);
-    let rx = Arc::new(Mutex::new(rx));
-    for _ in 0..WORKERS {
-        let rx = Arc::clone(&rx);
-        let latest = Arc::clone(&latest);
-        std::thread::spawn(move || worker(&rx, &latest));
-    }
-    for request in server.incoming_requests() {
-        let url = request.url().to_string();
-        if url.len() > MAX_URL {
-            respond(
-                request,
-                Reply::text(414, format!("address longer than {MAX_URL} bytes")),
-            );
-            continue;
-        }
-        if !matches!(request.method(), Method::Get | Method::Head) {
-            respond(request, Reply::text(405, "only GET is served"));
-            continue;
-        }
-        let (path, query) = url.split_once('?').unwrap_or((&url, ""));
-        let reply = match path {
-            "/" | "/index.html" => Some(asset("text/html; charset=utf-8", &page)),
-            p if p.starts_with("/api/") => None,
-            p => Some(
-                match api::page::PAGE_FILES.iter().find(|f| p[1..] == *f.name) {
-                    Some(f) => asset(f.content_type, f.text),
-                    None => Reply::text(
-                        404,
-                        format!(
-                            "no such page: {}",
-                            bentstraw_optics::scene::clip_text(p, 60)
-                        ),
-                    ),
-                },
-            ),
+/// Most connections this process can keep open: [`MAX_CONNECTIONS`], or fewer when the limit of
+/// open files is low (each connection is one).
+pub fn max_connections() -> usize {
+    #[cfg(unix)]
+    {
+        let mut limit = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
         };
-        if let Some(reply) = reply {
-            respond(request, reply);
-            continue;
+        // SAFETY: getrlimit writes the struct it is given, nothing else.
+        if unsafe { libc::getrlimit(libc::RLIMIT_NOFILE, &mut limit) } == 0
+            && limit.rlim_cur != libc::RLIM_INFINITY
+        {
+            let room = limit.rlim_cur.saturating_sub(SPARE_FILES as libc::rlim_t);
+            return (room.min(MAX_CONNECTIONS as libc::rlim_t) as usize).max(MIN_CONNECTIONS);
         }
-        let ticket = ticket_of(query);
-        if let Some((chan, seq)) = &ticket {
-            let mut map = latest.lock().unwrap_or_else(|e| e.into_inner());
-            if map.len() >= MAX_CHANNELS && !map.contains_key(chan) {
-                map.clear();
+    }
+    MAX_CONNECTIONS
+}
+
+/// One open connection, as the accepting loop and the connection's requests see it.
+struct Conn {
+    /// Requests being answered (0: idle, between requests or in a head).
+    busy: AtomicUsize,
+    /// Set to close the connection now.
+    evict: Notify,
+    evicted: AtomicBool,
+    /// Set when its request line was too long (answered 414, then closed).
+    too_long: Arc<AtomicBool>,
+}
+
+/// The open connections, oldest first.
+#[derive(Default)]
+struct Conns {
+    next: AtomicU64,
+    open: Mutex<BTreeMap<u64, Arc<Conn>>>,
+}
+
+impl Conns {
+    fn add(&self) -> (u64, Arc<Conn>) {
+        let id = self.next.fetch_add(1, Ordering::Relaxed);
+        let conn = Arc::new(Conn {
+            busy: AtomicUsize::new(0),
+            evict: Notify::new(),
+            evicted: AtomicBool::new(false),
+            too_long: Arc::new(AtomicBool::new(false)),
+        });
+        let mut open = self.open.lock().unwrap_or_else(|e| e.into_inner());
+        open.insert(id, Arc::clone(&conn));
+        (id, conn)
+    }
+
+    fn remove(&self, id: u64) {
+        self.open
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .remove(&id);
+    }
+
+    /// Closes the oldest connection with no request under way; whether there was one.
+    fn evict_oldest_idle(&self) -> bool {
+        let open = self.open.lock().unwrap_or_else(|e| e.into_inner());
+        for conn in open.values() {
+            if conn.busy.load(Ordering::Relaxed) == 0 && !conn.evicted.swap(true, Ordering::Relaxed)
+            {
+                conn.evict.notify_one();
+                return true;
             }
-            let entry = map.entry(chan.clone()).or_default();
-            entry.newest = entry.newest.max(*seq);
-            // The view being drawn for this page is no longer wanted: stop drawing it.
-            if let Some((running, stop)) = &entry.running {
-                if *running < entry.newest {
-                    stop.store(true, Ordering::Relaxed);
+        }
+        false
+    }
+}
+
+/// Marks a connection busy while a request of it is answered.
+struct Busy(Arc<Conn>);
+
+impl Busy {
+    fn new(conn: &Arc<Conn>) -> Busy {
+        conn.busy.fetch_add(1, Ordering::Relaxed);
+        Busy(Arc::clone(conn))
+    }
+}
+
+impl Drop for Busy {
+    fn drop(&mut self) {
+        self.0.busy.fetch_sub(1, Ordering::Relaxed);
+    }
+}
+
+/// What every request's answer needs.
+struct App {
+    /// The page's HTML, its starting view filled in.
+    page: String,
+    local: Local,
+    pool: Arc<Pool>,
+}
+
+/// Serves the explorer on `listener` until the process ends; `initial` is the query of the view
+/// the page starts with (when its address holds none). An error only if it cannot start.
+pub fn serve(listener: std::net::TcpListener, initial: &str) -> std::io::Result<()> {
+    let local = Local::new(listener.local_addr()?);
+    listener.set_nonblocking(true)?;
+    let app = Arc::new(App {
+        page: api::page::index_html(initial, api::page::Engine::Server),
+        local,
+        pool: Pool::start()?,
+    });
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .thread_name("explore-io")
+        .enable_io()
+        .enable_time()
+        .build()?;
+    runtime.block_on(async move {
+        let listener = TcpListener::from_std(listener)?;
+        accept_loop(listener, app).await;
+        Ok(())
+    })
+}
+
+/// Accepts connections for ever, each answered by a task of its own.
+async fn accept_loop(listener: TcpListener, app: Arc<App>) {
+    let mut limit = max_connections();
+    let slots = Arc::new(Semaphore::new(limit));
+    let conns = Arc::new(Conns::default());
+    loop {
+        let slot = match Arc::clone(&slots).try_acquire_owned() {
+            Ok(slot) => slot,
+            Err(_) => {
+                // All taken: make room by closing an idle one; if none is, wait for one to end
+                // (new connections wait in the backlog meanwhile).
+                conns.evict_oldest_idle();
+                match Arc::clone(&slots).acquire_owned().await {
+                    Ok(slot) => slot,
+                    Err(_) => return,
                 }
             }
-        }
-        let job = Job {
-            request,
-            path: path.to_string(),
-            query: query.to_string(),
-            ticket,
         };
-        match tx.try_send(job) {
-            Ok(()) => {}
-            Err(TrySendError::Full(job)) | Err(TrySendError::Disconnected(job)) => respond(
-                job.request,
-                Reply::text(503, "the explorer is busy: try again in a moment"),
-            ),
-        }
-    }
-}
-
-/// The channel and sequence number of an API request (`chan=…&seq=N`), if it has both.
-fn ticket_of(query: &str) -> Option<(String, u64)> {
-    let q = api::parse_query(query).ok()?;
-    let chan = q.get("chan")?;
-    let seq = q.get("seq")?.parse().ok()?;
-    Some((bentstraw_optics::scene::clip_text(chan, 64), seq))
-}
-
-fn worker(rx: &Mutex<Receiver<Job>>, latest: &Latest) {
-    let mut frame = Frame::default();
-    loop {
-        let job = {
-            let rx = rx.lock().unwrap_or_else(|e| e.into_inner());
-            match rx.recv() {
-                Ok(job) => job,
-                Err(_) => return,
-            }
-        };
-        let stop = frame.stop_flag();
-        if let Some((chan, seq)) = &job.ticket {
-            let mut map = latest.lock().unwrap_or_else(|e| e.into_inner());
-            let entry = map.entry(chan.clone()).or_default();
-            if entry.newest > *seq {
-                drop(map);
-                respond(job.request, stale());
+        let stream = match listener.accept().await {
+            Ok((stream, _)) => stream,
+            // A connection reset before it was accepted: the next one.
+            Err(e) if is_connection_error(&e) => continue,
+            // Out of descriptors (or memory): the connections open are all this process can
+            // have, so one fewer is kept from now on (and the one idle the longest makes room).
+            Err(_) => {
+                if limit > MIN_CONNECTIONS {
+                    slot.forget();
+                    limit -= 1;
+                }
+                conns.evict_oldest_idle();
+                tokio::time::sleep(ACCEPT_PAUSE).await;
                 continue;
             }
-            // Cleared under the lock: a newer request can only set it from now on.
-            stop.store(false, Ordering::Relaxed);
-            entry.running = Some((*seq, Arc::clone(&stop)));
-        }
-        let reply = catch_unwind(AssertUnwindSafe(|| {
-            api::handle(&job.path, &job.query, &mut frame)
-        }))
-        .unwrap_or_else(|_| {
-            frame = Frame::default();
-            Reply::text(500, "internal error while computing this view")
-        });
-        if let Some((chan, seq)) = &job.ticket {
-            let mut map = latest.lock().unwrap_or_else(|e| e.into_inner());
-            if let Some(entry) = map.get_mut(chan) {
-                if entry.running.as_ref().is_some_and(|r| r.0 == *seq) {
-                    entry.running = None;
-                }
-            }
-        }
-        // Abandoned half-way: what was drawn is not the view asked for.
-        let reply = if stop.swap(false, Ordering::Relaxed) {
-            stale()
-        } else {
-            reply
         };
-        respond(job.request, reply);
+        let (id, conn) = conns.add();
+        let app = Arc::clone(&app);
+        let conns = Arc::clone(&conns);
+        tokio::spawn(async move {
+            connection(stream, &app, conn).await;
+            // Out of the list before the slot is free: it is not chosen to make room again.
+            conns.remove(id);
+            drop(slot);
+        });
     }
 }
 
-/// The answer to a request a newer one from the same page has replaced.
-fn stale() -> Reply {
-    Reply::text(409, "stale: a newer request replaced this one")
+fn is_connection_error(e: &std::io::Error) -> bool {
+    use std::io::ErrorKind::*;
+    matches!(
+        e.kind(),
+        ConnectionRefused | ConnectionAborted | ConnectionReset | Interrupted | WouldBlock
+    )
+}
+
+/// Answers the requests of one connection until it closes, times out or is evicted.
+async fn connection(stream: TcpStream, app: &Arc<App>, conn: Arc<Conn>) {
+    // Frames go out as soon as they are written: without this, a frame's last pieces wait for
+    // the browser's delayed acknowledgement (Nagle's algorithm), up to 40 ms a frame.
+    let _ = stream.set_nodelay(true);
+    let mut io = Guarded::new(stream, Arc::clone(&conn.too_long));
+    let refused = {
+        let service = hyper::service::service_fn(|request| {
+            let app = Arc::clone(app);
+            let busy = Busy::new(&conn);
+            async move {
+                let response = app.answer(request, &busy.0).await;
+                drop(busy);
+                Ok::<_, Infallible>(response)
+            }
+        });
+        let serving = hyper::server::conn::http1::Builder::new()
+            .timer(TokioTimer::new())
+            .header_read_timeout(HEAD_TIMEOUT)
+            .max_header_size(MAX_HEAD)
+            .max_buf_size(MAX_HEAD + 16 * 1024)
+            .max_headers(MAX_HEADERS)
+            .serve_connection(TokioIo::new(&mut io), service);
+        tokio::select! {
+            done = serving => match done {
+                Ok(()) => conn.too_long.load(Ordering::Relaxed),
+                Err(e) => e.is_parse() || e.is_parse_too_large(),
+            },
+            _ = conn.evict.notified() => false,
+        }
+    };
+    if refused {
+        linger(io.get_mut()).await;
+    }
+}
+
+/// Closes our side, then reads and drops what the client still sends, for a moment.
+async fn linger(stream: &mut TcpStream) {
+    let _ = stream.shutdown().await;
+    let drain = async {
+        let mut buf = [0u8; 8192];
+        let mut total = 0;
+        while total < LINGER_BYTES {
+            match stream.read(&mut buf).await {
+                Ok(0) | Err(_) => break,
+                Ok(n) => total += n,
+            }
+        }
+    };
+    let _ = tokio::time::timeout(LINGER, drain).await;
+}
+
+impl App {
+    /// The answer to one request.
+    async fn answer(&self, request: Request<Incoming>, conn: &Conn) -> Response<Full<Bytes>> {
+        if conn.too_long.load(Ordering::Relaxed) {
+            return closing(Reply::text(
+                414,
+                format!("request line longer than {} bytes", guard::MAX_REQUEST_LINE),
+            ));
+        }
+        if !matches!(*request.method(), Method::GET | Method::HEAD) {
+            let mut response = closing(Reply::text(405, "only GET is served"));
+            response
+                .headers_mut()
+                .insert(header::ALLOW, HeaderValue::from_static("GET, HEAD"));
+            return response;
+        }
+        let headers = request.headers();
+        let text = |name: header::HeaderName| headers.get(name).and_then(|v| v.to_str().ok());
+        if headers.contains_key(header::CONTENT_LENGTH)
+            || headers.contains_key(header::TRANSFER_ENCODING)
+        {
+            return closing(Reply::text(400, "a GET request has no body"));
+        }
+        let uri = request.uri();
+        let path = uri.path();
+        let api = path.starts_with("/api/");
+        let mut host = text(header::HOST);
+        // An absolute address ("GET http://host/…") names its server itself.
+        if let Some(authority) = uri.authority() {
+            if host.is_some_and(|h| !h.eq_ignore_ascii_case(authority.as_str())) {
+                host = None;
+            }
+        }
+        if let Err(why) = self.local.check(
+            host,
+            text(header::ORIGIN),
+            headers.get("sec-fetch-site").and_then(|v| v.to_str().ok()),
+            api,
+        ) {
+            return respond(Reply::text(403, why));
+        }
+        let query = uri.query().unwrap_or("");
+        let length = path.len()
+            + if uri.query().is_some() {
+                1 + query.len()
+            } else {
+                0
+            };
+        if length > MAX_URL {
+            return respond(Reply::text(
+                414,
+                format!("address longer than {MAX_URL} bytes"),
+            ));
+        }
+        let reply = match path {
+            "/" | "/index.html" => asset("text/html; charset=utf-8", &self.page),
+            _ if api => return self.api(path, query).await,
+            p => match (api::page::PAGE_FILES.iter()).find(|f| p.strip_prefix('/') == Some(f.name))
+            {
+                Some(f) => asset(f.content_type, f.text),
+                None => Reply::text(
+                    404,
+                    format!(
+                        "no such page: {}",
+                        bentstraw_optics::scene::clip_text(p, 60)
+                    ),
+                ),
+            },
+        };
+        respond(reply)
+    }
+
+    /// The answer to an API request: the heavy ones through the workers' queue, the others
+    /// (and any refusal of a query) at once.
+    async fn api(&self, path: &str, query: &str) -> Response<Full<Bytes>> {
+        if path == "/api/scenes" {
+            static SCENES: OnceLock<Reply> = OnceLock::new();
+            return respond(SCENES.get_or_init(api::scenes_reply).clone());
+        }
+        let heavy = matches!(
+            path,
+            "/api/frame" | "/api/model" | "/api/ray" | "/api/export"
+        );
+        if !heavy {
+            return respond(api::handle(path, query, &mut Frame::default()));
+        }
+        // A query that breaks a rule is refused here, without waiting for a worker.
+        let parsed = api::parse_query(query).and_then(|q| api::View::from_query(&q).map(|_| q));
+        let q = match parsed {
+            Ok(q) => q,
+            Err(e) => return respond(Reply::text(400, e)),
+        };
+        let chan = q
+            .get("chan")
+            .zip(q.get("seq").and_then(|s| s.parse::<u64>().ok()))
+            .map(|(chan, seq)| (bentstraw_optics::scene::clip_text(chan, 64), seq));
+        match self.pool.submit(path, query, chan) {
+            Ok(mut waiting) => match (&mut waiting.answer).await {
+                Ok(reply) => respond(reply),
+                Err(_) => respond(Reply::text(500, "the request was lost")),
+            },
+            Err(refusal) => respond(refusal),
+        }
+    }
 }
 
 fn asset(content_type: &'static str, text: &str) -> Reply {
@@ -187,26 +399,46 @@ fn asset(content_type: &'static str, text: &str) -> Reply {
     }
 }
 
-fn header(name: &str, value: &str) -> Header {
-    Header::from_bytes(name.as_bytes(), value.as_bytes()).expect("ASCII header")
+/// `reply` as an HTTP response, sent whole with its length (hyper writes `Content-Length` for a
+/// body of known size: no chunks, which stall for the peer's delayed acknowledgement).
+fn respond(reply: Reply) -> Response<Full<Bytes>> {
+    let mut response = Response::new(Full::new(Bytes::from(reply.body)));
+    *response.status_mut() = hyper::StatusCode::from_u16(reply.status)
+        .unwrap_or(hyper::StatusCode::INTERNAL_SERVER_ERROR);
+    let headers = response.headers_mut();
+    headers.insert(
+        header::CONTENT_TYPE,
+        HeaderValue::from_static(reply.content_type),
+    );
+    headers.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
+    headers.insert(
+        header::X_CONTENT_TYPE_OPTIONS,
+        HeaderValue::from_static("nosniff"),
+    );
+    if reply.status == 503 {
+        headers.insert(header::RETRY_AFTER, HeaderValue::from_static("1"));
+    }
+    if let Some(name) = reply.file_name {
+        if let Ok(value) = HeaderValue::from_str(&format!("attachment; filename=\"{name}\"")) {
+            headers.insert(header::CONTENT_DISPOSITION, value);
+        }
+    }
+    response
 }
 
-fn respond(request: Request, reply: Reply) {
-    // Sent whole with its length: tiny_http's chunked encoding (its default above 32 KB) writes
-    // small pieces, which stall for the peer's delayed acknowledgement (tens of ms a frame).
-    let length = reply.body.len();
-    let mut response = Response::from_data(reply.body)
-        .with_chunked_threshold(length + 1)
-        .with_status_code(reply.status)
-        .with_header(header("Content-Type", reply.content_type))
-        .with_header(header("Cache-Control", "no-store"))
-        .with_header(header("X-Content-Type-Options", "nosniff"));
-    if let Some(name) = reply.file_name {
-        response = response.with_header(header(
-            "Content-Disposition",
-            &format!("attachment; filename=\"{name}\""),
-        ));
+/// [`respond`], closing the connection after it (what follows on it is not read).
+fn closing(reply: Reply) -> Response<Full<Bytes>> {
+    let mut response = respond(reply);
+    response
+        .headers_mut()
+        .insert(header::CONNECTION, HeaderValue::from_static("close"));
+    response
+}
+
+/// The address `addr` as a URL's host: IPv6 in brackets.
+pub fn url_host(addr: SocketAddr) -> String {
+    match addr {
+        SocketAddr::V4(a) => a.ip().to_string(),
+        SocketAddr::V6(a) => format!("[{}]", a.ip()),
     }
-    // The page may have gone (a cancelled request): nothing to do about it.
-    let _ = request.respond(response);
 }

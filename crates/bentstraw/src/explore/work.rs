@@ -1,0 +1,239 @@
+//! The explorer's heavy work (frames, models, rays, exports): [`WORKERS`] threads, each with its
+//! own frame buffers, take requests from a queue of at most [`QUEUE`]; beyond it the server
+//! answers 503 at once. A request stops being worked on when nobody waits for it any more: its
+//! client left (the connection closed) or the same page asked for something newer on the same
+//! channel (`chan=…&seq=N`), which is then answered 409 ("stale"), as the page expects. Work
+//! already under way is abandoned through its frame's stop flag, so a fast drag never piles up
+//! work and a client that hangs up frees its worker at once.
+
+use std::collections::{HashMap, VecDeque};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
+use std::sync::{Arc, Condvar, Mutex, Weak};
+
+use bentstraw_explore::{self as api, Reply};
+use bentstraw_optics::frame::Frame;
+use tokio::sync::oneshot;
+
+/// Requests computed at once (each is itself parallel over the cores).
+pub const WORKERS: usize = 2;
+/// Requests waiting for a worker, beyond which the server answers 503.
+pub const QUEUE: usize = 4;
+/// Most channels (page × kind of request) whose latest sequence number is remembered.
+const MAX_CHANNELS: usize = 256;
+
+/// Still wanted.
+const WANTED: u8 = 0;
+/// Its client left: nobody reads the answer.
+const GONE: u8 = 1;
+/// Replaced by a newer request of the same page: answered 409.
+const STALE: u8 = 2;
+
+/// A request's fate, shared by its waiting client, its channel and its worker.
+#[derive(Default)]
+struct Ticket {
+    /// [`WANTED`], [`GONE`] or [`STALE`].
+    fate: AtomicU8,
+    /// While a worker computes it: that worker's stop flag. Guarded, so that a request given up
+    /// just as a worker takes it is stopped all the same.
+    running: Mutex<Option<Arc<AtomicBool>>>,
+}
+
+impl Ticket {
+    /// Gives the request up (`why`: [`GONE`] or [`STALE`]), stopping the work under way.
+    fn give_up(&self, why: u8) {
+        let running = self.running.lock().unwrap_or_else(|e| e.into_inner());
+        let _ = self
+            .fate
+            .compare_exchange(WANTED, why, Ordering::Relaxed, Ordering::Relaxed);
+        if let Some(stop) = running.as_ref() {
+            stop.store(true, Ordering::Relaxed);
+        }
+    }
+
+    fn fate(&self) -> u8 {
+        self.fate.load(Ordering::Relaxed)
+    }
+}
+
+/// A request waiting for a worker.
+struct Job {
+    path: String,
+    query: String,
+    ticket: Arc<Ticket>,
+    answer: oneshot::Sender<Reply>,
+}
+
+/// Per channel: the newest sequence number seen, and the requests not yet answered.
+#[derive(Default)]
+struct Channel {
+    newest: u64,
+    pending: Vec<(u64, Weak<Ticket>)>,
+}
+
+/// The requests waiting, and how many are being worked on.
+#[derive(Default)]
+struct Queue {
+    jobs: VecDeque<Job>,
+    /// Requests a worker has taken and not yet answered: the queue is full when these and
+    /// those waiting make [`WORKERS`] + [`QUEUE`] (whether or not the workers have woken yet).
+    running: usize,
+}
+
+/// The workers and their queue.
+pub struct Pool {
+    queue: Mutex<Queue>,
+    ready: Condvar,
+    channels: Mutex<HashMap<String, Channel>>,
+}
+
+/// A request handed to the pool: its answer to come, and what gives it up when dropped (its
+/// client gone: hyper drops a request's future when its connection closes).
+pub struct Waiting {
+    /// The answer.
+    pub answer: oneshot::Receiver<Reply>,
+    ticket: Arc<Ticket>,
+}
+
+impl Drop for Waiting {
+    fn drop(&mut self) {
+        // After the answer, nothing is running: this changes nothing.
+        self.ticket.give_up(GONE);
+    }
+}
+
+/// The answer to a request a newer one from the same page has replaced.
+pub fn stale() -> Reply {
+    Reply::text(409, "stale: a newer request replaced this one")
+}
+
+/// The answer when the queue is full (sent with `Retry-After`).
+pub fn busy() -> Reply {
+    Reply::text(503, "the explorer is busy: try again in a moment")
+}
+
+impl Pool {
+    /// The pool, its workers started.
+    pub fn start() -> std::io::Result<Arc<Pool>> {
+        let pool = Arc::new(Pool {
+            queue: Mutex::new(Queue::default()),
+            ready: Condvar::new(),
+            channels: Mutex::new(HashMap::new()),
+        });
+        for k in 0..WORKERS {
+            let pool = Arc::clone(&pool);
+            std::thread::Builder::new()
+                .name(format!("explore-worker-{k}"))
+                .spawn(move || pool.work())?;
+        }
+        Ok(pool)
+    }
+
+    /// Queues `path?query` (`chan`: its channel and sequence number, if it has them); the answer
+    /// to wait for, or the refusal to send at once (409 when already replaced, 503 when full).
+    pub fn submit(
+        &self,
+        path: &str,
+        query: &str,
+        chan: Option<(String, u64)>,
+    ) -> Result<Waiting, Reply> {
+        let ticket = Arc::new(Ticket::default());
+        if let Some((name, seq)) = chan {
+            let mut channels = self.channels.lock().unwrap_or_else(|e| e.into_inner());
+            if channels.len() >= MAX_CHANNELS && !channels.contains_key(&name) {
+                channels.clear();
+            }
+            let channel = channels.entry(name).or_default();
+            if seq < channel.newest {
+                return Err(stale());
+            }
+            channel.newest = seq;
+            // What this page asked before on this channel is no longer wanted.
+            channel.pending.retain(|(s, t)| match t.upgrade() {
+                Some(t) if *s < seq => {
+                    t.give_up(STALE);
+                    false
+                }
+                Some(t) => t.fate() == WANTED,
+                None => false,
+            });
+            channel.pending.push((seq, Arc::downgrade(&ticket)));
+        }
+        let (tx, rx) = oneshot::channel();
+        let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
+        // Requests given up leave the queue now, not when a worker comes to them.
+        queue.jobs.retain(|job| job.ticket.fate() == WANTED);
+        if queue.jobs.len() + queue.running >= QUEUE + WORKERS {
+            return Err(busy());
+        }
+        queue.jobs.push_back(Job {
+            path: path.to_string(),
+            query: query.to_string(),
+            ticket: Arc::clone(&ticket),
+            answer: tx,
+        });
+        drop(queue);
+        self.ready.notify_one();
+        Ok(Waiting { answer: rx, ticket })
+    }
+
+    /// A worker: takes requests and answers them, until the process ends.
+    fn work(&self) {
+        let mut frame = Frame::default();
+        loop {
+            let job = {
+                let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
+                loop {
+                    match queue.jobs.pop_front() {
+                        Some(job) => {
+                            queue.running += 1;
+                            break job;
+                        }
+                        None => queue = self.ready.wait(queue).unwrap_or_else(|e| e.into_inner()),
+                    }
+                }
+            };
+            let Job {
+                path,
+                query,
+                ticket,
+                answer,
+            } = job;
+            let reply = compute(&path, &query, &ticket, &mut frame);
+            // Free before answering: the client's next request finds room.
+            self.queue.lock().unwrap_or_else(|e| e.into_inner()).running -= 1;
+            // A client that left reads nothing: that is fine.
+            if let Some(reply) = reply {
+                let _ = answer.send(reply);
+            }
+        }
+    }
+}
+
+/// The answer to `path?query` computed with `frame`'s buffers, or none if its client left; 409
+/// if it was superseded, before or while it was computed.
+fn compute(path: &str, query: &str, ticket: &Ticket, frame: &mut Frame) -> Option<Reply> {
+    let stop = frame.stop_flag();
+    {
+        let mut running = ticket.running.lock().unwrap_or_else(|e| e.into_inner());
+        match ticket.fate() {
+            WANTED => {}
+            STALE => return Some(stale()),
+            _ => return None,
+        }
+        // Cleared under the lock: giving the request up can only set it from now on.
+        stop.store(false, Ordering::Relaxed);
+        *running = Some(Arc::clone(&stop));
+    }
+    let reply =
+        catch_unwind(AssertUnwindSafe(|| api::handle(path, query, frame))).unwrap_or_else(|_| {
+            *frame = Frame::default();
+            Reply::text(500, "internal error while computing this view")
+        });
+    *ticket.running.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    // Abandoned half-way: what was computed is not what was asked for.
+    if stop.swap(false, Ordering::Relaxed) {
+        return (ticket.fate() == STALE).then(stale);
+    }
+    Some(reply)
+}

@@ -1,0 +1,540 @@
+//! `bentstraw explore`'s server under hostile clients: more connections than it may open files,
+//! clients that never read, foreign pages, huge heads, clients that leave mid-computation and
+//! more work than it takes at once. No client may stop it or freeze the others. Every wait is
+//! bounded (socket timeouts, deadlines), and each server is killed when its test ends.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::{SocketAddr, TcpStream};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A running `bentstraw explore`, killed when dropped.
+struct Server {
+    child: Child,
+    /// `host:port` as its URL gives it.
+    host: String,
+    /// Its standard error's first line, if it printed one before the address.
+    stderr: Option<std::process::ChildStderr>,
+}
+
+impl Server {
+    /// `bentstraw explore --no-open --port 0 ARGS…`, once it listens.
+    fn start(args: &[&str]) -> Server {
+        Server::start_with(Command::new(env!("CARGO_BIN_EXE_bentstraw")), args)
+    }
+
+    /// The same, its limit of open files lowered to `files` (as a user's `ulimit -n`), with
+    /// `taken` of them already open (inherited from the shell, as a careless parent leaves them).
+    #[cfg(unix)]
+    fn start_with_file_limit(files: u32, taken: u32, args: &[&str]) -> Server {
+        let mut bash = Command::new("bash");
+        bash.arg("-c")
+            .arg(format!(
+                "for i in $(seq {taken}); do exec {{f}}</dev/null; done; \
+                 ulimit -n {files} && exec \"$0\" \"$@\""
+            ))
+            .arg(env!("CARGO_BIN_EXE_bentstraw"));
+        Server::start_with(bash, args)
+    }
+
+    fn start_with(mut command: Command, args: &[&str]) -> Server {
+        let mut child = command
+            .args(["explore", "--no-open", "--port", "0"])
+            .args(args)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("bentstraw runs");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().unwrap())
+            .read_line(&mut line)
+            .unwrap();
+        let url = line
+            .split_whitespace()
+            .find(|w| w.starts_with("http://"))
+            .unwrap_or_else(|| panic!("no address in {line:?}"));
+        let host = url
+            .trim_start_matches("http://")
+            .trim_end_matches('/')
+            .to_string();
+        let stderr = child.stderr.take();
+        Server {
+            child,
+            host,
+            stderr,
+        }
+    }
+
+    fn addr(&self) -> SocketAddr {
+        use std::net::ToSocketAddrs;
+        self.host.to_socket_addrs().unwrap().next().unwrap()
+    }
+
+    fn connect(&self) -> TcpStream {
+        let s = TcpStream::connect_timeout(&self.addr(), Duration::from_secs(5)).unwrap();
+        s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+        s.set_write_timeout(Some(Duration::from_secs(20))).unwrap();
+        s
+    }
+
+    /// `GET target` with the server's own `Host` and `extra` header lines.
+    fn get(&self, target: &str, extra: &str) -> Answer {
+        let mut s = self.connect();
+        write!(
+            s,
+            "GET {target} HTTP/1.1\r\nHost: {}\r\n{extra}Connection: close\r\n\r\n",
+            self.host
+        )
+        .unwrap();
+        read_answer(&mut s)
+    }
+
+    fn alive(&mut self) -> bool {
+        self.child.try_wait().unwrap().is_none()
+    }
+
+    /// Resident memory of the server (kB), from /proc.
+    fn resident_kb(&self) -> Option<u64> {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).ok()?;
+        let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+        line.split_whitespace().nth(1)?.parse().ok()
+    }
+
+    /// What it printed on standard error so far (it is killed first).
+    fn stderr_after_kill(&mut self) -> String {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        let mut text = String::new();
+        if let Some(mut e) = self.stderr.take() {
+            let _ = e.read_to_string(&mut text);
+        }
+        text
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// A response: status, header lines (lowercase names), body.
+struct Answer {
+    status: u16,
+    headers: Vec<(String, String)>,
+    body: Vec<u8>,
+}
+
+impl Answer {
+    fn header(&self, name: &str) -> Option<&str> {
+        self.headers
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_str())
+    }
+
+    fn text(&self) -> String {
+        String::from_utf8_lossy(&self.body).into_owned()
+    }
+}
+
+/// Reads one response from `s` (its body by its `Content-Length`).
+fn read_answer(s: &mut TcpStream) -> Answer {
+    let mut reader = BufReader::new(s);
+    let mut status_line = String::new();
+    reader.read_line(&mut status_line).expect("a status line");
+    let status = status_line
+        .split_whitespace()
+        .nth(1)
+        .and_then(|c| c.parse().ok())
+        .unwrap_or_else(|| panic!("no status in {status_line:?}"));
+    let mut headers = Vec::new();
+    loop {
+        let mut line = String::new();
+        reader.read_line(&mut line).unwrap();
+        let line = line.trim_end();
+        if line.is_empty() {
+            break;
+        }
+        let (name, value) = line.split_once(':').unwrap();
+        headers.push((name.to_ascii_lowercase(), value.trim().to_string()));
+    }
+    let length: usize = headers
+        .iter()
+        .find(|(n, _)| n == "content-length")
+        .map(|(_, v)| v.parse().unwrap())
+        .expect("every answer has a Content-Length");
+    let mut body = vec![0; length];
+    reader.read_exact(&mut body).unwrap();
+    Answer {
+        status,
+        headers,
+        body,
+    }
+}
+
+/// A small view of reference 2.
+const VIEW: &str = "observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15";
+
+/// The heaviest export the explorer takes: a 4K picture with 16×16 samples per pixel (tens of
+/// seconds on two cores).
+fn heavy_export() -> String {
+    format!("/api/export?{VIEW}&format=png&size=3840x2160&samples=16&mode=fresnel")
+}
+
+/// Sends `GET target` on a new connection and leaves it unread.
+fn send_only(server: &Server, target: &str) -> TcpStream {
+    let mut s = server.connect();
+    write!(s, "GET {target} HTTP/1.1\r\nHost: {}\r\n\r\n", server.host).unwrap();
+    s
+}
+
+/// A small frame is answered within `limit`.
+fn frame_within(server: &Server, limit: Duration) {
+    let started = Instant::now();
+    let a = server.get(&format!("/api/frame?{VIEW}&size=64x48&points=500"), "");
+    assert_eq!(a.status, 200, "{}", a.text());
+    assert!(
+        started.elapsed() < limit,
+        "a small frame took {:?}",
+        started.elapsed()
+    );
+}
+
+/// More idle connections than the process may open files: the server neither exits nor stops
+/// answering; a new client gets the page at once.
+#[test]
+#[cfg(unix)]
+fn more_connections_than_files_leave_the_server_serving() {
+    let mut server = Server::start_with_file_limit(256, 0, &[]);
+    let mut idle = Vec::new();
+    for _ in 0..300 {
+        if let Ok(s) = TcpStream::connect_timeout(&server.addr(), Duration::from_secs(3)) {
+            idle.push(s);
+        }
+    }
+    assert!(idle.len() >= 250, "{} connections opened", idle.len());
+    let started = Instant::now();
+    let page = server.get("/", "");
+    assert_eq!(page.status, 200);
+    assert!(page.text().contains("<html"), "{}", page.text());
+    assert!(started.elapsed() < Duration::from_secs(5));
+    frame_within(&server, Duration::from_secs(10));
+    assert!(server.alive());
+    // Its open files stayed under the limit.
+    let fds = std::fs::read_dir(format!("/proc/{}/fd", server.child.id()))
+        .map(|d| d.count())
+        .unwrap_or(0);
+    assert!(fds <= 256, "{fds} files open");
+    drop(idle);
+    assert_eq!(server.get("/api/scenes", "").status, 200);
+    assert!(server.alive());
+}
+
+/// Descriptors running out while accepting (most of them taken before the server started):
+/// the server waits it out and makes room, and a new client is served.
+#[test]
+#[cfg(unix)]
+fn running_out_of_descriptors_is_survived() {
+    let mut server = Server::start_with_file_limit(64, 40, &[]);
+    let idle: Vec<TcpStream> = (0..100)
+        .filter_map(|_| TcpStream::connect_timeout(&server.addr(), Duration::from_secs(3)).ok())
+        .collect();
+    assert!(idle.len() >= 64, "{} connections opened", idle.len());
+    let started = Instant::now();
+    assert_eq!(server.get("/", "").status, 200);
+    assert!(
+        started.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        started.elapsed()
+    );
+    frame_within(&server, Duration::from_secs(10));
+    assert!(server.alive());
+}
+
+/// A client that sends request after request and reads none of the answers holds up nobody,
+/// nor do two clients that never read their large frames.
+#[test]
+fn clients_that_never_read_freeze_nobody() {
+    let server = Server::start(&[]);
+    // Pipelined requests for the page's largest file, never read: megabytes of answers.
+    let mut greedy = server.connect();
+    let one = format!("GET /explorer.js HTTP/1.1\r\nHost: {}\r\n\r\n", server.host);
+    let sender = {
+        let mut s = greedy.try_clone().unwrap();
+        s.set_write_timeout(Some(Duration::from_secs(3))).unwrap();
+        std::thread::spawn(move || {
+            for _ in 0..2000 {
+                if s.write_all(one.as_bytes()).is_err() {
+                    break;
+                }
+            }
+        })
+    };
+    // Two large frames asked for and never read.
+    let big = format!("/api/frame?{VIEW}&size=1920x1080&samples=1&points=20000");
+    let _unread: Vec<TcpStream> = (0..2).map(|_| send_only(&server, &big)).collect();
+    std::thread::sleep(Duration::from_millis(1500));
+    for _ in 0..3 {
+        let started = Instant::now();
+        assert_eq!(server.get("/", "").status, 200);
+        assert_eq!(server.get("/api/scenes", "").status, 200);
+        assert!(
+            started.elapsed() < Duration::from_secs(2),
+            "{:?}",
+            started.elapsed()
+        );
+    }
+    frame_within(&server, Duration::from_secs(10));
+    sender.join().unwrap();
+    let _ = greedy.flush();
+}
+
+/// Only this machine's pages: a foreign `Host` (DNS rebinding), a foreign `Origin` or a
+/// cross-site request is refused with 403 and computes nothing.
+#[test]
+fn foreign_pages_are_refused() {
+    let server = Server::start(&[]);
+    let port = server.addr().port();
+    let export = heavy_export();
+    let mut s = server.connect();
+    write!(
+        s,
+        "GET {export} HTTP/1.1\r\nHost: rebound.example:{port}\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let a = read_answer(&mut s);
+    assert_eq!(a.status, 403, "{}", a.text());
+    assert!(a.text().contains("Host"), "{}", a.text());
+    for extra in [
+        "Origin: http://evil.example\r\n",
+        "Origin: null\r\n",
+        "Sec-Fetch-Site: cross-site\r\n",
+    ] {
+        let started = Instant::now();
+        let a = server.get(&export, extra);
+        assert_eq!(a.status, 403, "{extra}: {}", a.text());
+        assert!(started.elapsed() < Duration::from_secs(2));
+    }
+    // The page's own requests, and those of no page (a program), are served.
+    let own = format!(
+        "Origin: http://{}\r\nSec-Fetch-Site: same-origin\r\n",
+        server.host
+    );
+    assert_eq!(server.get("/api/scenes", &own).status, 200);
+    for host in ["localhost", "127.0.0.1"] {
+        let mut s = server.connect();
+        write!(
+            s,
+            "GET / HTTP/1.1\r\nHost: {host}:{port}\r\nConnection: close\r\n\r\n"
+        )
+        .unwrap();
+        assert_eq!(read_answer(&mut s).status, 200, "{host}");
+    }
+    // Nothing was computed for the refusals: a frame comes at once.
+    frame_within(&server, Duration::from_secs(5));
+}
+
+/// A 1 MB header line is refused with 431 at once, without the server holding it; a 64 KB
+/// request line with 414 before it has even ended.
+#[test]
+fn huge_heads_are_refused_before_they_are_read() {
+    let server = Server::start(&[]);
+    let before = server.resident_kb();
+    for _ in 0..4 {
+        let started = Instant::now();
+        let mut s = server.connect();
+        let head = format!("GET / HTTP/1.1\r\nHost: {}\r\nX-Big: ", server.host);
+        s.write_all(head.as_bytes()).unwrap();
+        let mut writer = s.try_clone().unwrap();
+        let sender = std::thread::spawn(move || {
+            let chunk = vec![b'a'; 64 * 1024];
+            for _ in 0..16 {
+                if writer.write_all(&chunk).is_err() {
+                    break;
+                }
+            }
+            let _ = writer.write_all(b"\r\n\r\n");
+        });
+        let a = read_answer(&mut s);
+        assert_eq!(a.status, 431);
+        assert!(started.elapsed() < Duration::from_secs(5));
+        sender.join().unwrap();
+    }
+    if let (Some(before), Some(after)) = (before, server.resident_kb()) {
+        assert!(after < before + 16 * 1024, "{before} kB, then {after} kB");
+    }
+    // The request line: 64 KB of address, never ended.
+    let started = Instant::now();
+    let mut s = server.connect();
+    s.write_all(b"GET /").unwrap();
+    s.write_all(&vec![b'a'; 64 * 1024]).unwrap();
+    let a = read_answer(&mut s);
+    assert_eq!(a.status, 414, "{}", a.text());
+    assert!(started.elapsed() < Duration::from_secs(5));
+    // The longest address the page may send is still served (a scene file travels in it).
+    let long = format!(
+        "/api/scenes?pad={}",
+        "a".repeat(bentstraw_explore_max_url() - 20)
+    );
+    assert_eq!(server.get(&long, "").status, 200);
+    let too_long = format!(
+        "/api/scenes?pad={}",
+        "a".repeat(bentstraw_explore_max_url())
+    );
+    assert_eq!(server.get(&too_long, "").status, 414);
+    frame_within(&server, Duration::from_secs(5));
+}
+
+/// The explorer's longest address (bytes), as its crate says.
+fn bentstraw_explore_max_url() -> usize {
+    16 * 1024
+}
+
+/// Clients that hang up mid-computation stop their work; more work than the server takes at
+/// once is refused with 503 and `Retry-After`; then everything is served promptly again.
+#[test]
+fn work_of_clients_that_left_is_abandoned_and_overload_gets_503() {
+    let server = Server::start(&[]);
+    let export = heavy_export();
+    // Two at work and four waiting fill the server, even when they come all at once.
+    let held: Vec<TcpStream> = (0..6).map(|_| send_only(&server, &export)).collect();
+    std::thread::sleep(Duration::from_millis(500));
+    for s in &held {
+        s.set_nonblocking(true).unwrap();
+        let mut early = [0u8; 64];
+        match (&*s).read(&mut early) {
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {}
+            other => panic!(
+                "one of the six was answered at once: {other:?} {}",
+                String::from_utf8_lossy(&early)
+            ),
+        }
+    }
+    let started = Instant::now();
+    let a = server.get(&export, "");
+    assert_eq!(a.status, 503, "{}", a.text());
+    assert_eq!(a.header("retry-after"), Some("1"));
+    assert!(started.elapsed() < Duration::from_secs(2));
+    // Cheap requests are not queued behind the frames.
+    let started = Instant::now();
+    assert_eq!(server.get("/", "").status, 200);
+    assert_eq!(server.get("/api/scenes", "").status, 200);
+    assert_eq!(server.get("/api/sketch?scene=tank-pencil", "").status, 200);
+    assert!(started.elapsed() < Duration::from_secs(2));
+    // Everyone hangs up: the work stops, and a frame comes at once (not after minutes).
+    drop(held);
+    std::thread::sleep(Duration::from_millis(300));
+    frame_within(&server, Duration::from_secs(8));
+    // A single client that leaves mid-export frees its worker too.
+    let one = send_only(&server, &export);
+    std::thread::sleep(Duration::from_millis(500));
+    drop(one);
+    let two = send_only(&server, &export);
+    std::thread::sleep(Duration::from_millis(500));
+    drop(two);
+    std::thread::sleep(Duration::from_millis(300));
+    frame_within(&server, Duration::from_secs(8));
+}
+
+/// A request superseded by a newer one of the same page (its channel's sequence number) is
+/// answered 409, as the page expects.
+#[test]
+fn superseded_requests_are_stale() {
+    let server = Server::start(&[]);
+    let chan = "chan=test-frame";
+    let slow = send_only(&server, &format!("{}&{chan}&seq=1", heavy_export()));
+    std::thread::sleep(Duration::from_millis(500));
+    let started = Instant::now();
+    let newer = server.get(
+        &format!("/api/frame?{VIEW}&size=64x48&points=500&{chan}&seq=2"),
+        "",
+    );
+    assert_eq!(newer.status, 200);
+    let mut slow = slow;
+    let old = read_answer(&mut slow);
+    assert_eq!(old.status, 409, "{}", old.text());
+    assert!(started.elapsed() < Duration::from_secs(8));
+    let older = server.get(&format!("/api/frame?{VIEW}&size=64x48&{chan}&seq=1"), "");
+    assert_eq!(older.status, 409);
+}
+
+/// The answers name no file of the user's: a scene file given by its path appears by its name.
+#[test]
+fn no_answer_names_the_users_folders() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().display().to_string();
+    let gallery = |name: &str| {
+        std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../../scenes")
+                .join(name),
+        )
+        .unwrap()
+    };
+    let mine = dir.path().join("mine.toml");
+    std::fs::write(
+        &mine,
+        gallery("tank-pencil.toml").replace("half_x = 0.10", "half_x = 0.12"),
+    )
+    .unwrap();
+    let glass = dir.path().join("glass.toml");
+    std::fs::write(&glass, gallery("spec.toml")).unwrap();
+    for file in [&mine, &glass] {
+        let server = Server::start(&["--scene", &file.display().to_string()]);
+        let page = server.get("/", "");
+        assert_eq!(page.status, 200);
+        let start = page.text();
+        let from = start.find("data-initial=\"").expect("the starting view") + 14;
+        let end = start[from..].find('"').unwrap();
+        let view = start[from..from + end].replace("&amp;", "&");
+        assert!(view.contains("observer="), "{view}");
+        let mut bodies = vec![page];
+        for target in [
+            format!("/api/frame?{view}&size=32x24&points=300"),
+            format!("/api/export?{view}&format=ply&points=300"),
+            format!("/api/export?{view}&format=ply&model=eye&points=300"),
+            format!("/api/export?{view}&format=csv&points=300"),
+            format!("/api/scene-file?{view}"),
+            format!("/api/frame?{view}&size=0x0"),
+        ] {
+            let a = server.get(&target, "");
+            assert!(a.status == 200 || a.status == 400, "{target}: {}", a.status);
+            bodies.push(a);
+        }
+        for a in &bodies {
+            let all = format!("{:?}{}", a.headers, a.text());
+            assert!(
+                !all.contains(&folder),
+                "{folder} in {}",
+                &all[..all.len().min(3000)]
+            );
+        }
+    }
+}
+
+/// `--host` other than this machine's own address warns that the network can use it; an IPv6
+/// address is written in brackets.
+#[test]
+fn host_addresses_are_shown_usable_and_warned_about() {
+    let mut any = Server::start(&["--host", "0.0.0.0"]);
+    assert!(any.host.starts_with("127.0.0.1:"), "{}", any.host);
+    assert_eq!(any.get("/", "").status, 200);
+    let err = any.stderr_after_kill();
+    assert!(
+        err.starts_with("warning: ") && err.contains("network") && err.lines().count() == 1,
+        "{err}"
+    );
+    // Only where this machine has IPv6.
+    if std::net::TcpListener::bind("[::1]:0").is_ok() {
+        let mut v6 = Server::start(&["--host", "::1"]);
+        assert!(v6.host.starts_with("[::1]:"), "{}", v6.host);
+        assert_eq!(v6.get("/", "").status, 200);
+        assert_eq!(v6.stderr_after_kill(), "");
+    }
+    let mut local = Server::start(&[]);
+    assert!(local.host.starts_with("127.0.0.1:"));
+    assert_eq!(local.stderr_after_kill(), "");
+}
