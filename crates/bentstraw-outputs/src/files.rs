@@ -207,9 +207,22 @@ impl OutputSet {
         }
         match failure {
             Some(msg) => Err(Error::Refused(format!("{msg}: no output was replaced"))),
-            None => Ok(()),
+            None => {
+                COMMITTED.store(true, std::sync::atomic::Ordering::SeqCst);
+                Ok(())
+            }
         }
     }
+}
+
+/// Whether an output set was put in place whole by this run.
+static COMMITTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Whether every output of this run is complete and in place: a set was committed and none is
+/// still being written (an interruption now loses nothing).
+pub fn outputs_complete() -> bool {
+    let reg = live();
+    reg.staged.is_empty() && COMMITTED.load(std::sync::atomic::Ordering::SeqCst)
 }
 
 impl Drop for OutputSet {

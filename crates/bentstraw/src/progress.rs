@@ -55,15 +55,17 @@ const INTERRUPTED_EXIT: i32 = 130;
 /// made that is still empty) before the program ends with exit code 130.
 pub fn remove_temporaries_on_interrupt() {
     let _ = ctrlc::set_handler(|| {
+        // Asked to stop once the files are all in place (just before the program would have
+        // ended): nothing was lost, and the message says so.
+        let complete = bentstraw_outputs::files::outputs_complete();
         let replaced_none = bentstraw_outputs::files::remove_all_temporaries();
-        tell(&format!(
-            "interrupted{}\n",
-            if replaced_none {
-                ": no output file was replaced"
-            } else {
-                ""
-            }
-        ));
+        tell(if complete {
+            "stopped after every output file was written: they are complete\n"
+        } else if replaced_none {
+            "interrupted: no output file was replaced\n"
+        } else {
+            "interrupted\n"
+        });
         std::process::exit(INTERRUPTED_EXIT);
     });
 }
