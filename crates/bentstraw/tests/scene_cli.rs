@@ -497,12 +497,13 @@ fn flags_override_a_scene_files_straw_and_liquid_by_the_files_rules() {
 fn a_scene_of_many_straws_is_traced() {
     let mut text =
         String::from("[container]\nshape = \"tank\"\nhalf_x = 10.0\nhalf_y = 10.0\nheight = 0.2\n");
-    for i in 0..400 {
+    // As many objects as a file may hold.
+    for i in 0..100 {
         text.push_str(&format!(
             "[[straw]]\nx = {}\ny = {}\ntilt = {}\n",
-            -9.0 + (i % 20) as f64 * 0.5,
-            -9.0 + (i / 20) as f64 * 0.5,
-            1.0 + i as f64 * 0.1
+            -9.0 + (i % 10) as f64 * 1.5,
+            -9.0 + (i / 10) as f64 * 1.5,
+            1.0 + i as f64 * 0.4
         ));
     }
     let dir = tempfile::tempdir().unwrap();
