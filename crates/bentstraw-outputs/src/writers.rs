@@ -33,7 +33,7 @@ use bentstraw_optics::camera::Camera;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::sampling::ImageCloud;
 use bentstraw_optics::scene::{clip_text, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
-use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
+use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -623,6 +623,17 @@ pub fn write_raw_codes(path: &Path, camera: &Camera, codes: &[u8]) -> Result {
         }
         Ok(())
     })
+}
+
+/// How many colour codes a raw Fresnel file gives weights for: the five sections where the world
+/// holds straws alone, else every code (coins, cards and pictures). `render --raw` and the Python
+/// package's raw weights both follow it.
+pub fn raw_weight_count(world: &World) -> usize {
+    if world.color_codes() <= SECTION_COUNT {
+        SECTION_COUNT
+    } else {
+        COLOR_COUNT
+    }
 }
 
 /// Writes the weights of each pixel centre's ray on each colour code, row-major:

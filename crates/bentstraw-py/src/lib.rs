@@ -24,7 +24,7 @@ use bentstraw_outputs::gallery::GALLERY;
 use bentstraw_outputs::pictures::{checked_shading, picture};
 use bentstraw_outputs::scene_input::{parse_scene_text, read_scene_text, Loaded, SceneSource};
 use bentstraw_outputs::solution::{colour_names, json_report, solution_of_points, CheckOptions};
-use bentstraw_outputs::writers::check_points_asked;
+use bentstraw_outputs::writers::{check_points_asked, raw_weight_count};
 use bentstraw_outputs::Error;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
@@ -465,8 +465,8 @@ fn render<'py>(
         out.set_item("codes", PyArray1::from_vec(py, codes).reshape([h, w])?)?;
     }
     if let Some(weights) = weights {
-        // As many weights per pixel as the scene has colour codes (five for straws alone).
-        let k = world.color_codes();
+        // As many weights per pixel as `render --raw` writes.
+        let k = raw_weight_count(world);
         let flat: Vec<f64> = weights
             .iter()
             .flat_map(|p| p[..k].iter().copied())

@@ -173,6 +173,8 @@ def decode_png(data):
          dict(observer=(0.3, 0, 0.25), straw=(0, 0.03), water_height=0.15)),
         (["--scene", "oil-on-water", "--mode", "course", "--backdrop", "none", "--samples", "1", "--fov", "30"],
          dict(scene="oil-on-water", mode="course", backdrop="none", samples=1, fov=30)),
+        # A coin and no card: the raw file still gives a weight for every colour code.
+        (["--scene", "coin-in-glass", "--samples", "1"], dict(scene="coin-in-glass", samples=1)),
     ],
 )
 def test_pictures_are_the_pngs_pixel_for_pixel_and_raw_weights_the_csvs(tmp_path, flags, kwargs):

@@ -17,7 +17,7 @@ use crate::progress;
 use bentstraw_outputs::camera::scene_camera;
 use bentstraw_outputs::files::{self, Output, OutputSet};
 use bentstraw_outputs::pictures::{checked_shading, png_bytes};
-use bentstraw_outputs::writers::{write_raw_codes, write_raw_weights};
+use bentstraw_outputs::writers::{raw_weight_count, write_raw_codes, write_raw_weights};
 
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> CliResult {
@@ -127,8 +127,7 @@ fn write_raw(
 ) -> bentstraw_outputs::Result {
     match mode {
         ModeArg::Course => write_raw_codes(path, camera, &course_picture_exact(world, camera)),
-        // Straws alone show five colours (their bands); coins and cards, eight codes in all.
-        ModeArg::Fresnel if world.color_codes() <= SECTION_COUNT => {
+        ModeArg::Fresnel if raw_weight_count(world) == SECTION_COUNT => {
             let all = fresnel_picture_exact(world, camera, prune);
             let sections: Vec<[f64; SECTION_COUNT]> =
                 all.iter().map(|w| std::array::from_fn(|k| w[k])).collect();
