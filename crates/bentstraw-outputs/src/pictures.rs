@@ -111,14 +111,7 @@ fn seen_png(world: &World, camera: Camera) -> Result<Vec<u8>> {
         samples: 3,
         outline: true,
     };
-    let mut frame = Frame::default();
-    let request = FrameRequest {
-        camera,
-        shading: options,
-        min_points: 0,
-    };
-    draw_frame(world, &request, &mut frame);
-    png_bytes(&frame.picture)
+    png_bytes(&picture(world, camera, options))
 }
 
 /// Writes `path`: what `observer` sees through the report's camera.
