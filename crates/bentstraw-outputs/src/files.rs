@@ -527,25 +527,45 @@ fn parent_dir(path: &Path) -> &Path {
     }
 }
 
-/// Why the thing at `meta` cannot be read as an input file, if it cannot: a folder, or a device,
-/// a pipe or a socket (which may never end, or never start: `/dev/zero`, a FIFO no one writes).
-pub fn not_a_file(meta: &fs::Metadata) -> Option<&'static str> {
-    if meta.is_dir() {
-        Some("it is a folder")
-    } else if !meta.is_file() {
-        Some("it is not a regular file (a device, a pipe or a socket): save its content to a file")
-    } else {
-        None
-    }
+/// Why an input file was not read.
+#[derive(Debug)]
+pub enum Unread {
+    /// It could not be opened or read.
+    Io(io::Error),
+    /// It is no regular file: a folder, or a device, a pipe or a socket (which may never end, or
+    /// never start: `/dev/zero`, a FIFO no one writes), and why, in words.
+    NotAFile(&'static str),
+    /// It holds more than the limit: its size in words.
+    TooLarge(String),
 }
 
-/// The bytes of the file at `path` if it holds at most `limit` of them, else `None`: read no
-/// further than one byte past the limit, whatever its size said when it was opened (it may grow).
-pub fn read_at_most(path: &Path, limit: u64) -> io::Result<Option<Vec<u8>>> {
+/// The bytes of the input file at `path`, at most `limit` of them: a file that is no regular file
+/// is refused before it is opened, and none is read further than one byte past the limit,
+/// whatever its size said (it may grow while it is read).
+pub fn read_input(path: &Path, limit: u64) -> std::result::Result<Vec<u8>, Unread> {
     use std::io::Read as _;
+    let meta = fs::metadata(path).map_err(Unread::Io)?;
+    if meta.is_dir() {
+        return Err(Unread::NotAFile("it is a folder"));
+    }
+    if !meta.is_file() {
+        return Err(Unread::NotAFile(
+            "it is not a regular file (a device, a pipe or a socket): save its content to a file",
+        ));
+    }
+    if meta.len() > limit {
+        return Err(Unread::TooLarge(format!("{} bytes", meta.len())));
+    }
     let mut bytes = Vec::new();
-    File::open(path)?.take(limit + 1).read_to_end(&mut bytes)?;
-    Ok((bytes.len() as u64 <= limit).then_some(bytes))
+    File::open(path)
+        .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
+        .map_err(Unread::Io)?;
+    if bytes.len() as u64 > limit {
+        return Err(Unread::TooLarge(format!(
+            "more than {limit} bytes (it grew)"
+        )));
+    }
+    Ok(bytes)
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@ use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 
 use crate::error::{fail, Error, Result};
-use crate::files::{not_a_file, read_at_most, shown};
+use crate::files::{read_input, shown, Unread};
 use crate::gallery::GALLERY;
 
 /// Largest scene file read (1 MB): a scene is a few dozen lines.
@@ -256,27 +256,19 @@ pub fn read_scene_file(path: &Path) -> Result<SceneDescription> {
 /// further; every refusal names the file.
 pub fn read_scene_text(path: &Path) -> Result<String> {
     let name = shown(path);
-    let cannot = |source: std::io::Error| Error::Io {
-        action: "read the scene file",
-        path: path.to_path_buf(),
-        source,
-    };
-    let meta = std::fs::metadata(path).map_err(cannot)?;
-    if let Some(why) = not_a_file(&meta) {
-        return fail(format!("cannot read the scene file {name}: {why}"));
-    }
-    let too_large = |size: String| {
-        Error::Refused(format!(
+    let bytes = read_input(path, MAX_SCENE_FILE_BYTES).map_err(|unread| match unread {
+        Unread::Io(source) => Error::Io {
+            action: "read the scene file",
+            path: path.to_path_buf(),
+            source,
+        },
+        Unread::NotAFile(why) => {
+            Error::Refused(format!("cannot read the scene file {name}: {why}"))
+        }
+        Unread::TooLarge(size) => Error::Refused(format!(
             "the scene file {name} is {size}: a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB), not read"
-        ))
-    };
-    if meta.len() > MAX_SCENE_FILE_BYTES {
-        return Err(too_large(format!("{} bytes", meta.len())));
-    }
-    // At most one byte past the limit, in case it grew since.
-    let bytes = read_at_most(path, MAX_SCENE_FILE_BYTES)
-        .map_err(cannot)?
-        .ok_or_else(|| too_large(format!("more than {MAX_SCENE_FILE_BYTES} bytes (it grew)")))?;
+        )),
+    })?;
     String::from_utf8(bytes).map_err(|e| {
         Error::Refused(format!(
             "the scene file {name} is not UTF-8 text: byte {} is not valid UTF-8",

@@ -13,7 +13,7 @@ use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
 use crate::error::{Error, Result};
-use crate::files::{not_a_file, read_at_most};
+use crate::files::{read_input, Unread};
 use crate::scene_input::Loaded;
 
 /// How strictly a solution is judged, and how much of it the report lists.
@@ -103,23 +103,16 @@ pub fn colour_names(checked: &Loaded) -> &'static [&'static str] {
 /// scene whose colour codes go from 1 to `codes`.
 pub fn read_solution_of(path: &Path, codes: usize) -> Result<Solution> {
     let name = clip_text(&path.display().to_string(), 80);
-    let cannot = |e: std::io::Error| Error::Refused(format!("cannot read {name}: {e}"));
-    let meta = std::fs::metadata(path).map_err(cannot)?;
-    if let Some(why) = not_a_file(&meta) {
-        return Err(Error::Refused(format!("cannot read {name}: {why}")));
-    }
-    let too_large = |size: String| {
-        Error::Refused(format!(
-            "{name} is {size}: larger than any reasonable image (at most {MAX_FILE_BYTES} bytes, \
-             {MAX_POINTS} points), not read"
-        ))
-    };
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(too_large(format!("{} bytes", meta.len())));
-    }
-    let bytes = read_at_most(path, MAX_FILE_BYTES)
-        .map_err(cannot)?
-        .ok_or_else(|| too_large(format!("more than {MAX_FILE_BYTES} bytes (it grew)")))?;
+    let bytes = read_input(path, MAX_FILE_BYTES).map_err(|unread| {
+        Error::Refused(match unread {
+            Unread::Io(e) => format!("cannot read {name}: {e}"),
+            Unread::NotAFile(why) => format!("cannot read {name}: {why}"),
+            Unread::TooLarge(size) => format!(
+                "{name} is {size}: larger than any reasonable image (at most {MAX_FILE_BYTES} \
+                 bytes, {MAX_POINTS} points), not read"
+            ),
+        })
+    })?;
     parse_solution_of(&bytes, codes).map_err(|e| Error::Refused(format!("{name}: {e}")))
 }
 
