@@ -326,6 +326,13 @@ impl Mask for M8 {
 }
 
 impl M8 {
+    /// The lanes set, in order. (A test per lane: iterating the set bits of a movemask instead
+    /// made the compiler split the packets' arithmetic into 4-wide halves.)
+    #[inline(always)]
+    pub fn lanes(self) -> impl Iterator<Item = usize> {
+        (0..LANES).filter(move |&k| self.0[k] != 0)
+    }
+
     /// The first `n` lanes set.
     #[inline(always)]
     pub fn first(n: usize) -> M8 {

@@ -493,31 +493,32 @@ impl<'w> PacketTracer<'w> {
             }
             next.clear();
             next.reserve_total(2 * cur.len());
-            for base in (0..cur.len()).step_by(LANES) {
-                let n = LANES.min(cur.len() - base);
+            for (block, n) in cur.packets() {
                 let alive = M8::first(n);
-                let o = V3::new(cur.load(0, base), cur.load(1, base), cur.load(2, base));
-                let d = V3::new(cur.load(3, base), cur.load(4, base), cur.load(5, base));
-                let left = cur.load_code(&cur.left, base);
+                let f8 = |v: &[f32; LANES]| F8(*v);
+                let r = &block.ray;
+                let o = V3::new(f8(&r[0]), f8(&r[1]), f8(&r[2]));
+                let d = V3::new(f8(&r[3]), f8(&r[4]), f8(&r[5]));
+                let left = F8(block.left);
                 let escape = |k: usize, on_end: &mut E| {
                     // A branch that met nothing is the ray from the eye (a far eye's rays start
                     // on the bounding sphere, possibly past the backdrop's floor).
-                    let origin = if cur.left[base + k] == NO_FACE {
+                    let origin = if block.left[k] == NO_FACE {
                         eye
                     } else {
                         lane(&o, k)
                     };
                     on_end(
-                        cur.pixel[base + k] as usize,
+                        block.pixel[k] as usize,
                         BranchEnd::Escaped {
                             origin,
                             direction: lane(&d, k),
-                            weight: cur.w[base + k],
+                            weight: block.w[k],
                         },
                     )
                 };
                 let Some(hit) = world.nearest_lanes(o, d, alive, left) else {
-                    for k in 0..n {
+                    for k in alive.lanes() {
                         escape(k, on_end);
                     }
                     continue;
@@ -525,54 +526,43 @@ impl<'w> PacketTracer<'w> {
                 let met = alive.and(hit.t.lt(inf));
                 let on_object = met.and(hit.code.ge(first_object));
                 let on_boundary = met.and_not(on_object);
-                // Colours only where some branch ended on an object.
-                let color = if on_object.any() {
-                    hit.color(world, on_object)
-                } else {
-                    F8::splat(0.0)
-                };
-                for k in 0..n {
-                    let pixel = cur.pixel[base + k] as usize;
-                    let w = cur.w[base + k];
-                    if on_object.lane(k) {
+                if on_object.any() {
+                    let color = hit.color(world, on_object);
+                    for k in on_object.lanes() {
                         let t = hit.t.0[k];
                         let [ox, oy, oz] = lane(&o, k);
                         let [dx, dy, dz] = lane(&d, k);
                         on_end(
-                            pixel,
+                            block.pixel[k] as usize,
                             BranchEnd::Object {
                                 code: color.0[k] as u8,
                                 object: (hit.code.0[k] - first_object.0[k]) as u16,
                                 part: hit.part.0[k] as u8,
                                 point: [ox + t * dx, oy + t * dy, oz + t * dz],
-                                weight: w,
+                                weight: block.w[k],
                             },
                         );
-                    } else if !on_boundary.lane(k) {
-                        escape(k, on_end);
-                    } else if event == world.max_events() {
-                        on_end(pixel, BranchEnd::Dropped { weight: w });
                     }
                 }
-                if event == world.max_events() || !on_boundary.any() {
+                for k in alive.and_not(met).lanes() {
+                    escape(k, on_end);
+                }
+                if event == world.max_events() {
+                    for k in on_boundary.lanes() {
+                        let weight = block.w[k];
+                        on_end(block.pixel[k] as usize, BranchEnd::Dropped { weight });
+                    }
                     continue;
                 }
-                let medium = cur.load_code(&cur.medium, base);
+                if !on_boundary.any() {
+                    continue;
+                }
+                let medium = F8(block.medium);
                 let q = o.along(hit.t, d);
                 let b = world.bend_lanes(hit.code, on_boundary, q, d, medium);
-                let w = F8(std::array::from_fn(|k| {
-                    if k < n {
-                        cur.w[base + k]
-                    } else {
-                        0.0
-                    }
-                }));
-                let (wr, wt) = split(w, b.reflectance(), b.total);
-                for k in 0..n {
-                    if !on_boundary.lane(k) {
-                        continue;
-                    }
-                    let pixel = cur.pixel[base + k];
+                let (wr, wt) = split(F8(block.w), b.reflectance(), b.total);
+                for k in on_boundary.lanes() {
+                    let pixel = block.pixel[k];
                     let (wr, wt) = (wr.0[k], wt.0[k]);
                     let q = lane(&q, k);
                     let face = b.surface.0[k];
@@ -763,21 +753,42 @@ impl Drop for PooledWave {
     }
 }
 
-/// Fresnel branches, structure of arrays: origin and direction components, weight, the medium
-/// each travels in (its id), pixel, and what each has just left.
+/// Eight Fresnel branches side by side, structure of arrays: what one packet loads.
+#[derive(Clone, Copy, Debug)]
+struct Block {
+    /// `ox, oy, oz, dx, dy, dz` of each branch.
+    ray: [[f32; LANES]; 6],
+    /// Weight.
+    w: [f32; LANES],
+    /// The medium's id, as a number.
+    medium: [f32; LANES],
+    /// The code of the surface each branch starts on ([`World::nearest`]'s), or [`NO_FACE`].
+    left: [f32; LANES],
+    /// The pixel each branch belongs to.
+    pixel: [u32; LANES],
+}
+
+impl Default for Block {
+    /// Harmless lanes past the last branch: a finite ray in air that starts on nothing.
+    fn default() -> Block {
+        Block {
+            ray: [[0.5; LANES]; 6],
+            w: [0.0; LANES],
+            medium: [AIR as f32; LANES],
+            left: [NO_FACE; LANES],
+            pixel: [0; LANES],
+        }
+    }
+}
+
+/// Fresnel branches in blocks of eight ([`Block`]): a packet is one block, loaded whole.
 ///
-/// The vectors only grow (to the largest wave seen) and are written by index: `len` counts the
-/// branches in use, so pushing is a plain store.
+/// The blocks only grow (to the largest wave seen) and are written by index: `len` counts the
+/// branches in use, so pushing is a plain store. Lanes of the last block past `len` hold earlier
+/// branches, finite numbers that the packets' lane masks ignore.
 #[derive(Clone, Debug, Default)]
 struct Branches {
-    /// `ox, oy, oz, dx, dy, dz`.
-    ray: [Vec<f32>; 6],
-    w: Vec<f32>,
-    /// The medium's id, as a number.
-    medium: Vec<f32>,
-    pixel: Vec<u32>,
-    /// The code of the surface each branch starts on ([`World::nearest`]'s), or [`NO_FACE`].
-    left: Vec<f32>,
+    blocks: Vec<Block>,
     len: usize,
 }
 
@@ -792,15 +803,10 @@ impl Branches {
 
     /// Makes room for `n` branches in all.
     fn reserve_total(&mut self, n: usize) {
-        if self.w.len() < n {
-            let n = n.max(2 * self.w.len());
-            for v in &mut self.ray {
-                v.resize(n, 0.0);
-            }
-            self.w.resize(n, 0.0);
-            self.medium.resize(n, 0.0);
-            self.pixel.resize(n, 0);
-            self.left.resize(n, NO_FACE);
+        let blocks = n.div_ceil(LANES);
+        if self.blocks.len() < blocks {
+            let blocks = blocks.max(2 * self.blocks.len());
+            self.blocks.resize(blocks, Block::default());
         }
     }
 
@@ -808,41 +814,31 @@ impl Branches {
     #[inline(always)]
     fn push(&mut self, o: [f32; 3], d: [f32; 3], w: f32, medium: f32, pixel: u32, left: f32) {
         let n = self.len;
-        // Six plain stores (a chained iterator here cost a tenth of a Fresnel picture).
+        let (b, k) = (&mut self.blocks[n / LANES], n % LANES);
+        // Plain stores (a chained iterator here cost a tenth of a Fresnel picture).
         let [ox, oy, oz] = o;
         let [dx, dy, dz] = d;
-        for (v, x) in self.ray.iter_mut().zip([ox, oy, oz, dx, dy, dz]) {
-            v[n] = x;
-        }
-        self.w[n] = w;
-        self.medium[n] = medium;
-        self.pixel[n] = pixel;
-        self.left[n] = left;
+        b.ray[0][k] = ox;
+        b.ray[1][k] = oy;
+        b.ray[2][k] = oz;
+        b.ray[3][k] = dx;
+        b.ray[4][k] = dy;
+        b.ray[5][k] = dz;
+        b.w[k] = w;
+        b.medium[k] = medium;
+        b.pixel[k] = pixel;
+        b.left[k] = left;
         self.len = n + 1;
     }
 
-    /// The codes `v` of branches `base .. base + 8` ([`NO_FACE`] past the end).
+    /// The blocks in use, each with how many of its lanes hold branches.
     #[inline(always)]
-    fn load_code(&self, v: &[f32], base: usize) -> F8 {
-        let v = &v[..self.len];
-        match v.get(base..base + LANES) {
-            Some(full) => F8(std::array::from_fn(|k| full[k])),
-            None => F8(std::array::from_fn(|k| {
-                v.get(base + k).copied().unwrap_or(NO_FACE)
-            })),
-        }
-    }
-
-    /// Component `c` of branches `base .. base + 8` (a harmless 0.5 past the end).
-    #[inline(always)]
-    fn load(&self, c: usize, base: usize) -> F8 {
-        let v = &self.ray[c][..self.len];
-        match v.get(base..base + LANES) {
-            Some(full) => F8(std::array::from_fn(|k| full[k])),
-            None => F8(std::array::from_fn(|k| {
-                v.get(base + k).copied().unwrap_or(0.5)
-            })),
-        }
+    fn packets(&self) -> impl Iterator<Item = (&Block, usize)> {
+        let len = self.len;
+        self.blocks[..len.div_ceil(LANES)]
+            .iter()
+            .enumerate()
+            .map(move |(i, b)| (b, LANES.min(len - i * LANES)))
     }
 }
 
