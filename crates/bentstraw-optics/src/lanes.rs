@@ -7,12 +7,20 @@
 //! a step applies to: `bool` for one ray, [`M8`] for eight. Work that no lane needs is skipped
 //! (`if !mask.any()`), which for one ray is an ordinary branch.
 //!
-//! Both instances perform the same operations in the same order, with two exceptions, the places
+//! The eight lanes have two forms ([`Packet`]): an array ([`F8`]), which any target compiles,
+//! and, on x86-64, one AVX register ([`avx::F8Avx`]) whose every operation is one instruction,
+//! for the kernels chosen when the processor has AVX2: explicit, so that no change elsewhere can
+//! make the compiler split the packets into narrower vectors or single lanes.
+//!
+//! All instances perform the same operations in the same order, with two exceptions, the places
 //! where the two precisions are meant to differ: [`Real::quotient`] divides in double precision
 //! and multiplies by a reciprocal computed once in the packets, and a vector that is unit to
 //! rounding is made unit again only in double precision ([`V3::renormalize`]).
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
+
+#[cfg(target_arch = "x86_64")]
+pub mod avx;
 
 /// Which lanes of a [`Real`] a step applies to.
 pub trait Mask: Copy {
@@ -325,18 +333,51 @@ impl Mask for M8 {
     }
 }
 
-impl M8 {
-    /// The lanes set, in order. (A test per lane: iterating the set bits of a movemask instead
-    /// made the compiler split the packets' arithmetic into 4-wide halves.)
+/// The packet tracer's lane masks: [`M8`] or, in the x86-64 kernels, [`avx::M8Avx`].
+pub trait PacketMask: Mask {
+    /// The first `n` lanes set.
+    fn first(n: usize) -> Self;
+    /// The lanes `set` says.
+    fn from_lanes(set: [bool; LANES]) -> Self;
+    /// The lanes set, in order.
+    fn lanes(self) -> impl Iterator<Item = usize>;
+}
+
+/// The packet tracer's numbers: eight single-precision lanes, held as an array ([`F8`], for any
+/// target) or in one AVX register ([`avx::F8Avx`], for the x86-64 kernels). Both do the same
+/// IEEE operations in the same order, so they give the same pixels.
+pub trait Packet: Real<Mask: PacketMask> {
+    /// The lanes `a`.
+    fn from_array(a: [f32; LANES]) -> Self;
+    /// The lanes, as an array.
+    fn to_array(self) -> [f32; LANES];
+}
+
+impl PacketMask for M8 {
     #[inline(always)]
-    pub fn lanes(self) -> impl Iterator<Item = usize> {
+    fn first(n: usize) -> M8 {
+        M8(std::array::from_fn(|k| if k < n { u32::MAX } else { 0 }))
+    }
+    #[inline(always)]
+    fn from_lanes(set: [bool; LANES]) -> M8 {
+        M8(set.map(|b| if b { u32::MAX } else { 0 }))
+    }
+    /// A test per lane (iterating the set bits of a movemask instead made the compiler split
+    /// the array lanes' arithmetic into 4-wide halves).
+    #[inline(always)]
+    fn lanes(self) -> impl Iterator<Item = usize> {
         (0..LANES).filter(move |&k| self.0[k] != 0)
     }
+}
 
-    /// The first `n` lanes set.
+impl Packet for F8 {
     #[inline(always)]
-    pub fn first(n: usize) -> M8 {
-        M8(std::array::from_fn(|k| if k < n { u32::MAX } else { 0 }))
+    fn from_array(a: [f32; LANES]) -> F8 {
+        F8(a)
+    }
+    #[inline(always)]
+    fn to_array(self) -> [f32; LANES] {
+        self.0
     }
 }
 

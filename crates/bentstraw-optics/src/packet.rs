@@ -16,12 +16,16 @@
 //! as a near one.
 //!
 //! The same generic code is compiled three times: for AVX-512 and for AVX2 (chosen at run time
-//! with `is_x86_feature_detected!`) and for the baseline target. All use the same IEEE operations
-//! in the same order (no fused multiply-add), so all give the same pixels.
+//! with `is_x86_feature_detected!`), with the eight lanes in one AVX register
+//! ([`crate::lanes::avx`], each operation one instruction), and for the baseline target, with the
+//! lanes as an array ([`F8`]). All use the same IEEE operations in the same order (no fused
+//! multiply-add), so all give the same pixels (tested on every gallery scene).
 
 use crate::camera::Camera;
 use crate::geometry::{enter_sphere, Ray};
-use crate::lanes::{Mask, Real, F8, M8, V3};
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::avx::F8Avx;
+use crate::lanes::{Mask, Packet, PacketMask, F8, V3};
 use crate::world::fresnel::{followed, split, SegmentBudget};
 use crate::world::FRESNEL_SEGMENTS_PER_RAY;
 use crate::world::{World, AIR};
@@ -81,7 +85,7 @@ macro_rules! compiled {
                 // SAFETY: as above.
                 #[cfg(target_arch = "x86_64")]
                 Instructions::Avx2 => unsafe { self.$avx2($($arg),*) },
-                _ => self.$generic($($arg),*),
+                _ => self.$generic::<F8 $(, $g)?>($($arg),*),
             }
         }
 
@@ -89,14 +93,14 @@ macro_rules! compiled {
         #[target_feature(enable = "avx2")]
         #[allow(clippy::too_many_arguments)]
         unsafe fn $avx2 $(<const $g: usize>)? (&self $(, $arg: $ty)*) {
-            self.$generic($($arg),*)
+            self.$generic::<F8Avx $(, $g)?>($($arg),*)
         }
 
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx2,avx512f,avx512vl")]
         #[allow(clippy::too_many_arguments)]
         unsafe fn $avx512 $(<const $g: usize>)? (&self $(, $arg: $ty)*) {
-            self.$generic($($arg),*)
+            self.$generic::<F8Avx $(, $g)?>($($arg),*)
         }
     };
 }
@@ -147,8 +151,8 @@ pub enum BranchEnd {
 
 /// The components of lane `k`.
 #[inline(always)]
-fn lane(v: &V3<F8>, k: usize) -> [f32; 3] {
-    [v.x.0[k], v.y.0[k], v.z.0[k]]
+fn lane<P: Packet>(v: &V3<P>, k: usize) -> [f32; 3] {
+    [v.x.to_array()[k], v.y.to_array()[k], v.z.to_array()[k]]
 }
 
 impl<'w> PacketTracer<'w> {
@@ -186,20 +190,20 @@ impl<'w> PacketTracer<'w> {
 
     /// [`Self::course_row`] for any target (the baseline instruction set).
     pub fn course_row_portable(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
-        self.course_row_generic(camera, row, codes);
+        self.course_row_generic::<F8>(camera, row, codes);
     }
 
     #[inline(always)]
-    fn course_row_generic(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+    fn course_row_generic<P: Packet>(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
         let rays = RowRays::new(camera, row, self.world.bounding_sphere());
-        let zero = F8::splat(0.0);
+        let zero = P::splat(0.0);
         for (p, chunk) in codes.chunks_mut(LANES).enumerate() {
-            let (o, d, alive) = rays.packet(p);
+            let (o, d, alive) = rays.packet::<P>(p);
             let ends = self
                 .world
                 .follow_course(o, d, alive, zero, self.world.max_events(), |_| {});
-            let code = F8::select(ends.reached, ends.color, zero);
-            for (c, x) in chunk.iter_mut().zip(code.0) {
+            let code = P::select(ends.reached, ends.color, zero);
+            for (c, x) in chunk.iter_mut().zip(code.to_array()) {
                 *c = x as u8;
             }
         }
@@ -234,11 +238,11 @@ impl<'w> PacketTracer<'w> {
         wave: &mut FresnelWave,
         weights: &mut [[f64; N]],
     ) {
-        self.fresnel_row_generic(camera, row, prune_below, wave, weights);
+        self.fresnel_row_generic::<F8, N>(camera, row, prune_below, wave, weights);
     }
 
     #[inline(always)]
-    fn fresnel_row_generic<const N: usize>(
+    fn fresnel_row_generic<P: Packet, const N: usize>(
         &self,
         camera: &Camera,
         row: u32,
@@ -251,13 +255,20 @@ impl<'w> PacketTracer<'w> {
             *w = [0.0; N];
         }
         // The picture's breadth-first loop, keeping only the weight that reaches the objects.
-        self.branch_ends_row_generic(camera, row, true, prune_below, wave, &mut |pixel, end| {
-            if let BranchEnd::Object { code, weight, .. } = end {
-                if let Some(w) = weights[pixel].get_mut(code as usize - 1) {
-                    *w += weight as f64;
+        self.branch_ends_row_generic::<P>(
+            camera,
+            row,
+            true,
+            prune_below,
+            wave,
+            &mut |pixel, end| {
+                if let BranchEnd::Object { code, weight, .. } = end {
+                    if let Some(w) = weights[pixel].get_mut(code as usize - 1) {
+                        *w += weight as f64;
+                    }
                 }
-            }
-        });
+            },
+        );
     }
 
     compiled! {
@@ -283,7 +294,7 @@ impl<'w> PacketTracer<'w> {
     }
 
     #[inline(always)]
-    fn branch_ends_row_generic(
+    fn branch_ends_row_generic<P: Packet>(
         &self,
         camera: &Camera,
         row: u32,
@@ -297,7 +308,7 @@ impl<'w> PacketTracer<'w> {
         let rays = RowRays::new(camera, row, self.world.bounding_sphere());
         if !split {
             for (p, start) in (0..width).step_by(LANES).enumerate() {
-                let (o, d, alive) = rays.packet(p);
+                let (o, d, alive) = rays.packet::<P>(p);
                 let n = LANES.min(width - start);
                 self.course_ends(eye, o, d, alive, n, &mut |k, end| on_end(start + k, end));
             }
@@ -308,7 +319,7 @@ impl<'w> PacketTracer<'w> {
         cur.clear();
         cur.reserve_total(width);
         for (p, chunk_start) in (0..width).step_by(LANES).enumerate() {
-            let (o, d, alive) = rays.packet(p);
+            let (o, d, alive) = rays.packet::<P>(p);
             for k in 0..LANES.min(width - chunk_start) {
                 let direction = lane(&d, k);
                 if !alive.lane(k) {
@@ -333,30 +344,36 @@ impl<'w> PacketTracer<'w> {
                 );
             }
         }
-        self.follow_branches(prune_below, FRESNEL_SEGMENTS_PER_RAY, width, wave, on_end);
+        self.follow_branches::<P, _>(prune_below, FRESNEL_SEGMENTS_PER_RAY, width, wave, on_end);
     }
 
     /// How the course rays of the `n` first lanes of `(o, d, alive)` end, told to `on_end` with
     /// their lane; `eye` is where they come from (a ray that meets nothing is the ray from it).
     #[inline(always)]
-    fn course_ends(
+    fn course_ends<P: Packet>(
         &self,
         eye: [f32; 3],
-        o: V3<F8>,
-        d: V3<F8>,
-        alive: M8,
+        o: V3<P>,
+        d: V3<P>,
+        alive: P::Mask,
         n: usize,
         on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
         let ends =
             self.world
-                .follow_course(o, d, alive, F8::splat(0.0), self.world.max_events(), |_| {});
+                .follow_course(o, d, alive, P::splat(0.0), self.world.max_events(), |_| {});
+        let (color, object, part) = (
+            ends.color.to_array(),
+            ends.object.to_array(),
+            ends.part.to_array(),
+        );
+        let events = ends.events.to_array();
         for k in 0..n {
             let end = if ends.reached.lane(k) {
                 BranchEnd::Object {
-                    code: ends.color.0[k] as u8,
-                    object: ends.object.0[k] as u16,
-                    part: ends.part.0[k] as u8,
+                    code: color[k] as u8,
+                    object: object[k] as u16,
+                    part: part[k] as u8,
                     point: lane(&ends.point, k),
                     weight: 1.0,
                 }
@@ -364,7 +381,7 @@ impl<'w> PacketTracer<'w> {
                 BranchEnd::Dropped { weight: 1.0 }
             } else {
                 BranchEnd::Escaped {
-                    origin: if ends.events.0[k] == 0.0 {
+                    origin: if events[k] == 0.0 {
                         eye
                     } else {
                         lane(&ends.origin, k)
@@ -394,7 +411,7 @@ impl<'w> PacketTracer<'w> {
 
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn branch_ends_generic(
+    fn branch_ends_generic<P: Packet>(
         &self,
         eye: Vec3,
         directions: &[Vec3],
@@ -428,7 +445,7 @@ impl<'w> PacketTracer<'w> {
             for (c, chunk) in directions.chunks(LANES).enumerate() {
                 let mut o = [[0.0f32; LANES]; 3];
                 let mut d = [[0.0f32; LANES]; 3];
-                let mut alive = [0u32; LANES];
+                let mut alive = [false; LANES];
                 for (k, &dir) in chunk.iter().enumerate() {
                     let origin = start(dir);
                     let (a, b) = (to_f32(origin.unwrap_or(eye)), to_f32(dir));
@@ -436,12 +453,17 @@ impl<'w> PacketTracer<'w> {
                         o[i][k] = a[i];
                         d[i][k] = b[i];
                     }
-                    if origin.is_some() {
-                        alive[k] = u32::MAX;
-                    }
+                    alive[k] = origin.is_some();
                 }
-                let v = |a: [[f32; LANES]; 3]| V3::new(F8(a[0]), F8(a[1]), F8(a[2]));
-                self.course_ends(eye32, v(o), v(d), M8(alive), chunk.len(), &mut |k, end| {
+                let v = |a: [[f32; LANES]; 3]| {
+                    V3::new(
+                        P::from_array(a[0]),
+                        P::from_array(a[1]),
+                        P::from_array(a[2]),
+                    )
+                };
+                let alive = P::Mask::from_lanes(alive);
+                self.course_ends(eye32, v(o), v(d), alive, chunk.len(), &mut |k, end| {
                     on_end(c * LANES + k, end)
                 });
             }
@@ -464,14 +486,14 @@ impl<'w> PacketTracer<'w> {
                 ),
             }
         }
-        self.follow_branches(prune_below, max_segments, directions.len(), wave, on_end);
+        self.follow_branches::<P, _>(prune_below, max_segments, directions.len(), wave, on_end);
     }
 
     /// Follows the Fresnel branches in `wave.current` to their ends, breadth first (see
     /// [`Self::branch_ends_row`]), at most `max_segments` segments for each of the `pixels`
     /// pixels (what still travels then is dropped).
     #[inline(always)]
-    fn follow_branches<E: FnMut(usize, BranchEnd)>(
+    fn follow_branches<P: Packet, E: FnMut(usize, BranchEnd)>(
         &self,
         prune_below: f64,
         max_segments: u32,
@@ -484,8 +506,8 @@ impl<'w> PacketTracer<'w> {
         let segments = &mut wave.segments;
         segments.clear();
         segments.resize(pixels, SegmentBudget::new(max_segments));
-        let first_object = F8::splat(world.boundaries().len() as f64);
-        let inf = F8::splat(f64::INFINITY);
+        let first_object = world.boundaries().len() as f32;
+        let inf = P::splat(f64::INFINITY);
         let (cur, next) = (&mut wave.current, &mut wave.next);
         for event in 0..=world.max_events() {
             if cur.len() == 0 {
@@ -494,12 +516,19 @@ impl<'w> PacketTracer<'w> {
             next.clear();
             next.reserve_total(2 * cur.len());
             for (block, n) in cur.packets() {
-                let alive = M8::first(n);
-                let f8 = |v: &[f32; LANES]| F8(*v);
+                let alive = P::Mask::first(n);
                 let r = &block.ray;
-                let o = V3::new(f8(&r[0]), f8(&r[1]), f8(&r[2]));
-                let d = V3::new(f8(&r[3]), f8(&r[4]), f8(&r[5]));
-                let left = F8(block.left);
+                let o = V3::new(
+                    P::from_array(r[0]),
+                    P::from_array(r[1]),
+                    P::from_array(r[2]),
+                );
+                let d = V3::new(
+                    P::from_array(r[3]),
+                    P::from_array(r[4]),
+                    P::from_array(r[5]),
+                );
+                let left = P::from_array(block.left);
                 let escape = |k: usize, on_end: &mut E| {
                     // A branch that met nothing is the ray from the eye (a far eye's rays start
                     // on the bounding sphere, possibly past the backdrop's floor).
@@ -524,20 +553,22 @@ impl<'w> PacketTracer<'w> {
                     continue;
                 };
                 let met = alive.and(hit.t.lt(inf));
-                let on_object = met.and(hit.code.ge(first_object));
+                let on_object = met.and(hit.code.ge(P::splat(first_object as f64)));
                 let on_boundary = met.and_not(on_object);
                 if on_object.any() {
-                    let color = hit.color(world, on_object);
+                    let color = hit.color(world, on_object).to_array();
+                    let (t, code, part) =
+                        (hit.t.to_array(), hit.code.to_array(), hit.part.to_array());
                     for k in on_object.lanes() {
-                        let t = hit.t.0[k];
+                        let t = t[k];
                         let [ox, oy, oz] = lane(&o, k);
                         let [dx, dy, dz] = lane(&d, k);
                         on_end(
                             block.pixel[k] as usize,
                             BranchEnd::Object {
-                                code: color.0[k] as u8,
-                                object: (hit.code.0[k] - first_object.0[k]) as u16,
-                                part: hit.part.0[k] as u8,
+                                code: color[k] as u8,
+                                object: (code[k] - first_object) as u16,
+                                part: part[k] as u8,
                                 point: [ox + t * dx, oy + t * dy, oz + t * dz],
                                 weight: block.w[k],
                             },
@@ -557,18 +588,24 @@ impl<'w> PacketTracer<'w> {
                 if !on_boundary.any() {
                     continue;
                 }
-                let medium = F8(block.medium);
                 let q = o.along(hit.t, d);
-                let b = world.bend_lanes(hit.code, on_boundary, q, d, medium);
-                let (wr, wt) = split(F8(block.w), b.reflectance(), b.total);
+                let b = world.bend_lanes(hit.code, on_boundary, q, d, P::from_array(block.medium));
+                let (wr, wt) = split(P::from_array(block.w), b.reflectance(), b.total);
+                let (wr, wt) = (wr.to_array(), wt.to_array());
+                let (surface, beyond) = (b.surface.to_array(), b.beyond.to_array());
                 for k in on_boundary.lanes() {
                     let pixel = block.pixel[k];
-                    let (wr, wt) = (wr.0[k], wt.0[k]);
+                    let (wr, wt) = (wr[k], wt[k]);
                     let q = lane(&q, k);
-                    let face = b.surface.0[k];
+                    let face = surface[k];
                     for (weight, directions, escapes, medium) in [
-                        (wr, &b.reflected, b.reflected_escapes.lane(k), medium.0[k]),
-                        (wt, &b.refracted, b.refracted_escapes.lane(k), b.beyond.0[k]),
+                        (
+                            wr,
+                            &b.reflected,
+                            b.reflected_escapes.lane(k),
+                            block.medium[k],
+                        ),
+                        (wt, &b.refracted, b.refracted_escapes.lane(k), beyond[k]),
                     ] {
                         if !followed(weight as f64, prune_below) {
                             if weight > 0.0 {
@@ -652,12 +689,12 @@ impl<'c> RowRays<'c> {
     /// made in double precision ([`Camera::pixel_ray`]) and started where it enters the bounding
     /// sphere.
     #[inline(always)]
-    fn packet(&self, p: usize) -> (V3<F8>, V3<F8>, M8) {
-        let s = |x: f32| F8([x; LANES]);
+    fn packet<P: Packet>(&self, p: usize) -> (V3<P>, V3<P>, P::Mask) {
+        let s = |x: f32| P::from_array([x; LANES]);
         if self.far {
             return self.far_packet(p);
         }
-        let lanes = F8(std::array::from_fn(|k| k as f32));
+        let lanes = P::from_array(std::array::from_fn(|k| k as f32));
         let first = s((p * LANES) as f32);
         let sx = s(self.sx_start) + (first + lanes) * s(self.sx_step);
         let (b, r) = (self.base, self.right);
@@ -669,16 +706,17 @@ impl<'c> RowRays<'c> {
         (
             V3::new(s(e[0]), s(e[1]), s(e[2])),
             V3::new(dx * inv, dy * inv, dz * inv),
-            M8::splat(true),
+            P::Mask::splat(true),
         )
     }
 
     /// [`Self::packet`] for a far eye.
-    fn far_packet(&self, p: usize) -> (V3<F8>, V3<F8>, M8) {
+    #[inline(always)]
+    fn far_packet<P: Packet>(&self, p: usize) -> (V3<P>, V3<P>, P::Mask) {
         let (centre, radius) = self.sphere;
         let mut o = [[0.0f32; LANES]; 3];
         let mut d = [[0.0f32; LANES]; 3];
-        let mut alive = [0u32; LANES];
+        let mut alive = [false; LANES];
         for k in 0..LANES {
             // Columns past the picture's edge are traced (and ignored) like any other.
             let ray = self.camera.pixel_ray(self.row, (p * LANES + k) as u32);
@@ -691,12 +729,16 @@ impl<'c> RowRays<'c> {
                 o[c][k] = a[c];
                 d[c][k] = b[c];
             }
-            if start.is_some() {
-                alive[k] = u32::MAX;
-            }
+            alive[k] = start.is_some();
         }
-        let v = |a: [[f32; LANES]; 3]| V3::new(F8(a[0]), F8(a[1]), F8(a[2]));
-        (v(o), v(d), M8(alive))
+        let v = |a: [[f32; LANES]; 3]| {
+            V3::new(
+                P::from_array(a[0]),
+                P::from_array(a[1]),
+                P::from_array(a[2]),
+            )
+        };
+        (v(o), v(d), P::Mask::from_lanes(alive))
     }
 }
 

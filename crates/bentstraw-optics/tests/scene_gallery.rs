@@ -53,3 +53,56 @@ fn the_spec_file_is_the_assignment_scene_and_the_others_are_not() {
         }
     }
 }
+
+/// The packet tracer's kernels for the processor's wider instruction sets (eight lanes in one AVX
+/// register) give the portable kernel's pixels (eight lanes as an array), bit for bit, on every
+/// gallery scene, in course and in Fresnel mode, seen from the file's observer and from far away.
+#[test]
+fn every_packet_kernel_gives_the_portable_pixels_on_every_gallery_scene() {
+    use bentstraw_optics::camera::Camera;
+    use bentstraw_optics::packet::{FresnelWave, Instructions, PacketTracer};
+    use bentstraw_optics::world::World;
+
+    let any = World::assignment(&Scene::with_defaults(0.02, 0.01, 0.15).unwrap());
+    let kernels: Vec<Instructions> = [Instructions::Avx512, Instructions::Avx2]
+        .into_iter()
+        .filter(|&i| PacketTracer::new(&any).with_instructions(i).is_some())
+        .collect();
+    if kernels.is_empty() {
+        // The portable kernel compared with itself would prove nothing; in CI (x86-64 with
+        // AVX2) this must not happen.
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "no AVX2 here: the packet kernels cannot be compared"
+        );
+        eprintln!("skipped: this processor has no AVX2, so there is no second kernel");
+        return;
+    }
+    for (path, text) in gallery() {
+        let d = SceneDescription::from_toml(&text).unwrap();
+        let world = World::new(&d, 10).unwrap();
+        let observer = d.observer.as_ref().unwrap();
+        let far = observer.target + 40.0 * (observer.position - observer.target);
+        for eye in [observer.position, far] {
+            let fov = if eye == far { 0.02 } else { 0.9 };
+            let cam = Camera::new(eye, observer.target, 160, 48, fov);
+            let portable = PacketTracer::new(&world);
+            for &isa in &kernels {
+                let fast = PacketTracer::new(&world).with_instructions(isa).unwrap();
+                let mut wave = FresnelWave::default();
+                for i in 0..cam.height {
+                    let mut a = vec![0u8; cam.width as usize];
+                    let mut b = a.clone();
+                    fast.course_row(&cam, i, &mut a);
+                    portable.course_row_portable(&cam, i, &mut b);
+                    assert_eq!(a, b, "{} {isa:?} course row {i}", path.display());
+                    let mut fa = vec![[0.0; 8]; cam.width as usize];
+                    let mut fb = fa.clone();
+                    fast.fresnel_row(&cam, i, 1e-4, &mut wave, &mut fa);
+                    portable.fresnel_row_portable(&cam, i, 1e-4, &mut wave, &mut fb);
+                    assert_eq!(fa, fb, "{} {isa:?} Fresnel row {i}", path.display());
+                }
+            }
+        }
+    }
+}
