@@ -43,6 +43,26 @@ pub trait Mask: Copy {
     }
 }
 
+/// A number of the scene in both precisions, rounded to `f32` once (when the world is built)
+/// rather than at every step of the packets.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Constant {
+    /// The number.
+    pub f64: f64,
+    /// It rounded to single precision.
+    pub f32: f32,
+}
+
+impl Constant {
+    /// `x` in both precisions.
+    pub fn new(x: f64) -> Constant {
+        Constant {
+            f64: x,
+            f32: x as f32,
+        }
+    }
+}
+
 /// A number of the tracer: `f64` (one lane) or [`F8`] (eight `f32` lanes).
 pub trait Real:
     Copy
@@ -63,6 +83,8 @@ pub trait Real:
     const EXACT: bool;
     /// Every lane `x` (rounded to the lanes' precision).
     fn splat(x: f64) -> Self;
+    /// Every lane `c`, in the lanes' precision (the same as [`Real::splat`] of `c.f64`).
+    fn constant(c: Constant) -> Self;
     /// Lane `k`, as an `f64`.
     fn lane(self, k: usize) -> f64;
     /// The square root of each lane.
@@ -128,6 +150,10 @@ impl Real for f64 {
     #[inline(always)]
     fn splat(x: f64) -> f64 {
         x
+    }
+    #[inline(always)]
+    fn constant(c: Constant) -> f64 {
+        c.f64
     }
     #[inline(always)]
     fn lane(self, _: usize) -> f64 {
@@ -239,6 +265,10 @@ impl Real for F8 {
     #[inline(always)]
     fn splat(x: f64) -> F8 {
         F8([x as f32; LANES])
+    }
+    #[inline(always)]
+    fn constant(c: Constant) -> F8 {
+        F8([c.f32; LANES])
     }
     #[inline(always)]
     fn lane(self, k: usize) -> f64 {

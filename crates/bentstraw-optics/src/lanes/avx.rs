@@ -14,7 +14,7 @@
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-use super::{Mask, Packet, PacketMask, Real, LANES};
+use super::{Constant, Mask, Packet, PacketMask, Real, LANES};
 
 /// Eight `f32`s, one per ray, in one AVX register.
 #[derive(Clone, Copy, Debug)]
@@ -77,6 +77,10 @@ impl Real for F8Avx {
     #[inline(always)]
     fn splat(x: f64) -> F8Avx {
         F8Avx::splat32(x as f32)
+    }
+    #[inline(always)]
+    fn constant(c: Constant) -> F8Avx {
+        F8Avx::splat32(c.f32)
     }
     #[inline(always)]
     fn lane(self, k: usize) -> f64 {

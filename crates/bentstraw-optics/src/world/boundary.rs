@@ -6,7 +6,7 @@
 //! layer, so that every boundary knows both its media.
 
 use crate::geometry::{in_range, plane_ahead, plane_distance_of, SideQuadratic};
-use crate::lanes::{Mask, Real, V3};
+use crate::lanes::{Constant, Mask, Real, V3};
 use crate::Vec3;
 
 /// Which medium: an index into the world's table (0 is air, 1 the container, 2 + k the k-th liquid).
@@ -127,25 +127,39 @@ pub struct Boundary {
     /// The indices on its outer and inner sides, and their ratios `n_outer/n_inner` (light going
     /// in) and `n_inner/n_outer` (going out), worked out once.
     pub(crate) optics: Optics,
+    /// Its numbers that the tracers compare lanes with, worked out once.
+    pub(crate) codes: Codes,
+}
+
+/// A boundary's whole numbers as the tracers' lanes hold them: its place in the world's list, its
+/// surface, and the media on its two sides. Stored as `f32` (exact for whole numbers, in either
+/// precision) so that the packets load them as they are instead of converting an integer at every
+/// step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Codes {
+    pub index: f32,
+    pub surface: f32,
+    pub inner: f32,
+    pub outer: f32,
 }
 
 /// A boundary's indices and their ratios.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Optics {
-    pub n_outer: f64,
-    pub n_inner: f64,
-    pub eta_in: f64,
-    pub eta_out: f64,
+    pub n_outer: Constant,
+    pub n_inner: Constant,
+    pub eta_in: Constant,
+    pub eta_out: Constant,
 }
 
 impl Optics {
     /// Between media of indices `n_outer` and `n_inner`.
     pub fn new(n_outer: f64, n_inner: f64) -> Optics {
         Optics {
-            n_outer,
-            n_inner,
-            eta_in: n_outer / n_inner,
-            eta_out: n_inner / n_outer,
+            n_outer: Constant::new(n_outer),
+            n_inner: Constant::new(n_inner),
+            eta_in: Constant::new(n_outer / n_inner),
+            eta_out: Constant::new(n_inner / n_outer),
         }
     }
 }
@@ -363,6 +377,12 @@ mod tests {
             surface: 0,
             escape: 0,
             optics: Optics::new(1.0, 1.333),
+            codes: Codes {
+                index: 0.0,
+                surface: 0.0,
+                inner: 2.0,
+                outer: 0.0,
+            },
         }
     }
 

@@ -221,6 +221,7 @@ fn piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
         surface: 0,
         escape: 0,
         optics: boundary::Optics::default(),
+        codes: boundary::Codes::default(),
     }
 }
 
@@ -425,7 +426,7 @@ impl World {
 
         // Whole surfaces: every plane and cylinder a boundary lies on, numbered once.
         let mut keys: Vec<(u8, [f64; 3])> = Vec::new();
-        for b in &mut boundaries {
+        for (index, b) in boundaries.iter_mut().enumerate() {
             let key = b.surface_key();
             b.surface = match keys.iter().position(|k| *k == key) {
                 Some(i) => i as u32,
@@ -436,6 +437,12 @@ impl World {
             };
             b.escape = b.escape_side(lo, hi, reach);
             b.optics = boundary::Optics::new(indices[b.outer as usize], indices[b.inner as usize]);
+            b.codes = boundary::Codes {
+                index: index as f32,
+                surface: b.surface as f32,
+                inner: b.inner as f32,
+                outer: b.outer as f32,
+            };
         }
         // A cap lying in the plane of a horizontal boundary is part of that surface.
         for o in &mut objects {

@@ -4,7 +4,7 @@
 
 use crate::geometry::{Ray, SideQuadratic};
 use crate::interface::{reflectance_lanes, scatter_lanes};
-use crate::lanes::{Mask, Real, V3};
+use crate::lanes::{Constant, Mask, Real, V3};
 
 use super::boundary::{Around, Reciprocals};
 use super::{Hit, Part, World};
@@ -109,12 +109,12 @@ impl World {
         }
         let mut t = inf;
         let mut code = R::splat(-1.0);
-        for (k, b) in self.boundaries.iter().enumerate() {
-            let leaving = left.eq(R::splat(b.surface as f64));
+        for b in &self.boundaries {
+            let leaving = left.eq(R::splat(b.codes.surface as f64));
             let tb = b.crossing(o, d, &inv, leaving, alive, &around);
             let m = tb.lt(t);
             t = R::select(m, tb, t);
-            code = R::select(m, R::splat(k as f64), code);
+            code = R::select(m, R::splat(b.codes.index as f64), code);
         }
         let mut part = R::splat(0.0);
         let mut tag = R::splat(0.0);
@@ -176,16 +176,23 @@ impl World {
                 pick(n.z, normal.z),
             );
             // The lanes coming from the inner side, and each side's indices and medium.
-            let inside = medium.eq(R::splat(b.inner as f64));
+            let inside = medium.eq(R::splat(b.codes.inner as f64));
             let x = &b.optics;
-            let side = |from_inner: f64, from_outer: f64| {
-                R::select(inside, R::splat(from_inner), R::splat(from_outer))
+            let side = |from_inner: Constant, from_outer: Constant| {
+                R::select(inside, R::constant(from_inner), R::constant(from_outer))
             };
             n1 = pick(side(x.n_inner, x.n_outer), n1);
             n2 = pick(side(x.n_outer, x.n_inner), n2);
             eta = pick(side(x.eta_out, x.eta_in), eta);
-            beyond = pick(side(b.outer as f64, b.inner as f64), beyond);
-            surface = pick(R::splat(b.surface as f64), surface);
+            beyond = pick(
+                R::select(
+                    inside,
+                    R::splat(b.codes.outer as f64),
+                    R::splat(b.codes.inner as f64),
+                ),
+                beyond,
+            );
+            surface = pick(R::splat(b.codes.surface as f64), surface);
             // Refracted light changes side, mirrored light stays; it escapes where that side is
             // the boundary's escape side.
             let (to_outer, to_inner) = (inside, R::Mask::splat(true).and_not(inside));
