@@ -26,7 +26,7 @@ use crate::geometry::{enter_sphere, Ray};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::avx::F8Avx;
 use crate::lanes::{Mask, Packet, PacketMask, F8, V3};
-use crate::world::fresnel::{followed, split, SegmentBudget};
+use crate::world::fresnel::{followed_lanes, prune_threshold, split, SegmentBudget};
 use crate::world::FRESNEL_SEGMENTS_PER_RAY;
 use crate::world::{World, AIR};
 use crate::Vec3;
@@ -508,6 +508,7 @@ impl<'w> PacketTracer<'w> {
         segments.resize(pixels, SegmentBudget::new(max_segments));
         let first_object = world.boundaries().len() as f32;
         let inf = P::splat(f64::INFINITY);
+        let threshold = P::from_array([prune_threshold(prune_below); LANES]);
         let (cur, next) = (&mut wave.current, &mut wave.next);
         for event in 0..=world.max_events() {
             if cur.len() == 0 {
@@ -591,29 +592,41 @@ impl<'w> PacketTracer<'w> {
                 let q = o.along(hit.t, d);
                 let b = world.bend_lanes(hit.code, on_boundary, q, d, P::from_array(block.medium));
                 let (wr, wt) = split(P::from_array(block.w), b.reflectance(), b.total);
+                let (keep_r, keep_t) =
+                    (followed_lanes(wr, threshold), followed_lanes(wt, threshold));
+                // Each lane's numbers, taken out of the registers once.
                 let (wr, wt) = (wr.to_array(), wt.to_array());
                 let (surface, beyond) = (b.surface.to_array(), b.beyond.to_array());
+                let arrays = |v: &V3<P>| [v.x.to_array(), v.y.to_array(), v.z.to_array()];
+                let (q, reflected, refracted) =
+                    (arrays(&q), arrays(&b.reflected), arrays(&b.refracted));
                 for k in on_boundary.lanes() {
                     let pixel = block.pixel[k];
-                    let (wr, wt) = (wr[k], wt[k]);
-                    let q = lane(&q, k);
+                    let q = [q[0][k], q[1][k], q[2][k]];
                     let face = surface[k];
-                    for (weight, directions, escapes, medium) in [
+                    for (weight, kept, directions, escapes, medium) in [
                         (
-                            wr,
-                            &b.reflected,
+                            wr[k],
+                            keep_r.lane(k),
+                            &reflected,
                             b.reflected_escapes.lane(k),
                             block.medium[k],
                         ),
-                        (wt, &b.refracted, b.refracted_escapes.lane(k), beyond[k]),
+                        (
+                            wt[k],
+                            keep_t.lane(k),
+                            &refracted,
+                            b.refracted_escapes.lane(k),
+                            beyond[k],
+                        ),
                     ] {
-                        if !followed(weight as f64, prune_below) {
+                        if !kept {
                             if weight > 0.0 {
                                 on_end(pixel as usize, BranchEnd::Pruned { weight });
                             }
                             continue;
                         }
-                        let dir = lane(directions, k);
+                        let dir = [directions[0][k], directions[1][k], directions[2][k]];
                         if !escapes && !segments[pixel as usize].spend() {
                             // The pixel's work is spent: dropped, like light past the limit.
                             on_end(pixel as usize, BranchEnd::Dropped { weight });

@@ -7,7 +7,7 @@
 //! to the ray's; and each ray from the eye may follow at most so many straight segments, all its
 //! branches together, after which what still travels is reported as dropped.
 
-use crate::lanes::Real;
+use crate::lanes::{Mask, Real};
 
 /// The weights `(reflected, refracted)` of a branch of weight `w` meeting an interface of
 /// reflectance `r` (all reflected where `total`).
@@ -24,6 +24,24 @@ pub(crate) fn split<R: Real>(w: R, r: R, total: R::Mask) -> (R, R) {
 #[inline(always)]
 pub(crate) fn followed(w: f64, prune_below: f64) -> bool {
     w > 0.0 && w >= prune_below
+}
+
+/// [`followed`] for the lanes of single-precision weights `w`, given
+/// `threshold = prune_threshold(prune_below)`: the same answer for each lane.
+#[inline(always)]
+pub(crate) fn followed_lanes<R: Real>(w: R, threshold: R) -> R::Mask {
+    w.gt(R::splat(0.0)).and(w.ge(threshold))
+}
+
+/// The smallest `f32` at least `prune_below`: an `f32` weight is at least this exactly where, as
+/// an `f64`, it is at least `prune_below` (which `f32` may not hold exactly, as 1e-4).
+pub(crate) fn prune_threshold(prune_below: f64) -> f32 {
+    let t = prune_below as f32;
+    if (t as f64) < prune_below {
+        t.next_up()
+    } else {
+        t
+    }
 }
 
 /// The straight segments one ray from the eye may still follow, all its branches together.
@@ -56,7 +74,7 @@ impl SegmentBudget {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lanes::{Mask, F8, M8};
+    use crate::lanes::{F8, LANES, M8};
 
     #[test]
     fn a_split_keeps_the_weight_and_total_reflection_keeps_it_all() {
@@ -77,6 +95,35 @@ mod tests {
         assert!(!followed(0.0, 0.0));
         assert!(!followed(0.5e-4, 1e-4));
         assert!(followed(1e-4, 1e-4));
+    }
+
+    /// The lanes' rule in single precision is the double-precision rule for every weight near
+    /// the threshold, whether the threshold is an `f32` or not.
+    #[test]
+    fn the_lanes_follow_exactly_the_branches_one_ray_follows() {
+        for prune in [0.0, 1e-4, 1e-3, 0.1, 0.25, 1e-7 / 3.0] {
+            let threshold = F8::splat(0.0) + F8([prune_threshold(prune); LANES]);
+            let mut w = (prune as f32).next_down().next_down();
+            for _ in 0..4 {
+                let lanes = F8(std::array::from_fn(|k| {
+                    let mut x = w;
+                    for _ in 0..k {
+                        x = x.next_up();
+                    }
+                    x
+                }));
+                let kept = followed_lanes(lanes, threshold);
+                for k in 0..LANES {
+                    assert_eq!(
+                        kept.lane(k),
+                        followed(lanes.0[k] as f64, prune),
+                        "weight {:e}, prune {prune:e}",
+                        lanes.0[k]
+                    );
+                }
+                w = lanes.0[LANES - 1].next_up();
+            }
+        }
     }
 
     #[test]
