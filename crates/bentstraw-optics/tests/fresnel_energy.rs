@@ -150,6 +150,25 @@ fn arb_ray() -> impl Strategy<Value = Ray> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
 
+    /// Pruning changes a ray's weights by at most the weight it abandons, never adding any: each
+    /// section keeps at least what it had, and loses at most, all sections together, the total
+    /// of the abandoned branches (each lighter than the threshold, but a ray may abandon
+    /// several). Compared where following every branch drops nothing.
+    #[test]
+    fn pruning_changes_the_weights_by_at_most_what_it_abandons(scene in arb_scene(), ray in arb_ray(), prune in 1e-5f64..0.05) {
+        let (all, pruned_weights) = steps(&scene, ray, prune);
+        let (full_steps, full) = steps(&scene, ray, 0.0);
+        let (.., dropped, lost) = budget(&full_steps);
+        prop_assume!(dropped == 0.0 && lost == 0.0);
+        let (.., pruned) = budget(&all);
+        let mut change = 0.0;
+        for (p, f) in pruned_weights.iter().zip(full) {
+            prop_assert!(*p <= f + 1e-15, "{pruned_weights:?} vs {full:?}");
+            change += f - p;
+        }
+        prop_assert!(change <= pruned + 1e-12, "changed by {change:e}, abandoned {pruned:e}");
+    }
+
     /// R + T = 1 at every split, with R the Fresnel reflectance of the split's geometry; the
     /// branches' ends account for the whole weight; the weights returned are the straw's share.
     #[test]

@@ -244,6 +244,10 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = BackdropArg::Checker)]
     pub backdrop: BackdropArg,
     /// Fresnel branches lighter than this are abandoned, 0 <= W < 1
+    ///
+    /// Pruning only takes weight away: a pixel loses at most the weight of the branches it
+    /// abandons (each lighter than W, but there may be several; with the default, at most 1.5e-4
+    /// on the assignment's views). See docs/physics.md.
     #[arg(
         long,
         value_name = "W",
