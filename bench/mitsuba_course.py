@@ -31,6 +31,12 @@ import mitsuba as mi
 
 # llvm_ad_rgb is the vectorised CPU variant the PyPI wheels ship (there is no llvm_rgb wheel).
 mi.set_variant("llvm_ad_rgb")
+# Dr.Jit loads the newest libLLVM it finds (or DRJIT_LIBLLVM_PATH). With LLVM 14 and 15 its
+# kernels abort in code generation ("Cannot select: fmaximum"); 19 works (16-18 untried).
+if dr.detail.llvm_version()[0] < 16:
+    sys.exit(f"mitsuba_course.py: Dr.Jit found LLVM {dr.detail.llvm_version()[0]}, which cannot "
+             "compile its kernels; install a newer libLLVM (Debian 12: apt-get install libllvm19) "
+             "or point DRJIT_LIBLLVM_PATH at one")
 
 WIDTH, HEIGHT, FOV_DEG = 1024, 768, 50.0
 GLASS_RADIUS = 0.04
@@ -134,7 +140,10 @@ def course_picture(scene, shapes, view, loop_mode):
         events = dr.select(water, events + 1, events)
         return ray, inside, events, code, water
 
-    state = (ray, mi.Bool(False), mi.UInt32(0), mi.UInt32(0), mi.Bool(True))
+    # Full-width initial state: the compressed loop needs a per-ray condition from the start.
+    n = WIDTH * HEIGHT
+    state = (ray, dr.full(mi.Bool, False, n), dr.zeros(mi.UInt32, n), dr.zeros(mi.UInt32, n),
+             dr.full(mi.Bool, True, n))
     kw = {"mode": "evaluated", "compress": True} if loop_mode == "compressed" else {"mode": loop_mode}
     _, _, _, code, _ = dr.while_loop(state, cond, body, **kw)
     return code
@@ -201,12 +210,15 @@ def check_view(number, bentstraw, loop_mode):
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter,
-                                epilog="\n\n".join(__doc__.split("\n\n")[1:]))
+                                epilog="\n\n".join(__doc__.split("\n\n")[2:]))
     p.add_argument("--threads", type=int, default=os.cpu_count(),
                    help="Dr.Jit LLVM backend threads (default: all cores)")
     p.add_argument("--repeat", type=int, default=20, help="timed pictures per view (median)")
+    # Symbolic is the fastest form measured here: one kernel keeps each ray's state in registers,
+    # while the evaluated forms write it back after every step (2-3 times slower).
     p.add_argument("--loop", choices=["symbolic", "evaluated", "compressed"], default="symbolic",
-                   help="Dr.Jit loop form (default: symbolic, one kernel per picture)")
+                   help="Dr.Jit loop form: symbolic (default, one kernel per picture), evaluated "
+                        "(one kernel per step), compressed (evaluated, finished rays dropped)")
     p.add_argument("--view", type=int, action="append", choices=sorted(VIEWS),
                    help="only this view (repeatable; default: all four)")
     p.add_argument("--check", metavar="BENTSTRAW",
