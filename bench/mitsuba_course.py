@@ -227,6 +227,10 @@ def main():
     if args.threads < 1 or args.repeat < 1:
         p.error("--threads and --repeat must be at least 1")
     dr.set_thread_count(args.threads)
+    # On stderr, so that stdout stays one JSON line per view as bench --json prints.
+    print(f"mitsuba {mi.__version__} ({mi.variant()}), drjit {dr.__version__}, LLVM "
+          f"{'.'.join(map(str, dr.detail.llvm_version()))}, {args.threads} threads, "
+          f"{args.loop} loop", file=sys.stderr)
     views = args.view or sorted(VIEWS)
     if args.check:
         worst = max(check_view(v, args.check, args.loop) for v in views)
