@@ -6,12 +6,13 @@ usage: mitsuba_course.py [--threads N] [--repeat R] [--loop symbolic|evaluated|c
                          [--check BENTSTRAW]
 
 Needs Mitsuba 3 and Dr.Jit (pip install mitsuba drjit; tried with mitsuba 3.9.1, drjit 1.5.0) and
-libLLVM 16 or newer (tried with 19.1.7) for the vectorised CPU backend. For each of the four zoomed views that `bentstraw bench` times (1024x768, 50 degrees) it
-traces one ray per pixel centre by the course's law (nearest face; the straw ends the ray with its
-section's code; a water face refracts, or reflects totally; at most 10 events; escaping or dropped
-rays get 0), the whole picture as one vectorised Dr.Jit loop around Mitsuba's ray intersection.
-It prints one JSON line per view in the form of `bentstraw bench --json`: the median of --repeat
-pictures after one warm-up picture (which also compiles the kernel).
+libLLVM 16 or newer (tried with 19.1.7) for the vectorised CPU backend. For each of the four zoomed
+views that `bentstraw bench` times (1024x768, 50 degrees) it traces one ray per pixel centre by the
+course's law (nearest face; the straw ends the ray with its section's code; a water face refracts,
+or reflects totally; at most 10 events; escaping or dropped rays get 0), the whole picture as one
+vectorised Dr.Jit loop around Mitsuba's ray intersection. It prints one JSON line per view in the
+form of `bentstraw bench --json`: the median of --repeat pictures after one warm-up picture (which
+also compiles the kernel).
 
 --check BENTSTRAW renders each view with `BENTSTRAW render --mode course --raw` instead of timing
 and prints the share of pixels whose codes agree (they should differ only on colour boundaries,
