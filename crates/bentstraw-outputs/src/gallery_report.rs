@@ -52,6 +52,7 @@ pub fn gallery_sections(out: &Path, done: &(dyn Fn() + Sync)) -> Vec<Section> {
                     }],
                     notes: vec![],
                     side_by_side: false,
+                    printed: false,
                     table: vec![],
                 },
             };
@@ -116,6 +117,7 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &Loaded) -> Section 
         figures: vec![picture, points, rays],
         notes: vec![opening_comment(text)],
         side_by_side: true,
+        printed: false,
         table: vec![],
     }
 }

@@ -298,6 +298,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         figures: vec![figure],
         notes: vec![distance_note(scene, &cloud)],
         side_by_side: false,
+        printed: true,
         table: Vec::new(),
     }];
     // The reference simulations proper (not the index checks) also get the observer's picture and
@@ -366,6 +367,7 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         figures: vec![picture, points],
         notes: vec![],
         side_by_side: true,
+        printed: true,
         table: Vec::new(),
     }
 }
@@ -408,6 +410,7 @@ fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
             shares.join("; ")
         )],
         side_by_side: false,
+        printed: true,
         table: Vec::new(),
     }
 }
@@ -462,6 +465,7 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
             figures: vec![view],
             notes: vec![],
             side_by_side: false,
+            printed: true,
             table: Vec::new(),
         },
         Section {
@@ -483,6 +487,7 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
                     .into(),
             ],
             side_by_side: false,
+            printed: true,
             table: Vec::new(),
         },
     ]
@@ -537,6 +542,7 @@ fn closing_sections(out: &Path) -> Vec<Section> {
                 validation::VALIDATION_POINTS
             )],
             side_by_side: false,
+            printed: true,
             table,
         },
         Section {
@@ -552,6 +558,7 @@ fn closing_sections(out: &Path) -> Vec<Section> {
                     .into(),
             ],
             side_by_side: false,
+            printed: true,
             table: Vec::new(),
         },
     ]
@@ -643,6 +650,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
             ),
         ],
         side_by_side: false,
+        printed: true,
         table: Vec::new(),
     }
 }
