@@ -235,12 +235,17 @@ footer { max-width:1280px; margin:0 auto; padding:0 40px 40px; color:var(--muted
   figcaption { font-size:7.5pt; line-height:1.25; }
   figcaption a::after { content:" (" attr(href) ")"; }
   a { color:var(--ink); }
-  .parts { column-count:2; column-gap:7mm; }
+  .parts { display:grid; grid-template-columns:1fr 1fr; gap:3mm 7mm; align-items:start; }
   .part { break-inside:avoid; page-break-inside:avoid; }
-  .parts figure img { max-height:15cm; }
+  .parts figure img { max-height:11cm; }
+  .parts > .part.wide { grid-column:1 / -1; order:9; }
+  .parts .pair figure img { max-height:6cm; }
   .figs.pair { grid-template-columns:1fr 1fr; gap:3mm; }
   .intro { display:grid; grid-template-columns:1fr 1fr; gap:7mm; align-items:start; }
-  .sim.variant .part figure img { max-height:7cm; }
+  .sim.variant { display:grid; grid-template-columns:1fr 1fr; gap:0 7mm; break-inside:avoid; }
+  .sim.variant > .parts { grid-column:2; grid-row:1 / span 5; display:block; }
+  .sim.variant .facts { flex-direction:column; gap:2mm; }
+  .sim.variant .part figure img { max-height:7.5cm; }
   .not-printed { display:none; }
   .print-note { color:var(--muted); font-style:italic; }
 }
@@ -459,9 +464,11 @@ fn render_simulation(h: &mut String, s: &SimulationEntry, variant: bool) {
     let _ = writeln!(h, "<p class=\"timing\">Time: {}</p>", timings.join(" · "));
     h.push_str("<div class=\"parts\">\n");
     for sec in &s.sections {
+        // Pictures to compare take the printed page's width, after the other parts.
         let _ = writeln!(
             h,
-            "<section class=\"part\">\n<h4>{}</h4>",
+            "<section class=\"part{}\">\n<h4>{}</h4>",
+            if sec.side_by_side { " wide" } else { "" },
             escape_html(&sec.title)
         );
         render_section_body(h, sec);
