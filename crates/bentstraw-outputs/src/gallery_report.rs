@@ -14,7 +14,7 @@ use crate::error::Result;
 use crate::gallery::{opening_comment, GALLERY};
 use crate::pictures::png_bytes;
 use crate::ray_diagram::{write_ray_diagram, Diagram};
-use crate::report::{Figure, Link, Section};
+use crate::report::{Figure, Section};
 use crate::scene_input::{file_world, Loaded};
 use crate::{files, plot};
 
@@ -28,7 +28,6 @@ pub fn gallery_files() -> Vec<String> {
         .flat_map(|(stem, _)| {
             [
                 format!("gallery_{stem}_observer.png"),
-                format!("gallery_{stem}_points.png"),
                 format!("gallery_{stem}_points.svg"),
                 format!("gallery_{stem}_rays.svg"),
             ]
@@ -53,6 +52,7 @@ pub fn gallery_sections(out: &Path, done: &(dyn Fn() + Sync)) -> Vec<Section> {
                     }],
                     notes: vec![],
                     side_by_side: false,
+                    printed: false,
                     table: vec![],
                 },
             };
@@ -65,8 +65,7 @@ pub fn gallery_sections(out: &Path, done: &(dyn Fn() + Sync)) -> Vec<Section> {
 /// The section of one gallery scene: its picture and its image points.
 fn scene_section(out: &Path, stem: &str, text: &str, world: &Loaded) -> Section {
     let picture_file = format!("gallery_{stem}_observer.png");
-    let points_file = format!("gallery_{stem}_points.png");
-    let svg_file = format!("gallery_{stem}_points.svg");
+    let points_file = format!("gallery_{stem}_points.svg");
     let mut picture = Figure::image(
         &picture_file,
         &format!(
@@ -88,21 +87,15 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &Loaded) -> Section 
             cloud.points.len()
         ),
     );
-    let draw = |file: &str| {
-        plot::write_cloud_figure(
-            &out.join(file),
-            world,
-            world.observer,
-            &cloud.points,
-            &title,
-        )
-    };
-    points.error = draw(&points_file).err().map(|e| e.to_string());
-    points.links.push(Link::new(
-        &svg_file,
-        "figure as SVG",
-        draw(&svg_file).err().map(|e| e.to_string()),
-    ));
+    points.error = plot::write_cloud_figure(
+        &out.join(&points_file),
+        world,
+        world.observer,
+        &cloud.points,
+        &title,
+    )
+    .err()
+    .map(|e| e.to_string());
     let rays_file = format!("gallery_{stem}_rays.svg");
     let mut rays = Figure::image(
         &rays_file,
@@ -124,6 +117,7 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &Loaded) -> Section 
         figures: vec![picture, points, rays],
         notes: vec![opening_comment(text)],
         side_by_side: true,
+        printed: false,
         table: vec![],
     }
 }

@@ -30,6 +30,8 @@ pub mod report;
 pub mod scene_input;
 pub mod sketch;
 pub mod solution;
+#[cfg(feature = "figures")]
+mod svg_marks;
 #[cfg(test)]
 mod test_support;
 #[cfg(feature = "figures")]

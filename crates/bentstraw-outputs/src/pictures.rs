@@ -19,8 +19,9 @@ use crate::camera::MAX_SAMPLES;
 use crate::error::{Error, Result};
 use crate::files;
 
-/// Size of the report's observer pictures (pixels).
-pub const REPORT_SIZE: (u32, u32) = (1600, 1200);
+/// Size of the report's observer pictures (pixels): what a page shows of them, half the screen
+/// report's width, or a column of a printed A4 page at 300 dpi.
+pub const REPORT_SIZE: (u32, u32) = (1000, 750);
 /// Pruning threshold of the report's Fresnel pictures.
 pub const REPORT_PRUNE: f64 = 1e-4;
 

@@ -30,6 +30,7 @@ use crate::error::{Error, Result};
 use crate::files;
 use crate::scene_input::Loaded;
 use crate::sketch::{circle, object_outlines, water_segments, world_wireframe};
+use crate::svg_marks::merge_marks;
 
 /// Width of every figure in pixels (printed 8.5 cm wide: see [`TEXT`]).
 pub const FIGURE_WIDTH: u32 = 1000;
@@ -789,6 +790,7 @@ pub(crate) fn figure_bytes(
                 svg_draw(&root).map_err(fail)?;
                 root.present().map_err(|e| fail(e.to_string()))?;
             }
+            let text = merge_marks(&text);
             if format == FigureFormat::Pdf {
                 svg_to_pdf(&text).map_err(fail)
             } else {
@@ -1243,9 +1245,82 @@ pub(crate) fn visible_dots(
     kept
 }
 
-/// Draws dots as filled squares (in an SVG, one `rect` each).
-pub(crate) fn draw_dots<DB: DrawingBackend>(root: &AreaOn<DB>, dots: &[Dot]) -> DrawResultOn<DB> {
+/// The pixels `dots` cover, each in the colour of the last dot over it, as rectangles that do
+/// not overlap, one colour after the other: pixel rows of one colour, rows of the same extent one
+/// under the other joined. Drawn in any order they make the picture the dots make in theirs, and
+/// an SVG writes each colour as one path.
+pub(crate) fn covered_pixels(dots: &[Dot]) -> Vec<Dot> {
+    let (Some(x0), Some(y0)) = (
+        dots.iter().map(|d| d.x).min(),
+        dots.iter().map(|d| d.y).min(),
+    ) else {
+        return Vec::new();
+    };
+    let x1 = dots.iter().map(|d| d.x + d.size.0).max().unwrap_or(x0);
+    let y1 = dots.iter().map(|d| d.y + d.size.1).max().unwrap_or(y0);
+    let (w, h) = ((x1 - x0) as usize, (y1 - y0) as usize);
+    let mut colours: Vec<[u8; 3]> = dots.iter().map(|d| d.rgb).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    // Each pixel's colour (its index in `colours`, plus one; 0: uncovered).
+    let mut grid = vec![0u16; w * h];
     for d in dots {
+        let c = colours.binary_search(&d.rgb).expect("listed") as u16 + 1;
+        for y in d.y..d.y + d.size.1 {
+            let row = (y - y0) as usize * w;
+            for x in d.x..d.x + d.size.0 {
+                grid[row + (x - x0) as usize] = c;
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for (k, rgb) in colours.iter().enumerate() {
+        let c = k as u16 + 1;
+        // Rectangles still growing downwards, by their left column and width.
+        let mut open: Vec<Dot> = Vec::new();
+        for y in 0..=h {
+            let mut runs: Vec<(i32, i32)> = Vec::new();
+            if y < h {
+                let row = &grid[y * w..(y + 1) * w];
+                let mut x = 0;
+                while x < w {
+                    if row[x] == c {
+                        let start = x;
+                        while x < w && row[x] == c {
+                            x += 1;
+                        }
+                        runs.push((x0 + start as i32, (x - start) as i32));
+                    } else {
+                        x += 1;
+                    }
+                }
+            }
+            let mut next = Vec::with_capacity(runs.len());
+            for (x, len) in runs {
+                match open.iter().position(|d| d.x == x && d.size.0 == len) {
+                    Some(i) => {
+                        let mut d = open.swap_remove(i);
+                        d.size.1 += 1;
+                        next.push(d);
+                    }
+                    None => next.push(Dot {
+                        x,
+                        y: y0 + y as i32,
+                        size: (len, 1),
+                        rgb: *rgb,
+                    }),
+                }
+            }
+            out.append(&mut open);
+            open = next;
+        }
+    }
+    out
+}
+
+/// Draws the pixels dots cover (see [`covered_pixels`]) as filled rectangles.
+pub(crate) fn draw_dots<DB: DrawingBackend>(root: &AreaOn<DB>, dots: &[Dot]) -> DrawResultOn<DB> {
+    for d in &covered_pixels(dots) {
         root.draw(&Rectangle::new(
             [(d.x, d.y), (d.x + d.size.0, d.y + d.size.1)],
             RGBColor(d.rgb[0], d.rgb[1], d.rgb[2]).filled(),

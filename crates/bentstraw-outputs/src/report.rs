@@ -105,6 +105,9 @@ pub struct Section {
     pub notes: Vec<String>,
     /// Whether the figures are shown side by side (pictures meant to be compared), not stacked.
     pub side_by_side: bool,
+    /// Whether the section is printed: one that is not is named, on paper, in a note saying where
+    /// to find it.
+    pub printed: bool,
     /// A table of numbers under the figures: a header row, then data rows.
     pub table: Vec<Vec<String>>,
 }
@@ -206,6 +209,46 @@ figcaption { color:var(--muted); font-size:13px; margin-top:4px; }
 .missing { padding:18px; border:1px dashed var(--bad); color:var(--bad); border-radius:6px; background:#fff8f7; }
 .legend { margin-top:10px; color:var(--muted); font-size:13px; }
 footer { max-width:1280px; margin:0 auto; padding:0 40px 40px; color:var(--muted); font-size:13px; }
+.print-only { display:none; }
+@page { size: A4; margin: 11mm 12mm; }
+@media print {
+  /* On paper: no screen furniture, figures a column wide and side by side, nothing cut. */
+  body { background:#fff; font-size:9pt; line-height:1.35; }
+  nav, .screen-only, .timing { display:none; }
+  .print-only { display:block; }
+  header { background:none; color:var(--ink); padding:0 0 4mm; border-bottom:2px solid var(--ink); }
+  header h1 { font-size:16pt; }
+  header p { color:var(--ink); max-width:none; }
+  main, footer { max-width:none; padding:0; }
+  main p { max-width:none; margin:1.5mm 0; }
+  h2 { font-size:13pt; margin:5mm 0 2mm; }
+  h2, h3, h4 { break-after:avoid; page-break-after:avoid; }
+  h4 { margin:2mm 0 1mm; }
+  table, .facts, .check, figure, .overview { break-inside:avoid; page-break-inside:avoid; }
+  th, td { padding:1px 5px; font-size:8pt; }
+  .overview, .sim { border:none; padding:0; margin:0; overflow:visible; }
+  .sim { margin:3mm 0; }
+  .facts { gap:6mm; }
+  .facts > table { display:table; }
+  .check { margin:1mm 0 0; padding:1mm 2mm; font-size:8pt; }
+  figure img { border:none; max-height:11.5cm; width:auto; margin:0 auto; display:block; }
+  figcaption { font-size:7.5pt; line-height:1.25; }
+  figcaption a::after { content:" (" attr(href) ")"; }
+  a { color:var(--ink); }
+  .parts { display:grid; grid-template-columns:1fr 1fr; gap:3mm 7mm; align-items:start; }
+  .part { break-inside:avoid; page-break-inside:avoid; }
+  .parts figure img { max-height:11cm; }
+  .parts > .part.wide { grid-column:1 / -1; order:9; }
+  .parts .pair figure img { max-height:6cm; }
+  .figs.pair { grid-template-columns:1fr 1fr; gap:3mm; }
+  .intro { display:grid; grid-template-columns:1fr 1fr; gap:7mm; align-items:start; }
+  .sim.variant { display:grid; grid-template-columns:1fr 1fr; gap:0 7mm; break-inside:avoid; }
+  .sim.variant > .parts { grid-column:2; grid-row:1 / span 5; display:block; }
+  .sim.variant .facts { flex-direction:column; gap:2mm; }
+  .sim.variant .part figure img { max-height:7.5cm; }
+  .not-printed { display:none; }
+  .print-note { color:var(--muted); font-style:italic; }
+}
 "#;
 
 /// A small square in the section's colour.
@@ -255,22 +298,23 @@ pub fn render(report: &Report) -> String {
         let _ = write!(h, "<a href=\"#closing{k}\">{}</a>", escape_html(&sec.title));
     }
     h.push_str("<a href=\"#conventions\">Conventions</a></nav>\n<main>\n");
+    h.push_str(
+        "<p class=\"print-only print-note\">Printed from index.html: the rotatable 3D views and \
+         the data files named in the captions are in the same folder.</p>\n",
+    );
 
-    for (k, sec) in report.intro.iter().enumerate() {
-        let _ = writeln!(h, "<h2 id=\"intro{k}\">{}</h2>", escape_html(&sec.title));
-        render_section_body(&mut h, sec);
-    }
+    h.push_str("<div class=\"intro\">\n");
+    render_top_sections(&mut h, "intro", &report.intro);
+    h.push_str("</div>\n");
     render_overview(&mut h, report);
     for (r, list) in &groups {
         let _ = writeln!(h, "<h2 id=\"reference{r}\">Reference simulation {r}</h2>");
-        for s in list {
-            render_simulation(&mut h, s);
+        for (k, s) in list.iter().enumerate() {
+            // The first of a group is the reference, the others its index checks.
+            render_simulation(&mut h, s, k > 0);
         }
     }
-    for (k, sec) in report.closing.iter().enumerate() {
-        let _ = writeln!(h, "<h2 id=\"closing{k}\">{}</h2>", escape_html(&sec.title));
-        render_section_body(&mut h, sec);
-    }
+    render_top_sections(&mut h, "closing", &report.closing);
     h.push_str("</main>\n");
     let _ = write!(
         h,
@@ -293,6 +337,35 @@ pub fn render(report: &Report) -> String {
         seconds(report.total)
     );
     h
+}
+
+/// Sections with their own `h2`, anchored `{anchor}{k}`; before each run of sections that are not
+/// printed, a note (on paper only) naming them and where to find them.
+fn render_top_sections(h: &mut String, anchor: &str, sections: &[Section]) {
+    for (k, sec) in sections.iter().enumerate() {
+        let starts_run = !sec.printed && (k == 0 || sections[k - 1].printed);
+        if starts_run {
+            let names: Vec<String> = sections[k..]
+                .iter()
+                .take_while(|s| !s.printed)
+                .map(|s| escape_html(&s.title))
+                .collect();
+            let _ = writeln!(
+                h,
+                "<p class=\"print-only print-note\">Not printed (in the report on screen, \
+                 index.html): {}.</p>",
+                names.join(" · ")
+            );
+        }
+        let class = if sec.printed { "part" } else { "not-printed" };
+        let _ = writeln!(
+            h,
+            "<section class=\"{class}\">\n<h2 id=\"{anchor}{k}\">{}</h2>",
+            escape_html(&sec.title)
+        );
+        render_section_body(h, sec);
+        h.push_str("</section>\n");
+    }
 }
 
 fn render_overview(h: &mut String, report: &Report) {
@@ -332,10 +405,12 @@ fn render_overview(h: &mut String, report: &Report) {
     h.push_str("</table></div>\n");
 }
 
-fn render_simulation(h: &mut String, s: &SimulationEntry) {
+/// One simulation's article; `variant`: an index check of the reference before it.
+fn render_simulation(h: &mut String, s: &SimulationEntry, variant: bool) {
     let _ = write!(
         h,
-        "<article class=\"sim\" id=\"{}\">\n<h3>{}</h3>\n<div class=\"facts\">\n<table>",
+        "<article class=\"sim{}\" id=\"{}\">\n<h3>{}</h3>\n<div class=\"facts\">\n<table>",
+        if variant { " variant" } else { "" },
         escape_html(&s.id),
         escape_html(&s.heading)
     );
@@ -387,11 +462,19 @@ fn render_simulation(h: &mut String, s: &SimulationEntry) {
         .map(|t| format!("{} {}", escape_html(&t.label), seconds(t.duration)))
         .collect();
     let _ = writeln!(h, "<p class=\"timing\">Time: {}</p>", timings.join(" · "));
+    h.push_str("<div class=\"parts\">\n");
     for sec in &s.sections {
-        let _ = writeln!(h, "<h4>{}</h4>", escape_html(&sec.title));
+        // Pictures to compare take the printed page's width, after the other parts.
+        let _ = writeln!(
+            h,
+            "<section class=\"part{}\">\n<h4>{}</h4>",
+            if sec.side_by_side { " wide" } else { "" },
+            escape_html(&sec.title)
+        );
         render_section_body(h, sec);
+        h.push_str("</section>\n");
     }
-    h.push_str("</article>\n");
+    h.push_str("</div>\n</article>\n");
 }
 
 /// A section's figures, notes and table (its heading is the caller's).
@@ -510,6 +593,7 @@ mod tests {
                 figures: vec![figure],
                 notes: vec!["a & b".into()],
                 side_by_side: false,
+                printed: true,
                 table: Vec::new(),
             }],
         }
@@ -567,6 +651,36 @@ mod tests {
         assert!(html.contains(
             "(<code>bentstraw check</code>): pass: 1234 of 1234 points correct &lt;sim2&gt;</p>"
         ));
+    }
+
+    #[test]
+    fn print_keeps_tables_and_headings_whole_and_names_what_it_leaves_out() {
+        let mut r = report();
+        let section = |title: &str, printed: bool| Section {
+            title: title.into(),
+            figures: vec![],
+            notes: vec![],
+            side_by_side: false,
+            printed,
+            table: vec![],
+        };
+        r.closing = vec![
+            section("Gallery: a", false),
+            section("Gallery: b", false),
+            section("Limits", true),
+        ];
+        let html = render(&r);
+        assert!(html.contains("@media print"));
+        assert!(html.contains("break-inside:avoid") && html.contains("break-after:avoid"));
+        // One note for the run of sections left out, naming each.
+        assert_eq!(html.matches("Not printed").count(), 1);
+        assert!(html.contains(
+            "Not printed (in the report on screen, index.html): Gallery: a · Gallery: b."
+        ));
+        assert_eq!(html.matches("class=\"not-printed\"").count(), 2);
+        // The index checks are laid out as variants of their reference.
+        assert!(html.contains("<article class=\"sim variant\" id=\"sim1_n1\">"));
+        assert!(html.contains("<article class=\"sim\" id=\"sim1\">"));
     }
 
     #[test]

@@ -294,6 +294,16 @@ pub fn write_points(path: &Path, format: PointFormat, set: &PointSet) -> Result 
     })
 }
 
+/// The CSV of [`write_csv`], gzip-compressed, to `path` (all-or-nothing): the same rows in about
+/// 40 % of the bytes, read as they are by pandas, numpy, R and `zcat`.
+pub fn write_csv_gz(path: &Path, points: &[ImagePoint]) -> Result {
+    write_atomically(path, |w| {
+        let mut gz = flate2::write::GzEncoder::new(w, flate2::Compression::default());
+        write_csv(&mut gz, points)?;
+        gz.finish().map(|_| ())
+    })
+}
+
 /// CSV: header `x,y,z,color`, coordinates in the shortest form that reads back exactly.
 ///
 /// Rows are formatted with `ryu` (the shortest round-trip digits, as `{}` prints them, several times

@@ -48,9 +48,20 @@ fn simulate(dir: &Path, k: usize, points: usize, extra: &[&str]) -> Output {
     bentstraw(dir, &refs)
 }
 
-/// Parses a points CSV: exact header, then `(x, y, z, color)` rows.
+/// Parses a points CSV (gzip-compressed if its name ends in `.gz`): exact header, then
+/// `(x, y, z, color)` rows.
 fn read_csv(path: &Path) -> Vec<(Vec3, u8)> {
-    let text = fs::read_to_string(path).unwrap();
+    let text = if path.extension().is_some_and(|e| e == "gz") {
+        let mut text = String::new();
+        std::io::Read::read_to_string(
+            &mut flate2::read::GzDecoder::new(fs::File::open(path).unwrap()),
+            &mut text,
+        )
+        .unwrap();
+        text
+    } else {
+        fs::read_to_string(path).unwrap()
+    };
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("x,y,z,color"), "{}", path.display());
     lines
@@ -346,19 +357,19 @@ pub fn table_writes_every_simulation_and_the_report(out: &Output, folder: &Path)
         .flat_map(|k| ["", "_n1", "_n1.05"].map(|s| format!("sim{k}{s}")))
         .collect();
     for stem in &stems {
-        let points = read_csv(&folder.join(format!("{stem}.csv")));
+        let points = read_csv(&folder.join(format!("{stem}.csv.gz")));
         assert!(points.len() >= 20000, "{stem}: {} points", points.len());
     }
     // The n_water = 1 points lie on the straw; the others keep their colours when re-traced.
     for r in &REFERENCES {
-        let on = read_csv(&folder.join(format!("sim{}_n1.csv", r.number)));
+        let on = read_csv(&folder.join(format!("sim{}_n1.csv.gz", r.number)));
         let scene = r.scene(1.0);
         let far = on
             .iter()
             .map(|(p, _)| World::assignment(&scene).distance_to_objects(*p))
             .fold(0.0, f64::max);
         assert!(far < 1e-9, "sim{}_n1: {far} m off the straw", r.number);
-        let bent = read_csv(&folder.join(format!("sim{}_n1.05.csv", r.number)));
+        let bent = read_csv(&folder.join(format!("sim{}_n1.05.csv.gz", r.number)));
         assert_retraces(&r.scene(1.05), r.observer, &bent);
     }
     let index = fs::read_to_string(folder.join("index.html")).unwrap();
@@ -369,12 +380,12 @@ pub fn table_writes_every_simulation_and_the_report(out: &Output, folder: &Path)
             "{stem} not in the report"
         );
         assert!(
-            index.contains(&format!("{stem}.png")),
-            "{stem}.png not in the report"
+            index.contains(&format!("src=\"{stem}.svg\"")),
+            "{stem}.svg not in the report"
         );
         assert!(
-            index.contains(&format!("{stem}.csv")),
-            "{stem}.csv not in the report"
+            index.contains(&format!("href=\"{stem}.csv.gz\"")),
+            "{stem}.csv.gz not in the report"
         );
     }
     assert_eq!(
@@ -386,25 +397,25 @@ pub fn table_writes_every_simulation_and_the_report(out: &Output, folder: &Path)
     // Every figure written, the run succeeds, and the folder holds the table's files only.
     assert!(out.status.success(), "{err}");
     for stem in &stems {
-        for ext in ["png", "html"] {
-            let f = folder.join(format!("{stem}.{ext}"));
-            assert!(f.is_file(), "{}", f.display());
-        }
+        assert!(folder.join(format!("{stem}.svg")).is_file(), "{stem}.svg");
+        // The rotatable view: of the reference simulations, not of their index checks.
+        let view = folder.join(format!("{stem}.html"));
+        assert_eq!(view.is_file(), !stem.contains("_n"), "{}", view.display());
     }
-    assert!(fs::read(folder.join("sim1.png"))
+    assert!(fs::read(folder.join("sim1_observer.png"))
         .unwrap()
         .starts_with(b"\x89PNG"));
     let files = fs::read_dir(folder).unwrap().count();
-    // 12 × (csv, png, svg, html), 4 × 11 pictures, model files and ray diagrams, the opening
-    // view and its ray diagram, the validation figure, the report, and 16 gallery scenes × (their
-    // picture, their points as PNG and SVG, their ray diagram).
+    // 12 × (gzipped CSV, SVG figure), 4 × (3D view, 2 pictures, models, gap plot, ray diagram),
+    // the opening view and its ray diagram, the validation figure, the report, and 16 gallery
+    // scenes × (their picture, their points, their ray diagram).
     for f in [
         "classic_view.png",
         "classic_rays.svg",
         "validation.svg",
         "sim3_rays.svg",
         "gallery_reversing-arrow_observer.png",
-        "gallery_tank-pencil_points.png",
+        "gallery_tank-pencil_points.svg",
         "gallery_oil-on-water_rays.svg",
     ] {
         assert!(folder.join(f).is_file(), "{f}");
@@ -412,7 +423,7 @@ pub fn table_writes_every_simulation_and_the_report(out: &Output, folder: &Path)
     }
     assert_eq!(
         files,
-        12 * 4 + 4 * 11 + 2 + 1 + 1 + 16 * 4,
+        12 * 2 + 4 * 6 + 2 + 1 + 1 + 16 * 3,
         "unexpected files in the table's folder"
     );
     assert!(!err.contains("could not be written"), "{err}");

@@ -13,6 +13,7 @@ mod explore_server;
 mod figures_cli;
 mod outputs_cli;
 mod render_cli;
+mod report_cli;
 mod scene_cli;
 
 /// The rule for tests needing node, Chromium or poppler, shared with the unit tests.
@@ -36,6 +37,7 @@ fn the_report_job() {
     let folder = dir.path().join("made/here");
     cli::table_writes_every_simulation_and_the_report(&out, &folder);
     figures_cli::the_reports_figures_come_as_svg_too_and_are_legible(&folder);
+    report_cli::the_report_is_lean_and_prints_on_few_pages(&folder);
 }
 
 /// Every `.rs` file of `tests/` is compiled: as this file or a module of it.

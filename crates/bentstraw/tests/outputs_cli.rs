@@ -162,7 +162,7 @@ fn a_failed_table_replaces_none_of_the_previous_table() {
     let folder = d.join("t");
     fs::create_dir(&folder).unwrap();
     fs::write(folder.join("index.html"), b"previous report").unwrap();
-    fs::write(folder.join("sim1.csv"), b"previous points").unwrap();
+    fs::write(folder.join("sim1.csv.gz"), b"previous points").unwrap();
     // 100 to 200 kB: under every figure, over the report (about 60 kB).
     let out = run_limited(d, 200, &["table", "--out", "t", "--points", "3000"]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
@@ -176,7 +176,7 @@ fn a_failed_table_replaces_none_of_the_previous_table() {
         b"previous report"
     );
     assert_eq!(
-        fs::read(folder.join("sim1.csv")).unwrap(),
+        fs::read(folder.join("sim1.csv.gz")).unwrap(),
         b"previous points"
     );
     assert_eq!(

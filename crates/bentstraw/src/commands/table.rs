@@ -31,7 +31,7 @@ use bentstraw_outputs::report::{
 };
 use bentstraw_outputs::scene_input::Loaded;
 use bentstraw_outputs::validation::{self, write_validation_figure, ValidationSeries};
-use bentstraw_outputs::writers::{write_points, ModelPoints, PointFormat, PointSet};
+use bentstraw_outputs::writers::{write_csv_gz, ModelPoints, PointSet};
 use bentstraw_outputs::{html, pictures, plot};
 
 /// Most image points per simulation: the table traces twelve, and runs the eye and stereo models
@@ -69,23 +69,13 @@ impl Job {
     /// The names of every file this simulation writes, so that all are reserved before the work.
     fn outputs(&self) -> Vec<String> {
         let stem = &self.stem;
-        let mut names = vec![
-            format!("{stem}.csv"),
-            format!("{stem}.png"),
-            format!("{stem}.svg"),
-            format!("{stem}.html"),
-        ];
+        let mut names = vec![format!("{stem}.csv.gz"), format!("{stem}.svg")];
         if self.scene.n_water() == WATER_INDEX {
             for suffix in [
+                ".html",
                 "_observer.png",
                 "_cloud.png",
-                "_eye.csv",
-                "_eye.html",
-                "_stereo.csv",
-                "_stereo.html",
-                "_models.png",
                 "_models.svg",
-                "_gap.png",
                 "_gap.svg",
                 "_rays.svg",
             ] {
@@ -256,55 +246,48 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     let traced = t0.elapsed();
 
     let t1 = Instant::now();
-    let set = PointSet {
-        scene: &job.loaded,
-        min_points: points,
-        model: ModelPoints::Course,
-        cloud: &cloud,
-    };
     let title = format!(
         "{}: {}",
         simulation_heading(job),
         simulation_title(scene, observer)
     );
-    let csv = format!("{}.csv", job.stem);
-    let png = format!("{}.png", job.stem);
-    let page = format!("{}.html", job.stem);
-    let data_error = write_points(&out.join(&csv), PointFormat::Csv, &set).err();
-    let figure = |file: &str| {
-        plot::write_cloud_figure(
-            &out.join(file),
-            &job.loaded,
-            observer,
-            &cloud.points,
-            &title,
-        )
-    };
-    let plot_error = figure(&png).err();
-    // The same figure as a vector drawing, for print.
+    let csv = format!("{}.csv.gz", job.stem);
     let svg = format!("{}.svg", job.stem);
-    let svg_error = figure(&svg).err();
-    let page_error = html::write_cloud_viewer(
-        &out.join(&page),
+    let data_error = write_csv_gz(&out.join(&csv), &cloud.points).err();
+    // A vector drawing, sharp on screen and on paper.
+    let plot_error = plot::write_cloud_figure(
+        &out.join(&svg),
         &job.loaded,
         observer,
         &cloud.points,
         &title,
     )
     .err();
-    let written = t1.elapsed();
-
-    let mut figure = Figure::image(&png, CLOUD_CAPTION);
+    let mut figure = Figure::image(&svg, CLOUD_CAPTION);
     figure.error = plot_error.map(|e| e.to_string());
-    figure.links = vec![
-        Link::new(
+    // The rotatable view of the reference simulations (the checks' points differ little from it).
+    if scene.n_water() == WATER_INDEX {
+        let page = format!("{}.html", job.stem);
+        let page_error = html::write_cloud_viewer(
+            &out.join(&page),
+            &job.loaded,
+            observer,
+            &cloud.points,
+            &title,
+        )
+        .err();
+        figure.links.push(Link::new(
             &page,
             "rotatable 3D view",
             page_error.map(|e| e.to_string()),
-        ),
-        Link::new(&csv, "points (CSV)", data_error.map(|e| e.to_string())),
-        Link::new(&svg, "figure as SVG", svg_error.map(|e| e.to_string())),
-    ];
+        ));
+    }
+    figure.links.push(Link::new(
+        &csv,
+        "points (CSV, gzip)",
+        data_error.map(|e| e.to_string()),
+    ));
+    let written = t1.elapsed();
 
     let mut timings = vec![
         Timing::new("tracing", traced),
@@ -315,6 +298,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         figures: vec![figure],
         notes: vec![distance_note(scene, &cloud)],
         side_by_side: false,
+        printed: true,
         table: Vec::new(),
     }];
     // The reference simulations proper (not the index checks) also get the observer's picture and
@@ -383,6 +367,7 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         figures: vec![picture, points],
         notes: vec![],
         side_by_side: true,
+        printed: true,
         table: Vec::new(),
     }
 }
@@ -425,6 +410,7 @@ fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
             shares.join("; ")
         )],
         side_by_side: false,
+        printed: true,
         table: Vec::new(),
     }
 }
@@ -479,6 +465,7 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
             figures: vec![view],
             notes: vec![],
             side_by_side: false,
+            printed: true,
             table: Vec::new(),
         },
         Section {
@@ -500,6 +487,7 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
                     .into(),
             ],
             side_by_side: false,
+            printed: true,
             table: Vec::new(),
         },
     ]
@@ -554,6 +542,7 @@ fn closing_sections(out: &Path) -> Vec<Section> {
                 validation::VALIDATION_POINTS
             )],
             side_by_side: false,
+            printed: true,
             table,
         },
         Section {
@@ -569,6 +558,7 @@ fn closing_sections(out: &Path) -> Vec<Section> {
                     .into(),
             ],
             side_by_side: false,
+            printed: true,
             table: Vec::new(),
         },
     ]
@@ -579,52 +569,28 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let eye = eye_model_points(&job.loaded.world, observer, &cloud.points);
     let stereo = stereo_points(&job.loaded.world, observer, &cloud.points);
-    let mut figures = Vec::new();
-    let mut placed = Vec::new();
-    let mut links = Vec::new();
-    for model in [
+    let placed: Vec<Vec<_>> = [
         ModelPoints::Course,
         ModelPoints::Eye(&eye),
         ModelPoints::Stereo(&stereo),
-    ] {
-        let set = PointSet {
+    ]
+    .into_iter()
+    .map(|model| {
+        PointSet {
             scene: &job.loaded,
             min_points: cloud.points.len(),
             model,
             cloud,
-        };
-        let points = set.placed_points();
-        if !matches!(model, ModelPoints::Course) {
-            let csv = format!("{}_{}.csv", job.stem, model.name());
-            let page = format!("{}_{}.html", job.stem, model.name());
-            let title = format!(
-                "{} ({} model)",
-                simulation_title(scene, observer),
-                model.name()
-            );
-            let data_error = write_points(&out.join(&csv), PointFormat::Csv, &set).err();
-            let page_error =
-                html::write_cloud_viewer(&out.join(&page), &job.loaded, observer, &points, &title)
-                    .err();
-            links.push(Link::new(
-                &page,
-                &format!("{} model, 3D view", model.name()),
-                page_error.map(|e| e.to_string()),
-            ));
-            links.push(Link::new(
-                &csv,
-                &format!("{} model, points (CSV)", model.name()),
-                data_error.map(|e| e.to_string()),
-            ));
         }
-        placed.push(points);
-    }
+        .placed_points()
+    })
+    .collect();
     let clouds: Vec<ModelCloud> = MODEL_NAMES
         .iter()
         .zip(&placed)
         .map(|(name, points)| ModelCloud { name, points })
         .collect();
-    let compare = format!("{}_models.png", job.stem);
+    let compare = format!("{}_models.svg", job.stem);
     let title = format!("{}: where the straw appears", simulation_heading(job));
     let mut figure = Figure::image(
         &compare,
@@ -634,26 +600,11 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         write_model_comparison(&out.join(&compare), &job.loaded, observer, &clouds, &title)
             .err()
             .map(|e| e.to_string());
-    let compare_svg = format!("{}_models.svg", job.stem);
-    let svg_error = write_model_comparison(
-        &out.join(&compare_svg),
-        &job.loaded,
-        observer,
-        &clouds,
-        &title,
-    )
-    .err();
-    links.push(Link::new(
-        &compare_svg,
-        "figure as SVG",
-        svg_error.map(|e| e.to_string()),
-    ));
-    figure.links = links;
-    figures.push(figure);
+    let mut figures = vec![figure];
 
     let eye_gaps = eye_gap_samples(&eye);
     let stereo_gaps = stereo_gap_samples(&stereo);
-    let gap = format!("{}_gap.png", job.stem);
+    let gap = format!("{}_gap.svg", job.stem);
     let series = GapSeries::of_models(&eye_gaps, &stereo_gaps);
     let mut figure = Figure::image(
         &gap,
@@ -667,14 +618,6 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     figure.error = write_gap_plot(&out.join(&gap), &series, &gap_title)
         .err()
         .map(|e| e.to_string());
-    let gap_svg = format!("{}_gap.svg", job.stem);
-    figure.links = vec![Link::new(
-        &gap_svg,
-        "figure as SVG",
-        write_gap_plot(&out.join(&gap_svg), &series, &gap_title)
-            .err()
-            .map(|e| e.to_string()),
-    )];
     figures.push(figure);
 
     let unplaced = eye.iter().filter(|p| p.position.is_none()).count();
@@ -700,8 +643,14 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
                 stereo.points.len(),
                 stereo.skipped
             ),
+            format!(
+                "Each model's points, as a file: bentstraw simulate {} --image-model eye (or \
+                 stereo) --output points.csv.",
+                simulate_flags(scene, observer)
+            ),
         ],
         side_by_side: false,
+        printed: true,
         table: Vec::new(),
     }
 }
@@ -714,6 +663,20 @@ fn simulation_heading(job: &Job) -> String {
     } else {
         format!("Simulation {}, check n_water = {n}", job.reference.number)
     }
+}
+
+/// The flags of `bentstraw simulate` that give `scene` seen from `o`.
+fn simulate_flags(scene: &Scene, o: Vec3) -> String {
+    format!(
+        "--observer {},{},{} --straw {},{} --water-height {} --n-water {}",
+        o.x,
+        o.y,
+        o.z,
+        scene.straw_x(),
+        scene.straw_y(),
+        scene.water_height(),
+        scene.n_water()
+    )
 }
 
 /// The inputs as label/value rows.

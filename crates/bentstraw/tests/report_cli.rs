@@ -1,0 +1,82 @@
+//! The report on paper and on disk: the folder of the main job stays small, and the page prints
+//! on a few A4 pages (through headless Chromium's print, as a reader's browser prints it).
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+use crate::test_support::{require_tool, unavailable};
+
+/// Most bytes the report's folder may hold.
+const MAX_FOLDER_BYTES: u64 = 25 * 1024 * 1024;
+/// Most A4 pages the report may print on.
+const MAX_PAGES: usize = 16;
+
+/// The report job's folder (see `the_report_job`) holds at most 25 MB, and its page printed by
+/// Chromium fills at most 16 A4 pages, its tables and headings included.
+pub fn the_report_is_lean_and_prints_on_few_pages(folder: &Path) {
+    let bytes: u64 = fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().metadata().unwrap().len())
+        .sum();
+    assert!(
+        bytes <= MAX_FOLDER_BYTES,
+        "the report's folder holds {bytes} bytes, more than {MAX_FOLDER_BYTES}"
+    );
+    let index = fs::read_to_string(folder.join("index.html")).unwrap();
+    assert!(index.contains("@media print"), "no print stylesheet");
+
+    let (Some(chromium), Some(pdftotext)) = (require_tool("chromium"), require_tool("pdftotext"))
+    else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let pdf = dir.path().join("report.pdf");
+    let status = Command::new(chromium)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--no-first-run",
+            "--no-pdf-header-footer",
+        ])
+        .arg(format!(
+            "--user-data-dir={}",
+            dir.path().join("profile").display()
+        ))
+        .arg(format!("--print-to-pdf={}", pdf.display()))
+        .arg(format!("file://{}", folder.join("index.html").display()))
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .unwrap();
+    if !status.success() || !pdf.is_file() {
+        unavailable(
+            "Chromium did not print the report",
+            "apt-get install chromium",
+        );
+        return;
+    }
+    // pdftotext separates pages with form feeds: one per page.
+    let text = Command::new(pdftotext).arg(&pdf).arg("-").output().unwrap();
+    assert!(text.status.success());
+    let text = String::from_utf8_lossy(&text.stdout);
+    let pages = text.matches('\u{c}').count();
+    assert!(
+        (1..=MAX_PAGES).contains(&pages),
+        "the report prints on {pages} A4 pages, more than {MAX_PAGES}"
+    );
+    // What is not printed is named, with where to find it; the reference simulations are.
+    assert!(
+        text.contains("Not printed"),
+        "no note on what is not printed"
+    );
+    for k in 1..=4 {
+        assert!(
+            text.contains(&format!("Reference simulation {k}")),
+            "simulation {k} not printed"
+        );
+    }
+}
