@@ -76,6 +76,11 @@ mod sequential {
             self
         }
 
+        /// No splitting to force: the iterator itself.
+        fn with_max_len(self, _max: usize) -> Self {
+            self
+        }
+
         /// One state made by `init`, used for every item in order.
         fn for_each_init<S>(self, init: impl Fn() -> S, mut f: impl FnMut(&mut S, Self::Item)) {
             let mut state = init();
