@@ -111,6 +111,17 @@ const CONVERGED: f64 = 1e-12;
 const ON_THE_WAY: f64 = 1e-8;
 /// Most Newton iterations per re-aiming.
 const NEWTON_ITERATIONS: usize = 40;
+/// Most iterations of Newton's method with the exact Jacobian: from a first-order prediction it
+/// converges in a handful; more only wanders where there is no solution along the path.
+const EXACT_NEWTON_ITERATIONS: usize = 8;
+/// Most halvings of a step of Newton's method with the exact Jacobian.
+const EXACT_NEWTON_HALVINGS: usize = 4;
+/// Smallest step (fraction of the way from the observer to a stereo eye) at which the stereo
+/// model still follows a solution that Newton's method lost; below it the point is skipped.
+const SMALLEST_STEP: f64 = 1.0 / 256.0;
+/// Most attempts of Newton's method (steps taken or halved) when following a stereo point: a
+/// solution that needs more is skipped rather than followed for thousands of traces.
+const MOST_STEPS: usize = 8;
 /// Step of the forward differences of the Newton Jacobian (gnomonic units, ≈ radians).
 const JACOBIAN_STEP: f64 = 1e-7;
 
@@ -562,14 +573,20 @@ impl<'a> Aim<'a> {
     fn predict_and_follow(&self, from: Vec3, to: Vec3, slope: [f64; 2]) -> Option<Vec3> {
         let (mut t, mut h) = (0.0_f64, 1.0_f64);
         let (mut x, mut slope) = ([0.0; 2], slope);
-        while t < 1.0 {
+        for _ in 0..MOST_STEPS {
+            if t >= 1.0 {
+                return Some(self.direction(x));
+            }
             let next = (t + h).min(1.0);
             let dt = next - t;
             let guess = [x[0] + slope[0] * dt, x[1] + slope[1] * dt];
             let end = next >= 1.0;
             let tolerance = if end { NEWTON_TOLERANCE } else { ON_THE_WAY };
-            match self.newton(from + (to - from) * next, guess, tolerance, end) {
-                Some(xn) => {
+            match self.newton(from + (to - from) * next, guess, tolerance) {
+                // Found, but something else is met first: the end eye does not see the point
+                // (smaller steps would find the same ray).
+                Some((_, false)) if end => return None,
+                Some((xn, _)) => {
                     slope = [(xn[0] - x[0]) / dt, (xn[1] - x[1]) / dt];
                     x = xn;
                     t = next;
@@ -577,30 +594,24 @@ impl<'a> Aim<'a> {
                 }
                 None => {
                     h *= 0.5;
-                    if h < 1.0 / 2048.0 {
+                    if h < SMALLEST_STEP {
                         return None; // the path changes its events on the way, or is hidden
                     }
                 }
             }
         }
-        Some(self.direction(x))
+        (t >= 1.0).then(|| self.direction(x))
     }
 
     /// Newton's method from `x0` with the exact Jacobian (quadratic convergence): the ray from
     /// `eye` along the path whose last segment passes within `tolerance` of the straw point
-    /// (succeeding within [`CONVERGED`]), and, if `must_reach`, reaches it (checked by the same
-    /// traces).
-    fn newton(
-        &self,
-        eye: Vec3,
-        x0: [f64; 2],
-        tolerance: f64,
-        must_reach: bool,
-    ) -> Option<[f64; 2]> {
+    /// (succeeding within [`CONVERGED`]), and whether it reaches the point (checked by the same
+    /// traces: nothing else is met first).
+    fn newton(&self, eye: Vec3, x0: [f64; 2], tolerance: f64) -> Option<([f64; 2], bool)> {
         let norm = |r: [f64; 2]| (r[0] * r[0] + r[1] * r[1]).sqrt();
         let mut x = x0;
         let (mut r, mut j, mut reached) = self.residual_with_jacobian(eye, x)?;
-        for _ in 0..NEWTON_ITERATIONS {
+        for _ in 0..EXACT_NEWTON_ITERATIONS {
             let size = norm(r);
             if size <= tolerance {
                 break;
@@ -616,7 +627,7 @@ impl<'a> Aim<'a> {
             // Damped: halve the step until the miss shrinks and the path is kept.
             let mut lambda = 1.0;
             let mut accepted = false;
-            for _ in 0..16 {
+            for _ in 0..EXACT_NEWTON_HALVINGS {
                 let xn = [x[0] + lambda * step[0], x[1] + lambda * step[1]];
                 if let Some((rn, jn, reached_n)) = self.residual_with_jacobian(eye, xn) {
                     if norm(rn) < size {
@@ -631,7 +642,7 @@ impl<'a> Aim<'a> {
                 break; // at rounding, or lost
             }
         }
-        ((reached || !must_reach) && norm(r) <= CONVERGED.max(tolerance)).then_some(x)
+        (norm(r) <= CONVERGED.max(tolerance)).then_some((x, reached))
     }
 
     /// [`Aim::converge`], then a check with the tracer that the ray really reaches the straw point.
@@ -837,20 +848,29 @@ impl World {
                 let aim = Aim::new(self, path, u0, e_h, e_v);
                 // The pencil's edges: the rays predicted from E ± 2δe must follow the path to
                 // the straw point (module docs); only then is the focus along e resolved.
-                let uncut = |k: usize, e: Vec3| {
-                    [2.0 * step, -2.0 * step].into_iter().all(|delta| {
-                        let x = [-w[0][k] * delta, -w[1][k] * delta];
-                        aim.reaches_within(observer + delta * e, x, PENCIL_REACH)
-                    })
+                let edge = |k: usize, e: Vec3, delta: f64| {
+                    let x = [-w[0][k] * delta, -w[1][k] * delta];
+                    (observer + delta * e, aim.direction(x))
                 };
-                let focus = |k: usize, e: Vec3| {
-                    if uncut(k, e) {
+                let d = 2.0 * step;
+                let reached = edges_reach(
+                    self,
+                    &aim.path,
+                    [
+                        edge(0, e_h, d),
+                        edge(0, e_h, -d),
+                        edge(1, e_v, d),
+                        edge(1, e_v, -d),
+                    ],
+                );
+                let focus = |k: usize| {
+                    if reached[2 * k] && reached[2 * k + 1] {
                         Focus::from_vergence(w[k][k])
                     } else {
                         Focus::Unresolved
                     }
                 };
-                (focus(0, e_h), focus(1, e_v))
+                (focus(0), focus(1))
             }
             None => (Focus::Unresolved, Focus::Unresolved),
         };
@@ -1003,6 +1023,60 @@ impl World {
         let ur = aim.continue_to(observer, eyes.right)?;
         Some(triangulate(eyes, image, path.straw_point, ul, ur))
     }
+}
+
+/// Whether each of four rays `(eye, unit direction)` follows `path`'s events and then meets an
+/// object within [`PENCIL_REACH`] of its straw point: traced side by side in one packet, in single
+/// precision (its rounding, ~1e-7 m, is far below the tolerance; it only has to tell the same
+/// path from another face, an edge or an object in the way).
+fn edges_reach(world: &World, path: &LightPath, rays: [(Vec3, Vec3); 4]) -> [bool; 4] {
+    use crate::geometry::enter_sphere;
+    use crate::lanes::{Mask, Real, F8, LANES, M8, V3};
+    let (centre, radius) = world.bounding_sphere();
+    let (mut o, mut d) = ([[0.0f32; LANES]; 3], [[0.0f32; LANES]; 3]);
+    let mut alive = M8::splat(false);
+    for (k, &(origin, direction)) in rays.iter().enumerate() {
+        // Started where they enter the scene's sphere, as the tracer starts one ray.
+        if let Some((start, _)) = enter_sphere(Ray { origin, direction }, centre, radius) {
+            for c in 0..3 {
+                o[c][k] = start.origin[c] as f32;
+                d[c][k] = start.direction[c] as f32;
+            }
+            alive.0[k] = u32::MAX;
+        }
+    }
+    let lanes = |v: [[f32; LANES]; 3]| V3::new(F8(v[0]), F8(v[1]), F8(v[2]));
+    let mut sequences = [EMPTY_SEQUENCE; 4];
+    let mut count = 0u32;
+    // No lane needs more events than the path: one more is another path.
+    let ends = world.follow_course(
+        lanes(o),
+        lanes(d),
+        alive,
+        F8::splat(0.0),
+        path.events,
+        |e| {
+            if count < path.events {
+                for (k, sequence) in sequences.iter_mut().enumerate() {
+                    let face = e.boundary.0[k] as u64;
+                    *sequence = extend_sequence(*sequence, face, e.bend.total.lane(k));
+                }
+            }
+            count += 1;
+        },
+    );
+    let q = path.straw_point;
+    std::array::from_fn(|k| {
+        let point = Vec3::new(
+            ends.point.x.lane(k),
+            ends.point.y.lane(k),
+            ends.point.z.lane(k),
+        );
+        ends.reached.lane(k)
+            && ends.events.lane(k) as u32 == path.events
+            && sequences[k] == path.sequence
+            && point.distance(q) <= PENCIL_REACH
+    })
 }
 
 /// The stereo point of `image` (straw point `q`) where `eyes` look along `ul` and `ur`.
