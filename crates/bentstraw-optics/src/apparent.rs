@@ -114,6 +114,9 @@ const NEWTON_ITERATIONS: usize = 40;
 /// Most iterations of Newton's method with the exact Jacobian: from a first-order prediction it
 /// converges in a handful; more only wanders where there is no solution along the path.
 const EXACT_NEWTON_ITERATIONS: usize = 8;
+/// Miss (m) below which Newton's method with the exact Jacobian takes its last step untraced: the
+/// next miss would be ~1e-18 m at centimetre scales.
+const LAST_STEP_MISS: f64 = 1e-9;
 /// Most halvings of a step of Newton's method with the exact Jacobian.
 const EXACT_NEWTON_HALVINGS: usize = 4;
 /// Smallest step (fraction of the way from the observer to a stereo eye) at which the stereo
@@ -513,7 +516,7 @@ impl<'a> Aim<'a> {
     /// The miss of the straw point by the ray from `eye` with parameters `x` (as
     /// [`Aim::residual`]), its exact Jacobian from the ray's differentials, and whether the ray
     /// reaches the straw point (within [`REACH_TOLERANCE`]); one trace.
-    fn residual_with_jacobian(&self, eye: Vec3, x: [f64; 2]) -> Option<([f64; 2], Jacobian, bool)> {
+    fn residual_with_jacobian(&self, eye: Vec3, x: [f64; 2]) -> Option<([f64; 2], Jacobian, f64)> {
         let w = self.forward + x[0] * self.right + x[1] * self.up;
         let inverse = 1.0 / w.length();
         let u = w * inverse;
@@ -556,13 +559,12 @@ impl<'a> Aim<'a> {
             [c0.dot(self.across[0]), c1.dot(self.across[0])],
             [c0.dot(self.across[1]), c1.dot(self.across[1])],
         ];
-        let reached = match outcome {
-            Outcome::Object { point, events, .. } => {
-                events == wanted && point.distance(q) <= REACH_TOLERANCE
-            }
-            _ => false,
+        // How far from the straw point the ray meets an object after the path's events.
+        let gap = match outcome {
+            Outcome::Object { point, events, .. } if events == wanted => point.distance(q),
+            _ => f64::INFINITY,
         };
-        Some((r, j, reached))
+        Some((r, j, gap))
     }
 
     /// The direction from `to` that reaches the straw point along the path, from the solution at
@@ -610,7 +612,7 @@ impl<'a> Aim<'a> {
     fn newton(&self, eye: Vec3, x0: [f64; 2], tolerance: f64) -> Option<([f64; 2], bool)> {
         let norm = |r: [f64; 2]| (r[0] * r[0] + r[1] * r[1]).sqrt();
         let mut x = x0;
-        let (mut r, mut j, mut reached) = self.residual_with_jacobian(eye, x)?;
+        let (mut r, mut j, mut gap) = self.residual_with_jacobian(eye, x)?;
         for _ in 0..EXACT_NEWTON_ITERATIONS {
             let size = norm(r);
             if size <= tolerance {
@@ -624,14 +626,21 @@ impl<'a> Aim<'a> {
             if !(step[0].is_finite() && step[1].is_finite()) {
                 break;
             }
+            if size <= LAST_STEP_MISS {
+                // Quadratic convergence: this step leaves a miss of ~size²/m, below rounding;
+                // the ray already meets the point (within PENCIL_REACH: the same object, nothing
+                // in the way), so the step is taken without another trace.
+                let x = [x[0] + step[0], x[1] + step[1]];
+                return Some((x, gap <= PENCIL_REACH));
+            }
             // Damped: halve the step until the miss shrinks and the path is kept.
             let mut lambda = 1.0;
             let mut accepted = false;
             for _ in 0..EXACT_NEWTON_HALVINGS {
                 let xn = [x[0] + lambda * step[0], x[1] + lambda * step[1]];
-                if let Some((rn, jn, reached_n)) = self.residual_with_jacobian(eye, xn) {
+                if let Some((rn, jn, gap_n)) = self.residual_with_jacobian(eye, xn) {
                     if norm(rn) < size {
-                        (x, r, j, reached) = (xn, rn, jn, reached_n);
+                        (x, r, j, gap) = (xn, rn, jn, gap_n);
                         accepted = true;
                         break;
                     }
@@ -642,7 +651,7 @@ impl<'a> Aim<'a> {
                 break; // at rounding, or lost
             }
         }
-        (norm(r) <= CONVERGED.max(tolerance)).then_some((x, reached))
+        (norm(r) <= CONVERGED.max(tolerance)).then_some((x, gap <= REACH_TOLERANCE))
     }
 
     /// [`Aim::converge`], then a check with the tracer that the ray really reaches the straw point.
