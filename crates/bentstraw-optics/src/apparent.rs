@@ -14,10 +14,26 @@
 //! Displacing the eye from `E` to `E + δ·e` (`e ⟂ u0`) and re-aiming at `Q` gives a direction `u'`.
 //! The displaced line of sight `E + δe + s'·u'`, projected onto the plane spanned by `u0` and `e`,
 //! crosses the central line of sight `E + s·u0` at `s(δ) = −δ (u'·u0)/(u'·e)`. The focus for the
-//! pupil direction `e` is the limit `δ → 0`. Its inverse is the vergence of the pencil of light
-//! along `e` (the normal curvature of the wavefront there), computed as the mean of `1/s(+δ)` and
-//! `1/s(−δ)` (odd orders cancel) refined by one Richardson step between `δ` and `2δ` (error
-//! `O(δ⁴)`); for a point seen in air the formula is exact for any `δ`.
+//! pupil direction `e` is the limit `δ → 0`: its inverse, the vergence `−e·(∂u/∂x)·e`, is the
+//! normal curvature of the wavefront along `e`.
+//!
+//! That limit comes in closed form from the one traced ray, by ray differentials (the generalised
+//! Coddington equations in matrix form, see `pencil`): four neighbouring rays are carried along
+//! it to first order, the ray from an eye moved along `e_h` or `e_v` and the ray turned along
+//! `e_h` or `e_v`, through every straight segment and every refraction or total reflection (the
+//! face's curvature included: none for planes, `1/R` across an upright cylinder's axis). At the
+//! straw point they cross the plane perpendicular to the last segment at `A·δx + B·δu` (eye moved
+//! by `δx`, line of sight turned by `δu`); the rays through `Q` have `δu = −B⁻¹A·δx`, so the
+//! vergence matrix is `W = B⁻¹A` in the basis `(e_h, e_v)`, and `1/s_h = W_hh`, `1/s_v = W_vv`
+//! (its diagonal: `W` is symmetric but not diagonal in general, the wavefront's principal
+//! directions being tilted). No finite difference, no iteration: exact up to rounding (the
+//! re-aiming method, kept as the tests' oracle, agrees within 1e-10 m).
+//!
+//! Whether the pencil is cut (by the straw's silhouette, the rim of a face, the critical angle,
+//! another object): the rays from the pupil's edges `E ± 2δe` (δ = [`PUPIL_STEP`]), aimed by the
+//! first-order prediction `δu = −W·δx`, are traced side by side in one single-precision packet;
+//! each must follow the same sequence of events and meet an object within [`PENCIL_REACH`] of `Q`
+//! (the prediction misses by `O(δ²)`, far less), else the focus along that `e` is unresolved.
 //! - horizontal focus `s_h`: `e_h = (u0 × ẑ)/|u0 × ẑ|` (`x̂` when `u0` is vertical, as the camera's
 //!   right), the horizontal perpendicular to `u0`;
 //! - vertical focus `s_v`: `e_v = e_h × u0`, the perpendicular to `u0` in the vertical plane
@@ -31,19 +47,25 @@
 //! The apparent point is placed at `E + ((s_h + s_v)/2)·u0`, the mean of the two foci (the issue's
 //! choice); [`ApparentPoint::least_confusion_distance`] gives the other classical choice, the circle
 //! of least confusion at `2/(1/s_h + 1/s_v)`. When a focus is not in front of the eye (collimated or
-//! converging light) or cannot be found (the pencil is cut by an edge of the straw, the glass or the
-//! critical angle), the point is undefined: `position` is `None`, never a made-up number.
+//! converging light) or the pencil is cut, the point is undefined: `position` is `None`, never a
+//! made-up number.
 //!
 //! # Stereo model
 //! Two eyes [`EYE_SEPARATION`] apart on a horizontal baseline centred on the observer,
 //! perpendicular to the horizontal projection of the direction from the observer to
 //! [`SCENE_CENTRE`] (the left eye on the left when facing the scene; `x̂` is the baseline when the
 //! observer stands straight above or below the centre). Each straw point `Q` of the observer's image
-//! is followed, by re-aiming in small steps of the eye position (continuation), from the observer
-//! to each eye along the same light path: both eyes then see the same image of `Q` (a point may have
-//! several images, one per light path; the brain fuses corresponding ones). The apparent position
-//! is the midpoint of the closest approach of the two lines of sight. Points that one eye does not
-//! see along that path are skipped and counted.
+//! is seen by each eye along the same light path: both eyes then see the same image of `Q` (a point
+//! may have several images, one per light path; the brain fuses corresponding ones). Each eye's ray
+//! is found by Newton's method from the first-order prediction `δu = −W·δx` of the eye model
+//! (`δx` the eye's offset across `u0`), its Jacobian exact from two ray differentials carried with
+//! each trace (quadratic convergence: three or four traces; the last step, once the miss is below
+//! a nanometre, is taken untraced). Where Newton's method does not converge from the prediction,
+//! the solution is followed from the observer to the eye in steps halved where it is lost (the
+//! continuation, which the tests use in its older form as the oracle). A ray found through `Q` that
+//! meets something else first means the eye does not see `Q`. The apparent position is the
+//! midpoint of the closest approach of the two lines of sight. Points that one eye does not see
+//! along that path are skipped and counted.
 //!
 //! # Example
 //! ```
@@ -82,10 +104,12 @@ use crate::scene::SCENE_CENTRE;
 use crate::world::{Outcome, World};
 use crate::Vec3;
 
-/// Step `δ` of the eye across the pupil for the finite differences of the eye model (m).
+/// Step `δ` of the eye across the pupil (m): the eye model's pencil from `E − 2δe` to `E + 2δe`
+/// must be uncut for the focus along `e`; also the re-aiming oracle's finite-difference step.
 ///
-/// Small enough that the `O(δ⁴)` error is below 1e-12 relative at centimetre scales, large enough
-/// that rounding (directions known to ~1e-16) costs under 1e-9 relative in the vergence.
+/// For the oracle: small enough that the `O(δ⁴)` error is below 1e-12 relative at centimetre
+/// scales, large enough that rounding (directions known to ~1e-16) costs under 1e-9 relative in
+/// the vergence.
 pub const PUPIL_STEP: f64 = 1e-5;
 /// Distance between the two eyes of the stereo model (m).
 pub const EYE_SEPARATION: f64 = 0.065;
