@@ -144,7 +144,11 @@ pub fn run(args: &BenchArgs) -> CliResult {
     }
     print_averages(&measures, &modes, &counts, args.json)?;
     if args.models {
-        let (&n, pool) = counts.iter().zip(&pools).next_back().expect("one pool at least");
+        let (&n, pool) = counts
+            .iter()
+            .zip(&pools)
+            .next_back()
+            .expect("one pool at least");
         if !args.json {
             print_line(&format!(
                 "{:<10} {:>7} {:>8} {:>16} {:>14} {:>7} {:>14} {:>7}",
