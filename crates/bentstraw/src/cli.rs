@@ -293,6 +293,10 @@ pub struct BenchArgs {
     /// 3x3 samples at edges, through the frame call) instead of one ray per pixel centre
     #[arg(long)]
     pub frame: bool,
+    /// Also time the apparent-position models on each view's image points (ns per point for the
+    /// image points, the eye model and the stereo model, and each model's ratio to the points)
+    #[arg(long)]
+    pub models: bool,
 }
 
 /// Arguments of `check`.

@@ -190,3 +190,45 @@ fn frame_times_the_shaded_pictures() {
         );
     }
 }
+
+/// `--models` times the image points and both models on one view after its pictures: a line
+/// per view with each cost per point, its ratio to the image points' cost agreeing with them.
+#[test]
+fn models_are_timed_per_point_beside_the_image_points() {
+    let out = bench(&[
+        "--json",
+        "--models",
+        "--mode",
+        "course",
+        "--size",
+        "20x10",
+        "--repeat",
+        "1",
+        "--threads",
+        "1",
+        "--observer",
+        "0.1,0,0.1",
+        "--straw",
+        "0.02,0.01",
+        "--water-height",
+        "0.15",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    // The case, the average, then the models.
+    assert_eq!(lines.len(), 3, "{text}");
+    let m = &lines[2];
+    assert_eq!(m["models"], true, "{text}");
+    assert!(m["points"].as_u64().unwrap() >= 50_000);
+    let image = m["image_ns_per_point"].as_f64().unwrap();
+    for model in ["eye", "stereo"] {
+        let cost = m[format!("{model}_ns_per_point")].as_f64().unwrap();
+        let ratio = m[format!("{model}_ratio")].as_f64().unwrap();
+        assert!(image > 0.0 && cost > 0.0);
+        assert!((ratio * image / cost - 1.0).abs() < 1e-9, "{text}");
+    }
+}

@@ -3,12 +3,18 @@
 //! Each case renders one observer's picture (one ray per pixel centre, nothing written) a first
 //! time to warm up, then `--repeat` times; the median time is reported, once in a one-thread rayon
 //! pool and once in a pool of `--threads` (default: all cores).
+//!
+//! With `--models`, each view's image points ([`MODEL_POINTS`] of them, as `simulate` samples
+//! them) are then timed beside the eye and the stereo model on those points, in the pool of
+//! `--threads`: the best of [`MODEL_RUNS`] runs each, in nanoseconds per point.
 
 use std::time::Instant;
 
+use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
+use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE, WATER_INDEX};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
@@ -28,6 +34,10 @@ const MAX_REPEAT: usize = 1000;
 /// Most primary rays one case may trace, warm-up included: about a minute in fresnel mode on one
 /// thread at the measured 16–17 M rays/s, so that no `--repeat` and `--size` run for hours.
 const MAX_RAYS_PER_CASE: u64 = 1_000_000_000;
+/// Image points per view on which `--models` times the models.
+const MODEL_POINTS: usize = 50_000;
+/// Timed runs of each model per view (the best is reported), after one warm-up run.
+const MODEL_RUNS: usize = 3;
 /// Fresnel branches lighter than this are abandoned (the same default as `render --prune`).
 const BENCH_PRUNE: f64 = 1e-4;
 
@@ -132,7 +142,108 @@ pub fn run(args: &BenchArgs) -> CliResult {
             }
         }
     }
-    print_averages(&measures, &modes, &counts, args.json)
+    print_averages(&measures, &modes, &counts, args.json)?;
+    if args.models {
+        let (&n, pool) = counts
+            .iter()
+            .zip(&pools)
+            .next_back()
+            .expect("one pool at least");
+        if !args.json {
+            print_line(&format!(
+                "{:<10} {:>7} {:>8} {:>16} {:>14} {:>7} {:>14} {:>7}",
+                "view",
+                "threads",
+                "points",
+                "image ns/point",
+                "eye ns/point",
+                "ratio",
+                "stereo ns/point",
+                "ratio"
+            ))?;
+        }
+        for view in &views {
+            let costs = pool.install(|| time_models(view));
+            print_model_costs(view.simulation, n, &costs, args.json)?;
+        }
+    }
+    Ok(())
+}
+
+/// What one view's image points and models cost.
+struct ModelCosts {
+    /// Image points sampled.
+    points: usize,
+    /// Best time (s) of sampling the image points, of the eye model and of the stereo model.
+    image: f64,
+    eye: f64,
+    stereo: f64,
+}
+
+/// Times the image points of `view`'s observer and both models on them (best of [`MODEL_RUNS`],
+/// after a warm-up).
+fn time_models(view: &View) -> ModelCosts {
+    let (world, observer) = (&view.world, view.camera.eye);
+    let best = |work: &dyn Fn()| {
+        work();
+        (0..MODEL_RUNS)
+            .map(|_| {
+                let start = Instant::now();
+                work();
+                start.elapsed().as_secs_f64()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let cloud = sample_image(world, observer, MODEL_POINTS, &|_| {});
+    let points = &cloud.points;
+    ModelCosts {
+        points: points.len(),
+        image: best(&|| {
+            std::hint::black_box(sample_image(world, observer, MODEL_POINTS, &|_| {}));
+        }),
+        eye: best(&|| {
+            std::hint::black_box(eye_model_points(world, observer, points));
+        }),
+        stereo: best(&|| {
+            std::hint::black_box(stereo_points(world, observer, points));
+        }),
+    }
+}
+
+fn print_model_costs(
+    simulation: Option<u32>,
+    threads: usize,
+    c: &ModelCosts,
+    json: bool,
+) -> CliResult {
+    let per_point = |s: f64| 1e9 * s / c.points.max(1) as f64;
+    if json {
+        let line = serde_json::json!({
+            "simulation": simulation,
+            "models": true,
+            "threads": threads,
+            "points": c.points,
+            "image_ns_per_point": per_point(c.image),
+            "eye_ns_per_point": per_point(c.eye),
+            "eye_ratio": c.eye / c.image,
+            "stereo_ns_per_point": per_point(c.stereo),
+            "stereo_ratio": c.stereo / c.image,
+        });
+        print_line(&line.to_string())
+    } else {
+        let view = simulation.map_or_else(|| "given".to_string(), |n| format!("sim {n}"));
+        print_line(&format!(
+            "{:<10} {:>7} {:>8} {:>16.0} {:>14.0} {:>7.2} {:>14.0} {:>7.2}",
+            view,
+            threads,
+            c.points,
+            per_point(c.image),
+            per_point(c.eye),
+            c.eye / c.image,
+            per_point(c.stereo),
+            c.stereo / c.image
+        ))
+    }
 }
 
 /// The views to time: the one given by the scene flags, or the four reference views.
