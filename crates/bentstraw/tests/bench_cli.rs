@@ -70,6 +70,17 @@ fn bench_refuses_bad_input() {
     );
 }
 
+/// A successful run's standard output and its lines, one JSON object each.
+fn json_lines(out: std::process::Output) -> (String, Vec<serde_json::Value>) {
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines = text
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON object a line"))
+        .collect();
+    (text, lines)
+}
+
 #[test]
 fn bench_json_reports_every_case_and_the_averages() {
     let out = bench(&[
@@ -81,12 +92,7 @@ fn bench_json_reports_every_case_and_the_averages() {
         "--threads",
         "2",
     ]);
-    assert_eq!(out.status.code(), Some(0));
-    let text = String::from_utf8(out.stdout).unwrap();
-    let lines: Vec<serde_json::Value> = text
-        .lines()
-        .map(|l| serde_json::from_str(l).expect("one JSON object a line"))
-        .collect();
+    let (_, lines) = json_lines(out);
     // 4 views × 2 modes × (1 and 2 threads), then 2 modes × 2 thread counts of averages.
     assert_eq!(lines.len(), 4 * 2 * 2 + 4);
     for (k, v) in lines.iter().enumerate() {
@@ -213,12 +219,7 @@ fn models_are_timed_per_point_beside_the_image_points() {
         "--water-height",
         "0.15",
     ]);
-    assert_eq!(out.status.code(), Some(0));
-    let text = String::from_utf8(out.stdout).unwrap();
-    let lines: Vec<serde_json::Value> = text
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let (text, lines) = json_lines(out);
     // The case, the average, then the models.
     assert_eq!(lines.len(), 3, "{text}");
     let m = &lines[2];
