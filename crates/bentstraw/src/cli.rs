@@ -194,6 +194,28 @@ pub struct TableArgs {
         allow_hyphen_values = true
     )]
     pub points: usize,
+    /// The report's language: headings, captions, tables and figure text
+    #[arg(long, value_enum, default_value_t = LangArg::En)]
+    pub lang: LangArg,
+}
+
+/// The language of the report.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum LangArg {
+    /// English.
+    #[default]
+    En,
+    /// French (the explorer's French words).
+    Fr,
+}
+
+impl From<LangArg> for bentstraw_outputs::words::Lang {
+    fn from(a: LangArg) -> Self {
+        match a {
+            LangArg::En => Self::En,
+            LangArg::Fr => Self::Fr,
+        }
+    }
 }
 
 /// The observer's picture mode: the course's single ray, or Fresnel-weighted branches.
