@@ -94,6 +94,7 @@ fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Loaded)
         world,
         &diagram,
         &lang.fill(words::RAY_DIAGRAM_OF, &[&world.name()]),
+        lang,
     )
     .err()
     .map(|e| e.to_string());

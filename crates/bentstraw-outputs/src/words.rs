@@ -517,6 +517,26 @@ pub const STEREO_MODEL: Text = t("stereo model", "modèle stéréo");
 pub const NO_POINTS: Text = t("{}: no points", "{} : aucun point");
 /// A gap series: its name and number of points.
 pub const N_POINTS: Text = t("{} ({} points)", "{} ({} points)");
+/// The ray diagram's side view's captions.
+pub const DIAGRAM_SIDE: [Text; 2] = [
+    t("side view", "vue de côté"),
+    t("(observer to the right)", "(l'observateur à droite)"),
+];
+/// The ray diagram's side view's horizontal axis.
+pub const TOWARDS_OBSERVER: Text = t("towards observer (m) →", "vers l'observateur (m) →");
+/// The ray diagram's top view's captions.
+pub const DIAGRAM_TOP: [Text; 2] = [
+    t("top view", "vue de dessus"),
+    t("(from above)", "(d'en haut)"),
+];
+/// The ray diagram's key to its marks.
+pub const DIAGRAM_KEY: [Text; 2] = [
+    t(
+        "o refraction    x total reflection",
+        "o réfraction    x réflexion totale",
+    ),
+    t("dashed: the line of sight", "tireté : la ligne de visée"),
+];
 
 #[cfg(test)]
 mod tests {

@@ -31,8 +31,8 @@ pub enum Command {
         after_help = "The report prints from the browser on at most 16 A4 pages (the gallery and the \
 3D views stay on screen; the printout says where). The folder holds about 20 MB: figures as SVG, \
 pictures as PNG, image points as gzip-compressed CSV. With --lang fr the report is in French \
-(headings, captions, tables, notes, the validation figure and the gap plots; numbers keep their \
-decimal point).\n\nExamples:\n  bentstraw table --out out/      # then open out/index.html in a web browser\n  \
+(headings, captions, tables, notes, the validation figure, the gap plots and the ray diagrams; \
+numbers keep their decimal point).\n\nExamples:\n  bentstraw table --out out/      # then open out/index.html in a web browser\n  \
 bentstraw table --lang fr --out rapport/"
     )]
     Table(TableArgs),

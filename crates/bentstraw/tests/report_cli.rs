@@ -162,6 +162,11 @@ pub fn the_french_report_is_in_french(folder: &Path) {
         validation.contains("indice de l&apos;eau n") || validation.contains("indice de l'eau n"),
         "the validation figure's axis is not in French"
     );
+    let rays = fs::read_to_string(folder.join("sim1_rays.svg")).unwrap();
+    assert!(
+        rays.contains("vue de dessus") && rays.contains("réflexion totale"),
+        "the ray diagram's text is not in French"
+    );
     let gap = fs::read_to_string(folder.join("sim1_gap.svg")).unwrap();
     assert!(
         gap.contains("hauteur z du point de la paille (m)"),

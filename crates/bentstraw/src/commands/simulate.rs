@@ -117,7 +117,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     if let Some(r) = &args.rays {
         let diagram = ray_diagram::Diagram::new(&scene.world, observer, &cloud.points);
         let title = format!("Ray diagram: {}", inputs_title(scene));
-        ray_diagram::write_ray_diagram(r, scene, &diagram, &title)?;
+        ray_diagram::write_ray_diagram(r, scene, &diagram, &title, Lang::En)?;
     }
     if let (Some(eye), Some(stereo)) = (&eye, &stereo) {
         write_model_figures(args, &set, eye, stereo)?;

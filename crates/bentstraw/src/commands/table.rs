@@ -368,7 +368,7 @@ fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Sectio
         ],
     );
     let mut figure = Figure::image(&file, lang.of(words::RAYS_CAPTION));
-    figure.error = write_ray_diagram(&out.join(&file), &job.loaded, &diagram, &title)
+    figure.error = write_ray_diagram(&out.join(&file), &job.loaded, &diagram, &title, lang)
         .err()
         .map(|e| e.to_string());
     let total: usize = diagram.counts.iter().map(|c| c.1).sum::<usize>().max(1);
@@ -427,6 +427,7 @@ fn intro_sections(out: &Path, points: usize, lang: Lang) -> Vec<Section> {
             words::RAY_DIAGRAM_OF,
             &[&simulation_title(&scene, observer)],
         ),
+        lang,
     )
     .err()
     .map(|e| e.to_string());
