@@ -90,6 +90,24 @@ impl LightPathType {
     }
 }
 
+impl LightPathType {
+    /// In French, the explorer's words: "direct (dans l'air)", "par la paroi latérale, 1 réflexion
+    /// totale", …
+    pub fn french(&self) -> String {
+        let entry = match self.entry {
+            Entry::Direct => "direct (dans l'air)",
+            Entry::Top => "par la surface libre",
+            Entry::Wall => "par la paroi latérale",
+            Entry::Bottom => "par le fond",
+        };
+        match self.total_reflections {
+            0 => entry.to_string(),
+            1 => format!("{entry}, 1 réflexion totale"),
+            k => format!("{entry}, {k} réflexions totales"),
+        }
+    }
+}
+
 impl fmt::Display for LightPathType {
     /// In words: "direct (through air)", "through the wall, 1 total reflection", …
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

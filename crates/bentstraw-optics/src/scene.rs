@@ -32,6 +32,8 @@ pub const SECTION_RGB: [[f64; 3]; SECTION_COUNT] = [
 ];
 /// Names of the sections' colours, codes 1..=5.
 pub const SECTION_NAMES: [&str; SECTION_COUNT] = ["red", "orange", "magenta", "green", "blue"];
+/// The sections' colour names in French, as the explorer names them.
+pub const SECTION_NAMES_FR: [&str; SECTION_COUNT] = ["rouge", "orange", "magenta", "vert", "bleu"];
 
 /// Lower edges of sections 2..=5 (m), written out so that `z = 0.15` is exactly an edge.
 pub const SECTION_EDGES: [f64; SECTION_COUNT - 1] = [0.05, 0.10, 0.15, 0.20];

@@ -16,6 +16,7 @@ use crate::pictures::png_bytes;
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{Figure, Section};
 use crate::scene_input::{file_world, Loaded};
+use crate::words::{self, Lang};
 use crate::{files, plot};
 
 /// Image points per gallery scene in the report.
@@ -36,16 +37,16 @@ pub fn gallery_files() -> Vec<String> {
 }
 
 /// The report's sections of the gallery, one per scene, its files written into `out`; `done` is
-/// called as each scene's section is ready (for a progress bar).
-pub fn gallery_sections(out: &Path, done: &(dyn Fn() + Sync)) -> Vec<Section> {
+/// called as each scene's section is ready (for a progress bar); its words in `lang`.
+pub fn gallery_sections(out: &Path, lang: Lang, done: &(dyn Fn() + Sync)) -> Vec<Section> {
     GALLERY
         .par_iter()
         .map(|(stem, text)| {
             let section = match file_world(&format!("scenes/{stem}.toml"), text, DEFAULT_MAX_EVENTS)
             {
-                Ok(world) => scene_section(out, stem, text, &world),
+                Ok(world) => scene_section(out, lang, stem, text, &world),
                 Err(e) => Section {
-                    title: format!("Gallery: {stem}"),
+                    title: lang.fill(words::GALLERY, &[&stem]),
                     figures: vec![Figure {
                         error: Some(e.to_string()),
                         ..Figure::image(&format!("gallery_{stem}_observer.png"), "")
@@ -63,29 +64,18 @@ pub fn gallery_sections(out: &Path, done: &(dyn Fn() + Sync)) -> Vec<Section> {
 }
 
 /// The section of one gallery scene: its picture and its image points.
-fn scene_section(out: &Path, stem: &str, text: &str, world: &Loaded) -> Section {
+fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Loaded) -> Section {
     let picture_file = format!("gallery_{stem}_observer.png");
     let points_file = format!("gallery_{stem}_points.svg");
-    let mut picture = Figure::image(
-        &picture_file,
-        &format!(
-            "What the eye sees (bentstraw render --scene scenes/{stem}.toml): Fresnel reflection \
-             and refraction at every surface, the checkerboard behind."
-        ),
-    );
+    let mut picture = Figure::image(&picture_file, &lang.fill(words::GALLERY_PICTURE, &[&stem]));
     picture.error = write_picture(&out.join(&picture_file), world)
         .err()
         .map(|e| e.to_string());
     let cloud = sample_image(&world.world, world.observer, GALLERY_POINTS, &|_| {});
-    let title = format!("{}: the image points (course model)", world.name());
+    let title = lang.fill(words::GALLERY_POINTS_TITLE, &[&world.name()]);
     let mut points = Figure::image(
         &points_file,
-        &format!(
-            "Where each piece appears (bentstraw simulate --scene scenes/{stem}.toml --plot \
-             points.png): {} image points P = O + L·u0, the container and liquids as a \
-             wireframe, the objects' true outlines dashed.",
-            cloud.points.len()
-        ),
+        &lang.fill(words::GALLERY_POINTS, &[&stem, &cloud.points.len()]),
     );
     points.error = plot::write_cloud_figure(
         &out.join(&points_file),
@@ -97,23 +87,19 @@ fn scene_section(out: &Path, stem: &str, text: &str, world: &Loaded) -> Section 
     .err()
     .map(|e| e.to_string());
     let rays_file = format!("gallery_{stem}_rays.svg");
-    let mut rays = Figure::image(
-        &rays_file,
-        "Which light path makes which piece (bentstraw simulate --rays): broken paths from the \
-         eye, refractions (o) and total reflections (x), the dashed line of sight to each image \
-         point.",
-    );
+    let mut rays = Figure::image(&rays_file, lang.of(words::GALLERY_RAYS));
     let diagram = Diagram::new(&world.world, world.observer, &cloud.points);
     rays.error = write_ray_diagram(
         &out.join(&rays_file),
         world,
         &diagram,
-        &format!("Ray diagram: {}", world.name()),
+        &lang.fill(words::RAY_DIAGRAM_OF, &[&world.name()]),
+        lang,
     )
     .err()
     .map(|e| e.to_string());
     Section {
-        title: format!("Gallery: {}", stem.replace('-', " ")),
+        title: lang.fill(words::GALLERY, &[&stem.replace('-', " ")]),
         figures: vec![picture, points, rays],
         notes: vec![opening_comment(text)],
         side_by_side: true,

@@ -36,6 +36,7 @@ mod svg_marks;
 mod test_support;
 #[cfg(feature = "figures")]
 pub mod validation;
+pub mod words;
 pub mod writers;
 
 pub use error::{Error, Result};

@@ -31,6 +31,7 @@ use crate::plot::{
     LegendMark, Panel, ViewDirection, CAPTION_LINE, FIGURE_WIDTH, LEGEND_LINE, TEXT, TITLE,
 };
 use crate::scene_input::Loaded;
+use crate::words::{self, Lang};
 
 /// The three models' names in the comparison figure, in the order course, eye, stereo.
 pub const MODEL_NAMES: [&str; 3] = [
@@ -75,18 +76,20 @@ pub struct GapSeries<'a> {
 }
 
 impl<'a> GapSeries<'a> {
-    /// The two curves of the models' gap plot: the eye model's and the stereo model's gaps.
+    /// The two curves of the models' gap plot: the eye model's and the stereo model's gaps,
+    /// named in `lang`.
     pub fn of_models(
         eye: &'a [(f64, f64, u8)],
         stereo: &'a [(f64, f64, u8)],
+        lang: Lang,
     ) -> [GapSeries<'a>; 2] {
         [
             GapSeries {
-                name: "eye model",
+                name: lang.of(words::EYE_MODEL),
                 samples: eye,
             },
             GapSeries {
-                name: "stereo model",
+                name: lang.of(words::STEREO_MODEL),
                 samples: stereo,
             },
         ]
@@ -369,15 +372,15 @@ fn gap_decimals(top_mm: f64) -> usize {
 
 /// Plots the gap between the course's image points and each series' model against the height of the
 /// straw point, into `path` (PNG, SVG or PDF by its extension).
-pub fn write_gap_plot(path: &Path, series: &[GapSeries], title: &str) -> Result {
+pub fn write_gap_plot(path: &Path, series: &[GapSeries], title: &str, lang: Lang) -> Result {
     let heading = Heading::new(title, "");
     let size = (GAP_CHART.0, GAP_CHART.1 + heading.height() as u32);
     let bytes = figure_bytes(
         path,
         FigureFormat::of(path)?,
         size,
-        |root| draw_gap_plot(root, series, &heading),
-        |root| draw_gap_plot(root, series, &heading),
+        |root| draw_gap_plot(root, series, &heading, lang),
+        |root| draw_gap_plot(root, series, &heading, lang),
     )?;
     files::write_bytes(path, &bytes)
 }
@@ -387,6 +390,7 @@ fn draw_gap_plot<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     series: &[GapSeries],
     heading: &Heading,
+    lang: Lang,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     root.fill(&WHITE).map_err(e)?;
@@ -415,8 +419,8 @@ fn draw_gap_plot<DB: DrawingBackend>(
     }
     chart
         .configure_mesh()
-        .x_desc("height z of the straw point (m) →")
-        .y_desc("gap to the course's point (mm) →")
+        .x_desc(lang.of(words::HEIGHT_AXIS))
+        .y_desc(lang.of(words::GAP_AXIS))
         .axis_desc_style(font(TEXT))
         .label_style(font(TEXT))
         .x_labels(6)
@@ -455,9 +459,9 @@ fn draw_gap_plot<DB: DrawingBackend>(
     for (k, s) in series.iter().enumerate() {
         let color = rgb(SERIES_RGB[k % SERIES_RGB.len()]);
         let label = if s.samples.is_empty() {
-            format!("{}: no points", s.name)
+            lang.fill(words::NO_POINTS, &[&s.name])
         } else {
-            format!("{} ({} points)", s.name, s.samples.len())
+            lang.fill(words::N_POINTS, &[&s.name, &s.samples.len()])
         };
         chart
             .draw_series(std::iter::empty::<Circle<(f64, f64), u32>>())
@@ -737,7 +741,7 @@ mod tests {
     fn gap_image(series: &[GapSeries]) -> image::RgbImage {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("gap.png");
-        write_gap_plot(&path, series, "gap").unwrap();
+        write_gap_plot(&path, series, "gap", Lang::En).unwrap();
         decode(&std::fs::read(&path).unwrap())
     }
 
@@ -801,6 +805,6 @@ mod tests {
     #[test]
     fn gap_plot_to_an_unwritable_path_is_an_error() {
         let path = Path::new("/nonexistent-folder/gap.png");
-        assert!(write_gap_plot(path, &[], "t").is_err());
+        assert!(write_gap_plot(path, &[], "t", Lang::En).is_err());
     }
 }

@@ -28,6 +28,7 @@ use crate::files;
 use crate::plot::{figure_bytes, font, wrap, FigureFormat, CAPTION, CAPTION_LINE, TEXT, TITLE};
 use crate::scene_input::Loaded;
 use crate::sketch::{object_outlines, world_wireframe};
+use crate::words::{self, Lang};
 
 /// Width of the diagram (px).
 pub const DIAGRAM_WIDTH: u32 = 1000;
@@ -68,19 +69,31 @@ impl Diagram {
 }
 
 /// Writes the diagram to `path`, `.png`, `.svg` or `.pdf` by its extension.
-pub fn write_ray_diagram(path: &Path, scene: &Loaded, diagram: &Diagram, title: &str) -> Result {
-    let bytes = render(path, scene, diagram, title)?;
+pub fn write_ray_diagram(
+    path: &Path,
+    scene: &Loaded,
+    diagram: &Diagram,
+    title: &str,
+    lang: Lang,
+) -> Result {
+    let bytes = render(path, scene, diagram, title, lang)?;
     files::write_bytes(path, &bytes)
 }
 
 /// The diagram as the bytes of a PNG, SVG or PDF file, by `path`'s extension.
-pub fn render(path: &Path, scene: &Loaded, diagram: &Diagram, title: &str) -> Result<Vec<u8>> {
+pub fn render(
+    path: &Path,
+    scene: &Loaded,
+    diagram: &Diagram,
+    title: &str,
+    lang: Lang,
+) -> Result<Vec<u8>> {
     figure_bytes(
         path,
         FigureFormat::of(path)?,
         (DIAGRAM_WIDTH, DIAGRAM_HEIGHT),
-        |root| draw(root, scene, diagram, title),
-        |root| draw(root, scene, diagram, title),
+        |root| draw(root, scene, diagram, title, lang),
+        |root| draw(root, scene, diagram, title, lang),
     )
 }
 
@@ -117,6 +130,7 @@ fn draw<DB: DrawingBackend>(
     scene: &Loaded,
     diagram: &Diagram,
     title: &str,
+    lang: Lang,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     root.fill(&WHITE).map_err(e)?;
@@ -140,8 +154,8 @@ fn draw<DB: DrawingBackend>(
         scene,
         diagram,
         View::Side(e_side),
-        ["side view", "(observer to the right)"],
-        "towards observer (m) →",
+        words::DIAGRAM_SIDE.map(|t| lang.of(t)),
+        lang.of(words::TOWARDS_OBSERVER),
         "z (m) →",
     )?;
     draw_panel(
@@ -149,17 +163,14 @@ fn draw<DB: DrawingBackend>(
         scene,
         diagram,
         View::Top,
-        ["top view", "(from above)"],
+        words::DIAGRAM_TOP.map(|t| lang.of(t)),
         "x (m) →",
         "y (m) →",
     )?;
     // Legend: one line per kind of path, with its share of the image points.
     let total: usize = diagram.counts.iter().map(|c| c.1).sum::<usize>().max(1);
     let mut y = h - legend_h + 14;
-    for line in [
-        "o refraction    x total reflection",
-        "dashed: the line of sight",
-    ] {
+    for line in words::DIAGRAM_KEY.map(|t| lang.of(t)) {
         root.draw(&Text::new(line.to_string(), (20, y), font(SMALL_TEXT)))
             .map_err(e)?;
         y += LEGEND_LINE;
@@ -174,7 +185,11 @@ fn draw<DB: DrawingBackend>(
         ))
         .map_err(e)?;
         root.draw(&Text::new(
-            format!("{:4.1} %  {kind}", 100.0 * *n as f64 / total as f64),
+            format!(
+                "{:4.1} %  {}",
+                100.0 * *n as f64 / total as f64,
+                lang.light_path(kind)
+            ),
             (85, y),
             font(SMALL_TEXT),
         ))
@@ -502,7 +517,7 @@ mod tests {
     #[test]
     fn the_svg_names_the_paths_and_draws_every_ray() {
         let (scene, d) = diagram_of(3);
-        let svg = render(Path::new("d.svg"), &scene, &d, "simulation 3").unwrap();
+        let svg = render(Path::new("d.svg"), &scene, &d, "simulation 3", Lang::En).unwrap();
         let text = String::from_utf8(svg).unwrap();
         let doc = roxmltree::Document::parse(&text).expect("well-formed SVG");
         let texts: Vec<String> = doc
@@ -540,12 +555,12 @@ mod tests {
     #[test]
     fn png_and_view_for_the_eye() {
         let (scene, d) = diagram_of(3);
-        let png = render(Path::new("d.png"), &scene, &d, "simulation 3").unwrap();
+        let png = render(Path::new("d.png"), &scene, &d, "simulation 3", Lang::En).unwrap();
         let img = image::load_from_memory(&png).unwrap();
         assert_eq!((img.width(), img.height()), (DIAGRAM_WIDTH, DIAGRAM_HEIGHT));
         if let Ok(dir) = std::env::var("BENTSTRAW_LOOK") {
             std::fs::write(Path::new(&dir).join("diagram3.png"), &png).unwrap();
-            let svg = render(Path::new("d.svg"), &scene, &d, "simulation 3").unwrap();
+            let svg = render(Path::new("d.svg"), &scene, &d, "simulation 3", Lang::En).unwrap();
             std::fs::write(Path::new(&dir).join("diagram3.svg"), &svg).unwrap();
         }
     }

@@ -9,11 +9,12 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Duration;
 
-use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES};
+use bentstraw_optics::scene::SECTION_COUNT;
 
 use crate::error::Result;
 use crate::escape::escape_html;
 use crate::files::write_bytes;
+use crate::words::{self, Lang};
 use crate::writers::section_rgb8;
 
 /// The whole report.
@@ -31,6 +32,8 @@ pub struct Report {
     pub closing: Vec<Section>,
     /// Wall-clock time of the whole run.
     pub total: Duration,
+    /// The language of the page's own words (the rest is written in it by the caller).
+    pub lang: Lang,
 }
 
 /// One simulation: its inputs, numbers, check and sections of figures.
@@ -266,9 +269,10 @@ pub fn render(report: &Report) -> String {
     let mut h = String::with_capacity(32 * 1024);
     let _ = write!(
         h,
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+        "<!DOCTYPE html>\n<html lang=\"{}\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
          <title>{}</title>\n<style>{CSS}</style>\n</head>\n<body>\n",
+        report.lang.code(),
         escape_html(&report.title)
     );
     let _ = write!(
@@ -290,58 +294,60 @@ pub fn render(report: &Report) -> String {
     for (k, sec) in report.intro.iter().enumerate() {
         let _ = write!(h, "<a href=\"#intro{k}\">{}</a>", escape_html(&sec.title));
     }
-    h.push_str("<a href=\"#overview\">Overview</a>");
+    let lang = report.lang;
+    let _ = write!(h, "<a href=\"#overview\">{}</a>", lang.of(words::OVERVIEW));
     for (r, _) in &groups {
-        let _ = write!(h, "<a href=\"#reference{r}\">Simulation {r}</a>");
+        let _ = write!(
+            h,
+            "<a href=\"#reference{r}\">{}</a>",
+            lang.fill(words::NAV_SIMULATION, &[r])
+        );
     }
     for (k, sec) in report.closing.iter().enumerate() {
         let _ = write!(h, "<a href=\"#closing{k}\">{}</a>", escape_html(&sec.title));
     }
-    h.push_str("<a href=\"#conventions\">Conventions</a></nav>\n<main>\n");
-    h.push_str(
-        "<p class=\"print-only print-note\">Printed from index.html: the rotatable 3D views and \
-         the data files named in the captions are in the same folder.</p>\n",
+    let _ = write!(
+        h,
+        "<a href=\"#conventions\">{}</a></nav>\n<main>\n",
+        lang.of(words::CONVENTIONS)
+    );
+    let _ = writeln!(
+        h,
+        "<p class=\"print-only print-note\">{}</p>",
+        lang.of(words::PRINTED_FROM)
     );
 
     h.push_str("<div class=\"intro\">\n");
-    render_top_sections(&mut h, "intro", &report.intro);
+    render_top_sections(&mut h, lang, "intro", &report.intro);
     h.push_str("</div>\n");
     render_overview(&mut h, report);
     for (r, list) in &groups {
-        let _ = writeln!(h, "<h2 id=\"reference{r}\">Reference simulation {r}</h2>");
+        let _ = writeln!(
+            h,
+            "<h2 id=\"reference{r}\">{}</h2>",
+            lang.fill(words::REFERENCE_SIMULATION, &[r])
+        );
         for (k, s) in list.iter().enumerate() {
             // The first of a group is the reference, the others its index checks.
-            render_simulation(&mut h, s, k > 0);
+            render_simulation(&mut h, lang, s, k > 0);
         }
     }
-    render_top_sections(&mut h, "closing", &report.closing);
+    render_top_sections(&mut h, lang, "closing", &report.closing);
     h.push_str("</main>\n");
-    let _ = write!(
-        h,
-        "<footer id=\"conventions\">\n<h2>Conventions</h2>\n\
-         <p>Lengths in metres; origin at the centre of the glass's base, z up. Glass radius 0.04 m and \
-         height 0.20 m; straw radius 0.005 m and height 0.25 m, five sections of 0.05 m: \
-         {}.</p>\n\
-         <p>A ray leaves the observer O with direction u0, is refracted or totally reflected at each \
-         water face (at most the event limit), and stops on the opaque straw, of whose section it \
-         takes the colour. Its image point is P = O + L·u0, with L the length of its broken path: \
-         where the observer believes the straw point is. With n_water = 1 every image point lies on \
-         the straw, which the checks measure.</p>\n\
-         <p>Written by bentstraw {} in {} (wall clock). The simulations run side by side, \
-         so each one's times are wall-clock times shared with the others.</p>\n</footer>\n</body>\n</html>\n",
-        (0..SECTION_COUNT)
-            .map(|k| format!("{}{} {}", swatch(k + 1), k + 1, SECTION_NAMES[k]))
-            .collect::<Vec<_>>()
-            .join(", "),
-        env!("CARGO_PKG_VERSION"),
-        seconds(report.total)
-    );
+    let names = (0..SECTION_COUNT)
+        .map(|k| format!("{}{} {}", swatch(k + 1), k + 1, lang.section_name(k)))
+        .collect::<Vec<_>>()
+        .join(", ");
+    h.push_str(&lang.fill(
+        words::FOOTER,
+        &[&names, &env!("CARGO_PKG_VERSION"), &seconds(report.total)],
+    ));
     h
 }
 
 /// Sections with their own `h2`, anchored `{anchor}{k}`; before each run of sections that are not
 /// printed, a note (on paper only) naming them and where to find them.
-fn render_top_sections(h: &mut String, anchor: &str, sections: &[Section]) {
+fn render_top_sections(h: &mut String, lang: Lang, anchor: &str, sections: &[Section]) {
     for (k, sec) in sections.iter().enumerate() {
         let starts_run = !sec.printed && (k == 0 || sections[k - 1].printed);
         if starts_run {
@@ -352,9 +358,8 @@ fn render_top_sections(h: &mut String, anchor: &str, sections: &[Section]) {
                 .collect();
             let _ = writeln!(
                 h,
-                "<p class=\"print-only print-note\">Not printed (in the report on screen, \
-                 index.html): {}.</p>",
-                names.join(" · ")
+                "<p class=\"print-only print-note\">{}</p>",
+                lang.fill(words::NOT_PRINTED, &[&names.join(" · ")])
             );
         }
         let class = if sec.printed { "part" } else { "not-printed" };
@@ -363,17 +368,33 @@ fn render_top_sections(h: &mut String, anchor: &str, sections: &[Section]) {
             "<section class=\"{class}\">\n<h2 id=\"{anchor}{k}\">{}</h2>",
             escape_html(&sec.title)
         );
-        render_section_body(h, sec);
+        render_section_body(h, lang, sec);
         h.push_str("</section>\n");
     }
 }
 
 fn render_overview(h: &mut String, report: &Report) {
-    h.push_str("<h2 id=\"overview\">Overview</h2>\n<div class=\"overview\"><table>\n<tr><th class=\"l\">simulation</th><th>n_water</th><th>rays</th><th>points</th><th>hit ratio</th>");
-    for (k, name) in SECTION_NAMES.iter().enumerate() {
-        let _ = write!(h, "<th>{}{name}</th>", swatch(k + 1));
+    let lang = report.lang;
+    let head = words::OVERVIEW_HEAD.map(|t| lang.of(t));
+    let _ = write!(
+        h,
+        "<h2 id=\"overview\">{}</h2>\n<div class=\"overview\"><table>\n<tr><th class=\"l\">{}</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th>",
+        lang.of(words::OVERVIEW),
+        head[0],
+        head[1],
+        head[2],
+        head[3],
+        head[4]
+    );
+    for k in 0..SECTION_COUNT {
+        let _ = write!(h, "<th>{}{}</th>", swatch(k + 1), lang.section_name(k));
     }
-    h.push_str("<th>time</th><th class=\"l\">check</th></tr>\n");
+    let tail = words::OVERVIEW_TAIL.map(|t| lang.of(t));
+    let _ = writeln!(
+        h,
+        "<th>{}</th><th class=\"l\">{}</th></tr>",
+        tail[0], tail[1]
+    );
     for s in &report.simulations {
         let _ = write!(
             h,
@@ -406,7 +427,7 @@ fn render_overview(h: &mut String, report: &Report) {
 }
 
 /// One simulation's article; `variant`: an index check of the reference before it.
-fn render_simulation(h: &mut String, s: &SimulationEntry, variant: bool) {
+fn render_simulation(h: &mut String, lang: Lang, s: &SimulationEntry, variant: bool) {
     let _ = write!(
         h,
         "<article class=\"sim{}\" id=\"{}\">\n<h3>{}</h3>\n<div class=\"facts\">\n<table>",
@@ -422,12 +443,16 @@ fn render_simulation(h: &mut String, s: &SimulationEntry, variant: bool) {
             escape_html(value)
         );
     }
+    let facts = words::FACTS.map(|t| lang.of(t));
     let _ = write!(
         h,
-        "</table>\n<table><tr><td>rays traced</td><td>{}</td></tr><tr><td>image points</td><td>{}</td></tr>\
-         <tr><td>hit ratio</td><td>{:.1} %</td></tr></table>\n<table>",
+        "</table>\n<table><tr><td>{}</td><td>{}</td></tr><tr><td>{}</td><td>{}</td></tr>\
+         <tr><td>{}</td><td>{:.1} %</td></tr></table>\n<table>",
+        facts[0],
         s.rays,
+        facts[1],
         s.points,
+        facts[2],
         100.0 * s.hit_ratio
     );
     for (k, c) in s.counts.iter().enumerate() {
@@ -436,7 +461,7 @@ fn render_simulation(h: &mut String, s: &SimulationEntry, variant: bool) {
             "<tr><td>{}{} {}</td><td>{c}</td></tr>",
             swatch(k + 1),
             k + 1,
-            SECTION_NAMES[k]
+            lang.section_name(k)
         );
     }
     h.push_str("</table>\n</div>\n");
@@ -451,8 +476,9 @@ fn render_simulation(h: &mut String, s: &SimulationEntry, variant: bool) {
     if let Some(c) = &s.solution_check {
         let _ = writeln!(
             h,
-            "<p class=\"check {} solution\">Checked as a solution (<code>bentstraw check</code>): {}</p>",
+            "<p class=\"check {} solution\">{}{}</p>",
             if c.passed { "pass" } else { "fail" },
+            lang.of(words::CHECKED_AS_SOLUTION),
             escape_html(&c.text)
         );
     }
@@ -461,7 +487,12 @@ fn render_simulation(h: &mut String, s: &SimulationEntry, variant: bool) {
         .iter()
         .map(|t| format!("{} {}", escape_html(&t.label), seconds(t.duration)))
         .collect();
-    let _ = writeln!(h, "<p class=\"timing\">Time: {}</p>", timings.join(" · "));
+    let _ = writeln!(
+        h,
+        "<p class=\"timing\">{}{}</p>",
+        lang.of(words::TIME),
+        timings.join(" · ")
+    );
     h.push_str("<div class=\"parts\">\n");
     for sec in &s.sections {
         // Pictures to compare take the printed page's width, after the other parts.
@@ -471,14 +502,14 @@ fn render_simulation(h: &mut String, s: &SimulationEntry, variant: bool) {
             if sec.side_by_side { " wide" } else { "" },
             escape_html(&sec.title)
         );
-        render_section_body(h, sec);
+        render_section_body(h, lang, sec);
         h.push_str("</section>\n");
     }
     h.push_str("</div>\n</article>\n");
 }
 
 /// A section's figures, notes and table (its heading is the caller's).
-fn render_section_body(h: &mut String, sec: &Section) {
+fn render_section_body(h: &mut String, lang: Lang, sec: &Section) {
     let class = if sec.side_by_side {
         "figs pair"
     } else {
@@ -487,7 +518,7 @@ fn render_section_body(h: &mut String, sec: &Section) {
     if !sec.figures.is_empty() {
         let _ = writeln!(h, "<div class=\"{class}\">");
         for f in &sec.figures {
-            render_figure(h, f);
+            render_figure(h, lang, f);
         }
         h.push_str("</div>\n");
     }
@@ -511,7 +542,7 @@ fn render_section_body(h: &mut String, sec: &Section) {
     }
 }
 
-fn render_figure(h: &mut String, f: &Figure) {
+fn render_figure(h: &mut String, lang: Lang, f: &Figure) {
     h.push_str("<figure>\n");
     match &f.error {
         None => {
@@ -533,9 +564,11 @@ fn render_figure(h: &mut String, f: &Figure) {
         Some(e) => {
             let _ = writeln!(
                 h,
-                "<div class=\"missing\">{} could not be written: {}</div>",
-                escape_html(&f.file),
-                escape_html(e)
+                "<div class=\"missing\">{}</div>",
+                lang.fill(
+                    words::NOT_WRITTEN_FIGURE,
+                    &[&escape_html(&f.file), &escape_html(e)]
+                )
             );
         }
     }
@@ -548,7 +581,10 @@ fn render_figure(h: &mut String, f: &Figure) {
                 escape_html(&l.file),
                 escape_html(&l.label)
             ),
-            Some(e) => format!("{} not written ({})", escape_html(&l.label), escape_html(e)),
+            Some(e) => lang.fill(
+                words::NOT_WRITTEN_LINK,
+                &[&escape_html(&l.label), &escape_html(e)],
+            ),
         })
         .collect();
     let _ = write!(h, "<figcaption>{}", escape_html(&f.caption));
@@ -629,6 +665,7 @@ mod tests {
                 ),
             ],
             total: Duration::from_secs(3),
+            lang: Lang::En,
         }
     }
 

@@ -17,6 +17,7 @@ use plotters::prelude::*;
 use crate::error::Result;
 use crate::files;
 use crate::plot::{figure_bytes, font, FigureFormat, Heading, FIGURE_WIDTH, TEXT};
+use crate::words::{self, Lang};
 
 /// Indices of the water the figure is made for: 8 values from 1 to 1.333.
 pub fn indices() -> Vec<f64> {
@@ -94,17 +95,14 @@ const RGB: [RGBColor; 4] = [
 const FLOOR: f64 = 1e-18;
 
 /// Writes the figure to `path` (PNG, SVG or PDF by its extension).
-pub fn write_validation_figure(path: &Path, series: &[ValidationSeries]) -> Result {
-    let heading = Heading::new(
-        "Image points seen through the water: distance from the straw",
-        "",
-    );
+pub fn write_validation_figure(path: &Path, series: &[ValidationSeries], lang: Lang) -> Result {
+    let heading = Heading::new(lang.of(words::VALIDATION_FIGURE_TITLE), "");
     let bytes = figure_bytes(
         path,
         FigureFormat::of(path)?,
         (CHART.0, CHART.1 + heading.height() as u32),
-        |root| draw(root, series, &heading),
-        |root| draw(root, series, &heading),
+        |root| draw(root, series, &heading, lang),
+        |root| draw(root, series, &heading, lang),
     )?;
     files::write_bytes(path, &bytes)
 }
@@ -113,6 +111,7 @@ fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     series: &[ValidationSeries],
     heading: &Heading,
+    lang: Lang,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     root.fill(&WHITE).map_err(e)?;
@@ -137,8 +136,8 @@ fn draw<DB: DrawingBackend>(
         .y_labels(8)
         .label_style(font(TEXT))
         .axis_desc_style(font(TEXT))
-        .x_desc("index of the water n →")
-        .y_desc("distance (m), log scale →")
+        .x_desc(lang.of(words::INDEX_AXIS))
+        .y_desc(lang.of(words::DISTANCE_LOG_AXIS))
         .x_label_formatter(&|v| format!("{v:.2}"))
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .light_line_style(WHITE)
@@ -172,7 +171,7 @@ fn draw<DB: DrawingBackend>(
         .draw()
         .map_err(e)?;
     root.draw(&Text::new(
-        "solid: largest distance; dashed: median",
+        lang.of(words::SOLID_DASHED),
         (170, root.dim_in_pixel().1 as i32 - 44),
         font(TEXT),
     ))
@@ -238,7 +237,7 @@ mod tests {
         let s = vec![series("simulation 2", &r.scene(1.333), r.observer)];
         for name in ["v.png", "v.svg"] {
             let path = dir.path().join(name);
-            write_validation_figure(&path, &s).unwrap();
+            write_validation_figure(&path, &s, Lang::En).unwrap();
             assert!(std::fs::metadata(&path).unwrap().len() > 1000);
         }
         let svg = std::fs::read_to_string(dir.path().join("v.svg")).unwrap();

@@ -30,7 +30,10 @@ pub enum Command {
     #[command(
         after_help = "The report prints from the browser on at most 16 A4 pages (the gallery and the \
 3D views stay on screen; the printout says where). The folder holds about 20 MB: figures as SVG, \
-pictures as PNG, image points as gzip-compressed CSV.\n\nExample:\n  bentstraw table --out out/      # then open out/index.html in a web browser"
+pictures as PNG, image points as gzip-compressed CSV. With --lang fr the report is in French \
+(headings, captions, tables, notes, the validation figure, the gap plots and the ray diagrams; \
+numbers keep their decimal point).\n\nExamples:\n  bentstraw table --out out/      # then open out/index.html in a web browser\n  \
+bentstraw table --lang fr --out rapport/"
     )]
     Table(TableArgs),
     /// Render the picture the observer's eye sees (pinhole camera).
@@ -194,6 +197,28 @@ pub struct TableArgs {
         allow_hyphen_values = true
     )]
     pub points: usize,
+    /// The report's language: headings, captions, tables and figure text
+    #[arg(long, value_enum, default_value_t = LangArg::En)]
+    pub lang: LangArg,
+}
+
+/// The language of the report.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum LangArg {
+    /// English.
+    #[default]
+    En,
+    /// French (the explorer's French words).
+    Fr,
+}
+
+impl From<LangArg> for bentstraw_outputs::words::Lang {
+    fn from(a: LangArg) -> Self {
+        match a {
+            LangArg::En => Self::En,
+            LangArg::Fr => Self::Fr,
+        }
+    }
 }
 
 /// The observer's picture mode: the course's single ray, or Fresnel-weighted branches.

@@ -40,6 +40,23 @@ fn the_report_job() {
     report_cli::the_report_is_lean_and_prints_on_few_pages(&folder);
 }
 
+/// The report job in French, on few points (its words, not its numbers, are checked).
+#[test]
+fn the_report_job_in_french() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+        .current_dir(dir.path())
+        .args(["table", "--lang", "fr", "--points", "1000", "--out", "fr"])
+        .output()
+        .expect("the binary runs");
+    assert!(
+        out.status.success(),
+        "table --lang fr failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    report_cli::the_french_report_is_in_french(&dir.path().join("fr"));
+}
+
 /// Every `.rs` file of `tests/` is compiled: as this file or a module of it.
 #[test]
 fn every_test_file_is_a_module() {

@@ -80,3 +80,96 @@ pub fn the_report_is_lean_and_prints_on_few_pages(folder: &Path) {
         );
     }
 }
+
+/// The texts of the page's `<h1>` to `<h4>` headings, entities as written.
+fn headings(html: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for level in 1..=4 {
+        let open = format!("<h{level}");
+        let close = format!("</h{level}>");
+        for piece in html.split(&open).skip(1) {
+            let text = piece.split_once('>').map(|(_, rest)| rest).unwrap_or("");
+            if let Some((text, _)) = text.split_once(&close) {
+                found.push(text.to_string());
+            }
+        }
+    }
+    found
+}
+
+/// `table --lang fr`'s report (run by `the_report_job_in_french`): a French page, its headings in
+/// French with none left in English, and its figures' axes in French.
+pub fn the_french_report_is_in_french(folder: &Path) {
+    let index = fs::read_to_string(folder.join("index.html")).unwrap();
+    assert!(
+        index.contains("<html lang=\"fr\">"),
+        "the page is not marked French"
+    );
+    let headings = headings(&index);
+    for french in [
+        "Vue d'ensemble",
+        "La paille brisée",
+        "Méthode",
+        "Simulation de référence 1",
+        "Simulation 1, vérification n_water = 1",
+        "Points images virtuels (convention du cours, P = O + L·u0)",
+        "Ce que voit l&#39;observateur (image de Fresnel)",
+        "Quel chemin de la lumière fait quel morceau (schéma des rayons)",
+        "Validation",
+        "Limites",
+        "Conventions",
+    ] {
+        assert!(
+            headings.iter().any(|h| h == french),
+            "no heading {french:?} in {headings:?}"
+        );
+    }
+    for english in [
+        "Overview",
+        "The broken straw",
+        "Method",
+        "Reference simulation",
+        ", check n_water",
+        "Virtual image points",
+        "What the observer sees",
+        "Which light path",
+        "Where the straw really appears",
+        "Gallery:",
+        "Limits",
+    ] {
+        assert!(
+            !headings.iter().any(|h| h.contains(english)),
+            "a heading left in English: {english:?}"
+        );
+    }
+    for english in [
+        "image points",
+        "rays traced",
+        "hit ratio",
+        "Time: ",
+        "Not printed",
+    ] {
+        assert!(
+            !index.contains(english),
+            "English left in the page: {english:?}"
+        );
+    }
+    // The section colours and a light path, in the explorer's words.
+    assert!(index.contains("vert") && index.contains("bleu"));
+    assert!(index.contains("par la paroi latérale"));
+    let validation = fs::read_to_string(folder.join("validation.svg")).unwrap();
+    assert!(
+        validation.contains("indice de l&apos;eau n") || validation.contains("indice de l'eau n"),
+        "the validation figure's axis is not in French"
+    );
+    let rays = fs::read_to_string(folder.join("sim1_rays.svg")).unwrap();
+    assert!(
+        rays.contains("vue de dessus") && rays.contains("réflexion totale"),
+        "the ray diagram's text is not in French"
+    );
+    let gap = fs::read_to_string(folder.join("sim1_gap.svg")).unwrap();
+    assert!(
+        gap.contains("hauteur z du point de la paille (m)"),
+        "the gap plot's axis is not in French"
+    );
+}

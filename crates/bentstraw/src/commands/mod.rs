@@ -15,6 +15,7 @@ pub fn run(cli: Cli) -> CliResult {
         None => table::run(&TableArgs {
             out: "out".into(),
             points: 20000,
+            lang: Default::default(),
         }),
         Some(Command::Simulate(a)) => simulate::run(&a),
         Some(Command::Table(a)) => table::run(&a),

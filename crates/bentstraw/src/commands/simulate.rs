@@ -21,6 +21,7 @@ use bentstraw_outputs::model_plots::{
     ModelCloud, MODEL_NAMES,
 };
 use bentstraw_outputs::scene_input::Loaded;
+use bentstraw_outputs::words::Lang;
 use bentstraw_outputs::writers::{
     check_points_asked, write_points, ModelPoints, PointFormat, PointSet,
 };
@@ -116,7 +117,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     if let Some(r) = &args.rays {
         let diagram = ray_diagram::Diagram::new(&scene.world, observer, &cloud.points);
         let title = format!("Ray diagram: {}", inputs_title(scene));
-        ray_diagram::write_ray_diagram(r, scene, &diagram, &title)?;
+        ray_diagram::write_ray_diagram(r, scene, &diagram, &title, Lang::En)?;
     }
     if let (Some(eye), Some(stereo)) = (&eye, &stereo) {
         write_model_figures(args, &set, eye, stereo)?;
@@ -181,10 +182,10 @@ fn write_model_figures(
     }
     if let Some(path) = &args.gap_plot {
         let (eye_gaps, stereo_gaps) = (eye_gap_samples(eye), stereo_gap_samples(stereo));
-        let series = GapSeries::of_models(&eye_gaps, &stereo_gaps);
+        let series = GapSeries::of_models(&eye_gaps, &stereo_gaps, Lang::En);
         let title =
             format!("Gap from the course's point to the eye's and the stereo point: {inputs}");
-        write_gap_plot(path, &series, &title)?;
+        write_gap_plot(path, &series, &title, Lang::En)?;
     }
     Ok(())
 }

@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX};
+use bentstraw_outputs::words::{self, Lang};
 
 use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
@@ -47,11 +48,6 @@ pub const ON_STRAW_TOLERANCE: f64 = 1e-9;
 
 /// The water indices of each reference: the real one, then the two checks, with file suffixes.
 const VARIANTS: [(f64, &str); 3] = [(WATER_INDEX, ""), (1.0, "_n1"), (1.05, "_n1.05")];
-
-/// What the classic figure shows.
-const CLOUD_CAPTION: &str = "The image points in their section colours, the water as a wireframe \
-                             and the observer (black dot): a front view from the observer's side, \
-                             a side view with the observer to the right, and the view from above.";
 
 /// One simulation of the table.
 struct Job {
@@ -146,6 +142,7 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
         .collect();
     let outputs = OutputSet::reserve_folder(out, &outputs)?;
 
+    let lang = Lang::from(args.lang);
     let started = Instant::now();
     // One bar over the whole job: the simulations, the gallery's scenes, then the rest.
     let steps = (jobs.len() + GALLERY.len() + 1) as u64;
@@ -158,16 +155,16 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
             let entries: Vec<SimulationEntry> = jobs
                 .par_iter()
                 .map(|job| {
-                    let entry = run_job(job, out, args.points);
+                    let entry = run_job(job, out, args.points, lang);
                     bar.inc(1);
                     entry
                 })
                 .collect();
             bar.set_message("gallery");
-            let mut closing = gallery_sections(out, &|| bar.inc(1));
+            let mut closing = gallery_sections(out, lang, &|| bar.inc(1));
             bar.set_message("method and validation");
-            let intro = intro_sections(out, args.points);
-            closing.extend(closing_sections(out));
+            let intro = intro_sections(out, args.points, lang);
+            closing.extend(closing_sections(out, lang));
             bar.inc(1);
             (entries, intro, closing)
         },
@@ -175,19 +172,13 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
     let elapsed = started.elapsed();
 
     let report = Report {
-        title: "bentstraw: why a straw in a glass of water looks broken".into(),
-        subtitle: format!(
-            "A short lab report. Rays are traced from the observer's eye through the water \
-             (Snell–Descartes refraction and total reflection) to a five-colour straw, and each \
-             ray that reaches it gives an image point: where the observer believes that piece of \
-             straw is. Four reference simulations, each also with water of index 1 (the image must \
-             then lie on the straw) and 1.05; at least {} image points each.",
-            args.points
-        ),
+        title: lang.of(words::TITLE).into(),
+        subtitle: lang.fill(words::SUBTITLE, &[&args.points]),
         intro,
         simulations: entries,
         closing,
         total: elapsed,
+        lang,
     };
     report::write_report(&out.join(REPORT_FILE), &report)?;
 
@@ -239,7 +230,7 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
 }
 
 /// Traces one simulation, writes its files, and describes it for the report.
-fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
+fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let t0 = Instant::now();
     let cloud = sample_image(&job.loaded.world, observer, points, &|_| {});
@@ -248,7 +239,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     let t1 = Instant::now();
     let title = format!(
         "{}: {}",
-        simulation_heading(job),
+        simulation_heading(job, lang),
         simulation_title(scene, observer)
     );
     let csv = format!("{}.csv.gz", job.stem);
@@ -263,7 +254,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         &title,
     )
     .err();
-    let mut figure = Figure::image(&svg, CLOUD_CAPTION);
+    let mut figure = Figure::image(&svg, lang.of(words::CLOUD_CAPTION));
     figure.error = plot_error.map(|e| e.to_string());
     // The rotatable view of the reference simulations (the checks' points differ little from it).
     if scene.n_water() == WATER_INDEX {
@@ -278,25 +269,25 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
         .err();
         figure.links.push(Link::new(
             &page,
-            "rotatable 3D view",
+            lang.of(words::ROTATABLE_VIEW),
             page_error.map(|e| e.to_string()),
         ));
     }
     figure.links.push(Link::new(
         &csv,
-        "points (CSV, gzip)",
+        lang.of(words::POINTS_FILE),
         data_error.map(|e| e.to_string()),
     ));
     let written = t1.elapsed();
 
     let mut timings = vec![
-        Timing::new("tracing", traced),
-        Timing::new("writing files", written),
+        Timing::new(lang.of(words::TRACING), traced),
+        Timing::new(lang.of(words::WRITING_FILES), written),
     ];
     let mut sections = vec![Section {
-        title: "Virtual image points (course convention, P = O + L·u0)".into(),
+        title: lang.of(words::IMAGE_POINTS_SECTION).into(),
         figures: vec![figure],
-        notes: vec![distance_note(scene, &cloud)],
+        notes: vec![distance_note(scene, &cloud, lang)],
         side_by_side: false,
         printed: true,
         table: Vec::new(),
@@ -305,28 +296,28 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
     // the apparent-position models.
     if scene.n_water() == WATER_INDEX {
         let t = Instant::now();
-        sections.push(observer_section(job, out, &cloud));
-        timings.push(Timing::new("observer's picture", t.elapsed()));
+        sections.push(observer_section(job, out, &cloud, lang));
+        timings.push(Timing::new(lang.of(words::OBSERVERS_PICTURE), t.elapsed()));
         let t = Instant::now();
-        sections.push(rays_section(job, out, &cloud));
-        timings.push(Timing::new("ray diagram", t.elapsed()));
+        sections.push(rays_section(job, out, &cloud, lang));
+        timings.push(Timing::new(lang.of(words::RAY_DIAGRAM), t.elapsed()));
         let t = Instant::now();
-        sections.push(models_section(job, out, &cloud));
-        timings.push(Timing::new("eye and stereo models", t.elapsed()));
+        sections.push(models_section(job, out, &cloud, lang));
+        timings.push(Timing::new(lang.of(words::EYE_AND_STEREO), t.elapsed()));
     }
 
     SimulationEntry {
         id: job.stem.clone(),
         reference: job.reference.number,
-        heading: simulation_heading(job),
-        inputs: inputs(scene, observer),
+        heading: simulation_heading(job, lang),
+        inputs: inputs(scene, observer, lang),
         n_water: scene.n_water(),
         rays: cloud.rays_traced,
         points: cloud.points.len(),
         counts: cloud.counts_per_color(),
         hit_ratio: cloud.hit_ratio(),
         timings,
-        check: check(scene, &cloud),
+        check: check(scene, &cloud, lang),
         solution_check: Some(crate::commands::check::own_points_check(
             scene,
             observer,
@@ -337,7 +328,7 @@ fn run_job(job: &Job, out: &Path, points: usize) -> SimulationEntry {
 }
 
 /// What the observer's eye sees (fresnel mode) beside the image points through the same camera.
-fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
+fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Section {
     let observer = job.reference.observer;
     let seen = format!("{}_observer.png", job.stem);
     let splat = format!("{}_cloud.png", job.stem);
@@ -350,20 +341,12 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     )
     .err()
     .map(|e| e.to_string());
-    let mut picture = Figure::image(
-        &seen,
-        "What the observer sees: a pinhole camera at the observer, Fresnel reflection and \
-         refraction at every water face, a checkerboard wall and floor behind the glass.",
-    );
+    let mut picture = Figure::image(&seen, lang.of(words::OBSERVER_CAPTION));
     picture.error = error.clone();
-    let mut points = Figure::image(
-        &splat,
-        "The course's image points seen through the same camera: each lies on the ray that \
-         shows it, so the two pictures agree on where each colour appears.",
-    );
+    let mut points = Figure::image(&splat, lang.of(words::SPLAT_CAPTION));
     points.error = error;
     Section {
-        title: "What the observer sees (Fresnel picture)".into(),
+        title: lang.of(words::OBSERVER_SECTION).into(),
         figures: vec![picture, points],
         notes: vec![],
         side_by_side: true,
@@ -373,42 +356,37 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
 }
 
 /// The ray diagram of one simulation: which light paths make which pieces of its image.
-fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
+fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let file = format!("{}_rays.svg", job.stem);
     let diagram = Diagram::new(&job.loaded.world, observer, &cloud.points);
-    let title = format!(
-        "{} ray diagram: {}",
-        simulation_heading(job),
-        simulation_title(scene, observer)
+    let title = lang.fill(
+        words::RAY_DIAGRAM_TITLE,
+        &[
+            &simulation_heading(job, lang),
+            &simulation_title(scene, observer),
+        ],
     );
-    let mut figure = Figure::image(
-        &file,
-        "About forty of the rays, each drawn as its broken path from the eye (black dot) through \
-         the water's faces to the straw, coloured by the kind of light path; rings mark \
-         refractions, crosses total reflections, and the dashed line runs from the eye straight \
-         to the ray's image point. Side view in the vertical plane through the glass's axis and \
-         the observer (the observer to the right), and top view.",
-    );
-    figure.error = write_ray_diagram(&out.join(&file), &job.loaded, &diagram, &title)
+    let mut figure = Figure::image(&file, lang.of(words::RAYS_CAPTION));
+    figure.error = write_ray_diagram(&out.join(&file), &job.loaded, &diagram, &title, lang)
         .err()
         .map(|e| e.to_string());
     let total: usize = diagram.counts.iter().map(|c| c.1).sum::<usize>().max(1);
     let shares: Vec<String> = diagram
         .counts
         .iter()
-        .map(|(kind, n)| format!("{kind}: {:.1} %", 100.0 * *n as f64 / total as f64))
+        .map(|(kind, n)| {
+            format!(
+                "{}: {:.1} %",
+                lang.light_path(kind),
+                100.0 * *n as f64 / total as f64
+            )
+        })
         .collect();
     Section {
-        title: "Which light path makes which piece (ray diagram)".into(),
+        title: lang.of(words::RAYS_SECTION).into(),
         figures: vec![figure],
-        notes: vec![format!(
-            "Image points by light path: {}. Pieces of the image far from the straw, even \
-             outside the glass, come from light totally reflected inside the water: the eye, \
-             looking along the first straight piece of the ray, places the straw as far away as \
-             the light really travelled.",
-            shares.join("; ")
-        )],
+        notes: vec![lang.fill(words::RAYS_NOTE, &[&shares.join("; ")])],
         side_by_side: false,
         printed: true,
         table: Vec::new(),
@@ -428,40 +406,34 @@ const CLASSIC_WATER: f64 = 0.15;
 
 /// The report's opening: the effect at a glance (a realistic view), and the method with its ray
 /// diagram.
-fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
+fn intro_sections(out: &Path, points: usize, lang: Lang) -> Vec<Section> {
     let scene = Scene::with_defaults(CLASSIC_STRAW.0, CLASSIC_STRAW.1, CLASSIC_WATER)
         .expect("the classic view is valid");
     let observer = CLASSIC_OBSERVER;
     let loaded = Loaded::assignment(scene, observer);
     let world = &loaded.world;
-    let mut view = Figure::image(
-        INTRO_FILES[0],
-        "What an eye 30 cm from the glass sees (bentstraw render --observer 0.3,0,0.25 --straw \
-         0,0.03 --water-height 0.15): below the water's surface the straw is shifted sideways and \
-         looks wider; above it, it is seen straight.",
-    );
+    let mut view = Figure::image(INTRO_FILES[0], lang.of(words::VIEW_CAPTION));
     view.error = pictures::write_view_picture(&out.join(INTRO_FILES[0]), world, observer)
         .err()
         .map(|e| e.to_string());
     let cloud = sample_image(world, observer, points.min(20_000), &|_| {});
     let diagram = Diagram::new(world, observer, &cloud.points);
-    let mut rays = Figure::image(
-        INTRO_FILES[1],
-        "The same view as a ray diagram: each ray's broken path from the eye to the straw, and \
-         the dashed straight line along which the eye looks. The eye places each piece of straw \
-         on that line, as far away as the light travelled.",
-    );
+    let mut rays = Figure::image(INTRO_FILES[1], lang.of(words::INTRO_RAYS_CAPTION));
     rays.error = write_ray_diagram(
         &out.join(INTRO_FILES[1]),
         &loaded,
         &diagram,
-        &format!("Ray diagram: {}", simulation_title(&scene, observer)),
+        &lang.fill(
+            words::RAY_DIAGRAM_OF,
+            &[&simulation_title(&scene, observer)],
+        ),
+        lang,
     )
     .err()
     .map(|e| e.to_string());
     vec![
         Section {
-            title: "The broken straw".into(),
+            title: lang.of(words::BROKEN_STRAW).into(),
             figures: vec![view],
             notes: vec![],
             side_by_side: false,
@@ -469,23 +441,12 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
             table: Vec::new(),
         },
         Section {
-            title: "Method".into(),
+            title: lang.of(words::METHOD).into(),
             figures: vec![rays],
-            notes: vec![
-                "A ray leaves the observer's eye O with direction u0 and goes straight until it \
-                 meets a face of the water (its side, its surface, its bottom) or the straw. At a \
-                 water face it is refracted by Snell–Descartes, n1 sin θ1 = n2 sin θ2, or totally \
-                 reflected when no refracted ray exists (from water to air beyond 48.6°); at most \
-                 ten such events. A ray that meets the opaque straw stops there and takes the \
-                 colour of that section. Its image point is P = O + L·u0, with L the length of its \
-                 broken path: where the eye, looking along u0, believes the light came from. \
-                 Rays are spread evenly over the directions in which the straw can be seen."
-                    .into(),
-                "Every image point is checked: with water of index 1 the points must lie on the \
-                 straw; and every simulation's points are re-traced one by one by bentstraw check, \
-                 the tool a student uses on their own program's output."
-                    .into(),
-            ],
+            notes: words::METHOD_NOTES
+                .iter()
+                .map(|t| lang.of(*t).to_string())
+                .collect(),
             side_by_side: false,
             printed: true,
             table: Vec::new(),
@@ -494,30 +455,26 @@ fn intro_sections(out: &Path, points: usize) -> Vec<Section> {
 }
 
 /// The report's closing: the validation as the index grows, and the limits of the model.
-fn closing_sections(out: &Path) -> Vec<Section> {
+fn closing_sections(out: &Path, lang: Lang) -> Vec<Section> {
     let series: Vec<ValidationSeries> = REFERENCES
         .par_iter()
         .map(|r| {
             validation::series(
-                &format!("simulation {}", r.number),
+                &lang.fill(words::VALIDATION_SERIES, &[&r.number]),
                 &r.scene(WATER_INDEX),
                 r.observer,
             )
         })
         .collect();
-    let mut figure = Figure::image(
-        VALIDATION_FILE,
-        "For the image points seen through the water, the largest (solid) and median (dashed) \
-         distance from the straw's surface, as the water's index goes from 1 to 1.333, log scale.",
-    );
-    figure.error = write_validation_figure(&out.join(VALIDATION_FILE), &series)
+    let mut figure = Figure::image(VALIDATION_FILE, lang.of(words::VALIDATION_CAPTION));
+    figure.error = write_validation_figure(&out.join(VALIDATION_FILE), &series, lang)
         .err()
         .map(|e| e.to_string());
     let mut table = vec![{
         let mut head = vec!["n_water".to_string()];
         for s in &series {
-            head.push(format!("{}: largest (m)", s.label));
-            head.push(format!("{}: median (m)", s.label));
+            head.push(lang.fill(words::LARGEST_M, &[&s.label]));
+            head.push(lang.fill(words::MEDIAN_M, &[&s.label]));
         }
         head
     }];
@@ -531,32 +488,17 @@ fn closing_sections(out: &Path) -> Vec<Section> {
     }
     vec![
         Section {
-            title: "Validation".into(),
+            title: lang.of(words::VALIDATION).into(),
             figures: vec![figure],
-            notes: vec![format!(
-                "With index 1 the water bends nothing, and every image point lies on the straw to \
-                 rounding (about 1e-16 m); as soon as the index grows, the points seen through the \
-                 water leave the straw, by millimetres at first and by centimetres at 1.333. The \
-                 points seen straight through air are left out: they lie on the straw whatever the \
-                 water. {} image points per simulation and index.",
-                validation::VALIDATION_POINTS
-            )],
+            notes: vec![lang.fill(words::VALIDATION_NOTE, &[&validation::VALIDATION_POINTS])],
             side_by_side: false,
             printed: true,
             table,
         },
         Section {
-            title: "Limits".into(),
+            title: lang.of(words::LIMITS).into(),
             figures: vec![],
-            notes: vec![
-                "The image point P = O + L·u0 is the course's convention, not what an eye measures: \
-                 the eye and stereo models above say where one eye with a small pupil, and two \
-                 eyes, see each point. The glass has walls of no thickness and the index of air; \
-                 the straw is opaque and its surface does not reflect; light is traced for one \
-                 colour (no dispersion). The pictures' Fresnel mode follows at most 2048 ray \
-                 segments per ray from the eye."
-                    .into(),
-            ],
+            notes: vec![lang.of(words::LIMITS_NOTE).into()],
             side_by_side: false,
             printed: true,
             table: Vec::new(),
@@ -565,7 +507,7 @@ fn closing_sections(out: &Path) -> Vec<Section> {
 }
 
 /// The course's, the eye's and the stereo image side by side, and how far apart they are.
-fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
+fn models_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Section {
     let (scene, observer) = (&job.scene, job.reference.observer);
     let eye = eye_model_points(&job.loaded.world, observer, &cloud.points);
     let stereo = stereo_points(&job.loaded.world, observer, &cloud.points);
@@ -591,11 +533,8 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
         .map(|(name, points)| ModelCloud { name, points })
         .collect();
     let compare = format!("{}_models.svg", job.stem);
-    let title = format!("{}: where the straw appears", simulation_heading(job));
-    let mut figure = Figure::image(
-        &compare,
-        "The same straw points placed by the three models, seen from the same side and scale.",
-    );
+    let title = lang.fill(words::WHERE_IT_APPEARS, &[&simulation_heading(job, lang)]);
+    let mut figure = Figure::image(&compare, lang.of(words::MODELS_CAPTION));
     figure.error =
         write_model_comparison(&out.join(&compare), &job.loaded, observer, &clouds, &title)
             .err()
@@ -605,17 +544,10 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     let eye_gaps = eye_gap_samples(&eye);
     let stereo_gaps = stereo_gap_samples(&stereo);
     let gap = format!("{}_gap.svg", job.stem);
-    let series = GapSeries::of_models(&eye_gaps, &stereo_gaps);
-    let mut figure = Figure::image(
-        &gap,
-        "Distance between the course's image point and the eye model's (and the stereo model's) \
-         point of the same straw point, against the height of that straw point.",
-    );
-    let gap_title = format!(
-        "{}: distance from the course's image point to the eye's and the stereo point",
-        simulation_heading(job)
-    );
-    figure.error = write_gap_plot(&out.join(&gap), &series, &gap_title)
+    let series = GapSeries::of_models(&eye_gaps, &stereo_gaps, lang);
+    let mut figure = Figure::image(&gap, lang.of(words::GAP_CAPTION));
+    let gap_title = lang.fill(words::GAP_TITLE, &[&simulation_heading(job, lang)]);
+    figure.error = write_gap_plot(&out.join(&gap), &series, &gap_title, lang)
         .err()
         .map(|e| e.to_string());
     figures.push(figure);
@@ -626,28 +558,21 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
     sorted.sort_by(f64::total_cmp);
     let median = sorted.get(sorted.len() / 2).copied().unwrap_or(0.0);
     Section {
-        title: "Where the straw really appears: course, eye and stereo models".into(),
+        title: lang.of(words::MODELS_SECTION).into(),
         figures,
         notes: vec![
-            format!(
-                "Eye model: {} of {} points placed at (s_h + s_v)/2 along their ray; {unplaced} without a \
-                 position (a focus unresolved, at infinity or behind the eye). Gap to the course's point: \
-                 median {:.2} mm, largest {:.2} mm.",
-                eye.len() - unplaced,
-                eye.len(),
-                1e3 * median,
-                1e3 * max_gap
+            lang.fill(
+                words::EYE_NOTE,
+                &[
+                    &(eye.len() - unplaced),
+                    &eye.len(),
+                    &unplaced,
+                    &format!("{:.2}", 1e3 * median),
+                    &format!("{:.2}", 1e3 * max_gap),
+                ],
             ),
-            format!(
-                "Stereo model: {} points seen by both eyes and triangulated, {} seen by one eye only.",
-                stereo.points.len(),
-                stereo.skipped
-            ),
-            format!(
-                "Each model's points, as a file: bentstraw simulate {} --image-model eye (or \
-                 stereo) --output points.csv.",
-                simulate_flags(scene, observer)
-            ),
+            lang.fill(words::STEREO_NOTE, &[&stereo.points.len(), &stereo.skipped]),
+            lang.fill(words::MODELS_FILE_NOTE, &[&simulate_flags(scene, observer)]),
         ],
         side_by_side: false,
         printed: true,
@@ -656,12 +581,12 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud) -> Section {
 }
 
 /// "Simulation 1", "Simulation 1, check n_water = 1", …
-fn simulation_heading(job: &Job) -> String {
+fn simulation_heading(job: &Job, lang: Lang) -> String {
     let n = job.scene.n_water();
     if n == WATER_INDEX {
-        format!("Simulation {}", job.reference.number)
+        lang.fill(words::SIMULATION, &[&job.reference.number])
     } else {
-        format!("Simulation {}, check n_water = {n}", job.reference.number)
+        lang.fill(words::SIMULATION_CHECK, &[&job.reference.number, &n])
     }
 }
 
@@ -680,40 +605,43 @@ fn simulate_flags(scene: &Scene, o: Vec3) -> String {
 }
 
 /// The inputs as label/value rows.
-fn inputs(scene: &Scene, o: Vec3) -> Vec<(String, String)> {
-    vec![
-        ("observer".into(), format!("({}, {}, {}) m", o.x, o.y, o.z)),
-        (
-            "straw axis".into(),
-            format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
-        ),
-        ("water height".into(), format!("{} m", scene.water_height())),
-        ("water index".into(), format!("{}", scene.n_water())),
-        ("event limit".into(), format!("{}", scene.max_events())),
-    ]
+fn inputs(scene: &Scene, o: Vec3, lang: Lang) -> Vec<(String, String)> {
+    let values = [
+        format!("({}, {}, {}) m", o.x, o.y, o.z),
+        format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
+        format!("{} m", scene.water_height()),
+        format!("{}", scene.n_water()),
+        format!("{}", scene.max_events()),
+    ];
+    words::INPUTS
+        .iter()
+        .zip(values)
+        .map(|(label, value)| (lang.of(*label).to_string(), value))
+        .collect()
 }
 
 /// The built-in check for `n_water = 1`: every image point lies on the straw.
-fn check(scene: &Scene, cloud: &ImageCloud) -> Option<Check> {
+fn check(scene: &Scene, cloud: &ImageCloud, lang: Lang) -> Option<Check> {
     if scene.n_water() != 1.0 {
         return None;
     }
     let max = max_distance_to_straw(scene, cloud);
     let passed = !cloud.points.is_empty() && max < ON_STRAW_TOLERANCE;
+    let verdict = lang.of(if passed { words::PASS } else { words::FAIL });
     let text = if cloud.points.is_empty() {
-        "n_water = 1: no image points to check".to_string()
+        lang.of(words::NO_POINTS_TO_CHECK).to_string()
     } else {
-        format!(
-            "n_water = 1: the {} image points lie on the straw, at most {max:.3e} m from its surface \
-             (limit {ON_STRAW_TOLERANCE:e} m): {}",
-            cloud.points.len(),
-            if passed { "pass" } else { "FAIL" }
+        lang.fill(
+            words::ON_STRAW_CHECK,
+            &[
+                &cloud.points.len(),
+                &format!("{max:.3e}"),
+                &format!("{ON_STRAW_TOLERANCE:e}"),
+                &verdict,
+            ],
         )
     };
-    let short = format!(
-        "on the straw, max {max:.1e} m: {}",
-        if passed { "pass" } else { "FAIL" }
-    );
+    let short = lang.fill(words::ON_STRAW_SHORT, &[&format!("{max:.1e}"), &verdict]);
     Some(Check {
         passed,
         text,
@@ -722,15 +650,16 @@ fn check(scene: &Scene, cloud: &ImageCloud) -> Option<Check> {
 }
 
 /// How far the image lies from the real straw: zero for `n_water = 1`, growing with the index.
-fn distance_note(scene: &Scene, cloud: &ImageCloud) -> String {
+fn distance_note(scene: &Scene, cloud: &ImageCloud, lang: Lang) -> String {
     if cloud.points.is_empty() {
-        return "No image point: the straw is not seen from here.".into();
+        return lang.of(words::NOT_SEEN).into();
     }
-    format!(
-        "The image points lie up to {:.3} mm from the straw's surface (n_water = {}; with \
-         n_water = 1 they would lie on it).",
-        1e3 * max_distance_to_straw(scene, cloud),
-        scene.n_water()
+    lang.fill(
+        words::DISTANCE_NOTE,
+        &[
+            &format!("{:.3}", 1e3 * max_distance_to_straw(scene, cloud)),
+            &scene.n_water(),
+        ],
     )
 }
 
