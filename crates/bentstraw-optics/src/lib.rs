@@ -38,6 +38,7 @@ pub mod picture;
 pub mod ray_diagram;
 pub mod sampling;
 pub mod scene;
+pub mod rule;
 pub mod scene_file;
 pub mod shading;
 pub mod world;
