@@ -165,8 +165,7 @@ fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError 
             } else {
                 format!("{key}.{field}")
             };
-            let params = vec![("key", words(full.clone()))];
-            SceneFileError::new(&full, None, Rule::SyntaxMissing, params)
+            SceneFileError::new(&full, None, Rule::Required, vec![])
         }
         None => SceneFileError::new(&key, None, Rule::Syntax, vec![("what", words(what))]),
     };
@@ -343,7 +342,7 @@ impl SceneDescription {
             return Err(e);
         }
         let Some(container) = container else {
-            return Err(refuse_key("container.shape", Rule::ShapeNeeded, vec![]));
+            return Err(refuse_key("container.shape", Rule::ShapeMissing, vec![]));
         };
         // Without a target, the eye looks at the middle of the container.
         let middle = Vec3::new(0.0, 0.0, container.height() / 2.0);
