@@ -18,8 +18,8 @@ use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
-use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::rule::{Param, Rule};
+use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{clip_text, DEFAULT_MAX_EVENTS};
 use bentstraw_optics::scene_file::{Observer, SceneDescription};
 use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
@@ -160,7 +160,9 @@ impl From<bentstraw_outputs::error::Error> for Refused {
             }
             Error::Scene(error) => {
                 let (rule, params) = error.rule();
-                Some(json!({"file": null, "flagged": false, "rules": [rule_json(rule, "", None, None, &params)]}))
+                Some(
+                    json!({"file": null, "flagged": false, "rules": [rule_json(rule, "", None, None, &params)]}),
+                )
             }
             _ => None,
         };
@@ -403,8 +405,7 @@ impl View {
                 (Arc::new(loaded), observer)
             }
             None => {
-                let (scene, observer) =
-                    scene_args.scene_and_observer()?;
+                let (scene, observer) = scene_args.scene_and_observer()?;
                 (Arc::new(Loaded::assignment(scene, observer)), observer)
             }
         };
@@ -1339,7 +1340,9 @@ mod tests {
         );
         assert_eq!((r.status, r.content_type), (400, "application/json"));
         let v: Value = serde_json::from_slice(&r.body).unwrap();
-        let expected = parse_scene_text(PAGE_SCENE_FILE, text).unwrap_err().to_string();
+        let expected = parse_scene_text(PAGE_SCENE_FILE, text)
+            .unwrap_err()
+            .to_string();
         assert_eq!(v["message"], json!(expected));
         assert_eq!(v["file"], json!("scene.toml"));
         let rules = v["rules"].as_array().unwrap();
@@ -1350,7 +1353,11 @@ mod tests {
         assert_eq!(rules[1]["code"], json!("tilt.range"));
         assert_eq!(rules[1]["value"], json!("95"));
         // The eye inside a scene file's container: refused once the page's eye is applied.
-        let good = text.replace("index = 0.8", "index = 1.333").replace("tilt = 95", "tilt = 0");
+        // (A coin makes it a scene of its own, not the assignment's glass.)
+        let good = text
+            .replace("index = 0.8", "index = 1.333")
+            .replace("tilt = 95", "tilt = 0")
+            + "[[coin]]\nx = 0.02\ny = 0\n";
         let r = handle(
             "/api/frame",
             &format!("scene-file={}&observer=0,0,0.1", query_value(&good)),
@@ -1361,14 +1368,25 @@ mod tests {
         assert_eq!(v["rules"][0]["code"], json!("observer.in-container"));
         assert_eq!(v["rules"][0]["params"]["z"], json!("0.1"));
         // The assignment's glass: its own rule, its numbers.
-        let r = handle("/api/frame", "observer=0,0,0.1&straw=0.02,0.01&water-height=0.15", &mut f);
+        let r = handle(
+            "/api/frame",
+            "observer=0,0,0.1&straw=0.02,0.01&water-height=0.15",
+            &mut f,
+        );
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         assert_eq!(v["rules"][0]["code"], json!("glass.eye-inside"));
         assert_eq!(v["rules"][0]["params"]["radius"], json!("0.04"));
-        assert!(v["message"].as_str().unwrap().contains("inside or on the glass"));
+        assert!(v["message"]
+            .as_str()
+            .unwrap()
+            .contains("inside or on the glass"));
         // Words quoted as they are, marked so.
         let cone = "[container]\nshape = \"co.ne\"\nheight = 0.2\n";
-        let r = handle("/api/sketch", &format!("scene-file={}", query_value(cone)), &mut f);
+        let r = handle(
+            "/api/sketch",
+            &format!("scene-file={}", query_value(cone)),
+            &mut f,
+        );
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         assert_eq!(v["rules"][0]["params"]["shape"], json!({"text": "co.ne"}));
     }
@@ -1388,7 +1406,10 @@ mod tests {
                 .filter_map(|l| {
                     let l = l.trim().strip_suffix(',')?;
                     let (k, v) = l.split_once("\": ")?;
-                    Some((k.strip_prefix('"')?.to_string(), serde_json::from_str::<String>(v).ok()?))
+                    Some((
+                        k.strip_prefix('"')?.to_string(),
+                        serde_json::from_str::<String>(v).ok()?,
+                    ))
                 })
                 .collect()
         };
@@ -1404,8 +1425,14 @@ mod tests {
         };
         for rule in Rule::ALL {
             let key = format!("rule.{}", rule.code());
-            assert_eq!(en.get(&key).map(String::as_str), Some(rule.template()), "{key}");
-            let french = fr.get(&key).unwrap_or_else(|| panic!("no French text for {key}"));
+            assert_eq!(
+                en.get(&key).map(String::as_str),
+                Some(rule.template()),
+                "{key}"
+            );
+            let french = fr
+                .get(&key)
+                .unwrap_or_else(|| panic!("no French text for {key}"));
             assert_eq!(names(french), names(rule.template()), "{key}");
             assert_ne!(french, rule.template(), "{key} is not translated");
         }

@@ -37,7 +37,10 @@ pub fn fill(template: &str, params: &[(&str, &str)]) -> String {
             .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
             .unwrap_or(after.len());
         let name = &after[..name_end];
-        match (after[name_end..].starts_with('}'), params.iter().find(|p| p.0 == name)) {
+        match (
+            after[name_end..].starts_with('}'),
+            params.iter().find(|p| p.0 == name),
+        ) {
             (true, Some((_, value))) if !name.is_empty() => {
                 out.push_str(value);
                 rest = &after[name_end + 1..];
@@ -188,7 +191,12 @@ impl Rule {
 
 /// The English line of the rule `rule` broken by `key` (empty: a rule of no one key) of value
 /// `value`: `key = value: text`, `key: text`, or the text alone for a rule of no one key.
-pub fn line(rule: Rule, key: &str, value: Option<&str>, params: &[(&'static str, Param)]) -> String {
+pub fn line(
+    rule: Rule,
+    key: &str,
+    value: Option<&str>,
+    params: &[(&'static str, Param)],
+) -> String {
     let text = rule.text(params);
     match value {
         _ if key.is_empty() => text,
@@ -220,6 +228,9 @@ mod tests {
         assert_eq!(codes.len(), n, "two rules share a code");
         assert_eq!(fill("a {x} b {y}", &[("x", "1"), ("y", "2")]), "a 1 b 2");
         assert_eq!(fill("{missing} {x", &[("x", "1")]), "{missing} {x");
-        assert_eq!(fill("x² + y² <= {r}²", &[("r", "0.04")]), "x² + y² <= 0.04²");
+        assert_eq!(
+            fill("x² + y² <= {r}²", &[("r", "0.04")]),
+            "x² + y² <= 0.04²"
+        );
     }
 }

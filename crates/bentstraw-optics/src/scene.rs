@@ -106,14 +106,20 @@ impl SceneError {
         let at = |o: &Vec3, height: bool| {
             let mut p = rule::point(*o);
             if height {
-                p.extend([("height", bound(GLASS_HEIGHT)), ("radius", bound(GLASS_RADIUS))]);
+                p.extend([
+                    ("height", bound(GLASS_HEIGHT)),
+                    ("radius", bound(GLASS_RADIUS)),
+                ]);
             }
             p
         };
         match self {
             SceneError::NotFinite { name, value } => (
                 Rule::GlassNotFinite,
-                vec![("name", Param::Text(name.to_string())), ("value", n(*value))],
+                vec![
+                    ("name", Param::Text(name.to_string())),
+                    ("value", n(*value)),
+                ],
             ),
             SceneError::WaterHeight(h) => (
                 Rule::GlassWaterHeight,

@@ -9,11 +9,11 @@
 
 use std::fmt;
 
+use crate::rule::{self, number, point, Param, Params, Rule};
 use crate::scene::{
     number_text, Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT, STRAW_RADIUS,
     WATER_INDEX,
 };
-use crate::rule::{self, number, point, Param, Params, Rule};
 use crate::Vec3;
 
 #[cfg(feature = "scene-file")]
@@ -640,12 +640,7 @@ impl SceneDescription {
                     ));
                 }
                 if g.index < 1.0 {
-                    return Err(refuse(
-                        "container.index",
-                        g.index,
-                        Rule::IndexMin,
-                        vec![],
-                    ));
+                    return Err(refuse("container.index", g.index, Rule::IndexMin, vec![]));
                 }
             }
             Container::Tank(t) => {

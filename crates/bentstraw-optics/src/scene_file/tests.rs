@@ -943,10 +943,23 @@ proptest::proptest! {
 pub(crate) fn broken_samples() -> Vec<(&'static str, String)> {
     let glass = |rest: &str| glass_with(rest);
     let container = |c: &str| format!("[container]\n{c}\n");
-    let tank = |c: &str| container(&format!("shape = \"tank\"\nhalf_x = 0.2\nhalf_y = 0.2\nheight = 0.3\n{c}"));
-    let glass_c = |c: &str| container(&format!("shape = \"glass\"\nradius = 0.04\nheight = 0.2\n{c}"));
+    let tank = |c: &str| {
+        container(&format!(
+            "shape = \"tank\"\nhalf_x = 0.2\nhalf_y = 0.2\nheight = 0.3\n{c}"
+        ))
+    };
+    let glass_c = |c: &str| {
+        container(&format!(
+            "shape = \"glass\"\nradius = 0.04\nheight = 0.2\n{c}"
+        ))
+    };
     let layers: String = (0..MAX_LIQUIDS + 1)
-        .map(|k| format!("[[liquid]]\nname = \"l\"\nindex = 1.3\ntop = {}\n", 0.001 * (k + 1) as f64))
+        .map(|k| {
+            format!(
+                "[[liquid]]\nname = \"l\"\nindex = 1.3\ntop = {}\n",
+                0.001 * (k + 1) as f64
+            )
+        })
         .collect();
     let coins: String = (0..MAX_OBJECTS + 1)
         .map(|_| "[[coin]]\nx = 0\ny = 0\n")
@@ -1007,10 +1020,17 @@ fn every_rule_is_refused_with_its_code_and_its_own_words() {
         let place = e.line.map_or(String::new(), |l| format!("line {l}: "));
         assert_eq!(e.message, place + &line, "{code}");
         for (name, _) in &e.params {
-            assert!(e.rule.template().contains(&format!("{{{name}}}")), "{code}: {name}");
+            assert!(
+                e.rule.template().contains(&format!("{{{name}}}")),
+                "{code}: {name}"
+            );
         }
     }
     for r in Rule::ALL.iter().filter(|r| !r.code().starts_with("glass.")) {
-        assert!(samples.iter().any(|(c, _)| c == &r.code()), "no sample breaks {}", r.code());
+        assert!(
+            samples.iter().any(|(c, _)| c == &r.code()),
+            "no sample breaks {}",
+            r.code()
+        );
     }
 }
