@@ -51,7 +51,8 @@ const RIM_SAMPLES: usize = 4096;
 /// Why a scene file is not valid: every rule it breaks, each a line naming the key, the value
 /// and the rule (the rules that do not depend on one another are all checked, so that a file is
 /// mended in one go). Each is data too: the [`Rule`] (its stable code), the key, the value and
-/// the rule's parameters, so that a page can say it in its own language.
+/// the rule's parameters, so that a page can say it in its own language. The checks return it
+/// boxed: a refusal is large, and a `Result` carrying it whole would be as large when it passes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneFileError {
     /// The first broken rule's key as a TOML path (`straw[2].tilt`), empty when the text is not
@@ -78,14 +79,14 @@ impl SceneFileError {
     }
 
     /// One error of the broken rules `all` (at least one).
-    fn all(mut all: Vec<SceneFileError>) -> Option<SceneFileError> {
+    fn all(mut all: Vec<SceneFileError>) -> Option<Box<SceneFileError>> {
         if all.is_empty() {
             return None;
         }
         let more: Vec<SceneFileError> = all.drain(1..).flat_map(|e| e.into_rules()).collect();
         let mut first = all.pop()?;
         first.more.extend(more);
-        Some(first)
+        Some(Box::new(first))
     }
 
     /// The broken rules, each on its own.
@@ -101,18 +102,18 @@ struct Broken(Vec<SceneFileError>);
 
 impl Broken {
     /// Keeps `check`'s refusal, if any; says whether it passed.
-    fn check(&mut self, check: Result<(), SceneFileError>) -> bool {
+    fn check(&mut self, check: Result<(), Box<SceneFileError>>) -> bool {
         match check {
             Ok(()) => true,
             Err(e) => {
-                self.0.push(e);
+                self.0.push(*e);
                 false
             }
         }
     }
 
     /// `Ok` when nothing is broken, else every broken rule.
-    fn done(self) -> Result<(), SceneFileError> {
+    fn done(self) -> Result<(), Box<SceneFileError>> {
         SceneFileError::all(self.0).map_or(Ok(()), Err)
     }
 }
@@ -150,13 +151,13 @@ impl SceneFileError {
 }
 
 /// The refusal of `key = value` by `rule`.
-fn refuse(key: &str, value: f64, rule: Rule, params: Params) -> SceneFileError {
-    SceneFileError::new(key, Some(value), rule, params)
+fn refuse(key: &str, value: f64, rule: Rule, params: Params) -> Box<SceneFileError> {
+    Box::new(SceneFileError::new(key, Some(value), rule, params))
 }
 
 /// The refusal of `key` without a single number to quote.
-fn refuse_key(key: &str, rule: Rule, params: Params) -> SceneFileError {
-    SceneFileError::new(key, None, rule, params)
+fn refuse_key(key: &str, rule: Rule, params: Params) -> Box<SceneFileError> {
+    Box::new(SceneFileError::new(key, None, rule, params))
 }
 
 /// A parameter of words quoted as they are.
@@ -570,7 +571,7 @@ impl SceneDescription {
     /// reported at once: each object's own rules, object by object; the container first (the
     /// other rules are about fitting in it), the overlaps and the observer once every object is
     /// valid.
-    pub fn validate(&self) -> Result<(), SceneFileError> {
+    pub fn validate(&self) -> Result<(), Box<SceneFileError>> {
         self.validate_container()?;
         let mut broken = Broken::default();
         let objects = self.straws.len() + self.coins.len() + self.cards.len();
@@ -615,7 +616,7 @@ impl SceneDescription {
         broken.done()
     }
 
-    fn validate_container(&self) -> Result<(), SceneFileError> {
+    fn validate_container(&self) -> Result<(), Box<SceneFileError>> {
         match &self.container {
             Container::Glass(g) => {
                 positive("container.radius", g.radius)?;
@@ -665,7 +666,7 @@ impl SceneDescription {
     }
 
     /// Liquid `i`'s rules, with the top of the last good layer below it at `below`.
-    fn validate_liquid(&self, i: usize, l: &Liquid, below: f64) -> Result<(), SceneFileError> {
+    fn validate_liquid(&self, i: usize, l: &Liquid, below: f64) -> Result<(), Box<SceneFileError>> {
         let floor = self.container.floor();
         let height = self.container.height();
         {
@@ -696,7 +697,7 @@ impl SceneDescription {
     }
 
     /// Straw `i`'s own rules.
-    fn validate_straw(&self, i: usize, s: &Straw) -> Result<(), SceneFileError> {
+    fn validate_straw(&self, i: usize, s: &Straw) -> Result<(), Box<SceneFileError>> {
         let floor = self.container.floor();
         {
             let key = |k: &str| format!("straw[{}].{k}", i + 1);
@@ -755,7 +756,7 @@ impl SceneDescription {
     }
 
     /// Coin `i`'s own rules.
-    fn validate_coin(&self, i: usize, c: &Coin) -> Result<(), SceneFileError> {
+    fn validate_coin(&self, i: usize, c: &Coin) -> Result<(), Box<SceneFileError>> {
         let floor = self.container.floor();
         {
             let key = |k: &str| format!("coin[{}].{k}", i + 1);
@@ -787,7 +788,7 @@ impl SceneDescription {
     }
 
     /// Card `i`'s own rules.
-    fn validate_card(&self, i: usize, c: &Card) -> Result<(), SceneFileError> {
+    fn validate_card(&self, i: usize, c: &Card) -> Result<(), Box<SceneFileError>> {
         {
             let key = |k: &str| format!("card[{}].{k}", i + 1);
             for v in c.center.to_array() {
@@ -815,7 +816,7 @@ impl SceneDescription {
     /// may not cross. A straw's footprint is taken as the disk of its radius about the point
     /// below its bottom cap's centre, which holds the cap's shadow (an ellipse
     /// `radius·cos(tilt)` by `radius`) whatever its tilt.
-    fn validate_overlaps(&self) -> Result<(), SceneFileError> {
+    fn validate_overlaps(&self) -> Result<(), Box<SceneFileError>> {
         let footprints: Vec<(String, f64, f64, f64)> = self
             .straws
             .iter()
@@ -906,7 +907,7 @@ impl SceneDescription {
         Ok(())
     }
 
-    fn validate_observer(&self) -> Result<(), SceneFileError> {
+    fn validate_observer(&self) -> Result<(), Box<SceneFileError>> {
         match &self.observer {
             Some(o) => self.check_observer(o),
             None => Ok(()),
@@ -915,7 +916,7 @@ impl SceneDescription {
 
     /// Checks `o` by the rules an `[observer]` of this scene obeys (finite, outside the container
     /// and the straws, its target away from its eye), as if the file gave it.
-    pub fn check_observer(&self, o: &Observer) -> Result<(), SceneFileError> {
+    pub fn check_observer(&self, o: &Observer) -> Result<(), Box<SceneFileError>> {
         for (name, p) in [("position", o.position), ("target", o.target)] {
             for v in p.to_array() {
                 length(&format!("observer.{name}"), v)?;
@@ -1103,7 +1104,7 @@ impl SceneDescription {
 }
 
 /// Checks that `value` is finite.
-fn finite(key: &str, value: f64) -> Result<(), SceneFileError> {
+fn finite(key: &str, value: f64) -> Result<(), Box<SceneFileError>> {
     if value.is_finite() {
         Ok(())
     } else {
@@ -1112,7 +1113,7 @@ fn finite(key: &str, value: f64) -> Result<(), SceneFileError> {
 }
 
 /// Checks that a length or coordinate is finite and at most [`MAX_LENGTH`] in size.
-fn length(key: &str, value: f64) -> Result<(), SceneFileError> {
+fn length(key: &str, value: f64) -> Result<(), Box<SceneFileError>> {
     finite(key, value)?;
     if value.abs() <= MAX_LENGTH {
         Ok(())
@@ -1127,7 +1128,7 @@ fn length(key: &str, value: f64) -> Result<(), SceneFileError> {
 }
 
 /// Checks that a size is finite, at least [`MIN_SIZE`] and at most [`MAX_LENGTH`].
-fn positive(key: &str, value: f64) -> Result<(), SceneFileError> {
+fn positive(key: &str, value: f64) -> Result<(), Box<SceneFileError>> {
     finite(key, value)?;
     if (MIN_SIZE..=MAX_LENGTH).contains(&value) {
         Ok(())
@@ -1144,7 +1145,7 @@ fn positive(key: &str, value: f64) -> Result<(), SceneFileError> {
 }
 
 /// Checks that a thickness is finite and 0, or a size between [`MIN_SIZE`] and [`MAX_LENGTH`].
-fn at_least_zero(key: &str, value: f64) -> Result<(), SceneFileError> {
+fn at_least_zero(key: &str, value: f64) -> Result<(), Box<SceneFileError>> {
     finite(key, value)?;
     if value < 0.0 {
         Err(refuse(key, value, Rule::ThicknessPositive, vec![]))

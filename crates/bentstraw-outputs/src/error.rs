@@ -41,7 +41,7 @@ pub enum Error {
         /// Whether the rules were broken by the flags' values rather than the file's own.
         flagged: bool,
         /// Every broken rule.
-        error: SceneFileError,
+        error: Box<SceneFileError>,
     },
 }
 

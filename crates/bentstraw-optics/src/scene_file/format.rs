@@ -140,7 +140,7 @@ fn toml_path(path: &serde_path_to_error::Path) -> String {
 }
 
 /// TOML's error as one line: where (line, column), which key, and what is wrong.
-fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError {
+fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> Box<SceneFileError> {
     let line = e.span().map(|span| {
         let before = &text.as_bytes()[..span.start.min(text.len())];
         before.iter().filter(|&&b| b == b'\n').count() + 1
@@ -165,9 +165,14 @@ fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError 
             } else {
                 format!("{key}.{field}")
             };
-            SceneFileError::new(&full, None, Rule::Required, vec![])
+            Box::new(SceneFileError::new(&full, None, Rule::Required, vec![]))
         }
-        None => SceneFileError::new(&key, None, Rule::Syntax, vec![("what", words(what))]),
+        None => Box::new(SceneFileError::new(
+            &key,
+            None,
+            Rule::Syntax,
+            vec![("what", words(what))],
+        )),
     };
     if let Some(l) = line {
         e.message = format!("line {l}: {}", e.message);
@@ -179,7 +184,7 @@ fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError 
 impl SceneDescription {
     /// Reads a scene file's text: TOML of the scene-file format, defaults applied, every rule
     /// checked ([`SceneDescription::validate`]).
-    pub fn from_toml(text: &str) -> Result<SceneDescription, SceneFileError> {
+    pub fn from_toml(text: &str) -> Result<SceneDescription, Box<SceneFileError>> {
         let de =
             toml::Deserializer::parse(text).map_err(|e| syntax_error(text, String::new(), &e))?;
         let file: FileScene = serde_path_to_error::deserialize(de).map_err(|e| {
@@ -194,13 +199,13 @@ impl SceneDescription {
     /// The file's form with its defaults filled in; the keys of the other shape are refused here,
     /// as the description has no place for them. Every key missing or misplaced is reported at
     /// once.
-    fn from_file(file: FileScene) -> Result<SceneDescription, SceneFileError> {
+    fn from_file(file: FileScene) -> Result<SceneDescription, Box<SceneFileError>> {
         let mut broken = Vec::new();
         // A required key: its value, or a refusal kept and a stand-in to go on with.
         let need = |key: String| refuse_key(&key, Rule::Required, vec![]);
         let get = |key: String, value: Option<f64>, broken: &mut Vec<SceneFileError>| {
             value.unwrap_or_else(|| {
-                broken.push(need(key));
+                broken.push(*need(key));
                 0.0
             })
         };
@@ -209,12 +214,12 @@ impl SceneDescription {
         };
         let given = |key: &str, value: Option<f64>, rule: Rule, broken: &mut Vec<_>| {
             if let Some(v) = value {
-                broken.push(refuse(&format!("container.{key}"), v, rule, vec![]));
+                broken.push(*refuse(&format!("container.{key}"), v, rule, vec![]));
             }
         };
         let shape_of = |key: &str, value: Option<f64>, rule: Rule, broken: &mut Vec<_>| {
             value.unwrap_or_else(|| {
-                broken.push(refuse_key(&format!("container.{key}"), rule, vec![]));
+                broken.push(*refuse_key(&format!("container.{key}"), rule, vec![]));
                 0.0
             })
         };
@@ -244,7 +249,7 @@ impl SceneDescription {
                 }))
             }
             Some(other) => {
-                broken.push(refuse_key(
+                broken.push(*refuse_key(
                     "container.shape",
                     Rule::ShapeUnknown,
                     vec![("shape", words(clip_text(other, QUOTED_MAX)))],
@@ -252,7 +257,7 @@ impl SceneDescription {
                 None
             }
             None => {
-                broken.push(refuse_key("container.shape", Rule::ShapeMissing, vec![]));
+                broken.push(*refuse_key("container.shape", Rule::ShapeMissing, vec![]));
                 None
             }
         };
@@ -263,7 +268,7 @@ impl SceneDescription {
             .map(|(i, l)| {
                 let key = |k: &str| format!("liquid[{}].{k}", i + 1);
                 if l.name.is_none() {
-                    broken.push(need(key("name")));
+                    broken.push(*need(key("name")));
                 }
                 Liquid {
                     name: l.name.unwrap_or_default(),
@@ -312,7 +317,7 @@ impl SceneDescription {
                     "arrow" => Picture::Arrow,
                     "none" => Picture::None,
                     other => {
-                        broken.push(refuse_key(
+                        broken.push(*refuse_key(
                             &key("picture"),
                             Rule::PictureUnknown,
                             vec![("picture", words(clip_text(other, QUOTED_MAX)))],
@@ -321,7 +326,7 @@ impl SceneDescription {
                     }
                 };
                 if c.center.is_none() {
-                    broken.push(need(key("center")));
+                    broken.push(*need(key("center")));
                 }
                 Card {
                     center: Vec3::from_array(c.center.unwrap_or_default()),
@@ -334,7 +339,7 @@ impl SceneDescription {
             .collect();
         let observer = file.observer.as_ref().map(|o| {
             if o.position.is_none() {
-                broken.push(need("observer.position".into()));
+                broken.push(*need("observer.position".into()));
             }
             (o.position.unwrap_or_default(), o.target)
         });
