@@ -791,3 +791,48 @@ test("the scene file's box on a laptop and a phone, in English and French", asyn
     }
   }
 });
+
+test("a French browser gets a broken scene's rules in French, naming each key and value; the last good view stays", async () => {
+  const dir = ON_SITE ? path.join(tmpdir(), "shots-rules-site") : "/tmp/shots-rules";
+  mkdirSync(dir, { recursive: true });
+  for (const [name, viewport, options] of [["laptop", { width: 1500, height: 1000 }, {}], ["phone", { width: 390, height: 844 }, PHONE]]) {
+    const { page, context, problems } = await openPage(browser, server.url, viewport, { ...options, locale: "fr-FR" });
+    await page.goto(server.url + "#scene=two-straws&observer=0.25,0,0.17&points=4000");
+    await waitReady(page);
+    await page.click("#scene-edit summary");
+    const text = await boxText(page);
+    const points = await page.evaluate(() => window.bentstraw.points());
+    const frames = await page.evaluate(() => window.bentstraw.frames);
+    // Two rules broken at once: the liquid's index and the first straw's tilt.
+    const broken = text.replace("index = 1.333", "index = 0.8").replace(/tilt = 0(\.0)?\b/, "tilt = 95");
+    assert.notEqual(broken, text);
+    await page.fill("#scene-text", broken);
+    await page.waitForFunction(() => !document.getElementById("scene-errors").hidden);
+    assert.deepEqual(await page.locator("#scene-errors li").allTextContents(), [
+      "scene.toml : 2 règles ne sont pas respectées :",
+      "  liquid[1].index = 0,8 : un indice de réfraction doit être >= 1",
+      "  straw[1].tilt = 95 : l'inclinaison par rapport à la verticale doit vérifier 0 <= tilt < 90 (degrés)",
+    ]);
+    // The last good view stays: no new frame, the same scene and points.
+    assert.equal(await page.evaluate(() => window.bentstraw.frames), frames);
+    assert.equal(await page.evaluate(() => window.bentstraw.state.file), "");
+    assert.equal(await page.evaluate(() => window.bentstraw.points()), points);
+    await page.locator("#scene-errors").scrollIntoViewIfNeeded();
+    await page.screenshot({ path: path.join(dir, `${name}-fr.png`) });
+    if (name === "laptop") {
+      // In English, the same rules are the command line's message, line for line.
+      const cli = await simulateText(broken);
+      await page.selectOption("#lang", "en");
+      assert.deepEqual(await page.locator("#scene-errors li").allTextContents(), cli.message.split("\n").filter((l) => l.trim()));
+      await page.selectOption("#lang", "fr");
+      // An eye inside the assignment's glass, from the address: the rule in French, its numbers French.
+      await page.evaluate(() => { location.hash = "#observer=0,0,0.1&straw=0.02,0.01&water-height=0.15&lang=fr"; });
+      await page.waitForFunction(() => !document.getElementById("error").hidden);
+      assert.equal(await page.textContent("#error"), "l'observateur (0 ; 0 ; 0,1) est dans le verre ou sur sa paroi : il ne doit pas vérifier 0 <= z <= 0,2 et x² + y² <= 0,04²");
+      await page.screenshot({ path: path.join(dir, `${name}-fr-eye.png`) });
+    }
+    // (The refused texts' answers, 400, are the browser's only complaints.)
+    assert.deepEqual(problems.filter((p) => !/status of 400/.test(p)), []);
+    await context.close();
+  }
+});

@@ -351,7 +351,7 @@ async function sendFrame(quick) {
   if (r.status === 503) unpainted();
   if (r.status === 503) { fullPending = true; fullTimer = setTimeout(() => { fullPending = false; sendFrame(quick); }, 60); return; }
   if (!r.ok) {
-    showError(await r.text());
+    showError(await refusalOf(r));
     if (frame) frame.quick = false; // the last good view stays, as it is
     document.body.dataset.refused = String(Number(document.body.dataset.refused || 0) + 1);
     return;
@@ -424,13 +424,49 @@ async function requestModel(m) {
   }
 }
 
-/** Shows an error: the engine's message (text, as it comes), or one of the page's own
- * ({ key, params }, in the page's language, translated again when the language changes). */
+/** A refusal's answer: its broken rules as data ({ refusal, message }) when the engine sends
+ * them, else its message as text. */
+async function refusalOf(r) {
+  const text = await r.text();
+  if (/^application\/json/.test(r.headers.get("Content-Type") || "")) {
+    try { const refusal = JSON.parse(text); return { refusal, message: refusal.message }; } catch (_) { /* text, then */ }
+  }
+  return text;
+}
+
+/** One broken rule's line in the page's language: `key = value: rule`, its numbers written as
+ * the language writes them, words from the file as they are. */
+function ruleLine(r) {
+  const params = {};
+  for (const [k, v] of Object.entries(r.params || {})) params[k] = typeof v === "string" ? localNumber(v) : v.text;
+  const rule = t("rule." + r.code, params);
+  let line = !r.key ? rule : r.value !== null ? t("refusal.value", { key: r.key, value: localNumber(r.value), rule }) : t("refusal.key", { key: r.key, rule });
+  if (r.line) line = t("refusal.line", { line: r.line, rule: line });
+  return line;
+}
+
+/** A refusal's text in the page's language, a line per broken rule (the English is the command
+ * line's message, to the character). */
+function refusalText(f) {
+  const lines = f.rules.map(ruleLine);
+  const rules = lines.length === 1 ? lines[0] : [t("refusal.many", { n: lines.length }), ...lines.map((l) => "  " + l)].join("\n");
+  return f.file === null ? rules : t(f.flagged ? "refusal.flagged" : "refusal.file", { file: f.file, rules });
+}
+
+/** The text of something to show: the engine's message (text, as it comes), its broken rules
+ * ({ refusal }), or one of the page's own ({ key, params }); the last two in the page's language. */
+function errorText(error) {
+  if (error === null) return "";
+  if (typeof error === "string") return error;
+  return error.refusal ? refusalText(error.refusal) : t(error.key, error.params);
+}
+
+/** Shows an error (see errorText), translated again when the language changes. */
 let errorShown = "";
 function showError(error) {
   errorShown = error;
   const e = $("error");
-  const text = typeof error === "string" ? error : t(error.key, error.params);
+  const text = errorText(error);
   e.textContent = text;
   e.hidden = !text;
 }
@@ -1001,7 +1037,7 @@ async function pick(what) {
   }
   const r = await ask("ray", "/api/ray", viewQuery(state, extra));
   if (!r) return;
-  if (!r.ok) { showError(await r.text()); return; }
+  if (!r.ok) { showError(await refusalOf(r)); return; }
   path = await r.json();
   showReadout();
   document.body.dataset.picked = what;
@@ -1151,7 +1187,7 @@ $("copy-link").addEventListener("click", async () => {
 async function download(format, model) {
   const [w, h] = pictureSize();
   const r = await engineFetch("export", "/api/export", viewQuery(state, { format, size: `${w}x${h}`, model: model || "course" }));
-  if (!r.ok) { showError(await r.text()); return; }
+  if (!r.ok) { showError(await refusalOf(r)); return; }
   const name = (r.headers.get("Content-Disposition") || "").match(/filename="([^"]+)"/);
   const a = document.createElement("a");
   a.href = URL.createObjectURL(await r.blob());
@@ -1255,7 +1291,7 @@ function sceneSnapshot() {
  * page's own ({ key, params }); null clears it. */
 function showSceneErrors(error) {
   sceneErrorShown = error;
-  const text = error === null ? "" : typeof error === "string" ? error : t(error.key, error.params);
+  const text = errorText(error);
   sceneErrorsEl.replaceChildren(...text.split("\n").filter((l) => l.trim()).map((l) => {
     const li = document.createElement("li");
     li.textContent = l;
@@ -1348,7 +1384,7 @@ async function applySceneText(text) {
     observer = await checkScene(text, "hook");
   } catch (e) {
     if (seq !== editSeq) return;
-    showSceneErrors(e.message);
+    showSceneErrors(e.shown || e.message);
     refused();
     return;
   }
@@ -1396,11 +1432,14 @@ function settled() {
     check();
   });
 }
-/** The engine's answer as text, or a rejection with its message. */
+/** The engine's answer as text, or a rejection with its message (the command line's; `shown`:
+ * what the page shows of it, its broken rules in the page's language). */
 async function answerText(r) {
-  const text = await r.text();
-  if (!r.ok) throw new Error(text);
-  return text;
+  if (r.ok) return r.text();
+  const why = await refusalOf(r);
+  const e = new Error(typeof why === "string" ? why : why.message);
+  e.shown = why;
+  throw e;
 }
 Object.assign(window.bentstraw, {
   /** The current image points, as the CSV text `bentstraw simulate` writes. */
@@ -1416,7 +1455,7 @@ Object.assign(window.bentstraw, {
     try {
       observer = await checkScene(toml, "hook");
     } catch (e) {
-      showError(e.message);
+      showError(e.shown || e.message);
       refused();
       throw e;
     }

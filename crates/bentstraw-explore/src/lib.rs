@@ -18,6 +18,7 @@ use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
+use bentstraw_optics::rule::{Param, Rule};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{clip_text, DEFAULT_MAX_EVENTS};
 use bentstraw_optics::scene_file::{Observer, SceneDescription};
@@ -90,6 +91,101 @@ impl Reply {
             content_type,
             body,
             file_name: None,
+        }
+    }
+}
+
+/// A refusal of a request: the command line's message, and, when a rule of scenes is broken,
+/// every broken rule as data (its code, key, value and parameters) for the page to say in its
+/// own language.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refused {
+    /// The command line's message (English).
+    pub message: String,
+    /// The broken rules as JSON (`{file, flagged, rules: [{code, key, value, line, params}]}`),
+    /// when they are scene rules.
+    pub rules: Option<Value>,
+}
+
+impl From<String> for Refused {
+    fn from(message: String) -> Refused {
+        Refused {
+            message,
+            rules: None,
+        }
+    }
+}
+
+impl From<&str> for Refused {
+    fn from(message: &str) -> Refused {
+        Refused::from(message.to_string())
+    }
+}
+
+/// One broken rule as the page reads it.
+fn rule_json(
+    rule: Rule,
+    key: &str,
+    value: Option<&str>,
+    line: Option<usize>,
+    params: &[(&'static str, Param)],
+) -> Value {
+    let params: serde_json::Map<String, Value> = params
+        .iter()
+        .map(|(name, p)| {
+            let v = match p {
+                Param::Number(t) => json!(t),
+                Param::Text(t) => json!({ "text": t }),
+            };
+            (name.to_string(), v)
+        })
+        .collect();
+    json!({"code": rule.code(), "key": key, "value": value, "line": line, "params": params})
+}
+
+impl From<bentstraw_outputs::error::Error> for Refused {
+    fn from(e: bentstraw_outputs::error::Error) -> Refused {
+        use bentstraw_outputs::error::Error;
+        let rules = match &e {
+            Error::SceneFile {
+                name,
+                flagged,
+                error,
+            } => {
+                let rules: Vec<Value> = error
+                    .rules()
+                    .map(|r| rule_json(r.rule, &r.key, r.value.as_deref(), r.line, &r.params))
+                    .collect();
+                Some(json!({"file": name, "flagged": flagged, "rules": rules}))
+            }
+            Error::Scene(error) => {
+                let (rule, params) = error.rule();
+                Some(
+                    json!({"file": null, "flagged": false, "rules": [rule_json(rule, "", None, None, &params)]}),
+                )
+            }
+            _ => None,
+        };
+        Refused {
+            message: e.to_string(),
+            rules,
+        }
+    }
+}
+
+impl Refused {
+    /// The answer refusing the request (400): the message as text, or, with the broken rules,
+    /// JSON holding both.
+    pub fn reply(self) -> Reply {
+        match self.rules {
+            None => Reply::text(400, self.message),
+            Some(mut rules) => {
+                rules["message"] = json!(self.message);
+                Reply {
+                    status: 400,
+                    ..Reply::json(&rules)
+                }
+            }
         }
     }
 }
@@ -194,12 +290,18 @@ fn scene_text(q: &HashMap<String, String>) -> Result<Option<(String, &str)>, Str
 /// its points, asked once per scene (not with every frame): the container's and liquids'
 /// wireframe as `[x, y, z, x, y, z]` segments, the objects' outlines as flat polylines, the box
 /// holding them, and the file's own observer.
-pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
+pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, Refused> {
     let Some((name, text)) = scene_text(q)? else {
         return Err("missing required parameter 'scene'".into());
     };
-    let description = parse_scene_text(&name, text).map_err(|e| e.to_string())?;
-    let world = World::new(&description, DEFAULT_MAX_EVENTS).map_err(|e| e.to_string())?;
+    let description = parse_scene_text(&name, text)?;
+    let world = World::new(&description, DEFAULT_MAX_EVENTS).map_err(|error| {
+        bentstraw_outputs::error::Error::SceneFile {
+            name: name.clone(),
+            flagged: false,
+            error,
+        }
+    })?;
     let w = &world;
     let flat = |p: &[Vec3]| -> Vec<f64> { p.iter().flat_map(|q| q.to_array()).collect() };
     let wireframe: Vec<f64> = world_wireframe(w).iter().flat_map(|s| flat(s)).collect();
@@ -268,6 +370,11 @@ impl View {
     /// The view described by the query `q` (names as the command line's flags), or the command
     /// line's message for the first value that breaks a rule.
     pub fn from_query(q: &HashMap<String, String>) -> Result<View, String> {
+        View::checked(q).map_err(|r| r.message)
+    }
+
+    /// [`View::from_query`], its refusal with the broken rules as data.
+    pub fn checked(q: &HashMap<String, String>) -> Result<View, Refused> {
         let observer_text = required(q, "observer")?;
         let file = scene_text(q)?;
         // A scene file needs no straw or water: it has them.
@@ -293,13 +400,12 @@ impl View {
                     max_events: scene_args.max_events,
                     ..SceneSource::default()
                 };
-                let loaded = source.load_text(name, text).map_err(|e| e.to_string())?;
+                let loaded = source.load_text(name, text)?;
                 let observer = loaded.observer;
                 (Arc::new(loaded), observer)
             }
             None => {
-                let (scene, observer) =
-                    scene_args.scene_and_observer().map_err(|e| e.to_string())?;
+                let (scene, observer) = scene_args.scene_and_observer()?;
                 (Arc::new(Loaded::assignment(scene, observer)), observer)
             }
         };
@@ -319,7 +425,8 @@ impl View {
             if w as u64 * h as u64 > MAX_PICTURE_PIXELS {
                 return Err(format!(
                     "--size {w}x{h} is too large for the explorer: at most {MAX_PICTURE_PIXELS} pixels (3840x2160)"
-                ));
+                )
+                .into());
             }
         }
         let camera = match scene.assignment {
@@ -334,7 +441,8 @@ impl View {
                 return Err(format!(
                     "invalid value '{}' for '--mode' [possible values: course, fresnel]",
                     clip_text(other, 40)
-                ))
+                )
+                .into())
             }
         };
         let checker = match get(q, "backdrop").unwrap_or("checker") {
@@ -344,20 +452,23 @@ impl View {
                 return Err(format!(
                     "invalid value '{}' for '--backdrop' [possible values: none, checker]",
                     clip_text(other, 40)
-                ))
+                )
+                .into())
             }
         };
         let samples: u32 = get(q, "samples").map_or(Ok(3), |t| number(t, "samples"))?;
         if !(1..=MAX_SAMPLES).contains(&samples) {
             return Err(format!(
                 "--samples {samples} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}"
-            ));
+            )
+            .into());
         }
         let points: usize = get(q, "points").map_or(Ok(20000), |t| number(t, "points"))?;
         if points > MAX_POINTS {
             return Err(format!(
                 "--points {points} is too many for the explorer: at most {MAX_POINTS}"
-            ));
+            )
+            .into());
         }
         Ok(View {
             scene,
@@ -944,11 +1055,11 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
         Err(e) => return Reply::text(400, e),
     };
     if path == "/api/sketch" {
-        return sketch_reply(&q).unwrap_or_else(|e| Reply::text(400, e));
+        return sketch_reply(&q).unwrap_or_else(Refused::reply);
     }
-    let view = match View::from_query(&q) {
+    let view = match View::checked(&q) {
         Ok(v) => v,
-        Err(e) => return Reply::text(400, e),
+        Err(e) => return e.reply(),
     };
     let result = match path {
         "/api/frame" => Ok(frame_reply(&view, frame)),
@@ -1208,11 +1319,123 @@ mod tests {
             &mut f,
         );
         assert_eq!(r.status, 400);
-        let message = String::from_utf8(r.body).unwrap();
+        let refusal: Value = serde_json::from_slice(&r.body).unwrap();
+        let message = refusal["message"].as_str().unwrap();
         assert!(message.starts_with("scene.toml"), "{message}");
         // Not both a gallery scene and a file.
         let both = format!("scene={stem}&scene-file=x&{view}");
         assert_eq!(handle("/api/frame", &both, &mut f).status, 400);
+    }
+
+    /// A refused scene comes with its broken rules as data, all of them, beside the command
+    /// line's message: code, key, value, parameters; an eye inside the assignment's glass too.
+    #[test]
+    fn refusals_carry_their_rules_as_data() {
+        let mut f = Frame::default();
+        let text = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n[[liquid]]\nname = \"water\"\nindex = 0.8\ntop = 0.15\n[[straw]]\nx = 0\ny = 0\ntilt = 95\n";
+        let r = handle(
+            "/api/frame",
+            &format!("scene-file={}&observer=0.3,0,0.1", query_value(text)),
+            &mut f,
+        );
+        assert_eq!((r.status, r.content_type), (400, "application/json"));
+        let v: Value = serde_json::from_slice(&r.body).unwrap();
+        let expected = parse_scene_text(PAGE_SCENE_FILE, text)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(v["message"], json!(expected));
+        assert_eq!(v["file"], json!("scene.toml"));
+        let rules = v["rules"].as_array().unwrap();
+        assert_eq!(rules.len(), 2);
+        assert_eq!(rules[0]["code"], json!("index.min"));
+        assert_eq!(rules[0]["key"], json!("liquid[1].index"));
+        assert_eq!(rules[0]["value"], json!("0.8"));
+        assert_eq!(rules[1]["code"], json!("tilt.range"));
+        assert_eq!(rules[1]["value"], json!("95"));
+        // The eye inside a scene file's container: refused once the page's eye is applied.
+        // (A coin makes it a scene of its own, not the assignment's glass.)
+        let good = text
+            .replace("index = 0.8", "index = 1.333")
+            .replace("tilt = 95", "tilt = 0")
+            + "[[coin]]\nx = 0.02\ny = 0\n";
+        let r = handle(
+            "/api/frame",
+            &format!("scene-file={}&observer=0,0,0.1", query_value(&good)),
+            &mut f,
+        );
+        let v: Value = serde_json::from_slice(&r.body).unwrap();
+        assert_eq!(v["flagged"], json!(true));
+        assert_eq!(v["rules"][0]["code"], json!("observer.in-container"));
+        assert_eq!(v["rules"][0]["params"]["z"], json!("0.1"));
+        // The assignment's glass: its own rule, its numbers.
+        let r = handle(
+            "/api/frame",
+            "observer=0,0,0.1&straw=0.02,0.01&water-height=0.15",
+            &mut f,
+        );
+        let v: Value = serde_json::from_slice(&r.body).unwrap();
+        assert_eq!(v["rules"][0]["code"], json!("glass.eye-inside"));
+        assert_eq!(v["rules"][0]["params"]["radius"], json!("0.04"));
+        assert!(v["message"]
+            .as_str()
+            .unwrap()
+            .contains("inside or on the glass"));
+        // Words quoted as they are, marked so.
+        let cone = "[container]\nshape = \"co.ne\"\nheight = 0.2\n";
+        let r = handle(
+            "/api/sketch",
+            &format!("scene-file={}", query_value(cone)),
+            &mut f,
+        );
+        let v: Value = serde_json::from_slice(&r.body).unwrap();
+        assert_eq!(v["rules"][0]["params"]["shape"], json!({"text": "co.ne"}));
+    }
+
+    /// The page's language tables (i18n.js) say every rule the library can break, in English
+    /// exactly as the command line does (its text, `{name}` where each parameter goes) and in
+    /// French naming the same parameters.
+    #[test]
+    fn the_page_says_every_rule_in_english_and_french() {
+        let js = include_str!("../page/i18n.js");
+        let table = |lang: &str| -> HashMap<String, String> {
+            let start = js.find(&format!("\n  {lang}: {{\n")).expect(lang);
+            let body = &js[start..];
+            let end = body.find("\n  },").expect("table end");
+            body[..end]
+                .lines()
+                .filter_map(|l| {
+                    let l = l.trim().strip_suffix(',')?;
+                    let (k, v) = l.split_once("\": ")?;
+                    Some((
+                        k.strip_prefix('"')?.to_string(),
+                        serde_json::from_str::<String>(v).ok()?,
+                    ))
+                })
+                .collect()
+        };
+        let (en, fr) = (table("en"), table("fr"));
+        let names = |t: &str| -> Vec<String> {
+            let mut v: Vec<String> = t
+                .split('{')
+                .skip(1)
+                .filter_map(|p| p.split_once('}').map(|(n, _)| n.to_string()))
+                .collect();
+            v.sort();
+            v
+        };
+        for rule in Rule::ALL {
+            let key = format!("rule.{}", rule.code());
+            assert_eq!(
+                en.get(&key).map(String::as_str),
+                Some(rule.template()),
+                "{key}"
+            );
+            let french = fr
+                .get(&key)
+                .unwrap_or_else(|| panic!("no French text for {key}"));
+            assert_eq!(names(french), names(rule.template()), "{key}");
+            assert_ne!(french, rule.template(), "{key} is not translated");
+        }
     }
 
     /// Work whose stop flag is set is abandoned (409); not set, the PNG is `render`'s picture.

@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use crate::rule::{self, Param, Params, Rule};
 use crate::Vec3;
 
 /// Radius of the glass `Rv` (m).
@@ -97,45 +98,61 @@ pub enum SceneError {
     MaxEvents(u32),
 }
 
-impl fmt::Display for SceneError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let q = number_text;
-        match self {
-            SceneError::NotFinite { name, value } => {
-                write!(f, "{name} = {} is not a finite number", q(*value))
+impl SceneError {
+    /// The rule broken and its parameters (a page says it in its own language from them).
+    pub fn rule(&self) -> (Rule, Params) {
+        let n = rule::number;
+        let bound = |x: f64| Param::Number(x.to_string());
+        let at = |o: &Vec3, height: bool| {
+            let mut p = rule::point(*o);
+            if height {
+                p.extend([
+                    ("height", bound(GLASS_HEIGHT)),
+                    ("radius", bound(GLASS_RADIUS)),
+                ]);
             }
-            SceneError::WaterHeight(h) => write!(
-                f,
-                "water height {} m is outside the glass: it must satisfy 0 <= he <= {GLASS_HEIGHT}",
-                q(*h)
+            p
+        };
+        match self {
+            SceneError::NotFinite { name, value } => (
+                Rule::GlassNotFinite,
+                vec![
+                    ("name", Param::Text(name.to_string())),
+                    ("value", n(*value)),
+                ],
             ),
-            SceneError::StrawOutsideGlass { xp, yp } => write!(
-                f,
-                "straw axis ({}, {}) does not fit in the glass: need sqrt(xp² + yp²) + {STRAW_RADIUS} <= {GLASS_RADIUS} (it is {})",
-                q(*xp),
-                q(*yp),
-                q((xp * xp + yp * yp).sqrt() + STRAW_RADIUS)
+            SceneError::WaterHeight(h) => (
+                Rule::GlassWaterHeight,
+                vec![("value", n(*h)), ("max", bound(GLASS_HEIGHT))],
             ),
-            SceneError::ObserverInGlass(o) => write!(
-                f,
-                "observer ({}, {}, {}) is inside or on the glass: it must not satisfy 0 <= z <= {GLASS_HEIGHT} and x² + y² <= {GLASS_RADIUS}²",
-                q(o.x), q(o.y), q(o.z)
+            SceneError::StrawOutsideGlass { xp, yp } => (
+                Rule::GlassStrawOutside,
+                vec![
+                    ("x", n(*xp)),
+                    ("y", n(*yp)),
+                    ("radius", bound(STRAW_RADIUS)),
+                    ("glass", bound(GLASS_RADIUS)),
+                    ("reach", n((xp * xp + yp * yp).sqrt() + STRAW_RADIUS)),
+                ],
             ),
-            SceneError::ObserverInStraw(o) => write!(
-                f,
-                "observer ({}, {}, {}) is inside the straw where it sticks out of the glass",
-                q(o.x), q(o.y), q(o.z)
-            ),
-            SceneError::WaterIndex(n) => write!(
-                f,
-                "water index {} is not allowed: it must be a finite number >= 1",
-                q(*n)
-            ),
-            SceneError::MaxEvents(m) => write!(
-                f,
-                "event limit {m} is not allowed: it must be between 1 and {MAX_EVENTS_LIMIT}"
+            SceneError::ObserverInGlass(o) => (Rule::GlassEyeInside, at(o, true)),
+            SceneError::ObserverInStraw(o) => (Rule::GlassEyeInStraw, at(o, false)),
+            SceneError::WaterIndex(v) => (Rule::GlassWaterIndex, vec![("value", n(*v))]),
+            SceneError::MaxEvents(m) => (
+                Rule::MaxEvents,
+                vec![
+                    ("value", Param::Number(m.to_string())),
+                    ("max", Param::Number(MAX_EVENTS_LIMIT.to_string())),
+                ],
             ),
         }
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (rule, params) = self.rule();
+        f.write_str(&rule.text(&params))
     }
 }
 

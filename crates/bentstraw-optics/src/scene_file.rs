@@ -9,6 +9,7 @@
 
 use std::fmt;
 
+use crate::rule::{self, number, point, Param, Params, Rule};
 use crate::scene::{
     number_text, Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT, STRAW_RADIUS,
     WATER_INDEX,
@@ -49,7 +50,9 @@ const RIM_SAMPLES: usize = 4096;
 
 /// Why a scene file is not valid: every rule it breaks, each a line naming the key, the value
 /// and the rule (the rules that do not depend on one another are all checked, so that a file is
-/// mended in one go).
+/// mended in one go). Each is data too: the [`Rule`] (its stable code), the key, the value and
+/// the rule's parameters, so that a page can say it in its own language. The checks return it
+/// boxed: a refusal is large, and a `Result` carrying it whole would be as large when it passes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneFileError {
     /// The first broken rule's key as a TOML path (`straw[2].tilt`), empty when the text is not
@@ -59,6 +62,12 @@ pub struct SceneFileError {
     pub line: Option<usize>,
     /// The first broken rule's message.
     pub message: String,
+    /// The first broken rule.
+    pub rule: Rule,
+    /// The value refused, as the message quotes it, when the rule is about one number.
+    pub value: Option<String>,
+    /// The rule's parameters (its bounds, the positions and sizes it compares).
+    pub params: Params,
     /// The other broken rules, in the file's order.
     pub more: Vec<SceneFileError>,
 }
@@ -70,14 +79,14 @@ impl SceneFileError {
     }
 
     /// One error of the broken rules `all` (at least one).
-    fn all(mut all: Vec<SceneFileError>) -> Option<SceneFileError> {
+    fn all(mut all: Vec<SceneFileError>) -> Option<Box<SceneFileError>> {
         if all.is_empty() {
             return None;
         }
         let more: Vec<SceneFileError> = all.drain(1..).flat_map(|e| e.into_rules()).collect();
         let mut first = all.pop()?;
         first.more.extend(more);
-        Some(first)
+        Some(Box::new(first))
     }
 
     /// The broken rules, each on its own.
@@ -93,18 +102,18 @@ struct Broken(Vec<SceneFileError>);
 
 impl Broken {
     /// Keeps `check`'s refusal, if any; says whether it passed.
-    fn check(&mut self, check: Result<(), SceneFileError>) -> bool {
+    fn check(&mut self, check: Result<(), Box<SceneFileError>>) -> bool {
         match check {
             Ok(()) => true,
             Err(e) => {
-                self.0.push(e);
+                self.0.push(*e);
                 false
             }
         }
     }
 
     /// `Ok` when nothing is broken, else every broken rule.
-    fn done(self) -> Result<(), SceneFileError> {
+    fn done(self) -> Result<(), Box<SceneFileError>> {
         SceneFileError::all(self.0).map_or(Ok(()), Err)
     }
 }
@@ -124,24 +133,41 @@ impl fmt::Display for SceneFileError {
 
 impl std::error::Error for SceneFileError {}
 
-/// The refusal of `key = value` by `rule`.
-fn refuse(key: &str, value: f64, rule: &str) -> SceneFileError {
-    SceneFileError {
-        key: key.to_string(),
-        line: None,
-        message: format!("{key} = {}: {rule}", number_text(value)),
-        more: Vec::new(),
+impl SceneFileError {
+    /// The refusal of `key` (of value `value`, if the rule is about one number) by `rule` with
+    /// its parameters `params`, its message the rule's English line.
+    pub fn new(key: &str, value: Option<f64>, rule: Rule, params: Params) -> SceneFileError {
+        let value = value.map(number_text);
+        SceneFileError {
+            key: key.to_string(),
+            line: None,
+            message: rule::line(rule, key, value.as_deref(), &params),
+            rule,
+            value,
+            params,
+            more: Vec::new(),
+        }
     }
 }
 
+/// The refusal of `key = value` by `rule`.
+fn refuse(key: &str, value: f64, rule: Rule, params: Params) -> Box<SceneFileError> {
+    Box::new(SceneFileError::new(key, Some(value), rule, params))
+}
+
 /// The refusal of `key` without a single number to quote.
-fn refuse_key(key: &str, rule: &str) -> SceneFileError {
-    SceneFileError {
-        key: key.to_string(),
-        line: None,
-        message: format!("{key}: {rule}"),
-        more: Vec::new(),
-    }
+fn refuse_key(key: &str, rule: Rule, params: Params) -> Box<SceneFileError> {
+    Box::new(SceneFileError::new(key, None, rule, params))
+}
+
+/// A parameter of words quoted as they are.
+fn words(text: impl Into<String>) -> Param {
+    Param::Text(text.into())
+}
+
+/// A bound written as the messages always wrote it (`{}`: `0.000001`, not `1e-6`).
+fn bound(x: f64) -> Param {
+    Param::Number(x.to_string())
 }
 
 /// The container: a glass or a tank.
@@ -545,25 +571,28 @@ impl SceneDescription {
     /// reported at once: each object's own rules, object by object; the container first (the
     /// other rules are about fitting in it), the overlaps and the observer once every object is
     /// valid.
-    pub fn validate(&self) -> Result<(), SceneFileError> {
+    pub fn validate(&self) -> Result<(), Box<SceneFileError>> {
         self.validate_container()?;
         let mut broken = Broken::default();
         let objects = self.straws.len() + self.coins.len() + self.cards.len();
         if self.liquids.len() > MAX_LIQUIDS {
             broken.check(Err(refuse_key(
                 "liquid",
-                &format!(
-                    "the file lists {} layers: at most {MAX_LIQUIDS} are allowed, as every ray is tested against each",
-                    self.liquids.len()
-                ),
+                Rule::TooManyLiquids,
+                vec![
+                    ("count", bound(self.liquids.len() as f64)),
+                    ("max", bound(MAX_LIQUIDS as f64)),
+                ],
             )));
         }
         if objects > MAX_OBJECTS {
             broken.check(Err(refuse_key(
                 "straw, coin, card",
-                &format!(
-                    "the file lists {objects} objects: at most {MAX_OBJECTS} straws, coins and cards together are allowed, as every ray is tested against each"
-                ),
+                Rule::TooManyObjects,
+                vec![
+                    ("count", bound(objects as f64)),
+                    ("max", bound(MAX_OBJECTS as f64)),
+                ],
             )));
         }
         // Too many entries: checking them one by one is what the bound is there to prevent.
@@ -587,7 +616,7 @@ impl SceneDescription {
         broken.done()
     }
 
-    fn validate_container(&self) -> Result<(), SceneFileError> {
+    fn validate_container(&self) -> Result<(), Box<SceneFileError>> {
         match &self.container {
             Container::Glass(g) => {
                 positive("container.radius", g.radius)?;
@@ -599,28 +628,20 @@ impl SceneDescription {
                     return Err(refuse(
                         "container.wall",
                         g.wall,
-                        &format!(
-                            "the wall must be thinner than the glass's radius {} (something must fit inside)",
-                            number_text(g.radius)
-                        ),
+                        Rule::WallThinner,
+                        vec![("radius", number(g.radius))],
                     ));
                 }
                 if g.bottom >= g.height {
                     return Err(refuse(
                         "container.bottom",
                         g.bottom,
-                        &format!(
-                            "the bottom must be thinner than the glass's height {}",
-                            number_text(g.height)
-                        ),
+                        Rule::BottomThinner,
+                        vec![("height", number(g.height))],
                     ));
                 }
                 if g.index < 1.0 {
-                    return Err(refuse(
-                        "container.index",
-                        g.index,
-                        "a refractive index must be >= 1",
-                    ));
+                    return Err(refuse("container.index", g.index, Rule::IndexMin, vec![]));
                 }
             }
             Container::Tank(t) => {
@@ -645,42 +666,30 @@ impl SceneDescription {
     }
 
     /// Liquid `i`'s rules, with the top of the last good layer below it at `below`.
-    fn validate_liquid(&self, i: usize, l: &Liquid, below: f64) -> Result<(), SceneFileError> {
+    fn validate_liquid(&self, i: usize, l: &Liquid, below: f64) -> Result<(), Box<SceneFileError>> {
         let floor = self.container.floor();
         let height = self.container.height();
         {
             let key = |k: &str| format!("liquid[{}].{k}", i + 1);
             finite(&key("index"), l.index)?;
             if l.index < 1.0 {
-                return Err(refuse(
-                    &key("index"),
-                    l.index,
-                    "a refractive index must be >= 1",
-                ));
+                return Err(refuse(&key("index"), l.index, Rule::IndexMin, vec![]));
             }
             length(&key("top"), l.top)?;
             if l.top <= below {
-                let rule = if i == 0 {
-                    format!(
-                        "the liquid's top must be above the floor at z = {}",
-                        number_text(floor)
-                    )
+                let (rule, params) = if i == 0 {
+                    (Rule::LiquidAboveFloor, vec![("floor", number(floor))])
                 } else {
-                    format!(
-                        "each liquid's top must be above the top of the layer below it ({})",
-                        number_text(below)
-                    )
+                    (Rule::LiquidAboveLayer, vec![("below", number(below))])
                 };
-                return Err(refuse(&key("top"), l.top, &rule));
+                return Err(refuse(&key("top"), l.top, rule, params));
             }
             if l.top > height {
                 return Err(refuse(
                     &key("top"),
                     l.top,
-                    &format!(
-                        "the liquid's top must not be above the walls' height {}",
-                        number_text(height)
-                    ),
+                    Rule::LiquidBelowRim,
+                    vec![("height", number(height))],
                 ));
             }
         }
@@ -688,7 +697,7 @@ impl SceneDescription {
     }
 
     /// Straw `i`'s own rules.
-    fn validate_straw(&self, i: usize, s: &Straw) -> Result<(), SceneFileError> {
+    fn validate_straw(&self, i: usize, s: &Straw) -> Result<(), Box<SceneFileError>> {
         let floor = self.container.floor();
         {
             let key = |k: &str| format!("straw[{}].{k}", i + 1);
@@ -699,19 +708,14 @@ impl SceneDescription {
             positive(&key("radius"), s.radius)?;
             positive(&key("length"), s.length)?;
             if !(0.0..90.0).contains(&s.tilt_deg) {
-                return Err(refuse(
-                    &key("tilt"),
-                    s.tilt_deg,
-                    "the tilt from the vertical must satisfy 0 <= tilt < 90 (degrees)",
-                ));
+                return Err(refuse(&key("tilt"), s.tilt_deg, Rule::TiltRange, vec![]));
             }
             if s.tilt_deg > 0.0 && s.tilt_deg < MIN_TILT_DEG {
                 return Err(refuse(
                     &key("tilt"),
                     s.tilt_deg,
-                    &format!(
-                        "a tilt below {MIN_TILT_DEG}° leans the straw by less than a nanometre: write tilt = 0 for an upright straw"
-                    ),
+                    Rule::TiltTiny,
+                    vec![("min", bound(MIN_TILT_DEG))],
                 ));
             }
             // Upright, it stands on its whole cap: the cap's centre must be on the floor (its
@@ -724,11 +728,8 @@ impl SceneDescription {
             if !self.container.holds(foot.x, foot.y) {
                 return Err(refuse_key(
                     &format!("straw[{}]", i + 1),
-                    &format!(
-                        "its foot, where its bottom rim rests, at ({}, {}) is not on the floor inside the walls",
-                        number_text(foot.x),
-                        number_text(foot.y)
-                    ),
+                    Rule::StrawFoot,
+                    vec![("x", number(foot.x)), ("y", number(foot.y))],
                 ));
             }
             let inside = if s.tilt_deg == 0.0 {
@@ -741,13 +742,13 @@ impl SceneDescription {
             if !inside {
                 return Err(refuse_key(
                     &format!("straw[{}]", i + 1),
-                    &format!(
-                        "standing at ({}, {}) with radius {} and tilt {}°, it pierces the container's wall below the rim",
-                        number_text(s.x),
-                        number_text(s.y),
-                        number_text(s.radius),
-                        number_text(s.tilt_deg)
-                    ),
+                    Rule::StrawPierces,
+                    vec![
+                        ("x", number(s.x)),
+                        ("y", number(s.y)),
+                        ("radius", number(s.radius)),
+                        ("tilt", number(s.tilt_deg)),
+                    ],
                 ));
             }
         }
@@ -755,7 +756,7 @@ impl SceneDescription {
     }
 
     /// Coin `i`'s own rules.
-    fn validate_coin(&self, i: usize, c: &Coin) -> Result<(), SceneFileError> {
+    fn validate_coin(&self, i: usize, c: &Coin) -> Result<(), Box<SceneFileError>> {
         let floor = self.container.floor();
         {
             let key = |k: &str| format!("coin[{}].{k}", i + 1);
@@ -766,19 +767,20 @@ impl SceneDescription {
             if !self.container.holds_disk(c.x, c.y, c.radius) {
                 return Err(refuse_key(
                     &format!("coin[{}]", i + 1),
-                    &format!(
-                        "at ({}, {}) with radius {} it does not lie on the floor inside the walls",
-                        number_text(c.x),
-                        number_text(c.y),
-                        number_text(c.radius)
-                    ),
+                    Rule::CoinOutside,
+                    vec![
+                        ("x", number(c.x)),
+                        ("y", number(c.y)),
+                        ("radius", number(c.radius)),
+                    ],
                 ));
             }
             if floor + c.thickness > self.container.height() {
                 return Err(refuse(
                     &key("thickness"),
                     c.thickness,
-                    "the coin must not stand higher than the walls",
+                    Rule::CoinBelowRim,
+                    vec![],
                 ));
             }
         }
@@ -786,7 +788,7 @@ impl SceneDescription {
     }
 
     /// Card `i`'s own rules.
-    fn validate_card(&self, i: usize, c: &Card) -> Result<(), SceneFileError> {
+    fn validate_card(&self, i: usize, c: &Card) -> Result<(), Box<SceneFileError>> {
         {
             let key = |k: &str| format!("card[{}].{k}", i + 1);
             for v in c.center.to_array() {
@@ -798,16 +800,12 @@ impl SceneDescription {
             let (low, high) = (c.center.z - c.height / 2.0, c.center.z + c.height / 2.0);
             let (a, b) = c.ends();
             if high > 0.0 && low < self.container.height() && self.container.crossed_by(a, b) {
+                let mut params = point(c.center);
+                params.extend([("width", number(c.width)), ("height", number(c.height))]);
                 return Err(refuse_key(
                     &format!("card[{}]", i + 1),
-                    &format!(
-                        "centred at ({}, {}, {}), {} wide and {} high, it cuts through the container",
-                        number_text(c.center.x),
-                        number_text(c.center.y),
-                        number_text(c.center.z),
-                        number_text(c.width),
-                        number_text(c.height)
-                    ),
+                    Rule::CardCuts,
+                    params,
                 ));
             }
         }
@@ -818,7 +816,7 @@ impl SceneDescription {
     /// may not cross. A straw's footprint is taken as the disk of its radius about the point
     /// below its bottom cap's centre, which holds the cap's shadow (an ellipse
     /// `radius·cos(tilt)` by `radius`) whatever its tilt.
-    fn validate_overlaps(&self) -> Result<(), SceneFileError> {
+    fn validate_overlaps(&self) -> Result<(), Box<SceneFileError>> {
         let footprints: Vec<(String, f64, f64, f64)> = self
             .straws
             .iter()
@@ -837,12 +835,12 @@ impl SceneDescription {
                 if gap < a.3 + b.3 {
                     return Err(refuse_key(
                         &b.0,
-                        &format!(
-                            "it overlaps {} on the floor: their centres are {} apart, less than their radii's sum {}",
-                            a.0,
-                            number_text(gap),
-                            number_text(a.3 + b.3)
-                        ),
+                        Rule::FloorOverlap,
+                        vec![
+                            ("other", words(a.0.clone())),
+                            ("gap", number(gap)),
+                            ("sum", number(a.3 + b.3)),
+                        ],
                     ));
                 }
             }
@@ -871,12 +869,12 @@ impl SceneDescription {
                 if gap < c.radius {
                     return Err(refuse_key(
                         &format!("coin[{}]", j + 1),
-                        &format!(
-                            "straw[{}] leans on it: within the coin's thickness the straw comes {} from the coin's centre, less than its radius {}",
-                            i + 1,
-                            number_text(gap),
-                            number_text(c.radius)
-                        ),
+                        Rule::CoinLeanedOn,
+                        vec![
+                            ("other", words(format!("straw[{}]", i + 1))),
+                            ("gap", number(gap)),
+                            ("radius", number(c.radius)),
+                        ],
                     ));
                 }
             }
@@ -896,12 +894,12 @@ impl SceneDescription {
                 if gap < a.radius + b.radius {
                     return Err(refuse_key(
                         &format!("straw[{}]", j + 1),
-                        &format!(
-                            "it crosses straw[{}]: their axes pass {} apart, less than their radii's sum {}",
-                            i + 1,
-                            number_text(gap),
-                            number_text(a.radius + b.radius)
-                        ),
+                        Rule::StrawsCross,
+                        vec![
+                            ("other", words(format!("straw[{}]", i + 1))),
+                            ("gap", number(gap)),
+                            ("sum", number(a.radius + b.radius)),
+                        ],
                     ));
                 }
             }
@@ -909,7 +907,7 @@ impl SceneDescription {
         Ok(())
     }
 
-    fn validate_observer(&self) -> Result<(), SceneFileError> {
+    fn validate_observer(&self) -> Result<(), Box<SceneFileError>> {
         match &self.observer {
             Some(o) => self.check_observer(o),
             None => Ok(()),
@@ -918,43 +916,42 @@ impl SceneDescription {
 
     /// Checks `o` by the rules an `[observer]` of this scene obeys (finite, outside the container
     /// and the straws, its target away from its eye), as if the file gave it.
-    pub fn check_observer(&self, o: &Observer) -> Result<(), SceneFileError> {
+    pub fn check_observer(&self, o: &Observer) -> Result<(), Box<SceneFileError>> {
         for (name, p) in [("position", o.position), ("target", o.target)] {
             for v in p.to_array() {
                 length(&format!("observer.{name}"), v)?;
             }
         }
         let p = o.position;
-        let at = format!(
-            "({}, {}, {})",
-            number_text(p.x),
-            number_text(p.y),
-            number_text(p.z)
-        );
+        let at = |more: Option<String>| {
+            let mut params = point(p);
+            params.extend(more.map(|m| ("other", words(m))));
+            params
+        };
         if self.container.encloses(p) {
             return Err(refuse_key(
                 "observer.position",
-                &format!("{at} is inside or on the container: the eye must be outside it"),
+                Rule::EyeInContainer,
+                at(None),
             ));
         }
         let floor = self.container.floor();
         if let Some(i) = self.straws.iter().position(|s| s.contains(floor, p)) {
             return Err(refuse_key(
                 "observer.position",
-                &format!("{at} is inside straw[{}]", i + 1),
+                Rule::EyeInStraw,
+                at(Some(format!("straw[{}]", i + 1))),
             ));
         }
         if let Some(i) = self.cards.iter().position(|c| c.touches(p)) {
             return Err(refuse_key(
                 "observer.position",
-                &format!("{at} is on card[{}]: the eye must be off it", i + 1),
+                Rule::EyeOnCard,
+                at(Some(format!("card[{}]", i + 1))),
             ));
         }
         if o.target == p {
-            return Err(refuse_key(
-                "observer.target",
-                &format!("{at} is the observer's own position: it must look somewhere else"),
-            ));
+            return Err(refuse_key("observer.target", Rule::TargetAtEye, at(None)));
         }
         Ok(())
     }
@@ -1107,16 +1104,16 @@ impl SceneDescription {
 }
 
 /// Checks that `value` is finite.
-fn finite(key: &str, value: f64) -> Result<(), SceneFileError> {
+fn finite(key: &str, value: f64) -> Result<(), Box<SceneFileError>> {
     if value.is_finite() {
         Ok(())
     } else {
-        Err(refuse(key, value, "it must be a finite number"))
+        Err(refuse(key, value, Rule::Finite, vec![]))
     }
 }
 
 /// Checks that a length or coordinate is finite and at most [`MAX_LENGTH`] in size.
-fn length(key: &str, value: f64) -> Result<(), SceneFileError> {
+fn length(key: &str, value: f64) -> Result<(), Box<SceneFileError>> {
     finite(key, value)?;
     if value.abs() <= MAX_LENGTH {
         Ok(())
@@ -1124,13 +1121,14 @@ fn length(key: &str, value: f64) -> Result<(), SceneFileError> {
         Err(refuse(
             key,
             value,
-            &format!("a length or position must be at most {MAX_LENGTH} in size (metres)"),
+            Rule::LengthMax,
+            vec![("max", bound(MAX_LENGTH))],
         ))
     }
 }
 
 /// Checks that a size is finite, at least [`MIN_SIZE`] and at most [`MAX_LENGTH`].
-fn positive(key: &str, value: f64) -> Result<(), SceneFileError> {
+fn positive(key: &str, value: f64) -> Result<(), Box<SceneFileError>> {
     finite(key, value)?;
     if (MIN_SIZE..=MAX_LENGTH).contains(&value) {
         Ok(())
@@ -1138,25 +1136,27 @@ fn positive(key: &str, value: f64) -> Result<(), SceneFileError> {
         Err(refuse(
             key,
             value,
-            &format!("a size must be between {MIN_SIZE} and {MAX_LENGTH} (metres)"),
+            Rule::SizeRange,
+            vec![("min", bound(MIN_SIZE)), ("max", bound(MAX_LENGTH))],
         ))
     } else {
-        Err(refuse(key, value, "a size must be > 0 (metres)"))
+        Err(refuse(key, value, Rule::SizePositive, vec![]))
     }
 }
 
 /// Checks that a thickness is finite and 0, or a size between [`MIN_SIZE`] and [`MAX_LENGTH`].
-fn at_least_zero(key: &str, value: f64) -> Result<(), SceneFileError> {
+fn at_least_zero(key: &str, value: f64) -> Result<(), Box<SceneFileError>> {
     finite(key, value)?;
     if value < 0.0 {
-        Err(refuse(key, value, "a thickness must be >= 0 (metres)"))
+        Err(refuse(key, value, Rule::ThicknessPositive, vec![]))
     } else if value == 0.0 || (MIN_SIZE..=MAX_LENGTH).contains(&value) {
         Ok(())
     } else {
         Err(refuse(
             key,
             value,
-            &format!("a thickness must be 0, or between {MIN_SIZE} and {MAX_LENGTH} (metres)"),
+            Rule::ThicknessRange,
+            vec![("min", bound(MIN_SIZE)), ("max", bound(MAX_LENGTH))],
         ))
     }
 }

@@ -5,6 +5,7 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use bentstraw_optics::scene::{clip_text, SceneError};
+use bentstraw_optics::scene_file::SceneFileError;
 
 /// Longest path quoted in a message, in characters.
 const SHOWN_PATH_MAX: usize = 100;
@@ -32,6 +33,16 @@ pub enum Error {
     Encode(String),
     /// The scene's values break the physics library's rules.
     Scene(SceneError),
+    /// The scene file `name` breaks the rules of scene files (`flagged`: once the flags that
+    /// override it were applied): `{name}: {error}`, every broken rule as data in `error`.
+    SceneFile {
+        /// The file's name as messages show it.
+        name: String,
+        /// Whether the rules were broken by the flags' values rather than the file's own.
+        flagged: bool,
+        /// Every broken rule.
+        error: Box<SceneFileError>,
+    },
 }
 
 impl fmt::Display for Error {
@@ -44,6 +55,16 @@ impl fmt::Display for Error {
                 source,
             } => write!(f, "cannot {action} {}: {source}", shown(path)),
             Error::Scene(e) => write!(f, "{e}"),
+            Error::SceneFile {
+                name,
+                flagged: false,
+                error,
+            } => write!(f, "{name}: {error}"),
+            Error::SceneFile {
+                name,
+                flagged: true,
+                error,
+            } => write!(f, "{name} with the flags given: {error}"),
         }
     }
 }

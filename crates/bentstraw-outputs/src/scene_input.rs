@@ -201,9 +201,10 @@ impl SceneSource {
                 .filter(|t| *t != position)
                 .unwrap_or(position + Vec3::Z),
         });
-        let flagged = |e: bentstraw_optics::scene_file::SceneFileError| {
-            let message = e.to_string();
-            Error::Refused(format!("{name} with the flags given: {message}"))
+        let flagged = |error| Error::SceneFile {
+            name: name.clone(),
+            flagged: true,
+            error,
         };
         // The world of the scene as the flags make it, checked by every rule of a file.
         let world = World::new(&checked, self.max_events).map_err(flagged)?;
@@ -228,8 +229,11 @@ pub fn file_world(name: &str, text: &str, max_events: u32) -> Result<Loaded> {
     Ok(Loaded {
         name: Some(name.to_string()),
         assignment: None,
-        world: World::new(&description, max_events)
-            .map_err(|e| Error::Refused(format!("{name}: {e}")))?,
+        world: World::new(&description, max_events).map_err(|error| Error::SceneFile {
+            name: name.to_string(),
+            flagged: false,
+            error,
+        })?,
         description: Some(description),
         observer: observer.position,
         target: Some(observer.target),
@@ -286,5 +290,9 @@ pub fn parse_scene_text(name: &str, text: &str) -> Result<SceneDescription> {
             text.len()
         ));
     }
-    SceneDescription::from_toml(text).map_err(|e| Error::Refused(format!("{name}: {e}")))
+    SceneDescription::from_toml(text).map_err(|error| Error::SceneFile {
+        name: name.to_string(),
+        flagged: false,
+        error,
+    })
 }

@@ -140,7 +140,7 @@ fn toml_path(path: &serde_path_to_error::Path) -> String {
 }
 
 /// TOML's error as one line: where (line, column), which key, and what is wrong.
-fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError {
+fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> Box<SceneFileError> {
     let line = e.span().map(|span| {
         let before = &text.as_bytes()[..span.start.min(text.len())];
         before.iter().filter(|&&b| b == b'\n').count() + 1
@@ -155,7 +155,7 @@ fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError 
         .join("; ");
     let what = clip_text(&what, 200);
     // serde names a missing field from the table that lacks it: say the key's whole path.
-    let (key, what) = match what
+    let mut e = match what
         .strip_prefix("missing field `")
         .and_then(|rest| rest.strip_suffix('`'))
     {
@@ -165,28 +165,26 @@ fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> SceneFileError 
             } else {
                 format!("{key}.{field}")
             };
-            (full, " is missing: it is required".to_string())
+            Box::new(SceneFileError::new(&full, None, Rule::Required, vec![]))
         }
-        None if key.is_empty() => (key, what),
-        None => (key, format!(": {what}")),
+        None => Box::new(SceneFileError::new(
+            &key,
+            None,
+            Rule::Syntax,
+            vec![("what", words(what))],
+        )),
     };
-    let place = match line {
-        Some(l) => format!("line {l}: "),
-        None => String::new(),
-    };
-    let message = format!("{place}{key}{what}");
-    SceneFileError {
-        key,
-        line,
-        message,
-        more: Vec::new(),
+    if let Some(l) = line {
+        e.message = format!("line {l}: {}", e.message);
     }
+    e.line = line;
+    e
 }
 
 impl SceneDescription {
     /// Reads a scene file's text: TOML of the scene-file format, defaults applied, every rule
     /// checked ([`SceneDescription::validate`]).
-    pub fn from_toml(text: &str) -> Result<SceneDescription, SceneFileError> {
+    pub fn from_toml(text: &str) -> Result<SceneDescription, Box<SceneFileError>> {
         let de =
             toml::Deserializer::parse(text).map_err(|e| syntax_error(text, String::new(), &e))?;
         let file: FileScene = serde_path_to_error::deserialize(de).map_err(|e| {
@@ -201,45 +199,38 @@ impl SceneDescription {
     /// The file's form with its defaults filled in; the keys of the other shape are refused here,
     /// as the description has no place for them. Every key missing or misplaced is reported at
     /// once.
-    fn from_file(file: FileScene) -> Result<SceneDescription, SceneFileError> {
+    fn from_file(file: FileScene) -> Result<SceneDescription, Box<SceneFileError>> {
         let mut broken = Vec::new();
         // A required key: its value, or a refusal kept and a stand-in to go on with.
-        let need = |key: String, rule: &str| refuse_key(&key, rule);
-        let required = "is missing: it is required";
+        let need = |key: String| refuse_key(&key, Rule::Required, vec![]);
         let get = |key: String, value: Option<f64>, broken: &mut Vec<SceneFileError>| {
             value.unwrap_or_else(|| {
-                broken.push(need(key, required));
+                broken.push(*need(key));
                 0.0
             })
         };
         let Some(c) = &file.container else {
-            return Err(refuse_key(
-                "container",
-                "is missing: a scene needs its [container]",
-            ));
+            return Err(refuse_key("container", Rule::ContainerMissing, vec![]));
         };
-        let given = |key: &str, value: Option<f64>, rule: &str, broken: &mut Vec<_>| {
+        let given = |key: &str, value: Option<f64>, rule: Rule, broken: &mut Vec<_>| {
             if let Some(v) = value {
-                broken.push(refuse(&format!("container.{key}"), v, rule));
+                broken.push(*refuse(&format!("container.{key}"), v, rule, vec![]));
             }
         };
-        let shape_of = |key: &str, value: Option<f64>, shape: &str, broken: &mut Vec<_>| {
+        let shape_of = |key: &str, value: Option<f64>, rule: Rule, broken: &mut Vec<_>| {
             value.unwrap_or_else(|| {
-                broken.push(refuse_key(
-                    &format!("container.{key}"),
-                    &format!("is missing: a {shape} needs it"),
-                ));
+                broken.push(*refuse_key(&format!("container.{key}"), rule, vec![]));
                 0.0
             })
         };
         let height = get("container.height".into(), c.height, &mut broken);
         let container = match c.shape.as_deref() {
             Some("glass") => {
-                let not_glass = "a glass has no half widths (they are a tank's): give its radius";
+                let not_glass = Rule::GlassNoHalfWidths;
                 given("half_x", c.half_x, not_glass, &mut broken);
                 given("half_y", c.half_y, not_glass, &mut broken);
                 Some(Container::Glass(Glass {
-                    radius: shape_of("radius", c.radius, "glass", &mut broken),
+                    radius: shape_of("radius", c.radius, Rule::GlassNeeds, &mut broken),
                     height,
                     wall: c.wall.unwrap_or(0.0),
                     bottom: c.bottom.unwrap_or(0.0),
@@ -247,43 +238,26 @@ impl SceneDescription {
                 }))
             }
             Some("tank") => {
-                given(
-                    "radius",
-                    c.radius,
-                    "a tank has no radius (a glass has): give its half widths half_x and half_y",
-                    &mut broken,
-                );
-                let thin =
-                    "a tank's walls and bottom have zero thickness (only a glass's may be thick)";
-                given("wall", c.wall, thin, &mut broken);
-                given("bottom", c.bottom, thin, &mut broken);
-                given(
-                    "index",
-                    c.index,
-                    "a tank's walls have zero thickness, so it has no index of its own",
-                    &mut broken,
-                );
+                given("radius", c.radius, Rule::TankNoRadius, &mut broken);
+                given("wall", c.wall, Rule::TankThin, &mut broken);
+                given("bottom", c.bottom, Rule::TankThin, &mut broken);
+                given("index", c.index, Rule::TankIndex, &mut broken);
                 Some(Container::Tank(Tank {
-                    half_x: shape_of("half_x", c.half_x, "tank", &mut broken),
-                    half_y: shape_of("half_y", c.half_y, "tank", &mut broken),
+                    half_x: shape_of("half_x", c.half_x, Rule::TankNeeds, &mut broken),
+                    half_y: shape_of("half_y", c.half_y, Rule::TankNeeds, &mut broken),
                     height,
                 }))
             }
             Some(other) => {
-                broken.push(refuse_key(
+                broken.push(*refuse_key(
                     "container.shape",
-                    &format!(
-                        "\"{}\" is not a shape: it must be \"glass\" or \"tank\"",
-                        clip_text(other, QUOTED_MAX)
-                    ),
+                    Rule::ShapeUnknown,
+                    vec![("shape", words(clip_text(other, QUOTED_MAX)))],
                 ));
                 None
             }
             None => {
-                broken.push(refuse_key(
-                    "container.shape",
-                    "is missing: it must be \"glass\" or \"tank\"",
-                ));
+                broken.push(*refuse_key("container.shape", Rule::ShapeMissing, vec![]));
                 None
             }
         };
@@ -294,7 +268,7 @@ impl SceneDescription {
             .map(|(i, l)| {
                 let key = |k: &str| format!("liquid[{}].{k}", i + 1);
                 if l.name.is_none() {
-                    broken.push(need(key("name"), required));
+                    broken.push(*need(key("name")));
                 }
                 Liquid {
                     name: l.name.unwrap_or_default(),
@@ -343,18 +317,16 @@ impl SceneDescription {
                     "arrow" => Picture::Arrow,
                     "none" => Picture::None,
                     other => {
-                        broken.push(refuse_key(
+                        broken.push(*refuse_key(
                             &key("picture"),
-                            &format!(
-                                "\"{}\" is not a picture: it must be \"arrow\" or \"none\"",
-                                clip_text(other, QUOTED_MAX)
-                            ),
+                            Rule::PictureUnknown,
+                            vec![("picture", words(clip_text(other, QUOTED_MAX)))],
                         ));
                         Picture::None
                     }
                 };
                 if c.center.is_none() {
-                    broken.push(need(key("center"), required));
+                    broken.push(*need(key("center")));
                 }
                 Card {
                     center: Vec3::from_array(c.center.unwrap_or_default()),
@@ -367,7 +339,7 @@ impl SceneDescription {
             .collect();
         let observer = file.observer.as_ref().map(|o| {
             if o.position.is_none() {
-                broken.push(need("observer.position".into(), required));
+                broken.push(*need("observer.position".into()));
             }
             (o.position.unwrap_or_default(), o.target)
         });
@@ -375,10 +347,7 @@ impl SceneDescription {
             return Err(e);
         }
         let Some(container) = container else {
-            return Err(refuse_key(
-                "container.shape",
-                "it must be \"glass\" or \"tank\"",
-            ));
+            return Err(refuse_key("container.shape", Rule::ShapeMissing, vec![]));
         };
         // Without a target, the eye looks at the middle of the container.
         let middle = Vec3::new(0.0, 0.0, container.height() / 2.0);

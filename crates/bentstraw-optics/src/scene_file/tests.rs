@@ -938,3 +938,99 @@ proptest::proptest! {
         }
     }
 }
+
+/// A file breaking each rule of scene files, with the rule's code (every code has one).
+pub(crate) fn broken_samples() -> Vec<(&'static str, String)> {
+    let glass = |rest: &str| glass_with(rest);
+    let container = |c: &str| format!("[container]\n{c}\n");
+    let tank = |c: &str| {
+        container(&format!(
+            "shape = \"tank\"\nhalf_x = 0.2\nhalf_y = 0.2\nheight = 0.3\n{c}"
+        ))
+    };
+    let glass_c = |c: &str| {
+        container(&format!(
+            "shape = \"glass\"\nradius = 0.04\nheight = 0.2\n{c}"
+        ))
+    };
+    let layers: String = (0..MAX_LIQUIDS + 1)
+        .map(|k| {
+            format!(
+                "[[liquid]]\nname = \"l\"\nindex = 1.3\ntop = {}\n",
+                0.001 * (k + 1) as f64
+            )
+        })
+        .collect();
+    let coins: String = (0..MAX_OBJECTS + 1)
+        .map(|_| "[[coin]]\nx = 0\ny = 0\n")
+        .collect();
+    vec![
+        ("finite", glass("[[straw]]\nx = nan\ny = 0\n")),
+        ("length.max", glass("[[straw]]\nx = 2e6\ny = 0\n")),
+        ("size.range", glass("[[straw]]\nx = 0\ny = 0\nradius = 2e6\n")),
+        ("size.positive", glass("[[straw]]\nx = 0\ny = 0\nradius = -0.005\n")),
+        ("thickness.positive", glass_c("wall = -0.001")),
+        ("thickness.range", glass_c("wall = 1e-9")),
+        ("wall.thinner", glass_c("wall = 0.05")),
+        ("bottom.thinner", glass_c("bottom = 0.3")),
+        ("index.min", glass("").replace("index = 1.333", "index = 0.8")),
+        ("liquid.above-floor", glass("").replace("top = 0.15", "top = 0")),
+        ("liquid.above-layer", glass("[[liquid]]\nname = \"oil\"\nindex = 1.47\ntop = 0.1\n")),
+        ("liquid.below-rim", glass("").replace("top = 0.15", "top = 0.3")),
+        ("liquid.too-many", glass_c("") + &layers),
+        ("objects.too-many", tank("") + &coins),
+        ("tilt.range", glass("[[straw]]\nx = 0\ny = 0\ntilt = 95\n")),
+        ("tilt.tiny", glass("[[straw]]\nx = 0\ny = 0\ntilt = 1e-9\n")),
+        ("straw.foot", glass("[[straw]]\nx = 0.05\ny = 0\n")),
+        ("straw.pierces", glass("[[straw]]\nx = 0.038\ny = 0\n")),
+        ("coin.outside", glass("[[coin]]\nx = 0.038\ny = 0\n")),
+        ("coin.below-rim", glass("[[coin]]\nx = 0\ny = 0\nthickness = 0.3\n")),
+        ("card.cuts", glass("[[card]]\ncenter = [0, 0, 0.1]\nwidth = 0.05\nheight = 0.05\n")),
+        ("floor.overlap", glass("[[straw]]\nx = 0\ny = 0\n[[straw]]\nx = 0.002\ny = 0\n")),
+        ("coin.leaned-on", tank("") + "[[straw]]\nx = 0\ny = 0\ntilt = 80\nlength = 0.1\n[[coin]]\nx = 0.0201\ny = 0\n"),
+        ("straws.cross", glass("[[straw]]\nx = -0.012\ny = 0\ntilt = 5\n[[straw]]\nx = 0.012\ny = 0\ntilt = 5\nazimuth = 180\n")),
+        ("observer.in-container", glass("[observer]\nposition = [0, 0, 0.1]\n")),
+        ("observer.in-straw", glass("[[straw]]\nx = 0\ny = 0\n[observer]\nposition = [0, 0, 0.22]\n")),
+        ("observer.on-card", glass("[[card]]\ncenter = [0.2, 0, 0.1]\nwidth = 0.05\nheight = 0.05\n[observer]\nposition = [0.2, 0, 0.1]\n")),
+        ("observer.target-at-eye", glass("[observer]\nposition = [0.3, 0, 0.1]\ntarget = [0.3, 0, 0.1]\n")),
+        ("required", glass("[[straw]]\nx = 0\n")),
+        ("container.missing", "[[straw]]\nx = 0\ny = 0\n".to_string()),
+        ("container.glass-needs", container("shape = \"glass\"\nheight = 0.2")),
+        ("container.tank-needs", container("shape = \"tank\"\nhalf_y = 0.1\nheight = 0.2")),
+        ("container.glass-half-widths", glass_c("half_x = 0.1")),
+        ("container.tank-radius", tank("radius = 0.1")),
+        ("container.tank-thin", tank("wall = 0.001")),
+        ("container.tank-index", tank("index = 1.5")),
+        ("shape.unknown", container("shape = \"cone\"\nheight = 0.2")),
+        ("shape.missing", container("height = 0.2")),
+        ("picture.unknown", glass("[[card]]\ncenter = [0.2, 0, 0.1]\nwidth = 0.05\nheight = 0.05\npicture = \"cat\"\n")),
+        ("toml.syntax", glass("[[straw]]\nx = 0\ny = 0\ntilt = \"steep\"\n")),
+    ]
+}
+
+/// Each sample breaks the rule it is listed with, first, and its message is that rule's line;
+/// every rule of scene files has a sample.
+#[test]
+fn every_rule_is_refused_with_its_code_and_its_own_words() {
+    let samples = broken_samples();
+    for (code, text) in &samples {
+        let e = SceneDescription::from_toml(text).expect_err(code);
+        assert_eq!(e.rule.code(), *code, "{}", e.message);
+        let line = rule::line(e.rule, &e.key, e.value.as_deref(), &e.params);
+        let place = e.line.map_or(String::new(), |l| format!("line {l}: "));
+        assert_eq!(e.message, place + &line, "{code}");
+        for (name, _) in &e.params {
+            assert!(
+                e.rule.template().contains(&format!("{{{name}}}")),
+                "{code}: {name}"
+            );
+        }
+    }
+    for r in Rule::ALL.iter().filter(|r| !r.code().starts_with("glass.")) {
+        assert!(
+            samples.iter().any(|(c, _)| c == &r.code()),
+            "no sample breaks {}",
+            r.code()
+        );
+    }
+}

@@ -262,7 +262,7 @@ impl World {
     /// checked here as a file's is when read). A face between media of the same index is no
     /// interface (light crosses it unbent, and it is no event): a glass of index 1 traces
     /// exactly like walls of no thickness.
-    pub fn new(scene: &SceneDescription, max_events: u32) -> Result<World, SceneFileError> {
+    pub fn new(scene: &SceneDescription, max_events: u32) -> Result<World, Box<SceneFileError>> {
         scene.validate()?;
         Ok(World::build(scene, max_events, SameIndex::Dropped))
     }

@@ -371,10 +371,13 @@ impl App {
             return respond(api::handle(path, query, &mut Frame::default()));
         }
         // A query that breaks a rule is refused here, without waiting for a worker.
-        let parsed = api::parse_query(query).and_then(|q| api::View::from_query(&q).map(|_| q));
+        // (A scene's broken rules go as data, as the page's own engine sends them.)
+        let parsed = api::parse_query(query)
+            .map_err(api::Refused::from)
+            .and_then(|q| api::View::checked(&q).map(|_| q));
         let q = match parsed {
             Ok(q) => q,
-            Err(e) => return respond(Reply::text(400, e)),
+            Err(e) => return respond(e.reply()),
         };
         let chan = q
             .get("chan")

@@ -1,0 +1,236 @@
+//! The rules a scene may break, each with a stable code and its English text, listed once here:
+//! a refusal is data (the rule, the key, the value, the rule's numbers), and its English message
+//! is the rule's text with those filled in. A page shows the same refusal in its own language
+//! from the code and the parameters; the command line prints the English.
+
+/// One parameter of a broken rule: a number as the message writes it, or words quoted as they
+/// are (another object's key, a name from the file, a parser's own message).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Param {
+    /// A number, written as the English message writes it (`0.04`, `1e-7`).
+    Number(String),
+    /// Words quoted as they are, never translated.
+    Text(String),
+}
+
+impl Param {
+    /// The parameter's text as the English message shows it.
+    pub fn text(&self) -> &str {
+        match self {
+            Param::Number(t) | Param::Text(t) => t,
+        }
+    }
+}
+
+/// The named parameters of a broken rule, in the order its text names them.
+pub type Params = Vec<(&'static str, Param)>;
+
+/// `template` with each `{name}` replaced by the parameter of that name (`{name}` left as it is
+/// when there is none), as the page's `t(key, params)` does.
+pub fn fill(template: &str, params: &[(&str, &str)]) -> String {
+    let mut out = String::with_capacity(template.len() + 16);
+    let mut rest = template;
+    while let Some(open) = rest.find('{') {
+        out.push_str(&rest[..open]);
+        let after = &rest[open + 1..];
+        let name_end = after
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(after.len());
+        let name = &after[..name_end];
+        match (
+            after[name_end..].starts_with('}'),
+            params.iter().find(|p| p.0 == name),
+        ) {
+            (true, Some((_, value))) if !name.is_empty() => {
+                out.push_str(value);
+                rest = &after[name_end + 1..];
+            }
+            _ => {
+                out.push('{');
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+macro_rules! rules {
+    ($($(#[doc = $doc:literal])+ $name:ident = $code:literal, $text:literal;)+) => {
+        /// A rule of scenes and scene files, by its stable code ([`Rule::code`]).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Rule {
+            $($(#[doc = $doc])+ $name,)+
+        }
+
+        impl Rule {
+            /// Every rule, each once.
+            pub const ALL: &'static [Rule] = &[$(Rule::$name),+];
+
+            /// Its stable code, which a page looks its text up by (`size.range`).
+            pub fn code(self) -> &'static str {
+                match self {
+                    $(Rule::$name => $code,)+
+                }
+            }
+
+            /// Its English text, `{name}` where a parameter goes.
+            pub fn template(self) -> &'static str {
+                match self {
+                    $(Rule::$name => $text,)+
+                }
+            }
+        }
+    };
+}
+
+rules! {
+    /// A number is NaN or infinite.
+    Finite = "finite", "it must be a finite number";
+    /// A length or coordinate is too large.
+    LengthMax = "length.max", "a length or position must be at most {max} in size (metres)";
+    /// A size is outside its range.
+    SizeRange = "size.range", "a size must be between {min} and {max} (metres)";
+    /// A size is 0 or negative.
+    SizePositive = "size.positive", "a size must be > 0 (metres)";
+    /// A thickness is negative.
+    ThicknessPositive = "thickness.positive", "a thickness must be >= 0 (metres)";
+    /// A thickness is neither 0 nor in the range of sizes.
+    ThicknessRange = "thickness.range", "a thickness must be 0, or between {min} and {max} (metres)";
+    /// A glass's wall leaves no room inside.
+    WallThinner = "wall.thinner", "the wall must be thinner than the glass's radius {radius} (something must fit inside)";
+    /// A glass's bottom is as thick as the glass is high.
+    BottomThinner = "bottom.thinner", "the bottom must be thinner than the glass's height {height}";
+    /// A refractive index is below 1.
+    IndexMin = "index.min", "a refractive index must be >= 1";
+    /// The first liquid's top is not above the floor.
+    LiquidAboveFloor = "liquid.above-floor", "the liquid's top must be above the floor at z = {floor}";
+    /// A liquid's top is not above the layer below it.
+    LiquidAboveLayer = "liquid.above-layer", "each liquid's top must be above the top of the layer below it ({below})";
+    /// A liquid's top is above the walls.
+    LiquidBelowRim = "liquid.below-rim", "the liquid's top must not be above the walls' height {height}";
+    /// Too many liquid layers.
+    TooManyLiquids = "liquid.too-many", "the file lists {count} layers: at most {max} are allowed, as every ray is tested against each";
+    /// Too many objects.
+    TooManyObjects = "objects.too-many", "the file lists {count} objects: at most {max} straws, coins and cards together are allowed, as every ray is tested against each";
+    /// A straw's tilt is outside `[0, 90)`.
+    TiltRange = "tilt.range", "the tilt from the vertical must satisfy 0 <= tilt < 90 (degrees)";
+    /// A straw's tilt is too small to lean it.
+    TiltTiny = "tilt.tiny", "a tilt below {min}° leans the straw by less than a nanometre: write tilt = 0 for an upright straw";
+    /// A straw's foot is not on the floor inside the walls.
+    StrawFoot = "straw.foot", "its foot, where its bottom rim rests, at ({x}, {y}) is not on the floor inside the walls";
+    /// A straw goes through the container's wall.
+    StrawPierces = "straw.pierces", "standing at ({x}, {y}) with radius {radius} and tilt {tilt}°, it pierces the container's wall below the rim";
+    /// A coin is not on the floor inside the walls.
+    CoinOutside = "coin.outside", "at ({x}, {y}) with radius {radius} it does not lie on the floor inside the walls";
+    /// A coin is thicker than the walls are high.
+    CoinBelowRim = "coin.below-rim", "the coin must not stand higher than the walls";
+    /// A card goes through the container.
+    CardCuts = "card.cuts", "centred at ({x}, {y}, {z}), {width} wide and {height} high, it cuts through the container";
+    /// Two objects share floor.
+    FloorOverlap = "floor.overlap", "it overlaps {other} on the floor: their centres are {gap} apart, less than their radii's sum {sum}";
+    /// A leaning straw lies on a coin.
+    CoinLeanedOn = "coin.leaned-on", "{other} leans on it: within the coin's thickness the straw comes {gap} from the coin's centre, less than its radius {radius}";
+    /// Two straws cross.
+    StrawsCross = "straws.cross", "it crosses {other}: their axes pass {gap} apart, less than their radii's sum {sum}";
+    /// The eye is inside or on the container.
+    EyeInContainer = "observer.in-container", "({x}, {y}, {z}) is inside or on the container: the eye must be outside it";
+    /// The eye is inside a straw.
+    EyeInStraw = "observer.in-straw", "({x}, {y}, {z}) is inside {other}";
+    /// The eye is on a card.
+    EyeOnCard = "observer.on-card", "({x}, {y}, {z}) is on {other}: the eye must be off it";
+    /// The eye looks at itself.
+    TargetAtEye = "observer.target-at-eye", "({x}, {y}, {z}) is the observer's own position: it must look somewhere else";
+    /// A required key is missing.
+    Required = "required", "is missing: it is required";
+    /// The file has no `[container]`.
+    ContainerMissing = "container.missing", "is missing: a scene needs its [container]";
+    /// A glass lacks its radius.
+    GlassNeeds = "container.glass-needs", "is missing: a glass needs it";
+    /// A tank lacks a half width.
+    TankNeeds = "container.tank-needs", "is missing: a tank needs it";
+    /// A glass is given a tank's half widths.
+    GlassNoHalfWidths = "container.glass-half-widths", "a glass has no half widths (they are a tank's): give its radius";
+    /// A tank is given a radius.
+    TankNoRadius = "container.tank-radius", "a tank has no radius (a glass has): give its half widths half_x and half_y";
+    /// A tank is given a wall or bottom thickness.
+    TankThin = "container.tank-thin", "a tank's walls and bottom have zero thickness (only a glass's may be thick)";
+    /// A tank is given an index.
+    TankIndex = "container.tank-index", "a tank's walls have zero thickness, so it has no index of its own";
+    /// The container's shape is not a known one.
+    ShapeUnknown = "shape.unknown", "\"{shape}\" is not a shape: it must be \"glass\" or \"tank\"";
+    /// The container's shape is missing.
+    ShapeMissing = "shape.missing", "is missing: it must be \"glass\" or \"tank\"";
+    /// A card's picture is not a known one.
+    PictureUnknown = "picture.unknown", "\"{picture}\" is not a picture: it must be \"arrow\" or \"none\"";
+    /// The text is not TOML of the format (the parser's own words).
+    Syntax = "toml.syntax", "{what}";
+    /// One of the assignment's numbers is NaN or infinite.
+    GlassNotFinite = "glass.finite", "{name} = {value} is not a finite number";
+    /// The assignment's water is higher than its glass.
+    GlassWaterHeight = "glass.water-height", "water height {value} m is outside the glass: it must satisfy 0 <= he <= {max}";
+    /// The assignment's straw does not fit in its glass.
+    GlassStrawOutside = "glass.straw-outside", "straw axis ({x}, {y}) does not fit in the glass: need sqrt(xp² + yp²) + {radius} <= {glass} (it is {reach})";
+    /// The eye is inside or on the assignment's glass.
+    GlassEyeInside = "glass.eye-inside", "observer ({x}, {y}, {z}) is inside or on the glass: it must not satisfy 0 <= z <= {height} and x² + y² <= {radius}²";
+    /// The eye is inside the assignment's straw above the glass.
+    GlassEyeInStraw = "glass.eye-in-straw", "observer ({x}, {y}, {z}) is inside the straw where it sticks out of the glass";
+    /// The assignment's water index is below 1.
+    GlassWaterIndex = "glass.water-index", "water index {value} is not allowed: it must be a finite number >= 1";
+    /// The event limit is out of range.
+    MaxEvents = "glass.max-events", "event limit {value} is not allowed: it must be between 1 and {max}";
+}
+
+impl Rule {
+    /// Its text with `params` filled in.
+    pub fn text(self, params: &[(&'static str, Param)]) -> String {
+        let named: Vec<(&str, &str)> = params.iter().map(|(k, v)| (*k, v.text())).collect();
+        fill(self.template(), &named)
+    }
+}
+
+/// The English line of the rule `rule` broken by `key` (empty: a rule of no one key) of value
+/// `value`: `key = value: text`, `key: text`, or the text alone for a rule of no one key.
+pub fn line(
+    rule: Rule,
+    key: &str,
+    value: Option<&str>,
+    params: &[(&'static str, Param)],
+) -> String {
+    let text = rule.text(params);
+    match value {
+        _ if key.is_empty() => text,
+        Some(v) => format!("{key} = {v}: {text}"),
+        None => format!("{key}: {text}"),
+    }
+}
+
+/// A number parameter as messages write it ([`crate::scene::number_text`]).
+pub fn number(x: f64) -> Param {
+    Param::Number(crate::scene::number_text(x))
+}
+
+/// A point's coordinates as the parameters `x`, `y`, `z` of a message.
+pub fn point(p: crate::Vec3) -> Params {
+    vec![("x", number(p.x)), ("y", number(p.y)), ("z", number(p.z))]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_are_unique_and_templates_fill() {
+        let mut codes: Vec<&str> = Rule::ALL.iter().map(|r| r.code()).collect();
+        codes.sort_unstable();
+        let n = codes.len();
+        codes.dedup();
+        assert_eq!(codes.len(), n, "two rules share a code");
+        assert_eq!(fill("a {x} b {y}", &[("x", "1"), ("y", "2")]), "a 1 b 2");
+        assert_eq!(fill("{missing} {x", &[("x", "1")]), "{missing} {x");
+        assert_eq!(
+            fill("x² + y² <= {r}²", &[("r", "0.04")]),
+            "x² + y² <= 0.04²"
+        );
+    }
+}
