@@ -16,6 +16,8 @@ pub fn run(cli: Cli) -> CliResult {
             out: "out".into(),
             points: 20000,
             lang: Default::default(),
+            scene: None,
+            observer: None,
         }),
         Some(Command::Simulate(a)) => simulate::run(&a),
         Some(Command::Table(a)) => table::run(&a),
