@@ -130,15 +130,22 @@ pub fn liquid_series(label: &str, loaded: &Loaded) -> Result<Option<ValidationSe
 }
 
 /// `(n, largest, median)` distance from the objects of the image points of `world` seen from
-/// `observer` whose light crossed a surface.
+/// `observer` whose light crossed a surface; when no light crosses one (a liquid of index 1 in
+/// a glass of no thickness is air, so it has no surface), of all the points, which then lie on
+/// the objects.
 fn row(world: &World, observer: Vec3, n: f64) -> (f64, f64, f64) {
     let cloud = sample_image(world, observer, VALIDATION_POINTS, &|_| {});
-    let points: Vec<Vec3> = cloud
+    let crossed: Vec<Vec3> = cloud
         .points
         .iter()
         .filter(|p| p.events > 0)
         .map(|p| p.position)
         .collect();
+    let points = if crossed.is_empty() {
+        cloud.points.iter().map(|p| p.position).collect()
+    } else {
+        crossed
+    };
     let (max, median) = distance_stats(world, &points);
     (n, max, median)
 }
@@ -288,6 +295,36 @@ mod tests {
                 s.rows[7].2
             );
         }
+    }
+
+    /// A scene file's series: its bottom liquid's index from 1 (the image on the straw, to
+    /// rounding) to its own, the image leaving the straw as it grows; none without a liquid.
+    #[test]
+    fn a_scene_files_image_leaves_its_straw_as_its_liquids_index_grows() {
+        let text = crate::gallery::GALLERY
+            .iter()
+            .find(|(stem, _)| *stem == "dense-liquid")
+            .unwrap()
+            .1;
+        let loaded = crate::scene_input::file_world("dense-liquid", text, 10).unwrap();
+        let own = loaded.description.as_ref().unwrap().liquids[0].index;
+        assert!(own > 1.5, "{own}");
+        let s = liquid_series("observer 1", &loaded).unwrap().unwrap();
+        assert_eq!(s.rows.len(), 8);
+        assert_eq!(s.rows[0].0, 1.0);
+        assert!((s.rows[7].0 - own).abs() < 1e-12);
+        assert!(s.rows[0].1 < 1e-12, "{:e} at n = 1", s.rows[0].1);
+        for row in &s.rows[1..] {
+            assert!(row.1 > 1e-5 && row.2 > 1e-7, "{row:?}");
+        }
+        assert!(s.rows[7].2 > s.rows[1].2, "{:?}", s.rows);
+
+        // The same glass emptied: nothing to vary.
+        let dry: String = text.split("[[liquid]]").next().unwrap().to_string()
+            + &text[text.find("[[straw]]").unwrap()..];
+        let loaded = crate::scene_input::file_world("dry", &dry, 10).unwrap();
+        assert!(loaded.description.as_ref().unwrap().liquids.is_empty());
+        assert!(liquid_series("observer 1", &loaded).unwrap().is_none());
     }
 
     /// The numbers are the points' own: the statistics of a known set.

@@ -342,7 +342,7 @@ impl ScenePlan {
             match source(Some(turned.to_array())).load() {
                 Ok(loaded) => {
                     let k = jobs.len() as u32 + 1;
-                    let group = lang.fill(words::OBSERVER_TURNED, &[&k, &format!("{turn:+}")]);
+                    let group = lang.fill(words::OBSERVER_TURNED, &[&k, &signed(turn)]);
                     jobs.push(Job::scene(loaded, k, group, lang)?);
                     turns.push(turn);
                 }
@@ -357,6 +357,11 @@ impl ScenePlan {
             refused,
         })
     }
+}
+
+/// An angle with its sign, the minus sign typeset: `+45`, `−45`.
+fn signed(degrees: f64) -> String {
+    format!("{degrees:+}").replace('-', "−")
 }
 
 /// `o` turned by `degrees` about the vertical line through `target` (from `+x` towards `+y`).
@@ -471,13 +476,17 @@ fn scene_intro(plan: &ScenePlan, out: &Path, lang: Lang) -> Vec<Section> {
     picture.error = write_picture(&out.join(SCENE_PICTURE_FILE), &plan.jobs[0].loaded)
         .err()
         .map(|e| e.to_string());
-    let turns: Vec<String> = plan.turns.iter().map(|t| format!("{t:+}°")).collect();
+    let turns: Vec<String> = plan
+        .turns
+        .iter()
+        .map(|t| format!("{}°", signed(*t)))
+        .collect();
     let mut notes = vec![
         plan.comment.clone(),
         lang.fill(words::OBSERVERS_NOTE, &[&turns.join(", ")]),
     ];
     for (turn, why) in &plan.refused {
-        notes.push(lang.fill(words::TURN_REFUSED, &[&format!("{turn:+}"), why]));
+        notes.push(lang.fill(words::TURN_REFUSED, &[&signed(*turn), why]));
     }
     vec![
         Section {
