@@ -823,6 +823,18 @@ fn table_refuses_bad_arguments_without_output() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--points 0"));
     assert!(!dir.path().join("new").exists());
+    // A PDF must be named .pdf: refused before any work, no folder made.
+    let out = bentstraw(
+        dir.path(),
+        &["table", "--out", "new", "--pdf", "report.txt"],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("--pdf report.txt") && stderr(&out).contains(".pdf"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!dir.path().join("new").exists());
     assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1);
 }
 

@@ -94,6 +94,40 @@ pub fn printed_by_chromium(folder: &Path) -> Option<String> {
     Some(text)
 }
 
+/// `table --pdf FILE` (run by `the_report_job_in_french` and `the_scene_report_job`): a PDF of at
+/// most 16 A4 pages whose text holds `headings`, with its figures embedded, written beside the
+/// report's folder.
+pub fn the_pdf_is_the_report_on_few_pages(pdf: &Path, headings: &[&str]) {
+    let bytes = fs::read(pdf).unwrap_or_else(|e| panic!("no PDF {pdf:?}: {e}"));
+    assert!(bytes.starts_with(b"%PDF-"));
+    assert!(
+        bytes.len() < MAX_FOLDER_BYTES as usize / 2,
+        "{} bytes",
+        bytes.len()
+    );
+    let (Some(pdfinfo), Some(pdftotext)) = (require_tool("pdfinfo"), require_tool("pdftotext"))
+    else {
+        return;
+    };
+    let info = Command::new(pdfinfo).arg(pdf).output().unwrap();
+    assert!(info.status.success(), "pdfinfo could not read {pdf:?}");
+    let info = String::from_utf8_lossy(&info.stdout);
+    assert!(info.contains("(A4)"), "not A4: {info}");
+    let text = pdf_text(&pdftotext, pdf);
+    let pages = text.matches('\u{c}').count();
+    assert!(
+        (2..=MAX_PAGES).contains(&pages),
+        "the PDF has {pages} pages, more than {MAX_PAGES}"
+    );
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    for heading in headings {
+        assert!(flat.contains(heading), "no {heading:?} in the PDF's text");
+    }
+    // Each page is numbered, and the figures are there (their own text: axes, keys).
+    assert!(flat.contains(&format!("{pages} / {pages}")));
+    assert!(flat.contains("z (m)"), "no figure's text in the PDF");
+}
+
 /// The text of the PDF file `pdf`, pages separated by form feeds.
 fn pdf_text(pdftotext: &Path, pdf: &Path) -> String {
     let text = Command::new(pdftotext).arg(pdf).arg("-").output().unwrap();

@@ -18,6 +18,7 @@ pub fn run(cli: Cli) -> CliResult {
             lang: Default::default(),
             scene: None,
             observer: None,
+            pdf: None,
         }),
         Some(Command::Simulate(a)) => simulate::run(&a),
         Some(Command::Table(a)) => table::run(&a),

@@ -38,7 +38,7 @@ use bentstraw_outputs::scene_input::{self, Loaded, SceneSource};
 use bentstraw_outputs::solution::colour_names;
 use bentstraw_outputs::validation::{self, write_validation_figure, ValidationSeries};
 use bentstraw_outputs::writers::{write_csv_gz, ModelPoints, PointSet};
-use bentstraw_outputs::{html, pictures, plot};
+use bentstraw_outputs::{html, pictures, plot, report_pdf};
 
 /// Most image points per simulation: the table traces twelve, and runs the eye and stereo models
 /// on four (measured on two cores: 16 s and 270 MB for 100 000 points, 35–80 s and 490 MB for
@@ -172,23 +172,14 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
                 .map(move |&(n, suffix)| Job::reference(r, n, suffix, lang))
         })
         .collect();
-    let paths: Vec<PathBuf> = jobs
+    let paths: Vec<String> = jobs
         .iter()
         .flat_map(|job| job.outputs())
         .chain(INTRO_FILES.iter().map(|f| f.to_string()))
         .chain(gallery_files())
         .chain([VALIDATION_FILE.to_string(), REPORT_FILE.to_string()])
-        .map(|name| out.join(name))
         .collect();
-    let outputs: Vec<Output> = paths
-        .iter()
-        .map(|path| Output {
-            flag: "--out",
-            path,
-            extensions: &[],
-        })
-        .collect();
-    let outputs = OutputSet::reserve_folder(out, &outputs)?;
+    let outputs = reserve(out, &paths, args.pdf.as_deref())?;
 
     let started = Instant::now();
     // One bar over the whole job: the simulations, the gallery's scenes, then the rest.
@@ -228,12 +219,33 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
         lang,
         footer: words::FOOTER,
     };
-    finish(report, out, outputs)
+    finish(report, out, args.pdf.as_deref(), outputs)
 }
 
-/// Writes `report` into `out` and puts the set of outputs in place, unless a file could not be
-/// written; then tells what was done, and fails if a check failed.
-fn finish(report: Report, out: &Path, outputs: OutputSet) -> CliResult {
+/// Reserves the report's files `names` in the folder `out` (every file it will hold) and the PDF
+/// `pdf`, wherever it goes, as one set: all are replaced together, or none.
+fn reserve(out: &Path, names: &[String], pdf: Option<&Path>) -> CliResult<OutputSet> {
+    let paths: Vec<PathBuf> = names.iter().map(|name| out.join(name)).collect();
+    let mut outputs: Vec<Output> = paths
+        .iter()
+        .map(|path| Output {
+            flag: "--out",
+            path,
+            extensions: &[],
+        })
+        .collect();
+    outputs.extend(pdf.map(|path| Output {
+        flag: "--pdf",
+        path,
+        extensions: &["pdf"],
+    }));
+    Ok(OutputSet::reserve_folder(out, &outputs)?)
+}
+
+/// Writes `report` into `out` (and its PDF into `pdf`, from the figures just written) and puts the
+/// set of outputs in place, unless a file could not be written; then tells what was done, and
+/// fails if a check failed.
+fn finish(report: Report, out: &Path, pdf: Option<&Path>, outputs: OutputSet) -> CliResult {
     report::write_report(&out.join(REPORT_FILE), &report)?;
 
     // Any file that could not be written: nothing is replaced, the previous table stays whole.
@@ -259,6 +271,14 @@ fn finish(report: Report, out: &Path, outputs: OutputSet) -> CliResult {
             failed.len(),
             files::shown(out)
         ));
+    }
+    if let Some(pdf) = pdf {
+        let read = |file: &str| files::read_written(&out.join(file));
+        let bytes = progress::with_progress(None, "{spinner} {msg}", |bar| {
+            bar.set_message(format!("PDF {}", files::shown(pdf)));
+            report_pdf::report_pdf(&report, &read)
+        })?;
+        files::write_bytes(pdf, &bytes)?;
     }
     outputs.commit()?;
     progress::tell(&summary(&report, out));
@@ -409,23 +429,14 @@ impl Job {
 fn run_scene_into(args: &TableArgs, plan: &ScenePlan, out: &Path) -> CliResult {
     let lang = Lang::from(args.lang);
     let validated = plan.jobs[0].n_water != 1.0;
-    let paths: Vec<PathBuf> = plan
+    let paths: Vec<String> = plan
         .jobs
         .iter()
         .flat_map(|job| job.outputs())
         .chain([SCENE_PICTURE_FILE.to_string(), REPORT_FILE.to_string()])
         .chain(validated.then(|| VALIDATION_FILE.to_string()))
-        .map(|name| out.join(name))
         .collect();
-    let outputs: Vec<Output> = paths
-        .iter()
-        .map(|path| Output {
-            flag: "--out",
-            path,
-            extensions: &[],
-        })
-        .collect();
-    let outputs = OutputSet::reserve_folder(out, &outputs)?;
+    let outputs = reserve(out, &paths, args.pdf.as_deref())?;
 
     let started = Instant::now();
     let steps = (plan.jobs.len() + 1) as u64;
@@ -463,7 +474,7 @@ fn run_scene_into(args: &TableArgs, plan: &ScenePlan, out: &Path) -> CliResult {
         lang,
         footer: words::SCENE_FOOTER,
     };
-    finish(report, out, outputs)
+    finish(report, out, args.pdf.as_deref(), outputs)
 }
 
 /// The scene report's opening: the picture from the file's observer, what the scene shows and
