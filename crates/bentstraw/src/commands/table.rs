@@ -388,9 +388,12 @@ fn signed(degrees: f64) -> String {
 fn turned_about_vertical(o: Vec3, target: Vec3, degrees: f64) -> Vec3 {
     let (sin, cos) = degrees.to_radians().sin_cos();
     let (dx, dy) = (o.x - target.x, o.y - target.y);
+    // To the micrometre: the report prints the position, and `simulate --observer` given the
+    // printed numbers sees exactly the same.
+    let micrometres = |v: f64| (v * 1e6).round() / 1e6 + 0.0; // + 0.0: no "-0"
     Vec3::new(
-        target.x + cos * dx - sin * dy,
-        target.y + sin * dx + cos * dy,
+        micrometres(target.x + cos * dx - sin * dy),
+        micrometres(target.y + sin * dx + cos * dy),
         o.z,
     )
 }
