@@ -329,6 +329,28 @@ pub fn write_atomically(
     }
 }
 
+/// The bytes written to `path`: while its output set is live, its temporary's (an output read back
+/// before the set is put in place), else the file's.
+pub fn read_written(path: &Path) -> Result<Vec<u8>> {
+    let out = Output {
+        flag: "",
+        path,
+        extensions: &[],
+    };
+    let staged = resolve(&out).ok().and_then(|(target, _)| {
+        live()
+            .staged
+            .iter()
+            .find(|s| s.target == target)
+            .map(|s| s.temp.to_path_buf())
+    });
+    fs::read(staged.as_deref().unwrap_or(path)).map_err(|source| Error::Io {
+        action: "read",
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
 /// Writes bytes all-or-nothing (see [`write_atomically`]).
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result {
     write_atomically(path, |w| w.write_all(bytes))

@@ -109,7 +109,7 @@ fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Loaded)
 }
 
 /// The scene's picture from its own observer, 1000x750, Fresnel, as a PNG.
-fn write_picture(path: &Path, world: &Loaded) -> Result {
+pub fn write_picture(path: &Path, world: &Loaded) -> Result {
     let camera = world_camera(
         world,
         &CameraSpec {

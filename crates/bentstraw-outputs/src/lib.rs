@@ -27,6 +27,8 @@ pub mod plot;
 pub mod ray_diagram;
 #[cfg(feature = "figures")]
 pub mod report;
+#[cfg(feature = "figures")]
+pub mod report_pdf;
 pub mod scene_input;
 pub mod sketch;
 pub mod solution;

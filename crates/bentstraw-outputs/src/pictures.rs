@@ -94,7 +94,7 @@ pub fn picture(world: &World, camera: Camera, shading: ShadingOptions) -> RgbPic
 
 /// The report's camera at `observer`: [`REPORT_SIZE`], aimed at the glass (not at its box's
 /// centre, which close observers see off-centre), the field of view framing glass and straw.
-fn report_camera(observer: Vec3) -> Camera {
+pub fn report_camera(observer: Vec3) -> Camera {
     let (w, h) = REPORT_SIZE;
     let target = framing_target(observer);
     let fov = framing_fov(observer, target, w as f64 / h as f64);
@@ -120,17 +120,16 @@ pub fn write_view_picture(path: &Path, world: &World, observer: Vec3) -> Result 
     files::write_bytes(path, &seen_png(world, report_camera(observer))?)
 }
 
-/// Writes `<dir>/<stem>_observer.png` (what `observer` sees, Fresnel mode, camera framing the glass) and
-/// `<dir>/<stem>_cloud.png` (the image `points`, seen from `observer` through the same camera);
-/// returns their paths in that order.
+/// Writes `<dir>/<stem>_observer.png` (what `camera` sees, Fresnel mode: the
+/// [`report_camera`] for the assignment's glass) and `<dir>/<stem>_cloud.png` (the image
+/// `points`, seen through the same camera); returns their paths in that order.
 pub fn write_observer_pictures(
     dir: &Path,
     stem: &str,
     world: &World,
-    observer: Vec3,
+    camera: Camera,
     points: &[ImagePoint],
 ) -> Result<(PathBuf, PathBuf)> {
-    let camera = report_camera(observer);
     let view = dir.join(format!("{stem}_observer.png"));
     let cloud = dir.join(format!("{stem}_cloud.png"));
     files::check_writable(&view)?;
@@ -169,7 +168,7 @@ mod tests {
                 &out,
                 &stem,
                 &World::assignment(&scene),
-                r.observer,
+                report_camera(r.observer),
                 &cloud.points,
             )
             .unwrap();

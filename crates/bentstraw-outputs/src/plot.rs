@@ -36,7 +36,7 @@ use crate::svg_marks::merge_marks;
 pub const FIGURE_WIDTH: u32 = 1000;
 
 /// The font of every text in the figure, shipped with the program so pictures look the same anywhere.
-static FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
+pub(crate) static FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
 /// The family name the font is registered under.
 const FONT_FAMILY: &str = "sans-serif";
 static FONT_ONCE: Once = Once::new();
@@ -809,13 +809,9 @@ pub(crate) fn figure_bytes(
     }
 }
 
-/// Width of a PDF figure's page (cm): one column of a printed page, the width the text sizes
-/// are chosen for.
-pub const PDF_WIDTH_CM: f64 = 8.5;
-
-/// The PDF of an SVG drawn by [`figure_bytes`], its page [`PDF_WIDTH_CM`] wide; the shipped font
-/// is embedded (the SVG names it by its family only).
-fn svg_to_pdf(svg: &str) -> Result<Vec<u8>, String> {
+/// How SVG is read for PDF: the shipped font loaded, and the family every text of ours names
+/// (`sans-serif`) and the default family both mapped to it.
+pub(crate) fn svg_options() -> Result<usvg::Options<'static>, String> {
     let mut opt = usvg::Options::default();
     let db = opt.fontdb_mut();
     db.load_font_data(FONT.to_vec());
@@ -826,7 +822,17 @@ fn svg_to_pdf(svg: &str) -> Result<Vec<u8>, String> {
         .ok_or("the shipped font does not load")?;
     db.set_sans_serif_family(family.clone());
     opt.font_family = family;
-    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| e.to_string())?;
+    Ok(opt)
+}
+
+/// Width of a PDF figure's page (cm): one column of a printed page, the width the text sizes
+/// are chosen for.
+pub const PDF_WIDTH_CM: f64 = 8.5;
+
+/// The PDF of an SVG drawn by [`figure_bytes`], its page [`PDF_WIDTH_CM`] wide; the shipped font
+/// is embedded (the SVG names it by its family only).
+fn svg_to_pdf(svg: &str) -> Result<Vec<u8>, String> {
+    let tree = usvg::Tree::from_str(svg, &svg_options()?).map_err(|e| e.to_string())?;
     // The page's width in points is the drawing's width in pixels × 72 / dpi.
     let dpi = tree.size().width() as f64 * 2.54 / PDF_WIDTH_CM;
     svg2pdf::to_pdf(

@@ -14,7 +14,7 @@ use bentstraw_optics::scene::SECTION_COUNT;
 use crate::error::Result;
 use crate::escape::escape_html;
 use crate::files::write_bytes;
-use crate::words::{self, Lang};
+use crate::words::{self, Lang, Text};
 use crate::writers::section_rgb8;
 
 /// The whole report.
@@ -34,6 +34,9 @@ pub struct Report {
     pub total: Duration,
     /// The language of the page's own words (the rest is written in it by the caller).
     pub lang: Lang,
+    /// The conventions at the foot of the page (a template: the colours' names, the version and
+    /// the time fill it): the assignment's glass, or any scene's.
+    pub footer: Text,
 }
 
 /// One simulation: its inputs, numbers, check and sections of figures.
@@ -41,8 +44,11 @@ pub struct Report {
 pub struct SimulationEntry {
     /// Anchor and file stem, e.g. `sim1_n1`.
     pub id: String,
-    /// Number of the reference simulation it belongs to.
+    /// Number of the reference simulation (or the observer) it belongs to.
     pub reference: u32,
+    /// The heading of its group (consecutive entries of the same reference), e.g. "Reference
+    /// simulation 1".
+    pub group: String,
     /// Heading, e.g. "Simulation 1, check n_water = 1".
     pub heading: String,
     /// Inputs as label/value rows.
@@ -53,8 +59,9 @@ pub struct SimulationEntry {
     pub rays: u64,
     /// Image points kept.
     pub points: usize,
-    /// Image points per colour code 1..=5.
-    pub counts: [usize; SECTION_COUNT],
+    /// Image points per colour code, from 1 (the straw's five sections, then a scene's coins,
+    /// cards and their pictures).
+    pub counts: Vec<usize>,
     /// Fraction of the traced rays that reached the straw.
     pub hit_ratio: f64,
     /// Where the time went.
@@ -325,7 +332,7 @@ pub fn render(report: &Report) -> String {
         let _ = writeln!(
             h,
             "<h2 id=\"reference{r}\">{}</h2>",
-            lang.fill(words::REFERENCE_SIMULATION, &[r])
+            escape_html(&list[0].group)
         );
         for (k, s) in list.iter().enumerate() {
             // The first of a group is the reference, the others its index checks.
@@ -334,12 +341,12 @@ pub fn render(report: &Report) -> String {
     }
     render_top_sections(&mut h, lang, "closing", &report.closing);
     h.push_str("</main>\n");
-    let names = (0..SECTION_COUNT)
-        .map(|k| format!("{}{} {}", swatch(k + 1), k + 1, lang.section_name(k)))
+    let names = (0..colour_count(report))
+        .map(|k| format!("{}{} {}", swatch(k + 1), k + 1, lang.colour_name(k)))
         .collect::<Vec<_>>()
         .join(", ");
     h.push_str(&lang.fill(
-        words::FOOTER,
+        report.footer,
         &[&names, &env!("CARGO_PKG_VERSION"), &seconds(report.total)],
     ));
     h
@@ -373,6 +380,15 @@ fn render_top_sections(h: &mut String, lang: Lang, anchor: &str, sections: &[Sec
     }
 }
 
+/// How many colour codes the report counts: the straw's five sections at least.
+fn colour_count(report: &Report) -> usize {
+    report
+        .simulations
+        .iter()
+        .map(|s| s.counts.len())
+        .fold(SECTION_COUNT, usize::max)
+}
+
 fn render_overview(h: &mut String, report: &Report) {
     let lang = report.lang;
     let head = words::OVERVIEW_HEAD.map(|t| lang.of(t));
@@ -386,8 +402,9 @@ fn render_overview(h: &mut String, report: &Report) {
         head[3],
         head[4]
     );
-    for k in 0..SECTION_COUNT {
-        let _ = write!(h, "<th>{}{}</th>", swatch(k + 1), lang.section_name(k));
+    let colours = colour_count(report);
+    for k in 0..colours {
+        let _ = write!(h, "<th>{}{}</th>", swatch(k + 1), lang.colour_name(k));
     }
     let tail = words::OVERVIEW_TAIL.map(|t| lang.of(t));
     let _ = writeln!(
@@ -405,8 +422,8 @@ fn render_overview(h: &mut String, report: &Report) {
             100.0 * s.hit_ratio,
             id = escape_html(&s.id)
         );
-        for c in s.counts {
-            let _ = write!(h, "<td>{c}</td>");
+        for k in 0..colours {
+            let _ = write!(h, "<td>{}</td>", s.counts.get(k).copied().unwrap_or(0));
         }
         let total: Duration = s.timings.iter().map(|t| t.duration).sum();
         let verdict = match &s.check {
@@ -461,7 +478,7 @@ fn render_simulation(h: &mut String, lang: Lang, s: &SimulationEntry, variant: b
             "<tr><td>{}{} {}</td><td>{c}</td></tr>",
             swatch(k + 1),
             k + 1,
-            lang.section_name(k)
+            lang.colour_name(k)
         );
     }
     h.push_str("</table>\n</div>\n");
@@ -610,12 +627,13 @@ mod tests {
         SimulationEntry {
             id: id.into(),
             reference,
+            group: format!("Reference simulation {reference}"),
             heading: format!("Simulation {reference}"),
             inputs: vec![("observer".into(), "(0, 0.1, 0.1) m".into())],
             n_water: 1.0,
             rays: 4000,
             points: 1234,
-            counts: [1, 2, 3, 4, 1224],
+            counts: vec![1, 2, 3, 4, 1224],
             hit_ratio: 0.3085,
             timings: vec![Timing::new("tracing", Duration::from_millis(250))],
             check,
@@ -666,6 +684,7 @@ mod tests {
             ],
             total: Duration::from_secs(3),
             lang: Lang::En,
+            footer: words::FOOTER,
         }
     }
 

@@ -14,16 +14,21 @@ use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::files;
 use crate::plot::{figure_bytes, font, FigureFormat, Heading, FIGURE_WIDTH, TEXT};
+use crate::scene_input::Loaded;
 use crate::words::{self, Lang};
+use bentstraw_optics::scene_file::Observer;
 
 /// Indices of the water the figure is made for: 8 values from 1 to 1.333.
 pub fn indices() -> Vec<f64> {
-    (0..8)
-        .map(|k| 1.0 + (WATER_INDEX - 1.0) * k as f64 / 7.0)
-        .collect()
+    indices_to(WATER_INDEX)
+}
+
+/// 8 indices evenly from 1 to `top`.
+pub fn indices_to(top: f64) -> Vec<f64> {
+    (0..8).map(|k| 1.0 + (top - 1.0) * k as f64 / 7.0).collect()
 }
 
 /// Image points per index (enough for a stable median and largest distance).
@@ -58,27 +63,91 @@ pub fn distance_stats(world: &World, points: &[Vec3]) -> (f64, f64) {
 
 /// The series of one simulation (`scene` with its own index replaced by each of [`indices`]).
 pub fn series(label: &str, scene: &Scene, observer: Vec3) -> ValidationSeries {
+    // The points seen straight through air lie on the straw whatever the water: only those whose
+    // light crossed the water tell (`row` leaves the others out).
     let rows = indices()
         .into_iter()
         .map(|n| {
             let s = World::assignment(&scene.with_n_water(n).expect("indices are >= 1"));
-            let cloud = sample_image(&s, observer, VALIDATION_POINTS, &|_| {});
-            // The points seen straight through air lie on the straw whatever the water: only
-            // those whose light crossed the water tell.
-            let points: Vec<Vec3> = cloud
-                .points
-                .iter()
-                .filter(|p| p.events > 0)
-                .map(|p| p.position)
-                .collect();
-            let (max, median) = distance_stats(&s, &points);
-            (n, max, median)
+            row(&s, observer, n)
         })
         .collect();
     ValidationSeries {
         label: label.to_string(),
         rows,
     }
+}
+
+/// The series of the scene `loaded` seen from its observer, the index of its first (bottom)
+/// liquid replaced by each of [`indices_to`] its own: `None` when the scene has no liquid (or a
+/// liquid of index 1, with nothing to vary). The same tracing as the default report's series.
+pub fn liquid_series(label: &str, loaded: &Loaded) -> Result<Option<ValidationSeries>> {
+    let observer = loaded.observer;
+    if let (Some(scene), None) = (&loaded.assignment, &loaded.description) {
+        if scene.n_water() == 1.0 {
+            return Ok(None);
+        }
+        let rows = indices_to(scene.n_water())
+            .into_iter()
+            .map(|n| {
+                let s = scene.with_n_water(n).expect("indices are >= 1");
+                row(&World::assignment(&s), observer, n)
+            })
+            .collect();
+        return Ok(Some(ValidationSeries {
+            label: label.to_string(),
+            rows,
+        }));
+    }
+    let Some(description) = &loaded.description else {
+        return Ok(None);
+    };
+    let Some(top) = description.liquids.first().map(|l| l.index) else {
+        return Ok(None);
+    };
+    if top == 1.0 {
+        return Ok(None);
+    }
+    let mut rows = Vec::new();
+    for n in indices_to(top) {
+        let mut d = description.clone();
+        d.liquids[0].index = n;
+        d.observer = Some(Observer {
+            position: observer,
+            target: loaded
+                .target
+                .filter(|t| *t != observer)
+                .unwrap_or(observer + Vec3::Z),
+        });
+        let world = World::new(&d, loaded.world.max_events())
+            .map_err(|e| Error::Refused(format!("{}: {e}", loaded.name())))?;
+        rows.push(row(&world, observer, n));
+    }
+    Ok(Some(ValidationSeries {
+        label: label.to_string(),
+        rows,
+    }))
+}
+
+/// `(n, largest, median)` distance from the objects of the image points of `world` seen from
+/// `observer` whose light crossed a surface; when no light crosses one (a liquid of index 1 in
+/// a glass of no thickness is air, so it has no surface), of all the points, which then lie on
+/// the objects.
+fn row(world: &World, observer: Vec3, n: f64) -> (f64, f64, f64) {
+    let cloud = sample_image(world, observer, VALIDATION_POINTS, &|_| {});
+    let crossed: Vec<Vec3> = cloud
+        .points
+        .iter()
+        .filter(|p| p.events > 0)
+        .map(|p| p.position)
+        .collect();
+    let points = if crossed.is_empty() {
+        cloud.points.iter().map(|p| p.position).collect()
+    } else {
+        crossed
+    };
+    let (max, median) = distance_stats(world, &points);
+    (n, max, median)
 }
 
 /// Size of the chart under the heading (px); every text at least 30 px, 7.2 pt when printed
@@ -94,15 +163,21 @@ const RGB: [RGBColor; 4] = [
 /// Distances below this are drawn at it (the plot's floor, below any rounding of a centimetre).
 const FLOOR: f64 = 1e-18;
 
-/// Writes the figure to `path` (PNG, SVG or PDF by its extension).
-pub fn write_validation_figure(path: &Path, series: &[ValidationSeries], lang: Lang) -> Result {
+/// Writes the figure to `path` (PNG, SVG or PDF by its extension), the index named by `axis` on
+/// the horizontal axis ([`words::INDEX_AXIS`] for the water).
+pub fn write_validation_figure(
+    path: &Path,
+    series: &[ValidationSeries],
+    axis: words::Text,
+    lang: Lang,
+) -> Result {
     let heading = Heading::new(lang.of(words::VALIDATION_FIGURE_TITLE), "");
     let bytes = figure_bytes(
         path,
         FigureFormat::of(path)?,
         (CHART.0, CHART.1 + heading.height() as u32),
-        |root| draw(root, series, &heading, lang),
-        |root| draw(root, series, &heading, lang),
+        |root| draw(root, series, &heading, axis, lang),
+        |root| draw(root, series, &heading, axis, lang),
     )?;
     files::write_bytes(path, &bytes)
 }
@@ -111,6 +186,7 @@ fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     series: &[ValidationSeries],
     heading: &Heading,
+    axis: words::Text,
     lang: Lang,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
@@ -122,13 +198,17 @@ fn draw<DB: DrawingBackend>(
         .filter(|v| v.is_finite())
         .fold(1e-3, f64::max)
         * 3.0;
+    let right = series
+        .iter()
+        .flat_map(|s| s.rows.iter().map(|r| r.0))
+        .fold(WATER_INDEX, f64::max);
     let area = root.margin(heading.height() as u32, 50, 0, 0);
     let mut chart = ChartBuilder::on(&area)
         .margin(20)
         .margin_right(40)
         .x_label_area_size(90)
         .y_label_area_size(150)
-        .build_cartesian_2d(1.0..WATER_INDEX + 0.005, (FLOOR..top).log_scale())
+        .build_cartesian_2d(1.0..right + 0.005, (FLOOR..top).log_scale())
         .map_err(e)?;
     chart
         .configure_mesh()
@@ -136,7 +216,7 @@ fn draw<DB: DrawingBackend>(
         .y_labels(8)
         .label_style(font(TEXT))
         .axis_desc_style(font(TEXT))
-        .x_desc(lang.of(words::INDEX_AXIS))
+        .x_desc(lang.of(axis))
         .y_desc(lang.of(words::DISTANCE_LOG_AXIS))
         .x_label_formatter(&|v| format!("{v:.2}"))
         .y_label_formatter(&|v| format!("{v:.0e}"))
@@ -217,6 +297,36 @@ mod tests {
         }
     }
 
+    /// A scene file's series: its bottom liquid's index from 1 (the image on the straw, to
+    /// rounding) to its own, the image leaving the straw as it grows; none without a liquid.
+    #[test]
+    fn a_scene_files_image_leaves_its_straw_as_its_liquids_index_grows() {
+        let text = crate::gallery::GALLERY
+            .iter()
+            .find(|(stem, _)| *stem == "dense-liquid")
+            .unwrap()
+            .1;
+        let loaded = crate::scene_input::file_world("dense-liquid", text, 10).unwrap();
+        let own = loaded.description.as_ref().unwrap().liquids[0].index;
+        assert!(own > 1.5, "{own}");
+        let s = liquid_series("observer 1", &loaded).unwrap().unwrap();
+        assert_eq!(s.rows.len(), 8);
+        assert_eq!(s.rows[0].0, 1.0);
+        assert!((s.rows[7].0 - own).abs() < 1e-12);
+        assert!(s.rows[0].1 < 1e-12, "{:e} at n = 1", s.rows[0].1);
+        for row in &s.rows[1..] {
+            assert!(row.1 > 1e-5 && row.2 > 1e-7, "{row:?}");
+        }
+        assert!(s.rows[7].2 > s.rows[1].2, "{:?}", s.rows);
+
+        // The same glass emptied: nothing to vary.
+        let dry: String = text.split("[[liquid]]").next().unwrap().to_string()
+            + &text[text.find("[[straw]]").unwrap()..];
+        let loaded = crate::scene_input::file_world("dry", &dry, 10).unwrap();
+        assert!(loaded.description.as_ref().unwrap().liquids.is_empty());
+        assert!(liquid_series("observer 1", &loaded).unwrap().is_none());
+    }
+
     /// The numbers are the points' own: the statistics of a known set.
     #[test]
     fn largest_and_median_of_known_distances() {
@@ -237,7 +347,7 @@ mod tests {
         let s = vec![series("simulation 2", &r.scene(1.333), r.observer)];
         for name in ["v.png", "v.svg"] {
             let path = dir.path().join(name);
-            write_validation_figure(&path, &s, Lang::En).unwrap();
+            write_validation_figure(&path, &s, words::INDEX_AXIS, Lang::En).unwrap();
             assert!(std::fs::metadata(&path).unwrap().len() > 1000);
         }
         let svg = std::fs::read_to_string(dir.path().join("v.svg")).unwrap();

@@ -7,6 +7,7 @@
 
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::scene::{SECTION_NAMES, SECTION_NAMES_FR};
+use bentstraw_optics::world::COLOR_NAMES;
 
 /// A language of the report.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -66,6 +67,19 @@ impl Lang {
         match self {
             Lang::En => SECTION_NAMES[k],
             Lang::Fr => SECTION_NAMES_FR[k],
+        }
+    }
+
+    /// The name of colour code `k + 1`: the straw's five sections, then a coin, a card and the
+    /// arrow on it (the explorer's words).
+    pub fn colour_name(self, k: usize) -> &'static str {
+        match (self, k) {
+            (_, 0..=4) => self.section_name(k),
+            (Lang::En, _) => COLOR_NAMES.get(k).copied().unwrap_or("?"),
+            (Lang::Fr, _) => ["pièce", "carte", "flèche"]
+                .get(k - 5)
+                .copied()
+                .unwrap_or("?"),
         }
     }
 
@@ -482,6 +496,158 @@ pub const GALLERY_RAYS: Text = t(
     "Quel chemin de la lumière fait quel morceau (bentstraw simulate --rays) : chemins brisés \
      depuis l'œil, réfractions (o) et réflexions totales (x), la ligne de visée en tireté \
      vers chaque point image.",
+);
+
+// The report of one scene file (`table --scene`).
+/// The scene report's title; the scene's name fills it.
+pub const SCENE_TITLE: Text = t("bentstraw: {}", "bentstraw : {}");
+/// Under the scene report's title: the file's own comment, the number of points.
+pub const SCENE_SUBTITLE: Text = t(
+    "{} Rays are traced from the eye through every surface between media (Snell–Descartes \
+     refraction and total reflection) to the objects, and each ray that reaches one gives an \
+     image point: where the eye believes that piece is. The scene is seen from the file's \
+     observer and from three more around it; at least {} image points each.",
+    "{} Des rayons sont tracés depuis l'œil à travers chaque surface entre deux milieux \
+     (réfraction de Snell–Descartes et réflexion totale) jusqu'aux objets, et chaque rayon qui \
+     en atteint un donne un point image : là où l'œil croit voir ce morceau. La scène est vue \
+     depuis l'observateur du fichier et depuis trois autres autour de lui ; au moins {} points \
+     images chacun.",
+);
+/// The scene report's opening section.
+pub const THE_SCENE: Text = t("The scene", "La scène");
+/// The scene's picture; the file's name fills it.
+pub const SCENE_PICTURE: Text = t(
+    "What the file's observer sees (bentstraw render --scene {}): Fresnel reflection and \
+     refraction at every surface, the checkerboard behind.",
+    "Ce que voit l'observateur du fichier (bentstraw render --scene {}) : réflexion et \
+     réfraction de Fresnel à chaque surface, le damier derrière.",
+);
+/// How the report's observers are chosen; the turns taken fill it.
+pub const OBSERVERS_NOTE: Text = t(
+    "Observer 1 is the file's. Observers 2 to 4 are the same eye turned about the vertical line \
+     through the point it looks at ({}), at the same height and distance: a quarter turn or less \
+     keeps it on the side the scene is meant to be seen from (a card's front, the straw's lean), \
+     so each still looks at the same objects, from another side.",
+    "L'observateur 1 est celui du fichier. Les observateurs 2 à 4 sont le même œil tourné autour \
+     de la verticale passant par le point qu'il regarde ({}), à la même hauteur et à la même \
+     distance : un quart de tour ou moins le garde du côté d'où la scène est faite pour être vue \
+     (le devant d'une carte, l'inclinaison de la paille), si bien que chacun regarde encore les \
+     mêmes objets, d'un autre côté.",
+);
+/// A turn that could not be taken: the angle and why.
+pub const TURN_REFUSED: Text = t(
+    "The turn by {}° was not taken: {}.",
+    "La rotation de {}° n'a pas été prise : {}.",
+);
+/// An observer's heading; its number fills it.
+pub const OBSERVER_N: Text = t("Observer {}", "Observateur {}");
+/// The file's observer's group heading; its number fills it.
+pub const OBSERVER_OF_FILE: Text = t(
+    "Observer {}: the file's",
+    "Observateur {} : celui du fichier",
+);
+/// A turned observer's group heading: its number and the angle.
+pub const OBSERVER_TURNED: Text = t(
+    "Observer {}: turned {}° about the vertical through the target",
+    "Observateur {} : tourné de {}° autour de la verticale passant par la cible",
+);
+/// An input row: the scene file.
+pub const SCENE_FILE: Text = t("scene file", "fichier de scène");
+/// An input row: a liquid's name.
+pub const LIQUID_ROW: Text = t("liquid: {}", "liquide : {}");
+/// An input row: a liquid's top and index.
+pub const LIQUID_VALUE: Text = t("top {} m, index {}", "surface à {} m, indice {}");
+/// An input row: the objects.
+pub const OBJECTS: Text = t("objects", "objets");
+/// An input row: the straws, coins and cards.
+pub const OBJECTS_VALUE: Text = t(
+    "{} straw(s), {} coin(s), {} card(s)",
+    "{} paille(s), {} pièce(s), {} carte(s)",
+);
+/// How far the image lies from the objects; the distance fills it.
+pub const SCENE_DISTANCE_NOTE: Text = t(
+    "The image points lie up to {} mm from the surface of the objects they show.",
+    "Les points images sont jusqu'à {} mm de la surface des objets qu'ils montrent.",
+);
+/// A series of the scene's validation: the observer's number fills it.
+pub const OBSERVER_SERIES: Text = t("observer {}", "observateur {}");
+/// The scene's validation figure: the liquid's name and its index.
+pub const SCENE_VALIDATION_CAPTION: Text = t(
+    "For the image points whose light crossed a surface, the largest (solid) and median (dashed) \
+     distance from the objects' surface, as the index of the bottom liquid ({}) goes from 1 to \
+     its own {}, log scale.",
+    "Pour les points images dont la lumière a traversé une surface, la plus grande distance \
+     (trait plein) et la distance médiane (tireté) à la surface des objets, quand l'indice du \
+     liquide du fond ({}) va de 1 à son propre indice {}, en échelle logarithmique.",
+);
+/// Under the scene's validation; the number of points fills it.
+pub const SCENE_VALIDATION_NOTE: Text = t(
+    "With index 1 the bottom liquid bends nothing: the image points lie on the objects to \
+     rounding, unless something else bends the light on its way (a glass with thick walls, \
+     another liquid); as the index grows, the image leaves the objects. The points seen straight \
+     through air are left out: they lie on the objects whatever the liquid. {} image points per \
+     observer and index.",
+    "Avec l'indice 1 le liquide du fond ne dévie rien : les points images sont sur les objets à \
+     l'arrondi près, sauf si autre chose dévie la lumière en chemin (un verre aux parois \
+     épaisses, un autre liquide) ; quand l'indice croît, l'image quitte les objets. Les points \
+     vus directement dans l'air sont laissés de côté : ils sont sur les objets quel que soit le \
+     liquide. {} points images par observateur et par indice.",
+);
+/// The scene's validation when it cannot be made: the reason fills it.
+pub const NO_VALIDATION: Text = t(
+    "No validation figure: {}.",
+    "Pas de figure de validation : {}.",
+);
+/// Why: the scene has no liquid.
+pub const NO_LIQUID: Text = t(
+    "the scene has no liquid, so there is no index to vary (with nothing but air in the \
+     container, only the glass itself bends the light)",
+    "la scène n'a pas de liquide, donc pas d'indice à faire varier (avec seulement de l'air dans \
+     le récipient, seul le verre lui-même dévie la lumière)",
+);
+/// Why: the liquid's index is already 1.
+pub const INDEX_ONE: Text = t(
+    "the bottom liquid's index is 1, so there is nothing to vary",
+    "l'indice du liquide du fond vaut 1, il n'y a donc rien à faire varier",
+);
+/// The scene report's limits.
+pub const SCENE_LIMITS_NOTE: Text = t(
+    "The image point P = O + L·u0 is the course's convention, not what an eye measures: the eye \
+     and stereo models above say where one eye with a small pupil, and two eyes, see each point. \
+     The objects are opaque and their surfaces do not reflect; light is traced for one colour (no \
+     dispersion). The pictures' Fresnel mode follows at most 2048 ray segments per ray from the \
+     eye.",
+    "Le point image P = O + L·u0 est la convention du cours, pas ce que mesure un œil : les \
+     modèles de l'œil et stéréo ci-dessus disent où un œil à petite pupille, et deux yeux, voient \
+     chaque point. Les objets sont opaques et leur surface ne réfléchit pas ; la lumière est \
+     tracée pour une seule couleur (pas de dispersion). Le mode Fresnel des images suit au plus \
+     2048 segments par rayon issu de l'œil.",
+);
+/// The validation figure's x axis for a scene's liquid.
+pub const LIQUID_INDEX_AXIS: Text = t(
+    "index of the bottom liquid n →",
+    "indice du liquide du fond n →",
+);
+/// The scene report's footer: the colour names, the version and the time fill it.
+pub const SCENE_FOOTER: Text = t(
+    "<footer id=\"conventions\">\n<h2>Conventions</h2>\n\
+     <p>Lengths in metres; z up from the container's outer base. Colour codes: {}.</p>\n\
+     <p>A ray leaves the observer O with direction u0, is refracted or totally reflected at each \
+     surface between two media (at most the event limit), and stops on the first opaque object \
+     it meets, of which it takes the colour. Its image point is P = O + L·u0, with L the length \
+     of its broken path: where the observer believes that piece is.</p>\n\
+     <p>Written by bentstraw {} in {} (wall clock). The observers' simulations run side by side, \
+     so each one's times are wall-clock times shared with the others.</p>\n</footer>\n</body>\n</html>\n",
+    "<footer id=\"conventions\">\n<h2>Conventions</h2>\n\
+     <p>Longueurs en mètres ; z vers le haut depuis le fond extérieur du récipient. Codes de \
+     couleur : {}.</p>\n\
+     <p>Un rayon quitte l'observateur O dans la direction u0, est réfracté ou totalement réfléchi \
+     à chaque surface entre deux milieux (au plus le nombre maximal d'événements), et s'arrête \
+     sur le premier objet opaque qu'il rencontre, dont il prend la couleur. Son point image est \
+     P = O + L·u0, où L est la longueur de son chemin brisé : là où l'observateur croit voir ce \
+     morceau.</p>\n\
+     <p>Écrit par bentstraw {} en {} (temps réel). Les simulations des observateurs tournent en \
+     parallèle : les durées de chacune sont des temps réels partagés avec les autres.</p>\n</footer>\n</body>\n</html>\n",
 );
 
 // The figures.

@@ -200,6 +200,18 @@ pub struct TableArgs {
     /// The report's language: headings, captions, tables and figure text
     #[arg(long, value_enum, default_value_t = LangArg::En)]
     pub lang: LangArg,
+    /// The report of this scene instead of the reference simulations: a scene file (TOML, see
+    /// scenes/) or a gallery scene by name (e.g. leaning-straw), seen from its [observer] and
+    /// three more observers turned about the vertical through its target
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
+    /// Also write the report as a PDF of A4 pages into this file, laid out as the page prints
+    /// (no browser needed)
+    #[arg(long, value_name = "FILE.pdf")]
+    pub pdf: Option<PathBuf>,
+    /// With --scene: the first observer X,Y,Z in metres, instead of the file's [observer]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, requires = "scene")]
+    pub observer: Option<[f64; 3]>,
 }
 
 /// The language of the report.

@@ -823,7 +823,63 @@ fn table_refuses_bad_arguments_without_output() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--points 0"));
     assert!(!dir.path().join("new").exists());
+    // A PDF must be named .pdf: refused before any work, no folder made.
+    let out = bentstraw(
+        dir.path(),
+        &["table", "--out", "new", "--pdf", "report.txt"],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("--pdf report.txt") && stderr(&out).contains(".pdf"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!dir.path().join("new").exists());
     assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1);
+}
+
+/// A missing or broken scene file, or one of the gallery's names misspelt: one clear line naming
+/// it, exit code 2, nothing written, a previous report left as it was.
+#[test]
+fn table_refuses_a_bad_scene_and_keeps_the_previous_report() {
+    let dir = tempfile::tempdir().unwrap();
+    fs::create_dir(dir.path().join("out")).unwrap();
+    fs::write(dir.path().join("out/index.html"), b"the previous report").unwrap();
+    fs::write(
+        dir.path().join("broken.toml"),
+        "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\n\n[[liquid]]\n\
+         name = \"water\"\nindex = 0.5\ntop = 0.1\n\n[observer]\nposition = [0, -0.3, 0.1]\n",
+    )
+    .unwrap();
+    for (scene, named) in [
+        ("missing.toml", "missing.toml"),
+        ("broken.toml", "liquid[1].index"),
+        ("leaning-stra", "leaning-stra"),
+    ] {
+        for out_dir in ["out", "new"] {
+            let out = bentstraw(
+                dir.path(),
+                &[
+                    "table", "--scene", scene, "--out", out_dir, "--points", "100",
+                ],
+            );
+            assert_eq!(out.status.code(), Some(2), "{scene}: {}", stderr(&out));
+            assert!(stderr(&out).contains(named), "{scene}: {}", stderr(&out));
+            assert!(
+                !dir.path().join("new").exists(),
+                "{scene}: a folder was made"
+            );
+            assert_eq!(
+                fs::read(dir.path().join("out/index.html")).unwrap(),
+                b"the previous report"
+            );
+            assert_eq!(fs::read_dir(dir.path().join("out")).unwrap().count(), 1);
+        }
+    }
+    // --observer belongs to --scene.
+    let out = bentstraw(dir.path(), &["table", "--observer", "0,-0.3,0.1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("--scene"), "{}", stderr(&out));
 }
 
 #[test]

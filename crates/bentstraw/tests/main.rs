@@ -47,6 +47,7 @@ fn the_report_job_in_french() {
     let out = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
         .current_dir(dir.path())
         .args(["table", "--lang", "fr", "--points", "1000", "--out", "fr"])
+        .args(["--pdf", "rapport.pdf"])
         .output()
         .expect("the binary runs");
     assert!(
@@ -55,6 +56,60 @@ fn the_report_job_in_french() {
         String::from_utf8_lossy(&out.stderr)
     );
     report_cli::the_french_report_is_in_french(&dir.path().join("fr"));
+    report_cli::the_pdf_is_the_report_on_few_pages(
+        &dir.path().join("rapport.pdf"),
+        &[
+            "Vue d'ensemble",
+            "Simulation de référence 1",
+            "Validation",
+            "Limites",
+        ],
+    );
+}
+
+/// `table --scene` on the leaning straw's file, into a folder it must make.
+#[test]
+fn the_scene_report_job() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/leaning-straw.toml"
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+        .current_dir(dir.path())
+        .args([
+            "table", "--scene", scene, "--out", "lean", "--pdf", "lean.pdf",
+        ])
+        .output()
+        .expect("the binary runs");
+    assert!(
+        out.status.success(),
+        "table --scene failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    report_cli::the_scene_report_has_its_observers_and_validation(&dir.path().join("lean"));
+    report_cli::the_pdf_is_the_report_on_few_pages(
+        &dir.path().join("lean.pdf"),
+        &["Observer 1: the file's", "Observer 4", "Validation"],
+    );
+}
+
+/// `table --scene reversing-arrow --lang fr`: a gallery scene by its name, in French, on few points.
+#[test]
+fn the_scene_report_in_french_by_gallery_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+        .current_dir(dir.path())
+        .args(["table", "--scene", "reversing-arrow", "--lang", "fr"])
+        .args(["--points", "1000", "--out", "fleche"])
+        .output()
+        .expect("the binary runs");
+    assert!(
+        out.status.success(),
+        "table --scene reversing-arrow --lang fr failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    report_cli::the_french_scene_report_is_in_french(&dir.path().join("fleche"));
 }
 
 /// Every `.rs` file of `tests/` is compiled: as this file or a module of it.

@@ -12,23 +12,48 @@ const MAX_FOLDER_BYTES: u64 = 25 * 1024 * 1024;
 /// Most A4 pages the report may print on.
 const MAX_PAGES: usize = 16;
 
+/// The bytes the files of `folder` hold.
+fn folder_bytes(folder: &Path) -> u64 {
+    fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().metadata().unwrap().len())
+        .sum()
+}
+
 /// The report job's folder (see `the_report_job`) holds at most 25 MB, and its page printed by
 /// Chromium fills at most 16 A4 pages, its tables and headings included.
 pub fn the_report_is_lean_and_prints_on_few_pages(folder: &Path) {
-    let bytes: u64 = fs::read_dir(folder)
-        .unwrap()
-        .map(|e| e.unwrap().metadata().unwrap().len())
-        .sum();
+    let bytes = folder_bytes(folder);
     assert!(
         bytes <= MAX_FOLDER_BYTES,
         "the report's folder holds {bytes} bytes, more than {MAX_FOLDER_BYTES}"
     );
+    let Some(text) = printed_by_chromium(folder) else {
+        return;
+    };
+    // What is not printed is named, with where to find it; the reference simulations are.
+    assert!(
+        text.contains("Not printed"),
+        "no note on what is not printed"
+    );
+    for k in 1..=4 {
+        assert!(
+            text.contains(&format!("Reference simulation {k}")),
+            "simulation {k} not printed"
+        );
+    }
+}
+
+/// The text of the report in `folder` as headless Chromium prints it on A4, after checking that
+/// it has a print stylesheet and prints on 1 to 16 pages; `None` when Chromium or poppler is
+/// missing outside CI.
+pub fn printed_by_chromium(folder: &Path) -> Option<String> {
     let index = fs::read_to_string(folder.join("index.html")).unwrap();
     assert!(index.contains("@media print"), "no print stylesheet");
 
     let (Some(chromium), Some(pdftotext)) = (require_tool("chromium"), require_tool("pdftotext"))
     else {
-        return;
+        return None;
     };
     let dir = tempfile::tempdir().unwrap();
     let pdf = dir.path().join("report.pdf");
@@ -57,31 +82,153 @@ pub fn the_report_is_lean_and_prints_on_few_pages(folder: &Path) {
             "Chromium did not print the report",
             "apt-get install chromium",
         );
-        return;
+        return None;
     }
+    let text = pdf_text(&pdftotext, &pdf);
     // pdftotext separates pages with form feeds: one per page.
-    let text = Command::new(pdftotext).arg(&pdf).arg("-").output().unwrap();
-    assert!(text.status.success());
-    let text = String::from_utf8_lossy(&text.stdout);
     let pages = text.matches('\u{c}').count();
     assert!(
         (1..=MAX_PAGES).contains(&pages),
         "the report prints on {pages} A4 pages, more than {MAX_PAGES}"
     );
-    // What is not printed is named, with where to find it; the reference simulations are.
+    Some(text)
+}
+
+/// `table --pdf FILE` (run by `the_report_job_in_french` and `the_scene_report_job`): a PDF of at
+/// most 16 A4 pages whose text holds `headings`, with its figures embedded, written beside the
+/// report's folder.
+pub fn the_pdf_is_the_report_on_few_pages(pdf: &Path, headings: &[&str]) {
+    let bytes = fs::read(pdf).unwrap_or_else(|e| panic!("no PDF {pdf:?}: {e}"));
+    assert!(bytes.starts_with(b"%PDF-"));
     assert!(
-        text.contains("Not printed"),
-        "no note on what is not printed"
+        bytes.len() < MAX_FOLDER_BYTES as usize / 2,
+        "{} bytes",
+        bytes.len()
     );
-    for k in 1..=4 {
+    let (Some(pdfinfo), Some(pdftotext)) = (require_tool("pdfinfo"), require_tool("pdftotext"))
+    else {
+        return;
+    };
+    let info = Command::new(pdfinfo).arg(pdf).output().unwrap();
+    assert!(info.status.success(), "pdfinfo could not read {pdf:?}");
+    let info = String::from_utf8_lossy(&info.stdout);
+    assert!(info.contains("(A4)"), "not A4: {info}");
+    let text = pdf_text(&pdftotext, pdf);
+    let pages = text.matches('\u{c}').count();
+    assert!(
+        (2..=MAX_PAGES).contains(&pages),
+        "the PDF has {pages} pages, more than {MAX_PAGES}"
+    );
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    for heading in headings {
+        assert!(flat.contains(heading), "no {heading:?} in the PDF's text");
+    }
+    // Each page is numbered, and the figures are there (their own text: axes, keys).
+    assert!(flat.contains(&format!("{pages} / {pages}")));
+    assert!(flat.contains("z (m)"), "no figure's text in the PDF");
+}
+
+/// The text of the PDF file `pdf`, pages separated by form feeds.
+fn pdf_text(pdftotext: &Path, pdf: &Path) -> String {
+    let text = Command::new(pdftotext).arg(pdf).arg("-").output().unwrap();
+    assert!(text.status.success(), "pdftotext could not read {pdf:?}");
+    String::from_utf8_lossy(&text.stdout).into_owned()
+}
+
+/// `table --scene scenes/leaning-straw.toml` (run by `the_scene_report_job`): the report of that
+/// scene, its four observers each with the reference simulations' figures, the validation over
+/// its water's index, a folder of a few MB that prints on few pages.
+pub fn the_scene_report_has_its_observers_and_validation(folder: &Path) {
+    let index = fs::read_to_string(folder.join("index.html")).unwrap();
+    let headings = headings(&index);
+    for heading in [
+        "The scene",
+        "Observer 1: the file's",
+        "Observer 2: turned +45° about the vertical through the target",
+        "Observer 3: turned −45° about the vertical through the target",
+        "Observer 4: turned +90° about the vertical through the target",
+        "Validation",
+        "Limits",
+    ] {
         assert!(
-            text.contains(&format!("Reference simulation {k}")),
-            "simulation {k} not printed"
+            headings.iter().any(|h| h == heading),
+            "no heading {heading:?} in {headings:?}"
         );
+    }
+    for k in 1..=4 {
+        for suffix in [
+            ".csv.gz",
+            ".svg",
+            ".html",
+            "_observer.png",
+            "_cloud.png",
+            "_models.svg",
+            "_gap.svg",
+            "_rays.svg",
+        ] {
+            let file = format!("obs{k}{suffix}");
+            assert!(folder.join(&file).is_file(), "no {file}");
+            assert!(
+                index.contains(&format!("\"{file}\"")),
+                "{file} not in the report"
+            );
+        }
+    }
+    for file in ["scene_view.png", "validation.svg"] {
+        assert!(folder.join(file).is_file(), "no {file}");
+    }
+    // Each observer's points checked as a solution, and its light paths counted.
+    assert_eq!(index.matches("class=\"check pass solution\"").count(), 4);
+    assert_eq!(index.matches("Image points by light path: ").count(), 4);
+    // The turned observers keep the file's height and distance from the target's vertical.
+    assert!(
+        index.contains("(0, -0.3, 0.2) m"),
+        "the file's observer is not shown"
+    );
+    let validation = fs::read_to_string(folder.join("validation.svg")).unwrap();
+    assert!(validation.contains("index of the bottom liquid n"));
+    let bytes = folder_bytes(folder);
+    assert!(
+        bytes <= MAX_FOLDER_BYTES / 2,
+        "the scene report's folder holds {bytes} bytes"
+    );
+    if let Some(text) = printed_by_chromium(folder) {
+        assert!(text.contains("Observer 4"), "observer 4 is not printed");
     }
 }
 
-/// The texts of the page's `<h1>` to `<h4>` headings, entities as written.
+/// `table --scene NAME --lang fr` (run by `the_scene_report_in_french_by_gallery_name`): the
+/// gallery's scene found by its name from a folder without it, its report in French, the card
+/// and its arrow counted in their own colour codes.
+pub fn the_french_scene_report_is_in_french(folder: &Path) {
+    let index = fs::read_to_string(folder.join("index.html")).unwrap();
+    assert!(index.contains("<html lang=\"fr\">"));
+    let headings = headings(&index);
+    for french in [
+        "La scène",
+        "Méthode",
+        "Vue d'ensemble",
+        "Observateur 1 : celui du fichier",
+        "Observateur 2 : tourné de +45° autour de la verticale passant par la cible",
+        "Validation",
+        "Limites",
+    ] {
+        assert!(
+            headings.iter().any(|h| h == french),
+            "no heading {french:?} in {headings:?}"
+        );
+    }
+    for english in ["The scene", "Observer", "Method", "Overview", "Limits"] {
+        assert!(
+            !headings.iter().any(|h| h.contains(english)),
+            "a heading left in English: {english:?}"
+        );
+    }
+    assert!(index.contains("carte") && index.contains("flèche"));
+    assert!(index.contains("reversing-arrow"));
+}
+
+/// The texts of the page's `<h1>` to `<h4>` headings, as read (entities decoded).
 fn headings(html: &str) -> Vec<String> {
     let mut found = Vec::new();
     for level in 1..=4 {
@@ -90,7 +237,13 @@ fn headings(html: &str) -> Vec<String> {
         for piece in html.split(&open).skip(1) {
             let text = piece.split_once('>').map(|(_, rest)| rest).unwrap_or("");
             if let Some((text, _)) = text.split_once(&close) {
-                found.push(text.to_string());
+                found.push(
+                    text.replace("&#39;", "'")
+                        .replace("&quot;", "\"")
+                        .replace("&lt;", "<")
+                        .replace("&gt;", ">")
+                        .replace("&amp;", "&"),
+                );
             }
         }
     }
@@ -113,7 +266,7 @@ pub fn the_french_report_is_in_french(folder: &Path) {
         "Simulation de référence 1",
         "Simulation 1, vérification n_water = 1",
         "Points images virtuels (convention du cours, P = O + L·u0)",
-        "Ce que voit l&#39;observateur (image de Fresnel)",
+        "Ce que voit l'observateur (image de Fresnel)",
         "Quel chemin de la lumière fait quel morceau (schéma des rayons)",
         "Validation",
         "Limites",

@@ -10,14 +10,13 @@ use std::time::Instant;
 use bentstraw_optics::check::{check_solution, ClaimedPoint};
 use bentstraw_optics::check::{DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE};
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::{clip_text, number_text, Scene, SECTION_COUNT};
-use bentstraw_optics::world::World;
-use bentstraw_optics::Vec3;
+use bentstraw_optics::scene::{clip_text, number_text};
 
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
 use bentstraw_outputs::files::check_writable;
 use bentstraw_outputs::report::Check;
+use bentstraw_outputs::scene_input::Loaded;
 use bentstraw_outputs::solution::{
     colour_names, json_report, read_solution_of, region_words, summary, CheckOptions,
 };
@@ -75,9 +74,10 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
     Ok(report.passes())
 }
 
-/// `bentstraw check` of a simulation's own image points with the default tolerance and minimum
-/// coverage, for the report: its verdict in one line.
-pub fn own_points_check(scene: &Scene, observer: Vec3, points: &[ImagePoint]) -> Check {
+/// `bentstraw check` of a simulation's own image points (of the scene `loaded`, seen from its
+/// observer) with the default tolerance and minimum coverage, for the report: its verdict in one
+/// line.
+pub fn own_points_check(loaded: &Loaded, points: &[ImagePoint]) -> Check {
     let claimed: Vec<ClaimedPoint> = points
         .iter()
         .map(|p| ClaimedPoint {
@@ -86,23 +86,24 @@ pub fn own_points_check(scene: &Scene, observer: Vec3, points: &[ImagePoint]) ->
         })
         .collect();
     let r = check_solution(
-        &World::assignment(scene),
-        observer,
+        &loaded.world,
+        loaded.observer,
         &claimed,
         DEFAULT_TOLERANCE,
         DEFAULT_MIN_COVERAGE,
     );
+    let colours = colour_names(loaded).len();
     let passed = r.passes();
     let verdict = if passed { "pass" } else { "fail" };
     let coverage: Vec<String> = r
         .coverage
         .per_colour
         .iter()
-        .take(SECTION_COUNT)
+        .take(colours)
         .map(|c| format!("{:.1} %", 100.0 * c.share()))
         .collect();
     let mut text = format!(
-        "{verdict}: {} of {} points correct (path lengths within {} m), coverage per colour 1–5: {}",
+        "{verdict}: {} of {} points correct (path lengths within {} m), coverage per colour 1–{colours}: {}",
         r.tally.correct,
         r.tally.points,
         number_text(DEFAULT_TOLERANCE),

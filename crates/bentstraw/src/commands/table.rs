@@ -11,7 +11,6 @@ use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX};
 use bentstraw_outputs::words::{self, Lang};
 
-use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 
@@ -19,8 +18,13 @@ use crate::cli::TableArgs;
 use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
 use crate::progress;
+use bentstraw_optics::camera::Camera;
+use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
+use bentstraw_outputs::camera::{world_camera, CameraSpec};
 use bentstraw_outputs::files::{self, Output, OutputSet};
+use bentstraw_outputs::gallery::opening_comment;
 use bentstraw_outputs::gallery::GALLERY;
+use bentstraw_outputs::gallery_report::write_picture;
 use bentstraw_outputs::gallery_report::{gallery_files, gallery_sections};
 use bentstraw_outputs::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
@@ -30,10 +34,11 @@ use bentstraw_outputs::ray_diagram::{write_ray_diagram, Diagram};
 use bentstraw_outputs::report::{
     self, Check, Figure, Link, Report, Section, SimulationEntry, Timing,
 };
-use bentstraw_outputs::scene_input::Loaded;
+use bentstraw_outputs::scene_input::{self, Loaded, SceneSource};
+use bentstraw_outputs::solution::colour_names;
 use bentstraw_outputs::validation::{self, write_validation_figure, ValidationSeries};
 use bentstraw_outputs::writers::{write_csv_gz, ModelPoints, PointSet};
-use bentstraw_outputs::{html, pictures, plot};
+use bentstraw_outputs::{html, pictures, plot, report_pdf};
 
 /// Most image points per simulation: the table traces twelve, and runs the eye and stereo models
 /// on four (measured on two cores: 16 s and 270 MB for 100 000 points, 35–80 s and 490 MB for
@@ -49,24 +54,57 @@ pub const ON_STRAW_TOLERANCE: f64 = 1e-9;
 /// The water indices of each reference: the real one, then the two checks, with file suffixes.
 const VARIANTS: [(f64, &str); 3] = [(WATER_INDEX, ""), (1.0, "_n1"), (1.05, "_n1.05")];
 
-/// One simulation of the table.
+/// One simulation of the table: a reference (or one of its index checks), or a scene file seen
+/// from one of its observers.
 struct Job {
-    /// The reference it belongs to.
-    reference: Reference,
-    /// Its scene (reference geometry with this variant's index).
-    scene: Scene,
-    /// That scene seen from the reference's observer, built once for tracing and drawing.
+    /// Number of the reference (or of the observer) it belongs to.
+    number: u32,
+    /// The scene seen from the job's observer, built once for tracing and drawing.
     loaded: Loaded,
     /// File stem, e.g. `sim1_n1.05`.
     stem: String,
+    /// Heading, e.g. "Simulation 1, check n_water = 1".
+    heading: String,
+    /// The heading of its group, e.g. "Reference simulation 1".
+    group: String,
+    /// The scene and observer in a line, for the figures' titles.
+    title: String,
+    /// The index of the water (or of the scene's first liquid).
+    n_water: f64,
+    /// Whether it gets every figure (the observer's pictures, the rays, the models), not only its
+    /// points: the references proper, not their index checks.
+    full: bool,
+    /// The camera of the observer's pictures.
+    camera: Camera,
 }
 
 impl Job {
+    /// The job of reference `r` with water of index `n` (`suffix` names the index checks' files).
+    fn reference(r: &Reference, n: f64, suffix: &str, lang: Lang) -> Job {
+        let scene = r.scene(n);
+        let heading = if n == WATER_INDEX {
+            lang.fill(words::SIMULATION, &[&r.number])
+        } else {
+            lang.fill(words::SIMULATION_CHECK, &[&r.number, &n])
+        };
+        Job {
+            number: r.number,
+            loaded: Loaded::assignment(scene, r.observer),
+            stem: format!("sim{}{suffix}", r.number),
+            heading,
+            group: lang.fill(words::REFERENCE_SIMULATION, &[&r.number]),
+            title: simulation_title(&scene, r.observer),
+            n_water: n,
+            full: n == WATER_INDEX,
+            camera: pictures::report_camera(r.observer),
+        }
+    }
+
     /// The names of every file this simulation writes, so that all are reserved before the work.
     fn outputs(&self) -> Vec<String> {
         let stem = &self.stem;
         let mut names = vec![format!("{stem}.csv.gz"), format!("{stem}.svg")];
-        if self.scene.n_water() == WATER_INDEX {
+        if self.full {
             for suffix in [
                 ".html",
                 "_observer.png",
@@ -102,8 +140,20 @@ pub fn run(args: &TableArgs) -> CliResult {
             files::shown(out)
         ));
     }
+    // A scene is read and checked before anything is made: bad input writes nothing.
+    let lang = Lang::from(args.lang);
+    let plan = match &args.scene {
+        Some(file) => Some(ScenePlan::load(file, args.observer, lang)?),
+        None if args.observer.is_some() => {
+            return fail("--observer is for --scene: the reference simulations have their own")
+        }
+        None => None,
+    };
     let made = files::make_folder(out)?;
-    let result = run_into(args, out);
+    let result = match &plan {
+        Some(plan) => run_scene_into(args, plan, out),
+        None => run_into(args, out),
+    };
     if result.is_err() {
         // A failed run leaves no folder it made (the set removed its temporaries).
         files::remove_made_folders(&made);
@@ -113,36 +163,24 @@ pub fn run(args: &TableArgs) -> CliResult {
 
 /// Runs the table into the existing folder `out`; every file is replaced, or none.
 fn run_into(args: &TableArgs, out: &Path) -> CliResult {
+    let lang = Lang::from(args.lang);
     let jobs: Vec<Job> = REFERENCES
         .iter()
         .flat_map(|r| {
-            VARIANTS.iter().map(move |&(n, suffix)| Job {
-                reference: *r,
-                scene: r.scene(n),
-                loaded: Loaded::assignment(r.scene(n), r.observer),
-                stem: format!("sim{}{suffix}", r.number),
-            })
+            VARIANTS
+                .iter()
+                .map(move |&(n, suffix)| Job::reference(r, n, suffix, lang))
         })
         .collect();
-    let paths: Vec<PathBuf> = jobs
+    let paths: Vec<String> = jobs
         .iter()
         .flat_map(|job| job.outputs())
         .chain(INTRO_FILES.iter().map(|f| f.to_string()))
         .chain(gallery_files())
         .chain([VALIDATION_FILE.to_string(), REPORT_FILE.to_string()])
-        .map(|name| out.join(name))
         .collect();
-    let outputs: Vec<Output> = paths
-        .iter()
-        .map(|path| Output {
-            flag: "--out",
-            path,
-            extensions: &[],
-        })
-        .collect();
-    let outputs = OutputSet::reserve_folder(out, &outputs)?;
+    let outputs = reserve(out, &paths, args.pdf.as_deref())?;
 
-    let lang = Lang::from(args.lang);
     let started = Instant::now();
     // One bar over the whole job: the simulations, the gallery's scenes, then the rest.
     let steps = (jobs.len() + GALLERY.len() + 1) as u64;
@@ -179,7 +217,35 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
         closing,
         total: elapsed,
         lang,
+        footer: words::FOOTER,
     };
+    finish(report, out, args.pdf.as_deref(), outputs)
+}
+
+/// Reserves the report's files `names` in the folder `out` (every file it will hold) and the PDF
+/// `pdf`, wherever it goes, as one set: all are replaced together, or none.
+fn reserve(out: &Path, names: &[String], pdf: Option<&Path>) -> CliResult<OutputSet> {
+    let paths: Vec<PathBuf> = names.iter().map(|name| out.join(name)).collect();
+    let mut outputs: Vec<Output> = paths
+        .iter()
+        .map(|path| Output {
+            flag: "--out",
+            path,
+            extensions: &[],
+        })
+        .collect();
+    outputs.extend(pdf.map(|path| Output {
+        flag: "--pdf",
+        path,
+        extensions: &["pdf"],
+    }));
+    Ok(OutputSet::reserve_folder(out, &outputs)?)
+}
+
+/// Writes `report` into `out` (and its PDF into `pdf`, from the figures just written) and puts the
+/// set of outputs in place, unless a file could not be written; then tells what was done, and
+/// fails if a check failed.
+fn finish(report: Report, out: &Path, pdf: Option<&Path>, outputs: OutputSet) -> CliResult {
     report::write_report(&out.join(REPORT_FILE), &report)?;
 
     // Any file that could not be written: nothing is replaced, the previous table stays whole.
@@ -206,6 +272,14 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
             files::shown(out)
         ));
     }
+    if let Some(pdf) = pdf {
+        let read = |file: &str| files::read_written(&out.join(file));
+        let bytes = progress::with_progress(None, "{spinner} {msg}", |bar| {
+            bar.set_message(format!("PDF {}", files::shown(pdf)));
+            report_pdf::report_pdf(&report, &read)
+        })?;
+        files::write_bytes(pdf, &bytes)?;
+    }
     outputs.commit()?;
     progress::tell(&summary(&report, out));
 
@@ -229,19 +303,337 @@ fn run_into(args: &TableArgs, out: &Path) -> CliResult {
     Ok(())
 }
 
+/// The turns (degrees) about the vertical through the target that give a scene report's three
+/// more observers, in the order they are tried: a turn that puts the eye in the container, an
+/// object or a card is left for the next.
+const TURNS: [f64; 7] = [45.0, -45.0, 90.0, -90.0, 135.0, -135.0, 180.0];
+/// How many observers a scene report has.
+const SCENE_OBSERVERS: usize = 4;
+/// The scene's picture, from the file's observer.
+const SCENE_PICTURE_FILE: &str = "scene_view.png";
+
+/// `table --scene`: the scene read and checked, its observers chosen, before anything is written.
+struct ScenePlan {
+    /// The scene's name as messages show it (`scenes/leaning-straw.toml`, `leaning-straw`).
+    name: String,
+    /// The file's opening comment: what the scene shows.
+    comment: String,
+    /// One simulation per observer: the file's first.
+    jobs: Vec<Job>,
+    /// The turns taken, in degrees, and the ones refused with why.
+    turns: Vec<f64>,
+    /// Turns refused before three were found: the angle and the reason.
+    refused: Vec<(f64, String)>,
+}
+
+impl ScenePlan {
+    /// Reads the scene `file` (or the gallery's scene of that name), seen from its observer (or
+    /// `observer`), and the observers turned about the vertical through its target.
+    fn load(file: &Path, observer: Option<[f64; 3]>, lang: Lang) -> CliResult<ScenePlan> {
+        let source = |observer: Option<[f64; 3]>| SceneSource {
+            file: Some(file.to_path_buf()),
+            observer,
+            max_events: DEFAULT_MAX_EVENTS,
+            ..SceneSource::default()
+        };
+        let first = crate::cli::load_scene(&source(observer))?;
+        let text = match scene_input::built_in(file) {
+            Some((_, text)) => text.to_string(),
+            None => scene_input::read_scene_text(file)?,
+        };
+        let name = first.name().to_string();
+        let target = first.target.unwrap_or_else(|| {
+            let (lo, hi) = first.world.bounds();
+            0.5 * (lo + hi)
+        });
+        let o = first.observer;
+        let mut jobs = vec![Job::scene(
+            first,
+            1,
+            lang.fill(words::OBSERVER_OF_FILE, &[&1]),
+            lang,
+        )?];
+        let (mut turns, mut refused) = (Vec::new(), Vec::new());
+        for turn in TURNS {
+            if jobs.len() == SCENE_OBSERVERS {
+                break;
+            }
+            let turned = turned_about_vertical(o, target, turn);
+            match source(Some(turned.to_array())).load() {
+                Ok(loaded) => {
+                    let k = jobs.len() as u32 + 1;
+                    let group = lang.fill(words::OBSERVER_TURNED, &[&k, &signed(turn)]);
+                    jobs.push(Job::scene(loaded, k, group, lang)?);
+                    turns.push(turn);
+                }
+                Err(e) => refused.push((turn, e.to_string())),
+            }
+        }
+        Ok(ScenePlan {
+            name,
+            comment: opening_comment(&text),
+            jobs,
+            turns,
+            refused,
+        })
+    }
+}
+
+/// An angle with its sign, the minus sign typeset: `+45`, `−45`.
+fn signed(degrees: f64) -> String {
+    format!("{degrees:+}").replace('-', "−")
+}
+
+/// `o` turned by `degrees` about the vertical line through `target` (from `+x` towards `+y`).
+fn turned_about_vertical(o: Vec3, target: Vec3, degrees: f64) -> Vec3 {
+    let (sin, cos) = degrees.to_radians().sin_cos();
+    let (dx, dy) = (o.x - target.x, o.y - target.y);
+    // To the micrometre: the report prints the position, and `simulate --observer` given the
+    // printed numbers sees exactly the same.
+    let micrometres = |v: f64| (v * 1e6).round() / 1e6 + 0.0; // + 0.0: no "-0"
+    Vec3::new(
+        micrometres(target.x + cos * dx - sin * dy),
+        micrometres(target.y + sin * dx + cos * dy),
+        o.z,
+    )
+}
+
+impl Job {
+    /// The job of a scene file seen from its observer number `number`, under the heading `group`.
+    fn scene(loaded: Loaded, number: u32, group: String, lang: Lang) -> CliResult<Job> {
+        let camera = world_camera(
+            &loaded,
+            &CameraSpec {
+                size: Some(pictures::REPORT_SIZE),
+                ..CameraSpec::default()
+            },
+        )?;
+        let o = loaded.observer;
+        let n_water = match (&loaded.description, &loaded.assignment) {
+            (Some(d), _) => d.liquids.first().map_or(1.0, |l| l.index),
+            (None, Some(s)) => s.n_water(),
+            (None, None) => 1.0,
+        };
+        Ok(Job {
+            number,
+            title: format!("observer ({}, {}, {}) m, {}", o.x, o.y, o.z, loaded.name()),
+            loaded,
+            stem: format!("obs{number}"),
+            heading: lang.fill(words::OBSERVER_N, &[&number]),
+            group,
+            n_water,
+            full: true,
+            camera,
+        })
+    }
+}
+
+/// Runs `table --scene` into the existing folder `out`; every file is replaced, or none.
+fn run_scene_into(args: &TableArgs, plan: &ScenePlan, out: &Path) -> CliResult {
+    let lang = Lang::from(args.lang);
+    let validated = plan.jobs[0].n_water != 1.0;
+    let paths: Vec<String> = plan
+        .jobs
+        .iter()
+        .flat_map(|job| job.outputs())
+        .chain([SCENE_PICTURE_FILE.to_string(), REPORT_FILE.to_string()])
+        .chain(validated.then(|| VALIDATION_FILE.to_string()))
+        .collect();
+    let outputs = reserve(out, &paths, args.pdf.as_deref())?;
+
+    let started = Instant::now();
+    let steps = (plan.jobs.len() + 1) as u64;
+    let (entries, intro, closing) = progress::with_progress(
+        Some(steps),
+        "{msg:22} {bar:30} {pos}/{len}  [{elapsed}, about {eta} left]",
+        |bar| {
+            bar.set_message("observers");
+            let entries: Vec<SimulationEntry> = plan
+                .jobs
+                .par_iter()
+                .map(|job| {
+                    let entry = run_job(job, out, args.points, lang);
+                    bar.inc(1);
+                    entry
+                })
+                .collect();
+            bar.set_message("picture and validation");
+            let (intro, closing) = rayon::join(
+                || scene_intro(plan, out, lang),
+                || scene_closing(plan, out, lang),
+            );
+            bar.inc(1);
+            (entries, intro, closing)
+        },
+    );
+    let closing = closing?;
+    let report = Report {
+        title: lang.fill(words::SCENE_TITLE, &[&plan.name]),
+        subtitle: lang.fill(words::SCENE_SUBTITLE, &[&plan.comment, &args.points]),
+        intro,
+        simulations: entries,
+        closing,
+        total: started.elapsed(),
+        lang,
+        footer: words::SCENE_FOOTER,
+    };
+    finish(report, out, args.pdf.as_deref(), outputs)
+}
+
+/// The scene report's opening: the picture from the file's observer, what the scene shows and
+/// how the observers were chosen; and the method.
+fn scene_intro(plan: &ScenePlan, out: &Path, lang: Lang) -> Vec<Section> {
+    let mut picture = Figure::image(
+        SCENE_PICTURE_FILE,
+        &lang.fill(words::SCENE_PICTURE, &[&plan.name]),
+    );
+    picture.error = write_picture(&out.join(SCENE_PICTURE_FILE), &plan.jobs[0].loaded)
+        .err()
+        .map(|e| e.to_string());
+    let turns: Vec<String> = plan
+        .turns
+        .iter()
+        .map(|t| format!("{}°", signed(*t)))
+        .collect();
+    let mut notes = vec![
+        plan.comment.clone(),
+        lang.fill(words::OBSERVERS_NOTE, &[&turns.join(", ")]),
+    ];
+    for (turn, why) in &plan.refused {
+        notes.push(lang.fill(words::TURN_REFUSED, &[&signed(*turn), why]));
+    }
+    vec![
+        Section {
+            title: lang.of(words::THE_SCENE).into(),
+            figures: vec![picture],
+            notes,
+            side_by_side: false,
+            printed: true,
+            table: Vec::new(),
+        },
+        Section {
+            title: lang.of(words::METHOD).into(),
+            figures: vec![],
+            notes: words::METHOD_NOTES
+                .iter()
+                .map(|t| lang.of(*t).to_string())
+                .collect(),
+            side_by_side: false,
+            printed: true,
+            table: Vec::new(),
+        },
+    ]
+}
+
+/// The scene report's closing: the validation over the index of its bottom liquid, seen by every
+/// observer, and the limits.
+fn scene_closing(plan: &ScenePlan, out: &Path, lang: Lang) -> CliResult<Vec<Section>> {
+    let series: Vec<Option<ValidationSeries>> = plan
+        .jobs
+        .par_iter()
+        .map(|job| {
+            validation::liquid_series(
+                &lang.fill(words::OBSERVER_SERIES, &[&job.number]),
+                &job.loaded,
+            )
+        })
+        .collect::<bentstraw_outputs::Result<_>>()?;
+    let series: Vec<ValidationSeries> = series.into_iter().flatten().collect();
+    let liquid = match (
+        &plan.jobs[0].loaded.description,
+        &plan.jobs[0].loaded.assignment,
+    ) {
+        (Some(d), _) => d.liquids.first().map(|l| l.name.clone()),
+        (None, Some(_)) => Some("water".to_string()),
+        (None, None) => None,
+    };
+    let validation = match liquid {
+        Some(liquid) if !series.is_empty() => {
+            let mut figure = Figure::image(
+                VALIDATION_FILE,
+                &lang.fill(
+                    words::SCENE_VALIDATION_CAPTION,
+                    &[&liquid, &plan.jobs[0].n_water],
+                ),
+            );
+            figure.error = write_validation_figure(
+                &out.join(VALIDATION_FILE),
+                &series,
+                words::LIQUID_INDEX_AXIS,
+                lang,
+            )
+            .err()
+            .map(|e| e.to_string());
+            Section {
+                title: lang.of(words::VALIDATION).into(),
+                figures: vec![figure],
+                notes: vec![lang.fill(
+                    words::SCENE_VALIDATION_NOTE,
+                    &[&validation::VALIDATION_POINTS],
+                )],
+                side_by_side: false,
+                printed: true,
+                table: validation_table(&series, lang),
+            }
+        }
+        liquid => Section {
+            title: lang.of(words::VALIDATION).into(),
+            figures: vec![],
+            notes: vec![lang.fill(
+                words::NO_VALIDATION,
+                &[&lang.of(match liquid {
+                    Some(_) => words::INDEX_ONE,
+                    None => words::NO_LIQUID,
+                })],
+            )],
+            side_by_side: false,
+            printed: true,
+            table: Vec::new(),
+        },
+    };
+    Ok(vec![
+        validation,
+        Section {
+            title: lang.of(words::LIMITS).into(),
+            figures: vec![],
+            notes: vec![lang.of(words::SCENE_LIMITS_NOTE).into()],
+            side_by_side: false,
+            printed: true,
+            table: Vec::new(),
+        },
+    ])
+}
+
+/// The validation's numbers: a row per index, the largest and median distance of each series.
+fn validation_table(series: &[ValidationSeries], lang: Lang) -> Vec<Vec<String>> {
+    let mut table = vec![{
+        let mut head = vec!["n".to_string()];
+        for s in series {
+            head.push(lang.fill(words::LARGEST_M, &[&s.label]));
+            head.push(lang.fill(words::MEDIAN_M, &[&s.label]));
+        }
+        head
+    }];
+    for k in 0..series.first().map_or(0, |s| s.rows.len()) {
+        let mut row = vec![format!("{:.4}", series[0].rows[k].0)];
+        for s in series {
+            row.push(format!("{:.2e}", s.rows[k].1));
+            row.push(format!("{:.2e}", s.rows[k].2));
+        }
+        table.push(row);
+    }
+    table
+}
+
 /// Traces one simulation, writes its files, and describes it for the report.
 fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry {
-    let (scene, observer) = (&job.scene, job.reference.observer);
+    let observer = job.loaded.observer;
     let t0 = Instant::now();
     let cloud = sample_image(&job.loaded.world, observer, points, &|_| {});
     let traced = t0.elapsed();
 
     let t1 = Instant::now();
-    let title = format!(
-        "{}: {}",
-        simulation_heading(job, lang),
-        simulation_title(scene, observer)
-    );
+    let title = format!("{}: {}", job.heading, job.title);
     let csv = format!("{}.csv.gz", job.stem);
     let svg = format!("{}.svg", job.stem);
     let data_error = write_csv_gz(&out.join(&csv), &cloud.points).err();
@@ -257,7 +649,7 @@ fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry 
     let mut figure = Figure::image(&svg, lang.of(words::CLOUD_CAPTION));
     figure.error = plot_error.map(|e| e.to_string());
     // The rotatable view of the reference simulations (the checks' points differ little from it).
-    if scene.n_water() == WATER_INDEX {
+    if job.full {
         let page = format!("{}.html", job.stem);
         let page_error = html::write_cloud_viewer(
             &out.join(&page),
@@ -287,14 +679,14 @@ fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry 
     let mut sections = vec![Section {
         title: lang.of(words::IMAGE_POINTS_SECTION).into(),
         figures: vec![figure],
-        notes: vec![distance_note(scene, &cloud, lang)],
+        notes: vec![distance_note(job, &cloud, lang)],
         side_by_side: false,
         printed: true,
         table: Vec::new(),
     }];
     // The reference simulations proper (not the index checks) also get the observer's picture and
     // the apparent-position models.
-    if scene.n_water() == WATER_INDEX {
+    if job.full {
         let t = Instant::now();
         sections.push(observer_section(job, out, &cloud, lang));
         timings.push(Timing::new(lang.of(words::OBSERVERS_PICTURE), t.elapsed()));
@@ -306,21 +698,25 @@ fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry 
         timings.push(Timing::new(lang.of(words::EYE_AND_STEREO), t.elapsed()));
     }
 
+    let counts = match job.loaded.assignment {
+        Some(_) => cloud.counts_per_color().to_vec(),
+        None => cloud.counts_per_code()[..colour_names(&job.loaded).len()].to_vec(),
+    };
     SimulationEntry {
         id: job.stem.clone(),
-        reference: job.reference.number,
-        heading: simulation_heading(job, lang),
-        inputs: inputs(scene, observer, lang),
-        n_water: scene.n_water(),
+        reference: job.number,
+        group: job.group.clone(),
+        heading: job.heading.clone(),
+        inputs: inputs(&job.loaded, lang),
+        n_water: job.n_water,
         rays: cloud.rays_traced,
         points: cloud.points.len(),
-        counts: cloud.counts_per_color(),
+        counts,
         hit_ratio: cloud.hit_ratio(),
         timings,
-        check: check(scene, &cloud, lang),
+        check: check(job, &cloud, lang),
         solution_check: Some(crate::commands::check::own_points_check(
-            scene,
-            observer,
+            &job.loaded,
             &cloud.points,
         )),
         sections,
@@ -329,14 +725,13 @@ fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry 
 
 /// What the observer's eye sees (fresnel mode) beside the image points through the same camera.
 fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Section {
-    let observer = job.reference.observer;
     let seen = format!("{}_observer.png", job.stem);
     let splat = format!("{}_cloud.png", job.stem);
     let error = pictures::write_observer_pictures(
         out,
         &job.stem,
         &job.loaded.world,
-        observer,
+        job.camera,
         &cloud.points,
     )
     .err()
@@ -357,16 +752,10 @@ fn observer_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Se
 
 /// The ray diagram of one simulation: which light paths make which pieces of its image.
 fn rays_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Section {
-    let (scene, observer) = (&job.scene, job.reference.observer);
+    let observer = job.loaded.observer;
     let file = format!("{}_rays.svg", job.stem);
     let diagram = Diagram::new(&job.loaded.world, observer, &cloud.points);
-    let title = lang.fill(
-        words::RAY_DIAGRAM_TITLE,
-        &[
-            &simulation_heading(job, lang),
-            &simulation_title(scene, observer),
-        ],
-    );
+    let title = lang.fill(words::RAY_DIAGRAM_TITLE, &[&job.heading, &job.title]);
     let mut figure = Figure::image(&file, lang.of(words::RAYS_CAPTION));
     figure.error = write_ray_diagram(&out.join(&file), &job.loaded, &diagram, &title, lang)
         .err()
@@ -467,25 +856,12 @@ fn closing_sections(out: &Path, lang: Lang) -> Vec<Section> {
         })
         .collect();
     let mut figure = Figure::image(VALIDATION_FILE, lang.of(words::VALIDATION_CAPTION));
-    figure.error = write_validation_figure(&out.join(VALIDATION_FILE), &series, lang)
-        .err()
-        .map(|e| e.to_string());
-    let mut table = vec![{
-        let mut head = vec!["n_water".to_string()];
-        for s in &series {
-            head.push(lang.fill(words::LARGEST_M, &[&s.label]));
-            head.push(lang.fill(words::MEDIAN_M, &[&s.label]));
-        }
-        head
-    }];
-    for (k, n) in validation::indices().into_iter().enumerate() {
-        let mut row = vec![format!("{n:.4}")];
-        for s in &series {
-            row.push(format!("{:.2e}", s.rows[k].1));
-            row.push(format!("{:.2e}", s.rows[k].2));
-        }
-        table.push(row);
-    }
+    figure.error =
+        write_validation_figure(&out.join(VALIDATION_FILE), &series, words::INDEX_AXIS, lang)
+            .err()
+            .map(|e| e.to_string());
+    let mut table = validation_table(&series, lang);
+    table[0][0] = "n_water".to_string();
     vec![
         Section {
             title: lang.of(words::VALIDATION).into(),
@@ -508,7 +884,7 @@ fn closing_sections(out: &Path, lang: Lang) -> Vec<Section> {
 
 /// The course's, the eye's and the stereo image side by side, and how far apart they are.
 fn models_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Section {
-    let (scene, observer) = (&job.scene, job.reference.observer);
+    let observer = job.loaded.observer;
     let eye = eye_model_points(&job.loaded.world, observer, &cloud.points);
     let stereo = stereo_points(&job.loaded.world, observer, &cloud.points);
     let placed: Vec<Vec<_>> = [
@@ -533,7 +909,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Sect
         .map(|(name, points)| ModelCloud { name, points })
         .collect();
     let compare = format!("{}_models.svg", job.stem);
-    let title = lang.fill(words::WHERE_IT_APPEARS, &[&simulation_heading(job, lang)]);
+    let title = lang.fill(words::WHERE_IT_APPEARS, &[&job.heading]);
     let mut figure = Figure::image(&compare, lang.of(words::MODELS_CAPTION));
     figure.error =
         write_model_comparison(&out.join(&compare), &job.loaded, observer, &clouds, &title)
@@ -546,7 +922,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Sect
     let gap = format!("{}_gap.svg", job.stem);
     let series = GapSeries::of_models(&eye_gaps, &stereo_gaps, lang);
     let mut figure = Figure::image(&gap, lang.of(words::GAP_CAPTION));
-    let gap_title = lang.fill(words::GAP_TITLE, &[&simulation_heading(job, lang)]);
+    let gap_title = lang.fill(words::GAP_TITLE, &[&job.heading]);
     figure.error = write_gap_plot(&out.join(&gap), &series, &gap_title, lang)
         .err()
         .map(|e| e.to_string());
@@ -572,7 +948,7 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Sect
                 ],
             ),
             lang.fill(words::STEREO_NOTE, &[&stereo.points.len(), &stereo.skipped]),
-            lang.fill(words::MODELS_FILE_NOTE, &[&simulate_flags(scene, observer)]),
+            lang.fill(words::MODELS_FILE_NOTE, &[&simulate_flags(&job.loaded)]),
         ],
         side_by_side: false,
         printed: true,
@@ -580,52 +956,99 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Sect
     }
 }
 
-/// "Simulation 1", "Simulation 1, check n_water = 1", …
-fn simulation_heading(job: &Job, lang: Lang) -> String {
-    let n = job.scene.n_water();
-    if n == WATER_INDEX {
-        lang.fill(words::SIMULATION, &[&job.reference.number])
-    } else {
-        lang.fill(words::SIMULATION_CHECK, &[&job.reference.number, &n])
+/// The flags of `bentstraw simulate` that give the job's scene seen from its observer.
+fn simulate_flags(loaded: &Loaded) -> String {
+    let o = loaded.observer;
+    match (&loaded.assignment, &loaded.name) {
+        (Some(scene), None) => format!(
+            "--observer {},{},{} --straw {},{} --water-height {} --n-water {}",
+            o.x,
+            o.y,
+            o.z,
+            scene.straw_x(),
+            scene.straw_y(),
+            scene.water_height(),
+            scene.n_water()
+        ),
+        _ => format!(
+            "--scene {} --observer {},{},{}",
+            loaded.name(),
+            o.x,
+            o.y,
+            o.z
+        ),
     }
-}
-
-/// The flags of `bentstraw simulate` that give `scene` seen from `o`.
-fn simulate_flags(scene: &Scene, o: Vec3) -> String {
-    format!(
-        "--observer {},{},{} --straw {},{} --water-height {} --n-water {}",
-        o.x,
-        o.y,
-        o.z,
-        scene.straw_x(),
-        scene.straw_y(),
-        scene.water_height(),
-        scene.n_water()
-    )
 }
 
 /// The inputs as label/value rows.
-fn inputs(scene: &Scene, o: Vec3, lang: Lang) -> Vec<(String, String)> {
-    let values = [
-        format!("({}, {}, {}) m", o.x, o.y, o.z),
-        format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
-        format!("{} m", scene.water_height()),
-        format!("{}", scene.n_water()),
-        format!("{}", scene.max_events()),
+fn inputs(loaded: &Loaded, lang: Lang) -> Vec<(String, String)> {
+    let o = loaded.observer;
+    let observer = format!("({}, {}, {}) m", o.x, o.y, o.z);
+    if let (Some(scene), None) = (&loaded.assignment, &loaded.name) {
+        let values = [
+            observer,
+            format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
+            format!("{} m", scene.water_height()),
+            format!("{}", scene.n_water()),
+            format!("{}", scene.max_events()),
+        ];
+        return words::INPUTS
+            .iter()
+            .zip(values)
+            .map(|(label, value)| (lang.of(*label).to_string(), value))
+            .collect();
+    }
+    let mut rows = vec![
+        (lang.of(words::INPUTS[0]).to_string(), observer),
+        (
+            lang.of(words::SCENE_FILE).to_string(),
+            loaded.name().to_string(),
+        ),
     ];
-    words::INPUTS
-        .iter()
-        .zip(values)
-        .map(|(label, value)| (lang.of(*label).to_string(), value))
-        .collect()
+    match (&loaded.description, &loaded.assignment) {
+        (Some(d), _) => {
+            for l in &d.liquids {
+                rows.push((
+                    lang.fill(words::LIQUID_ROW, &[&l.name]),
+                    lang.fill(words::LIQUID_VALUE, &[&l.top, &l.index]),
+                ));
+            }
+            rows.push((
+                lang.of(words::OBJECTS).to_string(),
+                lang.fill(
+                    words::OBJECTS_VALUE,
+                    &[&d.straws.len(), &d.coins.len(), &d.cards.len()],
+                ),
+            ));
+        }
+        (None, Some(scene)) => {
+            rows.push((
+                lang.of(words::INPUTS[1]).to_string(),
+                format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
+            ));
+            rows.push((
+                lang.fill(words::LIQUID_ROW, &[&"water"]),
+                lang.fill(
+                    words::LIQUID_VALUE,
+                    &[&scene.water_height(), &scene.n_water()],
+                ),
+            ));
+        }
+        (None, None) => {}
+    }
+    rows.push((
+        lang.of(words::INPUTS[4]).to_string(),
+        loaded.world.max_events().to_string(),
+    ));
+    rows
 }
 
 /// The built-in check for `n_water = 1`: every image point lies on the straw.
-fn check(scene: &Scene, cloud: &ImageCloud, lang: Lang) -> Option<Check> {
-    if scene.n_water() != 1.0 {
+fn check(job: &Job, cloud: &ImageCloud, lang: Lang) -> Option<Check> {
+    if job.n_water != 1.0 {
         return None;
     }
-    let max = max_distance_to_straw(scene, cloud);
+    let max = max_distance_to_objects(&job.loaded, cloud);
     let passed = !cloud.points.is_empty() && max < ON_STRAW_TOLERANCE;
     let verdict = lang.of(if passed { words::PASS } else { words::FAIL });
     let text = if cloud.points.is_empty() {
@@ -650,26 +1073,23 @@ fn check(scene: &Scene, cloud: &ImageCloud, lang: Lang) -> Option<Check> {
 }
 
 /// How far the image lies from the real straw: zero for `n_water = 1`, growing with the index.
-fn distance_note(scene: &Scene, cloud: &ImageCloud, lang: Lang) -> String {
+fn distance_note(job: &Job, cloud: &ImageCloud, lang: Lang) -> String {
     if cloud.points.is_empty() {
         return lang.of(words::NOT_SEEN).into();
     }
-    lang.fill(
-        words::DISTANCE_NOTE,
-        &[
-            &format!("{:.3}", 1e3 * max_distance_to_straw(scene, cloud)),
-            &scene.n_water(),
-        ],
-    )
+    let mm = format!("{:.3}", 1e3 * max_distance_to_objects(&job.loaded, cloud));
+    match (&job.loaded.assignment, &job.loaded.name) {
+        (Some(_), None) => lang.fill(words::DISTANCE_NOTE, &[&mm, &job.n_water]),
+        _ => lang.fill(words::SCENE_DISTANCE_NOTE, &[&mm]),
+    }
 }
 
-/// Largest distance (m) of an image point from the straw's surface.
-fn max_distance_to_straw(scene: &Scene, cloud: &ImageCloud) -> f64 {
-    let world = World::assignment(scene);
+/// Largest distance (m) of an image point from the surface of the object it shows.
+fn max_distance_to_objects(loaded: &Loaded, cloud: &ImageCloud) -> f64 {
     cloud
         .points
         .iter()
-        .map(|p| world.distance_to_objects(p.position))
+        .map(|p| loaded.world.distance_to_objects(p.position))
         .fold(0.0, f64::max)
 }
 
@@ -702,7 +1122,7 @@ fn summary(report: &Report, out: &Path) -> String {
             s.points,
             100.0 * s.hit_ratio
         );
-        for c in s.counts {
+        for c in s.counts.iter().take(SECTION_NAMES.len()) {
             let _ = write!(t, " {c:>7}");
         }
         let secs: Duration = s.timings.iter().map(|t| t.duration).sum();
