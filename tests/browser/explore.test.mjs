@@ -366,6 +366,31 @@ test("the scene chooser shows a gallery scene whose points and paths are simulat
   await page.selectOption("#scene", "oil-on-water");
   await waitReady(page, f1);
   await page.waitForFunction(() => document.getElementById("he-out").textContent === "0.1 m");
+  // Each layer tinted on the map from the side, in its own colour: the water blue, the oil amber;
+  // from above, the top layer (the oil).
+  const tinted = (id) => page.evaluate((id) => {
+    const c = document.getElementById(id);
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    const want = { water: [74, 127, 193], oil: [214, 160, 40] }, n = { water: 0, oil: 0 };
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i + 3] < 60 || d[i + 3] > 100) continue; // the tints' opacity, not the lines'
+      for (const [k, w] of Object.entries(want)) {
+        if (Math.abs(d[i] - w[0]) + Math.abs(d[i + 1] - w[1]) + Math.abs(d[i + 2] - w[2]) < 16) n[k]++;
+      }
+    }
+    return n;
+  }, id);
+  await page.waitForFunction(() => window.bentstraw.state.scene === "oil-on-water");
+  let side = await tinted("map-side");
+  // (The oil is a layer 5 cm thick over 10 cm of water.)
+  for (let i = 0; i < 20 && (side.water < 200 || side.oil < 60); i++) {
+    await page.waitForTimeout(100);
+    side = await tinted("map-side");
+  }
+  assert.ok(side.water >= 200 && side.oil >= 60, `side map: ${JSON.stringify(side)}`);
+  await page.locator("#map-side").screenshot({ path: path.join(tmpdir(), "bentstraw-liquids-side.png") });
+  const top = await tinted("map-top");
+  assert.ok(top.oil >= 200 && top.water < top.oil / 10, `map from above: ${JSON.stringify(top)}`);
   // Back to the glass: the sliders are live again.
   const f2 = await page.evaluate(() => window.bentstraw.frames);
   await page.selectOption("#scene", "");

@@ -570,7 +570,7 @@ function fetchSketch(name) {
     const wire = [];
     for (let i = 0; i + 5 < sc.wireframe.length; i += 6) wire.push([pt(sc.wireframe, i), pt(sc.wireframe, i + 3)]);
     const outlines = sc.outlines.map((l) => Array.from({ length: l.length / 3 }, (_, i) => pt(l, 3 * i)));
-    sketches[name] = { wire, outlines, bounds: sc.bounds, liquids: sc.liquids || [] };
+    sketches[name] = { wire, outlines, bounds: sc.bounds, liquids: sc.liquids || [], container: sc.container || null };
     if (sceneKey(state) === name) { drawMaps(); drawCloud(); syncControls(); }
   });
 }
@@ -769,6 +769,50 @@ function mapGeometry() {
   return { extent };
 }
 
+// ---- liquids' tints ----
+/** Each liquid layer's colour on the maps, bottom first (water blue, then amber, green, purple). */
+const LIQUID_RGB = [[74, 127, 193], [214, 160, 40], [60, 160, 90], [140, 90, 180]];
+/** The tint of layer `k` of index `n`: the more the liquid bends light, the deeper its colour. */
+function liquidTint(k, n) {
+  const [r, g, b] = LIQUID_RGB[k % LIQUID_RGB.length];
+  const alpha = 0.15 + 0.25 * Math.min(1, Math.max(0, (n - 1) / 0.6));
+  return `rgba(${r},${g},${b},${alpha.toFixed(3)})`;
+}
+/** A scene's liquid layers as `[bottom, top, index, name]`, bottom first, from its sketch. */
+function liquidLayers(lines) {
+  const floor = lines.container ? lines.container.floor : 0;
+  return lines.liquids.map((l, k) => [k ? lines.liquids[k - 1].top : floor, l.top, l.index, l.name]);
+}
+/**
+ * The liquids on the side map, each layer tinted across the container's inside as seen along the
+ * eye's azimuth `u` (a glass's inner diameter, a tank's width in that direction), its name and
+ * index beside it; `P(s, z)` is the map's pixel.
+ */
+function drawLiquidsSide(ctx, lines, u, P) {
+  const c = lines.container;
+  if (!c) return;
+  const half = c.shape === "glass" ? c.radius : Math.abs(u[0]) * c.half_x + Math.abs(u[1]) * c.half_y;
+  liquidLayers(lines).forEach(([z0, z1, n, name], k) => {
+    const [x0, y0] = P(-half, z1), [x1, y1] = P(half, z0);
+    ctx.fillStyle = liquidTint(k, n); ctx.fillRect(x0, y0, x1 - x0, y1 - y0);
+    if (y1 - y0 >= 12) {
+      ctx.fillStyle = "#3b4454"; ctx.font = "11px system-ui";
+      ctx.fillText(`${name} · n ${n}`, x1 + 4, Math.min(y1 - 2, y0 + 12));
+    }
+  });
+}
+/** The top liquid on the map from above: the container's inside, tinted; `P(x, y)` its pixel. */
+function drawLiquidsTop(ctx, lines, P, k) {
+  const c = lines.container, layers = liquidLayers(lines);
+  if (!c || !layers.length) return;
+  const top = layers.length - 1;
+  ctx.fillStyle = liquidTint(top, layers[top][2]);
+  ctx.beginPath();
+  if (c.shape === "glass") ctx.arc(...P(0, 0), c.radius * k, 0, 2 * Math.PI);
+  else ctx.rect(...P(-c.half_x, c.half_y), 2 * c.half_x * k, 2 * c.half_y * k);
+  ctx.fill();
+}
+
 /** A gallery scene's wireframe and outlines on a map, through `at` (a point to the map's pixels). */
 function drawLines(ctx, lines, at) {
   ctx.strokeStyle = "rgba(74,127,193,0.6)"; ctx.lineWidth = 1;
@@ -796,10 +840,11 @@ function drawMaps() {
     ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.side"), 6, 14);
     if (lines) {
       // A gallery scene, seen along the eye's azimuth: `s` across, z up.
+      drawLiquidsSide(ctx, lines, u, P);
       drawLines(ctx, lines, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]));
     } else {
       const [wx0, wy0] = P(-GLASS_R, state.he), [wx1, wy1] = P(GLASS_R, 0);
-      ctx.fillStyle = "rgba(74,127,193,0.25)"; ctx.fillRect(wx0, wy0, wx1 - wx0, wy1 - wy0);
+      ctx.fillStyle = liquidTint(0, state.n); ctx.fillRect(wx0, wy0, wx1 - wx0, wy1 - wy0);
       ctx.strokeStyle = "#4a7fc1"; ctx.strokeRect(...P(-GLASS_R, GLASS_H), 2 * GLASS_R * k, GLASS_H * k);
       const s = sx * u[0] + sy * u[1];
       for (let i = 0; i < 5; i++) {
@@ -821,9 +866,12 @@ function drawMaps() {
     const k = mapScale(w, h, g.extent);
     const P = (x, y) => [w / 2 + k * x, h / 2 - k * y]; // x right, y up: as the report's top views
     ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.top"), 6, 14);
-    if (lines) drawLines(ctx, lines, (q) => P(q[0], q[1]));
+    if (lines) {
+      drawLiquidsTop(ctx, lines, P, k);
+      drawLines(ctx, lines, (q) => P(q[0], q[1]));
+    }
     else {
-      ctx.fillStyle = state.he > 0 ? "rgba(74,127,193,0.25)" : "transparent"; ctx.strokeStyle = "#4a7fc1";
+      ctx.fillStyle = state.he > 0 ? liquidTint(0, state.n) : "transparent"; ctx.strokeStyle = "#4a7fc1";
       ctx.beginPath(); ctx.arc(...P(0, 0), GLASS_R * k, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
       ctx.fillStyle = SECTION_RGB[4]; ctx.beginPath(); ctx.arc(...P(sx, sy), Math.max(3, STRAW_R * k), 0, 2 * Math.PI); ctx.fill();
     }

@@ -21,7 +21,7 @@ use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::rule::{Param, Rule};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{clip_text, DEFAULT_MAX_EVENTS};
-use bentstraw_optics::scene_file::{Observer, SceneDescription};
+use bentstraw_optics::scene_file::{Container, Observer, SceneDescription};
 use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
 use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
@@ -314,7 +314,27 @@ pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, Refused> {
         "observer": description.observer.map_or(Value::Null, |o| vec_json(o.position)),
         // The layers, bottom first, so that the page shows the scene's own liquid values.
         "liquids": description.liquids.iter().map(|l| json!({"name": l.name, "index": l.index, "top": l.top})).collect::<Vec<_>>(),
+        // The room the liquids fill, so that the maps can tint each layer.
+        "container": container_json(&description.container),
     })))
+}
+
+/// The inside of a scene's container, which its liquids fill: a glass's inner radius or a tank's
+/// half widths (both centred on the z axis), and the floor's height.
+fn container_json(container: &Container) -> Value {
+    match container {
+        Container::Glass(g) => json!({
+            "shape": "glass",
+            "radius": g.radius - g.wall,
+            "floor": container.floor(),
+        }),
+        Container::Tank(t) => json!({
+            "shape": "tank",
+            "half_x": t.half_x,
+            "half_y": t.half_y,
+            "floor": container.floor(),
+        }),
+    }
 }
 
 /// `GET /api/scenes`: the gallery's scenes: name, what it shows, its own observer.
@@ -1253,6 +1273,25 @@ mod tests {
             serde_json::from_slice(&handle("/api/sketch", "scene=reversing-arrow", &mut f).body)
                 .unwrap();
         assert!(!sketch["wireframe"].as_array().unwrap().is_empty());
+        // The inside the liquids fill, for the maps' tints: a thick glass's inner radius and
+        // floor, a tank's half widths.
+        let mut inside = |scene: &str| -> Value {
+            let q = format!("scene={scene}");
+            let v: Value = serde_json::from_slice(&handle("/api/sketch", &q, &mut f).body).unwrap();
+            v["container"].clone()
+        };
+        let glass = inside("real-glass");
+        assert_eq!(glass["shape"], "glass");
+        let (r, floor) = (
+            glass["radius"].as_f64().unwrap(),
+            glass["floor"].as_f64().unwrap(),
+        );
+        assert!((r - 0.0375).abs() < 1e-12 && floor == 0.008, "{glass}");
+        let tank = inside("apparent-depth");
+        assert_eq!(tank["shape"], "tank");
+        assert_eq!(tank["half_x"].as_f64(), Some(0.10));
+        assert_eq!(tank["half_y"].as_f64(), Some(0.05));
+        assert_eq!(tank["floor"].as_f64(), Some(0.0));
         assert!(header["simulate"]
             .as_str()
             .unwrap()
