@@ -267,7 +267,8 @@ fn swatch(code: usize) -> String {
     format!("<span class=\"sw\" style=\"background:rgb({r},{g},{b})\"></span>")
 }
 
-fn seconds(d: Duration) -> String {
+/// A duration in seconds, two decimals: `0.84 s`.
+pub(crate) fn seconds(d: Duration) -> String {
     format!("{:.2} s", d.as_secs_f64())
 }
 
@@ -381,7 +382,7 @@ fn render_top_sections(h: &mut String, lang: Lang, anchor: &str, sections: &[Sec
 }
 
 /// How many colour codes the report counts: the straw's five sections at least.
-fn colour_count(report: &Report) -> usize {
+pub(crate) fn colour_count(report: &Report) -> usize {
     report
         .simulations
         .iter()

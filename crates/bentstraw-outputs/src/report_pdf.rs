@@ -16,7 +16,7 @@ use pdf_writer::{Content, Filter, Finish, Name, Pdf, Rect, Ref, TextStr};
 use crate::error::{Error, Result};
 use crate::escape::escape_html;
 use crate::plot::{svg_options, FONT};
-use crate::report::{Check, Figure, Report, Section, SimulationEntry};
+use crate::report::{colour_count, seconds, Check, Figure, Report, Section, SimulationEntry};
 use crate::words::{self, Lang};
 
 /// One typographic point in millimetres.
@@ -64,13 +64,7 @@ const VARIANT_MAX: f64 = 58.0;
 
 /// Writes the PDF of `report`, each figure's bytes given by `read` (by the figure's file name).
 pub fn report_pdf(report: &Report, read: &dyn Fn(&str) -> Result<Vec<u8>>) -> Result<Vec<u8>> {
-    let mut layout = Layout {
-        metrics: Metrics::new()?,
-        read,
-        pictures: HashMap::new(),
-        order: Vec::new(),
-        lang: report.lang,
-    };
+    let mut layout = Layout::new(read, report.lang)?;
     let blocks = layout.report(report);
     let pages = paginate(blocks);
     assemble(report, &layout, &pages)
@@ -259,12 +253,12 @@ enum Picture {
 }
 
 impl Picture {
-    /// Width over height.
-    fn aspect(&self) -> f64 {
+    /// Width over height, or why the file could not be read.
+    fn aspect(&self) -> std::result::Result<f64, &str> {
         match self {
-            Picture::Drawing(t) => (t.size().width() / t.size().height()) as f64,
-            Picture::Pixels(_, w, h) => *w as f64 / *h as f64,
-            Picture::Unread(_) => 1.0,
+            Picture::Drawing(t) => Ok((t.size().width() / t.size().height()) as f64),
+            Picture::Pixels(_, w, h) => Ok(*w as f64 / *h as f64),
+            Picture::Unread(e) => Err(e),
         }
     }
 }
@@ -278,9 +272,24 @@ struct Layout<'a> {
     /// The files in the order first placed (the PDF embeds them in this order).
     order: Vec<String>,
     lang: Lang,
+    /// How SVG is read (the shipped font loaded): made once for the figures and the pages.
+    options: usvg::Options<'static>,
 }
 
-impl Layout<'_> {
+impl<'a> Layout<'a> {
+    /// A layout in `lang` whose figures are read by `read`.
+    fn new(read: &'a dyn Fn(&str) -> Result<Vec<u8>>, lang: Lang) -> Result<Layout<'a>> {
+        let options = svg_options().map_err(|e| Error::Refused(format!("the PDF's font: {e}")))?;
+        Ok(Layout {
+            metrics: Metrics::new()?,
+            read,
+            pictures: HashMap::new(),
+            order: Vec::new(),
+            lang,
+            options,
+        })
+    }
+
     /// The whole report: the header, the intro two columns wide, the overview, the simulations,
     /// the closing sections and the conventions.
     fn report(&mut self, report: &Report) -> Vec<Flow> {
@@ -433,21 +442,17 @@ impl Layout<'_> {
         if !links.is_empty() {
             caption = format!("{caption} — {}", links.join(" · "));
         }
-        let error = match &f.error {
-            Some(e) => Some(e.clone()),
-            None => match self.picture(&f.file) {
-                Picture::Unread(e) => Some(e.clone()),
-                _ => None,
-            },
+        let shown = match &f.error {
+            Some(e) => Err(e.clone()),
+            None => self.picture(&f.file).aspect().map_err(str::to_string),
         };
         let mut parts = Vec::new();
-        match error {
-            Some(e) => {
+        match shown {
+            Err(e) => {
                 let text = self.lang.fill(words::NOT_WRITTEN_FIGURE, &[&f.file, &e]);
                 parts.push(self.verdict(&text, false, width));
             }
-            None => {
-                let aspect = self.picture(&f.file).aspect();
+            Ok(aspect) => {
                 let w = width.min(max_h * aspect);
                 let h = w / aspect;
                 parts.push(Block {
@@ -473,11 +478,9 @@ impl Layout<'_> {
             let picture = match (self.read)(file) {
                 Err(e) => Picture::Unread(e.to_string()),
                 Ok(bytes) if file.ends_with(".svg") => {
-                    match svg_options().and_then(|opt| {
-                        usvg::Tree::from_data(&bytes, &opt).map_err(|e| e.to_string())
-                    }) {
+                    match usvg::Tree::from_data(&bytes, &self.options) {
                         Ok(tree) => Picture::Drawing(Box::new(tree)),
-                        Err(e) => Picture::Unread(e),
+                        Err(e) => Picture::Unread(e.to_string()),
                     }
                 }
                 Ok(bytes) => match image::load_from_memory(&bytes) {
@@ -603,7 +606,7 @@ impl Layout<'_> {
             ];
             row.extend((0..colours).map(|k| s.counts.get(k).copied().unwrap_or(0).to_string()));
             let total: std::time::Duration = s.timings.iter().map(|t| t.duration).sum();
-            row.push(format!("{:.2} s", total.as_secs_f64()));
+            row.push(seconds(total));
             row.push(
                 s.check
                     .as_ref()
@@ -716,41 +719,43 @@ impl Layout<'_> {
             .map(|k| format!("{} {}", k + 1, lang.colour_name(k)))
             .collect::<Vec<_>>()
             .join(", ");
-        let seconds = format!("{:.2} s", report.total.as_secs_f64());
         let html = lang.fill(
             report.footer,
-            &[&names, &env!("CARGO_PKG_VERSION"), &seconds],
+            &[&names, &env!("CARGO_PKG_VERSION"), &seconds(report.total)],
         );
-        let mut blocks = Vec::new();
+        // Each `<h2>` or `<p>` starts a block; inline elements (`<code>`) stay in theirs.
+        let mut pieces: Vec<(bool, String)> = Vec::new();
         for piece in html.split('<').skip(1) {
             let Some((tag, text)) = piece.split_once('>') else {
                 continue;
             };
-            let text = plain(text);
-            if text.trim().is_empty() {
-                continue;
-            }
             match tag.split_whitespace().next() {
-                Some("h2") => blocks.push(self.heading(&text, H2, WIDTH)),
-                Some("p") => blocks.push(self.text(&text, WIDTH, SMALL, INK)),
+                Some(kind @ ("h2" | "p")) => pieces.push((kind == "h2", text.to_string())),
                 _ => {
-                    if let Some(last) = blocks.last_mut() {
-                        // Text after an inline element (`<code>`): the rest of its paragraph.
-                        *last = self.text(
-                            &format!("{} {}", block_text(last), text.trim()),
-                            WIDTH,
-                            SMALL,
-                            INK,
-                        );
+                    if let Some((_, last)) = pieces.last_mut() {
+                        last.push_str(text);
                     }
                 }
             }
+        }
+        let mut blocks = Vec::new();
+        for (heading, text) in pieces {
+            let text = plain(&text);
+            if text.is_empty() {
+                continue;
+            }
+            blocks.push(if heading {
+                self.heading(&text, H2, WIDTH)
+            } else {
+                self.text(&text, WIDTH, SMALL, INK)
+            });
         }
         blocks
     }
 }
 
 /// The text of a block made by [`Layout::text`], its lines joined.
+#[cfg(test)]
 fn block_text(b: &Block) -> String {
     b.marks
         .iter()
@@ -760,15 +765,6 @@ fn block_text(b: &Block) -> String {
         })
         .collect::<Vec<_>>()
         .join(" ")
-}
-
-/// How many colour codes the report counts: the straw's five sections at least.
-fn colour_count(report: &Report) -> usize {
-    report
-        .simulations
-        .iter()
-        .map(|s| s.counts.len())
-        .fold(bentstraw_optics::scene::SECTION_COUNT, usize::max)
 }
 
 /// The width a table block takes (its widest rule).
@@ -938,8 +934,8 @@ fn assemble(report: &Report, layout: &Layout, pages: &[Vec<Mark>]) -> Result<Vec
     let mut page_ids = Vec::with_capacity(count);
     for (n, marks) in pages.iter().enumerate() {
         let svg = page_svg(marks, &format!("{} / {count}", n + 1));
-        let drawing = usvg::Tree::from_str(&svg, &svg_options().map_err(|e| fail("font", e))?)
-            .map_err(|e| fail("page", e.to_string()))?;
+        let drawing =
+            usvg::Tree::from_str(&svg, &layout.options).map_err(|e| fail("page", e.to_string()))?;
         let (chunk, id) = svg2pdf::to_chunk(&drawing, svg2pdf::ConversionOptions::default())
             .map_err(|e| fail("page", e.to_string()))?;
         let drawing = embed(&mut pdf, &chunk, id, &mut alloc);
@@ -1157,13 +1153,7 @@ mod tests {
     #[test]
     fn every_mark_lies_inside_its_pages_margins() {
         let r = report();
-        let mut layout = Layout {
-            metrics: Metrics::new().unwrap(),
-            read: &read,
-            pictures: HashMap::new(),
-            order: Vec::new(),
-            lang: r.lang,
-        };
+        let mut layout = Layout::new(&read, r.lang).unwrap();
         let pages = paginate(layout.report(&r));
         assert!(pages.len() >= 2, "{} pages", pages.len());
         for (n, page) in pages.iter().enumerate() {
@@ -1191,13 +1181,7 @@ mod tests {
     #[test]
     fn headings_are_never_last_on_a_page_and_what_is_not_printed_is_named() {
         let r = report();
-        let mut layout = Layout {
-            metrics: Metrics::new().unwrap(),
-            read: &read,
-            pictures: HashMap::new(),
-            order: Vec::new(),
-            lang: r.lang,
-        };
+        let mut layout = Layout::new(&read, r.lang).unwrap();
         let flows = layout.report(&r);
         let headings: Vec<String> = flows
             .iter()
