@@ -405,13 +405,17 @@ pub struct ExploreArgs {
 /// The scene of `source`, loaded, with a hint on standard error for each number of its scene
 /// file that breaks no rule but looks like a slip (centimetres written as metres).
 pub fn load_scene(source: &SceneSource) -> bentstraw_outputs::Result<Loaded> {
-    let loaded = source.load()?;
+    source.load().map(with_hints)
+}
+
+/// `loaded`, after its scene file's hints (numbers that look like centimetres) on stderr.
+pub fn with_hints(loaded: Loaded) -> Loaded {
     if let (Some(name), Some(description)) = (&loaded.name, &loaded.description) {
         for hint in description.hints() {
             eprintln!("hint: {name}: {hint}");
         }
     }
-    Ok(loaded)
+    loaded
 }
 
 impl SceneFlags {

@@ -330,18 +330,20 @@ impl ScenePlan {
     /// Reads the scene `file` (or the gallery's scene of that name), seen from its observer (or
     /// `observer`), and the observers turned about the vertical through its target.
     fn load(file: &Path, observer: Option<[f64; 3]>, lang: Lang) -> CliResult<ScenePlan> {
-        let source = |observer: Option<[f64; 3]>| SceneSource {
-            file: Some(file.to_path_buf()),
-            observer,
-            max_events: DEFAULT_MAX_EVENTS,
-            ..SceneSource::default()
+        // The file read once; each observer's scene made from its text.
+        let (name, text) = match scene_input::built_in(file) {
+            Some((stem, text)) => (stem.to_string(), text.to_string()),
+            None => (files::shown(file), scene_input::read_scene_text(file)?),
         };
-        let first = crate::cli::load_scene(&source(observer))?;
-        let text = match scene_input::built_in(file) {
-            Some((_, text)) => text.to_string(),
-            None => scene_input::read_scene_text(file)?,
+        let load = |observer: Option<[f64; 3]>| {
+            SceneSource {
+                observer,
+                max_events: DEFAULT_MAX_EVENTS,
+                ..SceneSource::default()
+            }
+            .load_text(&name, &text)
         };
-        let name = first.name().to_string();
+        let first = crate::cli::with_hints(load(observer)?);
         let target = first.target.unwrap_or_else(|| {
             let (lo, hi) = first.world.bounds();
             0.5 * (lo + hi)
@@ -359,7 +361,7 @@ impl ScenePlan {
                 break;
             }
             let turned = turned_about_vertical(o, target, turn);
-            match source(Some(turned.to_array())).load() {
+            match load(Some(turned.to_array())) {
                 Ok(loaded) => {
                     let k = jobs.len() as u32 + 1;
                     let group = lang.fill(words::OBSERVER_TURNED, &[&k, &signed(turn)]);
