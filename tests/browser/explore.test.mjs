@@ -861,3 +861,115 @@ test("a French browser gets a broken scene's rules in French, naming each key an
     await context.close();
   }
 });
+
+/** The value of `key` (a line `key = value` under `[table]` or the n-th `[[table]]`) in a scene's text. */
+function fileValue(text, table, n, key) {
+  const blocks = text.split(/^(?=\[)/m).filter((b) => b.startsWith(`[${table}]`) || b.startsWith(`[[${table}]]`));
+  const m = new RegExp(`^${key} = (.+)$`, "m").exec(blocks[n] || "");
+  return m ? m[1] : undefined;
+}
+/** Drags with the mouse from the map's pixel `from` by `(dx, dy)` in `steps` moves. */
+async function dragOnMap(page, id, from, [dx, dy], steps = 20) {
+  const r = await page.evaluate((id) => { const b = document.getElementById(id).getBoundingClientRect(); return [b.left, b.top]; }, id);
+  await page.mouse.move(r[0] + from[0], r[1] + from[1]);
+  await page.mouse.down();
+  for (let i = 1; i <= steps; i++) { await page.mouse.move(r[0] + from[0] + (dx * i) / steps, r[1] + from[1] + (dy * i) / steps); await page.waitForTimeout(25); }
+  await page.mouse.up();
+}
+/** Waits until the page's scene file is a new one, then until its view is painted. */
+async function nextFile(page, before) {
+  await page.waitForFunction((t) => window.bentstraw.state.file && window.bentstraw.state.file !== t, before, { timeout: 30000 });
+  // A drag's last step may still be on its way: wait for the text to rest.
+  let text = await page.evaluate(() => window.bentstraw.state.file);
+  for (;;) {
+    await page.waitForTimeout(400);
+    const again = await page.evaluate(() => window.bentstraw.state.file);
+    if (again === text) break;
+    text = again;
+  }
+  await waitReady(page);
+  return text;
+}
+
+test("the objects' controls and the maps' rings edit the scene: the box and the view follow (simulate's points), broken values are marked", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, { width: 1500, height: 1000 });
+  await page.goto(server.url + "#scene=coin-in-glass&observer=0.15,0,0.35");
+  await waitReady(page);
+  await page.click("#scene-objects summary");
+  await page.waitForFunction(() => document.querySelectorAll("#objects fieldset").length === 3);
+  assert.deepEqual(await page.locator("#objects legend").allTextContents(), ["Container", "Liquid 1 (from the bottom)", "Coin 1"]);
+  assert.equal(await page.inputValue('[data-key="liquid[1].top"]'), "0.1");
+  // A value typed in a control: the file's text says it, the view is simulate's for that text.
+  let file = await page.evaluate(() => window.bentstraw.state.file);
+  await page.fill('[data-key="liquid[1].top"]', "0.15");
+  await page.press('[data-key="liquid[1].top"]', "Enter");
+  file = await nextFile(page, file);
+  assert.equal(fileValue(file, "liquid", 0, "top"), "0.15");
+  assert.equal(await page.inputValue("#scene-text"), file);
+  const sim = await simulateText(file);
+  assert.ok(sim.csv, sim.message);
+  assert.equal(await page.evaluate(() => window.bentstraw.points()), sim.csv);
+  // An object added, then removed.
+  await page.click('#objects .add button[data-i18n="obj.add.straw"]');
+  file = await nextFile(page, file);
+  assert.match(file, /\[\[straw\]\]/);
+  await page.waitForFunction(() => document.querySelectorAll("#objects fieldset").length === 4);
+  assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
+  await page.locator("#objects fieldset", { hasText: "Straw 1" }).locator("button.remove").click();
+  file = await nextFile(page, file);
+  assert.doesNotMatch(file, /\[\[straw\]\]/);
+  // A broken value: its control marked, its rule under the controls in the command line's words;
+  // the view stays.
+  const frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.fill('[data-key="coin[1].radius"]', "-0.01");
+  await page.press('[data-key="coin[1].radius"]', "Enter");
+  await page.waitForFunction(() => !document.getElementById("objects-errors").hidden);
+  const rules = await page.locator("#objects-errors li").allTextContents();
+  assert.ok(rules.some((l) => l.includes("coin[1].radius = -0.01")), rules.join("\n"));
+  assert.equal(await page.getAttribute('[data-key="coin[1].radius"]', "aria-invalid"), "true");
+  assert.equal(await page.evaluate(() => window.bentstraw.state.file), file);
+  assert.equal(await page.evaluate(() => window.bentstraw.frames), frames);
+  await page.fill('[data-key="coin[1].radius"]', "0.0115");
+  await page.press('[data-key="coin[1].radius"]', "Enter");
+  await page.waitForFunction(() => document.getElementById("objects-errors").hidden);
+  // The coin dragged far out on the map from above: it stops inside the glass, touching its side.
+  const coin = await page.evaluate(() => document.getElementById("map-top").handles.find((h) => h.kind === "coin").at);
+  await dragOnMap(page, "map-top", coin, [400, -120]);
+  file = await nextFile(page, file);
+  const [x, y] = ["x", "y"].map((k) => Number(fileValue(file, "coin", 0, k)));
+  const reach = Math.hypot(x, y) + 0.0115;
+  assert.ok(reach < 0.04 && reach > 0.039, `the coin's edge ${reach} m from the axis, inside 0.04 m`);
+  assert.ok(x > 0 && y > 0, `${x}, ${y}`);
+  assert.equal(await page.inputValue('[data-key="coin[1].x"]'), String(x));
+  assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
+  // The water's surface dragged far up on the side map: it stops at the glass's rim.
+  const surface = await page.evaluate(() => document.getElementById("map-side").handles.find((h) => h.kind === "liquid").at);
+  await dragOnMap(page, "map-side", surface, [0, -300]);
+  file = await nextFile(page, file);
+  assert.equal(Number(fileValue(file, "liquid", 0, "top")), 0.2);
+  assert.deepEqual(await page.locator("#error").isHidden(), true);
+  assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
+  await page.screenshot({ path: ON_SITE ? shot("objects.png") : "/tmp/shots-edit/objects-laptop.png" });
+  assert.deepEqual(problems.filter((p) => !/status of 400/.test(p)), []);
+  await context.close();
+});
+
+test("the objects' controls on a phone, in French: a finger can hit each, nothing scrolls sideways", async () => {
+  mkdirSync("/tmp/shots-edit", { recursive: true });
+  const { page, context, problems } = await openPage(browser, server.url, { width: 390, height: 844 }, { ...PHONE, locale: "fr-FR" });
+  await page.goto(server.url + "#scene=reversing-arrow");
+  await waitReady(page);
+  await page.click("#scene-objects summary");
+  await page.waitForFunction(() => document.querySelectorAll("#objects fieldset").length >= 3);
+  const legends = await page.locator("#objects legend").allTextContents();
+  assert.equal(legends[0], "Récipient");
+  assert.ok(legends.includes("Carte 1"), legends.join(", "));
+  const small = await page.evaluate(() => [...document.querySelectorAll("#scene-objects summary, #objects input, #objects select, #objects button")]
+    .map((el) => [el.dataset.key || el.textContent.trim(), Math.round(el.getBoundingClientRect().height)]).filter(([, h]) => h < 44));
+  assert.deepEqual(small, []);
+  assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
+  await page.locator("#scene-objects").scrollIntoViewIfNeeded();
+  await page.screenshot({ path: ON_SITE ? shot("objects-phone.png") : "/tmp/shots-edit/objects-phone-fr.png" });
+  assert.deepEqual(problems, []);
+  await context.close();
+});

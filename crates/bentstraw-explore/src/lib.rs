@@ -21,7 +21,7 @@ use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::rule::{Param, Rule};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{clip_text, DEFAULT_MAX_EVENTS};
-use bentstraw_optics::scene_file::{Container, Observer, SceneDescription};
+use bentstraw_optics::scene_file::{Container, Observer, SceneDescription, SceneForm};
 use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
 use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
@@ -34,7 +34,7 @@ use bentstraw_outputs::gallery::{opening_comment, GALLERY};
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
 use bentstraw_outputs::pictures::png_bytes;
 use bentstraw_outputs::scene_input::{
-    file_world, parse_scene_text, Loaded, SceneSource, SceneValues,
+    file_world, parse_scene_text, Loaded, SceneSource, SceneValues, MAX_SCENE_FILE_BYTES,
 };
 use bentstraw_outputs::sketch::{object_outlines, world_wireframe};
 use bentstraw_outputs::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
@@ -316,7 +316,27 @@ pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, Refused> {
         "liquids": description.liquids.iter().map(|l| json!({"name": l.name, "index": l.index, "top": l.top})).collect::<Vec<_>>(),
         // The room the liquids fill, so that the maps can tint each layer.
         "container": container_json(&description.container),
+        // Every key of the file with its value (defaults written out), for the page's controls.
+        "form": serde_json::to_value(description.form()).expect("a scene form is plain data"),
     })))
+}
+
+/// `GET /api/scene-text?form=JSON`: a scene file's text from its keys and values (the `form` of
+/// a sketch, edited by the page's controls). No rule is checked here: the text is then read as any
+/// scene file is, so that a control and the text box are refused by the same rules, key by key.
+pub fn scene_text_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
+    let form = required(q, "form")?;
+    if form.len() as u64 > MAX_SCENE_FILE_BYTES {
+        return Err(format!(
+            "the scene's form is {} bytes: a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB)",
+            form.len()
+        ));
+    }
+    let form: SceneForm = serde_json::from_str(form)
+        .map_err(|e| format!("the scene's form is not a scene file's keys and values: {e}"))?;
+    let mut r = Reply::bytes("application/toml", form.to_toml().into_bytes());
+    r.file_name = Some(PAGE_SCENE_FILE.into());
+    Ok(r)
 }
 
 /// The inside of a scene's container, which its liquids fill: a glass's inner radius or a tank's
@@ -1077,6 +1097,9 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
     if path == "/api/sketch" {
         return sketch_reply(&q).unwrap_or_else(Refused::reply);
     }
+    if path == "/api/scene-text" {
+        return scene_text_reply(&q).unwrap_or_else(|e| Reply::text(400, e));
+    }
     let view = match View::checked(&q) {
         Ok(v) => v,
         Err(e) => return e.reply(),
@@ -1428,6 +1451,64 @@ mod tests {
         );
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         assert_eq!(v["rules"][0]["params"]["shape"], json!({"text": "co.ne"}));
+    }
+
+    /// The page's controls edit a sketch's `form` and get the file's text back: every gallery
+    /// scene comes back as the same description, an edited value is the text's value, and the
+    /// rules are checked where the text is read (a broken value is refused there by its key).
+    #[test]
+    fn a_scenes_form_turns_back_into_its_file() {
+        let mut f = Frame::default();
+        let text_of = |form: &Value, f: &mut Frame| {
+            let q = format!("form={}", query_value(&form.to_string()));
+            let r = handle("/api/scene-text", &q, f);
+            assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+            String::from_utf8(r.body).unwrap()
+        };
+        for (stem, text) in GALLERY {
+            let sketch = handle("/api/sketch", &format!("scene={stem}"), &mut f);
+            let v: Value = serde_json::from_slice(&sketch.body).unwrap();
+            let back = text_of(&v["form"], &mut f);
+            let original = SceneDescription::from_toml(text).unwrap();
+            let again = SceneDescription::from_toml(&back).unwrap();
+            assert_eq!(again.to_toml(), original.to_toml(), "{stem}");
+            assert!(v["form"]["container"]["shape"].is_string(), "{stem}");
+        }
+        // An edit: the coin moved and a liquid added.
+        let sketch = handle("/api/sketch", "scene=coin-in-glass", &mut f);
+        let mut form = serde_json::from_slice::<Value>(&sketch.body).unwrap()["form"].clone();
+        form["coin"][0]["x"] = json!(0.0123);
+        let back = SceneDescription::from_toml(&text_of(&form, &mut f)).unwrap();
+        assert_eq!(back.coins[0].x, 0.0123);
+        // A top above the container: written as asked, refused where the text is read, by key.
+        let height = form["container"]["height"].as_f64().unwrap();
+        form["liquid"][0]["top"] = json!(height + 0.01);
+        let broken = text_of(&form, &mut f);
+        let r = handle(
+            "/api/sketch",
+            &format!("scene-file={}", query_value(&broken)),
+            &mut f,
+        );
+        assert_eq!(r.status, 400);
+        let v: Value = serde_json::from_slice(&r.body).unwrap();
+        assert_eq!(v["rules"][0]["key"], json!("liquid[1].top"), "{v}");
+        // What is not a scene file's key, or not JSON, or too long, is refused here.
+        for bad in [
+            r#"{"container":{"shape":"glass","colour":1}}"#,
+            "{",
+            "[1,2]",
+        ] {
+            let r = handle(
+                "/api/scene-text",
+                &format!("form={}", query_value(bad)),
+                &mut f,
+            );
+            assert_eq!(r.status, 400, "{bad}");
+            assert!(String::from_utf8_lossy(&r.body).contains("form"), "{bad}");
+        }
+        let long = format!("form={}", "x".repeat(MAX_SCENE_FILE_BYTES as usize + 1));
+        assert_eq!(handle("/api/scene-text", &long, &mut f).status, 400);
+        assert_eq!(handle("/api/scene-text", "", &mut f).status, 400);
     }
 
     /// The page's language tables (i18n.js) say every rule the library can break, in English

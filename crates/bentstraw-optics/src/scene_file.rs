@@ -18,6 +18,8 @@ use crate::Vec3;
 
 #[cfg(feature = "scene-file")]
 mod format;
+#[cfg(feature = "scene-file")]
+pub use format::SceneForm;
 
 /// A container's index when the file gives none (ordinary glass).
 pub const DEFAULT_CONTAINER_INDEX: f64 = 1.5;

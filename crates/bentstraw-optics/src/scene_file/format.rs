@@ -11,6 +11,21 @@ const QUOTED_MAX: usize = 40;
 
 // The file's form: what TOML may say, every optional key an `Option`, nothing else accepted.
 
+/// A scene file's keys and values as its text holds them, before any rule is checked: what a
+/// page edits key by key and turns back into the file's text ([`SceneForm::to_toml`]).
+#[derive(Deserialize, Serialize)]
+#[serde(transparent)]
+pub struct SceneForm(FileScene);
+
+impl SceneForm {
+    /// The form as a scene file's TOML text (every key it holds, in the file's order); reading
+    /// it checks the rules.
+    pub fn to_toml(&self) -> String {
+        // Tables of numbers and strings always have a TOML form.
+        toml::to_string(&self.0).expect("a scene form is plain TOML data")
+    }
+}
+
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct FileScene {
@@ -367,6 +382,11 @@ impl SceneDescription {
     /// The description as a scene file's TOML, every value written out (defaults too), so that
     /// reading it back gives the same description.
     pub fn to_toml(&self) -> String {
+        self.form().to_toml()
+    }
+
+    /// The description's form, every value written out (defaults too).
+    pub fn form(&self) -> SceneForm {
         let container = match &self.container {
             Container::Glass(g) => FileContainer {
                 shape: Some("glass".into()),
@@ -434,7 +454,6 @@ impl SceneDescription {
                 target: Some(o.target.to_array()),
             }),
         };
-        // Tables of numbers and strings always have a TOML form.
-        toml::to_string(&file).expect("a scene description is plain TOML data")
+        SceneForm(file)
     }
 }

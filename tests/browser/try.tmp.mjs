@@ -1,0 +1,15 @@
+import { startServer, launch, openPage, waitReady } from "./harness.mjs";
+const server = await startServer();
+const browser = await launch();
+const { page, context, problems } = await openPage(browser, server.url, { width: 1500, height: 1000 });
+page.on("console", (m) => console.log("console:", m.text()));
+await page.goto(server.url + "#scene=coin-in-glass&observer=0.15,0,0.35");
+await waitReady(page);
+await page.click("#scene-objects summary");
+await page.waitForFunction(() => document.querySelectorAll("#objects fieldset").length === 3);
+await page.fill('[data-key="liquid[1].top"]', "0.15");
+await page.press('[data-key="liquid[1].top"]', "Enter");
+await page.waitForTimeout(3000);
+console.log(await page.evaluate(() => [window.bentstraw.state.file.slice(0,200), window.bentstraw.state.scene, document.getElementById("scene-text").value.slice(0,300)]));
+console.log(problems);
+await browser.close(); server.stop();
