@@ -942,6 +942,17 @@ test("the objects' controls and the maps' rings edit the scene: the box and the 
   assert.ok(x > 0 && y > 0, `${x}, ${y}`);
   assert.equal(await page.inputValue('[data-key="coin[1].x"]'), String(x));
   assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
+  // The whole drag is one step of the history: undo puts the coin back in the middle, redo
+  // where it was dropped.
+  let frames2 = await page.evaluate(() => window.bentstraw.frames);
+  await page.click("#objects-undo");
+  await waitReady(page, frames2);
+  const undone = await page.evaluate(() => window.bentstraw.state.file);
+  assert.deepEqual(["x", "y"].map((k) => Number(fileValue(undone, "coin", 0, k))), [0, 0]);
+  frames2 = await page.evaluate(() => window.bentstraw.frames);
+  await page.click("#objects-redo");
+  await waitReady(page, frames2);
+  assert.equal(await page.evaluate(() => window.bentstraw.state.file), file);
   // The water's surface dragged far up on the side map: it stops at the glass's rim.
   const surface = await page.evaluate(() => document.getElementById("map-side").handles.find((h) => h.kind === "liquid").at);
   await dragOnMap(page, "map-side", surface, [0, -300]);
@@ -964,7 +975,7 @@ test("the objects' controls on a phone, in French: a finger can hit each, nothin
   const legends = await page.locator("#objects legend").allTextContents();
   assert.equal(legends[0], "Récipient");
   assert.ok(legends.includes("Carte 1"), legends.join(", "));
-  const small = await page.evaluate(() => [...document.querySelectorAll("#scene-objects summary, #objects input, #objects select, #objects button")]
+  const small = await page.evaluate(() => [...document.querySelectorAll("#scene-objects summary, #scene-objects button, #objects input, #objects select")]
     .map((el) => [el.dataset.key || el.textContent.trim(), Math.round(el.getBoundingClientRect().height)]).filter(([, h]) => h < 44));
   assert.deepEqual(small, []);
   assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);

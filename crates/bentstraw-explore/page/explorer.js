@@ -1076,6 +1076,7 @@ onDrag(topCanvas, {
     const near = (p) => p && Math.hypot(p[0] - x, p[1] - y) < 14;
     const h = near(topCanvas.eyeAt) ? null : handleAt(topCanvas.handles, x, y, 14);
     dragging = h || (near(topCanvas.strawAt) && !near(topCanvas.eyeAt) ? "straw" : "eye");
+    if (h) dragGesture = {};
   },
   move: (dx, dy, e) => {
     const r = topCanvas.getBoundingClientRect();
@@ -1098,6 +1099,7 @@ onDrag(sideCanvas, {
     const r = sideCanvas.getBoundingClientRect(), x = e.clientX - r.left, y = e.clientY - r.top;
     const eye = sideCanvas.eyeAt && Math.hypot(sideCanvas.eyeAt[0] - x, sideCanvas.eyeAt[1] - y) < 14;
     draggingSide = eye ? null : handleAt(sideCanvas.handles, x, y, 14);
+    if (draggingSide) dragGesture = {};
   },
   move: (dx, dy, e) => {
     const r = sideCanvas.getBoundingClientRect();
@@ -1417,15 +1419,19 @@ function remember(text, snap) {
   const h = sceneHistory;
   // The same text (a page's own file seen from another eye): the entry keeps the latest eye.
   if (h.at >= 0 && h.entries[h.at].text === text) { h.entries[h.at].snap = snap; return; }
+  // A drag of an object is one step of the history, however many texts it went through.
+  const gesture = text === dragText ? dragGesture : null;
   h.entries.splice(h.at + 1);
-  h.entries.push({ text, snap });
+  if (gesture && h.at >= 0 && h.entries[h.at].gesture === gesture) { Object.assign(h.entries[h.at], { text, snap }); historyButtons(); return; }
+  h.entries.push({ text, snap, gesture });
   if (h.entries.length > HISTORY_MAX) h.entries.shift();
   h.at = h.entries.length - 1;
   historyButtons();
 }
 function historyButtons() {
-  $("scene-undo").disabled = sceneHistory.at <= 0;
-  $("scene-redo").disabled = sceneHistory.at >= sceneHistory.entries.length - 1;
+  // The scene file's panel and the objects' panel each have the pair.
+  for (const id of ["scene-undo", "objects-undo"]) $(id).disabled = sceneHistory.at <= 0;
+  for (const id of ["scene-redo", "objects-redo"]) $(id).disabled = sceneHistory.at >= sceneHistory.entries.length - 1;
 }
 
 /** Undo (-1) or redo (+1): the scene, its eye and its text as they were. */
@@ -1446,8 +1452,8 @@ async function stepHistory(d) {
   if (!sameScene) frame = null;
   changed();
 }
-$("scene-undo").addEventListener("click", () => stepHistory(-1));
-$("scene-redo").addEventListener("click", () => stepHistory(1));
+for (const id of ["scene-undo", "objects-undo"]) $(id).addEventListener("click", () => stepHistory(-1));
+for (const id of ["scene-redo", "objects-redo"]) $(id).addEventListener("click", () => stepHistory(1));
 // Ctrl+Z / Ctrl+Shift+Z (or Ctrl+Y) for the scene, except where a text box has its own undo.
 document.addEventListener("keydown", (e) => {
   if (!(e.ctrlKey || e.metaKey) || e.altKey) return;
@@ -1774,6 +1780,8 @@ function markObjects(error) {
 // Each step is the form changed and sent as a text; a step the rules refuse is left out, so the
 // object stops where it may still be (no banner: the banner is for typed values).
 let dragSending = false, dragNext = null;
+/** The object drag under way or last made (a token), and the latest text it made. */
+let dragGesture = null, dragText = null;
 async function dragForm(change) {
   const form = viewForm();
   if (!form) return;
@@ -1790,6 +1798,7 @@ async function dragForm(change) {
       const observer = await checkScene(text, "hook");
       await useScene(text, observer);
       formOf = { text, key: sceneKey(state), form: next };
+      dragText = text;
       showObjects();
       clearTimeout(editTimer); editTimer = null;
       sceneText.value = text;
