@@ -480,6 +480,17 @@ impl World {
         }
     }
 
+    /// The same world without its objects, only the faces between media: a light path followed
+    /// through whatever stands in its way (the same arithmetic, event for event, as in `self`).
+    pub(crate) fn faces_only(&self) -> World {
+        World {
+            indices: self.indices.clone(),
+            boundaries: self.boundaries.clone(),
+            objects: Vec::new(),
+            ..*self
+        }
+    }
+
     /// The refractive index of medium `m`.
     #[inline]
     pub fn index(&self, m: MediumId) -> f64 {
