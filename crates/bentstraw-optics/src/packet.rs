@@ -18,13 +18,17 @@
 //! The same generic code is compiled three times: for AVX-512 and for AVX2 (chosen at run time
 //! with `is_x86_feature_detected!`), with the eight lanes in one AVX register
 //! ([`crate::lanes::avx`], each operation one instruction), and for the baseline target, with the
-//! lanes as an array ([`F8`]). All use the same IEEE operations in the same order (no fused
-//! multiply-add), so all give the same pixels (tested on every gallery scene).
+//! lanes as an array ([`F8`]). Course pictures on AVX-512 follow sixteen rays at a time, in one
+//! AVX-512 register ([`crate::lanes::avx512`]): the loop is bound by arithmetic, and each
+//! instruction then does twice the rays' work. All use the same IEEE operations in the same order
+//! (no fused multiply-add), so all give the same pixels (tested on every gallery scene).
 
 use crate::camera::Camera;
 use crate::geometry::{enter_sphere, Ray};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::avx::F8Avx;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::avx512::{F16Avx512, M16Avx512, WIDE_LANES};
 use crate::lanes::{Mask, Packet, PacketMask, F8, V3};
 use crate::world::fresnel::{followed_lanes, prune_threshold, split, SegmentBudget};
 use crate::world::FRESNEL_SEGMENTS_PER_RAY;
@@ -45,7 +49,8 @@ const NO_FACE: f32 = -1.0;
 /// widest instruction set it has.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Instructions {
-    /// x86-64 with AVX-512 (VL): the same 8-lane operations, with twice the registers.
+    /// x86-64 with AVX-512 (VL): the same 8-lane operations, with twice the registers, and
+    /// course rows sixteen lanes at a time.
     Avx512,
     /// x86-64 with AVX2.
     Avx2,
@@ -181,11 +186,47 @@ impl<'w> PacketTracer<'w> {
         self.world
     }
 
-    compiled! {
-        /// Colour codes (0 = none) of the rays through the centres of pixel row `row` of
-        /// `camera`; `codes.len()` must be the camera's width.
-        pub fn course_row(&self, camera: &Camera, row: u32, codes: &mut [u8])
-            => course_row_generic, course_row_avx2, course_row_avx512
+    /// Colour codes (0 = none) of the rays through the centres of pixel row `row` of
+    /// `camera`; `codes.len()` must be the camera's width.
+    pub fn course_row(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        match self.instructions {
+            // SAFETY: the processor has these instructions ([`Instructions::detect`]).
+            #[cfg(target_arch = "x86_64")]
+            Instructions::Avx512 => unsafe { self.course_row_avx512(camera, row, codes) },
+            // SAFETY: as above.
+            #[cfg(target_arch = "x86_64")]
+            Instructions::Avx2 => unsafe { self.course_row_avx2(camera, row, codes) },
+            _ => self.course_row_generic::<F8>(camera, row, codes),
+        }
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn course_row_avx2(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        self.course_row_generic::<F8Avx>(camera, row, codes)
+    }
+
+    /// [`Self::course_row`] sixteen rays at a time, in AVX-512 registers: a ray's arithmetic is
+    /// the eight-lane packets', so its colour is theirs.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    unsafe fn course_row_avx512(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        use crate::lanes::Real;
+        let rays = RowRays::new(camera, row, self.world.bounding_sphere());
+        if rays.far {
+            // Rays made one by one in double precision: eight at a time, as they are made.
+            return self.course_row_generic::<F8Avx>(camera, row, codes);
+        }
+        let zero = F16Avx512::splat(0.0);
+        let all = M16Avx512::splat(true);
+        for (p, chunk) in codes.chunks_mut(WIDE_LANES).enumerate() {
+            let (o, d) = rays.wide_packet(p);
+            let ends = self
+                .world
+                .follow_course(o, d, all, zero, self.world.max_events(), |_| {});
+            let code = F16Avx512::select(ends.reached, ends.color, zero).to_bytes();
+            chunk.copy_from_slice(&code[..chunk.len()]);
+        }
     }
 
     /// [`Self::course_row`] for any target (the baseline instruction set).
@@ -723,6 +764,29 @@ impl<'c> RowRays<'c> {
         )
     }
 
+    /// [`Self::packet`] for sixteen rays, pixels `16p .. 16p + 16`, near the scene only (the
+    /// same operations lane by lane: the same rays).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    fn wide_packet(&self, p: usize) -> (V3<F16Avx512>, V3<F16Avx512>) {
+        use crate::lanes::Real;
+        debug_assert!(!self.far);
+        let s = F16Avx512::splat32;
+        let lanes = F16Avx512::from_array(std::array::from_fn(|k| k as f32));
+        let first = s((p * WIDE_LANES) as f32);
+        let sx = s(self.sx_start) + (first + lanes) * s(self.sx_step);
+        let (b, r) = (self.base, self.right);
+        let dx = s(b[0]) + sx * s(r[0]);
+        let dy = s(b[1]) + sx * s(r[1]);
+        let dz = s(b[2]) + sx * s(r[2]);
+        let inv = s(1.0) / (dx * dx + dy * dy + dz * dz).sqrt();
+        let e = self.eye;
+        (
+            V3::new(s(e[0]), s(e[1]), s(e[2])),
+            V3::new(dx * inv, dy * inv, dz * inv),
+        )
+    }
+
     /// [`Self::packet`] for a far eye.
     #[inline(always)]
     fn far_packet<P: Packet>(&self, p: usize) -> (V3<P>, V3<P>, P::Mask) {
@@ -954,7 +1018,8 @@ mod tests {
         }
     }
 
-    /// Every build the processor can run gives the portable build's pixels (same IEEE operations).
+    /// Every build the processor can run gives the portable build's pixels (same IEEE operations,
+    /// eight or sixteen lanes; 203 columns end in a partly filled packet).
     #[test]
     fn every_instruction_set_gives_the_same_pixels() {
         let first = World::assignment(&REFERENCES[0].scene(1.333));
