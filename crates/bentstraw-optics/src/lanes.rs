@@ -11,7 +11,8 @@
 //! and, on x86-64, one AVX register ([`avx::F8Avx`]) whose every operation is one instruction,
 //! for the kernels chosen when the processor has AVX2: explicit, so that no change elsewhere can
 //! make the compiler split the packets into narrower vectors or single lanes. With AVX-512, course
-//! pictures take sixteen lanes in one register ([`avx512::F16Avx512`]), a [`Real`] of its own.
+//! pictures take thirty-two lanes in two registers ([`avx512::F32Avx512`]), a [`Real`] of its
+//! own.
 //!
 //! All instances perform the same operations in the same order, with two exceptions, the places
 //! where the two precisions are meant to differ: [`Real::quotient`] divides in double precision

@@ -18,17 +18,18 @@
 //! The same generic code is compiled three times: for AVX-512 and for AVX2 (chosen at run time
 //! with `is_x86_feature_detected!`), with the eight lanes in one AVX register
 //! ([`crate::lanes::avx`], each operation one instruction), and for the baseline target, with the
-//! lanes as an array ([`F8`]). Course pictures on AVX-512 follow sixteen rays at a time, in one
-//! AVX-512 register ([`crate::lanes::avx512`]): the loop is bound by arithmetic, and each
-//! instruction then does twice the rays' work. All use the same IEEE operations in the same order
-//! (no fused multiply-add), so all give the same pixels (tested on every gallery scene).
+//! lanes as an array ([`F8`]). Course pictures on AVX-512 follow thirty-two rays at a time, in
+//! two AVX-512 registers ([`crate::lanes::avx512`]): each step is bound by the latency of the
+//! step before, so two independent packets of sixteen, their instructions interleaved, keep the
+//! core busy. All use the same IEEE operations in the same order (no fused multiply-add), so all
+//! give the same pixels (tested on every gallery scene).
 
 use crate::camera::Camera;
 use crate::geometry::{enter_sphere, Ray};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::avx::F8Avx;
 #[cfg(target_arch = "x86_64")]
-use crate::lanes::avx512::{F16Avx512, M16Avx512, WIDE_LANES};
+use crate::lanes::avx512::{F32Avx512 as Wider, Wide};
 use crate::lanes::{Mask, Packet, PacketMask, F8, V3};
 use crate::world::fresnel::{followed_lanes, prune_threshold, split, SegmentBudget};
 use crate::world::FRESNEL_SEGMENTS_PER_RAY;
@@ -50,7 +51,7 @@ const NO_FACE: f32 = -1.0;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Instructions {
     /// x86-64 with AVX-512 (VL): the same 8-lane operations, with twice the registers, and
-    /// course rows sixteen lanes at a time.
+    /// course rows thirty-two lanes at a time.
     Avx512,
     /// x86-64 with AVX2.
     Avx2,
@@ -206,26 +207,31 @@ impl<'w> PacketTracer<'w> {
         self.course_row_generic::<F8Avx>(camera, row, codes)
     }
 
-    /// [`Self::course_row`] sixteen rays at a time, in AVX-512 registers: a ray's arithmetic is
-    /// the eight-lane packets', so its colour is theirs.
+    /// [`Self::course_row`] thirty-two rays at a time, in two AVX-512 registers: a ray's
+    /// arithmetic is the eight-lane packets', so its colour is theirs.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,avx512f,avx512vl")]
     unsafe fn course_row_avx512(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
-        use crate::lanes::Real;
+        self.course_row_wide::<Wider>(camera, row, codes)
+    }
+
+    /// [`Self::course_row`] with the rays of a row in packets of `W`, near the scene.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    fn course_row_wide<W: Wide>(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
         let rays = RowRays::new(camera, row, self.world.bounding_sphere());
         if rays.far {
             // Rays made one by one in double precision: eight at a time, as they are made.
             return self.course_row_generic::<F8Avx>(camera, row, codes);
         }
-        let zero = F16Avx512::splat(0.0);
-        let all = M16Avx512::splat(true);
-        for (p, chunk) in codes.chunks_mut(WIDE_LANES).enumerate() {
-            let (o, d) = rays.wide_packet(p);
+        let zero = W::splat(0.0);
+        let all = W::Mask::splat(true);
+        for (p, chunk) in codes.chunks_mut(W::LANES).enumerate() {
+            let (o, d) = rays.wide_packet::<W>(p);
             let ends = self
                 .world
                 .follow_course(o, d, all, zero, self.world.max_events(), |_| {});
-            let code = F16Avx512::select(ends.reached, ends.color, zero).to_bytes();
-            chunk.copy_from_slice(&code[..chunk.len()]);
+            W::select(ends.reached, ends.color, zero).store_bytes(chunk);
         }
     }
 
@@ -764,17 +770,15 @@ impl<'c> RowRays<'c> {
         )
     }
 
-    /// [`Self::packet`] for sixteen rays, pixels `16p .. 16p + 16`, near the scene only (the
-    /// same operations lane by lane: the same rays).
+    /// [`Self::packet`] for the rays of a wide packet, pixels `Np .. Np + N`, near the scene
+    /// only (the same operations lane by lane: the same rays).
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
-    fn wide_packet(&self, p: usize) -> (V3<F16Avx512>, V3<F16Avx512>) {
-        use crate::lanes::Real;
+    fn wide_packet<W: Wide>(&self, p: usize) -> (V3<W>, V3<W>) {
         debug_assert!(!self.far);
-        let s = F16Avx512::splat32;
-        let lanes = F16Avx512::from_array(std::array::from_fn(|k| k as f32));
-        let first = s((p * WIDE_LANES) as f32);
-        let sx = s(self.sx_start) + (first + lanes) * s(self.sx_step);
+        let s = W::splat32;
+        let first = s((p * W::LANES) as f32);
+        let sx = s(self.sx_start) + (first + W::index()) * s(self.sx_step);
         let (b, r) = (self.base, self.right);
         let dx = s(b[0]) + sx * s(r[0]);
         let dy = s(b[1]) + sx * s(r[1]);
@@ -1019,7 +1023,8 @@ mod tests {
     }
 
     /// Every build the processor can run gives the portable build's pixels (same IEEE operations,
-    /// eight or sixteen lanes; 203 columns end in a partly filled packet).
+    /// eight or thirty-two lanes; 213 columns end in a partly filled packet, both of whose
+    /// AVX-512 halves hold rays).
     #[test]
     fn every_instruction_set_gives_the_same_pixels() {
         let first = World::assignment(&REFERENCES[0].scene(1.333));
@@ -1039,7 +1044,7 @@ mod tests {
         for r in REFERENCES {
             let scene = World::assignment(&r.scene(1.333));
             let target = Vec3::new(r.straw.0, r.straw.1, r.water_height);
-            let cam = Camera::new(r.observer, target, 203, 61, 50f64.to_radians());
+            let cam = Camera::new(r.observer, target, 213, 61, 50f64.to_radians());
             for &isa in &builds {
                 let pt = PacketTracer::new(&scene).with_instructions(isa).unwrap();
                 for i in 0..cam.height {

@@ -1,6 +1,6 @@
-//! Sixteen `f32` lanes in one AVX-512 register: the course pictures' numbers in the AVX-512
-//! kernel, twice the rays of [`F8Avx`](super::avx::F8Avx) per instruction, with the lane masks in
-//! a mask register.
+//! Sixteen `f32` lanes in one AVX-512 register ([`F16Avx512`]), twice the rays of
+//! [`F8Avx`](super::avx::F8Avx) per instruction, with the lane masks in a mask register, and
+//! thirty-two in two ([`F32Avx512`]): the course pictures' numbers in the AVX-512 kernel.
 //!
 //! The operations are [`F8`](super::F8)'s, lane by lane, with the same IEEE results (no fused
 //! multiply-add; `min`, `max` and comparisons treat NaN as the array form's `<` and `>` do), so
@@ -233,5 +233,245 @@ impl Iterator for Values {
                 return Some((k, m));
             }
         }
+    }
+}
+
+/// Thirty-two `f32`s, one per ray, in two AVX-512 registers: two packets of sixteen whose
+/// instructions interleave, so that one's work fills the other's waits.
+#[derive(Clone, Copy, Debug)]
+pub struct F32Avx512(F16Avx512, F16Avx512);
+
+/// Thirty-two lane masks, one bit each (two mask registers).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct M32Avx512(pub u32);
+
+impl M32Avx512 {
+    /// The masks of the two halves.
+    #[inline(always)]
+    fn halves(self) -> (M16Avx512, M16Avx512) {
+        (M16Avx512(self.0 as u16), M16Avx512((self.0 >> 16) as u16))
+    }
+
+    /// The mask of the two halves `a`, `b`.
+    #[inline(always)]
+    fn join(a: M16Avx512, b: M16Avx512) -> M32Avx512 {
+        M32Avx512(a.0 as u32 | (b.0 as u32) << 16)
+    }
+}
+
+macro_rules! pairwise {
+    ($trait:ident, $method:ident) => {
+        impl $trait for F32Avx512 {
+            type Output = F32Avx512;
+            #[inline(always)]
+            fn $method(self, o: F32Avx512) -> F32Avx512 {
+                F32Avx512(self.0.$method(o.0), self.1.$method(o.1))
+            }
+        }
+    };
+}
+pairwise!(Add, add);
+pairwise!(Sub, sub);
+pairwise!(Mul, mul);
+pairwise!(Div, div);
+
+impl Neg for F32Avx512 {
+    type Output = F32Avx512;
+    #[inline(always)]
+    fn neg(self) -> F32Avx512 {
+        F32Avx512(-self.0, -self.1)
+    }
+}
+
+macro_rules! compare_pair {
+    ($name:ident) => {
+        #[inline(always)]
+        fn $name(self, o: F32Avx512) -> M32Avx512 {
+            M32Avx512::join(self.0.$name(o.0), self.1.$name(o.1))
+        }
+    };
+}
+
+impl Real for F32Avx512 {
+    type Mask = M32Avx512;
+    const LANES: usize = 2 * WIDE_LANES;
+    const EXACT: bool = false;
+    #[inline(always)]
+    fn splat(x: f64) -> F32Avx512 {
+        let h = F16Avx512::splat(x);
+        F32Avx512(h, h)
+    }
+    #[inline(always)]
+    fn constant(c: Constant) -> F32Avx512 {
+        let h = F16Avx512::constant(c);
+        F32Avx512(h, h)
+    }
+    #[inline(always)]
+    fn lane(self, k: usize) -> f64 {
+        if k < WIDE_LANES {
+            self.0.lane(k)
+        } else {
+            self.1.lane(k - WIDE_LANES)
+        }
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F32Avx512 {
+        F32Avx512(self.0.sqrt(), self.1.sqrt())
+    }
+    #[inline(always)]
+    fn abs(self) -> F32Avx512 {
+        F32Avx512(self.0.abs(), self.1.abs())
+    }
+    #[inline(always)]
+    fn min(self, o: F32Avx512) -> F32Avx512 {
+        F32Avx512(self.0.min(o.0), self.1.min(o.1))
+    }
+    #[inline(always)]
+    fn max(self, o: F32Avx512) -> F32Avx512 {
+        F32Avx512(self.0.max(o.0), self.1.max(o.1))
+    }
+    compare_pair!(lt);
+    compare_pair!(le);
+    compare_pair!(gt);
+    compare_pair!(ge);
+    compare_pair!(eq);
+    #[inline(always)]
+    fn select(m: M32Avx512, a: F32Avx512, b: F32Avx512) -> F32Avx512 {
+        let (m0, m1) = m.halves();
+        F32Avx512(
+            F16Avx512::select(m0, a.0, b.0),
+            F16Avx512::select(m1, a.1, b.1),
+        )
+    }
+    #[inline(always)]
+    fn values(self, live: M32Avx512, n: usize) -> impl Iterator<Item = (usize, M32Avx512)> {
+        PairValues {
+            lanes: self,
+            rest: live,
+            next: 0,
+            n,
+        }
+    }
+    #[inline(always)]
+    fn quotient(num: F32Avx512, _den: F32Avx512, inv_den: F32Avx512) -> F32Avx512 {
+        num * inv_den
+    }
+}
+
+impl Mask for M32Avx512 {
+    #[inline(always)]
+    fn splat(b: bool) -> M32Avx512 {
+        M32Avx512(if b { u32::MAX } else { 0 })
+    }
+    #[inline(always)]
+    fn and(self, o: M32Avx512) -> M32Avx512 {
+        M32Avx512(self.0 & o.0)
+    }
+    #[inline(always)]
+    fn or(self, o: M32Avx512) -> M32Avx512 {
+        M32Avx512(self.0 | o.0)
+    }
+    #[inline(always)]
+    fn and_not(self, o: M32Avx512) -> M32Avx512 {
+        M32Avx512(self.0 & !o.0)
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        self.0 != 0
+    }
+    #[inline(always)]
+    fn lane(self, k: usize) -> bool {
+        self.0 >> k & 1 != 0
+    }
+}
+
+/// [`F32Avx512::values`], as [`Values`] for thirty-two lanes.
+struct PairValues {
+    lanes: F32Avx512,
+    rest: M32Avx512,
+    next: usize,
+    n: usize,
+}
+
+impl Iterator for PairValues {
+    type Item = (usize, M32Avx512);
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<(usize, M32Avx512)> {
+        loop {
+            if !self.rest.any() {
+                return None;
+            }
+            if self.n <= 2 * WIDE_LANES {
+                if self.next >= self.n {
+                    return None;
+                }
+                let k = self.next;
+                self.next += 1;
+                let m = self.rest.and(self.lanes.eq(F32Avx512::splat(k as f64)));
+                if m.any() {
+                    self.rest = self.rest.and_not(m);
+                    return Some((k, m));
+                }
+                continue;
+            }
+            let lane = self.rest.0.trailing_zeros() as usize;
+            let v = self.lanes.lane(lane) as f32;
+            let m = self.rest.and(self.lanes.eq(F32Avx512::splat(v as f64)));
+            // That lane is done even where it holds a NaN, which matches nothing.
+            self.rest = self.rest.and_not(m).and_not(M32Avx512(1 << lane));
+            let k = v as usize;
+            if k as f32 == v && k < self.n {
+                return Some((k, m));
+            }
+        }
+    }
+}
+
+/// The course rows' wide numbers ([`F16Avx512`], [`F32Avx512`]): how a row's rays are made
+/// and their codes stored.
+pub trait Wide: Real {
+    /// Every lane `x`.
+    fn splat32(x: f32) -> Self;
+    /// Each lane its own index, `0, 1, 2, …`.
+    fn index() -> Self;
+    /// The first `out.len()` lanes, whole numbers in `0..=255`, as bytes (truncated, as
+    /// `x as u8` is there).
+    fn store_bytes(self, out: &mut [u8]);
+}
+
+impl Wide for F16Avx512 {
+    #[inline(always)]
+    fn splat32(x: f32) -> F16Avx512 {
+        F16Avx512::splat32(x)
+    }
+    #[inline(always)]
+    fn index() -> F16Avx512 {
+        F16Avx512::from_array(std::array::from_fn(|k| k as f32))
+    }
+    #[inline(always)]
+    fn store_bytes(self, out: &mut [u8]) {
+        out.copy_from_slice(&self.to_bytes()[..out.len()]);
+    }
+}
+
+impl Wide for F32Avx512 {
+    #[inline(always)]
+    fn splat32(x: f32) -> F32Avx512 {
+        let h = F16Avx512::splat32(x);
+        F32Avx512(h, h)
+    }
+    #[inline(always)]
+    fn index() -> F32Avx512 {
+        F32Avx512(
+            F16Avx512::from_array(std::array::from_fn(|k| k as f32)),
+            F16Avx512::from_array(std::array::from_fn(|k| (k + WIDE_LANES) as f32)),
+        )
+    }
+    #[inline(always)]
+    fn store_bytes(self, out: &mut [u8]) {
+        let (a, b) = out.split_at_mut(out.len().min(WIDE_LANES));
+        a.copy_from_slice(&self.0.to_bytes()[..a.len()]);
+        b.copy_from_slice(&self.1.to_bytes()[..b.len()]);
     }
 }
