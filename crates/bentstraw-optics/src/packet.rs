@@ -226,8 +226,12 @@ impl<'w> PacketTracer<'w> {
         }
         let zero = W::splat(0.0);
         let all = W::Mask::splat(true);
+        // The next packet's rays are made while this one is traced: their square root and
+        // division would otherwise start each packet with a wait.
+        let mut next = rays.wide_packet::<W>(0);
         for (p, chunk) in codes.chunks_mut(W::LANES).enumerate() {
-            let (o, d) = rays.wide_packet::<W>(p);
+            let (o, d) = next;
+            next = rays.wide_packet::<W>(p + 1);
             let ends = self
                 .world
                 .follow_course(o, d, all, zero, self.world.max_events(), |_| {});
