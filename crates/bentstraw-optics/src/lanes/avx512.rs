@@ -241,21 +241,34 @@ impl Iterator for Values {
 #[derive(Clone, Copy, Debug)]
 pub struct F32Avx512(F16Avx512, F16Avx512);
 
-/// Thirty-two lane masks, one bit each (two mask registers).
+/// Thirty-two lane masks, one bit each, as the two halves' masks (two mask registers: a mask
+/// joined into one word would cost moves between mask and general registers at every step).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct M32Avx512(pub u32);
+pub struct M32Avx512(M16Avx512, M16Avx512);
 
 impl M32Avx512 {
     /// The masks of the two halves.
     #[inline(always)]
     fn halves(self) -> (M16Avx512, M16Avx512) {
-        (M16Avx512(self.0 as u16), M16Avx512((self.0 >> 16) as u16))
+        (self.0, self.1)
     }
 
     /// The mask of the two halves `a`, `b`.
     #[inline(always)]
     fn join(a: M16Avx512, b: M16Avx512) -> M32Avx512 {
-        M32Avx512(a.0 as u32 | (b.0 as u32) << 16)
+        M32Avx512(a, b)
+    }
+
+    /// Bit `k` set where lane `k` is.
+    #[inline(always)]
+    fn bits(self) -> u32 {
+        self.0 .0 as u32 | (self.1 .0 as u32) << 16
+    }
+
+    /// The lanes of the bits `b`.
+    #[inline(always)]
+    fn from_bits(b: u32) -> M32Avx512 {
+        M32Avx512(M16Avx512(b as u16), M16Avx512((b >> 16) as u16))
     }
 }
 
@@ -361,27 +374,27 @@ impl Real for F32Avx512 {
 impl Mask for M32Avx512 {
     #[inline(always)]
     fn splat(b: bool) -> M32Avx512 {
-        M32Avx512(if b { u32::MAX } else { 0 })
+        M32Avx512(M16Avx512::splat(b), M16Avx512::splat(b))
     }
     #[inline(always)]
     fn and(self, o: M32Avx512) -> M32Avx512 {
-        M32Avx512(self.0 & o.0)
+        M32Avx512(self.0.and(o.0), self.1.and(o.1))
     }
     #[inline(always)]
     fn or(self, o: M32Avx512) -> M32Avx512 {
-        M32Avx512(self.0 | o.0)
+        M32Avx512(self.0.or(o.0), self.1.or(o.1))
     }
     #[inline(always)]
     fn and_not(self, o: M32Avx512) -> M32Avx512 {
-        M32Avx512(self.0 & !o.0)
+        M32Avx512(self.0.and_not(o.0), self.1.and_not(o.1))
     }
     #[inline(always)]
     fn any(self) -> bool {
-        self.0 != 0
+        (self.0 .0 | self.1 .0) != 0
     }
     #[inline(always)]
     fn lane(self, k: usize) -> bool {
-        self.0 >> k & 1 != 0
+        self.bits() >> k & 1 != 0
     }
 }
 
@@ -415,11 +428,14 @@ impl Iterator for PairValues {
                 }
                 continue;
             }
-            let lane = self.rest.0.trailing_zeros() as usize;
+            let lane = self.rest.bits().trailing_zeros() as usize;
             let v = self.lanes.lane(lane) as f32;
             let m = self.rest.and(self.lanes.eq(F32Avx512::splat(v as f64)));
             // That lane is done even where it holds a NaN, which matches nothing.
-            self.rest = self.rest.and_not(m).and_not(M32Avx512(1 << lane));
+            self.rest = self
+                .rest
+                .and_not(m)
+                .and_not(M32Avx512::from_bits(1 << lane));
             let k = v as usize;
             if k as f32 == v && k < self.n {
                 return Some((k, m));
