@@ -10,7 +10,9 @@
 //! The eight lanes have two forms ([`Packet`]): an array ([`F8`]), which any target compiles,
 //! and, on x86-64, one AVX register ([`avx::F8Avx`]) whose every operation is one instruction,
 //! for the kernels chosen when the processor has AVX2: explicit, so that no change elsewhere can
-//! make the compiler split the packets into narrower vectors or single lanes.
+//! make the compiler split the packets into narrower vectors or single lanes. With AVX-512, course
+//! pictures take thirty-two lanes in two registers ([`avx512::F32Avx512`]), a [`Real`] of its
+//! own.
 //!
 //! All instances perform the same operations in the same order, with two exceptions, the places
 //! where the two precisions are meant to differ: [`Real::quotient`] divides in double precision
@@ -21,6 +23,8 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 
 #[cfg(target_arch = "x86_64")]
 pub mod avx;
+#[cfg(target_arch = "x86_64")]
+pub mod avx512;
 
 /// Which lanes of a [`Real`] a step applies to.
 pub trait Mask: Copy {

@@ -18,13 +18,18 @@
 //! The same generic code is compiled three times: for AVX-512 and for AVX2 (chosen at run time
 //! with `is_x86_feature_detected!`), with the eight lanes in one AVX register
 //! ([`crate::lanes::avx`], each operation one instruction), and for the baseline target, with the
-//! lanes as an array ([`F8`]). All use the same IEEE operations in the same order (no fused
-//! multiply-add), so all give the same pixels (tested on every gallery scene).
+//! lanes as an array ([`F8`]). Course pictures on AVX-512 follow thirty-two rays at a time, in
+//! two AVX-512 registers ([`crate::lanes::avx512`]): each step is bound by the latency of the
+//! step before, so two independent packets of sixteen, their instructions interleaved, keep the
+//! core busy. All use the same IEEE operations in the same order (no fused multiply-add), so all
+//! give the same pixels (tested on every gallery scene).
 
 use crate::camera::Camera;
 use crate::geometry::{enter_sphere, Ray};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::avx::F8Avx;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::avx512::{F32Avx512 as Wider, Wide};
 use crate::lanes::{Mask, Packet, PacketMask, F8, V3};
 use crate::world::fresnel::{followed_lanes, prune_threshold, split, SegmentBudget};
 use crate::world::FRESNEL_SEGMENTS_PER_RAY;
@@ -45,7 +50,8 @@ const NO_FACE: f32 = -1.0;
 /// widest instruction set it has.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Instructions {
-    /// x86-64 with AVX-512 (VL): the same 8-lane operations, with twice the registers.
+    /// x86-64 with AVX-512 (VL): the same 8-lane operations, with twice the registers, and
+    /// course rows thirty-two lanes at a time.
     Avx512,
     /// x86-64 with AVX2.
     Avx2,
@@ -181,11 +187,56 @@ impl<'w> PacketTracer<'w> {
         self.world
     }
 
-    compiled! {
-        /// Colour codes (0 = none) of the rays through the centres of pixel row `row` of
-        /// `camera`; `codes.len()` must be the camera's width.
-        pub fn course_row(&self, camera: &Camera, row: u32, codes: &mut [u8])
-            => course_row_generic, course_row_avx2, course_row_avx512
+    /// Colour codes (0 = none) of the rays through the centres of pixel row `row` of
+    /// `camera`; `codes.len()` must be the camera's width.
+    pub fn course_row(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        match self.instructions {
+            // SAFETY: the processor has these instructions ([`Instructions::detect`]).
+            #[cfg(target_arch = "x86_64")]
+            Instructions::Avx512 => unsafe { self.course_row_avx512(camera, row, codes) },
+            // SAFETY: as above.
+            #[cfg(target_arch = "x86_64")]
+            Instructions::Avx2 => unsafe { self.course_row_avx2(camera, row, codes) },
+            _ => self.course_row_generic::<F8>(camera, row, codes),
+        }
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn course_row_avx2(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        self.course_row_generic::<F8Avx>(camera, row, codes)
+    }
+
+    /// [`Self::course_row`] thirty-two rays at a time, in two AVX-512 registers: a ray's
+    /// arithmetic is the eight-lane packets', so its colour is theirs.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    unsafe fn course_row_avx512(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        self.course_row_wide::<Wider>(camera, row, codes)
+    }
+
+    /// [`Self::course_row`] with the rays of a row in packets of `W`, near the scene.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    fn course_row_wide<W: Wide>(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
+        let rays = RowRays::new(camera, row, self.world.bounding_sphere());
+        if rays.far {
+            // Rays made one by one in double precision: eight at a time, as they are made.
+            return self.course_row_generic::<F8Avx>(camera, row, codes);
+        }
+        let zero = W::splat(0.0);
+        let all = W::Mask::splat(true);
+        // The next packet's rays are made while this one is traced: their square root and
+        // division would otherwise start each packet with a wait.
+        let mut next = rays.wide_packet::<W>(0);
+        for (p, chunk) in codes.chunks_mut(W::LANES).enumerate() {
+            let (o, d) = next;
+            next = rays.wide_packet::<W>(p + 1);
+            let ends = self
+                .world
+                .follow_course(o, d, all, zero, self.world.max_events(), |_| {});
+            W::select(ends.reached, ends.color, zero).store_bytes(chunk);
+        }
     }
 
     /// [`Self::course_row`] for any target (the baseline instruction set).
@@ -723,6 +774,27 @@ impl<'c> RowRays<'c> {
         )
     }
 
+    /// [`Self::packet`] for the rays of a wide packet, pixels `Np .. Np + N`, near the scene
+    /// only (the same operations lane by lane: the same rays).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    fn wide_packet<W: Wide>(&self, p: usize) -> (V3<W>, V3<W>) {
+        debug_assert!(!self.far);
+        let s = W::splat32;
+        let first = s((p * W::LANES) as f32);
+        let sx = s(self.sx_start) + (first + W::index()) * s(self.sx_step);
+        let (b, r) = (self.base, self.right);
+        let dx = s(b[0]) + sx * s(r[0]);
+        let dy = s(b[1]) + sx * s(r[1]);
+        let dz = s(b[2]) + sx * s(r[2]);
+        let inv = s(1.0) / (dx * dx + dy * dy + dz * dz).sqrt();
+        let e = self.eye;
+        (
+            V3::new(s(e[0]), s(e[1]), s(e[2])),
+            V3::new(dx * inv, dy * inv, dz * inv),
+        )
+    }
+
     /// [`Self::packet`] for a far eye.
     #[inline(always)]
     fn far_packet<P: Packet>(&self, p: usize) -> (V3<P>, V3<P>, P::Mask) {
@@ -954,7 +1026,9 @@ mod tests {
         }
     }
 
-    /// Every build the processor can run gives the portable build's pixels (same IEEE operations).
+    /// Every build the processor can run gives the portable build's pixels (same IEEE operations,
+    /// eight or thirty-two lanes; 213 columns end in a partly filled packet, both of whose
+    /// AVX-512 halves hold rays).
     #[test]
     fn every_instruction_set_gives_the_same_pixels() {
         let first = World::assignment(&REFERENCES[0].scene(1.333));
@@ -974,7 +1048,7 @@ mod tests {
         for r in REFERENCES {
             let scene = World::assignment(&r.scene(1.333));
             let target = Vec3::new(r.straw.0, r.straw.1, r.water_height);
-            let cam = Camera::new(r.observer, target, 203, 61, 50f64.to_radians());
+            let cam = Camera::new(r.observer, target, 213, 61, 50f64.to_radians());
             for &isa in &builds {
                 let pt = PacketTracer::new(&scene).with_instructions(isa).unwrap();
                 for i in 0..cam.height {

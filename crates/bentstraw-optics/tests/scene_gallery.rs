@@ -55,8 +55,9 @@ fn the_spec_file_is_the_assignment_scene_and_the_others_are_not() {
 }
 
 /// The packet tracer's kernels for the processor's wider instruction sets (eight lanes in one AVX
-/// register) give the portable kernel's pixels (eight lanes as an array), bit for bit, on every
-/// gallery scene, in course and in Fresnel mode, seen from the file's observer and from far away.
+/// register, or thirty-two in two AVX-512 registers for course rows) give the portable kernel's
+/// pixels (eight lanes as an array), bit for bit, on every gallery scene, in course and in Fresnel
+/// mode, seen from the file's observer and from far away.
 #[test]
 fn every_packet_kernel_gives_the_portable_pixels_on_every_gallery_scene() {
     use bentstraw_optics::camera::Camera;
