@@ -30,7 +30,7 @@ use crate::geometry::{enter_sphere, Ray};
 use crate::lanes::avx::F8Avx;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::avx512::{F32Avx512 as Wider, Wide};
-use crate::lanes::{Mask, Packet, PacketMask, F8, V3};
+use crate::lanes::{Mask, Packet, PacketMask, Real, F8, V3};
 use crate::world::fresnel::{followed_lanes, prune_threshold, split, SegmentBudget};
 use crate::world::FRESNEL_SEGMENTS_PER_RAY;
 use crate::world::{World, AIR};
@@ -759,8 +759,16 @@ impl<'c> RowRays<'c> {
             return self.far_packet(p);
         }
         let lanes = P::from_array(std::array::from_fn(|k| k as f32));
-        let first = s((p * LANES) as f32);
-        let sx = s(self.sx_start) + (first + lanes) * s(self.sx_step);
+        let (o, d) = self.near_rays(s, s((p * LANES) as f32) + lanes);
+        (o, d, P::Mask::splat(true))
+    }
+
+    /// The eye and the unit directions of the near rays through pixel columns `column` (one
+    /// per lane): one rule for the eight-lane packets and the wide ones, so both make the same
+    /// rays.
+    #[inline(always)]
+    fn near_rays<R: Real>(&self, s: impl Fn(f32) -> R, column: R) -> (V3<R>, V3<R>) {
+        let sx = s(self.sx_start) + column * s(self.sx_step);
         let (b, r) = (self.base, self.right);
         let dx = s(b[0]) + sx * s(r[0]);
         let dy = s(b[1]) + sx * s(r[1]);
@@ -770,7 +778,6 @@ impl<'c> RowRays<'c> {
         (
             V3::new(s(e[0]), s(e[1]), s(e[2])),
             V3::new(dx * inv, dy * inv, dz * inv),
-            P::Mask::splat(true),
         )
     }
 
@@ -781,18 +788,7 @@ impl<'c> RowRays<'c> {
     fn wide_packet<W: Wide>(&self, p: usize) -> (V3<W>, V3<W>) {
         debug_assert!(!self.far);
         let s = W::splat32;
-        let first = s((p * W::LANES) as f32);
-        let sx = s(self.sx_start) + (first + W::index()) * s(self.sx_step);
-        let (b, r) = (self.base, self.right);
-        let dx = s(b[0]) + sx * s(r[0]);
-        let dy = s(b[1]) + sx * s(r[1]);
-        let dz = s(b[2]) + sx * s(r[2]);
-        let inv = s(1.0) / (dx * dx + dy * dy + dz * dz).sqrt();
-        let e = self.eye;
-        (
-            V3::new(s(e[0]), s(e[1]), s(e[2])),
-            V3::new(dx * inv, dy * inv, dz * inv),
-        )
+        self.near_rays(s, s((p * W::LANES) as f32) + W::index())
     }
 
     /// [`Self::packet`] for a far eye.
