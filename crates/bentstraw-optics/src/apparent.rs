@@ -704,7 +704,7 @@ impl<'a> Aim<'a> {
     /// `from` to `to`: Newton's method from `first` (a prediction of the solution at `to`)
     /// straight away, else following the solution as the eye moves in steps halved where
     /// Newton's method loses it (the path must keep its events on the way, hidden or not; only
-    /// the end eye must see the point).
+    /// the end eye must see the point), in at most [`MOST_TRACES`] traces.
     fn predict_and_follow(
         &self,
         from: Vec3,
