@@ -3,6 +3,7 @@
 // `bentstraw explore` (native). Prints, for both:
 // - the engine's time for the same frames (the four reference views, about 800x600 pictures,
 //   course and Fresnel, 20 000 points), native on one thread (RAYON_NUM_THREADS=1), and the ratio;
+// - the same for the eye and stereo models' apparent positions of those 20 000 points;
 // - input-to-paint latency while dragging (p50/p95), the full-quality frame after the input stops,
 //   the first picture after the page starts loading.
 // Run: node site-bench.mjs (after cargo build --release and cargo xtask site).
@@ -35,6 +36,14 @@ async function engineTimes(url) {
       out[`${mode} ref ${i + 1}`] = percentile(t, 50);
     }
   }
+  for (const model of ["eye", "stereo"]) {
+    for (const [i, ref] of REFS.entries()) {
+      const q = `observer=${ref}&points=20000&model=${model}&every=1`;
+      const t = [];
+      for (let k = 0; k < REPEAT; k++) t.push((await page.evaluate(([p, q]) => window.bentstraw.request(p, q), ["/api/model", q])).engineMs);
+      out[`${model} model ref ${i + 1}`] = percentile(t, 50);
+    }
+  }
   await context.close();
   return out;
 }
@@ -64,7 +73,7 @@ async function latencies(url, mode) {
 }
 
 const [a, b] = [await engineTimes(site.url), await engineTimes(native1.url)];
-console.log("\nengine time per frame (800x600, 20 000 points), median of " + REPEAT);
+console.log("\nengine time per frame (800x600, 20 000 points) and per model (those points), median of " + REPEAT);
 console.log("view               WebAssembly ms   native 1 thread ms   WebAssembly / native speed");
 for (const k of Object.keys(a)) console.log(`${k.padEnd(18)} ${a[k].toFixed(1).padStart(14)} ${b[k].toFixed(1).padStart(20)} ${(b[k] / a[k] * 100).toFixed(0).padStart(24)} %`);
 if (process.env.ONLY === "engine") { await browser.close(); site.stop(); native.stop(); native1.stop(); process.exit(0); }

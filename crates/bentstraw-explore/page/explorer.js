@@ -1887,15 +1887,16 @@ Object.assign(window.bentstraw, {
     changed();
     await settled();
   },
-  /** One request to the engine, for measuring it: its status, the time the engine took (in the
-   * worker, or the server's own for a frame), the time seen by the page, the answer's size. */
+  /** One request to the engine, for measuring it: its status, the time the engine took (around
+   * the same call: in the worker, or the server's own, sent as Server-Timing), the time seen by
+   * the page, the answer's size. */
   async request(path, query) {
     const t = performance.now();
     const r = await engineFetch("measure", path, query);
     const body = await r.arrayBuffer();
     const ms = performance.now() - t;
-    let server = null;
-    if (path === "/api/frame" && r.ok) server = decodeFrame(body, false).header.ms;
+    const timing = /engine;dur=([0-9.]+)/.exec(r.headers.get("Server-Timing") || "");
+    const server = timing ? Number(timing[1]) : null;
     return { status: r.status, engineMs: wasm ? r.engineMs : server, ms, bytes: body.byteLength };
   },
   /** The address that restores this view, its scene included. */

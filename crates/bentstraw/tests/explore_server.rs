@@ -196,6 +196,13 @@ fn frame_within(server: &Server, limit: Duration) {
     let started = Instant::now();
     let a = server.get(&format!("/api/frame?{VIEW}&size=64x48&points=500"), "");
     assert_eq!(a.status, 200, "{}", a.text());
+    // The engine's own time goes with the answer, within the time the client waited.
+    let engine_ms: f64 = a
+        .header("server-timing")
+        .and_then(|t| t.strip_prefix("engine;dur="))
+        .and_then(|ms| ms.parse().ok())
+        .expect("Server-Timing: engine;dur=MS on a computed answer");
+    assert!(engine_ms > 0.0 && engine_ms <= started.elapsed().as_secs_f64() * 1e3);
     assert!(
         started.elapsed() < limit,
         "a small frame took {:?}",

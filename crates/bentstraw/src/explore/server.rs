@@ -385,7 +385,7 @@ impl App {
             .map(|(chan, seq)| (bentstraw_optics::scene::clip_text(chan, 64), seq));
         match self.pool.submit(path, query, chan) {
             Ok(mut waiting) => match (&mut waiting.answer).await {
-                Ok(reply) => respond(reply),
+                Ok(answer) => timed(respond(answer.reply), answer.engine_ms),
                 Err(_) => respond(Reply::text(500, "the request was lost")),
             },
             Err(refusal) => respond(refusal),
@@ -425,6 +425,15 @@ fn respond(reply: Reply) -> Response<Full<Bytes>> {
         if let Ok(value) = HeaderValue::from_str(&format!("attachment; filename=\"{name}\"")) {
             headers.insert(header::CONTENT_DISPOSITION, value);
         }
+    }
+    response
+}
+
+/// `response` with the engine's time for it, as `Server-Timing: engine;dur=MS` (what a browser's
+/// developer tools show, and what the page measures the native engine by).
+fn timed(mut response: Response<Full<Bytes>>, engine_ms: f64) -> Response<Full<Bytes>> {
+    if let Ok(value) = HeaderValue::from_str(&format!("engine;dur={engine_ms:.3}")) {
+        response.headers_mut().insert("server-timing", value);
     }
     response
 }

@@ -10,6 +10,7 @@ use std::collections::{HashMap, VecDeque};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
 use std::sync::{Arc, Condvar, Mutex, Weak};
+use std::time::Instant;
 
 use bentstraw_explore::{self as api, Reply};
 use bentstraw_optics::frame::Frame;
@@ -61,7 +62,16 @@ struct Job {
     path: String,
     query: String,
     ticket: Arc<Ticket>,
-    answer: oneshot::Sender<Reply>,
+    answer: oneshot::Sender<Answer>,
+}
+
+/// A worker's answer: the reply, and how long the engine took to compute it (sent to the page as
+/// `Server-Timing`, so that it can be set beside the WebAssembly engine's own time).
+pub struct Answer {
+    /// The reply.
+    pub reply: Reply,
+    /// The engine's time, in milliseconds.
+    pub engine_ms: f64,
 }
 
 /// Per channel: the newest sequence number seen, and the requests not yet answered.
@@ -91,7 +101,7 @@ pub struct Pool {
 /// client gone: hyper drops a request's future when its connection closes).
 pub struct Waiting {
     /// The answer.
-    pub answer: oneshot::Receiver<Reply>,
+    pub answer: oneshot::Receiver<Answer>,
     ticket: Arc<Ticket>,
 }
 
@@ -199,12 +209,14 @@ impl Pool {
                 ticket,
                 answer,
             } = job;
+            let started = Instant::now();
             let reply = compute(&path, &query, &ticket, &mut frame);
+            let engine_ms = started.elapsed().as_secs_f64() * 1e3;
             // Free before answering: the client's next request finds room.
             self.queue.lock().unwrap_or_else(|e| e.into_inner()).running -= 1;
             // A client that left reads nothing: that is fine.
             if let Some(reply) = reply {
-                let _ = answer.send(reply);
+                let _ = answer.send(Answer { reply, engine_ms });
             }
         }
     }
