@@ -7,12 +7,13 @@
 //! a step applies to: `bool` for one ray, [`M8`] for eight. Work that no lane needs is skipped
 //! (`if !mask.any()`), which for one ray is an ordinary branch.
 //!
-//! The eight lanes have two forms ([`Packet`]): an array ([`F8`]), which any target compiles,
-//! and, on x86-64, one AVX register ([`avx::F8Avx`]) whose every operation is one instruction,
-//! for the kernels chosen when the processor has AVX2: explicit, so that no change elsewhere can
-//! make the compiler split the packets into narrower vectors or single lanes. With AVX-512, course
-//! pictures take thirty-two lanes in two registers ([`avx512::F32Avx512`]), a [`Real`] of its
-//! own.
+//! The eight lanes have three forms ([`Packet`]): an array ([`F8`]), which any target compiles;
+//! on x86-64, one AVX register ([`avx::F8Avx`]) whose every operation is one instruction, for the
+//! kernels chosen when the processor has AVX2; and in WebAssembly with SIMD (the page), two
+//! 4-lane registers (`simd128::F8Simd`, the [`BaselinePacket`] there). The register forms are
+//! explicit, so that no change elsewhere can make the compiler split the packets into narrower
+//! vectors or single lanes. With AVX-512, course pictures take thirty-two lanes in two registers
+//! ([`avx512::F32Avx512`]), a [`Real`] of its own.
 //!
 //! All instances perform the same operations in the same order, with two exceptions, the places
 //! where the two precisions are meant to differ: [`Real::quotient`] divides in double precision
@@ -25,6 +26,17 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 pub mod avx;
 #[cfg(target_arch = "x86_64")]
 pub mod avx512;
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+pub mod simd128;
+
+/// The packets' form on the baseline instruction set: two WebAssembly SIMD registers where the
+/// target has them (the page), else the array.
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+pub type BaselinePacket = simd128::F8Simd;
+/// The packets' form on the baseline instruction set: two WebAssembly SIMD registers where the
+/// target has them (the page), else the array.
+#[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+pub type BaselinePacket = F8;
 
 /// Which lanes of a [`Real`] a step applies to.
 pub trait Mask: Copy {
@@ -367,7 +379,8 @@ impl Mask for M8 {
     }
 }
 
-/// The packet tracer's lane masks: [`M8`] or, in the x86-64 kernels, [`avx::M8Avx`].
+/// The packet tracer's lane masks: [`M8`] or, in registers, [`avx::M8Avx`] (x86-64 kernels) and
+/// `simd128::M8Simd` (WebAssembly).
 pub trait PacketMask: Mask {
     /// The first `n` lanes set.
     fn first(n: usize) -> Self;
@@ -375,6 +388,91 @@ pub trait PacketMask: Mask {
     fn from_lanes(set: [bool; LANES]) -> Self;
     /// The lanes set, in order.
     fn lanes(self) -> impl Iterator<Item = usize>;
+    /// Bit `k` set where lane `k` is.
+    fn bits(self) -> u32;
+}
+
+/// [`Real::values`] of the packets held in registers: each whole number below `n` that the lanes
+/// of `rest` hold, with its lanes. Few possible values (a scene's handful of surfaces): one
+/// comparison each, until no lane is left. Many: from the lanes themselves, at most eight rounds.
+///
+/// A type with `#[inline(always)]` methods rather than a closure in `std::iter::from_fn`: a
+/// closure's call may be compiled apart from the kernel, without its instruction set.
+#[cfg(any(
+    target_arch = "x86_64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+))]
+pub(crate) struct RegisterValues<P: Packet> {
+    pub(crate) lanes: P,
+    pub(crate) rest: P::Mask,
+    /// The next number to try, when `n` is small.
+    pub(crate) next: usize,
+    pub(crate) n: usize,
+}
+
+#[cfg(any(
+    target_arch = "x86_64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+))]
+impl<P: Packet> Iterator for RegisterValues<P> {
+    type Item = (usize, P::Mask);
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<(usize, P::Mask)> {
+        loop {
+            let bits = self.rest.bits();
+            if bits == 0 {
+                return None;
+            }
+            if self.n <= LANES {
+                if self.next >= self.n {
+                    return None;
+                }
+                let k = self.next;
+                self.next += 1;
+                let m = self.rest.and(self.lanes.eq(P::splat(k as f64)));
+                if m.any() {
+                    self.rest = self.rest.and_not(m);
+                    return Some((k, m));
+                }
+                continue;
+            }
+            let lane = bits.trailing_zeros() as usize;
+            let v = self.lanes.to_array()[lane];
+            let m = self.rest.and(self.lanes.eq(P::splat(f64::from(v))));
+            // That lane is done even where it holds a NaN, which matches nothing.
+            let mut only = [false; LANES];
+            only[lane] = true;
+            self.rest = self.rest.and_not(m).and_not(P::Mask::from_lanes(only));
+            let k = v as usize;
+            if k as f32 == v && k < self.n {
+                return Some((k, m));
+            }
+        }
+    }
+}
+
+/// [`PacketMask::lanes`] of the masks held in registers: the set bits of a bitmask, lowest
+/// first.
+#[cfg(any(
+    target_arch = "x86_64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+))]
+pub(crate) struct SetLanes(pub(crate) u32);
+
+#[cfg(any(
+    target_arch = "x86_64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+))]
+impl Iterator for SetLanes {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        let k = self.0.trailing_zeros();
+        self.0 &= self.0.wrapping_sub(1);
+        (k < 32).then_some(k as usize)
+    }
 }
 
 /// The packet tracer's numbers: eight single-precision lanes, held as an array ([`F8`], for any
@@ -401,6 +499,10 @@ impl PacketMask for M8 {
     #[inline(always)]
     fn lanes(self) -> impl Iterator<Item = usize> {
         (0..LANES).filter(move |&k| self.0[k] != 0)
+    }
+    #[inline(always)]
+    fn bits(self) -> u32 {
+        (0..LANES).fold(0, |b, k| b | u32::from(self.0[k] != 0) << k)
     }
 }
 

@@ -18,7 +18,8 @@
 //! The same generic code is compiled three times: for AVX-512 and for AVX2 (chosen at run time
 //! with `is_x86_feature_detected!`), with the eight lanes in one AVX register
 //! ([`crate::lanes::avx`], each operation one instruction), and for the baseline target, with the
-//! lanes as an array ([`F8`]). Course pictures on AVX-512 follow thirty-two rays at a time, in
+//! lanes as an array ([`F8`]) or, in WebAssembly with SIMD, in two 4-lane registers
+//! ([`crate::lanes::BaselinePacket`]). Course pictures on AVX-512 follow thirty-two rays at a time, in
 //! two AVX-512 registers ([`crate::lanes::avx512`]): each step is bound by the latency of the
 //! step before, so two independent packets of sixteen, their instructions interleaved, keep the
 //! core busy. All use the same IEEE operations in the same order (no fused multiply-add), so all
@@ -30,7 +31,7 @@ use crate::geometry::{enter_sphere, Ray};
 use crate::lanes::avx::F8Avx;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::avx512::{F32Avx512 as Wider, Wide};
-use crate::lanes::{Mask, Packet, PacketMask, Real, F8, V3};
+use crate::lanes::{BaselinePacket, Mask, Packet, PacketMask, Real, F8, V3};
 use crate::world::fresnel::{followed_lanes, prune_threshold, split, SegmentBudget};
 use crate::world::FRESNEL_SEGMENTS_PER_RAY;
 use crate::world::{World, AIR};
@@ -91,7 +92,7 @@ macro_rules! compiled {
                 // SAFETY: as above.
                 #[cfg(target_arch = "x86_64")]
                 Instructions::Avx2 => unsafe { self.$avx2($($arg),*) },
-                _ => self.$generic::<F8 $(, $g)?>($($arg),*),
+                _ => self.$generic::<BaselinePacket $(, $g)?>($($arg),*),
             }
         }
 
@@ -197,7 +198,7 @@ impl<'w> PacketTracer<'w> {
             // SAFETY: as above.
             #[cfg(target_arch = "x86_64")]
             Instructions::Avx2 => unsafe { self.course_row_avx2(camera, row, codes) },
-            _ => self.course_row_generic::<F8>(camera, row, codes),
+            _ => self.course_row_generic::<BaselinePacket>(camera, row, codes),
         }
     }
 

@@ -14,7 +14,7 @@
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-use super::{Constant, Mask, Packet, PacketMask, Real, LANES};
+use super::{Constant, Mask, Packet, PacketMask, Real, RegisterValues, SetLanes, LANES};
 
 /// Eight `f32`s, one per ray, in one AVX register.
 #[derive(Clone, Copy, Debug)]
@@ -115,7 +115,7 @@ impl Real for F8Avx {
     }
     #[inline(always)]
     fn values(self, live: M8Avx, n: usize) -> impl Iterator<Item = (usize, M8Avx)> {
-        Values {
+        RegisterValues {
             lanes: self,
             rest: live,
             next: 0,
@@ -138,14 +138,6 @@ impl Packet for F8Avx {
         let mut a = [0.0; LANES];
         unsafe { _mm256_storeu_ps(a.as_mut_ptr(), self.0) };
         a
-    }
-}
-
-impl M8Avx {
-    /// Bit `k` set where lane `k` is.
-    #[inline(always)]
-    fn bits(self) -> u32 {
-        unsafe { _mm256_movemask_ps(self.0) as u32 }
     }
 }
 
@@ -201,70 +193,8 @@ impl PacketMask for M8Avx {
     fn lanes(self) -> impl Iterator<Item = usize> {
         SetLanes(self.bits())
     }
-}
-
-// The iterators are types with `#[inline(always)]` methods rather than closures in
-// `std::iter::from_fn`: a closure's call may be compiled apart from the kernel, without AVX.
-
-/// [`F8Avx::values`]: each whole number below `n` that the lanes of `rest` hold, with its lanes.
-struct Values {
-    lanes: F8Avx,
-    rest: M8Avx,
-    /// The next number to try, when `n` is small.
-    next: usize,
-    n: usize,
-}
-
-impl Iterator for Values {
-    type Item = (usize, M8Avx);
-
     #[inline(always)]
-    fn next(&mut self) -> Option<(usize, M8Avx)> {
-        // Few possible values (a scene's handful of surfaces): one comparison each, until no
-        // lane is left. Many: from the lanes themselves, at most eight rounds.
-        loop {
-            let bits = self.rest.bits();
-            if bits == 0 {
-                return None;
-            }
-            if self.n <= LANES {
-                if self.next >= self.n {
-                    return None;
-                }
-                let k = self.next;
-                self.next += 1;
-                let m = self.rest.and(self.lanes.eq(F8Avx::splat32(k as f32)));
-                if m.any() {
-                    self.rest = self.rest.and_not(m);
-                    return Some((k, m));
-                }
-                continue;
-            }
-            let lane = bits.trailing_zeros() as usize;
-            let v = self.lanes.to_array()[lane];
-            let m = self.rest.and(self.lanes.eq(F8Avx::splat32(v)));
-            // That lane is done even where it holds a NaN, which matches nothing.
-            let mut only = [false; LANES];
-            only[lane] = true;
-            self.rest = self.rest.and_not(m).and_not(M8Avx::from_lanes(only));
-            let k = v as usize;
-            if k as f32 == v && k < self.n {
-                return Some((k, m));
-            }
-        }
-    }
-}
-
-/// [`M8Avx::lanes`]: the set bits of a movemask, lowest first.
-struct SetLanes(u32);
-
-impl Iterator for SetLanes {
-    type Item = usize;
-
-    #[inline(always)]
-    fn next(&mut self) -> Option<usize> {
-        let k = self.0.trailing_zeros();
-        self.0 &= self.0.wrapping_sub(1);
-        (k < 32).then_some(k as usize)
+    fn bits(self) -> u32 {
+        unsafe { _mm256_movemask_ps(self.0) as u32 }
     }
 }
