@@ -336,4 +336,14 @@ impl Reference {
         )
         .expect("reference scenes are valid")
     }
+
+    /// Where the benchmark's zoomed view of this reference looks: where the straw enters the
+    /// water, or, for the observer below the glass, the straw's bottom.
+    pub fn zoom_target(&self) -> Vec3 {
+        if self.observer.z < 0.0 {
+            Vec3::new(0.0, 0.0, 0.05)
+        } else {
+            Vec3::new(self.straw.0, self.straw.1, self.water_height)
+        }
+    }
 }

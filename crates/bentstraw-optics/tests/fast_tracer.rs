@@ -114,11 +114,7 @@ fn bench_views(w: u32, h: u32) -> Vec<(Scene, Camera)> {
         .iter()
         .map(|r| {
             let scene = r.scene(1.333);
-            let target = if r.number == 4 {
-                Vec3::new(0.0, 0.0, 0.05)
-            } else {
-                Vec3::new(r.straw.0, r.straw.1, r.water_height)
-            };
+            let target = r.zoom_target();
             (
                 scene,
                 Camera::new(r.observer, target, w, h, 50f64.to_radians()),

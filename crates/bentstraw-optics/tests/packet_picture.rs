@@ -35,11 +35,7 @@ fn check(scene: &Scene, camera: &Camera, what: &str) {
 fn packet_picture_matches_exact_on_benchmark_views() {
     for r in REFERENCES {
         let scene = r.scene(1.333);
-        let target = if r.number == 4 {
-            Vec3::new(0.0, 0.0, 0.05)
-        } else {
-            Vec3::new(r.straw.0, r.straw.1, r.water_height)
-        };
+        let target = r.zoom_target();
         let camera = Camera::new(r.observer, target, 1024, 768, 50f64.to_radians());
         check(&scene, &camera, &format!("simulation {}", r.number));
         // Wide view of the whole glass, odd size (partial packets at the row ends).
@@ -109,11 +105,7 @@ fn compare_fresnel(scene: &Scene, camera: &Camera) -> (usize, usize, f64) {
 fn packet_fresnel_picture_matches_exact() {
     for r in REFERENCES {
         let scene = r.scene(1.333);
-        let target = if r.number == 4 {
-            Vec3::new(0.0, 0.0, 0.05)
-        } else {
-            Vec3::new(r.straw.0, r.straw.1, r.water_height)
-        };
+        let target = r.zoom_target();
         for camera in [
             Camera::new(r.observer, target, 512, 384, 50f64.to_radians()),
             Camera::new(r.observer, SCENE_CENTRE, 301, 203, 90f64.to_radians()),

@@ -11,9 +11,8 @@ use std::time::Instant;
 
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::packet::{FresnelWave, Instructions, PacketTracer};
-use bentstraw_optics::scene::{Scene, REFERENCES, SECTION_COUNT, WATER_INDEX};
+use bentstraw_optics::scene::{REFERENCES, SECTION_COUNT, WATER_INDEX};
 use bentstraw_optics::world::World;
-use bentstraw_optics::Vec3;
 
 /// Timed pictures per case (the median is printed).
 const REPEAT: usize = 20;
@@ -31,16 +30,8 @@ fn main() {
         (Instructions::Baseline, "baseline"),
     ];
     for r in REFERENCES.iter() {
-        let scene = Scene::new(r.straw.0, r.straw.1, r.water_height, WATER_INDEX, 10)
-            .expect("a reference view is a valid scene");
-        let world = World::assignment(&scene);
-        // `bench`'s views: zoomed where the straw enters the water (its bottom, from below).
-        let zoom = if r.number == 4 {
-            Vec3::new(0.0, 0.0, 0.05)
-        } else {
-            Vec3::new(r.straw.0, r.straw.1, r.water_height)
-        };
-        let camera = Camera::new(r.observer, zoom, w, h, FOV_DEG.to_radians());
+        let world = World::assignment(&r.scene(WATER_INDEX));
+        let camera = Camera::new(r.observer, r.zoom_target(), w, h, FOV_DEG.to_radians());
         let mut codes = vec![0u8; (w * h) as usize];
         let mut weights = vec![[0.0f64; SECTION_COUNT]; (w * h) as usize];
         let mut wave = FresnelWave::default();

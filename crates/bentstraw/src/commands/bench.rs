@@ -295,12 +295,7 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
                 args.view.max_events,
             )?;
             // Zoomed on the straw where it enters the water (the bottom, for an observer below).
-            let zoom = if r.number == 4 {
-                Vec3::new(0.0, 0.0, 0.05)
-            } else {
-                Vec3::new(r.straw.0, r.straw.1, r.water_height)
-            };
-            let camera = camera_for(r.observer, target_flag.unwrap_or(zoom))?;
+            let camera = camera_for(r.observer, target_flag.unwrap_or(r.zoom_target()))?;
             Ok(View {
                 simulation: Some(r.number),
                 world: World::assignment(&scene),
