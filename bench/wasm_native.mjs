@@ -26,7 +26,8 @@ const parse = (text, prefix = "") => text.trim().split("\n").map((l) => l.split(
 const native = () => parse(execFileSync("target/release/picture-speed", { encoding: "utf8" }));
 function wasm() {
   // Each run in a child process, so the two sides start alike and WASI's output is captured.
-  const script = `import { WASI } from "node:wasi"; import { readFileSync } from "node:fs";     const wasi = new WASI({ version: "preview1", args: ["picture-speed"] });
+  const script = `import { WASI } from "node:wasi"; import { readFileSync } from "node:fs";
+    const wasi = new WASI({ version: "preview1", args: ["picture-speed"] });
     const m = await WebAssembly.compile(readFileSync(${JSON.stringify(wasmFile)}));
     wasi.start(await WebAssembly.instantiate(m, wasi.getImportObject()));`;
   return parse(execFileSync(process.execPath, ["--no-warnings", "--input-type=module", "-e", script], { encoding: "utf8" }), "wasm");

@@ -26,8 +26,18 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 pub mod avx;
 #[cfg(target_arch = "x86_64")]
 pub mod avx512;
+#[cfg(any(
+    target_arch = "x86_64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+))]
+mod registers;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 pub mod simd128;
+#[cfg(any(
+    target_arch = "x86_64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+))]
+use registers::{RegisterValues, SetLanes};
 
 /// The packets' form on the baseline instruction set: two WebAssembly SIMD registers where the
 /// target has them (the page), else the array.
@@ -390,89 +400,6 @@ pub trait PacketMask: Mask {
     fn lanes(self) -> impl Iterator<Item = usize>;
     /// Bit `k` set where lane `k` is.
     fn bits(self) -> u32;
-}
-
-/// [`Real::values`] of the packets held in registers: each whole number below `n` that the lanes
-/// of `rest` hold, with its lanes. Few possible values (a scene's handful of surfaces): one
-/// comparison each, until no lane is left. Many: from the lanes themselves, at most eight rounds.
-///
-/// A type with `#[inline(always)]` methods rather than a closure in `std::iter::from_fn`: a
-/// closure's call may be compiled apart from the kernel, without its instruction set.
-#[cfg(any(
-    target_arch = "x86_64",
-    all(target_arch = "wasm32", target_feature = "simd128")
-))]
-pub(crate) struct RegisterValues<P: Packet> {
-    pub(crate) lanes: P,
-    pub(crate) rest: P::Mask,
-    /// The next number to try, when `n` is small.
-    pub(crate) next: usize,
-    pub(crate) n: usize,
-}
-
-#[cfg(any(
-    target_arch = "x86_64",
-    all(target_arch = "wasm32", target_feature = "simd128")
-))]
-impl<P: Packet> Iterator for RegisterValues<P> {
-    type Item = (usize, P::Mask);
-
-    #[inline(always)]
-    fn next(&mut self) -> Option<(usize, P::Mask)> {
-        loop {
-            let bits = self.rest.bits();
-            if bits == 0 {
-                return None;
-            }
-            if self.n <= LANES {
-                if self.next >= self.n {
-                    return None;
-                }
-                let k = self.next;
-                self.next += 1;
-                let m = self.rest.and(self.lanes.eq(P::splat(k as f64)));
-                if m.any() {
-                    self.rest = self.rest.and_not(m);
-                    return Some((k, m));
-                }
-                continue;
-            }
-            let lane = bits.trailing_zeros() as usize;
-            let v = self.lanes.to_array()[lane];
-            let m = self.rest.and(self.lanes.eq(P::splat(f64::from(v))));
-            // That lane is done even where it holds a NaN, which matches nothing.
-            let mut only = [false; LANES];
-            only[lane] = true;
-            self.rest = self.rest.and_not(m).and_not(P::Mask::from_lanes(only));
-            let k = v as usize;
-            if k as f32 == v && k < self.n {
-                return Some((k, m));
-            }
-        }
-    }
-}
-
-/// [`PacketMask::lanes`] of the masks held in registers: the set bits of a bitmask, lowest
-/// first.
-#[cfg(any(
-    target_arch = "x86_64",
-    all(target_arch = "wasm32", target_feature = "simd128")
-))]
-pub(crate) struct SetLanes(pub(crate) u32);
-
-#[cfg(any(
-    target_arch = "x86_64",
-    all(target_arch = "wasm32", target_feature = "simd128")
-))]
-impl Iterator for SetLanes {
-    type Item = usize;
-
-    #[inline(always)]
-    fn next(&mut self) -> Option<usize> {
-        let k = self.0.trailing_zeros();
-        self.0 &= self.0.wrapping_sub(1);
-        (k < 32).then_some(k as usize)
-    }
 }
 
 /// The packet tracer's numbers: eight single-precision lanes, held as an array ([`F8`], for any

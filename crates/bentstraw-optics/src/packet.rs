@@ -19,10 +19,10 @@
 //! with `is_x86_feature_detected!`), with the eight lanes in one AVX register
 //! ([`crate::lanes::avx`], each operation one instruction), and for the baseline target, with the
 //! lanes as an array ([`F8`]) or, in WebAssembly with SIMD, in two 4-lane registers
-//! ([`crate::lanes::BaselinePacket`]). Course pictures on AVX-512 follow thirty-two rays at a time, in
-//! two AVX-512 registers ([`crate::lanes::avx512`]): each step is bound by the latency of the
-//! step before, so two independent packets of sixteen, their instructions interleaved, keep the
-//! core busy. All use the same IEEE operations in the same order (no fused multiply-add), so all
+//! ([`crate::lanes::BaselinePacket`]). Course pictures on AVX-512 follow thirty-two rays at a
+//! time, in two AVX-512 registers ([`crate::lanes::avx512`]): each step is bound by the latency
+//! of the step before, so two independent packets of sixteen, their instructions interleaved,
+//! keep the core busy. All use the same IEEE operations in the same order (no fused multiply-add), so all
 //! give the same pixels (tested on every gallery scene).
 
 use crate::camera::Camera;
