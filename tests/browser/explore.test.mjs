@@ -12,7 +12,7 @@ import { startServer, startStaticServer, launch, openPage, waitReady, runCli, RO
 const ON_SITE = process.env.EXPLORE_ON === "site";
 /** What only the server has (its HTTP API, its command line) is tested with the server. */
 const SERVER_ONLY = { skip: ON_SITE && "the static site has no server" };
-/** Where a screenshot goes: the README's pictures come from the server's page. */
+/** Where a screenshot goes: the documentation's pictures come from the server's page. */
 const shot = (name) => (ON_SITE ? path.join(tmpdir(), "bentstraw-site-" + name) : path.join(ROOT, "docs", name));
 
 let server, browser;

@@ -1847,7 +1847,7 @@ function dragHandle(h, q) {
   });
 }
 
-// ---- the hook for tests and scripts: window.bentstraw (see the README) ----
+// ---- the hook for tests and scripts: window.bentstraw (see docs/explorer.md) ----
 /** Resolves when the full-quality frame of the current state is painted. */
 function settled() {
   return new Promise((resolve) => {

@@ -44,11 +44,11 @@
 //! normal curvature of the wavefront, so that `1/s_h + 1/s_v` is the same for any two perpendicular
 //! pupil directions (Euler's theorem); the closest approach of skew lines has no such meaning.
 //!
-//! The apparent point is placed at `E + ((s_h + s_v)/2)·u0`, the mean of the two foci (the issue's
-//! choice); [`ApparentPoint::least_confusion_distance`] gives the other classical choice, the circle
-//! of least confusion at `2/(1/s_h + 1/s_v)`. When a focus is not in front of the eye (collimated or
-//! converging light) or the pencil is cut, the point is undefined: `position` is `None`, never a
-//! made-up number.
+//! The apparent point is placed at `E + ((s_h + s_v)/2)·u0`, the mean of the two foci (halfway
+//! between the two line images); [`ApparentPoint::least_confusion_distance`] gives the other
+//! classical choice, the circle of least confusion at `2/(1/s_h + 1/s_v)`. When a focus is not in
+//! front of the eye (collimated or converging light) or the pencil is cut, the point is undefined:
+//! `position` is `None`, never a made-up number.
 //!
 //! # Stereo model
 //! Two eyes [`EYE_SEPARATION`] apart on a horizontal baseline centred on the observer,

@@ -296,7 +296,7 @@ pub struct Reference {
     pub water_height: f64,
 }
 
-/// The four reference simulations (see the README's table of them).
+/// The four reference simulations (see the table of them in docs/usage.md).
 pub const REFERENCES: [Reference; 4] = [
     Reference {
         number: 1,
