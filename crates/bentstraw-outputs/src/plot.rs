@@ -1,7 +1,7 @@
 //! The classic figure: the image points in their section colours, the water as a
 //! wireframe, the observer, equal axes, three views (front, side, from above) in a 2 × 2 grid with
 //! the legend in the fourth cell; and what every figure shares: one pipeline writing PNG, SVG or
-//! PDF by the file's extension ([`figure_bytes`]), text sizes legible at 8.5 cm, headings, legends.
+//! PDF by the file's extension (`figure_bytes`), text sizes legible at 8.5 cm, headings, legends.
 //!
 //! The views are orthographic projections computed here (not plotters' 3D charts), so that one metre
 //! has the same length on screen along both axes of a panel, and so that the drawing order (back of

@@ -67,7 +67,7 @@ comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit 
 #[derive(Args, Debug, Clone)]
 pub struct SceneFlags {
     /// A scene file (TOML, see scenes/), or a gallery scene by name from any folder (e.g.
-    /// leaning-straw): its [observer] is used when --observer is absent, and --straw,
+    /// leaning-straw): the observer it names is used when --observer is absent, and --straw,
     /// --water-height and --n-water change its one straw and one liquid
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
@@ -103,7 +103,7 @@ pub struct SceneFlags {
 #[derive(Args, Debug, Clone)]
 pub struct OptionalSceneFlags {
     /// A scene file (TOML, see scenes/), or a gallery scene by name from any folder (e.g.
-    /// leaning-straw): its [observer] is used when --observer is absent, and --straw,
+    /// leaning-straw): the observer it names is used when --observer is absent, and --straw,
     /// --water-height and --n-water change its one straw and one liquid
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
@@ -201,15 +201,15 @@ pub struct TableArgs {
     #[arg(long, value_enum, default_value_t = LangArg::En)]
     pub lang: LangArg,
     /// The report of this scene instead of the reference simulations: a scene file (TOML, see
-    /// scenes/) or a gallery scene by name (e.g. leaning-straw), seen from its [observer] and
-    /// three more observers turned about the vertical through its target
+    /// scenes/) or a gallery scene by name (e.g. leaning-straw), seen from the observer it names
+    /// and three more observers turned about the vertical through its target
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
     /// Also write the report as a PDF of A4 pages into this file, laid out as the page prints
     /// (no browser needed)
     #[arg(long, value_name = "FILE.pdf")]
     pub pdf: Option<PathBuf>,
-    /// With --scene: the first observer X,Y,Z in metres, instead of the file's [observer]
+    /// With --scene: the first observer X,Y,Z in metres, instead of the file's own observer
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, requires = "scene")]
     pub observer: Option<[f64; 3]>,
 }
