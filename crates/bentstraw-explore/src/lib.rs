@@ -20,23 +20,23 @@ use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::rule::{Param, Rule};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
-use bentstraw_optics::scene::{clip_text, DEFAULT_MAX_EVENTS};
-use bentstraw_optics::scene_file::{Container, Observer, SceneDescription, SceneForm};
+use bentstraw_optics::scene::{DEFAULT_MAX_EVENTS, WATER_INDEX};
+use bentstraw_optics::scene_file::{Container, Observer, SceneForm};
 use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
+use bentstraw_optics::text::clip_text;
 use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
 pub mod page;
 
-use bentstraw_outputs::camera::{camera_from_args, world_camera, CameraSpec, MAX_SAMPLES};
+use bentstraw_optics::setup::{SceneValues, Setup, MAX_SCENE_FILE_BYTES};
+use bentstraw_optics::sketch::{object_outlines, world_wireframe};
+use bentstraw_outputs::camera::{scene_camera, CameraSpec, MAX_SAMPLES};
 use bentstraw_outputs::gallery::{opening_comment, GALLERY};
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
 use bentstraw_outputs::pictures::png_bytes;
-use bentstraw_outputs::scene_input::{
-    file_world, parse_scene_text, Loaded, SceneSource, SceneValues, MAX_SCENE_FILE_BYTES,
-};
-use bentstraw_outputs::sketch::{object_outlines, world_wireframe};
+use bentstraw_outputs::scene_input::{gallery_setup, parse_scene_text, SceneSource};
 use bentstraw_outputs::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
 
 /// Most image points one request may ask for (a million take about half a second).
@@ -233,7 +233,7 @@ fn percent_decode(s: &str) -> Result<String, String> {
 #[derive(Debug, Clone)]
 pub struct View {
     /// The scene (validated): the assignment's glass, a gallery scene or the page's scene file.
-    pub scene: Arc<Loaded>,
+    pub scene: Arc<Setup>,
     /// The text of the page's scene file, when the scene is one (it is part of what names the
     /// view: two files are both called [`PAGE_SCENE_FILE`]).
     pub page_file: Option<String>,
@@ -362,7 +362,7 @@ pub fn scenes_reply() -> Reply {
     let list: Vec<Value> = GALLERY
         .iter()
         .filter_map(|(stem, text)| {
-            let w = file_world(stem, text, DEFAULT_MAX_EVENTS).ok()?;
+            let w = gallery_setup(stem, text, DEFAULT_MAX_EVENTS).ok()?;
             Some(json!({
                 "name": stem,
                 "title": stem.replace('-', " "),
@@ -426,29 +426,29 @@ impl View {
             None => (required(q, "straw")?, required(q, "water-height")?),
         };
         let scene_args = SceneValues {
-            observer: flag(parse_vec3(observer_text), "observer", observer_text)?,
-            straw: flag(parse_vec2(straw_text), "straw", straw_text)?,
-            water_height: number(he_text, "water-height")?,
-            n_water: get(q, "n-water").map_or(Ok(1.333), |t| number(t, "n-water"))?,
+            observer: Some(flag(parse_vec3(observer_text), "observer", observer_text)?),
+            straw: Some(flag(parse_vec2(straw_text), "straw", straw_text)?),
+            water_height: Some(number(he_text, "water-height")?),
+            n_water: Some(get(q, "n-water").map_or(Ok(1.333), |t| number(t, "n-water"))?),
             max_events: get(q, "max-events").map_or(Ok(10), |t| number(t, "max-events"))?,
         };
-        let (scene, observer) = match &file {
+        let scene = match &file {
             // As `--scene FILE --observer X,Y,Z` reads it: the file's rules, the eye moved.
             Some((name, text)) => {
                 let source = SceneSource {
-                    observer: Some(scene_args.observer),
-                    max_events: scene_args.max_events,
+                    values: SceneValues {
+                        observer: scene_args.observer,
+                        max_events: scene_args.max_events,
+                        ..SceneValues::default()
+                    },
                     ..SceneSource::default()
                 };
-                let loaded = source.load_text(name, text)?;
-                let observer = loaded.observer;
-                (Arc::new(loaded), observer)
+                source.load_text(name, text)?
             }
-            None => {
-                let (scene, observer) = scene_args.scene_and_observer()?;
-                (Arc::new(Loaded::assignment(scene, observer)), observer)
-            }
+            None => Setup::from_values(&scene_args).map_err(bentstraw_outputs::Error::from)?,
         };
+        let observer = scene.observer;
+        let scene = Arc::new(scene);
         let page_file = file
             .filter(|(name, _)| name == PAGE_SCENE_FILE)
             .map(|(_, text)| text.to_string());
@@ -469,11 +469,7 @@ impl View {
                 .into());
             }
         }
-        let camera = match scene.assignment {
-            Some(_) => camera_from_args(&camera_args, observer),
-            None => world_camera(&scene, &camera_args),
-        }
-        .map_err(|e| e.to_string())?;
+        let camera = scene_camera(&scene, &camera_args).map_err(|e| e.to_string())?;
         let fresnel = match get(q, "mode").unwrap_or("fresnel") {
             "fresnel" => true,
             "course" => false,
@@ -550,7 +546,7 @@ impl View {
     fn scene_flags(&self) -> Vec<String> {
         let a = &self.scene_args;
         let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
-        let observer = list(&a.observer);
+        let observer = list(&a.observer.unwrap_or_default());
         let mut s: Vec<String> = match &self.scene.name {
             Some(name) => vec![
                 "--scene".into(),
@@ -562,13 +558,14 @@ impl View {
                 "--observer".into(),
                 observer,
                 "--straw".into(),
-                list(&a.straw),
+                list(&a.straw.unwrap_or_default()),
                 "--water-height".into(),
-                a.water_height.to_string(),
+                a.water_height.unwrap_or_default().to_string(),
             ],
         };
-        if self.scene.name.is_none() && a.n_water != 1.333 {
-            s.extend(["--n-water".into(), a.n_water.to_string()]);
+        let n_water = a.n_water.unwrap_or(WATER_INDEX);
+        if self.scene.name.is_none() && n_water != WATER_INDEX {
+            s.extend(["--n-water".into(), n_water.to_string()]);
         }
         if a.max_events != 10 {
             s.extend(["--max-events".into(), a.max_events.to_string()]);
@@ -643,10 +640,7 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
     #[cfg(not(target_arch = "wasm32"))]
     let started = std::time::Instant::now();
     // The colour codes a scene can show: the straw's five, or all eight in a scene file.
-    let codes = match view.scene.assignment {
-        Some(_) => 5,
-        None => COLOR_NAMES.len(),
-    };
+    let codes = view.scene.colour_names().len();
     draw_frame(&view.scene.world, &request, frame);
     #[cfg(not(target_arch = "wasm32"))]
     let ms = started.elapsed().as_secs_f64() * 1e3;
@@ -1045,11 +1039,7 @@ pub fn export_reply(
 /// `GET /api/scene-file`: the view's scene as the text of a scene file, its `[observer]` the
 /// view's eye (the assignment's glass too, as a file of its kind).
 pub fn scene_file_reply(view: &View) -> Result<Reply, String> {
-    let mut description = match (&view.scene.description, &view.scene.assignment) {
-        (Some(d), _) => d.clone(),
-        (None, Some(scene)) => SceneDescription::assignment(scene),
-        (None, None) => return Err("this scene has no description".into()),
-    };
+    let mut description = view.scene.description.clone();
     // Where the camera looks: the file's target, the page's, or the middle of the scene.
     let target = view
         .scene
@@ -1129,6 +1119,7 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bentstraw_optics::scene_file::SceneDescription;
 
     fn query(s: &str) -> HashMap<String, String> {
         parse_query(s).unwrap()

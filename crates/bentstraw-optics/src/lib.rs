@@ -40,7 +40,10 @@ pub mod rule;
 pub mod sampling;
 pub mod scene;
 pub mod scene_file;
+pub mod setup;
 pub mod shading;
+pub mod sketch;
+pub mod text;
 pub mod world;
 
 pub use glam::DVec3 as Vec3;

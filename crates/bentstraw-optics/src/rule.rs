@@ -3,6 +3,8 @@
 //! is the rule's text with those filled in. A page shows the same refusal in its own language
 //! from the code and the parameters; the command line prints the English.
 
+use crate::text::number_text;
+
 /// One parameter of a broken rule: a number as the message writes it, or words quoted as they
 /// are (another object's key, a name from the file, a parser's own message).
 #[derive(Clone, Debug, PartialEq)]
@@ -205,9 +207,9 @@ pub fn line(
     }
 }
 
-/// A number parameter as messages write it ([`crate::scene::number_text`]).
+/// A number parameter as messages write it ([`number_text`]).
 pub fn number(x: f64) -> Param {
-    Param::Number(crate::scene::number_text(x))
+    Param::Number(number_text(x))
 }
 
 /// A point's coordinates as the parameters `x`, `y`, `z` of a message.

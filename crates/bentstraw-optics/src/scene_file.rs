@@ -11,9 +11,9 @@ use std::fmt;
 
 use crate::rule::{self, number, point, Param, Params, Rule};
 use crate::scene::{
-    number_text, Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT, STRAW_RADIUS,
-    WATER_INDEX,
+    Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT, STRAW_RADIUS, WATER_INDEX,
 };
+use crate::text::number_text;
 use crate::Vec3;
 
 #[cfg(feature = "scene-file")]

@@ -1,12 +1,13 @@
 //! The camera of a picture: where it looks, how wide and how large, checked; plain values that
 //! the command line's flags and the explorer's queries both give.
 
-use bentstraw_optics::camera::{framing_fov, framing_fov_box, Camera};
-use bentstraw_optics::scene::{number_text, SCENE_CENTRE};
+use bentstraw_optics::camera::{framing_fov, Camera};
+use bentstraw_optics::scene::SCENE_CENTRE;
+use bentstraw_optics::text::number_text;
 use bentstraw_optics::Vec3;
 
 use crate::error::{fail, Result};
-use crate::scene_input::Loaded;
+use bentstraw_optics::setup::Setup;
 
 /// A camera as asked for: each value optional, a default chosen from the scene when absent.
 #[derive(Clone, Copy, Debug, Default)]
@@ -96,41 +97,20 @@ pub fn checked_fov_deg(deg: f64) -> Result<f64> {
     Ok(deg)
 }
 
-/// The camera of `spec` for the loaded scene at its observer: the assignment's glass framed as
-/// always (a scene file's target standing in for an absent one), any other scene's world framed
-/// whole. `render`, the Python package and the page ask for pictures through it.
-pub fn scene_camera(loaded: &Loaded, spec: &CameraSpec) -> Result<Camera> {
-    match loaded.assignment {
-        Some(_) => camera_from_args(
-            &CameraSpec {
-                target: spec.target.or(loaded.target.map(|t| t.to_array())),
-                ..*spec
-            },
-            loaded.observer,
-        ),
-        None => world_camera(loaded, spec),
-    }
-}
-
-/// The camera of `camera_args` for a scene file's world: aimed at `--target`, else the file's
-/// target, else the middle of the scene; framing the whole scene unless `--fov` is given.
-pub fn world_camera(world: &Loaded, camera_args: &CameraSpec) -> Result<Camera> {
-    let (lo, hi) = world.world.bounds();
-    let target = camera_args
-        .target
-        .or(world.target.map(|t| t.to_array()))
-        .unwrap_or((0.5 * (lo + hi)).to_array());
-    let mut camera = camera_from_args(
-        &CameraSpec {
-            target: Some(target),
-            ..*camera_args
-        },
-        world.observer,
-    )?;
-    if camera_args.fov.is_none() {
-        let aspect = camera.width as f64 / camera.height as f64;
-        let fov = framing_fov_box(world.observer, Vec3::from_array(target), (lo, hi), aspect);
-        camera.tan_half_fov = libm::tan(fov / 2.0);
-    }
-    Ok(camera)
+/// The camera of `spec` for the scene at its observer: aimed at the target given, else the scene
+/// file's, else the scene's centre; framing the scene ([`Setup::framing_fov`]) unless a field of
+/// view is given. Every picture is asked for through it.
+pub fn scene_camera(loaded: &Setup, spec: &CameraSpec) -> Result<Camera> {
+    let observer = loaded.observer;
+    let target = match spec.target {
+        Some(t) => checked_target(t)?,
+        None => loaded.default_target(),
+    };
+    check_target_away(target, observer)?;
+    let (width, height) = checked_size(spec.size.unwrap_or(DEFAULT_SIZE))?;
+    let fov = match spec.fov {
+        Some(deg) => checked_fov_deg(deg)?.to_radians(),
+        None => loaded.framing_fov(observer, target, width as f64 / height as f64),
+    };
+    Ok(Camera::new(observer, target, width, height, fov))
 }

@@ -4,8 +4,6 @@
 use std::path::Path;
 
 use bentstraw_optics::check::{CheckReport, ClaimedPoint, VerdictKind};
-use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES};
-use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -18,7 +16,7 @@ use crate::plot::{
     section_rgb8, three_view_size, AreaOn, DrawResultOn, FigureFormat, Heading, LegendMark, Panel,
     TEXT,
 };
-use crate::scene_input::Loaded;
+use bentstraw_optics::setup::Setup;
 
 /// Most true-image samples and correct points drawn per panel in a PNG (an even subset beyond that).
 const MAX_DRAWN_PNG: (usize, usize) = (30_000, 40_000);
@@ -50,7 +48,7 @@ fn pale(code: u8) -> RGBColor {
 /// Draws the check figure of `points` (the solution) and `report` into `path` (.png, .svg or .pdf).
 pub fn write_check_figure(
     path: &Path,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     points: &[ClaimedPoint],
     report: &CheckReport,
@@ -111,11 +109,8 @@ fn check_heading(report: &CheckReport, title: &str, colours: usize) -> Heading {
 }
 
 /// How many colour codes the scene can show.
-fn colours(scene: &Loaded) -> usize {
-    match (&scene.assignment, &scene.world) {
-        (Some(_), _) => SECTION_COUNT,
-        (None, _) => COLOR_COUNT,
-    }
+fn colours(scene: &Setup) -> usize {
+    scene.colour_names().len()
 }
 
 /// Whether pixel `(x, y)` lies inside `panel`.
@@ -134,7 +129,7 @@ fn stride(n: usize, max: usize) -> usize {
 /// The figure on any backend: the same code draws the PNG and the SVG.
 fn draw_check<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     points: &[ClaimedPoint],
     report: &CheckReport,
@@ -255,14 +250,11 @@ fn draw_check_legend<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     report: &CheckReport,
     cell: (i32, i32, i32, i32),
-    scene: &Loaded,
+    scene: &Setup,
 ) -> DrawResultOn<DB> {
     let mut items: Vec<(LegendMark, String)> =
         vec![(LegendMark::None, "pale: true, full: correct".to_string())];
-    let names: &[&str] = match (&scene.assignment, &scene.world) {
-        (Some(_), _) => &SECTION_NAMES,
-        (None, _) => &COLOR_NAMES,
-    };
+    let names = scene.colour_names();
     for (k, name) in names.iter().enumerate() {
         let full = section_rgb8(k as u8 + 1);
         let p = pale(k as u8 + 1);
@@ -349,7 +341,7 @@ mod tests {
     /// The figure of reference 2's own points, changed by `change`, as decoded pixels.
     fn figure(change: impl Fn(usize, &mut ClaimedPoint) -> bool) -> (image::RgbImage, i32) {
         let r = &REFERENCES[1];
-        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let scene = Setup::assignment(r.scene(1.333), r.observer);
         let cloud = sample_image(&scene.world, r.observer, 3000, &|_| {});
         let mut points = Vec::new();
         for (i, p) in cloud.points.iter().enumerate() {

@@ -4,8 +4,10 @@ use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
 
-use bentstraw_optics::scene::{clip_text, SceneError};
+use bentstraw_optics::scene::SceneError;
 use bentstraw_optics::scene_file::SceneFileError;
+use bentstraw_optics::setup::SetupError;
+use bentstraw_optics::text::clip_text;
 
 /// Longest path quoted in a message, in characters.
 const SHOWN_PATH_MAX: usize = 100;
@@ -81,6 +83,24 @@ impl std::error::Error for Error {
 impl From<SceneError> for Error {
     fn from(e: SceneError) -> Self {
         Error::Scene(e)
+    }
+}
+
+impl From<SetupError> for Error {
+    fn from(e: SetupError) -> Self {
+        match e {
+            SetupError::Scene(e) => Error::Scene(e),
+            SetupError::SceneFile {
+                name,
+                flagged,
+                error,
+            } => Error::SceneFile {
+                name,
+                flagged,
+                error,
+            },
+            SetupError::Refused(message) => Error::Refused(message),
+        }
     }
 }
 

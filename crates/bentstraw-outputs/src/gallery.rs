@@ -80,12 +80,13 @@ pub fn opening_comment(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene_input::{file_world, Loaded};
+    use crate::scene_input::gallery_setup;
     use bentstraw_optics::geometry::Ray;
     use bentstraw_optics::image::ImagePoint;
     use bentstraw_optics::light_path_type::{Entry, LightPathType};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
+    use bentstraw_optics::setup::Setup;
     use bentstraw_optics::world::{CARD_COLOR, COIN_COLOR, PICTURE_COLOR};
     use bentstraw_optics::Vec3;
 
@@ -99,8 +100,8 @@ mod tests {
     }
 
     /// The world of a scene file's `text` (a gallery scene, or one edited from it).
-    fn load(stem: &str, text: &str) -> Loaded {
-        file_world(stem, text, DEFAULT_MAX_EVENTS).unwrap_or_else(|e| panic!("{stem}: {e}"))
+    fn load(stem: &str, text: &str) -> Setup {
+        gallery_setup(stem, text, DEFAULT_MAX_EVENTS).unwrap_or_else(|e| panic!("{stem}: {e}"))
     }
 
     /// `text` with `from` replaced by `to`, which must occur in it.
@@ -110,12 +111,12 @@ mod tests {
     }
 
     /// At least `n` image points of the loaded scene, from its own observer.
-    fn points(world: &Loaded, n: usize) -> Vec<ImagePoint> {
+    fn points(world: &Setup, n: usize) -> Vec<ImagePoint> {
         sample_image(&world.world, world.observer, n, &|_| {}).points
     }
 
     /// The kind of light path that makes image point `p`.
-    fn path_of(world: &Loaded, p: &ImagePoint) -> LightPathType {
+    fn path_of(world: &Setup, p: &ImagePoint) -> LightPathType {
         world
             .world
             .trace_path_type(Ray::new(world.observer, p.direction))
@@ -125,7 +126,7 @@ mod tests {
     #[test]
     fn every_gallery_scene_is_valid_and_says_what_it_shows() {
         for (stem, text) in GALLERY {
-            let world = file_world(stem, text, DEFAULT_MAX_EVENTS).unwrap();
+            let world = gallery_setup(stem, text, DEFAULT_MAX_EVENTS).unwrap();
             assert!(!world.world.objects().is_empty(), "{stem}");
             assert!(opening_comment(text).len() > 60, "{stem}");
         }
@@ -318,7 +319,7 @@ mod tests {
     /// below the surface (`top`) appear shifted to the eye's right of the straw points they come
     /// from, for the straw points that `pick` keeps.
     fn shifts(
-        world: &Loaded,
+        world: &Setup,
         cloud: &[ImagePoint],
         top: f64,
         pick: &dyn Fn(Vec3) -> bool,
@@ -365,7 +366,7 @@ mod tests {
         let dense = load("dense-liquid", text);
         let water = load("water", &edited(text, "index = 1.63", "index = 1.333"));
         let all = |_: Vec3| true;
-        let size = |w: &Loaded| {
+        let size = |w: &Setup| {
             mean(
                 shifts(w, &points(w, 4000), 0.15, &all)
                     .into_iter()

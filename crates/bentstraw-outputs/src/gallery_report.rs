@@ -9,15 +9,16 @@ use bentstraw_optics::shading::shaded_picture;
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
 use rayon::prelude::*;
 
-use crate::camera::{world_camera, CameraSpec};
+use crate::camera::{scene_camera, CameraSpec};
 use crate::error::Result;
 use crate::gallery::{opening_comment, GALLERY};
 use crate::pictures::png_bytes;
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{Figure, Section};
-use crate::scene_input::{file_world, Loaded};
+use crate::scene_input::gallery_setup;
 use crate::words::{self, Lang};
 use crate::{files, plot};
+use bentstraw_optics::setup::Setup;
 
 /// Image points per gallery scene in the report.
 const GALLERY_POINTS: usize = 20_000;
@@ -42,21 +43,21 @@ pub fn gallery_sections(out: &Path, lang: Lang, done: &(dyn Fn() + Sync)) -> Vec
     GALLERY
         .par_iter()
         .map(|(stem, text)| {
-            let section = match file_world(&format!("scenes/{stem}.toml"), text, DEFAULT_MAX_EVENTS)
-            {
-                Ok(world) => scene_section(out, lang, stem, text, &world),
-                Err(e) => Section {
-                    title: lang.fill(words::GALLERY, &[&stem]),
-                    figures: vec![Figure {
-                        error: Some(e.to_string()),
-                        ..Figure::image(&format!("gallery_{stem}_observer.png"), "")
-                    }],
-                    notes: vec![],
-                    side_by_side: false,
-                    printed: false,
-                    table: vec![],
-                },
-            };
+            let section =
+                match gallery_setup(&format!("scenes/{stem}.toml"), text, DEFAULT_MAX_EVENTS) {
+                    Ok(world) => scene_section(out, lang, stem, text, &world),
+                    Err(e) => Section {
+                        title: lang.fill(words::GALLERY, &[&stem]),
+                        figures: vec![Figure {
+                            error: Some(e.to_string()),
+                            ..Figure::image(&format!("gallery_{stem}_observer.png"), "")
+                        }],
+                        notes: vec![],
+                        side_by_side: false,
+                        printed: false,
+                        table: vec![],
+                    },
+                };
             done();
             section
         })
@@ -64,7 +65,7 @@ pub fn gallery_sections(out: &Path, lang: Lang, done: &(dyn Fn() + Sync)) -> Vec
 }
 
 /// The section of one gallery scene: its picture and its image points.
-fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Loaded) -> Section {
+fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Setup) -> Section {
     let picture_file = format!("gallery_{stem}_observer.png");
     let points_file = format!("gallery_{stem}_points.svg");
     let mut picture = Figure::image(&picture_file, &lang.fill(words::GALLERY_PICTURE, &[&stem]));
@@ -109,8 +110,8 @@ fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Loaded)
 }
 
 /// The scene's picture from its own observer, 1000x750, Fresnel, as a PNG.
-pub fn write_picture(path: &Path, world: &Loaded) -> Result {
-    let camera = world_camera(
+pub fn write_picture(path: &Path, world: &Setup) -> Result {
+    let camera = scene_camera(
         world,
         &CameraSpec {
             target: None,

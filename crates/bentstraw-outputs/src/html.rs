@@ -21,8 +21,8 @@ use crate::files;
 use crate::plot::{
     axis_box, counts, degrees, figure_views, observer_direction, section_rgb8, whole,
 };
-use crate::scene_input::Loaded;
-use crate::sketch::{object_outlines, world_wireframe, WIRE_VERTICALS};
+use bentstraw_optics::setup::Setup;
+use bentstraw_optics::sketch::{object_outlines, world_wireframe, WIRE_VERTICALS};
 
 /// The viewer's script, kept in its own file so it stays readable and lintable.
 const VIEWER_JS: &str = include_str!("../assets/viewer.js");
@@ -33,7 +33,7 @@ const VIEWER_CSS: &str = include_str!("../assets/viewer.css");
 /// to `path`.
 pub fn write_cloud_viewer(
     path: &Path,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
@@ -48,13 +48,13 @@ pub fn write_cloud_viewer(
 
 /// The whole HTML page.
 fn viewer_page(
-    loaded: &Loaded,
+    loaded: &Setup,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
     file_stem: &str,
 ) -> String {
-    let Some(scene) = &loaded.assignment else {
+    let Some(scene) = loaded.assignment_numbers() else {
         return world_viewer_page(loaded, observer, points, title, file_stem);
     };
     let data = viewer_data(loaded, scene, observer, points, title, file_stem);
@@ -136,7 +136,7 @@ fn viewer_page(
 
 /// The data the script draws: scene, box, views and the points, compactly encoded.
 fn viewer_data(
-    loaded: &Loaded,
+    loaded: &Setup,
     scene: &Scene,
     observer: Vec3,
     points: &[ImagePoint],
@@ -234,7 +234,7 @@ fn views_json(observer: Vec3) -> Vec<serde_json::Value> {
 /// The page of a scene file's world: the same viewer, with the world's wireframe (its
 /// boundaries) and its objects' true outlines instead of the glass and the straw.
 fn world_viewer_page(
-    loaded: &Loaded,
+    loaded: &Setup,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
@@ -398,7 +398,7 @@ mod tests {
 
     fn reference_page(title: &str) -> (Vec<ImagePoint>, String) {
         let r = REFERENCES[0];
-        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let scene = Setup::assignment(r.scene(1.333), r.observer);
         let cloud = sample_image(&scene.world, r.observer, 1500, &|_| {});
         let page = viewer_page(&scene, r.observer, &cloud.points, title, "ref1");
         (cloud.points, page)
@@ -519,7 +519,7 @@ mod tests {
 
     #[test]
     fn empty_cloud_still_gives_a_valid_page() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let page = viewer_page(&scene, Vec3::new(0.1, 0.0, 0.1), &[], "none", "x");
         let data = embedded_data(&page);
         assert_eq!(data["n"], 0);
@@ -529,7 +529,7 @@ mod tests {
     #[test]
     fn preset_views_are_the_figure_views() {
         let observer = Vec3::new(0.1, -0.05, 0.3);
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let data = embedded_data(&viewer_page(&scene, observer, &[], "v", "x"));
         let views = data["views"].as_array().unwrap();
         assert_eq!(views.len(), 4);
@@ -544,7 +544,7 @@ mod tests {
 
     #[test]
     fn far_observer_page_carries_the_arrow() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let page = viewer_page(&scene, Vec3::new(3.0, 1.0, 0.5), &[], "far", "x");
         let data = embedded_data(&page);
         assert_eq!(data["observerInside"], false);
@@ -553,7 +553,7 @@ mod tests {
 
     #[test]
     fn written_file_is_the_page() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("view.html");
         write_cloud_viewer(&path, &scene, Vec3::new(0.1, 0.0, 0.1), &[], "t").unwrap();
@@ -569,13 +569,11 @@ mod tests {
         .is_err());
     }
 
-    /// The page's own script decodes the same points (run under node; where node is absent, skipped
-    /// outside CI and failed under CI).
+    /// The page's own script decodes the same points (run under node; without node it fails).
     #[test]
+    #[ignore = "needs Node.js (`node`) to run the viewer's script"]
     fn viewer_script_decodes_the_embedded_points() {
-        let Some(node) = crate::test_support::require_tool("node") else {
-            return;
-        };
+        let node = crate::test_support::require_tool("node");
         let (points, page) = reference_page("Reference 1");
         let dir = tempfile::tempdir().unwrap();
         let js = dir.path().join("viewer.js");
@@ -642,9 +640,9 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
     }
 
     /// Opens the page in headless Chromium and checks that the script ran to the end and drew every
-    /// colour present. Where Chromium is not installed (it is not needed otherwise) skipped outside
-    /// CI, failed under CI.
+    /// colour present (without Chromium it fails).
     #[test]
+    #[ignore = "needs Chromium (headless) to draw the page"]
     fn chromium_draws_the_page() {
         let (points, page) = reference_page("Smoke test");
         draws_in_chromium(&page, &points);
@@ -655,23 +653,18 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
         let path = Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../../scenes")
             .join(name);
-        let d = SceneDescription::from_toml(&std::fs::read_to_string(path).unwrap()).unwrap();
-        let observer = d.observer.unwrap().position;
-        let loaded = Loaded {
-            name: Some(name.to_string()),
-            assignment: None,
-            world: World::new(&d, 10).expect("a valid scene"),
-            description: Some(d),
-            observer,
-            target: None,
-        };
+        let text = std::fs::read_to_string(path).unwrap();
+        let values = bentstraw_optics::setup::SceneValues::default();
+        let loaded = Setup::from_text(name, &text, &values).expect("a valid scene");
+        let observer = loaded.observer;
         let points = sample_image(&loaded.world, observer, 3000, &|_| {}).points;
         let page = viewer_page(&loaded, observer, &points, name, "w");
         (loaded.world, points, page)
     }
 
     /// A scene file's page carries its points exactly, a legend of the codes present with their
-    /// counts, the world's wireframe and its objects' outlines; and the browser draws it.
+    /// counts, the world's wireframe and its objects' outlines (the browser draws it:
+    /// `chromium_draws_a_scene_files_page`).
     #[test]
     fn a_scene_files_page_shows_its_world() {
         let (world, points, page) = world_page("reversing-arrow.toml");
@@ -699,17 +692,20 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
             object_outlines(&world).len()
         );
         assert!(data.get("water").is_none() && data.get("straw").is_none());
+    }
+
+    /// Headless Chromium draws a scene file's page, every colour present.
+    #[test]
+    #[ignore = "needs Chromium (headless) to draw the page"]
+    fn chromium_draws_a_scene_files_page() {
         let (_, points, page) = world_page("tank-pencil.toml");
         draws_in_chromium(&page, &points);
     }
 
     /// Opens `page` in headless Chromium and checks that the script ran to the end and drew every
-    /// straw colour among `points`. Where Chromium is missing or cannot start, skipped outside CI and
-    /// failed under CI.
+    /// straw colour among `points`. Where Chromium is missing or cannot start, the test fails.
     fn draws_in_chromium(page: &str, points: &[ImagePoint]) {
-        let Some(chromium) = crate::test_support::require_tool("chromium") else {
-            return;
-        };
+        let chromium = crate::test_support::require_tool("chromium");
         let dir = tempfile::tempdir().unwrap();
         let html = dir.path().join("page.html");
         std::fs::write(&html, page).unwrap();
@@ -734,30 +730,31 @@ console.log(JSON.stringify({{ points: out, right: a.right, up: a.up, toward: a.t
             .stderr(std::process::Stdio::null())
             .spawn()
             .unwrap();
-        // Read the page dump while the browser runs, so that a full pipe cannot stall it.
+        // Read the page dump while the browser runs, so that a full pipe cannot stall it; its end
+        // (the browser closed its output) is the event waited for.
         let mut stdout = child.stdout.take().unwrap();
-        let reader = std::thread::spawn(move || {
+        let (sent, dumped) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
             let mut dom = String::new();
             let _ = std::io::Read::read_to_string(&mut stdout, &mut dom);
-            dom
+            let _ = sent.send(dom);
         });
-        // A browser that hangs must not hang the test suite.
-        let started = std::time::Instant::now();
-        while child.try_wait().unwrap().is_none() {
-            if started.elapsed() > std::time::Duration::from_secs(90) {
+        // A deadline only so that a browser that hangs cannot hang the test suite.
+        let dom = match dumped.recv_timeout(std::time::Duration::from_secs(90)) {
+            Ok(dom) => dom,
+            Err(_) => {
                 let _ = child.kill();
+                let _ = child.wait();
                 panic!("chromium did not finish in 90 s");
             }
-            std::thread::sleep(std::time::Duration::from_millis(100));
-        }
-        let dom = reader.join().unwrap();
+        };
+        child.wait().unwrap();
         if !shot.exists() && dom.is_empty() {
-            // The browser could not start here (no display stack, sandbox rules...): not our page's fault.
+            // The browser could not start here (no display stack, sandbox rules...).
             crate::test_support::unavailable(
                 "chromium produced nothing (it could not start here)",
                 "run `chromium --headless --no-sandbox --screenshot about:blank` to see why",
             );
-            return;
         }
         // The status line is written at the end of each frame: the script ran without an error.
         assert!(dom.contains("drawn in"), "the viewer did not draw a frame");

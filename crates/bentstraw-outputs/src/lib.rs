@@ -30,7 +30,6 @@ pub mod report;
 #[cfg(feature = "figures")]
 pub mod report_pdf;
 pub mod scene_input;
-pub mod sketch;
 pub mod solution;
 #[cfg(feature = "figures")]
 mod svg_marks;

@@ -14,9 +14,7 @@ use std::path::Path;
 
 use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::{
-    GLASS_HEIGHT, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT,
-};
+use bentstraw_optics::scene::{SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT};
 use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -30,8 +28,8 @@ use crate::plot::{
     section_rgb8, section_words, triple, visible_dots, AreaOn, AxisBox, FigureFormat, Heading,
     LegendMark, Panel, ViewDirection, CAPTION_LINE, FIGURE_WIDTH, LEGEND_LINE, TEXT, TITLE,
 };
-use crate::scene_input::Loaded;
 use crate::words::{self, Lang};
+use bentstraw_optics::setup::Setup;
 
 /// The three models' names in the comparison figure, in the order course, eye, stereo.
 pub const MODEL_NAMES: [&str; 3] = [
@@ -104,15 +102,16 @@ const CAPTION_LINES: usize = 3;
 const COLUMNS: usize = 2;
 /// Height of the comparison figure's legend (px).
 const LEGEND_HEIGHT: i32 = CAPTION_LINE + 5 * LEGEND_LINE + 20;
-/// Image points farther than this from the scene's centre (a focus near infinity) are left off the
-/// frame and counted, so that one such point cannot shrink the glass to a dot.
-const FAR_POINT_LIMIT: f64 = 3.0 * GLASS_HEIGHT;
+/// Image points farther than this many times the scene's size from its centre (a focus near
+/// infinity) are left off the frame and counted, so that one such point cannot shrink the glass
+/// to a dot.
+const FAR_POINT_SIZES: f64 = 3.0;
 
 /// Draws the models' clouds one above the other, same viewpoints and scales, into `path` (PNG,
 /// SVG or PDF by its extension).
 pub fn write_model_comparison(
     path: &Path,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     models: &[ModelCloud],
     title: &str,
@@ -123,20 +122,14 @@ pub fn write_model_comparison(
 
 /// Whether an image point is drawn in the comparison (finite and not absurdly far from the scene:
 /// for a scene file, three times its box's size from the box's middle).
-fn on_frame(scene: &Loaded, p: &ImagePoint) -> bool {
-    let (centre, limit) = match (&scene.assignment, &scene.world) {
-        (Some(_), _) => (SCENE_CENTRE, FAR_POINT_LIMIT),
-        (None, w) => {
-            let (lo, hi) = w.bounds();
-            (0.5 * (lo + hi), 3.0 * (hi - lo).max_element())
-        }
-    };
-    p.position.is_finite() && (p.position - centre).length() <= limit
+fn on_frame(scene: &Setup, p: &ImagePoint) -> bool {
+    let centre = scene.frame().2;
+    p.position.is_finite() && (p.position - centre).length() <= FAR_POINT_SIZES * scene.size()
 }
 
 /// The one box shared by every panel: glass, straw, the observer when near, and every model's points
 /// on the frame. Also returns the count of points left off per model.
-fn shared_box(scene: &Loaded, observer: Vec3, models: &[ModelCloud]) -> (AxisBox, Vec<usize>) {
+fn shared_box(scene: &Setup, observer: Vec3, models: &[ModelCloud]) -> (AxisBox, Vec<usize>) {
     let all: Vec<ImagePoint> = models
         .iter()
         .flat_map(|m| m.points.iter().copied().filter(|p| on_frame(scene, p)))
@@ -158,8 +151,8 @@ fn comparison_views(observer: Vec3) -> [(ViewDirection, String); COLUMNS] {
 }
 
 /// The comparison figure's heading.
-fn comparison_heading(scene: &Loaded, observer: Vec3, title: &str) -> Heading {
-    let Some(scene) = &scene.assignment else {
+fn comparison_heading(scene: &Setup, observer: Vec3, title: &str) -> Heading {
+    let Some(scene) = scene.assignment_numbers() else {
         return Heading::new(
             title,
             &format!(
@@ -227,7 +220,7 @@ fn comparison_layout(
 /// The comparison figure as the bytes of its file.
 fn render_model_comparison(
     path: &Path,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     models: &[ModelCloud],
     title: &str,
@@ -245,7 +238,7 @@ fn render_model_comparison(
 /// The comparison figure on any backend.
 fn draw_comparison<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     models: &[ModelCloud],
     heading: &Heading,
@@ -312,7 +305,7 @@ fn draw_comparison<DB: DrawingBackend>(
     }
     others.push((
         LegendMark::None,
-        format!("not shown: beyond {FAR_POINT_LIMIT:.1} m"),
+        format!("not shown: beyond {:.1} m", FAR_POINT_SIZES * scene.size()),
     ));
     draw_legend_cell(
         root,
@@ -528,7 +521,7 @@ mod tests {
 
     /// The pixel rectangle of model `i`'s panel in column `c` (as the figure lays them out).
     fn panel_rect(
-        scene: &Loaded,
+        scene: &Setup,
         observer: Vec3,
         models: &[ModelCloud],
         i: usize,
@@ -546,7 +539,7 @@ mod tests {
         (t..t + h).any(|y| (l..l + w).any(|x| img.get_pixel(x, y).0 == c))
     }
 
-    fn render(scene: &Loaded, observer: Vec3, models: &[ModelCloud]) -> image::RgbImage {
+    fn render(scene: &Setup, observer: Vec3, models: &[ModelCloud]) -> image::RgbImage {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("models.png");
         write_model_comparison(&path, scene, observer, models, "test").unwrap();
@@ -555,7 +548,7 @@ mod tests {
 
     #[test]
     fn each_panel_shows_the_colours_of_its_own_points_only() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(0.1, 0.0, 0.1);
         let a = ring(0.02, 0.01, 1, 400);
         let b = ring(0.01, 0.01, 4, 400);
@@ -602,7 +595,7 @@ mod tests {
 
     #[test]
     fn equal_models_give_panels_equal_up_to_a_shift() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(0.0, 0.1, 0.1);
         let mut pts = ring(0.02, 0.01, 3, 500);
         pts.extend(ring(0.03, 0.02, 1, 500));
@@ -646,7 +639,7 @@ mod tests {
 
     #[test]
     fn shared_box_holds_every_model_and_leaves_off_only_far_points() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(0.1, 0.0, 0.1);
         let a = [point(Vec3::new(-0.09, 0.0, 0.1), 1)];
         let b = [
@@ -707,7 +700,7 @@ mod tests {
 
     #[test]
     fn empty_models_and_no_models_still_draw() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.0).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.0).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(5.0, 0.0, 0.3);
         for models in [
             vec![],

@@ -1,7 +1,7 @@
 //! Parsers for the value forms of the command line and the explorer's queries (`X,Y,Z`, `WxH`):
 //! each refusal one line that quotes the value, clipped.
 
-use bentstraw_optics::scene::clip_text;
+use bentstraw_optics::text::clip_text;
 
 use crate::camera::MAX_SIDE;
 

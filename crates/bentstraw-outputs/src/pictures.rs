@@ -6,10 +6,10 @@ use std::path::{Path, PathBuf};
 use bentstraw_optics::camera::{framing_fov, framing_target, Camera};
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::number_text;
 use bentstraw_optics::shading::{
     cloud_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
 };
+use bentstraw_optics::text::number_text;
 use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 use image::codecs::png::PngEncoder;

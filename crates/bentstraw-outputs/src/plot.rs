@@ -14,10 +14,7 @@ use std::path::Path;
 use std::sync::Once;
 
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::{
-    GLASS_HEIGHT, GLASS_RADIUS, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES,
-    STRAW_HEIGHT, STRAW_RADIUS,
-};
+use bentstraw_optics::scene::{SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES};
 use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use image::ImageEncoder;
@@ -28,9 +25,8 @@ use rayon::slice::ParallelSliceMut;
 
 use crate::error::{Error, Result};
 use crate::files;
-use crate::scene_input::Loaded;
-use crate::sketch::{circle, object_outlines, water_segments, world_wireframe};
 use crate::svg_marks::merge_marks;
+use bentstraw_optics::setup::Setup;
 
 /// Width of every figure in pixels (printed 8.5 cm wide: see [`TEXT`]).
 pub const FIGURE_WIDTH: u32 = 1000;
@@ -90,23 +86,8 @@ impl AxisBox {
 /// The axis box of a figure: tight around the scene (glass and straw, or a world's container and
 /// objects) and the points, with a margin; the observer is included unless that would make the
 /// box more than [`FAR_OBSERVER_FACTOR`] times larger.
-pub(crate) fn axis_box(scene: &Loaded, observer: Vec3, points: &[ImagePoint]) -> AxisBox {
-    let (mut lo, mut hi, centre) = match (&scene.assignment, &scene.world) {
-        (Some(scene), _) => {
-            let lo = Vec3::new(-GLASS_RADIUS, -GLASS_RADIUS, 0.0);
-            let hi = Vec3::new(GLASS_RADIUS, GLASS_RADIUS, GLASS_HEIGHT);
-            let straw = Vec3::new(scene.straw_x(), scene.straw_y(), 0.0);
-            (
-                lo.min(straw - Vec3::new(STRAW_RADIUS, STRAW_RADIUS, 0.0)),
-                hi.max(straw + Vec3::new(STRAW_RADIUS, STRAW_RADIUS, STRAW_HEIGHT)),
-                SCENE_CENTRE,
-            )
-        }
-        (None, world) => {
-            let (lo, hi) = world.bounds();
-            (lo, hi, 0.5 * (lo + hi))
-        }
-    };
+pub(crate) fn axis_box(scene: &Setup, observer: Vec3, points: &[ImagePoint]) -> AxisBox {
+    let (mut lo, mut hi, centre) = scene.frame();
     for p in points {
         if p.position.is_finite() {
             lo = lo.min(p.position);
@@ -516,7 +497,7 @@ pub(crate) fn three_view_size(heading: &Heading) -> (u32, u32) {
 /// PDF by its extension.
 pub fn write_cloud_figure(
     path: &Path,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
@@ -528,7 +509,7 @@ pub fn write_cloud_figure(
 /// The classic figure as the bytes of its file (format by `path`'s extension).
 pub(crate) fn render_cloud_figure(
     path: &Path,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
@@ -562,7 +543,7 @@ pub(crate) fn cloud_heading(observer: Vec3, n: usize, title: &str) -> Heading {
 /// The classic figure on any backend.
 fn draw_cloud_figure<DB: DrawingBackend>(
     root: &AreaOn<DB>,
-    scene: &Loaded,
+    scene: &Setup,
     observer: Vec3,
     points: &[ImagePoint],
     heading: &Heading,
@@ -585,7 +566,7 @@ fn draw_cloud_figure<DB: DrawingBackend>(
         draw_observer(root, p, &bx, observer, &dots).map_err(e)?;
     }
     let mut items: Vec<(LegendMark, String)>;
-    if scene.assignment.is_some() {
+    if scene.assignment_numbers().is_some() {
         let n = counts(points);
         items = vec![(LegendMark::None, "image points by section:".to_string())];
         items.extend((0..SECTION_COUNT).map(|k| {
@@ -1064,19 +1045,10 @@ fn tick_pixel(panel: &Panel, a: usize, v: f64) -> f64 {
 pub(crate) fn draw_water<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     proj: &Projection,
-    scene: &Loaded,
+    scene: &Setup,
     front: bool,
 ) -> DrawResultOn<DB> {
-    let (axis, segments) = match (&scene.assignment, &scene.world) {
-        (Some(scene), _) => (
-            Vec3::new(0.0, 0.0, scene.water_height() / 2.0),
-            water_segments(scene),
-        ),
-        (None, world) => {
-            let (lo, hi) = world.bounds();
-            (0.5 * (lo + hi), world_wireframe(world))
-        }
-    };
+    let (axis, segments) = scene.wireframe();
     let axis_depth = proj.nearness(axis);
     let color = if front {
         rgb(WATER_RGB).mix(0.75)
@@ -1096,35 +1068,12 @@ pub(crate) fn draw_water<DB: DrawingBackend>(
 pub(crate) fn draw_straw_outline<DB: DrawingBackend>(
     root: &AreaOn<DB>,
     proj: &Projection,
-    scene: &Loaded,
+    scene: &Setup,
 ) -> DrawResultOn<DB> {
     let color = rgb(STRAW_OUTLINE_RGB);
-    let scene = match (&scene.assignment, &scene.world) {
-        (Some(scene), _) => scene,
-        (None, world) => {
-            for line in object_outlines(world) {
-                let px: Vec<(f64, f64)> = line.iter().map(|&p| proj.pixel(p)).collect();
-                dashed(root, &px, color)?;
-            }
-            return Ok(());
-        }
-    };
-    for k in 0..=SECTION_COUNT {
-        let c = circle(
-            scene.straw_x(),
-            scene.straw_y(),
-            STRAW_RADIUS,
-            k as f64 * SECTION_HEIGHT,
-        );
-        let px: Vec<(f64, f64)> = c.iter().map(|&p| proj.pixel(p)).collect();
+    for line in scene.outlines(proj.right) {
+        let px: Vec<(f64, f64)> = line.iter().map(|&p| proj.pixel(p)).collect();
         dashed(root, &px, color)?;
-    }
-    let side = STRAW_RADIUS * proj.right;
-    let axis = Vec3::new(scene.straw_x(), scene.straw_y(), 0.0);
-    for s in [-1.0, 1.0] {
-        let a = axis + s * side;
-        let b = a + Vec3::new(0.0, 0.0, STRAW_HEIGHT);
-        dashed(root, &[proj.pixel(a), proj.pixel(b)], color)?;
     }
     Ok(())
 }
@@ -1557,9 +1506,9 @@ pub(crate) fn text_width(s: &str, size: f64) -> i32 {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::sketch::{CIRCLE_SEGMENTS, WIRE_VERTICALS};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::{Scene, REFERENCES};
+    use bentstraw_optics::sketch::{CIRCLE_SEGMENTS, WIRE_VERTICALS};
 
     /// A point of colour `color` at `position` (the other fields do not matter for drawing).
     pub(crate) fn point(position: Vec3, color: u8) -> ImagePoint {
@@ -1580,7 +1529,7 @@ pub(crate) mod tests {
     }
 
     /// The panels of the classic figure of `points`, as drawn under its heading.
-    fn panels_of(scene: &Loaded, observer: Vec3, points: &[ImagePoint]) -> Vec<Panel> {
+    fn panels_of(scene: &Setup, observer: Vec3, points: &[ImagePoint]) -> Vec<Panel> {
         let heading = cloud_heading(observer, points.len(), "t");
         layout(
             &axis_box(scene, observer, points),
@@ -1598,13 +1547,13 @@ pub(crate) mod tests {
         })
     }
 
-    fn png_of(scene: &Loaded, observer: Vec3, points: &[ImagePoint]) -> image::RgbImage {
+    fn png_of(scene: &Setup, observer: Vec3, points: &[ImagePoint]) -> image::RgbImage {
         decode(&render_cloud_figure(Path::new("f.png"), scene, observer, points, "t").unwrap())
     }
 
     #[test]
     fn figure_is_a_png_of_the_stated_size_showing_exactly_the_colours_present() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         // Sections 1, 2 and 4 only, on the straw's surface.
         let points: Vec<ImagePoint> = (0..300)
             .map(|i| {
@@ -1639,7 +1588,7 @@ pub(crate) mod tests {
     #[test]
     fn reference_figure_is_written_and_shows_every_colour_seen() {
         let r = REFERENCES[1];
-        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let scene = Setup::assignment(r.scene(1.333), r.observer);
         let cloud = sample_image(&scene.world, r.observer, 2000, &|_| {});
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("ref.png");
@@ -1667,7 +1616,7 @@ pub(crate) mod tests {
     #[test]
     fn hidden_dots_left_out_change_no_pixel() {
         let r = REFERENCES[2];
-        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let scene = Setup::assignment(r.scene(1.333), r.observer);
         let cloud = sample_image(&scene.world, r.observer, 20_000, &|_| {});
         let panels = panels_of(&scene, r.observer, &cloud.points);
         let size = (FIGURE_WIDTH, 1400);
@@ -1726,7 +1675,7 @@ pub(crate) mod tests {
 
     #[test]
     fn observer_is_a_black_dot_where_each_view_projects_it() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(-0.07, 0.06, 0.17);
         let img = png_of(&scene, observer, &[]);
         let bx = axis_box(&scene, observer, &[]);
@@ -1755,12 +1704,12 @@ pub(crate) mod tests {
 
     #[test]
     fn empty_glass_and_no_points_still_draw() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.01, 0.0, 0.0).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.01, 0.0, 0.0).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(0.0, -0.2, 0.3);
         let img = png_of(&scene, observer, &[]);
         assert_eq!(img.width(), FIGURE_WIDTH);
         assert_eq!(
-            water_segments(scene.assignment.as_ref().unwrap()).len(),
+            water_segments(scene.assignment_numbers().unwrap()).len(),
             2 * CIRCLE_SEGMENTS
         );
     }
@@ -1768,7 +1717,7 @@ pub(crate) mod tests {
     #[test]
     fn same_inputs_give_the_same_bytes() {
         let r = REFERENCES[2];
-        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let scene = Setup::assignment(r.scene(1.333), r.observer);
         let cloud = sample_image(&scene.world, r.observer, 3000, &|_| {});
         // (A PDF's objects come out in an order that varies from run to run: not compared.)
         for name in ["a.png", "a.svg"] {
@@ -1783,7 +1732,7 @@ pub(crate) mod tests {
 
     #[test]
     fn unwritable_path_is_an_error_not_a_panic() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), Vec3::ZERO);
         let path = Path::new("/nonexistent-folder/fig.png");
         assert!(write_cloud_figure(path, &scene, Vec3::new(0.1, 0.0, 0.1), &[], "t").is_err());
     }
@@ -1821,7 +1770,7 @@ pub(crate) mod tests {
 
     #[test]
     fn axis_box_holds_glass_straw_points_and_a_near_observer() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.02, 0.01, 0.15).unwrap(), Vec3::ZERO);
         let points = [
             point(Vec3::new(-0.2, 0.03, 0.12), 1),
             point(Vec3::new(0.01, 0.01, -0.05), 1),
@@ -1844,7 +1793,7 @@ pub(crate) mod tests {
 
     #[test]
     fn far_observer_gets_an_arrow_pointing_at_it_inside_the_box() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.15).unwrap(), Vec3::ZERO);
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.15).unwrap(), Vec3::ZERO);
         let observer = Vec3::new(5.0, -2.0, 1.0);
         let bx = axis_box(&scene, observer, &[]);
         assert!(!bx.observer_inside);
@@ -1948,9 +1897,9 @@ pub(crate) mod tests {
         let far = Vec3::new(3.0, -1.0, 0.4);
         for (scene, observer) in REFERENCES
             .iter()
-            .map(|r| (Loaded::assignment(r.scene(1.333), r.observer), r.observer))
+            .map(|r| (Setup::assignment(r.scene(1.333), r.observer), r.observer))
             .chain([(
-                Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), far),
+                Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.1).unwrap(), far),
                 far,
             )])
         {
@@ -1990,8 +1939,8 @@ pub(crate) mod tests {
 
     #[test]
     fn water_wireframe_has_two_circles_and_thirty_verticals() {
-        let scene = Loaded::assignment(Scene::with_defaults(0.0, 0.0, 0.15).unwrap(), Vec3::ZERO);
-        let segs = water_segments(scene.assignment.as_ref().unwrap());
+        let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.15).unwrap(), Vec3::ZERO);
+        let segs = water_segments(scene.assignment_numbers().unwrap());
         let verticals: Vec<_> = segs
             .iter()
             .filter(|[a, b]| a.x == b.x && a.y == b.y)

@@ -26,9 +26,9 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use crate::error::Result;
 use crate::files;
 use crate::plot::{figure_bytes, font, wrap, FigureFormat, CAPTION, CAPTION_LINE, TEXT, TITLE};
-use crate::scene_input::Loaded;
-use crate::sketch::{object_outlines, world_wireframe};
 use crate::words::{self, Lang};
+use bentstraw_optics::setup::Setup;
+use bentstraw_optics::sketch::{object_outlines, world_wireframe};
 
 /// Width of the diagram (px).
 pub const DIAGRAM_WIDTH: u32 = 1000;
@@ -71,7 +71,7 @@ impl Diagram {
 /// Writes the diagram to `path`, `.png`, `.svg` or `.pdf` by its extension.
 pub fn write_ray_diagram(
     path: &Path,
-    scene: &Loaded,
+    scene: &Setup,
     diagram: &Diagram,
     title: &str,
     lang: Lang,
@@ -83,7 +83,7 @@ pub fn write_ray_diagram(
 /// The diagram as the bytes of a PNG, SVG or PDF file, by `path`'s extension.
 pub fn render(
     path: &Path,
-    scene: &Loaded,
+    scene: &Setup,
     diagram: &Diagram,
     title: &str,
     lang: Lang,
@@ -127,7 +127,7 @@ impl View {
 
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    scene: &Loaded,
+    scene: &Setup,
     diagram: &Diagram,
     title: &str,
     lang: Lang,
@@ -200,9 +200,9 @@ fn draw<DB: DrawingBackend>(
 
 /// Range of a panel: the glass, the straw, the observer, every ray vertex and image point, with a
 /// margin; widened so that one metre is as long across as up.
-fn ranges(scene: &Loaded, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f64), (f64, f64)) {
+fn ranges(scene: &Setup, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f64), (f64, f64)) {
     let mut pts: Vec<(f64, f64)> = Vec::new();
-    match (&scene.assignment, &scene.world) {
+    match (scene.assignment_numbers(), &scene.world) {
         (Some(scene), _) => {
             for z in [0.0, STRAW_HEIGHT] {
                 for (x, y) in [(-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)] {
@@ -256,7 +256,7 @@ fn ranges(scene: &Loaded, diagram: &Diagram, view: View, aspect: f64) -> ((f64, 
 #[allow(clippy::too_many_arguments)]
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    scene: &Loaded,
+    scene: &Setup,
     diagram: &Diagram,
     view: View,
     caption: [&str; 2],
@@ -311,7 +311,7 @@ fn draw_panel<DB: DrawingBackend>(
             })
             .collect()
     };
-    let scene = match (&scene.assignment, &scene.world) {
+    let scene = match (scene.assignment_numbers(), &scene.world) {
         (Some(scene), _) => scene,
         (None, world) => {
             // A scene file's world: its container's and liquids' wireframe, its objects' outlines.
@@ -472,9 +472,9 @@ mod tests {
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
 
-    fn diagram_of(number: usize) -> (Loaded, Diagram) {
+    fn diagram_of(number: usize) -> (Setup, Diagram) {
         let r = REFERENCES[number - 1];
-        let scene = Loaded::assignment(r.scene(1.333), r.observer);
+        let scene = Setup::assignment(r.scene(1.333), r.observer);
         let cloud = sample_image(&scene.world, r.observer, 5000, &|_| {});
         let d = Diagram::new(&scene.world, r.observer, &cloud.points);
         (scene, d)

@@ -7,14 +7,15 @@ use std::path::Path;
 
 use bentstraw_optics::check::{worst_points, CheckReport, ClaimedPoint, Verdict};
 use bentstraw_optics::check::{MissingRegion, VerdictKind, REACH_CELLS};
-use bentstraw_optics::scene::{clip_text, number_text, SECTION_COUNT, SECTION_NAMES};
+use bentstraw_optics::scene::SECTION_COUNT;
+use bentstraw_optics::text::{clip_text, number_text};
 use bentstraw_optics::world::COLOR_NAMES;
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
 use crate::error::{Error, Result};
 use crate::files::{read_input, Unread};
-use crate::scene_input::Loaded;
+use bentstraw_optics::setup::Setup;
 
 /// How strictly a solution is judged, and how much of it the report lists.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,11 +93,8 @@ fn rounding_error(digits: usize, largest: f64) -> f64 {
 }
 
 /// The names of the colour codes the scene can show, code 1 first.
-pub fn colour_names(checked: &Loaded) -> &'static [&'static str] {
-    match checked.assignment {
-        Some(_) => &SECTION_NAMES,
-        None => &COLOR_NAMES,
-    }
+pub fn colour_names(checked: &Setup) -> &'static [&'static str] {
+    checked.colour_names()
 }
 
 /// Reads and parses the solution at `path` (refusing files too large to be an image), for a
@@ -433,7 +431,7 @@ fn all_hints(solution: &Solution, r: &CheckReport) -> Vec<String> {
 /// image from its observer.
 pub fn summary(
     file: &str,
-    checked: &Loaded,
+    checked: &Setup,
     solution: &Solution,
     r: &CheckReport,
     options: &CheckOptions,
@@ -443,7 +441,7 @@ pub fn summary(
     let mut t = String::new();
     let t_ = &r.tally;
     let _ = writeln!(t, "bentstraw check: {file}");
-    match &checked.assignment {
+    match checked.assignment_numbers() {
         Some(scene) => {
             let _ = writeln!(
                 t,
@@ -528,7 +526,7 @@ pub fn summary(
         let c = &r.per_colour[k];
         let cov = &r.coverage.per_colour[k];
         // A scene file's colours neither claimed nor seen are left out (a card has no red).
-        if checked.assignment.is_none() && c.points == 0 && cov.true_samples == 0 {
+        if checked.assignment_numbers().is_none() && c.points == 0 && cov.true_samples == 0 {
             continue;
         }
         let cov_text = if cov.true_samples == 0 {
@@ -602,7 +600,7 @@ pub fn summary(
 /// colour, the coverage, the missing regions, the worst points and hints.
 pub fn json_report(
     file: &str,
-    checked: &Loaded,
+    checked: &Setup,
     solution: &Solution,
     r: &CheckReport,
     options: &CheckOptions,
@@ -693,7 +691,7 @@ pub fn json_report(
         "true_samples": r.truth.points.len(),
         "seconds": seconds,
     });
-    match &checked.assignment {
+    match checked.assignment_numbers() {
         Some(scene) => {
             v["straw"] = json!([scene.straw_x(), scene.straw_y()]);
             v["water_height"] = json!(scene.water_height());

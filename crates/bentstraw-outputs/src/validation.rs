@@ -17,9 +17,9 @@ use plotters::prelude::*;
 use crate::error::{Error, Result};
 use crate::files;
 use crate::plot::{figure_bytes, font, FigureFormat, Heading, FIGURE_WIDTH, TEXT};
-use crate::scene_input::Loaded;
 use crate::words::{self, Lang};
 use bentstraw_optics::scene_file::Observer;
+use bentstraw_optics::setup::Setup;
 
 /// Indices of the water the figure is made for: 8 values from 1 to 1.333.
 pub fn indices() -> Vec<f64> {
@@ -81,9 +81,9 @@ pub fn series(label: &str, scene: &Scene, observer: Vec3) -> ValidationSeries {
 /// The series of the scene `loaded` seen from its observer, the index of its first (bottom)
 /// liquid replaced by each of [`indices_to`] its own: `None` when the scene has no liquid (or a
 /// liquid of index 1, with nothing to vary). The same tracing as the default report's series.
-pub fn liquid_series(label: &str, loaded: &Loaded) -> Result<Option<ValidationSeries>> {
+pub fn liquid_series(label: &str, loaded: &Setup) -> Result<Option<ValidationSeries>> {
     let observer = loaded.observer;
-    if let (Some(scene), None) = (&loaded.assignment, &loaded.description) {
+    if let Some(scene) = loaded.assignment_numbers() {
         if scene.n_water() == 1.0 {
             return Ok(None);
         }
@@ -99,9 +99,7 @@ pub fn liquid_series(label: &str, loaded: &Loaded) -> Result<Option<ValidationSe
             rows,
         }));
     }
-    let Some(description) = &loaded.description else {
-        return Ok(None);
-    };
+    let description = &loaded.description;
     let Some(top) = description.liquids.first().map(|l| l.index) else {
         return Ok(None);
     };
@@ -306,8 +304,8 @@ mod tests {
             .find(|(stem, _)| *stem == "dense-liquid")
             .unwrap()
             .1;
-        let loaded = crate::scene_input::file_world("dense-liquid", text, 10).unwrap();
-        let own = loaded.description.as_ref().unwrap().liquids[0].index;
+        let loaded = crate::scene_input::gallery_setup("dense-liquid", text, 10).unwrap();
+        let own = loaded.description.liquids[0].index;
         assert!(own > 1.5, "{own}");
         let s = liquid_series("observer 1", &loaded).unwrap().unwrap();
         assert_eq!(s.rows.len(), 8);
@@ -322,8 +320,8 @@ mod tests {
         // The same glass emptied: nothing to vary.
         let dry: String = text.split("[[liquid]]").next().unwrap().to_string()
             + &text[text.find("[[straw]]").unwrap()..];
-        let loaded = crate::scene_input::file_world("dry", &dry, 10).unwrap();
-        assert!(loaded.description.as_ref().unwrap().liquids.is_empty());
+        let loaded = crate::scene_input::gallery_setup("dry", &dry, 10).unwrap();
+        assert!(loaded.description.liquids.is_empty());
         assert!(liquid_series("observer 1", &loaded).unwrap().is_none());
     }
 

@@ -32,7 +32,8 @@ use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::sampling::ImageCloud;
-use bentstraw_optics::scene::{clip_text, SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
+use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
+use bentstraw_optics::text::clip_text;
 use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
@@ -41,7 +42,7 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::files::{shown, write_atomically};
 use crate::parse::QUOTED_MAX;
-use crate::scene_input::Loaded;
+use bentstraw_optics::setup::Setup;
 
 /// A file format for image points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -119,7 +120,7 @@ pub fn check_points_asked(points: usize, models: &str) -> Result<()> {
 #[derive(Clone, Copy, Debug)]
 pub struct PointSet<'a> {
     /// The scene traced and its observer.
-    pub scene: &'a Loaded,
+    pub scene: &'a Setup,
     /// The number of points asked for.
     pub min_points: usize,
     /// The apparent-position model's points (the course's are the cloud's own).
@@ -395,7 +396,7 @@ struct JsonColor {
 
 /// JSON: the inputs, statistics and colour legend, then one `[x, y, z, color]` array a line.
 pub fn write_json(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    let Some(s) = &set.scene.assignment else {
+    let Some(s) = set.scene.assignment_numbers() else {
         return write_world_json(w, set, set.scene);
     };
     let inputs = JsonInputs {
@@ -472,7 +473,7 @@ pub fn section_rgb8(code: u8) -> [u8; 3] {
 
 /// PLY, binary little-endian: `double x, y, z`, `uchar red, green, blue`, `uchar color`.
 pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    let Some(s) = &set.scene.assignment else {
+    let Some(s) = set.scene.assignment_numbers() else {
         return write_world_ply(w, set, set.scene);
     };
     let o = set.scene.observer;
@@ -551,16 +552,12 @@ struct JsonWorldStats {
 /// JSON of a world's points: the inputs (the scene as TOML, every value written out), the
 /// statistics and the eight colours (codes 1..=8: a straw's five bands, a coin, a card, the
 /// picture on a card), then the points as the model's fields.
-fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &Loaded) -> io::Result<()> {
+fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &Setup) -> io::Result<()> {
     let (cloud, min_points) = (set.cloud, set.min_points);
     let counts = cloud.counts_per_code();
     let inputs = JsonWorldInputs {
         scene_file: world.name(),
-        scene: world
-            .description
-            .as_ref()
-            .map(|d| d.to_toml())
-            .unwrap_or_default(),
+        scene: world.description.to_toml(),
         observer: world.observer.to_array(),
         max_events: world.world.max_events(),
         min_points,
@@ -587,7 +584,7 @@ fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &Loaded) -> io::Re
 }
 
 /// PLY of a world's points: as [`write_ply`], the scene file named in a comment.
-fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &Loaded) -> io::Result<()> {
+fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &Setup) -> io::Result<()> {
     let (cloud, min_points) = (set.cloud, set.min_points);
     let o = world.observer;
     writeln!(w, "ply")?;
@@ -691,7 +688,7 @@ mod tests {
         }
     }
 
-    fn sample() -> (Loaded, ImageCloud) {
+    fn sample() -> (Setup, ImageCloud) {
         let scene = bentstraw_optics::scene::Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
         let cloud = ImageCloud {
             points: vec![
@@ -702,10 +699,10 @@ mod tests {
             rays_traced: 12,
             spacing: 0.001,
         };
-        (Loaded::assignment(scene, Vec3::new(0.0, 0.1, 0.1)), cloud)
+        (Setup::assignment(scene, Vec3::new(0.0, 0.1, 0.1)), cloud)
     }
 
-    fn set<'a>(scene: &'a Loaded, cloud: &'a ImageCloud) -> PointSet<'a> {
+    fn set<'a>(scene: &'a Setup, cloud: &'a ImageCloud) -> PointSet<'a> {
         PointSet {
             scene,
             min_points: 3,

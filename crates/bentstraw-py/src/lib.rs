@@ -16,13 +16,14 @@ use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::sampling::{light_path_types, sample_image};
-use bentstraw_optics::scene::number_text;
+use bentstraw_optics::setup::{SceneValues, Setup};
+use bentstraw_optics::text::number_text;
 use bentstraw_optics::world::{COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use bentstraw_outputs::camera::{scene_camera, CameraSpec};
 use bentstraw_outputs::gallery::GALLERY;
 use bentstraw_outputs::pictures::{checked_shading, picture};
-use bentstraw_outputs::scene_input::{parse_scene_text, read_scene_text, Loaded, SceneSource};
+use bentstraw_outputs::scene_input::{parse_scene_text, read_scene_text, SceneSource};
 use bentstraw_outputs::solution::{colour_names, json_report, solution_of_points, CheckOptions};
 use bentstraw_outputs::writers::{check_points_asked, raw_weight_count};
 use bentstraw_outputs::Error;
@@ -46,7 +47,7 @@ fn python_error(e: Error) -> PyErr {
 /// A scene loaded and checked, with its observer: what every call traces.
 #[pyclass(frozen, module = "bentstraw._engine")]
 struct LoadedScene {
-    loaded: Loaded,
+    loaded: Setup,
 }
 
 #[pymethods]
@@ -78,9 +79,15 @@ impl LoadedScene {
     /// The scene file's hints: numbers that break no rule but look like a slip.
     #[getter]
     fn hints(&self) -> Vec<String> {
-        match (&self.loaded.name, &self.loaded.description) {
-            (Some(name), Some(d)) => d.hints().iter().map(|h| format!("{name}: {h}")).collect(),
-            _ => Vec::new(),
+        match &self.loaded.name {
+            Some(name) => self
+                .loaded
+                .description
+                .hints()
+                .iter()
+                .map(|h| format!("{name}: {h}"))
+                .collect(),
+            None => Vec::new(),
         }
     }
 }
@@ -101,11 +108,13 @@ fn load(
 ) -> PyResult<LoadedScene> {
     let source = SceneSource {
         file: path,
-        observer,
-        straw,
-        water_height,
-        n_water,
-        max_events,
+        values: SceneValues {
+            observer,
+            straw,
+            water_height,
+            n_water,
+            max_events,
+        },
     };
     let loaded = match text {
         Some((name, text)) => source.load_text(&name, &text),
@@ -157,7 +166,7 @@ fn simulate<'py>(
     if !matches!(image_model, "course" | "eye" | "stereo") {
         return Err(PyValueError::new_err(format!(
             "image_model '{}' is not allowed: it must be course, eye or stereo",
-            bentstraw_optics::scene::clip_text(image_model, 40)
+            bentstraw_optics::text::clip_text(image_model, 40)
         )));
     }
     check_points_asked(points, image_model).map_err(python_error)?;
@@ -427,13 +436,13 @@ fn render<'py>(
     if !matches!(mode, "fresnel" | "course") {
         broken.push(format!(
             "mode '{}' is not allowed: it must be fresnel or course",
-            bentstraw_optics::scene::clip_text(mode, 40)
+            bentstraw_optics::text::clip_text(mode, 40)
         ));
     }
     if !matches!(backdrop, "checker" | "none") {
         broken.push(format!(
             "backdrop '{}' is not allowed: it must be checker or none",
-            bentstraw_optics::scene::clip_text(backdrop, 40)
+            bentstraw_optics::text::clip_text(backdrop, 40)
         ));
     }
     if !broken.is_empty() {

@@ -2,9 +2,10 @@
 
 use std::path::PathBuf;
 
+use bentstraw_optics::setup::{SceneValues, Setup};
 use bentstraw_outputs::camera::CameraSpec;
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
-use bentstraw_outputs::scene_input::{Loaded, SceneSource};
+use bentstraw_outputs::scene_input::SceneSource;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// bentstraw: what refraction does to a straw in a glass of water.
@@ -404,14 +405,14 @@ pub struct ExploreArgs {
 
 /// The scene of `source`, loaded, with a hint on standard error for each number of its scene
 /// file that breaks no rule but looks like a slip (centimetres written as metres).
-pub fn load_scene(source: &SceneSource) -> bentstraw_outputs::Result<Loaded> {
+pub fn load_scene(source: &SceneSource) -> bentstraw_outputs::Result<Setup> {
     source.load().map(with_hints)
 }
 
 /// `loaded`, after its scene file's hints (numbers that look like centimetres) on stderr.
-pub fn with_hints(loaded: Loaded) -> Loaded {
-    if let (Some(name), Some(description)) = (&loaded.name, &loaded.description) {
-        for hint in description.hints() {
+pub fn with_hints(loaded: Setup) -> Setup {
+    if let Some(name) = &loaded.name {
+        for hint in loaded.description.hints() {
             eprintln!("hint: {name}: {hint}");
         }
     }
@@ -423,11 +424,13 @@ impl SceneFlags {
     pub fn source(&self) -> SceneSource {
         SceneSource {
             file: self.scene.clone(),
-            observer: self.observer,
-            straw: self.straw,
-            water_height: self.water_height,
-            n_water: self.n_water,
-            max_events: self.max_events,
+            values: SceneValues {
+                observer: self.observer,
+                straw: self.straw,
+                water_height: self.water_height,
+                n_water: self.n_water,
+                max_events: self.max_events,
+            },
         }
     }
 }
@@ -437,11 +440,13 @@ impl OptionalSceneFlags {
     pub fn source(&self) -> SceneSource {
         SceneSource {
             file: self.scene.clone(),
-            observer: self.observer,
-            straw: self.straw,
-            water_height: self.water_height,
-            n_water: self.n_water,
-            max_events: self.max_events,
+            values: SceneValues {
+                observer: self.observer,
+                straw: self.straw,
+                water_height: self.water_height,
+                n_water: self.n_water,
+                max_events: self.max_events,
+            },
         }
     }
 }

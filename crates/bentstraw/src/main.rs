@@ -8,7 +8,7 @@ mod error;
 mod explore;
 mod progress;
 
-use bentstraw_optics::scene::clip_text;
+use bentstraw_optics::text::clip_text;
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::Parser;
 

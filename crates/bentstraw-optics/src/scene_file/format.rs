@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::*;
-use crate::scene::clip_text;
+use crate::text::clip_text;
 
 /// Longest user text (a name, a shape) quoted whole in a message, in characters.
 const QUOTED_MAX: usize = 40;

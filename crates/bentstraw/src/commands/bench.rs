@@ -268,7 +268,7 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
             );
         }
         let loaded = crate::cli::load_scene(&args.view.source())?;
-        let target = match loaded.assignment {
+        let target = match loaded.assignment_numbers().copied() {
             Some(_) => loaded.target,
             None => {
                 let (lo, hi) = loaded.world.bounds();

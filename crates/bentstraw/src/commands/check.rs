@@ -10,13 +10,13 @@ use std::time::Instant;
 use bentstraw_optics::check::{check_solution, ClaimedPoint};
 use bentstraw_optics::check::{DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE};
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::{clip_text, number_text};
 
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
+use bentstraw_optics::setup::Setup;
+use bentstraw_optics::text::{clip_text, number_text};
 use bentstraw_outputs::files::check_writable;
 use bentstraw_outputs::report::Check;
-use bentstraw_outputs::scene_input::Loaded;
 use bentstraw_outputs::solution::{
     colour_names, json_report, read_solution_of, region_words, summary, CheckOptions,
 };
@@ -77,7 +77,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
 /// `bentstraw check` of a simulation's own image points (of the scene `loaded`, seen from its
 /// observer) with the default tolerance and minimum coverage, for the report: its verdict in one
 /// line.
-pub fn own_points_check(loaded: &Loaded, points: &[ImagePoint]) -> Check {
+pub fn own_points_check(loaded: &Setup, points: &[ImagePoint]) -> Check {
     let claimed: Vec<ClaimedPoint> = points
         .iter()
         .map(|p| ClaimedPoint {

@@ -15,12 +15,12 @@ use bentstraw_optics::Vec3;
 use crate::cli::{ImageModelArg, SimulateArgs};
 use crate::error::CliResult;
 use crate::progress;
+use bentstraw_optics::setup::Setup;
 use bentstraw_outputs::files::{Output, OutputSet};
 use bentstraw_outputs::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use bentstraw_outputs::scene_input::Loaded;
 use bentstraw_outputs::words::Lang;
 use bentstraw_outputs::writers::{
     check_points_asked, write_points, ModelPoints, PointFormat, PointSet,
@@ -173,7 +173,7 @@ fn write_model_figures(
             .zip(&placed)
             .map(|(name, points)| ModelCloud { name, points })
             .collect();
-        let what = match set.scene.assignment {
+        let what = match set.scene.assignment_numbers().copied() {
             Some(_) => "the straw appears",
             None => "the objects appear",
         };
@@ -198,7 +198,7 @@ fn with_spinner<T>(what: &str, work: impl FnOnce() -> T) -> T {
 }
 
 /// Samples the image of the scene's objects, with a spinner counting rays when it takes a while.
-fn trace_with_spinner(scene: &Loaded, min_points: usize) -> ImageCloud {
+fn trace_with_spinner(scene: &Setup, min_points: usize) -> ImageCloud {
     progress::with_progress(
         None,
         "{spinner} tracing rays: {human_pos} so far  [{elapsed}]",
@@ -211,9 +211,9 @@ fn trace_with_spinner(scene: &Loaded, min_points: usize) -> ImageCloud {
 
 /// The inputs in words, for figures' titles: the assignment's values, or a scene file's name and
 /// the observer.
-fn inputs_title(scene: &Loaded) -> String {
+fn inputs_title(scene: &Setup) -> String {
     let observer = scene.observer;
-    match &scene.assignment {
+    match scene.assignment_numbers() {
         Some(numbers) => simulation_title(numbers, observer),
         None => format!(
             "{}, observer ({}, {}, {}) m",
@@ -244,7 +244,7 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
     let (o, cloud) = (set.scene.observer, set.cloud);
     let mut t = String::new();
     // What was traced: the assignment's glass by its values, a scene file by its name.
-    let (object, counts): (&str, Vec<(usize, usize)>) = match &set.scene.assignment {
+    let (object, counts): (&str, Vec<(usize, usize)>) = match set.scene.assignment_numbers() {
         Some(s) => {
             let _ = writeln!(
                 t,
@@ -305,7 +305,7 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
         }
     }
     if cloud.points.len() < set.min_points {
-        let invisible = match set.scene.assignment {
+        let invisible = match set.scene.assignment_numbers().copied() {
             Some(_) => "the straw is",
             None => "the objects are",
         };

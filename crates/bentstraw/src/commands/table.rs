@@ -19,8 +19,8 @@ use crate::commands::simulate::simulation_title;
 use crate::error::{fail, CliResult};
 use crate::progress;
 use bentstraw_optics::camera::Camera;
-use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
-use bentstraw_outputs::camera::{world_camera, CameraSpec};
+use bentstraw_optics::setup::{SceneValues, Setup};
+use bentstraw_outputs::camera::{scene_camera, CameraSpec};
 use bentstraw_outputs::files::{self, Output, OutputSet};
 use bentstraw_outputs::gallery::opening_comment;
 use bentstraw_outputs::gallery::GALLERY;
@@ -34,7 +34,7 @@ use bentstraw_outputs::ray_diagram::{write_ray_diagram, Diagram};
 use bentstraw_outputs::report::{
     self, Check, Figure, Link, Report, Section, SimulationEntry, Timing,
 };
-use bentstraw_outputs::scene_input::{self, Loaded, SceneSource};
+use bentstraw_outputs::scene_input;
 use bentstraw_outputs::solution::colour_names;
 use bentstraw_outputs::validation::{self, write_validation_figure, ValidationSeries};
 use bentstraw_outputs::writers::{write_csv_gz, ModelPoints, PointSet};
@@ -60,7 +60,7 @@ struct Job {
     /// Number of the reference (or of the observer) it belongs to.
     number: u32,
     /// The scene seen from the job's observer, built once for tracing and drawing.
-    loaded: Loaded,
+    loaded: Setup,
     /// File stem, e.g. `sim1_n1.05`.
     stem: String,
     /// Heading, e.g. "Simulation 1, check n_water = 1".
@@ -89,7 +89,7 @@ impl Job {
         };
         Job {
             number: r.number,
-            loaded: Loaded::assignment(scene, r.observer),
+            loaded: Setup::assignment(scene, r.observer),
             stem: format!("sim{}{suffix}", r.number),
             heading,
             group: lang.fill(words::REFERENCE_SIMULATION, &[&r.number]),
@@ -336,12 +336,11 @@ impl ScenePlan {
             None => (files::shown(file), scene_input::read_scene_text(file)?),
         };
         let load = |observer: Option<[f64; 3]>| {
-            SceneSource {
+            let values = SceneValues {
                 observer,
-                max_events: DEFAULT_MAX_EVENTS,
-                ..SceneSource::default()
-            }
-            .load_text(&name, &text)
+                ..SceneValues::default()
+            };
+            Setup::from_text(&name, &text, &values).map_err(bentstraw_outputs::Error::from)
         };
         let first = crate::cli::with_hints(load(observer)?);
         let target = first.target.unwrap_or_else(|| {
@@ -402,8 +401,8 @@ fn turned_about_vertical(o: Vec3, target: Vec3, degrees: f64) -> Vec3 {
 
 impl Job {
     /// The job of a scene file seen from its observer number `number`, under the heading `group`.
-    fn scene(loaded: Loaded, number: u32, group: String, lang: Lang) -> CliResult<Job> {
-        let camera = world_camera(
+    fn scene(loaded: Setup, number: u32, group: String, lang: Lang) -> CliResult<Job> {
+        let camera = scene_camera(
             &loaded,
             &CameraSpec {
                 size: Some(pictures::REPORT_SIZE),
@@ -411,10 +410,9 @@ impl Job {
             },
         )?;
         let o = loaded.observer;
-        let n_water = match (&loaded.description, &loaded.assignment) {
-            (Some(d), _) => d.liquids.first().map_or(1.0, |l| l.index),
-            (None, Some(s)) => s.n_water(),
-            (None, None) => 1.0,
+        let n_water = match loaded.assignment_numbers() {
+            Some(s) => s.n_water(),
+            None => loaded.description.liquids.first().map_or(1.0, |l| l.index),
         };
         Ok(Job {
             number,
@@ -541,13 +539,10 @@ fn scene_closing(plan: &ScenePlan, out: &Path, lang: Lang) -> CliResult<Vec<Sect
         })
         .collect::<bentstraw_outputs::Result<_>>()?;
     let series: Vec<ValidationSeries> = series.into_iter().flatten().collect();
-    let liquid = match (
-        &plan.jobs[0].loaded.description,
-        &plan.jobs[0].loaded.assignment,
-    ) {
-        (Some(d), _) => d.liquids.first().map(|l| l.name.clone()),
-        (None, Some(_)) => Some("water".to_string()),
-        (None, None) => None,
+    let first = &plan.jobs[0].loaded;
+    let liquid = match first.assignment_numbers() {
+        Some(_) => Some("water".to_string()),
+        None => first.description.liquids.first().map(|l| l.name.clone()),
     };
     let validation = match liquid {
         Some(liquid) if !series.is_empty() => {
@@ -700,7 +695,7 @@ fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry 
         timings.push(Timing::new(lang.of(words::EYE_AND_STEREO), t.elapsed()));
     }
 
-    let counts = match job.loaded.assignment {
+    let counts = match job.loaded.assignment_numbers().copied() {
         Some(_) => cloud.counts_per_color().to_vec(),
         None => cloud.counts_per_code()[..colour_names(&job.loaded).len()].to_vec(),
     };
@@ -801,7 +796,7 @@ fn intro_sections(out: &Path, points: usize, lang: Lang) -> Vec<Section> {
     let scene = Scene::with_defaults(CLASSIC_STRAW.0, CLASSIC_STRAW.1, CLASSIC_WATER)
         .expect("the classic view is valid");
     let observer = CLASSIC_OBSERVER;
-    let loaded = Loaded::assignment(scene, observer);
+    let loaded = Setup::assignment(scene, observer);
     let world = &loaded.world;
     let mut view = Figure::image(INTRO_FILES[0], lang.of(words::VIEW_CAPTION));
     view.error = pictures::write_view_picture(&out.join(INTRO_FILES[0]), world, observer)
@@ -959,9 +954,9 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Sect
 }
 
 /// The flags of `bentstraw simulate` that give the job's scene seen from its observer.
-fn simulate_flags(loaded: &Loaded) -> String {
+fn simulate_flags(loaded: &Setup) -> String {
     let o = loaded.observer;
-    match (&loaded.assignment, &loaded.name) {
+    match (loaded.assignment_numbers(), &loaded.name) {
         (Some(scene), None) => format!(
             "--observer {},{},{} --straw {},{} --water-height {} --n-water {}",
             o.x,
@@ -983,10 +978,10 @@ fn simulate_flags(loaded: &Loaded) -> String {
 }
 
 /// The inputs as label/value rows.
-fn inputs(loaded: &Loaded, lang: Lang) -> Vec<(String, String)> {
+fn inputs(loaded: &Setup, lang: Lang) -> Vec<(String, String)> {
     let o = loaded.observer;
     let observer = format!("({}, {}, {}) m", o.x, o.y, o.z);
-    if let (Some(scene), None) = (&loaded.assignment, &loaded.name) {
+    if let (Some(scene), None) = (loaded.assignment_numbers(), &loaded.name) {
         let values = [
             observer,
             format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
@@ -1007,8 +1002,9 @@ fn inputs(loaded: &Loaded, lang: Lang) -> Vec<(String, String)> {
             loaded.name().to_string(),
         ),
     ];
-    match (&loaded.description, &loaded.assignment) {
-        (Some(d), _) => {
+    match loaded.assignment_numbers() {
+        None => {
+            let d = &loaded.description;
             for l in &d.liquids {
                 rows.push((
                     lang.fill(words::LIQUID_ROW, &[&l.name]),
@@ -1023,7 +1019,7 @@ fn inputs(loaded: &Loaded, lang: Lang) -> Vec<(String, String)> {
                 ),
             ));
         }
-        (None, Some(scene)) => {
+        Some(scene) => {
             rows.push((
                 lang.of(words::INPUTS[1]).to_string(),
                 format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
@@ -1036,7 +1032,6 @@ fn inputs(loaded: &Loaded, lang: Lang) -> Vec<(String, String)> {
                 ),
             ));
         }
-        (None, None) => {}
     }
     rows.push((
         lang.of(words::INPUTS[4]).to_string(),
@@ -1080,14 +1075,14 @@ fn distance_note(job: &Job, cloud: &ImageCloud, lang: Lang) -> String {
         return lang.of(words::NOT_SEEN).into();
     }
     let mm = format!("{:.3}", 1e3 * max_distance_to_objects(&job.loaded, cloud));
-    match (&job.loaded.assignment, &job.loaded.name) {
+    match (job.loaded.assignment_numbers(), &job.loaded.name) {
         (Some(_), None) => lang.fill(words::DISTANCE_NOTE, &[&mm, &job.n_water]),
         _ => lang.fill(words::SCENE_DISTANCE_NOTE, &[&mm]),
     }
 }
 
 /// Largest distance (m) of an image point from the surface of the object it shows.
-fn max_distance_to_objects(loaded: &Loaded, cloud: &ImageCloud) -> f64 {
+fn max_distance_to_objects(loaded: &Setup, cloud: &ImageCloud) -> f64 {
     cloud
         .points
         .iter()

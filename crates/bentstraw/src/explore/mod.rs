@@ -17,7 +17,6 @@ use bentstraw_explore as api;
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
 use bentstraw_outputs::gallery::GALLERY;
-use bentstraw_outputs::scene_input::SceneValues;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -72,6 +71,15 @@ pub fn run(args: &ExploreArgs) -> CliResult {
 /// The query of the view given on the command line (flags as the page's parameters): a scene file
 /// and the flags that override it, or the flags, or by default the broken straw seen from the side
 /// (as the page starts).
+/// The assignment's values the page starts with.
+struct Values {
+    observer: [f64; 3],
+    straw: [f64; 2],
+    water_height: f64,
+    n_water: f64,
+    max_events: u32,
+}
+
 fn initial_query(a: &ExploreArgs) -> CliResult<String> {
     let v = &a.view;
     let mode = match a.mode {
@@ -80,8 +88,8 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
     };
     let values = if let Some(path) = &v.scene {
         let loaded = crate::cli::load_scene(&v.source())?;
-        match loaded.assignment {
-            Some(scene) => SceneValues {
+        match loaded.assignment_numbers().copied() {
+            Some(scene) => Values {
                 observer: loaded.observer.to_array(),
                 straw: [scene.straw_x(), scene.straw_y()],
                 water_height: scene.water_height(),
@@ -101,8 +109,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
                 };
                 // A scene of the built-in gallery starts the page on it by name.
                 if let Some((stem, _)) = GALLERY.iter().find(|(_, text)| {
-                    SceneDescription::from_toml(text)
-                        .is_ok_and(|d| Some(&d) == f.description.as_ref())
+                    SceneDescription::from_toml(text).is_ok_and(|d| d == f.description)
                 }) {
                     return Ok(query(stem));
                 }
@@ -130,7 +137,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         let o = v.observer.unwrap_or([0.3, 0.0, 0.25]);
         let [x, y] = v.straw.unwrap_or([0.0, 0.03]);
         // Checked by the caller, with the page's own rules and messages.
-        SceneValues {
+        Values {
             observer: o,
             straw: [x, y],
             water_height: v.water_height.unwrap_or(0.15),

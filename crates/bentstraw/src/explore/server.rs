@@ -348,10 +348,7 @@ impl App {
                 Some(f) => asset(f.content_type, f.text),
                 None => Reply::text(
                     404,
-                    format!(
-                        "no such page: {}",
-                        bentstraw_optics::scene::clip_text(p, 60)
-                    ),
+                    format!("no such page: {}", bentstraw_optics::text::clip_text(p, 60)),
                 ),
             },
         };
@@ -384,7 +381,7 @@ impl App {
         let chan = q
             .get("chan")
             .zip(q.get("seq").and_then(|s| s.parse::<u64>().ok()))
-            .map(|(chan, seq)| (bentstraw_optics::scene::clip_text(chan, 64), seq));
+            .map(|(chan, seq)| (bentstraw_optics::text::clip_text(chan, 64), seq));
         match self.pool.submit(path, query, chan) {
             Ok(mut waiting) => match (&mut waiting.answer).await {
                 Ok(answer) => timed(respond(answer.reply), answer.engine_ms),

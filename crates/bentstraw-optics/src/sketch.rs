@@ -1,21 +1,22 @@
-//! What a figure draws of a scene besides the points: the assignment's water as a wireframe, a
-//! scene file's container and liquids (from the world's own boundaries) and its objects' true
-//! outlines.
+//! What a figure draws of a scene besides the points, as lines in space: the assignment's water
+//! as a wireframe, a scene file's container and liquids (from the world's own boundaries) and
+//! the objects' true outlines. Geometry only: the figures project and draw it.
 
 use std::f64::consts::PI;
 
-#[cfg(feature = "figures")]
-use bentstraw_optics::scene::{Scene, GLASS_RADIUS};
-use bentstraw_optics::world::{Boundary, Object, Region, Shape, World};
-use bentstraw_optics::Vec3;
+use crate::scene::{
+    Scene, GLASS_RADIUS, SECTION_COUNT, SECTION_HEIGHT, STRAW_HEIGHT, STRAW_RADIUS,
+};
+use crate::world::{Boundary, Object, Region, Shape, World};
+use crate::Vec3;
 
 /// Number of vertical lines of the water's wireframe.
-pub(crate) const WIRE_VERTICALS: usize = 30;
+pub const WIRE_VERTICALS: usize = 30;
 /// Segments per circle of the wireframes.
-pub(crate) const CIRCLE_SEGMENTS: usize = 72;
+pub const CIRCLE_SEGMENTS: usize = 72;
 
 /// Points around the horizontal circle of radius `r` centred on `(cx, cy)` at height `z`.
-pub(crate) fn circle(cx: f64, cy: f64, r: f64, z: f64) -> Vec<Vec3> {
+pub fn circle(cx: f64, cy: f64, r: f64, z: f64) -> Vec<Vec3> {
     (0..=CIRCLE_SEGMENTS)
         .map(|k| {
             let t = 2.0 * PI * k as f64 / CIRCLE_SEGMENTS as f64;
@@ -25,8 +26,7 @@ pub(crate) fn circle(cx: f64, cy: f64, r: f64, z: f64) -> Vec<Vec3> {
 }
 
 /// The water's wireframe as segments: top and bottom circles and [`WIRE_VERTICALS`] vertical lines.
-#[cfg(feature = "figures")]
-pub(crate) fn water_segments(scene: &Scene) -> Vec<[Vec3; 2]> {
+pub fn water_segments(scene: &Scene) -> Vec<[Vec3; 2]> {
     let he = scene.water_height();
     let mut segs = Vec::new();
     for z in [0.0, he] {
@@ -181,6 +181,22 @@ pub fn object_outlines(world: &World) -> Vec<Vec<Vec3>> {
                 }
             }
         }
+    }
+    out
+}
+
+/// The assignment's straw's true outline for a view whose rightward direction is `right`: the
+/// circles between its sections (and its caps), and its two silhouette lines.
+pub fn straw_outline(scene: &Scene, right: Vec3) -> Vec<Vec<Vec3>> {
+    let (x, y) = (scene.straw_x(), scene.straw_y());
+    let mut out: Vec<Vec<Vec3>> = (0..=SECTION_COUNT)
+        .map(|k| circle(x, y, STRAW_RADIUS, k as f64 * SECTION_HEIGHT))
+        .collect();
+    let side = STRAW_RADIUS * right;
+    let axis = Vec3::new(x, y, 0.0);
+    for s in [-1.0, 1.0] {
+        let a = axis + s * side;
+        out.push(vec![a, a + Vec3::new(0.0, 0.0, STRAW_HEIGHT)]);
     }
     out
 }
