@@ -101,7 +101,7 @@ fn distance_to_the_straw_surface() {
 /// Messages quote numbers so that they show why a rule fails, and never at absurd length.
 #[test]
 fn messages_quote_numbers_short_and_exact() {
-    use bentstraw_optics::scene::{clip_text, number_text};
+    use bentstraw_optics::text::{clip_text, number_text};
     assert_eq!(number_text(-1e-320), "-1e-320");
     assert_eq!(number_text(0.15), "0.15");
     // Just past the rule: the digits show that the sum exceeds 0.04.
