@@ -7,7 +7,7 @@
 #![warn(missing_docs)]
 
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 use bentstraw_optics::apparent::{
@@ -630,7 +630,7 @@ fn color_name(code: u8) -> &'static str {
 /// binary answer: `u32` length of a JSON header, the header (padded with spaces to 4 bytes), then
 /// `width × height × 4` bytes, `3n` little-endian `f32`, `n` colour bytes, `n` path-kind bytes
 /// (indices into the header's `paths`).
-pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
+pub fn frame_reply(view: &View, frame: &mut Frame, memory: &Memory) -> Reply {
     let request = FrameRequest {
         camera: view.camera,
         shading: view.shading(),
@@ -646,7 +646,7 @@ pub fn frame_reply(view: &View, frame: &mut Frame) -> Reply {
     let ms = started.elapsed().as_secs_f64() * 1e3;
     #[cfg(target_arch = "wasm32")]
     let ms = 0.0;
-    *LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner()) =
+    *memory.points.lock().unwrap_or_else(|e| e.into_inner()) =
         Some((view.points_key(), Arc::new(frame.points.clone())));
     let counts = frame.path_counts();
     let kinds: Vec<LightPathType> = counts.iter().map(|c| c.0).collect();
@@ -712,19 +712,37 @@ fn frame_body(
     Reply::bytes("application/octet-stream", body)
 }
 
-/// The course points of the last frame drawn, with the `simulate` command that gives them: a
-/// model asked for the view just drawn starts from them instead of tracing them again.
-static LAST_POINTS: Mutex<Option<(String, Arc<Vec<ImagePoint>>)>> = Mutex::new(None);
+/// What the explorer remembers between requests: the course points of the last frame drawn (a
+/// model asked for the view just drawn starts from them instead of tracing them again) and the
+/// models' last answers (a whole answer reuses a quick one's points). One value per engine, passed
+/// to each request: the server's workers share one, each of the page's workers keeps its own.
+#[derive(Debug, Default)]
+pub struct Memory {
+    /// The last frame's course points, with the `simulate` command that gives them.
+    points: Mutex<Option<(String, Arc<Vec<ImagePoint>>)>>,
+    /// The models' last answers.
+    models: Mutex<Vec<ModelAnswer>>,
+    /// How many model requests started from a frame's points.
+    reused: AtomicUsize,
+}
+
+impl Memory {
+    /// How many model requests started from a frame's points instead of tracing them again.
+    pub fn points_reused(&self) -> usize {
+        self.reused.load(Ordering::Relaxed)
+    }
+}
 
 /// Most points skipped between two a model places (`every`).
 pub const MAX_EVERY: usize = 64;
 
 /// The course image points of `view`: the last frame's when it was this view's.
-fn course_points(view: &View) -> Arc<Vec<ImagePoint>> {
+fn course_points(view: &View, memory: &Memory) -> Arc<Vec<ImagePoint>> {
     let key = view.points_key();
-    let last = LAST_POINTS.lock().unwrap_or_else(|e| e.into_inner());
+    let last = memory.points.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((k, points)) = last.as_ref() {
         if *k == key {
+            memory.reused.fetch_add(1, Ordering::Relaxed);
             return Arc::clone(points);
         }
     }
@@ -736,7 +754,6 @@ fn course_points(view: &View) -> Arc<Vec<ImagePoint>> {
 /// where the model places each of those course points. The page asks for every 4th point first,
 /// then for all: the second answer does not place the first one's points again.
 type ModelAnswer = (String, usize, Arc<Vec<Option<(Vec3, u8)>>>);
-static LAST_MODELS: Mutex<Vec<ModelAnswer>> = Mutex::new(Vec::new());
 
 /// The answer to a request abandoned half-way (its stop flag set): what was computed is not
 /// what was asked for.
@@ -781,12 +798,19 @@ fn place(
 /// colours (the points the model places; the others are left out). With `every=K`, only every
 /// K-th course point is placed: a quick first answer the page refines. Setting `stop` abandons it
 /// (a 409 answer).
-pub fn model_reply(view: &View, model: &str, every: usize, stop: &AtomicBool) -> Reply {
-    let all = course_points(view);
+pub fn model_reply(
+    view: &View,
+    model: &str,
+    every: usize,
+    stop: &AtomicBool,
+    memory: &Memory,
+) -> Reply {
+    let all = course_points(view, memory);
     let every = every.max(1);
     let key = format!("{} {model}", view.points_key());
     // A coarser answer for this view, if one was given: its points are taken from it.
-    let coarser = LAST_MODELS
+    let coarser = memory
+        .models
         .lock()
         .unwrap_or_else(|e| e.into_inner())
         .iter()
@@ -816,7 +840,7 @@ pub fn model_reply(view: &View, model: &str, every: usize, stop: &AtomicBool) ->
         .collect();
     let placed_each = Arc::new(placed_each);
     {
-        let mut last = LAST_MODELS.lock().unwrap_or_else(|e| e.into_inner());
+        let mut last = memory.models.lock().unwrap_or_else(|e| e.into_inner());
         last.retain(|(k, step, _)| !(*k == key && *step == every));
         last.push((key, every, Arc::clone(&placed_each)));
         // Two models, each a coarse and a whole answer.
@@ -1073,10 +1097,11 @@ pub fn query_value(text: &str) -> String {
     out
 }
 
-/// The answer to `GET path?query` for the API routes (`/api/...`), with a reusable frame. Another
-/// thread may set the frame's [`Frame::stop_flag`] to abandon the work half-way (frames, models,
-/// exports): the answer is then incomplete, and the caller throws it away.
-pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
+/// The answer to `GET path?query` for the API routes (`/api/...`), with a reusable frame and the
+/// engine's memory of earlier answers. Another thread may set the frame's [`Frame::stop_flag`] to
+/// abandon the work half-way (frames, models, exports): the answer is then incomplete, and the
+/// caller throws it away.
+pub fn handle(path: &str, query: &str, frame: &mut Frame, memory: &Memory) -> Reply {
     if path == "/api/scenes" {
         return scenes_reply();
     }
@@ -1095,13 +1120,14 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame) -> Reply {
         Err(e) => return e.reply(),
     };
     let result = match path {
-        "/api/frame" => Ok(frame_reply(&view, frame)),
+        "/api/frame" => Ok(frame_reply(&view, frame, memory)),
         "/api/model" => match get(&q, "every").map_or(Ok(1), |t| number::<usize>(t, "every")) {
             Ok(k) if (1..=MAX_EVERY).contains(&k) => Ok(model_reply(
                 &view,
                 get(&q, "model").unwrap_or("eye"),
                 k,
                 &frame.stop_flag(),
+                memory,
             )),
             Ok(k) => Err(format!(
                 "every={k} is not allowed: a model places every K-th point, 1 <= K <= {MAX_EVERY}"
@@ -1199,13 +1225,15 @@ mod tests {
                 .collect()
         };
         // Before any frame (traced afresh) and after this view's frame (its points reused).
+        let memory = Memory::default();
         for with_frame in [false, true] {
             if with_frame {
-                frame_reply(&view, &mut Frame::default());
+                frame_reply(&view, &mut Frame::default(), &memory);
             }
             // Whole, coarse, then whole again from the coarse answer's points.
             for every in [1, 4, 1] {
-                let got = decode(model_reply(&view, "eye", every, &AtomicBool::new(false)));
+                let stop = AtomicBool::new(false);
+                let got = decode(model_reply(&view, "eye", every, &stop, &memory));
                 assert!(got.len() > 800 / every / 2);
                 assert_eq!(
                     got,
@@ -1213,11 +1241,14 @@ mod tests {
                     "every {every}, after a frame: {with_frame}"
                 );
             }
+            // The three answers after the frame started from its points, none before it.
+            assert_eq!(memory.points_reused(), if with_frame { 3 } else { 0 });
         }
         let bad = handle(
             "/api/model",
             &format!("{REF2}&model=eye&every=0"),
             &mut Frame::default(),
+            &Memory::default(),
         );
         assert_eq!(bad.status, 400);
         assert!(String::from_utf8_lossy(&bad.body).contains("1 <= K <= 64"));
@@ -1227,7 +1258,7 @@ mod tests {
     #[test]
     fn frame_reply_layout_and_points() {
         let view = View::from_query(&query(&format!("{REF2}&size=40x30&points=1500"))).unwrap();
-        let reply = frame_reply(&view, &mut Frame::default());
+        let reply = frame_reply(&view, &mut Frame::default(), &Memory::default());
         assert_eq!(reply.status, 200);
         let b = &reply.body;
         let len = u32::from_le_bytes(b[0..4].try_into().unwrap()) as usize;
@@ -1273,7 +1304,7 @@ mod tests {
     fn gallery_scenes_are_served() {
         let mut f = Frame::default();
         let q = "scene=reversing-arrow&observer=0.3,0,0.1&size=48x36&points=800";
-        let r = handle("/api/frame", q, &mut f);
+        let r = handle("/api/frame", q, &mut f, &Memory::default());
         assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
         let len = u32::from_le_bytes(r.body[..4].try_into().unwrap()) as usize;
         let header: Value = serde_json::from_slice(&r.body[4..4 + len]).unwrap();
@@ -1283,15 +1314,24 @@ mod tests {
             header["points_per_color"][7].as_u64().unwrap() > 0,
             "the arrow"
         );
-        let sketch: Value =
-            serde_json::from_slice(&handle("/api/sketch", "scene=reversing-arrow", &mut f).body)
-                .unwrap();
+        let sketch: Value = serde_json::from_slice(
+            &handle(
+                "/api/sketch",
+                "scene=reversing-arrow",
+                &mut f,
+                &Memory::default(),
+            )
+            .body,
+        )
+        .unwrap();
         assert!(!sketch["wireframe"].as_array().unwrap().is_empty());
         // The inside the liquids fill, for the maps' tints: a thick glass's inner radius and
         // floor, a tank's half widths.
         let mut inside = |scene: &str| -> Value {
             let q = format!("scene={scene}");
-            let v: Value = serde_json::from_slice(&handle("/api/sketch", &q, &mut f).body).unwrap();
+            let v: Value =
+                serde_json::from_slice(&handle("/api/sketch", &q, &mut f, &Memory::default()).body)
+                    .unwrap();
             v["container"].clone()
         };
         let glass = inside("real-glass");
@@ -1310,22 +1350,47 @@ mod tests {
             .as_str()
             .unwrap()
             .contains("--scene reversing-arrow --observer 0.3,0,0.1"));
-        let ray = handle("/api/ray", &format!("{q}&point=10"), &mut f);
+        let ray = handle(
+            "/api/ray",
+            &format!("{q}&point=10"),
+            &mut f,
+            &Memory::default(),
+        );
         assert_eq!(ray.status, 200);
         let ray: Value = serde_json::from_slice(&ray.body).unwrap();
         assert!(ray["color"].as_u64().unwrap() >= 7);
         for route in ["/api/model", "/api/export"] {
-            assert_eq!(handle(route, q, &mut f).status, 200, "{route}");
+            assert_eq!(
+                handle(route, q, &mut f, &Memory::default()).status,
+                200,
+                "{route}"
+            );
         }
-        let png = handle("/api/export", &format!("{q}&format=png"), &mut f);
+        let png = handle(
+            "/api/export",
+            &format!("{q}&format=png"),
+            &mut f,
+            &Memory::default(),
+        );
         assert!(png.body.starts_with(b"\x89PNG"));
         let scenes: Value =
-            serde_json::from_slice(&handle("/api/scenes", "", &mut f).body).unwrap();
+            serde_json::from_slice(&handle("/api/scenes", "", &mut f, &Memory::default()).body)
+                .unwrap();
         assert_eq!(scenes.as_array().unwrap().len(), GALLERY.len());
-        let wrong = handle("/api/frame", "scene=teapot&observer=1,0,0", &mut f);
+        let wrong = handle(
+            "/api/frame",
+            "scene=teapot&observer=1,0,0",
+            &mut f,
+            &Memory::default(),
+        );
         assert_eq!(wrong.status, 400);
         assert!(String::from_utf8_lossy(&wrong.body).contains("leaning-straw"));
-        let inside = handle("/api/frame", "scene=tank-pencil&observer=0,0,0.05", &mut f);
+        let inside = handle(
+            "/api/frame",
+            "scene=tank-pencil&observer=0,0,0.05",
+            &mut f,
+            &Memory::default(),
+        );
         assert_eq!(inside.status, 400);
         assert!(String::from_utf8_lossy(&inside.body).contains("inside or on the container"));
     }
@@ -1340,19 +1405,27 @@ mod tests {
         let view = "observer=0.05,-0.35,0.12&points=500";
         let gallery = format!("/api/export?scene={stem}&{view}&format=csv");
         let own = format!("scene-file={}&{view}&format=csv", query_value(text));
-        let a = handle("/api/export", gallery.split_once('?').unwrap().1, &mut f);
-        let b = handle("/api/export", &own, &mut f);
+        let a = handle(
+            "/api/export",
+            gallery.split_once('?').unwrap().1,
+            &mut f,
+            &Memory::default(),
+        );
+        let b = handle("/api/export", &own, &mut f, &Memory::default());
         assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
         assert_eq!(a.body, b.body);
         // What the view's scene writes back is the same scene.
-        let file = handle("/api/scene-file", &own, &mut f);
+        let file = handle("/api/scene-file", &own, &mut f, &Memory::default());
         assert_eq!(file.status, 200);
         let written = String::from_utf8(file.body).unwrap();
         let again = format!("scene-file={}&{view}&format=csv", query_value(&written));
-        assert_eq!(handle("/api/export", &again, &mut f).body, b.body);
+        assert_eq!(
+            handle("/api/export", &again, &mut f, &Memory::default()).body,
+            b.body
+        );
         // The assignment's glass is written as a file of its kind: the same points again.
         let glass = format!("{REF2}&points=500&format=csv");
-        let file = handle("/api/scene-file", &glass, &mut f);
+        let file = handle("/api/scene-file", &glass, &mut f, &Memory::default());
         let written = String::from_utf8(file.body).unwrap();
         assert!(written.contains("[[straw]]"), "{written}");
         let from_file = format!(
@@ -1360,8 +1433,8 @@ mod tests {
             query_value(&written)
         );
         assert_eq!(
-            handle("/api/export", &from_file, &mut f).body,
-            handle("/api/export", &glass, &mut f).body
+            handle("/api/export", &from_file, &mut f, &Memory::default()).body,
+            handle("/api/export", &glass, &mut f, &Memory::default()).body
         );
         // A broken rule: the command line's message, naming the page's file.
         let broken = text.replace("half_x = 0.10", "half_x = -0.10");
@@ -1370,6 +1443,7 @@ mod tests {
             "/api/frame",
             &format!("scene-file={}&{view}", query_value(&broken)),
             &mut f,
+            &Memory::default(),
         );
         assert_eq!(r.status, 400);
         let refusal: Value = serde_json::from_slice(&r.body).unwrap();
@@ -1377,7 +1451,10 @@ mod tests {
         assert!(message.starts_with("scene.toml"), "{message}");
         // Not both a gallery scene and a file.
         let both = format!("scene={stem}&scene-file=x&{view}");
-        assert_eq!(handle("/api/frame", &both, &mut f).status, 400);
+        assert_eq!(
+            handle("/api/frame", &both, &mut f, &Memory::default()).status,
+            400
+        );
     }
 
     /// A refused scene comes with its broken rules as data, all of them, beside the command
@@ -1390,6 +1467,7 @@ mod tests {
             "/api/frame",
             &format!("scene-file={}&observer=0.3,0,0.1", query_value(text)),
             &mut f,
+            &Memory::default(),
         );
         assert_eq!((r.status, r.content_type), (400, "application/json"));
         let v: Value = serde_json::from_slice(&r.body).unwrap();
@@ -1415,6 +1493,7 @@ mod tests {
             "/api/frame",
             &format!("scene-file={}&observer=0,0,0.1", query_value(&good)),
             &mut f,
+            &Memory::default(),
         );
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         assert_eq!(v["flagged"], json!(true));
@@ -1425,6 +1504,7 @@ mod tests {
             "/api/frame",
             "observer=0,0,0.1&straw=0.02,0.01&water-height=0.15",
             &mut f,
+            &Memory::default(),
         );
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         assert_eq!(v["rules"][0]["code"], json!("glass.eye-inside"));
@@ -1439,6 +1519,7 @@ mod tests {
             "/api/sketch",
             &format!("scene-file={}", query_value(cone)),
             &mut f,
+            &Memory::default(),
         );
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         assert_eq!(v["rules"][0]["params"]["shape"], json!({"text": "co.ne"}));
@@ -1452,12 +1533,17 @@ mod tests {
         let mut f = Frame::default();
         let text_of = |form: &Value, f: &mut Frame| {
             let q = format!("form={}", query_value(&form.to_string()));
-            let r = handle("/api/scene-text", &q, f);
+            let r = handle("/api/scene-text", &q, f, &Memory::default());
             assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
             String::from_utf8(r.body).unwrap()
         };
         for (stem, text) in GALLERY {
-            let sketch = handle("/api/sketch", &format!("scene={stem}"), &mut f);
+            let sketch = handle(
+                "/api/sketch",
+                &format!("scene={stem}"),
+                &mut f,
+                &Memory::default(),
+            );
             let v: Value = serde_json::from_slice(&sketch.body).unwrap();
             let back = text_of(&v["form"], &mut f);
             let original = SceneDescription::from_toml(text).unwrap();
@@ -1466,7 +1552,12 @@ mod tests {
             assert!(v["form"]["container"]["shape"].is_string(), "{stem}");
         }
         // An edit: the coin moved and a liquid added.
-        let sketch = handle("/api/sketch", "scene=coin-in-glass", &mut f);
+        let sketch = handle(
+            "/api/sketch",
+            "scene=coin-in-glass",
+            &mut f,
+            &Memory::default(),
+        );
         let mut form = serde_json::from_slice::<Value>(&sketch.body).unwrap()["form"].clone();
         form["coin"][0]["x"] = json!(0.0123);
         let back = SceneDescription::from_toml(&text_of(&form, &mut f)).unwrap();
@@ -1479,6 +1570,7 @@ mod tests {
             "/api/sketch",
             &format!("scene-file={}", query_value(&broken)),
             &mut f,
+            &Memory::default(),
         );
         assert_eq!(r.status, 400);
         let v: Value = serde_json::from_slice(&r.body).unwrap();
@@ -1493,13 +1585,20 @@ mod tests {
                 "/api/scene-text",
                 &format!("form={}", query_value(bad)),
                 &mut f,
+                &Memory::default(),
             );
             assert_eq!(r.status, 400, "{bad}");
             assert!(String::from_utf8_lossy(&r.body).contains("form"), "{bad}");
         }
         let long = format!("form={}", "x".repeat(MAX_SCENE_FILE_BYTES as usize + 1));
-        assert_eq!(handle("/api/scene-text", &long, &mut f).status, 400);
-        assert_eq!(handle("/api/scene-text", "", &mut f).status, 400);
+        assert_eq!(
+            handle("/api/scene-text", &long, &mut f, &Memory::default()).status,
+            400
+        );
+        assert_eq!(
+            handle("/api/scene-text", "", &mut f, &Memory::default()).status,
+            400
+        );
     }
 
     /// The page's language tables (i18n.js) say every rule the library can break, in English
@@ -1571,22 +1670,44 @@ mod tests {
             assert_eq!(r.status, 409, "{format}");
         }
         for model in ["eye", "stereo"] {
-            assert_eq!(model_reply(&view, model, 1, &stop).status, 409, "{model}");
-            assert_eq!(model_reply(&view, model, 1, &go).status, 200, "{model}");
+            assert_eq!(
+                model_reply(&view, model, 1, &stop, &Memory::default()).status,
+                409,
+                "{model}"
+            );
+            assert_eq!(
+                model_reply(&view, model, 1, &go, &Memory::default()).status,
+                200,
+                "{model}"
+            );
         }
         // Through `handle`: the frame's flag.
         let mut frame = Frame::default();
         frame.stop_flag().store(true, Ordering::Relaxed);
         let q = format!("{REF2}&size=40x30&points=300&format=png");
-        assert_eq!(handle("/api/export", &q, &mut frame).status, 409);
+        assert_eq!(
+            handle("/api/export", &q, &mut frame, &Memory::default()).status,
+            409
+        );
     }
 
     #[test]
     fn unknown_routes_and_formats_are_refused() {
         let mut f = Frame::default();
-        assert_eq!(handle("/api/nothing", REF2, &mut f).status, 404);
-        assert_eq!(handle("/api/frame", "observer=1", &mut f).status, 400);
-        let e = handle("/api/export", &format!("{REF2}&format=exe"), &mut f);
+        assert_eq!(
+            handle("/api/nothing", REF2, &mut f, &Memory::default()).status,
+            404
+        );
+        assert_eq!(
+            handle("/api/frame", "observer=1", &mut f, &Memory::default()).status,
+            400
+        );
+        let e = handle(
+            "/api/export",
+            &format!("{REF2}&format=exe"),
+            &mut f,
+            &Memory::default(),
+        );
         assert_eq!(e.status, 400);
     }
 
@@ -1663,7 +1784,7 @@ mod tests {
             fn any_query_gets_an_answer(q in query(), route in 0..ROUTES.len()) {
                 // Keep accepted work small: the fuzzing is about parsing, not about big frames.
                 let q = format!("{q}&points=50&size=16x12");
-                let r = handle(ROUTES[route], &q, &mut Frame::default());
+                let r = handle(ROUTES[route], &q, &mut Frame::default(), &Memory::default());
                 prop_assert!([200, 400, 404].contains(&r.status), "{} for {q}", r.status);
                 if r.status != 200 {
                     let text = String::from_utf8(r.body).unwrap();
@@ -1675,7 +1796,7 @@ mod tests {
             #[test]
             fn any_text_parses_or_is_refused(q in "[ -~]{0,300}") {
                 let _ = parse_query(&q);
-                let _ = handle("/api/frame", &q, &mut Frame::default());
+                let _ = handle("/api/frame", &q, &mut Frame::default(), &Memory::default());
             }
 
             /// Any path with any query (good views among them) gets a success or a refusal of
@@ -1692,7 +1813,7 @@ mod tests {
                 q in query(),
             ) {
                 let q = format!("{raw}&{q}&points=50&size=16x12&chan=x&seq=1");
-                let r = handle(&path, &q, &mut Frame::default());
+                let r = handle(&path, &q, &mut Frame::default(), &Memory::default());
                 prop_assert!([200, 400, 404].contains(&r.status), "{} for {path}?{q}", r.status);
                 if r.status != 200 {
                     let text = String::from_utf8(r.body).unwrap();

@@ -13,6 +13,8 @@ use wasm_bindgen::prelude::*;
 thread_local! {
     /// The worker's picture buffers, kept from one frame to the next (a worker is one thread).
     static FRAME: RefCell<Frame> = RefCell::new(Frame::default());
+    /// What this worker's engine remembers between requests (a frame's points for its models).
+    static MEMORY: bentstraw_explore::Memory = bentstraw_explore::Memory::default();
 }
 
 /// A finished answer, as the page reads an HTTP response: status, type, body, download name.
@@ -56,7 +58,7 @@ impl Reply {
 pub fn handle(path: &str, query: &str) -> Reply {
     let reply = FRAME.with(|frame| {
         let mut frame = frame.borrow_mut();
-        bentstraw_explore::handle(path, query, &mut frame)
+        MEMORY.with(|memory| bentstraw_explore::handle(path, query, &mut frame, memory))
     });
     Reply {
         status: reply.status,

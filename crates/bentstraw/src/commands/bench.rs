@@ -16,7 +16,7 @@ use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_into, fresnel_picture_into};
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene::SECTION_COUNT;
-use bentstraw_optics::scene::{Scene, REFERENCES, SCENE_CENTRE, WATER_INDEX};
+use bentstraw_optics::scene::{Scene, REFERENCES, WATER_INDEX};
 use bentstraw_optics::shading::{Backdrop, ShadingMode, ShadingOptions};
 use bentstraw_optics::world::{World, COLOR_COUNT};
 use bentstraw_optics::Vec3;
@@ -268,15 +268,8 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
             );
         }
         let loaded = crate::cli::load_scene(&args.view.source())?;
-        let target = match loaded.assignment_numbers().copied() {
-            Some(_) => loaded.target,
-            None => {
-                let (lo, hi) = loaded.world.bounds();
-                Some(loaded.target.unwrap_or(0.5 * (lo + hi)))
-            }
-        };
+        let target = target_flag.unwrap_or(loaded.default_target());
         let (world, observer) = (loaded.world, loaded.observer);
-        let target = target_flag.or(target).unwrap_or(SCENE_CENTRE);
         let camera = camera_for(observer, target)?;
         return Ok(vec![View {
             simulation: None,

@@ -367,7 +367,9 @@ impl App {
             "/api/frame" | "/api/model" | "/api/ray" | "/api/export"
         );
         if !heavy {
-            return respond(api::handle(path, query, &mut Frame::default()));
+            // Light routes remember nothing: a memory of their own, empty.
+            let memory = api::Memory::default();
+            return respond(api::handle(path, query, &mut Frame::default(), &memory));
         }
         // A query that breaks a rule is refused here, without waiting for a worker.
         // (A scene's broken rules go as data, as the page's own engine sends them.)

@@ -92,6 +92,8 @@ struct Queue {
 
 /// The workers and their queue.
 pub struct Pool {
+    /// What the workers remember between requests (a frame's points for the models that follow).
+    memory: api::Memory,
     queue: Mutex<Queue>,
     ready: Condvar,
     channels: Mutex<HashMap<String, Channel>>,
@@ -126,6 +128,7 @@ impl Pool {
     /// The pool, its workers started.
     pub fn start() -> std::io::Result<Arc<Pool>> {
         let pool = Arc::new(Pool {
+            memory: api::Memory::default(),
             queue: Mutex::new(Queue::default()),
             ready: Condvar::new(),
             channels: Mutex::new(HashMap::new()),
@@ -210,7 +213,7 @@ impl Pool {
                 answer,
             } = job;
             let started = Instant::now();
-            let reply = compute(&path, &query, &ticket, &mut frame);
+            let reply = compute(&path, &query, &ticket, &mut frame, &self.memory);
             let engine_ms = started.elapsed().as_secs_f64() * 1e3;
             // Free before answering: the client's next request finds room.
             self.queue.lock().unwrap_or_else(|e| e.into_inner()).running -= 1;
@@ -222,9 +225,15 @@ impl Pool {
     }
 }
 
-/// The answer to `path?query` computed with `frame`'s buffers, or none if its client left; 409
-/// if it was superseded, before or while it was computed.
-fn compute(path: &str, query: &str, ticket: &Ticket, frame: &mut Frame) -> Option<Reply> {
+/// The answer to `path?query` computed with `frame`'s buffers and the workers' `memory`, or none
+/// if its client left; 409 if it was superseded, before or while it was computed.
+fn compute(
+    path: &str,
+    query: &str,
+    ticket: &Ticket,
+    frame: &mut Frame,
+    memory: &api::Memory,
+) -> Option<Reply> {
     let stop = frame.stop_flag();
     {
         let mut running = ticket.running.lock().unwrap_or_else(|e| e.into_inner());
@@ -237,8 +246,8 @@ fn compute(path: &str, query: &str, ticket: &Ticket, frame: &mut Frame) -> Optio
         stop.store(false, Ordering::Relaxed);
         *running = Some(Arc::clone(&stop));
     }
-    let reply =
-        catch_unwind(AssertUnwindSafe(|| api::handle(path, query, frame))).unwrap_or_else(|_| {
+    let reply = catch_unwind(AssertUnwindSafe(|| api::handle(path, query, frame, memory)))
+        .unwrap_or_else(|_| {
             *frame = Frame::default();
             Reply::text(500, "internal error while computing this view")
         });
