@@ -48,6 +48,43 @@ fn run_limited(dir: &Path, blocks: u64, args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// Like [`run`], with the processor time (user and system) the run used, read from its exit
+/// status in /proc before it is reaped (`None` where there is no /proc).
+fn run_with_cpu_time(dir: &Path, args: &[&str]) -> (Output, Option<Duration>) {
+    let child = bin()
+        .current_dir(dir)
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stat = format!("/proc/{}/stat", child.id());
+    // The fields after the command's name (which may hold spaces) in parentheses.
+    let fields = |text: &str| -> Vec<String> {
+        let after = text.rsplit_once(')').map_or("", |(_, rest)| rest);
+        after.split_whitespace().map(str::to_string).collect()
+    };
+    let mut cpu = None;
+    if Path::new(&stat).exists() {
+        // Polled until the process has ended (a zombie, not yet reaped: its times are final); a
+        // deadline only so that a hung run cannot hang the suite.
+        let deadline = Instant::now() + Duration::from_secs(120);
+        loop {
+            let f = fields(&fs::read_to_string(&stat).unwrap());
+            if f[0] == "Z" {
+                // utime and stime (fields 14 and 15 of the line), in clock ticks of 1/100 s (the
+                // kernel's USER_HZ on every Linux).
+                let ticks: u64 = f[11].parse::<u64>().unwrap() + f[12].parse::<u64>().unwrap();
+                cpu = Some(Duration::from_millis(ticks * 10));
+                break;
+            }
+            assert!(Instant::now() < deadline, "{args:?} did not end in 120 s");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+    (child.wait_with_output().unwrap(), cpu)
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -155,42 +192,70 @@ fn a_failed_raw_file_keeps_the_previous_picture() {
     assert_eq!(temporaries(d), Vec::<String>::new());
 }
 
+/// A table whose files cannot all be written (a full disk, as a limit on file sizes makes it)
+/// replaces none of the previous table. Run on a gallery scene's report on few points (two seconds,
+/// where the reference report took many): the same failure in the same place, every figure
+/// written, some refused, then nothing put in place.
 #[test]
 fn a_failed_table_replaces_none_of_the_previous_table() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let folder = d.join("t");
-    fs::create_dir(&folder).unwrap();
-    fs::write(folder.join("index.html"), b"previous report").unwrap();
-    fs::write(folder.join("sim1.csv.gz"), b"previous points").unwrap();
-    // 100 to 200 kB: under every figure, over the report (about 60 kB).
-    let out = run_limited(d, 200, &["table", "--out", "t", "--points", "3000"]);
+    // A previous table: its page and a points file it writes again.
+    let previous = |folder: &Path, points: &str| {
+        fs::create_dir(folder).unwrap();
+        fs::write(folder.join("index.html"), b"previous report").unwrap();
+        fs::write(folder.join(points), b"previous points").unwrap();
+    };
+    let kept = |folder: &Path, points: &str| {
+        assert_eq!(
+            fs::read(folder.join("index.html")).unwrap(),
+            b"previous report"
+        );
+        assert_eq!(fs::read(folder.join(points)).unwrap(), b"previous points");
+        assert_eq!(
+            fs::read_dir(folder).unwrap().count(),
+            2,
+            "new files appeared"
+        );
+    };
+    previous(&folder, "obs1.csv.gz");
+    const SCENE: [&str; 5] = ["table", "--scene", "reversing-arrow", "--points", "100"];
+    let args = |out: &'static str| [&SCENE[..], &["--out", out]].concat();
+    // 100 to 200 kB: under the scene's picture and the observers' pictures, over the report (about
+    // 30 kB).
+    let out = run_limited(d, 200, &args("t"));
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(
-        stderr(&out).contains("no file in t was replaced"),
+        stderr(&out).contains("could not be written")
+            && stderr(&out).contains("no file in t was replaced"),
         "{}",
         stderr(&out)
     );
-    assert_eq!(
-        fs::read(folder.join("index.html")).unwrap(),
-        b"previous report"
-    );
-    assert_eq!(
-        fs::read(folder.join("sim1.csv.gz")).unwrap(),
-        b"previous points"
-    );
-    assert_eq!(
-        fs::read_dir(&folder).unwrap().count(),
-        2,
-        "new files appeared"
-    );
+    kept(&folder, "obs1.csv.gz");
     // A folder the failed run made is gone again.
-    let out = run_limited(
-        d,
-        100,
-        &["table", "--out", "new/deeper", "--points", "3000"],
-    );
-    assert_eq!(out.status.code(), Some(2));
+    let out = run_limited(d, 100, &args("new/deeper"));
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(!d.join("new").exists());
+
+    // The reference report failing before its work (its files' reservation stopped half-way by
+    // a limit of open files): its temporaries removed, the previous files kept, a folder it made
+    // removed.
+    let reference = d.join("r");
+    previous(&reference, "sim1.csv.gz");
+    for out in ["r", "new/deeper"] {
+        let ran = Command::new("sh")
+            .current_dir(d)
+            .arg("-c")
+            .arg("ulimit -n 24; exec \"$@\"")
+            .arg("sh")
+            .arg(env!("CARGO_BIN_EXE_bentstraw"))
+            .args(["table", "--points", "3000", "--out", out])
+            .output()
+            .unwrap();
+        assert_refused(&ran, &["Too many open files", &format!("--out {out}/")]);
+    }
+    kept(&reference, "sim1.csv.gz");
     assert!(!d.join("new").exists());
 }
 
@@ -309,18 +374,20 @@ fn a_read_only_target_is_refused_before_any_work() {
     let d = dir.path();
     fs::write(d.join("ro.csv"), b"keep me").unwrap();
     fs::set_permissions(d.join("ro.csv"), fs::Permissions::from_mode(0o444)).unwrap();
-    let started = Instant::now();
-    // Ten million points take many seconds: a refusal after the work would show in the time.
-    let out = run(
+    // Ten million points take many seconds of processor time (about 13 s on two cores): a refusal
+    // after the work would show in the processor time the run used, whatever else the machine
+    // does meanwhile.
+    let (out, cpu) = run_with_cpu_time(
         d,
         &with_scene("simulate", &["--points", "10000000", "--output", "ro.csv"]),
     );
     assert_refused(&out, &["--output ro.csv", "read-only"]);
-    assert!(
-        started.elapsed() < Duration::from_secs(3),
-        "{:?}",
-        started.elapsed()
-    );
+    if let Some(cpu) = cpu {
+        assert!(
+            cpu < Duration::from_secs(1),
+            "the refusal took {cpu:?} of work"
+        );
+    }
     assert_eq!(fs::read(d.join("ro.csv")).unwrap(), b"keep me");
     assert_eq!(temporaries(d), Vec::<String>::new());
 }
@@ -382,8 +449,9 @@ fn long_file_names_work() {
     assert_eq!(temporaries(d), Vec::<String>::new());
 }
 
-/// Starts `args` in `dir`, waits until its temporaries exist (the work has begun), sends
-/// `signal`, and checks that it ends with code 130, leaving no temporary.
+/// Starts `args` in `dir`, waits until its temporaries exist in `watch` (the work has begun: the
+/// event waited for, polled, with a deadline only against a hang), sends `signal`, and checks that
+/// it ends with code 130, leaving no temporary.
 fn interrupt(dir: &Path, watch: &Path, args: &[&str], signal: &str) {
     let mut child = bin()
         .current_dir(dir)
@@ -403,7 +471,6 @@ fn interrupt(dir: &Path, watch: &Path, args: &[&str], signal: &str) {
         );
         std::thread::sleep(Duration::from_millis(10));
     }
-    std::thread::sleep(Duration::from_millis(300));
     assert!(
         child.try_wait().unwrap().is_none(),
         "{args:?} ended before the signal"

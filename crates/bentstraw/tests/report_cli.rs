@@ -1,5 +1,6 @@
 //! The report on paper and on disk: the folder of the main job stays small, and the page prints
-//! on a few A4 pages (through headless Chromium's print, as a reader's browser prints it).
+//! on a few A4 pages (through headless Chromium's print, as a reader's browser prints it: those
+//! checks are ignored tests of `main.rs`, run by `cargo test -- --ignored`).
 
 use std::fs;
 use std::path::Path;
@@ -20,17 +21,21 @@ fn folder_bytes(folder: &Path) -> u64 {
         .sum()
 }
 
-/// The report job's folder (see `the_report_job`) holds at most 25 MB, and its page printed by
-/// Chromium fills at most 16 A4 pages, its tables and headings included.
-pub fn the_report_is_lean_and_prints_on_few_pages(folder: &Path) {
+/// The report job's folder (see `the_report_job`) holds at most 25 MB, and its page has a print
+/// stylesheet.
+pub fn the_report_is_lean_and_prints(folder: &Path) {
     let bytes = folder_bytes(folder);
     assert!(
         bytes <= MAX_FOLDER_BYTES,
         "the report's folder holds {bytes} bytes, more than {MAX_FOLDER_BYTES}"
     );
-    let Some(text) = printed_by_chromium(folder) else {
-        return;
-    };
+    has_a_print_stylesheet(folder);
+}
+
+/// The report job's page (see `the_report_job_prints_on_few_pages`) printed by Chromium fills at
+/// most 16 A4 pages, its tables and headings included.
+pub fn the_report_prints_on_few_pages(folder: &Path) {
+    let text = printed_by_chromium(folder);
     // What is not printed is named, with where to find it; the reference simulations are.
     assert!(
         text.contains("Not printed"),
@@ -44,17 +49,18 @@ pub fn the_report_is_lean_and_prints_on_few_pages(folder: &Path) {
     }
 }
 
-/// The text of the report in `folder` as headless Chromium prints it on A4, after checking that
-/// it has a print stylesheet and prints on 1 to 16 pages; `None` when Chromium or poppler is
-/// missing outside CI.
-pub fn printed_by_chromium(folder: &Path) -> Option<String> {
+/// The page in `folder` has a print stylesheet.
+fn has_a_print_stylesheet(folder: &Path) {
     let index = fs::read_to_string(folder.join("index.html")).unwrap();
     assert!(index.contains("@media print"), "no print stylesheet");
+}
 
-    let (Some(chromium), Some(pdftotext)) = (require_tool("chromium"), require_tool("pdftotext"))
-    else {
-        return None;
-    };
+/// The text of the report in `folder` as headless Chromium prints it on A4, after checking that
+/// it has a print stylesheet and prints on 1 to 16 pages. Without Chromium or poppler's pdftotext
+/// the test fails.
+pub fn printed_by_chromium(folder: &Path) -> String {
+    has_a_print_stylesheet(folder);
+    let (chromium, pdftotext) = (require_tool("chromium"), require_tool("pdftotext"));
     let dir = tempfile::tempdir().unwrap();
     let pdf = dir.path().join("report.pdf");
     let status = Command::new(chromium)
@@ -82,7 +88,6 @@ pub fn printed_by_chromium(folder: &Path) -> Option<String> {
             "Chromium did not print the report",
             "apt-get install chromium",
         );
-        return None;
     }
     let text = pdf_text(&pdftotext, &pdf);
     // pdftotext separates pages with form feeds: one per page.
@@ -91,13 +96,12 @@ pub fn printed_by_chromium(folder: &Path) -> Option<String> {
         (1..=MAX_PAGES).contains(&pages),
         "the report prints on {pages} A4 pages, more than {MAX_PAGES}"
     );
-    Some(text)
+    text
 }
 
-/// `table --pdf FILE` (run by `the_report_job_in_french` and `the_scene_report_job`): a PDF of at
-/// most 16 A4 pages whose text holds `headings`, with its figures embedded, written beside the
-/// report's folder.
-pub fn the_pdf_is_the_report_on_few_pages(pdf: &Path, headings: &[&str]) {
+/// `table --pdf FILE` (run by `the_report_job_in_french` and `the_scene_report_job`): a PDF,
+/// written beside the report's folder, of at most half the report's folder's bytes.
+pub fn the_pdf_is_the_report(pdf: &Path) {
     let bytes = fs::read(pdf).unwrap_or_else(|e| panic!("no PDF {pdf:?}: {e}"));
     assert!(bytes.starts_with(b"%PDF-"));
     assert!(
@@ -105,10 +109,14 @@ pub fn the_pdf_is_the_report_on_few_pages(pdf: &Path, headings: &[&str]) {
         "{} bytes",
         bytes.len()
     );
-    let (Some(pdfinfo), Some(pdftotext)) = (require_tool("pdfinfo"), require_tool("pdftotext"))
-    else {
-        return;
-    };
+}
+
+/// `table --pdf FILE` (run by the ignored `the_french_reports_pdf_is_a4_on_few_pages` and
+/// `the_scene_report_prints_and_its_pdf_is_a4`): [`the_pdf_is_the_report`], of at most 16 A4
+/// pages whose text (read by poppler) holds `headings`, with its figures embedded.
+pub fn the_pdf_is_the_report_on_few_pages(pdf: &Path, headings: &[&str]) {
+    the_pdf_is_the_report(pdf);
+    let (pdfinfo, pdftotext) = (require_tool("pdfinfo"), require_tool("pdftotext"));
     let info = Command::new(pdfinfo).arg(pdf).output().unwrap();
     assert!(info.status.success(), "pdfinfo could not read {pdf:?}");
     let info = String::from_utf8_lossy(&info.stdout);
@@ -137,7 +145,8 @@ fn pdf_text(pdftotext: &Path, pdf: &Path) -> String {
 
 /// `table --scene scenes/leaning-straw.toml` (run by `the_scene_report_job`): the report of that
 /// scene, its four observers each with the reference simulations' figures, the validation over
-/// its water's index, a folder of a few MB that prints on few pages.
+/// its water's index, a folder of a few MB that prints (on few pages, all four observers:
+/// [`the_scene_report_prints_on_few_pages`]).
 pub fn the_scene_report_has_its_observers_and_validation(folder: &Path) {
     let index = fs::read_to_string(folder.join("index.html")).unwrap();
     let headings = headings(&index);
@@ -192,9 +201,14 @@ pub fn the_scene_report_has_its_observers_and_validation(folder: &Path) {
         bytes <= MAX_FOLDER_BYTES / 2,
         "the scene report's folder holds {bytes} bytes"
     );
-    if let Some(text) = printed_by_chromium(folder) {
-        assert!(text.contains("Observer 4"), "observer 4 is not printed");
-    }
+    has_a_print_stylesheet(folder);
+}
+
+/// The scene report's page (run by the ignored `the_scene_report_prints_and_its_pdf_is_a4`)
+/// printed by Chromium: on at most 16 A4 pages, its fourth observer included.
+pub fn the_scene_report_prints_on_few_pages(folder: &Path) {
+    let text = printed_by_chromium(folder);
+    assert!(text.contains("Observer 4"), "observer 4 is not printed");
 }
 
 /// `table --scene NAME --lang fr` (run by `the_scene_report_in_french_by_gallery_name`): the
