@@ -32,9 +32,11 @@ pub mod page;
 
 use bentstraw_optics::setup::{SceneValues, Setup, MAX_SCENE_FILE_BYTES};
 use bentstraw_optics::sketch::{object_outlines, world_wireframe};
-use bentstraw_outputs::camera::{scene_camera, CameraSpec, MAX_SAMPLES};
+use bentstraw_optics::view::{DEFAULT_POINTS, DEFAULT_PRUNE, DEFAULT_SAMPLES};
+use bentstraw_outputs::camera::{scene_camera, CameraSpec};
 use bentstraw_outputs::gallery::{opening_comment, GALLERY};
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
+use bentstraw_outputs::pictures::checked_samples;
 use bentstraw_outputs::pictures::png_bytes;
 use bentstraw_outputs::scene_input::{gallery_setup, parse_scene_text, SceneSource};
 use bentstraw_outputs::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
@@ -49,8 +51,6 @@ pub const MAX_PICTURE_PIXELS: u64 = 3840 * 2160;
 pub const MAX_URL: usize = 16 * 1024;
 /// Most parameters in one address.
 const MAX_PARAMS: usize = 40;
-/// Fresnel branches lighter than this are abandoned (the command line's default).
-const PRUNE: f64 = 1e-4;
 
 /// A finished answer to a request.
 #[derive(Debug, Clone, PartialEq)]
@@ -429,8 +429,9 @@ impl View {
             observer: Some(flag(parse_vec3(observer_text), "observer", observer_text)?),
             straw: Some(flag(parse_vec2(straw_text), "straw", straw_text)?),
             water_height: Some(number(he_text, "water-height")?),
-            n_water: Some(get(q, "n-water").map_or(Ok(1.333), |t| number(t, "n-water"))?),
-            max_events: get(q, "max-events").map_or(Ok(10), |t| number(t, "max-events"))?,
+            n_water: Some(get(q, "n-water").map_or(Ok(WATER_INDEX), |t| number(t, "n-water"))?),
+            max_events: get(q, "max-events")
+                .map_or(Ok(DEFAULT_MAX_EVENTS), |t| number(t, "max-events"))?,
         };
         let scene = match &file {
             // As `--scene FILE --observer X,Y,Z` reads it: the file's rules, the eye moved.
@@ -492,14 +493,9 @@ impl View {
                 .into())
             }
         };
-        let samples: u32 = get(q, "samples").map_or(Ok(3), |t| number(t, "samples"))?;
-        if !(1..=MAX_SAMPLES).contains(&samples) {
-            return Err(format!(
-                "--samples {samples} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}"
-            )
-            .into());
-        }
-        let points: usize = get(q, "points").map_or(Ok(20000), |t| number(t, "points"))?;
+        let samples = get(q, "samples").map_or(Ok(DEFAULT_SAMPLES), |t| number(t, "samples"))?;
+        let samples = checked_samples(samples)?;
+        let points = get(q, "points").map_or(Ok(DEFAULT_POINTS), |t| number(t, "points"))?;
         if points > MAX_POINTS {
             return Err(format!(
                 "--points {points} is too many for the explorer: at most {MAX_POINTS}"
@@ -528,7 +524,9 @@ impl View {
     fn shading(&self) -> ShadingOptions {
         ShadingOptions {
             mode: if self.fresnel {
-                ShadingMode::Fresnel { prune_below: PRUNE }
+                ShadingMode::Fresnel {
+                    prune_below: DEFAULT_PRUNE,
+                }
             } else {
                 ShadingMode::Course
             },
@@ -567,7 +565,7 @@ impl View {
         if self.scene.name.is_none() && n_water != WATER_INDEX {
             s.extend(["--n-water".into(), n_water.to_string()]);
         }
-        if a.max_events != 10 {
+        if a.max_events != DEFAULT_MAX_EVENTS {
             s.extend(["--max-events".into(), a.max_events.to_string()]);
         }
         s
@@ -614,7 +612,7 @@ impl View {
             if self.fresnel { "fresnel" } else { "course" },
             if self.checker { "checker" } else { "none" }
         );
-        if self.samples != 3 {
+        if self.samples != DEFAULT_SAMPLES {
             s += &format!(" --samples {}", self.samples);
         }
         s + " --output view.png"

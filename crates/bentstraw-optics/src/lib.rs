@@ -44,6 +44,7 @@ pub mod setup;
 pub mod shading;
 pub mod sketch;
 pub mod text;
+pub mod view;
 pub mod world;
 
 pub use glam::DVec3 as Vec3;

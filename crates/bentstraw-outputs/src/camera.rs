@@ -4,6 +4,7 @@
 use bentstraw_optics::camera::{framing_fov, Camera};
 use bentstraw_optics::scene::SCENE_CENTRE;
 use bentstraw_optics::text::number_text;
+use bentstraw_optics::view::DEFAULT_SIZE;
 use bentstraw_optics::Vec3;
 
 use crate::error::{fail, Result};
@@ -20,10 +21,6 @@ pub struct CameraSpec {
     pub size: Option<(u32, u32)>,
 }
 
-/// Picture size when `--size` is not given.
-pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
-/// Most samples per pixel side accepted by `--samples`.
-pub const MAX_SAMPLES: u32 = 16;
 /// Most pixels on a side of a picture.
 pub const MAX_SIDE: u32 = 16384;
 /// Most pixels in a picture (the renderer keeps a few dozen bytes per pixel in memory).

@@ -337,6 +337,7 @@ mod tests {
     use bentstraw_optics::check::{check_solution, DEFAULT_TOLERANCE};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
+    use bentstraw_optics::scene::SECTION_COUNT;
 
     /// The figure of reference 2's own points, changed by `change`, as decoded pixels.
     fn figure(change: impl Fn(usize, &mut ClaimedPoint) -> bool) -> (image::RgbImage, i32) {

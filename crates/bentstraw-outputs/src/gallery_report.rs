@@ -1,6 +1,7 @@
 //! The gallery's part of the report: for each scene file its picture, its image points and its
 //! ray diagram.
 
+use bentstraw_optics::view::{DEFAULT_POINTS, DEFAULT_PRUNE};
 use std::path::Path;
 
 use bentstraw_optics::sampling::sample_image;
@@ -19,9 +20,6 @@ use crate::scene_input::gallery_setup;
 use crate::words::{self, Lang};
 use crate::{files, plot};
 use bentstraw_optics::setup::Setup;
-
-/// Image points per gallery scene in the report.
-const GALLERY_POINTS: usize = 20_000;
 
 /// The files the gallery writes into the report's folder.
 pub fn gallery_files() -> Vec<String> {
@@ -72,7 +70,7 @@ fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Setup) 
     picture.error = write_picture(&out.join(&picture_file), world)
         .err()
         .map(|e| e.to_string());
-    let cloud = sample_image(&world.world, world.observer, GALLERY_POINTS, &|_| {});
+    let cloud = sample_image(&world.world, world.observer, DEFAULT_POINTS, &|_| {});
     let title = lang.fill(words::GALLERY_POINTS_TITLE, &[&world.name()]);
     let mut points = Figure::image(
         &points_file,
@@ -120,7 +118,9 @@ pub fn write_picture(path: &Path, world: &Setup) -> Result {
         },
     )?;
     let options = ShadingOptions {
-        mode: ShadingMode::Fresnel { prune_below: 1e-4 },
+        mode: ShadingMode::Fresnel {
+            prune_below: DEFAULT_PRUNE,
+        },
         backdrop: Backdrop::Checker,
         samples: 3,
         outline: false,

@@ -393,7 +393,6 @@ mod tests {
     use super::*;
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;
-    use bentstraw_optics::scene_file::SceneDescription;
     use bentstraw_optics::world::World;
 
     fn reference_page(title: &str) -> (Vec<ImagePoint>, String) {

@@ -503,6 +503,7 @@ fn draw_gap_plot<DB: DrawingBackend>(
 mod tests {
     use super::*;
     use crate::plot::tests::{decode, point};
+    use bentstraw_optics::scene::SCENE_CENTRE;
     use bentstraw_optics::scene::{Scene, STRAW_RADIUS};
 
     /// Points on the straw's surface in section `color`, around its axis at `(x, y)`.

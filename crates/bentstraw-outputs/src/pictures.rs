@@ -10,12 +10,12 @@ use bentstraw_optics::shading::{
     cloud_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
 };
 use bentstraw_optics::text::number_text;
+use bentstraw_optics::view::{DEFAULT_PRUNE, MAX_SAMPLES};
 use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 
-use crate::camera::MAX_SAMPLES;
 use crate::error::{Error, Result};
 use crate::files;
 
@@ -23,7 +23,18 @@ use crate::files;
 /// report's width, or a column of a printed A4 page at 300 dpi.
 pub const REPORT_SIZE: (u32, u32) = (1000, 750);
 /// Pruning threshold of the report's Fresnel pictures.
-pub const REPORT_PRUNE: f64 = 1e-4;
+pub const REPORT_PRUNE: f64 = DEFAULT_PRUNE;
+
+/// `samples` per pixel side if within 1..=[`MAX_SAMPLES`], else the message that refuses it.
+pub fn checked_samples(samples: u32) -> std::result::Result<u32, String> {
+    if (1..=MAX_SAMPLES).contains(&samples) {
+        Ok(samples)
+    } else {
+        Err(format!(
+            "--samples {samples} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}"
+        ))
+    }
+}
 
 /// The PNG encoding of `picture`.
 pub fn png_bytes(picture: &RgbPicture) -> Result<Vec<u8>> {
@@ -55,10 +66,8 @@ pub fn checked_shading(
             number_text(prune)
         ));
     }
-    if !(1..=MAX_SAMPLES).contains(&samples) {
-        broken.push(format!(
-            "--samples {samples} is not allowed: samples per pixel side must be between 1 and {MAX_SAMPLES}"
-        ));
+    if let Err(message) = checked_samples(samples) {
+        broken.push(message);
     }
     if !broken.is_empty() {
         return Err(Error::Refused(broken.join("\n")));

@@ -1503,12 +1503,15 @@ pub(crate) fn text_width(s: &str, size: f64) -> i32 {
         .map(|((x0, _), (x1, _))| x1 - x0)
         .unwrap_or((s.len() as f64 * size * 0.6) as i32)
 }
+
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
     use bentstraw_optics::sampling::sample_image;
-    use bentstraw_optics::scene::{Scene, REFERENCES};
-    use bentstraw_optics::sketch::{CIRCLE_SEGMENTS, WIRE_VERTICALS};
+    use bentstraw_optics::scene::{
+        Scene, GLASS_HEIGHT, GLASS_RADIUS, REFERENCES, STRAW_HEIGHT, STRAW_RADIUS,
+    };
+    use bentstraw_optics::sketch::{water_segments, CIRCLE_SEGMENTS, WIRE_VERTICALS};
 
     /// A point of colour `color` at `position` (the other fields do not matter for drawing).
     pub(crate) fn point(position: Vec3, color: u8) -> ImagePoint {

@@ -602,6 +602,10 @@ fn _engine(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "DEFAULT_MIN_COVERAGE",
         bentstraw_optics::check::DEFAULT_MIN_COVERAGE,
     )?;
+    m.add("DEFAULT_POINTS", bentstraw_optics::view::DEFAULT_POINTS)?;
+    m.add("DEFAULT_PRUNE", bentstraw_optics::view::DEFAULT_PRUNE)?;
+    m.add("DEFAULT_SAMPLES", bentstraw_optics::view::DEFAULT_SAMPLES)?;
+    m.add("DEFAULT_SIZE", bentstraw_optics::view::DEFAULT_SIZE)?;
     m.add("COLOR_NAMES", COLOR_NAMES.to_vec())?;
     m.add("COLOR_RGB", COLOR_RGB.to_vec())?;
     Ok(())

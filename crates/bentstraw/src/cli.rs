@@ -2,7 +2,9 @@
 
 use std::path::PathBuf;
 
+use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
 use bentstraw_optics::setup::{SceneValues, Setup};
+use bentstraw_optics::view::{DEFAULT_POINTS, DEFAULT_PRUNE, DEFAULT_SAMPLES};
 use bentstraw_outputs::camera::CameraSpec;
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
 use bentstraw_outputs::scene_input::SceneSource;
@@ -93,7 +95,7 @@ pub struct SceneFlags {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 10,
+        default_value_t = DEFAULT_MAX_EVENTS,
         allow_hyphen_values = true
     )]
     pub max_events: u32,
@@ -125,7 +127,7 @@ pub struct OptionalSceneFlags {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 10,
+        default_value_t = DEFAULT_MAX_EVENTS,
         allow_hyphen_values = true
     )]
     pub max_events: u32,
@@ -153,7 +155,7 @@ pub struct SimulateArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 20000,
+        default_value_t = DEFAULT_POINTS,
         allow_hyphen_values = true
     )]
     pub points: usize,
@@ -194,7 +196,7 @@ pub struct TableArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 20000,
+        default_value_t = DEFAULT_POINTS,
         allow_hyphen_values = true
     )]
     pub points: usize,
@@ -291,12 +293,12 @@ pub struct RenderArgs {
     #[arg(
         long,
         value_name = "W",
-        default_value_t = 1e-4,
+        default_value_t = DEFAULT_PRUNE,
         allow_hyphen_values = true
     )]
     pub prune: f64,
     /// Samples per pixel side for anti-aliasing (N×N rays in pixels at an edge), 1..=16
-    #[arg(long, value_name = "N", default_value_t = 3)]
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_SAMPLES)]
     pub samples: u32,
     /// The picture (PNG)
     #[arg(long, value_name = "FILE.png")]
@@ -394,7 +396,7 @@ pub struct ExploreArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 20000,
+        default_value_t = DEFAULT_POINTS,
         allow_hyphen_values = true
     )]
     pub points: usize,

@@ -13,6 +13,7 @@ mod check_cli;
 mod cli;
 mod explore_server;
 mod figures_cli;
+mod golden;
 mod outputs_cli;
 mod render_cli;
 mod report_cli;

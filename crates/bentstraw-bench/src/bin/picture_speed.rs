@@ -17,7 +17,7 @@ use bentstraw_optics::world::World;
 /// Timed pictures per case (the median is printed).
 const REPEAT: usize = 20;
 /// Fresnel branches lighter than this are abandoned (`render`'s and `bench`'s default).
-const PRUNE: f64 = 1e-4;
+const PRUNE: f64 = bentstraw_optics::view::DEFAULT_PRUNE;
 /// Picture size and vertical field of view (`bench`'s).
 const SIZE: (u32, u32) = (1024, 768);
 const FOV_DEG: f64 = 50.0;

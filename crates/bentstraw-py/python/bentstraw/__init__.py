@@ -44,6 +44,10 @@ __all__ = [
     "DEFAULT_MAX_EVENTS",
     "DEFAULT_TOLERANCE",
     "DEFAULT_MIN_COVERAGE",
+    "DEFAULT_POINTS",
+    "DEFAULT_PRUNE",
+    "DEFAULT_SAMPLES",
+    "DEFAULT_SIZE",
     "COLOR_NAMES",
     "COLOR_RGB",
     "__version__",
@@ -58,6 +62,14 @@ DEFAULT_MAX_EVENTS: int = _engine.DEFAULT_MAX_EVENTS
 DEFAULT_TOLERANCE: float = _engine.DEFAULT_TOLERANCE
 #: Smallest share of each colour's true image a complete solution covers.
 DEFAULT_MIN_COVERAGE: float = _engine.DEFAULT_MIN_COVERAGE
+#: Image points asked for when no number is given.
+DEFAULT_POINTS: int = _engine.DEFAULT_POINTS
+#: Fresnel branches lighter than this are abandoned, by default.
+DEFAULT_PRUNE: float = _engine.DEFAULT_PRUNE
+#: Samples per pixel side at a picture's edges, by default.
+DEFAULT_SAMPLES: int = _engine.DEFAULT_SAMPLES
+#: A picture's size ``(w, h)`` in pixels, by default.
+DEFAULT_SIZE: Tuple[int, int] = tuple(_engine.DEFAULT_SIZE)  # type: ignore[assignment]
 #: The names of the colour codes 1, 2, ...: a straw's five sections, then a coin, a card, an arrow.
 COLOR_NAMES: Tuple[str, ...] = tuple(_engine.COLOR_NAMES)
 #: The colours of the codes 1, 2, ... as RGB in 0..1, as the figures draw them: ``COLOR_RGB[code - 1]``.
@@ -344,7 +356,7 @@ def simulate(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
-    points: int = 20000,
+    points: int = DEFAULT_POINTS,
     image_model: str = "course",
 ) -> Simulation:
     """The straw's virtual image: at least ``points`` image points seen from ``observer``.
@@ -376,13 +388,13 @@ def render(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
-    size: Tuple[int, int] = (800, 600),
+    size: Tuple[int, int] = DEFAULT_SIZE,
     target: Optional[Vector3] = None,
     fov: Optional[float] = None,
     mode: str = "fresnel",
-    prune: float = 1e-4,
+    prune: float = DEFAULT_PRUNE,
     backdrop: str = "checker",
-    samples: int = 3,
+    samples: int = DEFAULT_SAMPLES,
     weights: bool = False,
 ) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
     """The picture the observer's eye gets: an ``(h, w, 3)`` uint8 array, the pixels of the PNG

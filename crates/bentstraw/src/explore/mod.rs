@@ -7,6 +7,7 @@ mod origin;
 mod server;
 mod work;
 
+use bentstraw_optics::view::{CLASSIC_OBSERVER, CLASSIC_STRAW, CLASSIC_WATER_HEIGHT};
 use std::io::Write;
 
 use bentstraw_optics::scene::WATER_INDEX;
@@ -134,13 +135,13 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
             }
         }
     } else {
-        let o = v.observer.unwrap_or([0.3, 0.0, 0.25]);
-        let [x, y] = v.straw.unwrap_or([0.0, 0.03]);
+        let o = v.observer.unwrap_or(CLASSIC_OBSERVER);
+        let [x, y] = v.straw.unwrap_or(CLASSIC_STRAW);
         // Checked by the caller, with the page's own rules and messages.
         Values {
             observer: o,
             straw: [x, y],
-            water_height: v.water_height.unwrap_or(0.15),
+            water_height: v.water_height.unwrap_or(CLASSIC_WATER_HEIGHT),
             n_water: v.n_water.unwrap_or(WATER_INDEX),
             max_events: v.max_events,
         }
