@@ -68,6 +68,14 @@ pub const GALLERY: [(&str, &str); 16] = [
     ),
 ];
 
+/// The assignment's own scene as a scene file (`scenes/spec.toml`): name and text.
+pub const SPEC: (&str, &str) = ("spec", include_str!("../../../scenes/spec.toml"));
+
+/// Every scene known by name from any folder: the assignment's own and the gallery's.
+pub fn named_scenes() -> impl Iterator<Item = (&'static str, &'static str)> {
+    std::iter::once(SPEC).chain(GALLERY)
+}
+
 /// What a scene file says it shows: its opening comment, as one paragraph.
 pub fn opening_comment(text: &str) -> String {
     text.lines()

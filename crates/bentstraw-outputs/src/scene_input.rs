@@ -8,7 +8,7 @@ use bentstraw_optics::setup::{self, SceneValues, Setup, MAX_SCENE_FILE_BYTES};
 
 use crate::error::{Error, Result};
 use crate::files::{read_input, shown, Unread};
-use crate::gallery::GALLERY;
+use crate::gallery::named_scenes;
 
 /// The scene's inputs as the flags give them: a file (or a gallery scene by name), and the values
 /// that override it or, without a file, make the assignment's scene.
@@ -55,15 +55,16 @@ pub fn gallery_setup(name: &str, text: &str, max_events: u32) -> Result<Setup> {
     Ok(Setup::from_text(name, text, &values)?)
 }
 
-/// The gallery's scene `path` names, when no such file exists: `leaning-straw` or
-/// `leaning-straw.toml` from any folder (a file of that name, where there is one, wins).
+/// The built-in scene `path` names (the assignment's `spec` or a gallery scene), when no such file
+/// exists: `leaning-straw` or `leaning-straw.toml` from any folder (a file of that name, where
+/// there is one, wins).
 pub fn built_in(path: &Path) -> Option<(&'static str, &'static str)> {
     if path.exists() || path.components().count() != 1 {
         return None;
     }
     let name = path.to_str()?;
     let stem = name.strip_suffix(".toml").unwrap_or(name);
-    GALLERY.iter().find(|(s, _)| *s == stem).copied()
+    named_scenes().find(|(s, _)| *s == stem)
 }
 
 /// Reads and checks the scene file at `path`; every refusal names the file.

@@ -69,9 +69,9 @@ comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit 
 /// that the values override.
 #[derive(Args, Debug, Clone)]
 pub struct SceneFlags {
-    /// A scene file (TOML, see scenes/), or a gallery scene by name from any folder (e.g.
-    /// leaning-straw): the observer it names is used when --observer is absent, and --straw,
-    /// --water-height and --n-water change its one straw and one liquid
+    /// A scene file (TOML, see scenes/), or a gallery scene or the assignment's own (spec) by
+    /// name from any folder (e.g. leaning-straw): the observer it names is used when --observer
+    /// is absent, and --straw, --water-height and --n-water change its one straw and one liquid
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
     /// Observer position X,Y,Z in metres, e.g. 0,0.1,0.1
@@ -105,9 +105,9 @@ pub struct SceneFlags {
 /// every one optional.
 #[derive(Args, Debug, Clone)]
 pub struct OptionalSceneFlags {
-    /// A scene file (TOML, see scenes/), or a gallery scene by name from any folder (e.g.
-    /// leaning-straw): the observer it names is used when --observer is absent, and --straw,
-    /// --water-height and --n-water change its one straw and one liquid
+    /// A scene file (TOML, see scenes/), or a gallery scene or the assignment's own (spec) by
+    /// name from any folder (e.g. leaning-straw): the observer it names is used when --observer
+    /// is absent, and --straw, --water-height and --n-water change its one straw and one liquid
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
     /// Observer position X,Y,Z in metres [default: the scene file's; without one, reference 2 in explore, the four reference views in bench]

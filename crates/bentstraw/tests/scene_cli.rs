@@ -88,12 +88,22 @@ fn the_spec_file_gives_the_same_points_as_the_same_flags() {
             "flags.csv",
         ],
     ));
+    // By its name from any folder, as the gallery's scenes are.
+    succeeded(&run(
+        dir.path(),
+        &["simulate", "--scene", "spec", "--output", "name.csv"],
+    ));
     let file = std::fs::read(dir.path().join("file.csv")).unwrap();
     let flags = std::fs::read(dir.path().join("flags.csv")).unwrap();
+    let name = std::fs::read(dir.path().join("name.csv")).unwrap();
     assert!(file.len() > 1000);
     assert!(
         file == flags,
         "the file's scene is the flags' scene, byte for byte"
+    );
+    assert!(
+        name == file,
+        "spec by its name is the file scenes/spec.toml"
     );
 }
 
