@@ -29,6 +29,8 @@ pub mod ray_diagram;
 pub mod report;
 #[cfg(feature = "figures")]
 pub mod report_pdf;
+#[cfg(feature = "figures")]
+pub mod report_plan;
 pub mod scene_input;
 pub mod solution;
 #[cfg(feature = "figures")]

@@ -26,6 +26,7 @@ use rayon::slice::ParallelSliceMut;
 use crate::error::{Error, Result};
 use crate::files;
 use crate::svg_marks::merge_marks;
+use bentstraw_optics::scene::Scene;
 use bentstraw_optics::setup::Setup;
 
 /// Width of every figure in pixels (printed 8.5 cm wide: see [`TEXT`]).
@@ -1502,6 +1503,20 @@ pub(crate) fn text_width(s: &str, size: f64) -> i32 {
         .layout_box(s)
         .map(|((x0, _), (x1, _))| x1 - x0)
         .unwrap_or((s.len() as f64 * size * 0.6) as i32)
+}
+
+/// A short title naming the inputs, for figures.
+pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
+    format!(
+        "observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}",
+        observer.x,
+        observer.y,
+        observer.z,
+        scene.straw_x(),
+        scene.straw_y(),
+        scene.water_height(),
+        scene.n_water()
+    )
 }
 
 #[cfg(test)]

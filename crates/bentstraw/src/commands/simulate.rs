@@ -8,9 +8,7 @@ use std::time::{Duration, Instant};
 
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, ApparentPoint, StereoImage};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
-use bentstraw_optics::scene::Scene;
 use bentstraw_optics::world::COLOR_NAMES;
-use bentstraw_optics::Vec3;
 
 use crate::cli::{ImageModelArg, SimulateArgs};
 use crate::error::CliResult;
@@ -21,6 +19,7 @@ use bentstraw_outputs::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
+use bentstraw_outputs::plot::simulation_title;
 use bentstraw_outputs::words::Lang;
 use bentstraw_outputs::writers::{
     check_points_asked, write_points, ModelPoints, PointFormat, PointSet,
@@ -223,20 +222,6 @@ fn inputs_title(scene: &Setup) -> String {
             observer.z
         ),
     }
-}
-
-/// A short title naming the inputs, for figures.
-pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
-    format!(
-        "observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}",
-        observer.x,
-        observer.y,
-        observer.z,
-        scene.straw_x(),
-        scene.straw_y(),
-        scene.water_height(),
-        scene.n_water()
-    )
 }
 
 /// The one-screen summary printed on stderr; `written` names the files written, one a line.
