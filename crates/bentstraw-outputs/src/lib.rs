@@ -33,6 +33,7 @@ pub mod report_pdf;
 pub mod report_plan;
 pub mod scene_input;
 pub mod solution;
+pub mod summary;
 #[cfg(feature = "figures")]
 mod svg_marks;
 #[cfg(test)]

@@ -1,11 +1,6 @@
 //! `bentstraw explore`: a live explorer in the browser, served by bentstraw itself on this
-//! machine. The page (embedded in the binary, no network needed) asks the server for frames; the
-//! server only checks inputs and calls the library.
-
-mod guard;
-mod origin;
-mod server;
-mod work;
+//! machine ([`bentstraw_server`]): the flags turned into the page's first view, the address
+//! bound, the browser opened.
 
 use bentstraw_optics::view::{CLASSIC_OBSERVER, CLASSIC_STRAW, CLASSIC_WATER_HEIGHT};
 use std::io::Write;
@@ -47,7 +42,7 @@ pub fn run(args: &ExploreArgs) -> CliResult {
     if !bound.ip().is_loopback() {
         crate::progress::tell(&format!(
             "warning: listening on {}: anyone who can reach this machine over the network can use the explorer and make it compute (--host 127.0.0.1 keeps it to this machine)\n",
-            server::url_host(bound)
+            bentstraw_server::url_host(bound)
         ));
     }
     // Every address includes this machine's own: the browser here opens that one.
@@ -60,13 +55,17 @@ pub fn run(args: &ExploreArgs) -> CliResult {
     } else {
         bound
     };
-    let url = format!("http://{}:{}/", server::url_host(shown), shown.port());
+    let url = format!(
+        "http://{}:{}/",
+        bentstraw_server::url_host(shown),
+        shown.port()
+    );
     println!("bentstraw explore: open {url}  (Ctrl-C stops the server)");
     let _ = std::io::stdout().flush();
     if !args.no_open {
         open_browser(&url);
     }
-    server::serve(listener, &initial).map_err(cannot)
+    bentstraw_server::serve(listener, &initial).map_err(cannot)
 }
 
 /// The query of the view given on the command line (flags as the page's parameters): a scene file
