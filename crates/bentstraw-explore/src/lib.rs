@@ -22,7 +22,7 @@ use bentstraw_optics::rule::{Param, Rule};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{DEFAULT_MAX_EVENTS, WATER_INDEX};
 use bentstraw_optics::scene_file::{Container, Observer, SceneForm};
-use bentstraw_optics::shading::{Backdrop, RgbPicture, ShadingMode, ShadingOptions};
+use bentstraw_optics::shading::{RgbPicture, ShadingOptions};
 use bentstraw_optics::text::clip_text;
 use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
@@ -32,11 +32,12 @@ pub mod page;
 
 use bentstraw_optics::setup::{SceneValues, Setup, MAX_SCENE_FILE_BYTES};
 use bentstraw_optics::sketch::{object_outlines, world_wireframe};
-use bentstraw_optics::view::{DEFAULT_POINTS, DEFAULT_PRUNE, DEFAULT_SAMPLES};
+use bentstraw_optics::text::refuse_choice;
+use bentstraw_optics::view::{PictureSpec, DEFAULT_POINTS};
 use bentstraw_outputs::camera::{scene_camera, CameraSpec};
 use bentstraw_outputs::gallery::{opening_comment, GALLERY};
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
-use bentstraw_outputs::pictures::checked_samples;
+use bentstraw_outputs::pictures::checked_shading;
 use bentstraw_outputs::pictures::png_bytes;
 use bentstraw_outputs::scene_input::{gallery_setup, parse_scene_text, SceneSource};
 use bentstraw_outputs::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
@@ -245,12 +246,10 @@ pub struct View {
     pub camera_args: CameraSpec,
     /// The camera (validated).
     pub camera: Camera,
-    /// Fresnel (true) or course picture.
-    pub fresnel: bool,
-    /// The checkerboard backdrop (true) or a plain one.
-    pub checker: bool,
-    /// Anti-aliasing samples per pixel side.
-    pub samples: u32,
+    /// The picture as asked for: mode, backdrop, samples, pruning weight.
+    pub picture: PictureSpec,
+    /// Its shading (checked).
+    shading: ShadingOptions,
     /// Image points asked for (0: none).
     pub points: usize,
 }
@@ -275,11 +274,7 @@ fn scene_text(q: &HashMap<String, String>) -> Result<Option<(String, &str)>, Str
             Some((stem, text)) => Ok(Some((stem.to_string(), text))),
             None => {
                 let names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
-                Err(format!(
-                    "invalid value '{}' for 'scene' [possible values: {}]",
-                    clip_text(name, 40),
-                    names.join(", ")
-                ))
+                Err(refuse_choice("scene", name, &names))
             }
         },
         (None, None) => Ok(None),
@@ -471,30 +466,17 @@ impl View {
             }
         }
         let camera = scene_camera(&scene, &camera_args).map_err(|e| e.to_string())?;
-        let fresnel = match get(q, "mode").unwrap_or("fresnel") {
-            "fresnel" => true,
-            "course" => false,
-            other => {
-                return Err(format!(
-                    "invalid value '{}' for '--mode' [possible values: course, fresnel]",
-                    clip_text(other, 40)
-                )
-                .into())
-            }
-        };
-        let checker = match get(q, "backdrop").unwrap_or("checker") {
-            "checker" => true,
-            "none" => false,
-            other => {
-                return Err(format!(
-                    "invalid value '{}' for '--backdrop' [possible values: none, checker]",
-                    clip_text(other, 40)
-                )
-                .into())
-            }
-        };
-        let samples = get(q, "samples").map_or(Ok(DEFAULT_SAMPLES), |t| number(t, "samples"))?;
-        let samples = checked_samples(samples)?;
+        let mut picture = PictureSpec::default();
+        if let Some(mode) = get(q, "mode") {
+            picture = picture.with_mode("--mode", mode)?;
+        }
+        if let Some(backdrop) = get(q, "backdrop") {
+            picture = picture.with_backdrop("--backdrop", backdrop)?;
+        }
+        if let Some(samples) = get(q, "samples") {
+            picture.samples = number(samples, "samples")?;
+        }
+        let shading = checked_shading(&picture).map_err(|e| e.to_string())?;
         let points = get(q, "points").map_or(Ok(DEFAULT_POINTS), |t| number(t, "points"))?;
         if points > MAX_POINTS {
             return Err(format!(
@@ -509,9 +491,8 @@ impl View {
             scene_args,
             camera_args,
             camera,
-            fresnel,
-            checker,
-            samples,
+            picture,
+            shading,
             points,
         })
     }
@@ -522,22 +503,7 @@ impl View {
     }
 
     fn shading(&self) -> ShadingOptions {
-        ShadingOptions {
-            mode: if self.fresnel {
-                ShadingMode::Fresnel {
-                    prune_below: DEFAULT_PRUNE,
-                }
-            } else {
-                ShadingMode::Course
-            },
-            backdrop: if self.checker {
-                Backdrop::Checker
-            } else {
-                Backdrop::Plain
-            },
-            samples: self.samples,
-            outline: true,
-        }
+        self.shading
     }
 
     /// The scene's arguments, as `simulate` and `render` take them.
@@ -605,15 +571,9 @@ impl View {
         if let Some(f) = c.fov {
             s += &format!(" --fov {f}");
         }
-        s += &format!(
-            " --size {}x{} --mode {} --backdrop {}",
-            self.camera.width,
-            self.camera.height,
-            if self.fresnel { "fresnel" } else { "course" },
-            if self.checker { "checker" } else { "none" }
-        );
-        if self.samples != DEFAULT_SAMPLES {
-            s += &format!(" --samples {}", self.samples);
+        s += &format!(" --size {}x{}", self.camera.width, self.camera.height);
+        for arg in self.picture.args() {
+            s += &format!(" {arg}");
         }
         s + " --output view.png"
     }
@@ -784,10 +744,7 @@ fn place(
             .collect()),
         other => Err(Reply::text(
             400,
-            format!(
-                "invalid value '{}' for '--image-model' [possible values: eye, stereo]",
-                clip_text(other, 40)
-            ),
+            refuse_choice("--image-model", other, &["eye", "stereo"]),
         )),
     }
 }
@@ -998,9 +955,10 @@ pub fn export_reply(
         return Ok(r);
     }
     if !["course", "eye", "stereo"].contains(&model) {
-        return Err(format!(
-            "invalid value '{}' for '--image-model' [possible values: course, eye, stereo]",
-            clip_text(model, 40)
+        return Err(refuse_choice(
+            "--image-model",
+            model,
+            &["course", "eye", "stereo"],
         ));
     }
     let points = view.points.max(1);
@@ -1045,12 +1003,7 @@ pub fn export_reply(
             write_ply(&mut body, &set).map(|_| "application/octet-stream"),
             "view.ply",
         ),
-        other => {
-            return Err(format!(
-                "invalid value '{}' for 'format' [possible values: csv, ply, png]",
-                clip_text(other, 40)
-            ))
-        }
+        other => return Err(refuse_choice("format", other, &["csv", "ply", "png"])),
     };
     let kind = kind.map_err(|e| format!("cannot write the points: {e}"))?;
     let mut r = Reply::bytes(kind, body);

@@ -22,3 +22,14 @@ pub fn clip_text(text: &str, max: usize) -> String {
         t
     }
 }
+
+/// The refusal of `value` for the option `option`, which takes one of `choices`: the command
+/// line's words (`invalid value 'wave' for '--mode' [possible values: course, fresnel]`), the
+/// value clipped.
+pub fn refuse_choice(option: &str, value: &str, choices: &[&str]) -> String {
+    format!(
+        "invalid value '{}' for '{option}' [possible values: {}]",
+        clip_text(value, 40),
+        choices.join(", ")
+    )
+}

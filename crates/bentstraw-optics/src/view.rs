@@ -30,3 +30,97 @@ pub const CLASSIC_STRAW: [f64; 2] = [0.0, 0.03];
 
 /// The water's height in the classic view (m).
 pub const CLASSIC_WATER_HEIGHT: f64 = 0.15;
+
+/// The picture's modes by name: the course's one ray per sample, or Fresnel's weighted branches.
+pub const MODES: [&str; 2] = ["course", "fresnel"];
+
+/// The backdrops by name: none (a plain background) or a checkerboard wall and floor.
+pub const BACKDROPS: [&str; 2] = ["none", "checker"];
+
+/// How the observer's picture is drawn, as asked for: its mode, backdrop, pruning weight and
+/// samples (the command line's `--mode`, `--backdrop`, `--prune`, `--samples`, the page's query
+/// and Python's keywords of the same names). Checked where it is turned into shading.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PictureSpec {
+    /// Fresnel's weighted branches (true) or the course's one ray per sample.
+    pub fresnel: bool,
+    /// A checkerboard backdrop (true) or a plain one.
+    pub checker: bool,
+    /// Fresnel branches lighter than this are abandoned.
+    pub prune: f64,
+    /// Samples per pixel side at edges.
+    pub samples: u32,
+}
+
+impl Default for PictureSpec {
+    fn default() -> Self {
+        PictureSpec {
+            fresnel: true,
+            checker: true,
+            prune: DEFAULT_PRUNE,
+            samples: DEFAULT_SAMPLES,
+        }
+    }
+}
+
+impl PictureSpec {
+    /// This spec in the mode named `name` (one of [`MODES`]), or the refusal naming the option
+    /// as `option` (`--mode` on the command line and in the page, `mode` in Python).
+    pub fn with_mode(self, option: &str, name: &str) -> Result<PictureSpec, String> {
+        match name {
+            "course" => Ok(PictureSpec {
+                fresnel: false,
+                ..self
+            }),
+            "fresnel" => Ok(PictureSpec {
+                fresnel: true,
+                ..self
+            }),
+            other => Err(crate::text::refuse_choice(option, other, &MODES)),
+        }
+    }
+
+    /// This spec with the backdrop named `name` (one of [`BACKDROPS`]), or the refusal naming
+    /// the option as `option`.
+    pub fn with_backdrop(self, option: &str, name: &str) -> Result<PictureSpec, String> {
+        match name {
+            "none" => Ok(PictureSpec {
+                checker: false,
+                ..self
+            }),
+            "checker" => Ok(PictureSpec {
+                checker: true,
+                ..self
+            }),
+            other => Err(crate::text::refuse_choice(option, other, &BACKDROPS)),
+        }
+    }
+
+    /// The mode's name.
+    pub fn mode(&self) -> &'static str {
+        MODES[self.fresnel as usize]
+    }
+
+    /// The backdrop's name.
+    pub fn backdrop(&self) -> &'static str {
+        BACKDROPS[self.checker as usize]
+    }
+
+    /// The command line's arguments that draw this picture: the mode and the backdrop always,
+    /// the samples and the pruning weight when they are not the defaults.
+    pub fn args(&self) -> Vec<String> {
+        let mut args = vec![
+            "--mode".to_string(),
+            self.mode().to_string(),
+            "--backdrop".to_string(),
+            self.backdrop().to_string(),
+        ];
+        if self.samples != DEFAULT_SAMPLES {
+            args.extend(["--samples".to_string(), self.samples.to_string()]);
+        }
+        if self.prune != DEFAULT_PRUNE {
+            args.extend(["--prune".to_string(), self.prune.to_string()]);
+        }
+        args
+    }
+}

@@ -10,7 +10,7 @@ use bentstraw_optics::shading::{
     cloud_picture, splat_radius, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
 };
 use bentstraw_optics::text::number_text;
-use bentstraw_optics::view::{DEFAULT_PRUNE, MAX_SAMPLES};
+use bentstraw_optics::view::{PictureSpec, DEFAULT_PRUNE, MAX_SAMPLES};
 use bentstraw_optics::world::World;
 use bentstraw_optics::Vec3;
 use image::codecs::png::PngEncoder;
@@ -50,15 +50,16 @@ pub fn png_bytes(picture: &RgbPicture) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// The shading of a picture as asked for (`fresnel` or the course's one colour per sample, the
+/// The shading of a picture as asked for (Fresnel or the course's one colour per sample, the
 /// pruning weight, a checker backdrop or none, samples per pixel side), or a refusal naming every
 /// value outside its rule.
-pub fn checked_shading(
-    fresnel: bool,
-    prune: f64,
-    checker: bool,
-    samples: u32,
-) -> Result<ShadingOptions> {
+pub fn checked_shading(spec: &PictureSpec) -> Result<ShadingOptions> {
+    let &PictureSpec {
+        fresnel,
+        checker,
+        prune,
+        samples,
+    } = spec;
     let mut broken = Vec::new();
     if !prune.is_finite() || !(0.0..1.0).contains(&prune) {
         broken.push(format!(

@@ -18,6 +18,8 @@ use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::sampling::{light_path_types, sample_image};
 use bentstraw_optics::setup::{SceneValues, Setup};
 use bentstraw_optics::text::number_text;
+use bentstraw_optics::text::refuse_choice;
+use bentstraw_optics::view::PictureSpec;
 use bentstraw_optics::world::{COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use bentstraw_outputs::camera::{scene_camera, CameraSpec};
@@ -164,9 +166,10 @@ fn simulate<'py>(
     image_model: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     if !matches!(image_model, "course" | "eye" | "stereo") {
-        return Err(PyValueError::new_err(format!(
-            "image_model '{}' is not allowed: it must be course, eye or stereo",
-            bentstraw_optics::text::clip_text(image_model, 40)
+        return Err(PyValueError::new_err(refuse_choice(
+            "image_model",
+            image_model,
+            &["course", "eye", "stereo"],
         )));
     }
     check_points_asked(points, image_model).map_err(python_error)?;
@@ -432,28 +435,31 @@ fn render<'py>(
     samples: u32,
     raw: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mut broken = Vec::new();
-    if !matches!(mode, "fresnel" | "course") {
-        broken.push(format!(
-            "mode '{}' is not allowed: it must be fresnel or course",
-            bentstraw_optics::text::clip_text(mode, 40)
-        ));
-    }
-    if !matches!(backdrop, "checker" | "none") {
-        broken.push(format!(
-            "backdrop '{}' is not allowed: it must be checker or none",
-            bentstraw_optics::text::clip_text(backdrop, 40)
-        ));
-    }
+    let asked = PictureSpec {
+        prune,
+        samples,
+        ..PictureSpec::default()
+    };
+    let (with_mode, with_backdrop) = (
+        asked.with_mode("mode", mode),
+        asked.with_backdrop("backdrop", backdrop),
+    );
+    let broken: Vec<String> = [&with_mode, &with_backdrop]
+        .iter()
+        .filter_map(|r| r.as_ref().err().cloned())
+        .collect();
     if !broken.is_empty() {
         return Err(PyValueError::new_err(broken.join("\n")));
     }
+    let spec = PictureSpec {
+        checker: with_backdrop.map_err(PyValueError::new_err)?.checker,
+        ..with_mode.map_err(PyValueError::new_err)?
+    };
     let loaded = &scene.loaded;
-    let spec = CameraSpec { target, fov, size };
-    let camera = scene_camera(loaded, &spec).map_err(python_error)?;
-    let fresnel = mode == "fresnel";
-    let shading =
-        checked_shading(fresnel, prune, backdrop == "checker", samples).map_err(python_error)?;
+    let camera_spec = CameraSpec { target, fov, size };
+    let camera = scene_camera(loaded, &camera_spec).map_err(python_error)?;
+    let fresnel = spec.fresnel;
+    let shading = checked_shading(&spec).map_err(python_error)?;
     let world = &loaded.world;
     let (image, codes, weights) = py.detach(|| {
         let image = picture(world, camera, shading);

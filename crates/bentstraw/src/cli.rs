@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
 use bentstraw_optics::setup::{SceneValues, Setup};
-use bentstraw_optics::view::{DEFAULT_POINTS, DEFAULT_PRUNE, DEFAULT_SAMPLES};
+use bentstraw_optics::view::{PictureSpec, DEFAULT_POINTS, DEFAULT_PRUNE, DEFAULT_SAMPLES};
 use bentstraw_outputs::camera::CameraSpec;
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
 use bentstraw_outputs::scene_input::SceneSource;
@@ -459,6 +459,18 @@ impl From<&CameraArgs> for CameraSpec {
             target: a.target,
             fov: a.fov,
             size: a.size,
+        }
+    }
+}
+
+impl RenderArgs {
+    /// The picture as these flags ask for it.
+    pub fn picture(&self) -> PictureSpec {
+        PictureSpec {
+            fresnel: self.mode == ModeArg::Fresnel,
+            checker: self.backdrop == BackdropArg::Checker,
+            prune: self.prune,
+            samples: self.samples,
         }
     }
 }

@@ -11,7 +11,7 @@ use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::shading::ShadingOptions;
 use bentstraw_optics::world::World;
 
-use crate::cli::{BackdropArg, ModeArg, RenderArgs};
+use crate::cli::{ModeArg, RenderArgs};
 use crate::error::CliResult;
 use crate::progress;
 use bentstraw_outputs::camera::scene_camera;
@@ -70,12 +70,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
 /// The shading options of `args`, checked, and its outputs reserved (the previous picture and raw
 /// file stay until both new ones are complete).
 fn shading_and_outputs(args: &RenderArgs) -> CliResult<(ShadingOptions, OutputSet)> {
-    let options = checked_shading(
-        args.mode == ModeArg::Fresnel,
-        args.prune,
-        args.backdrop == BackdropArg::Checker,
-        args.samples,
-    )?;
+    let options = checked_shading(&args.picture())?;
     let mut outputs = vec![Output {
         flag: "--output",
         path: &args.output,
