@@ -14,12 +14,11 @@ use bentstraw_optics::Vec3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::files;
 use crate::plot::{figure_bytes, font, FigureFormat, Heading, FIGURE_WIDTH, TEXT};
 use crate::words::{self, Lang};
-use bentstraw_optics::scene_file::Observer;
-use bentstraw_optics::setup::Setup;
+use bentstraw_optics::setup::{SceneValues, Setup};
 
 /// Indices of the water the figure is made for: 8 values from 1 to 1.333.
 pub fn indices() -> Vec<f64> {
@@ -83,43 +82,24 @@ pub fn series(label: &str, scene: &Scene, observer: Vec3) -> ValidationSeries {
 /// liquid of index 1, with nothing to vary). The same tracing as the default report's series.
 pub fn liquid_series(label: &str, loaded: &Setup) -> Result<Option<ValidationSeries>> {
     let observer = loaded.observer;
-    if let Some(scene) = loaded.assignment_numbers() {
-        if scene.n_water() == 1.0 {
-            return Ok(None);
-        }
-        let rows = indices_to(scene.n_water())
-            .into_iter()
-            .map(|n| {
-                let s = scene.with_n_water(n).expect("indices are >= 1");
-                row(&World::assignment(&s), observer, n)
-            })
-            .collect();
-        return Ok(Some(ValidationSeries {
-            label: label.to_string(),
-            rows,
-        }));
-    }
-    let description = &loaded.description;
-    let Some(top) = description.liquids.first().map(|l| l.index) else {
+    let Some(top) = loaded.description.liquids.first().map(|l| l.index) else {
         return Ok(None);
     };
     if top == 1.0 {
         return Ok(None);
     }
+    // The same scene, its bottom liquid's index changed, made by the same rules as any other.
+    let values = SceneValues {
+        observer: Some(observer.to_array()),
+        max_events: loaded.world.max_events(),
+        ..SceneValues::default()
+    };
     let mut rows = Vec::new();
     for n in indices_to(top) {
-        let mut d = description.clone();
+        let mut d = loaded.description.clone();
         d.liquids[0].index = n;
-        d.observer = Some(Observer {
-            position: observer,
-            target: loaded
-                .target
-                .filter(|t| *t != observer)
-                .unwrap_or(observer + Vec3::Z),
-        });
-        let world = World::new(&d, loaded.world.max_events())
-            .map_err(|e| Error::Refused(format!("{}: {e}", loaded.name())))?;
-        rows.push(row(&world, observer, n));
+        let setup = Setup::from_description(loaded.name(), d, &values)?;
+        rows.push(row(&setup.world, observer, n));
     }
     Ok(Some(ValidationSeries {
         label: label.to_string(),
