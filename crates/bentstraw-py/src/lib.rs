@@ -612,6 +612,8 @@ fn _engine(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DEFAULT_PRUNE", bentstraw_optics::view::DEFAULT_PRUNE)?;
     m.add("DEFAULT_SAMPLES", bentstraw_optics::view::DEFAULT_SAMPLES)?;
     m.add("DEFAULT_SIZE", bentstraw_optics::view::DEFAULT_SIZE)?;
+    m.add("DEFAULT_MODE", PictureSpec::default().mode())?;
+    m.add("DEFAULT_BACKDROP", PictureSpec::default().backdrop())?;
     m.add("COLOR_NAMES", COLOR_NAMES.to_vec())?;
     m.add("COLOR_RGB", COLOR_RGB.to_vec())?;
     Ok(())

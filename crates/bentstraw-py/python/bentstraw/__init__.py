@@ -48,6 +48,8 @@ __all__ = [
     "DEFAULT_PRUNE",
     "DEFAULT_SAMPLES",
     "DEFAULT_SIZE",
+    "DEFAULT_MODE",
+    "DEFAULT_BACKDROP",
     "COLOR_NAMES",
     "COLOR_RGB",
     "__version__",
@@ -68,6 +70,10 @@ DEFAULT_POINTS: int = _engine.DEFAULT_POINTS
 DEFAULT_PRUNE: float = _engine.DEFAULT_PRUNE
 #: Samples per pixel side at a picture's edges, by default.
 DEFAULT_SAMPLES: int = _engine.DEFAULT_SAMPLES
+#: A picture's mode by default: ``"fresnel"`` (or ``"course"``).
+DEFAULT_MODE: str = _engine.DEFAULT_MODE
+#: A picture's backdrop by default: ``"checker"`` (or ``"none"``).
+DEFAULT_BACKDROP: str = _engine.DEFAULT_BACKDROP
 #: A picture's size ``(w, h)`` in pixels, by default.
 DEFAULT_SIZE: Tuple[int, int] = tuple(_engine.DEFAULT_SIZE)  # type: ignore[assignment]
 #: The names of the colour codes 1, 2, ...: a straw's five sections, then a coin, a card, an arrow.
@@ -391,9 +397,9 @@ def render(
     size: Tuple[int, int] = DEFAULT_SIZE,
     target: Optional[Vector3] = None,
     fov: Optional[float] = None,
-    mode: str = "fresnel",
+    mode: str = DEFAULT_MODE,
     prune: float = DEFAULT_PRUNE,
-    backdrop: str = "checker",
+    backdrop: str = DEFAULT_BACKDROP,
     samples: int = DEFAULT_SAMPLES,
     weights: bool = False,
 ) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:

@@ -14,6 +14,8 @@ DEFAULT_POINTS: int
 DEFAULT_PRUNE: float
 DEFAULT_SAMPLES: int
 DEFAULT_SIZE: Tuple[int, int]
+DEFAULT_MODE: str
+DEFAULT_BACKDROP: str
 COLOR_NAMES: List[str]
 COLOR_RGB: List[List[float]]
 
