@@ -30,10 +30,14 @@ use serde_json::{json, Value};
 
 pub mod page;
 
+use bentstraw_optics::scene::{GLASS_HEIGHT, GLASS_RADIUS, REFERENCES, STRAW_HEIGHT, STRAW_RADIUS};
 use bentstraw_optics::setup::{SceneValues, Setup, MAX_SCENE_FILE_BYTES};
 use bentstraw_optics::sketch::{object_outlines, world_wireframe};
 use bentstraw_optics::text::refuse_choice;
-use bentstraw_optics::view::{PictureSpec, DEFAULT_POINTS};
+use bentstraw_optics::view::{
+    PictureSpec, BACKDROPS, CLASSIC_OBSERVER, CLASSIC_STRAW, CLASSIC_WATER_HEIGHT, DEFAULT_POINTS,
+    DEFAULT_SIZE, MAX_SAMPLES, MODES,
+};
 use bentstraw_outputs::camera::{scene_camera, CameraSpec};
 use bentstraw_outputs::gallery::{opening_comment, GALLERY};
 use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
@@ -367,6 +371,47 @@ pub fn scenes_reply() -> Reply {
         })
         .collect();
     Reply::json(&Value::Array(list))
+}
+
+/// `GET /api/defaults`: the view's defaults as the engine holds them, so that a page states none
+/// of its own: the image points, the picture (mode, backdrop, samples, pruning weight, size), the
+/// scene's (event limit, water's index), the classic first view, the four reference views, and
+/// the assignment's glass and straw.
+pub fn defaults_reply() -> Reply {
+    let picture = PictureSpec::default();
+    let references: Vec<Value> = REFERENCES
+        .iter()
+        .map(|r| {
+            json!({
+                "number": r.number,
+                "observer": vec_json(r.observer),
+                "straw": [r.straw.0, r.straw.1],
+                "waterHeight": r.water_height,
+            })
+        })
+        .collect();
+    Reply::json(&json!({
+        "points": DEFAULT_POINTS,
+        "maxPoints": MAX_POINTS,
+        "mode": picture.mode(),
+        "modes": MODES,
+        "backdrop": picture.backdrop(),
+        "backdrops": BACKDROPS,
+        "samples": picture.samples,
+        "maxSamples": MAX_SAMPLES,
+        "prune": picture.prune,
+        "size": DEFAULT_SIZE,
+        "maxEvents": DEFAULT_MAX_EVENTS,
+        "nWater": WATER_INDEX,
+        "classic": {
+            "observer": CLASSIC_OBSERVER,
+            "straw": CLASSIC_STRAW,
+            "waterHeight": CLASSIC_WATER_HEIGHT,
+        },
+        "references": references,
+        "glass": {"radius": GLASS_RADIUS, "height": GLASS_HEIGHT},
+        "straw": {"radius": STRAW_RADIUS, "height": STRAW_HEIGHT},
+    }))
 }
 
 fn get<'a>(q: &'a HashMap<String, String>, name: &str) -> Option<&'a str> {
@@ -1056,6 +1101,9 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame, memory: &Memory) -> Re
     if path == "/api/scenes" {
         return scenes_reply();
     }
+    if path == "/api/defaults" {
+        return defaults_reply();
+    }
     let q = match parse_query(query) {
         Ok(q) => q,
         Err(e) => return Reply::text(400, e),
@@ -1640,6 +1688,43 @@ mod tests {
             handle("/api/export", &q, &mut frame, &Memory::default()).status,
             409
         );
+    }
+
+    /// The page's defaults are the engine's: the same constants the command line's flags use.
+    #[test]
+    fn defaults_are_the_engines() {
+        let r = handle(
+            "/api/defaults",
+            "",
+            &mut Frame::default(),
+            &Memory::default(),
+        );
+        assert_eq!(r.status, 200);
+        let v: Value = serde_json::from_slice(&r.body).unwrap();
+        assert_eq!(v["points"], DEFAULT_POINTS);
+        assert_eq!(v["samples"], bentstraw_optics::view::DEFAULT_SAMPLES);
+        assert_eq!(v["mode"], "fresnel");
+        assert_eq!(v["backdrop"], "checker");
+        assert_eq!(v["size"], json!([800, 600]));
+        assert_eq!(v["classic"]["observer"], json!(CLASSIC_OBSERVER));
+        assert_eq!(v["references"].as_array().unwrap().len(), 4);
+        assert_eq!(v["references"][1]["observer"], json!([0.1, 0.0, 0.1]));
+        // A view made of the defaults alone is the classic one, accepted as the page sends it.
+        let c = &v["classic"];
+        let q = format!(
+            "observer={}&straw={}&water-height={}",
+            list(&c["observer"]),
+            list(&c["straw"]),
+            c["waterHeight"]
+        );
+        let view = View::from_query(&query(&q)).unwrap();
+        assert_eq!(view.picture, PictureSpec::default());
+        assert_eq!(view.points, DEFAULT_POINTS);
+    }
+
+    fn list(v: &Value) -> String {
+        let items: Vec<String> = v.as_array().unwrap().iter().map(Value::to_string).collect();
+        items.join(",")
     }
 
     #[test]
