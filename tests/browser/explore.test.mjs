@@ -3,7 +3,7 @@
 // site) served by a plain static server, every answer computed by the engine in WebAssembly.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from "node:fs";
+import { mkdirSync, mkdtempSync, readdirSync, readFileSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
 import { startServer, startStaticServer, launch, openPage, waitReady, runCli, ROOT } from "./harness.mjs";
@@ -185,6 +185,8 @@ test("a preset loads a reference simulation whose points are simulate's", async 
   const exported = await page.evaluate(async () => {
     const q = new URLSearchParams(location.hash.slice(1));
     q.set("format", "csv");
+    // Asked through the page's own engine module, as the page asks.
+    const { engineFetch } = await import(new URL("engine.js", document.baseURI).href);
     return (await engineFetch("test", "/api/export", q.toString())).text();
   });
   assert.equal(exported, readFileSync(csv, "utf8"));
@@ -480,7 +482,9 @@ test("a busy port is named in one line, exit code 2; Ctrl-C stops the server", S
 // ---- languages: English and French ----
 /** The page's texts marked data-i18n / data-i18n-title against language `lang`'s table:
  * a list of the differences (empty if none). */
-const i18nMismatches = (page, lang) => page.evaluate((lang) => {
+const i18nMismatches = (page, lang) => page.evaluate(async (lang) => {
+  // The page's own module: the tables and the touch-screen rule it uses.
+  const { I18N, touchKey } = await import(new URL("i18n.js", document.baseURI).href);
   const wrong = [];
   const table = I18N[lang];
   for (const el of document.querySelectorAll("[data-i18n]")) {
@@ -552,13 +556,16 @@ test("a French browser gets the page in French; EN switches it to English, remem
 test("the English and French tables have the same keys, and hold every text the page asks for", async () => {
   const { page, context } = await openPage(browser, server.url);
   await page.goto(server.url);
-  const [en, fr] = await page.evaluate(() => [Object.keys(I18N.en).sort(), Object.keys(I18N.fr).sort()]);
+  // The page's own tables, from its i18n module.
+  const I18N = await page.evaluate(async () => (await import(new URL("i18n.js", document.baseURI).href)).I18N);
+  const [en, fr] = [Object.keys(I18N.en).sort(), Object.keys(I18N.fr).sort()];
   assert.deepEqual(fr, en);
-  const empty = await page.evaluate(() => Object.entries(I18N).flatMap(([l, tb]) => Object.entries(tb).filter(([k, v]) => !v && !k.startsWith("focus.in_front")).map(([k]) => `${l} ${k}`)));
+  const empty = Object.entries(I18N).flatMap(([l, tb]) => Object.entries(tb).filter(([k, v]) => !v && !k.startsWith("focus.in_front")).map(([k]) => `${l} ${k}`));
   assert.deepEqual(empty, []);
-  // Every key explorer.js and index.html name is in the table.
+  // Every key the page's modules and index.html name is in the table.
   const dir = path.join(ROOT, "crates/bentstraw-explore/page");
-  const js = readFileSync(path.join(dir, "explorer.js"), "utf8"), html = readFileSync(path.join(dir, "index.html"), "utf8");
+  const modules = readdirSync(dir).filter((f) => f.endsWith(".js") && f !== "i18n.js");
+  const js = modules.map((f) => readFileSync(path.join(dir, f), "utf8")).join("\n"), html = readFileSync(path.join(dir, "index.html"), "utf8");
   const named = [...js.matchAll(/\bt\("([^"]+)"/g), ...js.matchAll(/\bkey: "([^"]+)"/g), ...html.matchAll(/data-i18n(?:-title)?="([^"]+)"/g)].map((m) => m[1]);
   assert.ok(named.length > 50, `${named.length} keys named`);
   // (A key made up at run time, t("colour." + code), is checked by its beginning.)

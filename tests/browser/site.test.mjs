@@ -90,7 +90,7 @@ test("the site is plain files within 6 MB, the engine in WebAssembly with SIMD",
   const sizes = (dir) => readdirSync(dir).reduce((n, f) => { const p = path.join(dir, f); return n + (statSync(p).isDirectory() ? sizes(p) : statSync(p).size); }, 0);
   const total = sizes(SITE);
   assert.ok(total < 6e6, `${total} bytes`);
-  for (const f of ["index.html", "explorer.js", "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"]) assert.ok(existsSync(path.join(SITE, f)), f);
+  for (const f of ["index.html", "main.js", "i18n.js", "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"]) assert.ok(existsSync(path.join(SITE, f)), f);
   // SIMD: the compiler's record of the features the module was built with lists simd128.
   const wasm = readFileSync(path.join(SITE, "pkg/bentstraw_web_bg.wasm"));
   assert.ok(WebAssembly.validate(wasm));
@@ -196,6 +196,9 @@ test("the exported picture is render's PNG to the byte", async () => {
     await waitReady(page);
     const [png, render] = await page.evaluate(async () => {
       const h = window.bentstraw.frame.header;
+      // Asked through the page's own modules: its engine, its state's query.
+      const { engineFetch } = await import(new URL("engine.js", document.baseURI).href);
+      const { state, viewQuery } = await import(new URL("state.js", document.baseURI).href);
       const r = await engineFetch("test", "/api/export", viewQuery(state, { format: "png", size: `${h.width}x${h.height}` }));
       const bytes = new Uint8Array(await r.arrayBuffer());
       let bin = "";

@@ -3,10 +3,10 @@
 // texts as the command line's in English); the gallery's titles and the command lines come as
 // the engine sends them. `t(key, params)` gives the text of `key` in the page's
 // language, `{name}` replaced by `params.name`; elements with `data-i18n` (their text) and
-// `data-i18n-title` (their tooltip) are filled by `applyI18n()`. Loaded before explorer.js.
-"use strict";
+// `data-i18n-title` (their tooltip) are filled by `applyI18n()`. A module: the page's other
+// modules import what they use; `LANG` is read through its live binding and changed by `setLang`.
 
-const I18N = {
+export const I18N = {
   en: {
     "page.title": "bentstraw explore — the straw in the glass, live",
     "lang.title": "Language of the page",
@@ -472,7 +472,7 @@ const I18N = {
 };
 
 /** The languages the page speaks. */
-const LANGS = Object.keys(I18N);
+export const LANGS = Object.keys(I18N);
 const LANG_KEY = "bentstraw-lang";
 
 /** The page's language: the address's `lang=`, else the one chosen before, else the browser's. */
@@ -486,13 +486,13 @@ function initialLang() {
   const wanted = navigator.languages && navigator.languages.length ? navigator.languages : [navigator.language || "en"];
   return String(wanted[0] || "en").toLowerCase().startsWith("fr") ? "fr" : "en";
 }
-let LANG = initialLang();
+export let LANG = initialLang();
 
 /** Whether the page is used with a finger (a phone, a tablet): its hints name touch gestures. */
 const TOUCH = window.matchMedia("(pointer: coarse)").matches;
 
 /** The text of `key` in the page's language, `{name}` replaced by `params.name`. */
-function t(key, params) {
+export function t(key, params) {
   let text = I18N[LANG][key];
   if (text === undefined) text = I18N.en[key];
   if (text === undefined) return key;
@@ -501,13 +501,13 @@ function t(key, params) {
 }
 
 /** `key`'s touch-screen variant (`key.touch`) on a touch screen, if there is one. */
-const touchKey = (key) => (TOUCH && (key + ".touch") in I18N.en ? key + ".touch" : key);
+export const touchKey = (key) => (TOUCH && (key + ".touch") in I18N.en ? key + ".touch" : key);
 
 /** A number's text in the page's language (a decimal comma in French). */
-function localNumber(text) { return LANG === "fr" ? String(text).replace(/\./g, ",") : String(text); }
+export function localNumber(text) { return LANG === "fr" ? String(text).replace(/\./g, ",") : String(text); }
 
 /** Fills the texts of the elements under `root` marked with `data-i18n` / `data-i18n-title`. */
-function applyI18n(root) {
+export function applyI18n(root) {
   const r = root || document;
   for (const el of r.querySelectorAll("[data-i18n]")) el.textContent = t(touchKey(el.dataset.i18n));
   for (const el of r.querySelectorAll("[data-i18n-title]")) el.title = t(el.dataset.i18nTitle);
@@ -518,7 +518,7 @@ function applyI18n(root) {
 }
 
 /** Switches the page to `lang` and remembers the choice. */
-function setLang(lang, remember) {
+export function setLang(lang, remember) {
   if (!LANGS.includes(lang)) return false;
   LANG = lang;
   if (remember) { try { localStorage.setItem(LANG_KEY, lang); } catch (_) { /* not remembered */ } }

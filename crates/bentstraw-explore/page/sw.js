@@ -3,7 +3,9 @@
 // the site is picked up whenever the network is there; the copy when it is not.
 "use strict";
 const CACHE = "bentstraw-site";
-const FILES = ["./", "index.html", "i18n.js", "explorer.js", "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"];
+// The page's modules: main.js and every module it imports, each a file the page fetches.
+const MODULES = ["main.js", "i18n.js", "state.js", "geometry.js", "dom.js", "engine.js", "errors.js", "frames.js", "draw.js", "pointer.js", "sketch.js", "picture.js", "cloud.js", "maps.js", "readout.js", "controls.js", "scenetext.js", "editor.js"];
+const FILES = ["./", "index.html", ...MODULES, "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"];
 
 self.addEventListener("install", (e) => {
   e.waitUntil(caches.open(CACHE).then((c) => c.addAll(FILES)).then(() => self.skipWaiting()));

@@ -27,18 +27,102 @@ pub struct PageFile {
 /// The page's HTML with its placeholders (the starting view, the engine).
 const INDEX: &str = include_str!("../page/index.html");
 
+/// The `Content-Type` of the page's scripts: module scripts must be served as JavaScript.
+const JS: &str = "text/javascript; charset=utf-8";
+
 /// The page's files other than its HTML ([`index_html`]).
-pub const PAGE_FILES: [PageFile; 5] = [
-    // The page's texts in English and in French (loaded before explorer.js).
+pub const PAGE_FILES: [PageFile; 21] = [
+    // The page's entry module (index.html loads it; it imports the others, each one concept).
+    PageFile {
+        name: "main.js",
+        content_type: JS,
+        text: include_str!("../page/main.js"),
+    },
+    // The page's texts in English and in French.
     PageFile {
         name: "i18n.js",
-        content_type: "text/javascript; charset=utf-8",
+        content_type: JS,
         text: include_str!("../page/i18n.js"),
     },
     PageFile {
-        name: "explorer.js",
-        content_type: "text/javascript; charset=utf-8",
-        text: include_str!("../page/explorer.js"),
+        name: "state.js",
+        content_type: JS,
+        text: include_str!("../page/state.js"),
+    },
+    PageFile {
+        name: "geometry.js",
+        content_type: JS,
+        text: include_str!("../page/geometry.js"),
+    },
+    PageFile {
+        name: "dom.js",
+        content_type: JS,
+        text: include_str!("../page/dom.js"),
+    },
+    PageFile {
+        name: "engine.js",
+        content_type: JS,
+        text: include_str!("../page/engine.js"),
+    },
+    PageFile {
+        name: "errors.js",
+        content_type: JS,
+        text: include_str!("../page/errors.js"),
+    },
+    PageFile {
+        name: "frames.js",
+        content_type: JS,
+        text: include_str!("../page/frames.js"),
+    },
+    PageFile {
+        name: "draw.js",
+        content_type: JS,
+        text: include_str!("../page/draw.js"),
+    },
+    PageFile {
+        name: "pointer.js",
+        content_type: JS,
+        text: include_str!("../page/pointer.js"),
+    },
+    PageFile {
+        name: "sketch.js",
+        content_type: JS,
+        text: include_str!("../page/sketch.js"),
+    },
+    PageFile {
+        name: "picture.js",
+        content_type: JS,
+        text: include_str!("../page/picture.js"),
+    },
+    PageFile {
+        name: "cloud.js",
+        content_type: JS,
+        text: include_str!("../page/cloud.js"),
+    },
+    PageFile {
+        name: "maps.js",
+        content_type: JS,
+        text: include_str!("../page/maps.js"),
+    },
+    PageFile {
+        name: "readout.js",
+        content_type: JS,
+        text: include_str!("../page/readout.js"),
+    },
+    PageFile {
+        name: "controls.js",
+        content_type: JS,
+        text: include_str!("../page/controls.js"),
+    },
+    PageFile {
+        name: "scenetext.js",
+        content_type: JS,
+        text: include_str!("../page/scenetext.js"),
+    },
+    PageFile {
+        name: "editor.js",
+        content_type: JS,
+        text: include_str!("../page/editor.js"),
     },
     PageFile {
         name: "explorer.css",
@@ -47,14 +131,14 @@ pub const PAGE_FILES: [PageFile; 5] = [
     },
     PageFile {
         name: "worker.js",
-        content_type: "text/javascript; charset=utf-8",
+        content_type: JS,
         text: include_str!("../page/worker.js"),
     },
     // The static site's copy of itself for opening without a network (the server's page does
     // not register it: it needs the server anyway).
     PageFile {
         name: "sw.js",
-        content_type: "text/javascript; charset=utf-8",
+        content_type: JS,
         text: include_str!("../page/sw.js"),
     },
 ];
@@ -83,7 +167,36 @@ mod tests {
         assert!(!html.contains("__"));
         for f in PAGE_FILES {
             let loaded_by_script = ["worker.js", "sw.js"].contains(&f.name);
-            assert!(html.contains(f.name) || loaded_by_script, "{}", f.name);
+            let imported = PAGE_FILES
+                .iter()
+                .any(|g| g.text.contains(&format!("from \"./{}\"", f.name)));
+            assert!(
+                html.contains(f.name) || loaded_by_script || imported,
+                "{}",
+                f.name
+            );
+        }
+    }
+
+    /// Every module the page imports is one of its files, and the site's service worker keeps
+    /// a copy of each.
+    #[test]
+    fn every_module_imported_is_served_and_kept_offline() {
+        let sw = PAGE_FILES.iter().find(|f| f.name == "sw.js").unwrap().text;
+        for f in PAGE_FILES.iter().filter(|f| f.name.ends_with(".js")) {
+            for line in f.text.lines().filter(|l| l.starts_with("import ")) {
+                let name = line
+                    .rsplit_once("from \"./")
+                    .and_then(|(_, n)| n.strip_suffix("\";"))
+                    .unwrap_or_else(|| panic!("{}: {line}", f.name));
+                let served = PAGE_FILES.iter().find(|g| g.name == name);
+                assert!(served.is_some(), "{} imports {name}", f.name);
+                assert_eq!(served.unwrap().content_type, JS, "{name}");
+                assert!(
+                    sw.contains(&format!("\"{name}\"")),
+                    "sw.js does not keep {name}"
+                );
+            }
         }
     }
 }

@@ -1,0 +1,343 @@
+// The Objects panel, the scene editor: a control for each key of the scene's file, buttons that
+// add and remove objects, and the drags of objects on the maps. The controls edit the scene's
+// form (its file's keys and values, as the engine reads them); the engine writes the form back
+// as the file's text, which then goes the way a typed text goes: checked by the same rules, the
+// view following it, refused key by key. One rule, one place.
+import { t } from "./i18n.js";
+import { state, STRAW_R, COIN_R, sceneKey } from "./state.js";
+import { $ } from "./dom.js";
+import { engineFetch, answerText } from "./engine.js";
+import { errorText } from "./errors.js";
+import { changed } from "./frames.js";
+import { drawMaps } from "./maps.js";
+import { showSceneErrors, applySceneText, checkScene, useScene, cancelTyping, sceneText } from "./scenetext.js";
+
+/** Each kind of object's keys as the file names them, with their unit ("" a pure number, "text",
+ * "m3" a point, or the words a value may be). */
+const FORM_FIELDS = {
+  glass: [["radius", "m"], ["height", "m"], ["wall", "m"], ["bottom", "m"], ["index", ""]],
+  tank: [["half_x", "m"], ["half_y", "m"], ["height", "m"]],
+  liquid: [["name", "text"], ["index", ""], ["top", "m"]],
+  straw: [["x", "m"], ["y", "m"], ["tilt", "°"], ["azimuth", "°"], ["radius", "m"], ["length", "m"]],
+  coin: [["x", "m"], ["y", "m"], ["radius", "m"], ["thickness", "m"]],
+  card: [["center", "m3"], ["facing", "°"], ["width", "m"], ["height", "m"], ["picture", ["arrow", "none"]]],
+};
+/** The step of a control by unit: a millimetre, a tenth of a degree, a thousandth of an index. */
+const STEP = { m: "0.001", "m3": "0.001", "°": "0.1", "": "0.001" };
+const objectsEl = $("objects"), objectsErrorsEl = $("objects-errors");
+/** The form of the view's scene: { text, key, form } (the text it was read from, the scene's key). */
+let formOf = null;
+let formSignature = "";
+
+/** The controls built again, in the page's new language. */
+export function relabelObjects() { formSignature = ""; showObjects(); }
+
+/** The form of the scene file `text` (the view's), read by the engine, then shown. */
+export async function loadForm(text) {
+  if (formOf && formOf.text === text) return;
+  const key = sceneKey(state);
+  let form;
+  try {
+    const r = await engineFetch("hook", "/api/sketch", new URLSearchParams({ "scene-file": text }).toString());
+    if (!r || !r.ok) return;
+    form = (await r.json()).form;
+  } catch (_) { return; }
+  formOf = { text, key, form };
+  showObjects();
+  drawMaps();
+}
+/** The view's form, if it is the current scene's. */
+export const viewForm = () => (formOf && formOf.key === sceneKey(state) ? formOf.form : null);
+
+/** The inside of the form's container: a glass's inner radius, or a tank's half widths. */
+function inside(form) {
+  const c = form.container || {};
+  return c.shape === "tank" ? { tank: true, hx: c.half_x, hy: c.half_y, height: c.height, floor: 0 }
+    : { tank: false, r: c.radius - (c.wall || 0), height: c.height, floor: c.bottom || 0 };
+}
+/** `[x, y]` kept inside the container, `margin` clear of its side (an object's radius). */
+function keepInside(form, [x, y], margin) {
+  const c = inside(form), clear = margin + 1e-4;
+  const r5 = (v) => Math.round(v * 1e5) / 1e5;
+  if (c.tank) {
+    const lx = Math.max(0, c.hx - clear), ly = Math.max(0, c.hy - clear);
+    return [r5(Math.max(-lx, Math.min(lx, x))), r5(Math.max(-ly, Math.min(ly, y)))];
+  }
+  const lim = Math.max(0, c.r - clear), d = Math.hypot(x, y), f = d > lim ? lim / d : 1;
+  return [r5(x * f), r5(y * f)];
+}
+/** A place on the floor for a new straw or coin of radius `r`: the middle, else the first spot
+ * on rings further out that is inside the container and 1 mm clear of the straws and coins. */
+function freeSpot(form, r) {
+  const c = inside(form), reach = c.tank ? Math.min(c.hx, c.hy) : c.r;
+  const taken = [...(form.straw || []).map((o) => [o.x, o.y, o.radius || STRAW_R]), ...(form.coin || []).map((o) => [o.x, o.y, o.radius || COIN_R])];
+  for (const f of [0, 0.25, 0.5, 0.7]) {
+    for (let k = 0; k < (f ? 12 : 1); k++) {
+      const a = (k * Math.PI) / 6, x = f * reach * Math.cos(a), y = f * reach * Math.sin(a);
+      const inner = c.tank ? Math.abs(x) + r < c.hx && Math.abs(y) + r < c.hy : Math.hypot(x, y) + r < c.r;
+      if (inner && taken.every(([u, v, q]) => Math.hypot(x - u, y - v) > q + r + 1e-3)) return [Math.round(x * 1e4) / 1e4, Math.round(y * 1e4) / 1e4];
+    }
+  }
+  return [0, 0];
+}
+/** A new object of `kind` for the form: the keys a user would change first, the rest left to
+ * the file's defaults. */
+function newObject(kind, form) {
+  const c = inside(form), r3 = (v) => Math.round(v * 1000) / 1000;
+  if (kind === "liquid") {
+    const layers = form.liquid || [];
+    const below = layers.length ? layers[layers.length - 1].top : c.floor;
+    const [name, index] = [["water", 1.333], ["oil", 1.47], ["syrup", 1.49]][Math.min(layers.length, 2)];
+    return { name, index, top: r3(below + (c.height - below) / 2) };
+  }
+  if (kind === "straw" || kind === "coin") { const [x, y] = freeSpot(form, kind === "straw" ? STRAW_R : COIN_R); return { x, y }; }
+  // A card behind the container, facing the eye.
+  const az = Math.atan2(state.observer[1], state.observer[0]);
+  const d = (c.tank ? Math.max(c.hx, c.hy) : c.r) + 0.06;
+  return { center: [r3(-d * Math.cos(az)), r3(-d * Math.sin(az)), r3(c.height / 2)], facing: r3(az * 180 / Math.PI), width: 0.08, height: 0.06, picture: "arrow" };
+}
+/** A glass made a tank (and back), its size kept. */
+function reshape(container, shape) {
+  if (shape === container.shape) return container;
+  if (shape === "tank") return { shape, half_x: container.radius, half_y: container.radius, height: container.height };
+  return { shape, radius: Math.min(container.half_x, container.half_y), height: container.height, wall: 0, bottom: 0, index: 1.5 };
+}
+
+/** One control: its label (the key's words, the file's key in its tooltip), its value. */
+function field(key, name, unit, value) {
+  const label = document.createElement("label");
+  const words = document.createElement("span");
+  // A field's words: its own key ("obj.shape"), or the key's name among the fields' words.
+  words.dataset.i18n = name.includes(".") ? name : "field." + name;
+  words.textContent = t(words.dataset.i18n);
+  label.title = key;
+  label.append(words);
+  const input = (i, v) => {
+    const el = document.createElement("input");
+    if (unit === "text") { el.type = "text"; el.value = v ?? ""; }
+    else { el.type = "number"; el.step = STEP[unit]; el.value = v ?? ""; el.inputMode = "decimal"; }
+    el.dataset.key = key; el.dataset.unit = unit;
+    if (i !== null) el.dataset.part = String(i);
+    return el;
+  };
+  if (Array.isArray(unit)) {
+    const sel = document.createElement("select");
+    sel.dataset.key = key;
+    for (const w of unit) {
+      const o = document.createElement("option");
+      o.value = w; o.dataset.i18n = name + "." + w; o.textContent = t(name + "." + w);
+      sel.append(o);
+    }
+    sel.value = value;
+    label.append(sel);
+  } else if (unit === "m3") {
+    const row = document.createElement("span");
+    (value || [0, 0, 0]).forEach((v, i) => row.append(input(i, v)));
+    const u = document.createElement("span"); u.className = "unit"; u.textContent = " m";
+    row.append(u);
+    label.append(row);
+  } else {
+    const row = document.createElement("span");
+    row.append(input(null, value));
+    if (unit && unit !== "text") { const u = document.createElement("span"); u.className = "unit"; u.textContent = " " + unit; row.append(u); }
+    label.append(row);
+  }
+  return label;
+}
+/** A button of the form: its words' key, what it does. */
+function formButton(words, title, className, action) {
+  const b = document.createElement("button");
+  b.type = "button"; b.className = className;
+  b.dataset.i18n = words; b.textContent = t(words);
+  b.dataset.i18nTitle = title; b.title = t(title);
+  b.addEventListener("click", action);
+  return b;
+}
+/** The form's objects as controls: rebuilt when objects come or go, else only their values. */
+export function showObjects() {
+  const form = viewForm();
+  if (!form) return;
+  const c = form.container || {};
+  const signature = [c.shape, ...["liquid", "straw", "coin", "card"].map((k) => (form[k] || []).length)].join(",");
+  if (signature === formSignature) { fillObjects(form); return; }
+  formSignature = signature;
+  const boxes = [];
+  const box = (legend, params, fields, table, k) => {
+    const fs = document.createElement("fieldset");
+    const lg = document.createElement("legend");
+    lg.textContent = t(legend, params); // written again with the others when the language changes
+    fs.append(lg);
+    const prefix = table === "container" ? "container" : `${table}[${k + 1}]`;
+    const values = table === "container" ? c : form[table][k];
+    if (table === "container") {
+      fs.append(field("container.shape", "obj.shape", ["glass", "tank"], c.shape));
+    }
+    for (const [name, unit] of fields) fs.append(field(`${prefix}.${name}`, name, unit, values[name]));
+    if (table !== "container") {
+      fs.append(formButton("obj.remove", "obj.remove.title", "remove", () => editForm((f) => { f[table].splice(k, 1); })));
+    }
+    boxes.push(fs);
+  };
+  box("obj.container", null, FORM_FIELDS[c.shape === "tank" ? "tank" : "glass"], "container");
+  for (const table of ["liquid", "straw", "coin", "card"]) {
+    (form[table] || []).forEach((_, k) => box("obj." + table, { i: k + 1 }, FORM_FIELDS[table], table, k));
+  }
+  const add = document.createElement("div");
+  add.className = "add";
+  for (const table of ["liquid", "straw", "coin", "card"]) {
+    add.append(formButton("obj.add." + table, "obj.add.title", "", () => editForm((f) => { (f[table] = f[table] || []).push(newObject(table, f)); })));
+  }
+  objectsEl.replaceChildren(...boxes, add);
+  fillObjects(form);
+}
+/** The form's values into its controls, except the one being typed in. */
+function fillObjects(form) {
+  for (const el of objectsEl.querySelectorAll("[data-key]")) {
+    if (el === document.activeElement) continue;
+    const v = formValue(form, el.dataset.key);
+    const part = el.dataset.part;
+    el.value = part !== undefined ? (v ? v[Number(part)] : "") : (v ?? "");
+    el.removeAttribute("aria-invalid");
+  }
+}
+/** The value at a rule's key (`straw[2].tilt`, `container.radius`) of a form. */
+function formValue(form, key) {
+  const m = /^(\w+)(?:\[(\d+)\])?\.(\w+)$/.exec(key);
+  if (!m) return undefined;
+  const table = m[2] ? (form[m[1]] || [])[Number(m[2]) - 1] : form[m[1]];
+  return table ? table[m[3]] : undefined;
+}
+/** The form's value at `key` set to `v`. */
+function setFormValue(form, key, v) {
+  const m = /^(\w+)(?:\[(\d+)\])?\.(\w+)$/.exec(key);
+  const table = m[2] ? form[m[1]][Number(m[2]) - 1] : (form[m[1]] = form[m[1]] || {});
+  table[m[3]] = v;
+}
+
+/** The text of the scene file `form` holds, its [observer] the current eye (its target kept). */
+async function formText(form) {
+  const f = structuredClone(form);
+  const target = f.observer && f.observer.target;
+  f.observer = target ? { position: state.observer.slice(), target } : { position: state.observer.slice() };
+  return answerText(await engineFetch("hook", "/api/scene-text", "form=" + encodeURIComponent(JSON.stringify(f))));
+}
+/** A control's change: the form changed by `change(form)`, written as the file's text, into the
+ * box and the view (or refused by its rules, the view staying). */
+async function editForm(change) {
+  const form = viewForm();
+  if (!form) return;
+  const f = structuredClone(form);
+  change(f);
+  let text;
+  try { text = await formText(f); } catch (e) { showSceneErrors(e.shown || e.message); return; }
+  cancelTyping();
+  sceneText.value = text;
+  await applySceneText(text);
+}
+objectsEl.addEventListener("submit", (e) => e.preventDefault());
+objectsEl.addEventListener("change", (e) => {
+  const el = e.target, key = el.dataset.key;
+  if (!key) return;
+  let value;
+  if (el.tagName === "SELECT" || el.type === "text") value = el.value;
+  else {
+    value = el.valueAsNumber;
+    if (!Number.isFinite(value)) {
+      el.setAttribute("aria-invalid", "true");
+      showSceneErrors({ key: "obj.not-a-number", params: { key } });
+      return;
+    }
+  }
+  editForm((f) => {
+    if (key === "container.shape") { f.container = reshape(f.container, value); return; }
+    if (el.dataset.part !== undefined) {
+      const p = (formValue(f, key) || [0, 0, 0]).slice();
+      p[Number(el.dataset.part)] = value;
+      value = p;
+    }
+    setFormValue(f, key, value);
+  });
+});
+/** Marks the controls whose keys a refusal names, and lists its rules under them. */
+export function markObjects(error) {
+  for (const el of objectsEl.querySelectorAll("[aria-invalid]")) el.removeAttribute("aria-invalid");
+  const keys = error && error.refusal ? error.refusal.rules.map((r) => r.key) : error && error.params && error.params.key ? [error.params.key] : [];
+  for (const key of keys) for (const el of objectsEl.querySelectorAll(`[data-key="${CSS.escape(key)}"]`)) el.setAttribute("aria-invalid", "true");
+  const text = errorText(error);
+  objectsErrorsEl.replaceChildren(...text.split("\n").filter((l) => l.trim()).map((l) => { const li = document.createElement("li"); li.textContent = l; return li; }));
+  objectsErrorsEl.hidden = !text;
+}
+
+// Drags on the maps: a straw, a coin or a card from above, a liquid's surface from the side.
+// Each step is the form changed and sent as a text; a step the rules refuse is left out, so the
+// object stops where it may still be (no banner: the banner is for typed values).
+let dragSending = false, dragNext = null;
+/** The object drag under way or last made (a token), and the latest text it made. */
+export let dragGesture = null, dragText = null;
+/** A drag of an object begins: its steps make one step of the history. */
+export function startGesture() { dragGesture = {}; }
+async function dragForm(change) {
+  const form = viewForm();
+  if (!form) return;
+  const f = structuredClone(form);
+  change(f);
+  dragNext = f;
+  if (dragSending) return;
+  dragSending = true;
+  while (dragNext) {
+    const next = dragNext;
+    dragNext = null;
+    try {
+      const text = await formText(next);
+      const observer = await checkScene(text, "hook");
+      await useScene(text, observer);
+      formOf = { text, key: sceneKey(state), form: next };
+      dragText = text;
+      showObjects();
+      cancelTyping();
+      sceneText.value = text;
+      showSceneErrors(null);
+      changed();
+    } catch (_) { /* refused: the object stays at its last allowed place */ }
+  }
+  dragSending = false;
+}
+/** The objects a drag can take on a map: `{ kind, k, at }` (their pixels). */
+export function handlesOf(form, P, side) {
+  const hs = [];
+  if (side) {
+    // A surface's ring beside the container's side, off the layer's tint.
+    (form.liquid || []).forEach((l, k) => { const [x, y] = P(l.top); hs.push({ kind: "liquid", k, at: [x + 8, y] }); });
+    return hs;
+  }
+  for (const kind of ["straw", "coin"]) (form[kind] || []).forEach((o, k) => hs.push({ kind, k, at: P(o.x, o.y) }));
+  (form.card || []).forEach((o, k) => hs.push({ kind: "card", k, at: P(o.center[0], o.center[1]) }));
+  return hs;
+}
+/** The handle within a fingertip of `(x, y)`, nearest first; null if none. */
+export function handleAt(handles, x, y, reach) {
+  let best = null, bestD = reach;
+  for (const h of handles || []) {
+    const d = Math.hypot(h.at[0] - x, h.at[1] - y);
+    if (d < bestD) { bestD = d; best = h; }
+  }
+  return best;
+}
+/** Moves the handle `h` to the map's point `q` (`[x, y]` from above, `[s, z]` from the side). */
+export function dragHandle(h, q) {
+  dragForm((f) => {
+    if (h.kind === "liquid") {
+      const c = inside(f), layers = f.liquid;
+      const lo = (h.k ? layers[h.k - 1].top : c.floor) + 1e-3;
+      const hi = h.k + 1 < layers.length ? layers[h.k + 1].top - 1e-3 : c.height;
+      layers[h.k].top = Math.round(Math.max(lo, Math.min(hi, q[1])) * 1e5) / 1e5;
+    } else if (h.kind === "card") {
+      const o = f.card[h.k];
+      o.center = [Math.round(q[0] * 1e5) / 1e5, Math.round(q[1] * 1e5) / 1e5, o.center[2]];
+    } else {
+      const o = f[h.kind][h.k];
+      [o.x, o.y] = keepInside(f, q, o.radius || 0);
+    }
+  });
+}
+

@@ -1,0 +1,138 @@
+// The engine's transport: bentstraw explore's server over HTTP, or the WebAssembly engine in Web
+// Workers; the same requests, the same answers (as `Response`s). Channels keep one request each
+// in flight, a newer one aborting the older; refusals are read here too.
+import { t } from "./i18n.js";
+
+export const ENGINE = document.body.dataset.engine === "wasm" ? "wasm" : "server";
+export const wasm = ENGINE === "wasm" ? wasmEngine() : null;
+// The site keeps a copy of itself, to open again without a network.
+if (wasm && "serviceWorker" in navigator) navigator.serviceWorker.register("sw.js").catch(() => {});
+
+/** The engine compiled to WebAssembly, one Web Worker per channel (so a picture never waits for
+ * a model). Everything it needs is fetched once, at the start: afterwards the page needs no
+ * network. A request superseded while it runs stops its worker at once; a fresh one takes over. */
+function wasmEngine() {
+  const files = Promise.all([
+    // Compiled while it downloads; a host that does not call it application/wasm gets it compiled after.
+    WebAssembly.compileStreaming(fetch("pkg/bentstraw_web_bg.wasm")).catch(() =>
+      fetch("pkg/bentstraw_web_bg.wasm").then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b))),
+    fetch("pkg/bentstraw_web.js").then((r) => r.text()),
+    fetch("worker.js").then((r) => r.text()),
+  ]).then(([module, glue, worker]) => ({ module, url: URL.createObjectURL(new Blob([glue, "\n", worker], { type: "text/javascript" })) }));
+  const workers = {};
+  let nextId = 1;
+  function spawn(name, f) {
+    const w = { worker: new Worker(f.url), current: null, queue: [] };
+    w.worker.postMessage({ module: f.module });
+    w.worker.onmessage = (e) => {
+      const m = e.data, job = w.current;
+      if (!job || job.id !== m.id) return;
+      w.current = null;
+      const headers = { "Content-Type": m.contentType };
+      if (m.fileName) headers["Content-Disposition"] = `attachment; filename="${m.fileName}"`;
+      // A crash's message is the page's own, in the page's language.
+      const r = new Response(m.broken ? t("error.engine-broken") : m.body, { status: m.status, headers });
+      r.engineMs = m.ms;
+      if (m.broken) restart(name, f);
+      job.resolve(r);
+      pump(name, f);
+    };
+    w.worker.onerror = (e) => {
+      const job = w.current;
+      w.current = null;
+      restart(name, f);
+      if (job) job.reject(new Error(e.message || t("error.engine-stopped")));
+    };
+    return w;
+  }
+  function restart(name, f) {
+    const old = workers[name];
+    if (old) old.worker.terminate();
+    const w = spawn(name, f);
+    if (old) w.queue = old.queue;
+    workers[name] = w;
+    pump(name, f);
+  }
+  function pump(name, f) {
+    const w = workers[name];
+    if (!w || w.current || !w.queue.length) return;
+    w.current = w.queue.shift();
+    w.worker.postMessage({ id: w.current.id, path: w.current.path, query: w.current.query });
+  }
+  return {
+    ready: files.then(() => true),
+    async request(name, path, query, signal) {
+      const f = await files;
+      if (!workers[name]) workers[name] = spawn(name, f);
+      return new Promise((resolve, reject) => {
+        const job = { id: nextId++, path, query, resolve, reject };
+        if (signal) {
+          signal.addEventListener("abort", () => {
+            const w = workers[name];
+            if (w.current === job) { w.current = null; restart(name, f); }
+            else w.queue = w.queue.filter((j) => j !== job);
+            resolve(null);
+          });
+        }
+        workers[name].queue.push(job);
+        pump(name, f);
+      });
+    },
+  };
+}
+
+/** Asks the engine for `route?query` on channel `name`: a `Response`, or null if aborted. */
+export function engineFetch(name, route, query, signal) {
+  if (wasm) return wasm.request(name, route, query, signal);
+  return fetch(`${route}?${query}`, { signal });
+}
+
+// At most one request per channel in flight; newer input waits for it and is then sent as
+// one request for the latest state (intermediate states are dropped).
+const clientId = Math.random().toString(36).slice(2, 10);
+const channels = {};
+function channel(name) {
+  return channels[name] || (channels[name] = { seq: 0, controller: null, busy: false, pending: null });
+}
+
+/** Asks for `route?query` on channel `name`, aborting what that channel had in flight; resolves
+ * to the response or null when superseded. In the page's own engine, `worker` names the worker
+ * that computes it (the channel's by default). */
+export async function ask(name, route, query, worker) {
+  const ch = channel(name);
+  if (ch.controller) ch.controller.abort();
+  const controller = new AbortController();
+  ch.controller = controller;
+  ch.seq += 1;
+  try {
+    const r = await engineFetch(worker || name, route, `${query}&chan=${clientId}-${name}&seq=${ch.seq}`, controller.signal);
+    if (r === null) return null;
+    if (r.status === 409 || controller.signal.aborted) return null;
+    return r;
+  } catch (e) {
+    if (e.name === "AbortError") return null;
+    throw e;
+  } finally {
+    if (ch.controller === controller) ch.controller = null;
+  }
+}
+
+/** A refusal's answer: its broken rules as data ({ refusal, message }) when the engine sends
+ * them, else its message as text. */
+export async function refusalOf(r) {
+  const text = await r.text();
+  if (/^application\/json/.test(r.headers.get("Content-Type") || "")) {
+    try { const refusal = JSON.parse(text); return { refusal, message: refusal.message }; } catch (_) { /* text, then */ }
+  }
+  return text;
+}
+
+/** The engine's answer as text, or a rejection with its message (the command line's; `shown`:
+ * what the page shows of it, its broken rules in the page's language). */
+export async function answerText(r) {
+  if (r.ok) return r.text();
+  const why = await refusalOf(r);
+  const e = new Error(typeof why === "string" ? why : why.message);
+  e.shown = why;
+  throw e;
+}

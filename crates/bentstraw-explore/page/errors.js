@@ -1,0 +1,41 @@
+// Errors in the page's language: the banner under the header, and the text of the engine's
+// refusals (its broken rules, a line each, as the command line writes them in English).
+import { t, localNumber } from "./i18n.js";
+import { $ } from "./dom.js";
+
+/** One broken rule's line in the page's language: `key = value: rule`, its numbers written as
+ * the language writes them, words from the file as they are. */
+function ruleLine(r) {
+  const params = {};
+  for (const [k, v] of Object.entries(r.params || {})) params[k] = typeof v === "string" ? localNumber(v) : v.text;
+  const rule = t("rule." + r.code, params);
+  let line = !r.key ? rule : r.value !== null ? t("refusal.value", { key: r.key, value: localNumber(r.value), rule }) : t("refusal.key", { key: r.key, rule });
+  if (r.line) line = t("refusal.line", { line: r.line, rule: line });
+  return line;
+}
+
+/** A refusal's text in the page's language, a line per broken rule (the English is the command
+ * line's message, to the character). */
+function refusalText(f) {
+  const lines = f.rules.map(ruleLine);
+  const rules = lines.length === 1 ? lines[0] : [t("refusal.many", { n: lines.length }), ...lines.map((l) => "  " + l)].join("\n");
+  return f.file === null ? rules : t(f.flagged ? "refusal.flagged" : "refusal.file", { file: f.file, rules });
+}
+
+/** The text of something to show: the engine's message (text, as it comes), its broken rules
+ * ({ refusal }), or one of the page's own ({ key, params }); the last two in the page's language. */
+export function errorText(error) {
+  if (error === null) return "";
+  if (typeof error === "string") return error;
+  return error.refusal ? refusalText(error.refusal) : t(error.key, error.params);
+}
+
+/** Shows an error (see errorText), translated again when the language changes. */
+export let errorShown = "";
+export function showError(error) {
+  errorShown = error;
+  const e = $("error");
+  const text = errorText(error);
+  e.textContent = text;
+  e.hidden = !text;
+}

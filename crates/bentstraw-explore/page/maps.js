@@ -1,0 +1,199 @@
+// The side and top maps: the glass or the scene's outlines and liquids, the eye, the straw and
+// the objects' handles, and their drags (the eye, the glass's straw, a scene's objects).
+import { t } from "./i18n.js";
+import { state, SECTION_RGB, GLASS_R, GLASS_H, STRAW_R } from "./state.js";
+import { sideCanvas, topCanvas } from "./dom.js";
+import { fit, drawPath } from "./draw.js";
+import { onDrag } from "./pointer.js";
+import { path, changed } from "./frames.js";
+import { sceneLines } from "./sketch.js";
+import { outside, pinchEye } from "./picture.js";
+import { viewForm, handlesOf, handleAt, dragHandle, startGesture } from "./editor.js";
+
+function mapScale(w, h, extent) { return Math.min(w, h) / (2.2 * extent); }
+function mapGeometry() {
+  const o = state.observer;
+  const extent = Math.max(0.07, 1.1 * Math.max(Math.hypot(o[0], o[1]), Math.abs(o[2] - 0.1), 0.15));
+  return { extent };
+}
+
+/** Each liquid layer's colour on the maps, bottom first (water blue, then amber, green, purple). */
+const LIQUID_RGB = [[74, 127, 193], [214, 160, 40], [60, 160, 90], [140, 90, 180]];
+/** The tint of layer `k` of index `n`: the more the liquid bends light, the deeper its colour. */
+function liquidTint(k, n) {
+  const [r, g, b] = LIQUID_RGB[k % LIQUID_RGB.length];
+  const alpha = 0.15 + 0.25 * Math.min(1, Math.max(0, (n - 1) / 0.6));
+  return `rgba(${r},${g},${b},${alpha.toFixed(3)})`;
+}
+/** A scene's liquid layers as `[bottom, top, index, name]`, bottom first, from its sketch. */
+function liquidLayers(lines) {
+  const floor = lines.container ? lines.container.floor : 0;
+  return lines.liquids.map((l, k) => [k ? lines.liquids[k - 1].top : floor, l.top, l.index, l.name]);
+}
+/**
+ * The liquids on the side map, each layer tinted across the container's inside as seen along the
+ * eye's azimuth `u` (a glass's inner diameter, a tank's width in that direction), its name and
+ * index beside it; `P(s, z)` is the map's pixel.
+ */
+function drawLiquidsSide(ctx, lines, u, P) {
+  const c = lines.container;
+  if (!c) return;
+  const half = c.shape === "glass" ? c.radius : Math.abs(u[0]) * c.half_x + Math.abs(u[1]) * c.half_y;
+  liquidLayers(lines).forEach(([z0, z1, n, name], k) => {
+    const [x0, y0] = P(-half, z1), [x1, y1] = P(half, z0);
+    ctx.fillStyle = liquidTint(k, n); ctx.fillRect(x0, y0, x1 - x0, y1 - y0);
+    if (y1 - y0 >= 12) {
+      ctx.fillStyle = "#3b4454"; ctx.font = "11px system-ui";
+      ctx.fillText(`${name} · n ${n}`, x1 + 4, Math.min(y1 - 2, y0 + 12));
+    }
+  });
+}
+/** The top liquid on the map from above: the container's inside, tinted; `P(x, y)` its pixel. */
+function drawLiquidsTop(ctx, lines, P, k) {
+  const c = lines.container, layers = liquidLayers(lines);
+  if (!c || !layers.length) return;
+  const top = layers.length - 1;
+  ctx.fillStyle = liquidTint(top, layers[top][2]);
+  ctx.beginPath();
+  if (c.shape === "glass") ctx.arc(...P(0, 0), c.radius * k, 0, 2 * Math.PI);
+  else ctx.rect(...P(-c.half_x, c.half_y), 2 * c.half_x * k, 2 * c.half_y * k);
+  ctx.fill();
+}
+
+/** A gallery scene's wireframe and outlines on a map, through `at` (a point to the map's pixels). */
+function drawLines(ctx, lines, at) {
+  ctx.strokeStyle = "rgba(74,127,193,0.6)"; ctx.lineWidth = 1;
+  ctx.beginPath();
+  for (const [a, b] of lines.wire) { ctx.moveTo(...at(a)); ctx.lineTo(...at(b)); }
+  ctx.stroke();
+  ctx.strokeStyle = "#777"; ctx.setLineDash([2, 3]);
+  ctx.beginPath();
+  for (const l of lines.outlines) l.forEach((q, i) => (i ? ctx.lineTo(...at(q)) : ctx.moveTo(...at(q))));
+  ctx.stroke(); ctx.setLineDash([]);
+}
+
+/** Both maps: side (the plane through the glass's axis and the eye) and top. */
+export function drawMaps() {
+  const g = mapGeometry();
+  const o = state.observer, [sx, sy] = state.straw;
+  const lines = sceneLines();
+  // Side: horizontal axis along the eye's azimuth.
+  {
+    const { ctx, w, h } = fit(sideCanvas);
+    ctx.clearRect(0, 0, w, h);
+    const k = mapScale(w, h, g.extent);
+    const az = Math.atan2(o[1], o[0]);
+    const u = [Math.cos(az), Math.sin(az)];
+    const P = (s, z) => [w / 2 + k * s, h / 2 - k * (z - 0.1)];
+    ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.side"), 6, 14);
+    sideCanvas.handles = [];
+    if (lines) {
+      // A gallery scene, seen along the eye's azimuth: `s` across, z up.
+      drawLiquidsSide(ctx, lines, u, P);
+      drawLines(ctx, lines, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]));
+      const form = viewForm(), c = lines.container;
+      if (form && c) {
+        const half = c.shape === "glass" ? c.radius : Math.abs(u[0]) * c.half_x + Math.abs(u[1]) * c.half_y;
+        sideCanvas.handles = handlesOf(form, (z) => P(half, z), true);
+        drawHandles(ctx, sideCanvas.handles);
+      }
+    } else {
+      const [wx0, wy0] = P(-GLASS_R, state.he), [wx1, wy1] = P(GLASS_R, 0);
+      ctx.fillStyle = liquidTint(0, state.n); ctx.fillRect(wx0, wy0, wx1 - wx0, wy1 - wy0);
+      ctx.strokeStyle = "#4a7fc1"; ctx.strokeRect(...P(-GLASS_R, GLASS_H), 2 * GLASS_R * k, GLASS_H * k);
+      const s = sx * u[0] + sy * u[1];
+      for (let i = 0; i < 5; i++) {
+        const [x0, y0] = P(s - STRAW_R, 0.05 * (i + 1));
+        ctx.fillStyle = SECTION_RGB[i]; ctx.fillRect(x0, y0, 2 * STRAW_R * k, 0.05 * k);
+      }
+    }
+    ctx.strokeStyle = "#999"; ctx.beginPath(); ctx.moveTo(0, P(0, 0)[1]); ctx.lineTo(w, P(0, 0)[1]); ctx.stroke();
+    const [ex, ey] = P(Math.hypot(o[0], o[1]), o[2]);
+    ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
+    if (path) drawPath(ctx, { p: (q) => P(q[0] * u[0] + q[1] * u[1], q[2]) }, { labels: false, size: 0.8 });
+    sideCanvas.mapInverse = (x, y) => [(x - w / 2) / k, 0.1 - (y - h / 2) / k];
+    sideCanvas.eyeAt = [ex, ey];
+  }
+  // Top.
+  {
+    const { ctx, w, h } = fit(topCanvas);
+    ctx.clearRect(0, 0, w, h);
+    const k = mapScale(w, h, g.extent);
+    const P = (x, y) => [w / 2 + k * x, h / 2 - k * y]; // x right, y up: as the report's top views
+    ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.top"), 6, 14);
+    topCanvas.handles = [];
+    if (lines) {
+      drawLiquidsTop(ctx, lines, P, k);
+      drawLines(ctx, lines, (q) => P(q[0], q[1]));
+      const form = viewForm();
+      if (form) { topCanvas.handles = handlesOf(form, P, false); drawHandles(ctx, topCanvas.handles); }
+    }
+    else {
+      ctx.fillStyle = state.he > 0 ? liquidTint(0, state.n) : "transparent"; ctx.strokeStyle = "#4a7fc1";
+      ctx.beginPath(); ctx.arc(...P(0, 0), GLASS_R * k, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+      ctx.fillStyle = SECTION_RGB[4]; ctx.beginPath(); ctx.arc(...P(sx, sy), Math.max(3, STRAW_R * k), 0, 2 * Math.PI); ctx.fill();
+    }
+    const [ex, ey] = P(o[0], o[1]);
+    ctx.strokeStyle = "rgba(0,0,0,.35)"; ctx.beginPath(); ctx.moveTo(ex, ey); ctx.lineTo(...P(0, 0)); ctx.stroke();
+    ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
+    if (path) drawPath(ctx, { p: (q) => P(q[0], q[1]) }, { labels: false, size: 0.8 });
+    topCanvas.mapInverse = (x, y) => [(x - w / 2) / k, (h / 2 - y) / k];
+    topCanvas.eyeAt = [ex, ey];
+    topCanvas.strawAt = lines ? null : P(sx, sy);
+  }
+}
+
+/** The objects' handles on a map: a small ring where a drag takes each. */
+function drawHandles(ctx, handles) {
+  ctx.lineWidth = 1.5;
+  for (const h of handles) {
+    ctx.strokeStyle = "#1d2330"; ctx.fillStyle = "rgba(255,255,255,.7)";
+    ctx.beginPath(); ctx.arc(h.at[0], h.at[1], 5, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+  }
+  ctx.lineWidth = 1;
+}
+
+let dragging = null;
+onDrag(topCanvas, {
+  pinch: pinchEye,
+  start: (e) => {
+    const r = topCanvas.getBoundingClientRect(), x = e.clientX - r.left, y = e.clientY - r.top;
+    const near = (p) => p && Math.hypot(p[0] - x, p[1] - y) < 14;
+    const h = near(topCanvas.eyeAt) ? null : handleAt(topCanvas.handles, x, y, 14);
+    dragging = h || (near(topCanvas.strawAt) && !near(topCanvas.eyeAt) ? "straw" : "eye");
+    if (h) startGesture();
+  },
+  move: (dx, dy, e) => {
+    const r = topCanvas.getBoundingClientRect();
+    const [x, y] = topCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
+    if (dragging && dragging.kind) { dragHandle(dragging, [x, y]); return; }
+    if (dragging === "straw") {
+      // Kept inside the glass, so that a drag never stops at the rule's edge.
+      const lim = GLASS_R - STRAW_R - 1e-4, d = Math.hypot(x, y), f = d > lim ? lim / d : 1;
+      state.straw = [x * f, y * f].map((v) => Math.round(v * 1e5) / 1e5);
+    } else {
+      state.observer = outside([x, y, state.observer[2]]);
+    }
+    changed();
+  },
+});
+let draggingSide = null;
+onDrag(sideCanvas, {
+  pinch: pinchEye,
+  start: (e) => {
+    const r = sideCanvas.getBoundingClientRect(), x = e.clientX - r.left, y = e.clientY - r.top;
+    const eye = sideCanvas.eyeAt && Math.hypot(sideCanvas.eyeAt[0] - x, sideCanvas.eyeAt[1] - y) < 14;
+    draggingSide = eye ? null : handleAt(sideCanvas.handles, x, y, 14);
+    if (draggingSide) startGesture();
+  },
+  move: (dx, dy, e) => {
+    const r = sideCanvas.getBoundingClientRect();
+    const [s, z] = sideCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
+    if (draggingSide) { dragHandle(draggingSide, [s, z]); return; }
+    const o = state.observer, az = Math.atan2(o[1], o[0]);
+    const d = Math.max(0.001, s);
+    state.observer = outside([d * Math.cos(az), d * Math.sin(az), z]);
+    changed();
+  },
+});
+
