@@ -373,7 +373,7 @@ fn clients_that_never_read_freeze_nobody() {
     let server = Server::start(&[]);
     // Pipelined requests for the page's largest file, never read: megabytes of answers.
     let mut greedy = server.connect();
-    let one = format!("GET /explorer.js HTTP/1.1\r\nHost: {}\r\n\r\n", server.host);
+    let one = format!("GET /i18n.js HTTP/1.1\r\nHost: {}\r\n\r\n", server.host);
     let sender = {
         let mut s = greedy.try_clone().unwrap();
         s.set_write_timeout(Some(Duration::from_secs(3))).unwrap();
