@@ -4,19 +4,22 @@
 // controls (controls.js) are bound from the same entries.
 import { LANG, t, localNumber } from "./i18n.js";
 
+// The view's defaults as the engine holds them (the page's HTML carries them), so that the page
+// and the command line start from the same values.
+const ENGINE = JSON.parse(document.getElementById("bentstraw-defaults").textContent);
+
 // The scene's fixed sizes (the glass and the straw), for drawing outlines only.
-export const GLASS_R = 0.04, GLASS_H = 0.20, STRAW_R = 0.005, STRAW_H = 0.25;
-// A new coin's radius when the file gives none (a one-euro coin, as the engine's default).
-export const COIN_R = 0.0115;
+export const GLASS_R = ENGINE.glass.radius, GLASS_H = ENGINE.glass.height;
+export const STRAW_R = ENGINE.straw.radius, STRAW_H = ENGINE.straw.height;
+// A new coin's radius when the file gives none (a one-euro coin, the engine's default).
+export const COIN_R = ENGINE.coin.radius;
 // Colour codes 1..5 a straw's sections; in the gallery's scenes also 6 a coin, 7 a card, 8 its arrow.
 export const SECTION_RGB = ["#ff0000", "#edb120", "#ff00ff", "#00cc00", "#0000ff", "#c79938", "#edebe0", "#1f1f24"];
 
 // Their names are the texts "preset.0", "preset.1"… (i18n.js).
+// The first four are the reference simulations, as the engine holds them.
 export const PRESETS = [
-  { v: { observer: [0, 0.1, 0.1], straw: [0.02, 0.01], he: 0.15 } },
-  { v: { observer: [0.1, 0, 0.1], straw: [0.02, 0.01], he: 0.15 } },
-  { v: { observer: [0.1, 0, 0.3], straw: [0.02, 0.01], he: 0.2 } },
-  { v: { observer: [0.1, 0, -0.1], straw: [0, 0], he: 0.2 } },
+  ...ENGINE.references.map((r) => ({ v: { observer: r.observer, straw: r.straw, he: r.waterHeight } })),
   { v: { observer: [0.3, 0, 0.16], straw: [0, 0.025], he: 0.12 } },
   { v: { observer: [0.3, 0, 0.07], straw: [0, 0], he: 0.15 } },
   { v: { observer: [0.3, 0, 0.07], straw: [0, 0.034], he: 0.15 } },
@@ -49,18 +52,18 @@ const point = { parse: list, format: (v) => v.map(num).join(",") };
  */
 export const FIELDS = [
   // The first view shows the effect: the straw seen from the side, broken at the water's surface.
-  { prop: "observer", query: "observer", initial: [0.3, 0, 0.25], ...point, engine: true },
-  { prop: "straw", query: "straw", initial: [0, 0.03], ...point, engine: true, glass: true },
-  { prop: "he", query: "water-height", initial: 0.15, ...metres, engine: true, glass: true,
+  { prop: "observer", query: "observer", initial: ENGINE.classic.observer, ...point, engine: true },
+  { prop: "straw", query: "straw", initial: ENGINE.classic.straw, ...point, engine: true, glass: true },
+  { prop: "he", query: "water-height", initial: ENGINE.classic.waterHeight, ...metres, engine: true, glass: true,
     control: { id: "he", event: "input", redoes: "frame", out: (v) => localNumber(num(v)) + " m", liquid: "top" } },
-  { prop: "n", query: "n-water", initial: 1.333, ...metres, engine: true, glass: true,
+  { prop: "n", query: "n-water", initial: ENGINE.nWater, ...metres, engine: true, glass: true,
     control: { id: "n", event: "input", redoes: "frame", out: (v) => localNumber(num(v)), liquid: "index" } },
-  { prop: "events", query: "max-events", initial: 10, ...number, engine: true,
+  { prop: "events", query: "max-events", initial: ENGINE.maxEvents, ...number, engine: true,
     control: { id: "events", event: "input", redoes: "frame", out: String } },
-  { prop: "points", query: "points", initial: 20000, ...number, engine: true },
-  { prop: "mode", query: "mode", initial: "fresnel", ...text, engine: true,
+  { prop: "points", query: "points", initial: ENGINE.points, ...number, engine: true },
+  { prop: "mode", query: "mode", initial: ENGINE.mode, ...text, engine: true,
     control: { id: "mode", event: "change", redoes: "keep-path" } },
-  { prop: "backdrop", query: "backdrop", initial: "checker", ...text, engine: true,
+  { prop: "backdrop", query: "backdrop", initial: ENGINE.backdrop, ...text, engine: true,
     control: { id: "backdrop", event: "change", redoes: "keep-path" } },
   { prop: "color", query: "color", initial: "section", ...text,
     control: { id: "color-by", event: "change", redoes: "cloud" } },

@@ -21,7 +21,7 @@ use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::rule::{Param, Rule};
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{DEFAULT_MAX_EVENTS, WATER_INDEX};
-use bentstraw_optics::scene_file::{Container, Observer, SceneForm};
+use bentstraw_optics::scene_file::{Container, Observer, SceneForm, DEFAULT_COIN_RADIUS};
 use bentstraw_optics::shading::{RgbPicture, ShadingOptions};
 use bentstraw_optics::text::clip_text;
 use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
@@ -375,8 +375,8 @@ pub fn scenes_reply() -> Reply {
 
 /// `GET /api/defaults`: the view's defaults as the engine holds them, so that a page states none
 /// of its own: the image points, the picture (mode, backdrop, samples, pruning weight, size), the
-/// scene's (event limit, water's index), the classic first view, the four reference views, and
-/// the assignment's glass and straw.
+/// scene's (event limit, water's index), the classic first view, the four reference views, the
+/// assignment's glass and straw, and a coin's radius.
 pub fn defaults_reply() -> Reply {
     let picture = PictureSpec::default();
     let references: Vec<Value> = REFERENCES
@@ -411,6 +411,7 @@ pub fn defaults_reply() -> Reply {
         "references": references,
         "glass": {"radius": GLASS_RADIUS, "height": GLASS_HEIGHT},
         "straw": {"radius": STRAW_RADIUS, "height": STRAW_HEIGHT},
+        "coin": {"radius": DEFAULT_COIN_RADIUS},
     }))
 }
 

@@ -144,15 +144,21 @@ pub const PAGE_FILES: [PageFile; 21] = [
 ];
 
 /// The page's HTML starting on the view of the query `initial` (empty: the address's, else the
-/// default), its requests answered by `engine`.
+/// default), its requests answered by `engine`, the engine's defaults in it.
 pub fn index_html(initial: &str, engine: Engine) -> String {
     let engine = match engine {
         Engine::Server => "server",
         Engine::Wasm => "wasm",
     };
+    // The view's defaults as the engine holds them: the page states none of its own. In a
+    // <script> element only "</" could end it early; JSON allows "<" as \u003c.
+    let defaults = String::from_utf8(crate::defaults_reply().body)
+        .expect("JSON is UTF-8")
+        .replace('<', "\\u003c");
     INDEX
         .replace("__INITIAL_VIEW__", &escape_html(initial))
         .replace("__ENGINE__", engine)
+        .replace("__DEFAULTS__", &defaults)
 }
 
 #[cfg(test)]
@@ -165,6 +171,14 @@ mod tests {
         assert!(html.contains("data-engine=\"wasm\""), "{html}");
         assert!(html.contains("data-initial=\"observer=1,0,0&amp;x=&quot;&lt;b&gt;&quot;\""));
         assert!(!html.contains("__"));
+        // The engine's defaults, readable by the page's script.
+        let start = html
+            .find("id=\"bentstraw-defaults\" type=\"application/json\">")
+            .unwrap();
+        let json = &html[html[start..].find('>').unwrap() + start + 1..];
+        let json = &json[..json.find("</script>").unwrap()];
+        let defaults: serde_json::Value = serde_json::from_str(json).unwrap();
+        assert_eq!(defaults["points"], bentstraw_optics::view::DEFAULT_POINTS);
         for f in PAGE_FILES {
             let loaded_by_script = ["worker.js", "sw.js"].contains(&f.name);
             let imported = PAGE_FILES
