@@ -30,6 +30,13 @@ use serde_json::{json, Value};
 
 pub mod page;
 
+use bentstraw_io::camera::{scene_camera, CameraSpec};
+use bentstraw_io::gallery::{opening_comment, GALLERY};
+use bentstraw_io::parse::{parse_size, parse_vec2, parse_vec3};
+use bentstraw_io::pictures::checked_shading;
+use bentstraw_io::pictures::png_bytes;
+use bentstraw_io::scene_input::{gallery_setup, parse_scene_text, SceneSource};
+use bentstraw_io::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
 use bentstraw_optics::scene::{GLASS_HEIGHT, GLASS_RADIUS, REFERENCES, STRAW_HEIGHT, STRAW_RADIUS};
 use bentstraw_optics::setup::{SceneValues, Setup, MAX_SCENE_FILE_BYTES};
 use bentstraw_optics::sketch::{object_outlines, world_wireframe};
@@ -38,13 +45,6 @@ use bentstraw_optics::view::{
     PictureSpec, BACKDROPS, CLASSIC_OBSERVER, CLASSIC_STRAW, CLASSIC_WATER_HEIGHT, DEFAULT_POINTS,
     DEFAULT_SIZE, MAX_SAMPLES, MODES,
 };
-use bentstraw_outputs::camera::{scene_camera, CameraSpec};
-use bentstraw_outputs::gallery::{opening_comment, GALLERY};
-use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
-use bentstraw_outputs::pictures::checked_shading;
-use bentstraw_outputs::pictures::png_bytes;
-use bentstraw_outputs::scene_input::{gallery_setup, parse_scene_text, SceneSource};
-use bentstraw_outputs::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
 
 /// Most image points one request may ask for (a million take about half a second).
 pub const MAX_POINTS: usize = 1_000_000;
@@ -148,9 +148,9 @@ fn rule_json(
     json!({"code": rule.code(), "key": key, "value": value, "line": line, "params": params})
 }
 
-impl From<bentstraw_outputs::error::Error> for Refused {
-    fn from(e: bentstraw_outputs::error::Error) -> Refused {
-        use bentstraw_outputs::error::Error;
+impl From<bentstraw_io::error::Error> for Refused {
+    fn from(e: bentstraw_io::error::Error) -> Refused {
+        use bentstraw_io::error::Error;
         let rules = match &e {
             Error::SceneFile {
                 name,
@@ -295,7 +295,7 @@ pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, Refused> {
     };
     let description = parse_scene_text(&name, text)?;
     let world = World::new(&description, DEFAULT_MAX_EVENTS).map_err(|error| {
-        bentstraw_outputs::error::Error::SceneFile {
+        bentstraw_io::error::Error::SceneFile {
             name: name.clone(),
             flagged: false,
             error,
@@ -487,7 +487,7 @@ impl View {
                 };
                 source.load_text(name, text)?
             }
-            None => Setup::from_values(&scene_args).map_err(bentstraw_outputs::Error::from)?,
+            None => Setup::from_values(&scene_args).map_err(bentstraw_io::Error::from)?,
         };
         let observer = scene.observer;
         let scene = Arc::new(scene);

@@ -2,7 +2,7 @@
 //! native engine behind `/api/…`; the static site (`cargo xtask site`) ships it with the engine
 //! compiled to WebAssembly, run by Web Workers. The page sends the same requests to either.
 
-use bentstraw_outputs::escape::escape_html;
+use bentstraw_io::escape::escape_html;
 
 /// Which engine answers the page's requests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

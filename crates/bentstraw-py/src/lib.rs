@@ -10,6 +10,13 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+use bentstraw_io::camera::{scene_camera, CameraSpec};
+use bentstraw_io::gallery::GALLERY;
+use bentstraw_io::pictures::{checked_shading, picture};
+use bentstraw_io::scene_input::{parse_scene_text, read_scene_text, SceneSource};
+use bentstraw_io::solution::{colour_names, json_report, solution_of_points, CheckOptions};
+use bentstraw_io::writers::{check_points_asked, raw_weight_count};
+use bentstraw_io::Error;
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::check::check_solution;
 use bentstraw_optics::image::ImagePoint;
@@ -22,13 +29,6 @@ use bentstraw_optics::text::refuse_choice;
 use bentstraw_optics::view::PictureSpec;
 use bentstraw_optics::world::{COLOR_NAMES, COLOR_RGB};
 use bentstraw_optics::Vec3;
-use bentstraw_outputs::camera::{scene_camera, CameraSpec};
-use bentstraw_outputs::gallery::GALLERY;
-use bentstraw_outputs::pictures::{checked_shading, picture};
-use bentstraw_outputs::scene_input::{parse_scene_text, read_scene_text, SceneSource};
-use bentstraw_outputs::solution::{colour_names, json_report, solution_of_points, CheckOptions};
-use bentstraw_outputs::writers::{check_points_asked, raw_weight_count};
-use bentstraw_outputs::Error;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -132,7 +132,7 @@ fn load(
 #[pyfunction]
 fn read_scene(path: PathBuf) -> PyResult<(String, String)> {
     let text = read_scene_text(&path).map_err(python_error)?;
-    let name = bentstraw_outputs::files::shown(&path);
+    let name = bentstraw_io::files::shown(&path);
     parse_scene_text(&name, &text).map_err(python_error)?;
     Ok((name, text))
 }

@@ -2,12 +2,12 @@
 
 use std::path::PathBuf;
 
+use bentstraw_io::camera::CameraSpec;
+use bentstraw_io::parse::{parse_size, parse_vec2, parse_vec3};
+use bentstraw_io::scene_input::SceneSource;
 use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
 use bentstraw_optics::setup::{SceneValues, Setup};
 use bentstraw_optics::view::{PictureSpec, DEFAULT_POINTS, DEFAULT_PRUNE, DEFAULT_SAMPLES};
-use bentstraw_outputs::camera::CameraSpec;
-use bentstraw_outputs::parse::{parse_size, parse_vec2, parse_vec3};
-use bentstraw_outputs::scene_input::SceneSource;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// bentstraw: what refraction does to a straw in a glass of water.
@@ -227,7 +227,7 @@ pub enum LangArg {
     Fr,
 }
 
-impl From<LangArg> for bentstraw_outputs::words::Lang {
+impl From<LangArg> for bentstraw_io::words::Lang {
     fn from(a: LangArg) -> Self {
         match a {
             LangArg::En => Self::En,
@@ -407,7 +407,7 @@ pub struct ExploreArgs {
 
 /// The scene of `source`, loaded, with a hint on standard error for each number of its scene
 /// file that breaks no rule but looks like a slip (centimetres written as metres).
-pub fn load_scene(source: &SceneSource) -> bentstraw_outputs::Result<Setup> {
+pub fn load_scene(source: &SceneSource) -> bentstraw_io::Result<Setup> {
     source.load().map(with_hints)
 }
 

@@ -30,8 +30,8 @@ pub fn fail<T>(msg: impl Into<String>) -> Result<T, CliError> {
 /// Shorthand result type.
 pub type CliResult<T = ()> = Result<T, CliError>;
 
-impl From<bentstraw_outputs::Error> for CliError {
-    fn from(e: bentstraw_outputs::Error) -> Self {
+impl From<bentstraw_io::Error> for CliError {
+    fn from(e: bentstraw_io::Error) -> Self {
         CliError(e.to_string())
     }
 }

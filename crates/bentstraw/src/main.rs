@@ -39,10 +39,10 @@ fn one_line(e: &clap::Error) -> String {
     let mut line = first_line(e);
     for kind in [ContextKind::InvalidValue, ContextKind::InvalidArg] {
         if let Some(ContextValue::String(value)) = e.get(kind) {
-            if value.chars().count() > bentstraw_outputs::parse::QUOTED_MAX {
+            if value.chars().count() > bentstraw_io::parse::QUOTED_MAX {
                 line = line.replace(
                     value.as_str(),
-                    &clip_text(value, bentstraw_outputs::parse::QUOTED_MAX),
+                    &clip_text(value, bentstraw_io::parse::QUOTED_MAX),
                 );
             }
         }

@@ -57,8 +57,8 @@ pub fn remove_temporaries_on_interrupt() {
     let _ = ctrlc::set_handler(|| {
         // Asked to stop once the files are all in place (just before the program would have
         // ended): nothing was lost, and the message says so.
-        let complete = bentstraw_outputs::files::outputs_complete();
-        let replaced_none = bentstraw_outputs::files::remove_all_temporaries();
+        let complete = bentstraw_io::files::outputs_complete();
+        let replaced_none = bentstraw_io::files::remove_all_temporaries();
         tell(if complete {
             "stopped after every output file was written: they are complete\n"
         } else if replaced_none {

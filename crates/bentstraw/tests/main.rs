@@ -21,7 +21,7 @@ mod scene_cli;
 
 /// The rule for tests needing node, Chromium or poppler, shared with the unit tests.
 #[allow(dead_code)]
-#[path = "../../bentstraw-outputs/src/test_support.rs"]
+#[path = "../../bentstraw-io/src/test_support.rs"]
 mod test_support;
 
 use std::path::Path;

@@ -23,7 +23,7 @@ use bentstraw_optics::Vec3;
 
 use crate::cli::{BenchArgs, ModeArg};
 use crate::error::{fail, CliError, CliResult};
-use bentstraw_outputs::camera;
+use bentstraw_io::camera;
 
 /// Vertical field of view of the benchmark views (degrees).
 const BENCH_FOV_DEG: f64 = 50.0;

@@ -10,11 +10,9 @@ use bentstraw_optics::check::check_solution;
 
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
+use bentstraw_io::files::check_writable;
+use bentstraw_io::solution::{colour_names, json_report, read_solution_of, summary, CheckOptions};
 use bentstraw_optics::text::clip_text;
-use bentstraw_outputs::files::check_writable;
-use bentstraw_outputs::solution::{
-    colour_names, json_report, read_solution_of, summary, CheckOptions,
-};
 
 /// Runs `check`; `Ok(true)` for a pass, `Ok(false)` for a fail.
 pub fn run(args: &CheckArgs) -> CliResult<bool> {
@@ -27,8 +25,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
     };
     options.validate()?;
     if let Some(p) = &args.plot {
-        bentstraw_outputs::plot::FigureFormat::of(p)
-            .map_err(|e| CliError(format!("--plot {}", e)))?;
+        bentstraw_io::plot::FigureFormat::of(p).map_err(|e| CliError(format!("--plot {}", e)))?;
         check_writable(p)?;
     }
     let started = Instant::now();
@@ -47,7 +44,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
             clip_text(&args.file.display().to_string(), 60),
             if report.passes() { "pass" } else { "fail" }
         );
-        bentstraw_outputs::check_plot::write_check_figure(
+        bentstraw_io::check_plot::write_check_figure(
             p,
             checked,
             observer,

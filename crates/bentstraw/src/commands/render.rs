@@ -14,10 +14,10 @@ use bentstraw_optics::world::World;
 use crate::cli::{ModeArg, RenderArgs};
 use crate::error::CliResult;
 use crate::progress;
-use bentstraw_outputs::camera::scene_camera;
-use bentstraw_outputs::files::{self, Output, OutputSet};
-use bentstraw_outputs::pictures::{checked_shading, png_bytes};
-use bentstraw_outputs::writers::{raw_weight_count, write_raw_codes, write_raw_weights};
+use bentstraw_io::camera::scene_camera;
+use bentstraw_io::files::{self, Output, OutputSet};
+use bentstraw_io::pictures::{checked_shading, png_bytes};
+use bentstraw_io::writers::{raw_weight_count, write_raw_codes, write_raw_weights};
 
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> CliResult {
@@ -119,7 +119,7 @@ fn write_raw(
     camera: &Camera,
     mode: ModeArg,
     prune: f64,
-) -> bentstraw_outputs::Result {
+) -> bentstraw_io::Result {
     match mode {
         ModeArg::Course => write_raw_codes(path, camera, &course_picture_exact(world, camera)),
         ModeArg::Fresnel if raw_weight_count(world) == SECTION_COUNT => {

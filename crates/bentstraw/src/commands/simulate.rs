@@ -11,19 +11,17 @@ use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use crate::cli::{ImageModelArg, SimulateArgs};
 use crate::error::CliResult;
 use crate::progress;
-use bentstraw_optics::setup::Setup;
-use bentstraw_outputs::files::{Output, OutputSet};
-use bentstraw_outputs::model_plots::{
+use bentstraw_io::files::{Output, OutputSet};
+use bentstraw_io::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use bentstraw_outputs::plot::simulation_title;
-use bentstraw_outputs::summary::{model_summary, summary};
-use bentstraw_outputs::words::Lang;
-use bentstraw_outputs::writers::{
-    check_points_asked, write_points, ModelPoints, PointFormat, PointSet,
-};
-use bentstraw_outputs::{html, plot, ray_diagram};
+use bentstraw_io::plot::simulation_title;
+use bentstraw_io::summary::{model_summary, summary};
+use bentstraw_io::words::Lang;
+use bentstraw_io::writers::{check_points_asked, write_points, ModelPoints, PointFormat, PointSet};
+use bentstraw_io::{html, plot, ray_diagram};
+use bentstraw_optics::setup::Setup;
 
 /// Runs `simulate`: the same steps for the assignment's glass (traced by its fast tracers) and
 /// for a scene file's world.

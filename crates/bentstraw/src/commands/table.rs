@@ -4,12 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
-use bentstraw_outputs::files::{self, Output, OutputSet};
-use bentstraw_outputs::report::Report;
-use bentstraw_outputs::report_pdf;
-use bentstraw_outputs::report_plan::{self, checked_points, failed_checks, unwritten, ReportPlan};
-use bentstraw_outputs::scene_input;
-use bentstraw_outputs::words::Lang;
+use bentstraw_io::files::{self, Output, OutputSet};
+use bentstraw_io::report::Report;
+use bentstraw_io::report_pdf;
+use bentstraw_io::report_plan::{self, checked_points, failed_checks, unwritten, ReportPlan};
+use bentstraw_io::scene_input;
+use bentstraw_io::words::Lang;
 use indicatif::ProgressBar;
 
 use crate::cli::TableArgs;

@@ -12,7 +12,7 @@ use bentstraw_explore as api;
 
 use crate::cli::ExploreArgs;
 use crate::error::{fail, CliResult};
-use bentstraw_outputs::gallery::GALLERY;
+use bentstraw_io::gallery::GALLERY;
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -121,7 +121,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
                     ));
                 }
                 // Any other file travels with the view, as the page's own scene file.
-                let text = bentstraw_outputs::scene_input::read_scene_text(path)?;
+                let text = bentstraw_io::scene_input::read_scene_text(path)?;
                 return Ok(format!(
                     "scene-file={}&observer={},{},{}&max-events={}&points={}&mode={mode}",
                     api::query_value(&text),

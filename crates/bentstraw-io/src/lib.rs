@@ -1,6 +1,6 @@
-//! `bentstraw-outputs`: everything bentstraw writes or reads besides arguments: scene files read
-//! and checked, image points written (CSV, JSON, PLY), figures (PNG, SVG, PDF), pictures, ray
-//! diagrams, the rotatable HTML view and the report (figures, behind the default feature `figures`,
+//! `bentstraw-io`: everything bentstraw reads or writes besides arguments: scene files and
+//! solutions read and checked, image points written (CSV, JSON, PLY), figures (PNG, SVG, PDF),
+//! pictures, ray diagrams, the rotatable HTML view and the report (figures, behind the default feature `figures`,
 //! which needs a native target). No argument parsing: the command line and the
 //! explorer give plain values.
 

@@ -1,4 +1,4 @@
-//! The outputs library's one error type: every refusal and failure as one line for the user.
+//! The I/O library's one error type: every refusal and failure as one line for the user.
 
 use std::fmt;
 use std::io;
