@@ -237,23 +237,43 @@ impl From<LangArg> for bentstraw_io::words::Lang {
 }
 
 /// The observer's picture mode: the course's single ray, or Fresnel-weighted branches.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeArg {
     /// One ray per sample, the colour code it hits.
     Course,
     /// Fresnel reflection and refraction, weights per section.
-    #[default]
     Fresnel,
 }
 
+impl ModeArg {
+    /// The mode of a picture as the engine's defaults draw it.
+    pub fn default_picture() -> ModeArg {
+        if PictureSpec::default().fresnel {
+            ModeArg::Fresnel
+        } else {
+            ModeArg::Course
+        }
+    }
+}
+
 /// What lies behind the glass in a rendered picture.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BackdropArg {
     /// A plain light background.
     None,
     /// A checkerboard wall and floor.
-    #[default]
     Checker,
+}
+
+impl BackdropArg {
+    /// The backdrop of a picture as the engine's defaults draw it.
+    pub fn default_picture() -> BackdropArg {
+        if PictureSpec::default().checker {
+            BackdropArg::Checker
+        } else {
+            BackdropArg::None
+        }
+    }
 }
 
 /// Camera options shared by `render` and `bench`.
@@ -280,10 +300,10 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub camera: CameraArgs,
     /// Course (colour codes) or fresnel (weights)
-    #[arg(long, value_enum, default_value_t = ModeArg::Fresnel)]
+    #[arg(long, value_enum, default_value_t = ModeArg::default_picture())]
     pub mode: ModeArg,
     /// Backdrop behind the glass
-    #[arg(long, value_enum, default_value_t = BackdropArg::Checker)]
+    #[arg(long, value_enum, default_value_t = BackdropArg::default_picture())]
     pub backdrop: BackdropArg,
     /// Fresnel branches lighter than this are abandoned, 0 <= W < 1
     ///
@@ -401,7 +421,7 @@ pub struct ExploreArgs {
     )]
     pub points: usize,
     /// The picture's mode to start with
-    #[arg(long, value_enum, default_value_t = ModeArg::Fresnel)]
+    #[arg(long, value_enum, default_value_t = ModeArg::default_picture())]
     pub mode: ModeArg,
 }
 
