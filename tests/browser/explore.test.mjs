@@ -623,8 +623,16 @@ test("on a phone: no sideways scrolling, controls a finger can hit, a swipe scro
   assert.deepEqual(await page.evaluate(() => window.bentstraw.state.observer), observer);
   assert.equal(await page.evaluate(() => window.bentstraw.frames), frames);
   assert.deepEqual(await page.evaluate(() => window.bentstraw.command()), command);
-  // A sideways drag turns the eye round the glass, at the same distance.
-  await page.evaluate(() => window.scrollTo(0, 0));
+  // A sideways drag turns the eye round the glass, at the same distance. First back to the top,
+  // once the swipe's own scrolling has ended: the page stays there ten frames running.
+  await page.evaluate(() => new Promise((done) => {
+    let still = 0;
+    const tick = () => {
+      if (window.scrollY !== 0) { window.scrollTo(0, 0); still = 0; } else still += 1;
+      if (still >= 10) done(); else requestAnimationFrame(tick);
+    };
+    tick();
+  }));
   const b2 = await page.locator("#picture").boundingBox();
   const my = b2.y + b2.height / 2;
   await swipe(cdp, page, [b2.x + 60, my], [b2.x + 260, my]);
