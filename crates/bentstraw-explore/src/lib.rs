@@ -250,10 +250,8 @@ pub struct View {
     pub camera_args: CameraSpec,
     /// The camera (validated).
     pub camera: Camera,
-    /// The picture as asked for: mode, backdrop, samples, pruning weight.
+    /// The picture as asked for (checked): mode, backdrop, samples, pruning weight.
     pub picture: PictureSpec,
-    /// Its shading (checked).
-    shading: ShadingOptions,
     /// Image points asked for (0: none).
     pub points: usize,
 }
@@ -522,7 +520,7 @@ impl View {
         if let Some(samples) = get(q, "samples") {
             picture.samples = number(samples, "samples")?;
         }
-        let shading = checked_shading(&picture).map_err(|e| e.to_string())?;
+        checked_shading(&picture).map_err(|e| e.to_string())?;
         let points = get(q, "points").map_or(Ok(DEFAULT_POINTS), |t| number(t, "points"))?;
         if points > MAX_POINTS {
             return Err(format!(
@@ -538,7 +536,6 @@ impl View {
             camera_args,
             camera,
             picture,
-            shading,
             points,
         })
     }
@@ -549,7 +546,7 @@ impl View {
     }
 
     fn shading(&self) -> ShadingOptions {
-        self.shading
+        self.picture.shading()
     }
 
     /// The scene's arguments, as `simulate` and `render` take them.

@@ -54,12 +54,7 @@ pub fn png_bytes(picture: &RgbPicture) -> Result<Vec<u8>> {
 /// pruning weight, a checker backdrop or none, samples per pixel side), or a refusal naming every
 /// value outside its rule.
 pub fn checked_shading(spec: &PictureSpec) -> Result<ShadingOptions> {
-    let &PictureSpec {
-        fresnel,
-        checker,
-        prune,
-        samples,
-    } = spec;
+    let (prune, samples) = (spec.prune, spec.samples);
     let mut broken = Vec::new();
     if !prune.is_finite() || !(0.0..1.0).contains(&prune) {
         broken.push(format!(
@@ -73,20 +68,7 @@ pub fn checked_shading(spec: &PictureSpec) -> Result<ShadingOptions> {
     if !broken.is_empty() {
         return Err(Error::Refused(broken.join("\n")));
     }
-    Ok(ShadingOptions {
-        mode: if fresnel {
-            ShadingMode::Fresnel { prune_below: prune }
-        } else {
-            ShadingMode::Course
-        },
-        backdrop: if checker {
-            Backdrop::Checker
-        } else {
-            Backdrop::Plain
-        },
-        samples,
-        outline: true,
-    })
+    Ok(spec.shading())
 }
 
 /// The picture `camera` takes of `world` with `shading`, drawn by the explorer's frame call

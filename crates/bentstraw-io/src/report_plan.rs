@@ -33,7 +33,7 @@ use crate::model_plots::{
 use crate::plot::simulation_title;
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{Check, Figure, Link, Report, Section, SimulationEntry, Timing};
-use crate::solution::{colour_names, region_words};
+use crate::solution::region_words;
 use crate::validation::{self, write_validation_figure, ValidationSeries};
 use crate::words::{self, Lang};
 use crate::writers::{write_csv_gz, ModelPoints, PointSet};
@@ -695,7 +695,7 @@ fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry 
 
     let counts = match job.loaded.assignment_numbers().copied() {
         Some(_) => cloud.counts_per_color().to_vec(),
-        None => cloud.counts_per_code()[..colour_names(&job.loaded).len()].to_vec(),
+        None => cloud.counts_per_code()[..job.loaded.colour_names().len()].to_vec(),
     };
     SimulationEntry {
         id: job.stem.clone(),
@@ -1138,7 +1138,7 @@ pub fn own_points_check(loaded: &Setup, points: &[ImagePoint]) -> Check {
         DEFAULT_TOLERANCE,
         DEFAULT_MIN_COVERAGE,
     );
-    let colours = colour_names(loaded).len();
+    let colours = loaded.colour_names().len();
     let passed = r.passes();
     let verdict = if passed { "pass" } else { "fail" };
     let coverage: Vec<String> = r

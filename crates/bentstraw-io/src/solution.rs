@@ -92,11 +92,6 @@ fn rounding_error(digits: usize, largest: f64) -> f64 {
     0.5 * 10f64.powf(largest.log10().floor() - digits as f64 + 1.0)
 }
 
-/// The names of the colour codes the scene can show, code 1 first.
-pub fn colour_names(checked: &Setup) -> &'static [&'static str] {
-    checked.colour_names()
-}
-
 /// Reads and parses the solution at `path` (refusing files too large to be an image), for a
 /// scene whose colour codes go from 1 to `codes`.
 pub fn read_solution_of(path: &Path, codes: usize) -> Result<Solution> {
@@ -461,7 +456,7 @@ pub fn summary(
             );
         }
     }
-    let names = colour_names(checked);
+    let names = checked.colour_names();
     if let Some(h) = &solution.header {
         let _ = writeln!(t, "  read            {h}");
     }
@@ -610,7 +605,7 @@ pub fn json_report(
     let t = &r.tally;
     let mut coverage = serde_json::Map::new();
     let mut per_colour = Vec::new();
-    for (k, name) in colour_names(checked).iter().enumerate() {
+    for (k, name) in checked.colour_names().iter().enumerate() {
         let cov = &r.coverage.per_colour[k];
         coverage.insert((k + 1).to_string(), json!(cov.share()));
         let c = &r.per_colour[k];

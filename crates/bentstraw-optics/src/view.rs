@@ -3,6 +3,8 @@
 //! The command line's flags, the explorer's queries, the page and the Python keywords take their
 //! defaults from here.
 
+use crate::shading::{Backdrop, ShadingMode, ShadingOptions};
+
 /// Image points asked for when no number is given: enough for a smooth 3D cloud (the course asks
 /// for at least 1000).
 pub const DEFAULT_POINTS: usize = 20_000;
@@ -104,6 +106,27 @@ impl PictureSpec {
     /// The backdrop's name.
     pub fn backdrop(&self) -> &'static str {
         BACKDROPS[self.checker as usize]
+    }
+
+    /// The shading that draws this picture (its values as given: `checked_shading` in the I/O
+    /// library checks them first).
+    pub fn shading(&self) -> ShadingOptions {
+        ShadingOptions {
+            mode: if self.fresnel {
+                ShadingMode::Fresnel {
+                    prune_below: self.prune,
+                }
+            } else {
+                ShadingMode::Course
+            },
+            backdrop: if self.checker {
+                Backdrop::Checker
+            } else {
+                Backdrop::Plain
+            },
+            samples: self.samples,
+            outline: true,
+        }
     }
 
     /// The command line's arguments that draw this picture: the mode and the backdrop always,

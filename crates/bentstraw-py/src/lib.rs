@@ -14,7 +14,7 @@ use bentstraw_io::camera::{scene_camera, CameraSpec};
 use bentstraw_io::gallery::GALLERY;
 use bentstraw_io::pictures::{checked_shading, picture};
 use bentstraw_io::scene_input::{parse_scene_text, read_scene_text, SceneSource};
-use bentstraw_io::solution::{colour_names, json_report, solution_of_points, CheckOptions};
+use bentstraw_io::solution::{json_report, solution_of_points, CheckOptions};
 use bentstraw_io::writers::{check_points_asked, raw_weight_count};
 use bentstraw_io::Error;
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
@@ -75,7 +75,7 @@ impl LoadedScene {
     /// The names of the colour codes the scene can show, code 1 first.
     #[getter]
     fn color_names(&self) -> Vec<&'static str> {
-        colour_names(&self.loaded).to_vec()
+        self.loaded.colour_names().to_vec()
     }
 
     /// The scene file's hints: numbers that break no rule but look like a slip.
@@ -520,7 +520,7 @@ fn check(
     }
     let points: Vec<[f64; 3]> = xyz.rows().into_iter().map(|r| [r[0], r[1], r[2]]).collect();
     let colors: Vec<f64> = color.as_array().iter().copied().collect();
-    let solution = solution_of_points(&points, &colors, colour_names(loaded).len())
+    let solution = solution_of_points(&points, &colors, loaded.colour_names().len())
         .map_err(PyValueError::new_err)?;
     let started = std::time::Instant::now();
     let report = py.detach(|| {

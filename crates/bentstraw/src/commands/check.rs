@@ -11,7 +11,7 @@ use bentstraw_optics::check::check_solution;
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
 use bentstraw_io::files::check_writable;
-use bentstraw_io::solution::{colour_names, json_report, read_solution_of, summary, CheckOptions};
+use bentstraw_io::solution::{json_report, read_solution_of, summary, CheckOptions};
 use bentstraw_optics::text::clip_text;
 
 /// Runs `check`; `Ok(true)` for a pass, `Ok(false)` for a fail.
@@ -29,7 +29,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
         check_writable(p)?;
     }
     let started = Instant::now();
-    let solution = read_solution_of(&args.file, colour_names(checked).len())?;
+    let solution = read_solution_of(&args.file, checked.colour_names().len())?;
     let report = check_solution(
         &checked.world,
         observer,
