@@ -201,12 +201,14 @@ test("a preset loads a reference simulation whose points are simulate's", async 
   await context.close();
 });
 
-test("the eye and stereo models come quickly, then whole, and are simulate's", async () => {
+test("the eye and stereo models come quickly, then whole, from the frame's points, and are simulate's", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=6000");
   await waitReady(page);
   const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-"));
+  const reused = () => page.evaluate(() => Number(document.body.dataset.modelsReused || 0));
   for (const m of ["eye", "stereo"]) {
+    const before = await reused();
     // Seen first with every 4th point, then with all of them.
     const sizes = await page.evaluate(async (m) => {
       const seen = [];
@@ -228,6 +230,9 @@ test("the eye and stereo models come quickly, then whole, and are simulate's", a
     assert.equal(got.length, 3 * placed.length, `${m}: ${got.length / 3} points in the page, ${placed.length} in the file`);
     placed.forEach((q, i) => assert.deepEqual(got.slice(3 * i, 3 * i + 3), q.map(Math.fround)));
     assert.ok(sizes.length >= 2 && sizes[0] < sizes[sizes.length - 1], `${m}: sizes ${sizes}`);
+    // Its answers started from the points of the frame drawn, not traced again (the page's own
+    // engine included: the models are computed in the worker that holds the frame).
+    assert.ok(await reused() > before, `${m}: ${await reused()} answers from the frame's points, ${before} before`);
   }
   assert.deepEqual(problems, []);
   await context.close();

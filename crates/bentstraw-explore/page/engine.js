@@ -8,9 +8,13 @@ export const wasm = ENGINE === "wasm" ? wasmEngine() : null;
 // The site keeps a copy of itself, to open again without a network.
 if (wasm && "serviceWorker" in navigator) navigator.serviceWorker.register("sw.js").catch(() => {});
 
-/** The engine compiled to WebAssembly, one Web Worker per channel (so a picture never waits for
- * a model). Everything it needs is fetched once, at the start: afterwards the page needs no
- * network. A request superseded while it runs stops its worker at once; a fresh one takes over. */
+/** The engine compiled to WebAssembly in Web Workers, each named by the page (by default one per
+ * channel): quick frames have a worker of their own, so a drag never waits for the rest; full
+ * frames and the models share the one that holds the frame's points, which the models start from
+ * (each worker's engine remembers only what it computed itself). Everything it needs is fetched
+ * once, at the start: afterwards the page needs no network. A request superseded while it runs
+ * stops its worker at once, and a fresh one, remembering nothing, takes over; one superseded
+ * while it waits is only taken out of its worker's queue. */
 function wasmEngine() {
   const files = Promise.all([
     // Compiled while it downloads; a host that does not call it application/wasm gets it compiled after.
@@ -30,6 +34,8 @@ function wasmEngine() {
       w.current = null;
       const headers = { "Content-Type": m.contentType };
       if (m.fileName) headers["Content-Disposition"] = `attachment; filename="${m.fileName}"`;
+      // As the server says it: this model's answer started from the frame's points.
+      if (m.reused) headers["X-Points"] = "reused";
       // A crash's message is the page's own, in the page's language.
       const r = new Response(m.broken ? t("error.engine-broken") : m.body, { status: m.status, headers });
       r.engineMs = m.ms;
@@ -115,6 +121,15 @@ export async function ask(name, route, query, worker) {
   } finally {
     if (ch.controller === controller) ch.controller = null;
   }
+}
+
+/** Gives up what channel `name` has in flight or waiting (its `ask` resolves to null). In the
+ * page's engine a request already running stops its worker, and the fresh worker remembers
+ * nothing: for the models, whose worker holds the full frame's points, that costs nothing, since
+ * the view has changed and the next full frame brings its own. */
+export function cancel(name) {
+  const ch = channels[name];
+  if (ch && ch.controller) ch.controller.abort();
 }
 
 /** A refusal's answer: its broken rules as data ({ refusal, message }) when the engine sends

@@ -2,7 +2,7 @@
 // one), the models' points and the clicked ray, and painting what comes. Holds the last frame,
 // the models and the path, and the members of window.bentstraw that report on them.
 import { state, viewQuery, stateHash } from "./state.js";
-import { ask, refusalOf } from "./engine.js";
+import { ask, cancel, refusalOf } from "./engine.js";
 import { $, pictureCanvas } from "./dom.js";
 import { showError } from "./errors.js";
 import { drawPicture } from "./picture.js";
@@ -61,8 +61,10 @@ export function changed(options) {
     path = null; state.pick = "";
     showHint();
   }
-  // The models' points belong to the previous view: they come back with the full frame.
+  // The models' points belong to the previous view: they come back with the full frame. Their
+  // requests are given up, so that the next full frame, in the same worker, does not wait for them.
   models = { eye: null, stereo: null };
+  cancel("model-eye"); cancel("model-stereo");
   requestFrame(true);
 }
 
@@ -87,8 +89,9 @@ export async function sendFrame(quick) {
   dirty = false;
   const sent = performance.now();
   let r;
-  // In the page's engine, full frames have a worker of their own: one superseded by a drag is
-  // stopped without holding up the quick frames, which the other core computes meanwhile.
+  // In the page's engine, full frames have a worker apart from the quick ones' (shared with the
+  // models, which start from its points): one superseded by a drag is stopped without holding up
+  // the quick frames, which the other core computes meanwhile.
   try { r = await ask("frame", "/api/frame", query, quick ? "frame" : "frame-full"); } catch (e) { showError({ key: "error.no-answer", params: { message: e.message } }); inFlight = null; return; }
   // Not painted: its inputs still wait (for the request that replaced it, or the retry).
   const unpainted = () => { if (since !== null && (inputSince === null || since < inputSince)) inputSince = since; };
@@ -145,7 +148,9 @@ function decodeFrame(buffer, quick) {
 }
 
 /** Asks for the eye and stereo models switched on and not yet shown for this view, both at once
- * (each on its own channel): first every 4th point, painted at once, then all of them. */
+ * (each on its own channel): first every 4th point, painted at once, then all of them. In the
+ * page's engine they are computed by the worker of the full frames, which holds the frame's points:
+ * the models start from them instead of tracing them again. */
 export function requestModels() {
   for (const m of ["eye", "stereo"]) {
     if (!state.models.includes(m)) { models[m] = null; continue; }
@@ -159,8 +164,10 @@ async function requestModel(m) {
   models[m] = { xyz: new Float32Array(0), color: new Uint8Array(0), query, pending: true, all: false };
   const steps = state.points >= 4000 ? [4, 1] : [1];
   for (const every of steps) {
-    const r = await ask("model-" + m, "/api/model", viewQuery(state, { model: m, every }));
+    const r = await ask("model-" + m, "/api/model", viewQuery(state, { model: m, every }), "frame-full");
     if (!r || !r.ok || !models[m] || models[m].query !== query) return; // superseded or refused
+    // Counted for the tests: the answers that started from the frame's points.
+    if (r.headers.get("X-Points") === "reused") document.body.dataset.modelsReused = String(Number(document.body.dataset.modelsReused || 0) + 1);
     const b = await r.arrayBuffer();
     if (!models[m] || models[m].query !== query) return;
     const n = new DataView(b).getUint32(0, true);

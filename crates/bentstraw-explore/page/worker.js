@@ -21,7 +21,7 @@ self.onmessage = async (e) => {
     return;
   }
   const body = reply.takeBody();
-  const answer = { id: m.id, status: reply.status, contentType: reply.contentType, fileName: reply.fileName ?? null, body: body.buffer, ms: performance.now() - started };
+  const answer = { id: m.id, status: reply.status, contentType: reply.contentType, fileName: reply.fileName ?? null, body: body.buffer, ms: performance.now() - started, reused: reply.reusedPoints };
   reply.free();
   self.postMessage(answer, [body.buffer]);
 };

@@ -68,6 +68,9 @@ pub struct Reply {
     pub body: Vec<u8>,
     /// A file name for downloads (`Content-Disposition: attachment`).
     pub file_name: Option<String>,
+    /// Whether a model's answer started from the last frame's course points instead of tracing
+    /// them again (sent as `X-Points: reused`, so that the page and its tests can tell).
+    pub reused_points: bool,
 }
 
 impl Reply {
@@ -78,6 +81,7 @@ impl Reply {
             content_type: "text/plain; charset=utf-8",
             body: message.into().into_bytes(),
             file_name: None,
+            reused_points: false,
         }
     }
 
@@ -87,6 +91,7 @@ impl Reply {
             content_type: "application/json",
             body: value.to_string().into_bytes(),
             file_name: None,
+            reused_points: false,
         }
     }
 
@@ -96,6 +101,7 @@ impl Reply {
             content_type,
             body,
             file_name: None,
+            reused_points: false,
         }
     }
 }
@@ -737,18 +743,18 @@ impl Memory {
 /// Most points skipped between two a model places (`every`).
 pub const MAX_EVERY: usize = 64;
 
-/// The course image points of `view`: the last frame's when it was this view's.
-fn course_points(view: &View, memory: &Memory) -> Arc<Vec<ImagePoint>> {
+/// The course image points of `view`: the last frame's when it was this view's (then `true`).
+fn course_points(view: &View, memory: &Memory) -> (Arc<Vec<ImagePoint>>, bool) {
     let key = view.points_key();
     let last = memory.points.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((k, points)) = last.as_ref() {
         if *k == key {
             memory.reused.fetch_add(1, Ordering::Relaxed);
-            return Arc::clone(points);
+            return (Arc::clone(points), true);
         }
     }
     drop(last);
-    Arc::new(view.sample(view.points.max(1)).points)
+    (Arc::new(view.sample(view.points.max(1)).points), false)
 }
 
 /// A model's answers for the last few views asked: the view and model, the step `every`, and
@@ -795,7 +801,8 @@ fn place(
 /// `GET /api/model?model=eye|stereo[&every=K]`: the model's points as `u32` count, `3n` `f32`, `n`
 /// colours (the points the model places; the others are left out). With `every=K`, only every
 /// K-th course point is placed: a quick first answer the page refines. Setting `stop` abandons it
-/// (a 409 answer).
+/// (a 409 answer). The answer says whether it started from the last frame's points
+/// ([`Reply::reused_points`]).
 pub fn model_reply(
     view: &View,
     model: &str,
@@ -803,7 +810,7 @@ pub fn model_reply(
     stop: &AtomicBool,
     memory: &Memory,
 ) -> Reply {
-    let all = course_points(view, memory);
+    let (all, reused_points) = course_points(view, memory);
     let every = every.max(1);
     let key = format!("{} {model}", view.points_key());
     // A coarser answer for this view, if one was given: its points are taken from it.
@@ -855,7 +862,10 @@ pub fn model_reply(
         }
     }
     body.extend(placed.iter().map(|p| p.1));
-    Reply::bytes("application/octet-stream", body)
+    Reply {
+        reused_points,
+        ..Reply::bytes("application/octet-stream", body)
+    }
 }
 
 fn vec_json(v: Vec3) -> Value {
@@ -1230,7 +1240,10 @@ mod tests {
             // Whole, coarse, then whole again from the coarse answer's points.
             for every in [1, 4, 1] {
                 let stop = AtomicBool::new(false);
-                let got = decode(model_reply(&view, "eye", every, &stop, &memory));
+                let reply = model_reply(&view, "eye", every, &stop, &memory);
+                // The answer says where its points came from.
+                assert_eq!(reply.reused_points, with_frame, "every {every}");
+                let got = decode(reply);
                 assert!(got.len() > 800 / every / 2);
                 assert_eq!(
                     got,
@@ -1241,6 +1254,11 @@ mod tests {
             // The three answers after the frame started from its points, none before it.
             assert_eq!(memory.points_reused(), if with_frame { 3 } else { 0 });
         }
+        // Another view than the frame's: its points are traced, and the answer says so.
+        let other = View::from_query(&query(&format!("{REF2}&size=40x30&points=900"))).unwrap();
+        let stop = AtomicBool::new(false);
+        assert!(!model_reply(&other, "eye", 4, &stop, &memory).reused_points);
+        assert_eq!(memory.points_reused(), 3);
         let bad = handle(
             "/api/model",
             &format!("{REF2}&model=eye&every=0"),

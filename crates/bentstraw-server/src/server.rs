@@ -400,6 +400,7 @@ fn asset(content_type: &'static str, text: &str) -> Reply {
         content_type,
         body: text.as_bytes().to_vec(),
         file_name: None,
+        reused_points: false,
     }
 }
 
@@ -426,6 +427,11 @@ fn respond(reply: Reply) -> Response<Full<Bytes>> {
         if let Ok(value) = HeaderValue::from_str(&format!("attachment; filename=\"{name}\"")) {
             headers.insert(header::CONTENT_DISPOSITION, value);
         }
+    }
+    // A model's answer that started from the last frame's points says so (as the page's own
+    // engine does), for the page and its tests.
+    if reply.reused_points {
+        headers.insert("x-points", HeaderValue::from_static("reused"));
     }
     response
 }

@@ -24,6 +24,7 @@ pub struct Reply {
     content_type: String,
     body: Vec<u8>,
     file_name: Option<String>,
+    reused_points: bool,
 }
 
 #[wasm_bindgen]
@@ -51,6 +52,13 @@ impl Reply {
     pub fn file_name(&self) -> Option<String> {
         self.file_name.clone()
     }
+
+    /// Whether a model's answer started from this worker's last frame's points (the server sends
+    /// `X-Points: reused`).
+    #[wasm_bindgen(getter, js_name = reusedPoints)]
+    pub fn reused_points(&self) -> bool {
+        self.reused_points
+    }
 }
 
 /// The answer to the API request `path?query` (for example `/api/frame`, `observer=0.1,0,0.1&…`).
@@ -65,5 +73,6 @@ pub fn handle(path: &str, query: &str) -> Reply {
         content_type: reply.content_type.to_string(),
         body: reply.body,
         file_name: reply.file_name,
+        reused_points: reply.reused_points,
     }
 }
