@@ -11,7 +11,7 @@ use crate::error::{fail, Result};
 use bentstraw_optics::setup::Setup;
 
 /// A camera as asked for: each value optional, a default chosen from the scene when absent.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CameraSpec {
     /// The point looked at.
     pub target: Option<[f64; 3]>,

@@ -40,7 +40,9 @@ mod svg_marks;
 mod test_support;
 #[cfg(feature = "figures")]
 pub mod validation;
+pub mod view_spec;
 pub mod words;
 pub mod writers;
 
 pub use error::{Error, Result};
+pub use view_spec::ViewSpec;
