@@ -30,15 +30,18 @@ use serde_json::{json, Value};
 
 pub mod page;
 
-use bentstraw_io::camera::{scene_camera, CameraSpec};
+// The query's codec and the page's scene file's name, where the view as asked for is read.
+pub use bentstraw_io::view_spec::{parse_query, query_value, PAGE_SCENE_FILE};
+
+use bentstraw_io::camera::scene_camera;
 use bentstraw_io::gallery::{opening_comment, GALLERY};
-use bentstraw_io::parse::{parse_size, parse_vec2, parse_vec3};
 use bentstraw_io::pictures::checked_shading;
 use bentstraw_io::pictures::png_bytes;
-use bentstraw_io::scene_input::{gallery_setup, parse_scene_text, SceneSource};
+use bentstraw_io::scene_input::{gallery_setup, parse_scene_text};
+use bentstraw_io::view_spec::{number, required, ImageModel, SceneFile, Verb, ViewSpec};
 use bentstraw_io::writers::{write_csv, write_model_csv, write_ply, ModelPoints, PointSet};
 use bentstraw_optics::scene::{GLASS_HEIGHT, GLASS_RADIUS, REFERENCES, STRAW_HEIGHT, STRAW_RADIUS};
-use bentstraw_optics::setup::{SceneValues, Setup, MAX_SCENE_FILE_BYTES};
+use bentstraw_optics::setup::{Setup, MAX_SCENE_FILE_BYTES};
 use bentstraw_optics::sketch::{object_outlines, world_wireframe};
 use bentstraw_optics::text::refuse_choice;
 use bentstraw_optics::view::{
@@ -54,8 +57,6 @@ pub const MAX_PICTURE_PIXELS: u64 = 3840 * 2160;
 /// Longest request address accepted (bytes): room for a scene file of a few kilobytes, which
 /// travels in the address (`scene-file`).
 pub const MAX_URL: usize = 16 * 1024;
-/// Most parameters in one address.
-const MAX_PARAMS: usize = 40;
 
 /// A finished answer to a request.
 #[derive(Debug, Clone, PartialEq)]
@@ -201,92 +202,17 @@ impl Refused {
     }
 }
 
-/// A request's query string as name → value (percent-decoded; `+` is a space).
-pub fn parse_query(query: &str) -> Result<HashMap<String, String>, String> {
-    let mut out = HashMap::new();
-    for (k, part) in query.split('&').filter(|p| !p.is_empty()).enumerate() {
-        if k >= MAX_PARAMS {
-            return Err(format!("too many parameters: at most {MAX_PARAMS}"));
-        }
-        let (name, value) = part.split_once('=').unwrap_or((part, ""));
-        let name = percent_decode(name)?;
-        let value = percent_decode(value)?;
-        out.insert(name, value);
-    }
-    Ok(out)
-}
-
-/// `%XX` and `+` decoded; an error for a broken escape or bytes that are not UTF-8.
-fn percent_decode(s: &str) -> Result<String, String> {
-    let bytes = s.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        match bytes[i] {
-            b'+' => out.push(b' '),
-            b'%' => {
-                let hex = bytes
-                    .get(i + 1..i + 3)
-                    .and_then(|h| std::str::from_utf8(h).ok())
-                    .and_then(|h| u8::from_str_radix(h, 16).ok())
-                    .ok_or_else(|| format!("'{}' has a broken %-escape", clip_text(s, 40)))?;
-                out.push(hex);
-                i += 2;
-            }
-            b => out.push(b),
-        }
-        i += 1;
-    }
-    String::from_utf8(out).map_err(|_| "a parameter is not UTF-8 text".to_string())
-}
-
-/// Everything that defines a view: the scene, the observer, the picture and the points.
+/// Everything that defines a view, checked: the view as asked for, and its scene and camera.
 #[derive(Debug, Clone)]
 pub struct View {
+    /// The view as asked for (names and values as the command line's flags).
+    pub spec: ViewSpec,
     /// The scene (validated): the assignment's glass, a gallery scene or the page's scene file.
     pub scene: Arc<Setup>,
-    /// The text of the page's scene file, when the scene is one (it is part of what names the
-    /// view: two files are both called [`PAGE_SCENE_FILE`]).
-    pub page_file: Option<String>,
     /// The observer (validated).
     pub observer: Vec3,
-    /// The scene's inputs as the command line takes them.
-    pub scene_args: SceneValues,
-    /// The camera's inputs as the command line takes them.
-    pub camera_args: CameraSpec,
     /// The camera (validated).
     pub camera: Camera,
-    /// The picture as asked for (checked): mode, backdrop, samples, pruning weight.
-    pub picture: PictureSpec,
-    /// Image points asked for (0: none).
-    pub points: usize,
-}
-
-/// The name a scene file the page holds (its text in the query's `scene-file`) goes by in
-/// messages and commands.
-pub const PAGE_SCENE_FILE: &str = "scene.toml";
-
-/// The scene file a query names, as its name and text: a scene of the gallery (`scene=NAME`) or
-/// a file's whole text (`scene-file=TEXT`, named [`PAGE_SCENE_FILE`]); `None` for the
-/// assignment's glass given by its numbers.
-fn scene_text(q: &HashMap<String, String>) -> Result<Option<(String, &str)>, String> {
-    let gallery = get(q, "scene").filter(|s| !s.is_empty());
-    match (gallery, get(q, "scene-file")) {
-        (Some(_), Some(_)) => Err(
-            "give either 'scene' (a scene of the gallery) or 'scene-file' (a scene file's text), not both"
-                .into(),
-        ),
-        (None, Some(text)) => Ok(Some((PAGE_SCENE_FILE.to_string(), text))),
-        (Some(name), None) => match GALLERY.iter().find(|(stem, _)| *stem == name) {
-            // Named as the command line finds it from any folder (the gallery is built in).
-            Some((stem, text)) => Ok(Some((stem.to_string(), text))),
-            None => {
-                let names: Vec<&str> = GALLERY.iter().map(|(stem, _)| *stem).collect();
-                Err(refuse_choice("scene", name, &names))
-            }
-        },
-        (None, None) => Ok(None),
-    }
 }
 
 /// `GET /api/sketch?scene=NAME` (or `scene-file=TEXT`): what the page draws of a scene besides
@@ -294,10 +220,10 @@ fn scene_text(q: &HashMap<String, String>) -> Result<Option<(String, &str)>, Str
 /// wireframe as `[x, y, z, x, y, z]` segments, the objects' outlines as flat polylines, the box
 /// holding them, and the file's own observer.
 pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, Refused> {
-    let Some((name, text)) = scene_text(q)? else {
+    let Some(SceneFile { name, text }) = SceneFile::from_query(q)? else {
         return Err("missing required parameter 'scene'".into());
     };
-    let description = parse_scene_text(&name, text)?;
+    let description = parse_scene_text(&name, &text)?;
     let world = World::new(&description, DEFAULT_MAX_EVENTS).map_err(|error| {
         bentstraw_io::error::Error::SceneFile {
             name: name.clone(),
@@ -423,34 +349,6 @@ fn get<'a>(q: &'a HashMap<String, String>, name: &str) -> Option<&'a str> {
     q.get(name).map(String::as_str)
 }
 
-fn required<'a>(q: &'a HashMap<String, String>, name: &str) -> Result<&'a str, String> {
-    get(q, name).ok_or_else(|| format!("missing required parameter '{name}'"))
-}
-
-/// Parses a number as clap does for the flag `--name`.
-fn number<T: std::str::FromStr>(text: &str, name: &str) -> Result<T, String> {
-    text.trim().parse().map_err(|_| {
-        format!(
-            "invalid value '{}' for '--{name}': not a {}",
-            clip_text(text, 40),
-            if std::any::type_name::<T>() == "f64" {
-                "number"
-            } else {
-                "whole number in range"
-            }
-        )
-    })
-}
-
-fn flag<T>(r: Result<T, String>, name: &str, text: &str) -> Result<T, String> {
-    r.map_err(|e| {
-        format!(
-            "invalid value '{}' for '--{name}': {e}",
-            clip_text(text, 40)
-        )
-    })
-}
-
 impl View {
     /// The view described by the query `q` (names as the command line's flags), or the command
     /// line's message for the first value that breaks a rule.
@@ -458,56 +356,15 @@ impl View {
         View::checked(q).map_err(|r| r.message)
     }
 
-    /// [`View::from_query`], its refusal with the broken rules as data.
+    /// [`View::from_query`], its refusal with the broken rules as data: the query read
+    /// ([`ViewSpec::from_query`]), then its scene loaded, its camera aimed and its picture checked
+    /// as the command line does, within the explorer's own limits.
     pub fn checked(q: &HashMap<String, String>) -> Result<View, Refused> {
-        let observer_text = required(q, "observer")?;
-        let file = scene_text(q)?;
-        // A scene file needs no straw or water: it has them.
-        let (straw_text, he_text) = match file {
-            Some(_) => (
-                get(q, "straw").unwrap_or("0,0"),
-                get(q, "water-height").unwrap_or("0.1"),
-            ),
-            None => (required(q, "straw")?, required(q, "water-height")?),
-        };
-        let scene_args = SceneValues {
-            observer: Some(flag(parse_vec3(observer_text), "observer", observer_text)?),
-            straw: Some(flag(parse_vec2(straw_text), "straw", straw_text)?),
-            water_height: Some(number(he_text, "water-height")?),
-            n_water: Some(get(q, "n-water").map_or(Ok(WATER_INDEX), |t| number(t, "n-water"))?),
-            max_events: get(q, "max-events")
-                .map_or(Ok(DEFAULT_MAX_EVENTS), |t| number(t, "max-events"))?,
-        };
-        let scene = match &file {
-            // As `--scene FILE --observer X,Y,Z` reads it: the file's rules, the eye moved.
-            Some((name, text)) => {
-                let source = SceneSource {
-                    values: SceneValues {
-                        observer: scene_args.observer,
-                        max_events: scene_args.max_events,
-                        ..SceneValues::default()
-                    },
-                    ..SceneSource::default()
-                };
-                source.load_text(name, text)?
-            }
-            None => Setup::from_values(&scene_args).map_err(bentstraw_io::Error::from)?,
-        };
+        let spec = ViewSpec::from_query(q)?;
+        // As `--scene FILE --observer X,Y,Z` reads it: the file's rules, the eye moved.
+        let scene = spec.load()?;
         let observer = scene.observer;
-        let scene = Arc::new(scene);
-        let page_file = file
-            .filter(|(name, _)| name == PAGE_SCENE_FILE)
-            .map(|(_, text)| text.to_string());
-        let camera_args = CameraSpec {
-            target: get(q, "target")
-                .map(|t| flag(parse_vec3(t), "target", t))
-                .transpose()?,
-            fov: get(q, "fov").map(|t| number(t, "fov")).transpose()?,
-            size: get(q, "size")
-                .map(|t| flag(parse_size(t), "size", t))
-                .transpose()?,
-        };
-        if let Some((w, h)) = camera_args.size {
+        if let Some((w, h)) = spec.camera.size {
             if w as u64 * h as u64 > MAX_PICTURE_PIXELS {
                 return Err(format!(
                     "--size {w}x{h} is too large for the explorer: at most {MAX_PICTURE_PIXELS} pixels (3840x2160)"
@@ -515,34 +372,20 @@ impl View {
                 .into());
             }
         }
-        let camera = scene_camera(&scene, &camera_args).map_err(|e| e.to_string())?;
-        let mut picture = PictureSpec::default();
-        if let Some(mode) = get(q, "mode") {
-            picture = picture.with_mode("--mode", mode)?;
-        }
-        if let Some(backdrop) = get(q, "backdrop") {
-            picture = picture.with_backdrop("--backdrop", backdrop)?;
-        }
-        if let Some(samples) = get(q, "samples") {
-            picture.samples = number(samples, "samples")?;
-        }
-        checked_shading(&picture).map_err(|e| e.to_string())?;
-        let points = get(q, "points").map_or(Ok(DEFAULT_POINTS), |t| number(t, "points"))?;
-        if points > MAX_POINTS {
+        let camera = scene_camera(&scene, &spec.camera).map_err(|e| e.to_string())?;
+        checked_shading(&spec.picture).map_err(|e| e.to_string())?;
+        if spec.points > MAX_POINTS {
             return Err(format!(
-                "--points {points} is too many for the explorer: at most {MAX_POINTS}"
+                "--points {} is too many for the explorer: at most {MAX_POINTS}",
+                spec.points
             )
             .into());
         }
         Ok(View {
-            scene,
-            page_file,
+            spec,
+            scene: Arc::new(scene),
             observer,
-            scene_args,
-            camera_args,
             camera,
-            picture,
-            points,
         })
     }
 
@@ -552,79 +395,33 @@ impl View {
     }
 
     fn shading(&self) -> ShadingOptions {
-        self.picture.shading()
-    }
-
-    /// The scene's arguments, as `simulate` and `render` take them.
-    fn scene_flags(&self) -> Vec<String> {
-        let a = &self.scene_args;
-        let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
-        let observer = list(&a.observer.unwrap_or_default());
-        let mut s: Vec<String> = match &self.scene.name {
-            Some(name) => vec![
-                "--scene".into(),
-                name.clone(),
-                "--observer".into(),
-                observer,
-            ],
-            None => vec![
-                "--observer".into(),
-                observer,
-                "--straw".into(),
-                list(&a.straw.unwrap_or_default()),
-                "--water-height".into(),
-                a.water_height.unwrap_or_default().to_string(),
-            ],
-        };
-        let n_water = a.n_water.unwrap_or(WATER_INDEX);
-        if self.scene.name.is_none() && n_water != WATER_INDEX {
-            s.extend(["--n-water".into(), n_water.to_string()]);
-        }
-        if a.max_events != DEFAULT_MAX_EVENTS {
-            s.extend(["--max-events".into(), a.max_events.to_string()]);
-        }
-        s
+        self.spec.picture.shading()
     }
 
     /// The arguments of the `bentstraw simulate` command that writes this view's points (or
     /// `model`'s) into `view.csv`.
-    pub fn simulate_args(&self, model: &str) -> Vec<String> {
-        let mut s = vec!["simulate".to_string()];
-        s.extend(self.scene_flags());
-        s.extend(["--points".into(), self.points.max(1).to_string()]);
-        if model != "course" {
-            s.extend(["--image-model".into(), model.to_string()]);
-        }
+    pub fn simulate_args(&self, model: ImageModel) -> Vec<String> {
+        let mut s = self.spec.args(Verb::Simulate(model));
         s.extend(["--output".into(), "view.csv".into()]);
         s
     }
 
     /// The `bentstraw simulate` command line that writes this view's points.
-    pub fn simulate_command(&self, model: &str) -> String {
+    pub fn simulate_command(&self, model: ImageModel) -> String {
         format!("bentstraw {}", self.simulate_args(model).join(" "))
     }
 
-    /// What names this view's points: its `simulate` command, and the page's scene file.
+    /// What names this view's points: its `simulate` command, and its scene file's text (two
+    /// files of the page are both called [`PAGE_SCENE_FILE`]).
     fn points_key(&self) -> String {
-        let file = self.page_file.as_deref().unwrap_or("");
-        format!("{}\n{file}", self.simulate_command("course"))
+        let file = self.spec.scene.as_ref().map_or("", |f| f.text.as_str());
+        format!("{}\n{file}", self.simulate_command(ImageModel::Course))
     }
 
     /// The `bentstraw render` command line that draws this view's picture.
     pub fn render_command(&self) -> String {
-        let c = &self.camera_args;
-        let mut s = format!("bentstraw render {}", self.scene_flags().join(" "));
-        if let Some(t) = c.target {
-            s += &format!(" --target {},{},{}", t[0], t[1], t[2]);
-        }
-        if let Some(f) = c.fov {
-            s += &format!(" --fov {f}");
-        }
-        s += &format!(" --size {}x{}", self.camera.width, self.camera.height);
-        for arg in self.picture.args() {
-            s += &format!(" {arg}");
-        }
-        s + " --output view.png"
+        let args = self.spec.args(Verb::Render).join(" ");
+        format!("bentstraw {args} --output view.png")
     }
 }
 
@@ -641,7 +438,7 @@ pub fn frame_reply(view: &View, frame: &mut Frame, memory: &Memory) -> Reply {
     let request = FrameRequest {
         camera: view.camera,
         shading: view.shading(),
-        min_points: view.points,
+        min_points: view.spec.points,
     };
     // WebAssembly in a page has no clock here: the worker times its own calls.
     #[cfg(not(target_arch = "wasm32"))]
@@ -679,8 +476,8 @@ pub fn frame_reply(view: &View, frame: &mut Frame, memory: &Memory) -> Reply {
             "tan_half_fov": view.camera.tan_half_fov,
         },
         "ms": ms,
-        "simulate": view.simulate_command("course"),
-        "simulate_args": view.simulate_args("course"),
+        "simulate": view.simulate_command(ImageModel::Course),
+        "simulate_args": view.simulate_args(ImageModel::Course),
         "render": view.render_command(),
     });
     let kind_of = frame
@@ -754,7 +551,7 @@ fn course_points(view: &View, memory: &Memory) -> (Arc<Vec<ImagePoint>>, bool) {
         }
     }
     drop(last);
-    (Arc::new(view.sample(view.points.max(1)).points), false)
+    (Arc::new(view.sample(view.spec.points.max(1)).points), false)
 }
 
 /// A model's answers for the last few views asked: the view and model, the step `every`, and
@@ -882,7 +679,7 @@ fn focus_json(f: &Focus) -> Value {
 pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, String> {
     let u0 = if let Some(k) = get(q, "point") {
         let k: usize = number(k, "point")?;
-        let cloud = view.sample(view.points.max(1));
+        let cloud = view.sample(view.spec.points.max(1));
         let Some(p) = cloud.points.get(k) else {
             return Err(format!(
                 "point {k} does not exist: the view has {} image points",
@@ -1014,7 +811,7 @@ pub fn export_reply(
             &["course", "eye", "stereo"],
         ));
     }
-    let points = view.points.max(1);
+    let points = view.spec.points.max(1);
     let cloud = view.sample(points);
     let eye;
     let stereo;
@@ -1072,7 +869,7 @@ pub fn scene_file_reply(view: &View) -> Result<Reply, String> {
     let target = view
         .scene
         .target
-        .or(view.camera_args.target.map(Vec3::from_array))
+        .or(view.spec.camera.target.map(Vec3::from_array))
         .unwrap_or_else(|| view.scene.world.bounding_sphere().0);
     description.observer = Some(Observer {
         position: view.observer,
@@ -1085,20 +882,6 @@ pub fn scene_file_reply(view: &View) -> Result<Reply, String> {
     let mut r = Reply::bytes("application/toml", description.to_toml().into_bytes());
     r.file_name = Some(PAGE_SCENE_FILE.into());
     Ok(r)
-}
-
-/// `text` written as one value of a query (`%XX` for everything but letters, digits and `-._~`),
-/// as [`parse_query`] reads it back.
-pub fn query_value(text: &str) -> String {
-    let mut out = String::with_capacity(text.len() * 3 / 2);
-    for b in text.bytes() {
-        if b.is_ascii_alphanumeric() || b"-._~".contains(&b) {
-            out.push(b as char);
-        } else {
-            out.push_str(&format!("%{b:02X}"));
-        }
-    }
-    out
 }
 
 /// The answer to `GET path?query` for the API routes (`/api/...`), with a reusable frame and the
@@ -1734,8 +1517,60 @@ mod tests {
             c["waterHeight"]
         );
         let view = View::from_query(&query(&q)).unwrap();
-        assert_eq!(view.picture, PictureSpec::default());
-        assert_eq!(view.points, DEFAULT_POINTS);
+        assert_eq!(view.spec.picture, PictureSpec::default());
+        assert_eq!(view.spec.points, DEFAULT_POINTS);
+        assert_eq!(view.spec, ViewSpec::default());
+    }
+
+    /// The commands the page shows for a view, byte for byte: the scene's flags (the glass's
+    /// values, a gallery scene or the page's file by name, the index and the event limit when not
+    /// the defaults), then `simulate`'s points and model, or `render`'s camera and picture.
+    #[test]
+    fn the_commands_of_a_view() {
+        let commands = |q: &str| {
+            let view = View::from_query(&query(q)).unwrap();
+            (
+                view.simulate_command(ImageModel::Course),
+                view.simulate_command(ImageModel::Eye),
+                view.render_command(),
+            )
+        };
+        let (simulate, eye, render) =
+            commands(&format!("{REF2}&n-water=1.4&max-events=5&points=0"));
+        let scene = "--observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15 --n-water 1.4 --max-events 5";
+        assert_eq!(
+            simulate,
+            format!("bentstraw simulate {scene} --points 1 --output view.csv")
+        );
+        assert_eq!(
+            eye,
+            format!("bentstraw simulate {scene} --points 1 --image-model eye --output view.csv")
+        );
+        assert_eq!(render, format!("bentstraw render {scene} --size 800x600 --mode fresnel --backdrop checker --output view.png"));
+        // Numbers as Rust writes them back, the defaults left out, the camera as given.
+        let (simulate, _, render) = commands("observer=1e-1,0,0.10&straw=+0.02,0.010&water-height=.15&n-water=1.333&max-events=10&points=+7&target=0,0.01,0.1&fov=3e1&size=40x30&mode=course&backdrop=none&samples=5");
+        let scene = "--observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15";
+        assert_eq!(
+            simulate,
+            format!("bentstraw simulate {scene} --points 7 --output view.csv")
+        );
+        assert_eq!(render, format!("bentstraw render {scene} --target 0,0.01,0.1 --fov 30 --size 40x30 --mode course --backdrop none --samples 5 --output view.png"));
+        // A gallery scene by name, the glass's values it has no use for left out.
+        let (simulate, _, render) = commands("scene=tank-pencil&observer=0.3,0,0.1&max-events=7&n-water=1.4&straw=0.01,0&water-height=0.05&points=123");
+        let scene = "--scene tank-pencil --observer 0.3,0,0.1 --max-events 7";
+        assert_eq!(
+            simulate,
+            format!("bentstraw simulate {scene} --points 123 --output view.csv")
+        );
+        assert_eq!(render, format!("bentstraw render {scene} --size 800x600 --mode fresnel --backdrop checker --output view.png"));
+        // The page's own file by its name, the assignment's kind too (its values are the file's).
+        for (_, text) in [GALLERY[0], bentstraw_io::gallery::SPEC] {
+            let (simulate, _, _) = commands(&format!(
+                "scene-file={}&observer=0.1,0,0.1&points=300",
+                query_value(text)
+            ));
+            assert_eq!(simulate, "bentstraw simulate --scene scene.toml --observer 0.1,0,0.1 --points 300 --output view.csv");
+        }
     }
 
     fn list(v: &Value) -> String {
