@@ -2,17 +2,18 @@
 //! machine ([`bentstraw_server`]): the flags turned into the page's first view, the address
 //! bound, the browser opened.
 
-use bentstraw_optics::view::{CLASSIC_OBSERVER, CLASSIC_STRAW, CLASSIC_WATER_HEIGHT};
 use std::io::Write;
 
-use bentstraw_optics::scene::WATER_INDEX;
 use bentstraw_optics::scene_file::SceneDescription;
+use bentstraw_optics::setup::SceneValues;
+use bentstraw_optics::view::PictureSpec;
 
 use bentstraw_explore as api;
 
-use crate::cli::ExploreArgs;
+use crate::cli::{ExploreArgs, ModeArg};
 use crate::error::{fail, CliResult};
 use bentstraw_io::gallery::GALLERY;
+use bentstraw_io::view_spec::{SceneFile, ViewSpec, PAGE_SCENE_FILE};
 
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
@@ -69,94 +70,73 @@ pub fn run(args: &ExploreArgs) -> CliResult {
 }
 
 /// The query of the view given on the command line (flags as the page's parameters): a scene file
-/// and the flags that override it, or the flags, or by default the broken straw seen from the side
-/// (as the page starts).
-/// The assignment's values the page starts with.
-struct Values {
-    observer: [f64; 3],
-    straw: [f64; 2],
-    water_height: f64,
-    n_water: f64,
-    max_events: u32,
-}
-
+/// and the flags that override it, or the flags, or by default the classic first view (as the
+/// page starts).
 fn initial_query(a: &ExploreArgs) -> CliResult<String> {
     let v = &a.view;
-    let mode = match a.mode {
-        crate::cli::ModeArg::Course => "course",
-        crate::cli::ModeArg::Fresnel => "fresnel",
+    let mut view = ViewSpec {
+        picture: PictureSpec {
+            fresnel: a.mode == ModeArg::Fresnel,
+            ..PictureSpec::default()
+        },
+        points: a.points,
+        ..ViewSpec::default()
     };
-    let values = if let Some(path) = &v.scene {
-        let loaded = crate::cli::load_scene(&v.source())?;
-        match loaded.assignment_numbers().copied() {
-            Some(scene) => Values {
-                observer: loaded.observer.to_array(),
-                straw: [scene.straw_x(), scene.straw_y()],
-                water_height: scene.water_height(),
-                n_water: scene.n_water(),
-                max_events: scene.max_events(),
-            },
-            // A scene of the built-in gallery starts the page on it; another is refused, saying
-            // what the page offers.
-            None => {
-                let f = loaded;
-                let o = f.observer;
-                let query = |stem: &str| {
-                    format!(
-                        "scene={stem}&observer={},{},{}&max-events={}&points={}&mode={mode}",
-                        o.x, o.y, o.z, v.max_events, a.points
-                    )
-                };
-                // A scene of the built-in gallery starts the page on it by name.
-                if let Some((stem, _)) = GALLERY.iter().find(|(_, text)| {
-                    SceneDescription::from_toml(text).is_ok_and(|d| d == f.description)
-                }) {
-                    return Ok(query(stem));
-                }
-                if v.straw.is_some() || v.water_height.is_some() || v.n_water.is_some() {
-                    return fail(format!(
-                        "explore shows {} as the file has it: --straw, --water-height and --n-water \
-                         change only the assignment's kind of scene here (edit the file instead)",
-                        f.name()
-                    ));
-                }
-                // Any other file travels with the view, as the page's own scene file.
-                let text = bentstraw_io::scene_input::read_scene_text(path)?;
-                return Ok(format!(
-                    "scene-file={}&observer={},{},{}&max-events={}&points={}&mode={mode}",
-                    api::query_value(&text),
-                    o.x,
-                    o.y,
-                    o.z,
-                    v.max_events,
-                    a.points
-                ));
-            }
-        }
-    } else {
-        let o = v.observer.unwrap_or(CLASSIC_OBSERVER);
-        let [x, y] = v.straw.unwrap_or(CLASSIC_STRAW);
-        // Checked by the caller, with the page's own rules and messages.
-        Values {
-            observer: o,
-            straw: [x, y],
-            water_height: v.water_height.unwrap_or(CLASSIC_WATER_HEIGHT),
-            n_water: v.n_water.unwrap_or(WATER_INDEX),
+    let Some(path) = &v.scene else {
+        // The flags, else the classic view's; checked by the caller, with the page's own rules
+        // and messages.
+        let classic = view.values;
+        view.values = SceneValues {
+            observer: v.observer.or(classic.observer),
+            straw: v.straw.or(classic.straw),
+            water_height: v.water_height.or(classic.water_height),
+            n_water: v.n_water,
             max_events: v.max_events,
-        }
+        };
+        return Ok(view.to_query());
     };
-    Ok(format!(
-        "observer={},{},{}&straw={},{}&water-height={}&n-water={}&max-events={}&points={}&mode={mode}",
-        values.observer[0],
-        values.observer[1],
-        values.observer[2],
-        values.straw[0],
-        values.straw[1],
-        values.water_height,
-        values.n_water,
-        values.max_events,
-        a.points,
-    ))
+    let loaded = crate::cli::load_scene(&v.source())?;
+    let observer = Some(loaded.observer.to_array());
+    // A file of the assignment's kind (named by its values, not by the file) starts the page on
+    // its glass: the flags' values, else the file's.
+    if let (None, Some(glass)) = (&loaded.name, loaded.description.spec_scene()) {
+        view.values = SceneValues {
+            observer,
+            straw: Some(v.straw.unwrap_or([glass.straw_x(), glass.straw_y()])),
+            water_height: Some(v.water_height.unwrap_or(glass.water_height())),
+            n_water: Some(v.n_water.unwrap_or(glass.n_water())),
+            max_events: v.max_events,
+        };
+        return Ok(view.to_query());
+    }
+    // Any other scene is seen as the file has it, from the file's observer or the flag's.
+    view.values = SceneValues {
+        observer,
+        max_events: v.max_events,
+        ..SceneValues::default()
+    };
+    // A scene of the built-in gallery starts the page on it by name.
+    if let Some((stem, _)) = GALLERY
+        .iter()
+        .find(|(_, text)| SceneDescription::from_toml(text).is_ok_and(|d| d == loaded.description))
+    {
+        view.scene = SceneFile::gallery(stem);
+        return Ok(view.to_query());
+    }
+    // Another is refused with those flags, saying what the page offers.
+    if v.straw.is_some() || v.water_height.is_some() || v.n_water.is_some() {
+        return fail(format!(
+            "explore shows {} as the file has it: --straw, --water-height and --n-water \
+             change only the assignment's kind of scene here (edit the file instead)",
+            loaded.name()
+        ));
+    }
+    // Any other file travels with the view, as the page's own scene file.
+    view.scene = Some(SceneFile {
+        name: PAGE_SCENE_FILE.to_string(),
+        text: bentstraw_io::scene_input::read_scene_text(path)?,
+    });
+    Ok(view.to_query())
 }
 
 /// Opens `url` in the default browser if one can be found; says nothing if none.
