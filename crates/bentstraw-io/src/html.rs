@@ -7,11 +7,9 @@
 use std::path::Path;
 
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::{
-    Scene, GLASS_RADIUS, SCENE_CENTRE, SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES, STRAW_HEIGHT,
-    STRAW_RADIUS,
-};
-use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES};
+use bentstraw_optics::record::InputValue;
+use bentstraw_optics::scene::{GLASS_RADIUS, SECTION_HEIGHT, STRAW_HEIGHT, STRAW_RADIUS};
+use bentstraw_optics::world::COLOR_COUNT;
 use bentstraw_optics::Vec3;
 use serde_json::json;
 
@@ -19,10 +17,10 @@ use crate::error::Result;
 use crate::escape::escape_html;
 use crate::files;
 use crate::plot::{
-    axis_box, counts, degrees, figure_views, observer_direction, section_rgb8, whole,
+    axis_box, degrees, figure_views, observer_direction, section_rgb8, whole, AxisBox,
 };
 use bentstraw_optics::setup::Setup;
-use bentstraw_optics::sketch::{object_outlines, world_wireframe, WIRE_VERTICALS};
+use bentstraw_optics::sketch::WIRE_VERTICALS;
 
 /// The viewer's script, kept in its own file so it stays readable and lintable.
 const VIEWER_JS: &str = include_str!("../assets/viewer.js");
@@ -46,37 +44,60 @@ pub fn write_cloud_viewer(
     files::write_bytes(path, page.as_bytes())
 }
 
-/// The whole HTML page.
+/// The whole HTML page: the facts, the legend of the colours the scene lists, and the data the
+/// script draws.
 fn viewer_page(
-    loaded: &Setup,
+    scene: &Setup,
     observer: Vec3,
     points: &[ImagePoint],
     title: &str,
     file_stem: &str,
 ) -> String {
-    let Some(scene) = loaded.assignment_numbers() else {
-        return world_viewer_page(loaded, observer, points, title, file_stem);
-    };
-    let data = viewer_data(loaded, scene, observer, points, title, file_stem);
+    let bx = axis_box(scene, observer, points);
+    let mut n = [0usize; COLOR_COUNT];
+    for p in points {
+        n[p.color as usize - 1] += 1;
+    }
+    // The colours listed: every section of the straw; a scene file's where seen.
+    let codes: Vec<usize> = (0..scene.colour_names().len())
+        .filter(|&k| n[k] > 0 || scene.lists_unseen_colours())
+        .collect();
+    let data = viewer_data(scene, &bx, observer, points, &codes, &n, title, file_stem);
     // In a <script> element only "</" could end the element early; JSON allows "<" as \u003c.
     let data = data.to_string().replace('<', "\\u003c");
-    let n = counts(points);
     let mut legend = String::new();
-    for (k, count) in n.iter().enumerate() {
+    for &k in &codes {
         let [r, g, b] = section_rgb8(k as u8 + 1);
+        // A section of the straw says which heights it spans.
+        let span = scene
+            .code_heights(k as u8 + 1)
+            .map_or(String::new(), |(lo, hi)| format!(", z {lo:.2}–{hi:.2} m"));
         legend.push_str(&format!(
-            "<li data-code=\"{code}\" title=\"click to hide or show\"><span class=\"swatch\" style=\"background:rgb({r},{g},{b})\"></span>{code} {name}, z {lo:.2}–{hi:.2} m<span class=\"count\">{count}</span></li>\n",
+            "<li data-code=\"{code}\" title=\"click to hide or show\"><span class=\"swatch\" style=\"background:rgb({r},{g},{b})\"></span>{code} {name}{span}<span class=\"count\">{count}</span></li>\n",
             code = k + 1,
-            name = SECTION_NAMES[k],
-            lo = k as f64 * SECTION_HEIGHT,
-            hi = (k + 1) as f64 * SECTION_HEIGHT,
+            name = scene.colour_names()[k],
+            count = n[k],
         ));
     }
-    let observer_note = if axis_box(loaded, observer, points).observer_inside {
+    let observer_note = if bx.observer_inside {
         "observer"
     } else {
         "observer (far: arrow points to it)"
     };
+    // The facts under the title: where the eye is, the scene's values (or its file), the count.
+    let (mut place, mut tally) = (Vec::new(), Vec::new());
+    for input in scene.inputs() {
+        match input.key {
+            "scene_file" => place.push(format!("scene {}", escape_html(scene.name()))),
+            "n_water" => tally.extend(input.heading_phrase()),
+            _ => place.extend(input.heading_phrase()),
+        }
+    }
+    tally.push(format!("{} image points", points.len()));
+    let pictured = scene.subject().map_or("the image points".to_string(), |s| {
+        format!("{s}'s image points")
+    });
+    let words = scene.sketch_words();
     format!(
         r#"<!DOCTYPE html>
 <html lang="en">
@@ -90,24 +111,24 @@ fn viewer_page(
 </style>
 </head>
 <body>
-<canvas id="view" aria-label="3D view of the straw's image points"></canvas>
+<canvas id="view" aria-label="3D view of {pictured}"></canvas>
 <noscript><p style="position:absolute;right:20px;top:20px">This page draws its 3D view with JavaScript: please allow scripts for this file.</p></noscript>
 <div id="panel">
 <h1>{title_html}</h1>
 <div class="facts">
 <div>observer ({ox}, {oy}, {oz}) m</div>
-<div>straw axis ({sx}, {sy}) m · water height {he} m</div>
-<div>n_water = {nw} · {count} image points</div>
+<div>{place}</div>
+<div>{tally}</div>
 </div>
 <ul id="legend">
 {legend}<li class="static"><span class="swatch dot"></span>{observer_note}</li>
-<li class="static"><span class="swatch line"></span>water (wireframe)</li>
-<li class="static"><span class="swatch dash"></span>straw, true outline</li>
+<li class="static"><span class="swatch line"></span>{wireframe}</li>
+<li class="static"><span class="swatch dash"></span>{outlines}</li>
 </ul>
 <div class="buttons" id="buttons"></div>
 <div class="toggles">
-<label><input type="checkbox" id="show-water" checked> water</label>
-<label><input type="checkbox" id="show-straw" checked> straw outline</label>
+<label><input type="checkbox" id="show-water" checked> {wireframe_switch}</label>
+<label><input type="checkbox" id="show-straw" checked> {outlines_switch}</label>
 <label><input type="checkbox" id="show-axes" checked> axes</label>
 </div>
 <div id="status"></div>
@@ -126,40 +147,33 @@ fn viewer_page(
         ox = observer.x,
         oy = observer.y,
         oz = observer.z,
-        sx = scene.straw_x(),
-        sy = scene.straw_y(),
-        he = scene.water_height(),
-        nw = scene.n_water(),
-        count = points.len(),
+        place = place.join(" · "),
+        tally = tally.join(" · "),
+        wireframe = words.wireframe,
+        outlines = words.outlines,
+        wireframe_switch = words.wireframe_switch,
+        outlines_switch = words.outlines_switch,
     )
 }
 
-/// The data the script draws: scene, box, views and the points, compactly encoded.
+/// The data the script draws: the box, the views, the points compactly encoded, the colours
+/// listed, and what to draw of the scene: its lines, or the glass's water and straw from their
+/// values.
+#[allow(clippy::too_many_arguments)]
 fn viewer_data(
-    loaded: &Setup,
-    scene: &Scene,
+    scene: &Setup,
+    bx: &AxisBox,
     observer: Vec3,
     points: &[ImagePoint],
+    codes: &[usize],
+    n: &[usize; COLOR_COUNT],
     title: &str,
     file_stem: &str,
 ) -> serde_json::Value {
-    let bx = axis_box(loaded, observer, points);
     let origin = bx.centre();
     let (xyz, colors) = encoded_points(points, origin);
-    let n = counts(points);
-    let sections: Vec<_> = (0..SECTION_COUNT)
-        .map(|k| {
-            json!({
-                "code": k + 1,
-                "name": SECTION_NAMES[k],
-                "rgb": section_rgb8(k as u8 + 1),
-                "count": n[k],
-            })
-        })
-        .collect();
-    let views = views_json(observer);
     let v3 = |v: Vec3| [v.x, v.y, v.z];
-    json!({
+    let mut data = json!({
         "title": title,
         "fileStem": file_stem,
         "n": points.len(),
@@ -168,25 +182,52 @@ fn viewer_data(
         "xyz": base64(&xyz),
         "color": base64(&colors),
         "observer": v3(observer),
-        "sceneCentre": v3(SCENE_CENTRE),
+        "sceneCentre": v3(scene.frame().2),
         "observerInside": bx.observer_inside,
         "arrow": bx.observer_arrow.map(|(a, b)| [v3(a), v3(b)]),
-        "water": {
-            "radius": GLASS_RADIUS,
-            "height": scene.water_height(),
-            "verticals": WIRE_VERTICALS,
-        },
-        "straw": {
-            "x": scene.straw_x(),
-            "y": scene.straw_y(),
-            "radius": STRAW_RADIUS,
-            "height": STRAW_HEIGHT,
-            "sectionHeight": SECTION_HEIGHT,
-        },
-        "nWater": scene.n_water(),
-        "sections": sections,
-        "views": views,
-    })
+        "sections": codes.iter().map(|&k| json!({
+            "code": k + 1,
+            "name": scene.colour_names()[k],
+            "rgb": section_rgb8(k as u8 + 1),
+            "count": n[k],
+        })).collect::<Vec<_>>(),
+        "views": views_json(observer),
+    });
+    match scene.page_lines() {
+        Some((wire, outlines)) => {
+            data["wire"] = wire.iter().map(|s| [v3(s[0]), v3(s[1])]).collect();
+            data["outlines"] = outlines
+                .iter()
+                .map(|l| l.iter().map(|&p| v3(p)).collect::<Vec<_>>())
+                .collect();
+        }
+        // The page draws the glass's water and the straw from their values.
+        None => {
+            for input in scene.inputs() {
+                match (input.key, input.value) {
+                    ("straw", InputValue::Pair([x, y])) => {
+                        data["straw"] = json!({
+                            "x": x,
+                            "y": y,
+                            "radius": STRAW_RADIUS,
+                            "height": STRAW_HEIGHT,
+                            "sectionHeight": SECTION_HEIGHT,
+                        })
+                    }
+                    ("water_height", InputValue::Length(h)) => {
+                        data["water"] = json!({
+                            "radius": GLASS_RADIUS,
+                            "height": h,
+                            "verticals": WIRE_VERTICALS,
+                        })
+                    }
+                    ("n_water", InputValue::Number(index)) => data["nWater"] = json!(index),
+                    _ => {}
+                }
+            }
+        }
+    }
+    data
 }
 
 /// The preset views of a page: a three-quarter view first (shown on opening, so the page looks
@@ -231,127 +272,6 @@ fn views_json(observer: Vec3) -> Vec<serde_json::Value> {
         .collect()
 }
 
-/// The page of a scene file's world: the same viewer, with the world's wireframe (its
-/// boundaries) and its objects' true outlines instead of the glass and the straw.
-fn world_viewer_page(
-    loaded: &Setup,
-    observer: Vec3,
-    points: &[ImagePoint],
-    title: &str,
-    file_stem: &str,
-) -> String {
-    let (world, name) = (&loaded.world, loaded.name());
-    let bx = axis_box(loaded, observer, points);
-    let origin = bx.centre();
-    let (xyz, colors) = encoded_points(points, origin);
-    let mut n = [0usize; COLOR_COUNT];
-    for p in points {
-        n[p.color as usize - 1] += 1;
-    }
-    // The codes the scene has: those of its objects' points, at least.
-    let codes: Vec<usize> = (0..COLOR_COUNT).filter(|&k| n[k] > 0).collect();
-    let v3 = |v: Vec3| [v.x, v.y, v.z];
-    let wire: Vec<[[f64; 3]; 2]> = world_wireframe(world)
-        .iter()
-        .map(|s| [v3(s[0]), v3(s[1])])
-        .collect();
-    let outlines: Vec<Vec<[f64; 3]>> = object_outlines(world)
-        .iter()
-        .map(|l| l.iter().map(|&p| v3(p)).collect())
-        .collect();
-    let (lo, hi) = world.bounds();
-    let data = json!({
-        "title": title,
-        "fileStem": file_stem,
-        "n": points.len(),
-        "origin": v3(origin),
-        "box": { "min": v3(bx.min), "max": v3(bx.max) },
-        "xyz": base64(&xyz),
-        "color": base64(&colors),
-        "observer": v3(observer),
-        "sceneCentre": v3(0.5 * (lo + hi)),
-        "observerInside": bx.observer_inside,
-        "arrow": bx.observer_arrow.map(|(a, b)| [v3(a), v3(b)]),
-        "wire": wire,
-        "outlines": outlines,
-        "sections": codes.iter().map(|&k| json!({
-            "code": k + 1,
-            "name": COLOR_NAMES[k],
-            "rgb": section_rgb8(k as u8 + 1),
-            "count": n[k],
-        })).collect::<Vec<_>>(),
-        "views": views_json(observer),
-    });
-    let data = data.to_string().replace('<', "\\u003c");
-    let mut legend = String::new();
-    for &k in &codes {
-        let [r, g, b] = section_rgb8(k as u8 + 1);
-        legend.push_str(&format!(
-            "<li data-code=\"{code}\" title=\"click to hide or show\"><span class=\"swatch\" style=\"background:rgb({r},{g},{b})\"></span>{code} {name}<span class=\"count\">{count}</span></li>\n",
-            code = k + 1,
-            name = COLOR_NAMES[k],
-            count = n[k],
-        ));
-    }
-    let observer_note = if bx.observer_inside {
-        "observer"
-    } else {
-        "observer (far: arrow points to it)"
-    };
-    format!(
-        r#"<!DOCTYPE html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<meta name="viewport" content="width=device-width, initial-scale=1">
-<meta name="generator" content="bentstraw">
-<title>{title_html}</title>
-<style>
-{css}
-</style>
-</head>
-<body>
-<canvas id="view" aria-label="3D view of the image points"></canvas>
-<noscript><p style="position:absolute;right:20px;top:20px">This page draws its 3D view with JavaScript: please allow scripts for this file.</p></noscript>
-<div id="panel">
-<h1>{title_html}</h1>
-<div class="facts">
-<div>observer ({ox}, {oy}, {oz}) m</div>
-<div>scene {name_html}</div>
-<div>{count} image points</div>
-</div>
-<ul id="legend">
-{legend}<li class="static"><span class="swatch dot"></span>{observer_note}</li>
-<li class="static"><span class="swatch line"></span>container and liquids (wireframe)</li>
-<li class="static"><span class="swatch dash"></span>objects, true outlines</li>
-</ul>
-<div class="buttons" id="buttons"></div>
-<div class="toggles">
-<label><input type="checkbox" id="show-water" checked> wireframe</label>
-<label><input type="checkbox" id="show-straw" checked> outlines</label>
-<label><input type="checkbox" id="show-axes" checked> axes</label>
-</div>
-<div id="status"></div>
-<div class="hint">drag or arrow keys: rotate · wheel, pinch or +/−: zoom · shift-drag, right-drag or two fingers: pan · double-click or R: reset · click a colour to hide it · lengths in metres, one scale on every axis</div>
-</div>
-<script id="bentstraw-data" type="application/json">{data}</script>
-<script>
-{js}
-</script>
-</body>
-</html>
-"#,
-        title_html = escape_html(title),
-        name_html = escape_html(name),
-        css = VIEWER_CSS,
-        js = VIEWER_JS,
-        ox = observer.x,
-        oy = observer.y,
-        oz = observer.z,
-        count = points.len(),
-    )
-}
-
 /// The points as little-endian `f32` offsets from `origin`, and their colour codes.
 fn encoded_points(points: &[ImagePoint], origin: Vec3) -> (Vec<u8>, Vec<u8>) {
     let mut xyz = Vec::with_capacity(points.len() * 12);
@@ -391,8 +311,10 @@ pub(crate) fn base64(bytes: &[u8]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plot::counts;
     use bentstraw_optics::sampling::sample_image;
-    use bentstraw_optics::scene::REFERENCES;
+    use bentstraw_optics::scene::{Scene, REFERENCES};
+    use bentstraw_optics::sketch::{object_outlines, world_wireframe};
     use bentstraw_optics::world::World;
 
     fn reference_page(title: &str) -> (Vec<ImagePoint>, String) {

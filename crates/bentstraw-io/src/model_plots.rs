@@ -24,7 +24,7 @@ use crate::error::Result;
 use crate::files;
 use crate::plot::{
     axis_box, common_legend, draw_axis_labels, draw_dots, draw_legend_cell, draw_observer,
-    draw_panes, draw_straw_outline, draw_water, figure_bytes, figure_views, font, grid, num, rgb,
+    draw_panes, draw_straw_outline, draw_water, figure_bytes, figure_views, font, grid, rgb,
     section_rgb8, section_words, triple, visible_dots, AreaOn, AxisBox, FigureFormat, Heading,
     LegendMark, Panel, ViewDirection, CAPTION_LINE, FIGURE_WIDTH, LEGEND_LINE, TEXT, TITLE,
 };
@@ -150,29 +150,12 @@ fn comparison_views(observer: Vec3) -> [(ViewDirection, String); COLUMNS] {
     ]
 }
 
-/// The comparison figure's heading.
+/// The comparison figure's heading: the observer and the scene's values figures name.
 fn comparison_heading(scene: &Setup, observer: Vec3, title: &str) -> Heading {
-    let Some(scene) = scene.assignment_numbers() else {
-        return Heading::new(
-            title,
-            &format!(
-                "observer {} m · same box and scale in every panel of a column, lengths in metres",
-                triple(observer)
-            ),
-        );
-    };
-    Heading::new(
-        title,
-        &format!(
-            "observer {} m · straw axis ({}, {}) m · water height {} m · n_water = {} · same box \
-             and scale in every panel of a column, lengths in metres",
-            triple(observer),
-            num(scene.straw_x()),
-            num(scene.straw_y()),
-            num(scene.water_height()),
-            num(scene.n_water()),
-        ),
-    )
+    let mut parts = vec![format!("observer {} m", triple(observer))];
+    parts.extend(scene.inputs().iter().filter_map(|i| i.heading_phrase()));
+    parts.push("same box and scale in every panel of a column, lengths in metres".to_string());
+    Heading::new(title, &parts.join(" · "))
 }
 
 /// The size of the comparison figure of `rows` models under `heading`.
@@ -296,7 +279,7 @@ fn draw_comparison<DB: DrawingBackend>(
             )
         })
         .collect();
-    let mut others = common_legend(bx.observer_inside);
+    let mut others = common_legend(scene, bx.observer_inside);
     if let Some(m) = models.first() {
         others.push((
             LegendMark::Swatch(GHOST_RGB),

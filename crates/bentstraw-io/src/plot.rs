@@ -35,7 +35,6 @@ mod wireframe;
 pub use cloud::write_cloud_figure;
 pub use encode::PDF_WIDTH_CM;
 pub use figure::{FigureFormat, FIGURE_EXTENSIONS, FIGURE_WIDTH};
-pub use heading::simulation_title;
 pub use text::{CAPTION, TEXT, TITLE};
 
 pub(crate) use axis_box::{axis_box, AxisBox};
@@ -45,10 +44,10 @@ pub(crate) use dots::{draw_dots, visible_dots};
 pub(crate) use encode::svg_options;
 pub(crate) use figure::{figure_bytes, AreaOn, DrawResultOn};
 pub(crate) use heading::Heading;
-pub(crate) use legend::{
-    common_legend, counts, draw_legend_cell, section_words, LegendMark, LEGEND_LINE,
-};
-pub(crate) use numbers::{degrees, num, triple, whole};
+#[cfg(test)]
+pub(crate) use legend::counts;
+pub(crate) use legend::{common_legend, draw_legend_cell, section_words, LegendMark, LEGEND_LINE};
+pub(crate) use numbers::{degrees, triple, whole};
 pub(crate) use observer::draw_observer;
 pub(crate) use panel::{grid, Panel, CAPTION_LINE};
 pub(crate) use scales::{draw_axis_labels, draw_panes};

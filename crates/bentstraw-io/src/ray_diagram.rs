@@ -12,9 +12,6 @@ use std::path::Path;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::ray_diagram::{diagram_rays, path_type_counts, DiagramRay};
-use bentstraw_optics::scene::{
-    GLASS_HEIGHT, GLASS_RADIUS, SECTION_HEIGHT, SECTION_RGB, STRAW_HEIGHT, STRAW_RADIUS,
-};
 use bentstraw_optics::world::World;
 use bentstraw_optics::world::COLOR_RGB;
 use bentstraw_optics::Vec3;
@@ -28,7 +25,7 @@ use crate::files;
 use crate::plot::{figure_bytes, font, wrap, FigureFormat, CAPTION, CAPTION_LINE, TEXT, TITLE};
 use crate::words::{self, Lang};
 use bentstraw_optics::setup::Setup;
-use bentstraw_optics::sketch::{object_outlines, world_wireframe};
+use bentstraw_optics::sketch::{Figure, Panel, Part};
 
 /// Width of the diagram (px).
 pub const DIAGRAM_WIDTH: u32 = 1000;
@@ -107,24 +104,6 @@ fn side_axis(observer: Vec3) -> Vec3 {
     }
 }
 
-/// A view: how a point of space lands on the panel's plane.
-#[derive(Clone, Copy)]
-enum View {
-    /// Side view: the horizontal distance along the axis towards the observer, and the height.
-    Side(Vec3),
-    /// Top view: x to the right, y up.
-    Top,
-}
-
-impl View {
-    fn project(self, p: Vec3) -> (f64, f64) {
-        match self {
-            View::Side(e) => (p.x * e.x + p.y * e.y, p.z),
-            View::Top => (p.x, p.y),
-        }
-    }
-}
-
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     scene: &Setup,
@@ -153,7 +132,7 @@ fn draw<DB: DrawingBackend>(
         &left,
         scene,
         diagram,
-        View::Side(e_side),
+        Panel::Side(e_side),
         words::DIAGRAM_SIDE.map(|t| lang.of(t)),
         lang.of(words::TOWARDS_OBSERVER),
         "z (m) →",
@@ -162,7 +141,7 @@ fn draw<DB: DrawingBackend>(
         &right,
         scene,
         diagram,
-        View::Top,
+        Panel::Top,
         words::DIAGRAM_TOP.map(|t| lang.of(t)),
         "x (m) →",
         "y (m) →",
@@ -200,29 +179,12 @@ fn draw<DB: DrawingBackend>(
 
 /// Range of a panel: the glass, the straw, the observer, every ray vertex and image point, with a
 /// margin; widened so that one metre is as long across as up.
-fn ranges(scene: &Setup, diagram: &Diagram, view: View, aspect: f64) -> ((f64, f64), (f64, f64)) {
-    let mut pts: Vec<(f64, f64)> = Vec::new();
-    match (scene.assignment_numbers(), &scene.world) {
-        (Some(scene), _) => {
-            for z in [0.0, STRAW_HEIGHT] {
-                for (x, y) in [(-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)] {
-                    pts.push(view.project(Vec3::new(x * GLASS_RADIUS, y * GLASS_RADIUS, z)));
-                }
-            }
-            pts.push(view.project(Vec3::new(scene.straw_x(), scene.straw_y(), 0.0)));
-        }
-        (None, world) => {
-            let (lo, hi) = world.bounds();
-            for k in 0..8 {
-                let pick = |bit: i32, a: f64, b: f64| if k & bit == 0 { a } else { b };
-                pts.push(view.project(Vec3::new(
-                    pick(1, lo.x, hi.x),
-                    pick(2, lo.y, hi.y),
-                    pick(4, lo.z, hi.z),
-                )));
-            }
-        }
-    }
+fn ranges(scene: &Setup, diagram: &Diagram, view: Panel, aspect: f64) -> ((f64, f64), (f64, f64)) {
+    let mut pts: Vec<(f64, f64)> = scene
+        .schematic_extent()
+        .into_iter()
+        .map(|p| view.project(p))
+        .collect();
     pts.push(view.project(diagram.observer));
     for r in &diagram.rays {
         pts.push(view.project(r.image.position));
@@ -258,7 +220,7 @@ fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     scene: &Setup,
     diagram: &Diagram,
-    view: View,
+    view: Panel,
     caption: [&str; 2],
     x_label: &str,
     y_label: &str,
@@ -301,98 +263,37 @@ fn draw_panel<DB: DrawingBackend>(
         .draw()
         .map_err(e)?;
 
-    let water = RGBColor(200, 225, 250);
-    let glass = RGBColor(120, 120, 120);
-    let circle = |cx: f64, cy: f64, r: f64| -> Vec<(f64, f64)> {
-        (0..=96)
-            .map(|k| {
-                let a = std::f64::consts::TAU * k as f64 / 96.0;
-                (cx + r * a.cos(), cy + r * a.sin())
-            })
-            .collect()
-    };
-    let scene = match (scene.assignment_numbers(), &scene.world) {
-        (Some(scene), _) => scene,
-        (None, world) => {
-            // A scene file's world: its container's and liquids' wireframe, its objects' outlines.
-            let wire: Vec<[Vec3; 2]> = world_wireframe(world);
-            chart
-                .draw_series(wire.iter().map(|[a, b]| {
-                    PathElement::new(vec![view.project(*a), view.project(*b)], glass.mix(0.5))
-                }))
-                .map_err(e)?;
-            for line in object_outlines(world) {
-                chart
-                    .draw_series(std::iter::once(PathElement::new(
-                        line.iter().map(|p| view.project(*p)).collect::<Vec<_>>(),
-                        RGBColor(150, 150, 150).stroke_width(2),
-                    )))
-                    .map_err(e)?;
+    // The scene's schematic, back to front, each part in its style.
+    let (water, glass, grey) = (
+        RGBColor(200, 225, 250),
+        RGBColor(120, 120, 120),
+        RGBColor(150, 150, 150),
+    );
+    for mark in scene.schematic(view) {
+        let style = match mark.part {
+            Part::Liquid => water.filled(),
+            Part::Wall => glass.stroke_width(3),
+            Part::Band(code) => {
+                let [r, g, b] = COLOR_RGB[code as usize - 1].map(|v| (v * 255.0).round() as u8);
+                RGBColor(r, g, b).mix(0.55).filled()
             }
-            return draw_rays(&mut chart, diagram, view);
-        }
-    };
-    match view {
-        View::Side(axis) => {
-            let rv = GLASS_RADIUS;
-            if scene.has_water() {
-                chart
-                    .draw_series(std::iter::once(Rectangle::new(
-                        [(-rv, 0.0), (rv, scene.water_height())],
-                        water.filled(),
-                    )))
-                    .map_err(e)?;
+            Part::Footprint => grey.mix(0.6).filled(),
+            Part::Edge => glass.mix(0.5).into(),
+            Part::Outline => grey.stroke_width(2),
+        };
+        match mark.figure {
+            Figure::Rect(corners) => {
+                chart.draw_series(std::iter::once(Rectangle::new(corners, style)))
             }
-            chart
-                .draw_series(std::iter::once(PathElement::new(
-                    vec![
-                        (-rv, GLASS_HEIGHT),
-                        (-rv, 0.0),
-                        (rv, 0.0),
-                        (rv, GLASS_HEIGHT),
-                    ],
-                    glass.stroke_width(3),
-                )))
-                .map_err(e)?;
-            // The straw as seen from the side, its five bands in their colours.
-            let c = scene.straw_x() * axis.x + scene.straw_y() * axis.y;
-            for (k, rgb) in SECTION_RGB.iter().enumerate() {
-                let [r, g, b] = rgb.map(|v| (v * 255.0).round() as u8);
-                chart
-                    .draw_series(std::iter::once(Rectangle::new(
-                        [
-                            (c - STRAW_RADIUS, k as f64 * SECTION_HEIGHT),
-                            (c + STRAW_RADIUS, (k + 1) as f64 * SECTION_HEIGHT),
-                        ],
-                        RGBColor(r, g, b).mix(0.55).filled(),
-                    )))
-                    .map_err(e)?;
+            Figure::Polygon(points) => {
+                chart.draw_series(std::iter::once(Polygon::new(points, style)))
+            }
+            Figure::Line(points) => {
+                chart.draw_series(std::iter::once(PathElement::new(points, style)))
             }
         }
-        View::Top => {
-            if scene.has_water() {
-                chart
-                    .draw_series(std::iter::once(Polygon::new(
-                        circle(0.0, 0.0, GLASS_RADIUS),
-                        water.filled(),
-                    )))
-                    .map_err(e)?;
-            }
-            chart
-                .draw_series(std::iter::once(PathElement::new(
-                    circle(0.0, 0.0, GLASS_RADIUS),
-                    glass.stroke_width(3),
-                )))
-                .map_err(e)?;
-            chart
-                .draw_series(std::iter::once(Polygon::new(
-                    circle(scene.straw_x(), scene.straw_y(), STRAW_RADIUS),
-                    RGBColor(150, 150, 150).mix(0.6).filled(),
-                )))
-                .map_err(e)?;
-        }
+        .map_err(e)?;
     }
-
     draw_rays(&mut chart, diagram, view)
 }
 
@@ -401,7 +302,7 @@ fn draw_panel<DB: DrawingBackend>(
 fn draw_rays<DB: DrawingBackend>(
     chart: &mut ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     diagram: &Diagram,
-    view: View,
+    view: Panel,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     for r in &diagram.rays {
@@ -470,7 +371,7 @@ fn tick(v: f64) -> String {
 mod tests {
     use super::*;
     use bentstraw_optics::sampling::sample_image;
-    use bentstraw_optics::scene::REFERENCES;
+    use bentstraw_optics::scene::{GLASS_RADIUS, REFERENCES};
 
     fn diagram_of(number: usize) -> (Setup, Diagram) {
         let r = REFERENCES[number - 1];

@@ -12,6 +12,7 @@ use bentstraw_optics::check::{
     check_solution, ClaimedPoint, DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE,
 };
 use bentstraw_optics::image::ImagePoint;
+use bentstraw_optics::record::InputValue;
 use bentstraw_optics::sampling::{sample_image, ImageCloud};
 use bentstraw_optics::scene::{Reference, Scene, REFERENCES, SECTION_NAMES, WATER_INDEX};
 use bentstraw_optics::setup::{SceneValues, Setup};
@@ -30,7 +31,6 @@ use crate::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use crate::plot::simulation_title;
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{Check, Figure, Link, Report, Section, SimulationEntry, Timing};
 use crate::solution::region_words;
@@ -312,13 +312,14 @@ impl Job {
         } else {
             lang.fill(words::SIMULATION_CHECK, &[&r.number, &n])
         };
+        let loaded = Setup::assignment(scene, r.observer);
         Job {
             number: r.number,
-            loaded: Setup::assignment(scene, r.observer),
+            title: loaded.inputs_line(false),
+            loaded,
             stem: format!("sim{}{suffix}", r.number),
             heading,
             group: lang.fill(words::REFERENCE_SIMULATION, &[&r.number]),
-            title: simulation_title(&scene, r.observer),
             n_water: n,
             full: n == WATER_INDEX,
             camera: pictures::report_camera(r.observer),
@@ -460,9 +461,11 @@ impl Job {
             },
         )?;
         let o = loaded.observer;
-        let n_water = match loaded.assignment_numbers() {
-            Some(s) => s.n_water(),
-            None => loaded.description.liquids.first().map_or(1.0, |l| l.index),
+        // The index the report names: the straw's water's (even an empty glass has one), else
+        // the first liquid's.
+        let n_water = match loaded.input("n_water") {
+            Some(InputValue::Number(n)) => n,
+            _ => loaded.description.liquids.first().map_or(1.0, |l| l.index),
         };
         Ok(Job {
             number,
@@ -538,10 +541,7 @@ fn scene_closing(plan: &ScenePlan, out: &Path, lang: Lang) -> Result<Vec<Section
         .collect::<Result<_>>()?;
     let series: Vec<ValidationSeries> = series.into_iter().flatten().collect();
     let first = &plan.jobs[0].loaded;
-    let liquid = match first.assignment_numbers() {
-        Some(_) => Some("water".to_string()),
-        None => first.description.liquids.first().map(|l| l.name.clone()),
-    };
+    let liquid = first.description.liquids.first().map(|l| l.name.clone());
     let validation = match liquid {
         Some(liquid) if !series.is_empty() => {
             let mut figure = Figure::image(
@@ -693,10 +693,7 @@ fn run_job(job: &Job, out: &Path, points: usize, lang: Lang) -> SimulationEntry 
         timings.push(Timing::new(lang.of(words::EYE_AND_STEREO), t.elapsed()));
     }
 
-    let counts = match job.loaded.assignment_numbers().copied() {
-        Some(_) => cloud.counts_per_color().to_vec(),
-        None => cloud.counts_per_code()[..job.loaded.colour_names().len()].to_vec(),
-    };
+    let counts = cloud.counts_per_code()[..job.loaded.colour_names().len()].to_vec();
     SimulationEntry {
         id: job.stem.clone(),
         reference: job.number,
@@ -799,10 +796,7 @@ fn intro_sections(out: &Path, points: usize, lang: Lang) -> Vec<Section> {
         &out.join(INTRO_FILES[1]),
         &loaded,
         &diagram,
-        &lang.fill(
-            words::RAY_DIAGRAM_OF,
-            &[&simulation_title(&scene, observer)],
-        ),
+        &lang.fill(words::RAY_DIAGRAM_OF, &[&loaded.inputs_line(false)]),
         lang,
     )
     .err()
@@ -945,88 +939,44 @@ fn models_section(job: &Job, out: &Path, cloud: &ImageCloud, lang: Lang) -> Sect
 
 /// The flags of `bentstraw simulate` that give the job's scene seen from its observer.
 fn simulate_flags(loaded: &Setup) -> String {
-    let o = loaded.observer;
-    match (loaded.assignment_numbers(), &loaded.name) {
-        (Some(scene), None) => format!(
-            "--observer {},{},{} --straw {},{} --water-height {} --n-water {}",
-            o.x,
-            o.y,
-            o.z,
-            scene.straw_x(),
-            scene.straw_y(),
-            scene.water_height(),
-            scene.n_water()
-        ),
-        _ => format!(
-            "--scene {} --observer {},{},{}",
-            loaded.name(),
-            o.x,
-            o.y,
-            o.z
-        ),
-    }
+    loaded.flags().join(" ")
 }
 
 /// The inputs as label/value rows.
 fn inputs(loaded: &Setup, lang: Lang) -> Vec<(String, String)> {
-    let o = loaded.observer;
-    let observer = format!("({}, {}, {}) m", o.x, o.y, o.z);
-    if let (Some(scene), None) = (loaded.assignment_numbers(), &loaded.name) {
-        let values = [
-            observer,
-            format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
-            format!("{} m", scene.water_height()),
-            format!("{}", scene.n_water()),
-            format!("{}", scene.max_events()),
-        ];
-        return words::INPUTS
-            .iter()
-            .zip(values)
-            .map(|(label, value)| (lang.of(*label).to_string(), value))
-            .collect();
-    }
-    let mut rows = vec![
-        (lang.of(words::INPUTS[0]).to_string(), observer),
-        (
-            lang.of(words::SCENE_FILE).to_string(),
-            loaded.name().to_string(),
-        ),
-    ];
-    match loaded.assignment_numbers() {
-        None => {
-            let d = &loaded.description;
-            for l in &d.liquids {
+    let mut inputs = loaded.inputs();
+    // The observer first, then the scene's values in their order.
+    inputs.sort_by_key(|i| i.key != "observer");
+    let mut rows = Vec::new();
+    for input in inputs {
+        let label = match input.key {
+            "observer" => words::INPUTS[0],
+            "straw" => words::INPUTS[1],
+            "water_height" => words::INPUTS[2],
+            "n_water" => words::INPUTS[3],
+            "max_events" => words::INPUTS[4],
+            "scene_file" => words::SCENE_FILE,
+            // The scene file's text, summed up: its liquids and how many objects of each kind.
+            _ => {
+                let d = &loaded.description;
+                for l in &d.liquids {
+                    rows.push((
+                        lang.fill(words::LIQUID_ROW, &[&l.name]),
+                        lang.fill(words::LIQUID_VALUE, &[&l.top, &l.index]),
+                    ));
+                }
                 rows.push((
-                    lang.fill(words::LIQUID_ROW, &[&l.name]),
-                    lang.fill(words::LIQUID_VALUE, &[&l.top, &l.index]),
+                    lang.of(words::OBJECTS).to_string(),
+                    lang.fill(
+                        words::OBJECTS_VALUE,
+                        &[&d.straws.len(), &d.coins.len(), &d.cards.len()],
+                    ),
                 ));
+                continue;
             }
-            rows.push((
-                lang.of(words::OBJECTS).to_string(),
-                lang.fill(
-                    words::OBJECTS_VALUE,
-                    &[&d.straws.len(), &d.coins.len(), &d.cards.len()],
-                ),
-            ));
-        }
-        Some(scene) => {
-            rows.push((
-                lang.of(words::INPUTS[1]).to_string(),
-                format!("({}, {}) m", scene.straw_x(), scene.straw_y()),
-            ));
-            rows.push((
-                lang.fill(words::LIQUID_ROW, &[&"water"]),
-                lang.fill(
-                    words::LIQUID_VALUE,
-                    &[&scene.water_height(), &scene.n_water()],
-                ),
-            ));
-        }
+        };
+        rows.push((lang.of(label).to_string(), input.value.to_string()));
     }
-    rows.push((
-        lang.of(words::INPUTS[4]).to_string(),
-        loaded.world.max_events().to_string(),
-    ));
     rows
 }
 
@@ -1065,9 +1015,10 @@ fn distance_note(job: &Job, cloud: &ImageCloud, lang: Lang) -> String {
         return lang.of(words::NOT_SEEN).into();
     }
     let mm = format!("{:.3}", 1e3 * max_distance_to_objects(&job.loaded, cloud));
-    match (job.loaded.assignment_numbers(), &job.loaded.name) {
-        (Some(_), None) => lang.fill(words::DISTANCE_NOTE, &[&mm, &job.n_water]),
-        _ => lang.fill(words::SCENE_DISTANCE_NOTE, &[&mm]),
+    // The note on the index applies where the scene has one index of its own to name.
+    match job.loaded.input("n_water") {
+        Some(n) => lang.fill(words::DISTANCE_NOTE, &[&mm, &n]),
+        None => lang.fill(words::SCENE_DISTANCE_NOTE, &[&mm]),
     }
 }
 

@@ -15,6 +15,7 @@ use serde_json::{json, Value};
 
 use crate::error::{Error, Result};
 use crate::files::{read_input, Unread};
+use bentstraw_optics::record::InputValue;
 use bentstraw_optics::setup::Setup;
 
 /// How strictly a solution is judged, and how much of it the report lists.
@@ -432,30 +433,10 @@ pub fn summary(
     options: &CheckOptions,
     seconds: f64,
 ) -> String {
-    let o = checked.observer;
     let mut t = String::new();
     let t_ = &r.tally;
     let _ = writeln!(t, "bentstraw check: {file}");
-    match checked.assignment_numbers() {
-        Some(scene) => {
-            let _ = writeln!(
-                t,
-                "  scene           observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}, at most {} events",
-                o.x, o.y, o.z, scene.straw_x(), scene.straw_y(), scene.water_height(), scene.n_water(), scene.max_events()
-            );
-        }
-        None => {
-            let _ = writeln!(
-                t,
-                "  scene           {}, observer ({}, {}, {}) m, at most {} events",
-                checked.name(),
-                o.x,
-                o.y,
-                o.z,
-                checked.world.max_events()
-            );
-        }
-    }
+    let _ = writeln!(t, "  scene           {}", checked.inputs_line(true));
     let names = checked.colour_names();
     if let Some(h) = &solution.header {
         let _ = writeln!(t, "  read            {h}");
@@ -521,7 +502,7 @@ pub fn summary(
         let c = &r.per_colour[k];
         let cov = &r.coverage.per_colour[k];
         // A scene file's colours neither claimed nor seen are left out (a card has no red).
-        if checked.assignment_numbers().is_none() && c.points == 0 && cov.true_samples == 0 {
+        if !checked.lists_unseen_colours() && c.points == 0 && cov.true_samples == 0 {
             continue;
         }
         let cov_text = if cov.true_samples == 0 {
@@ -686,16 +667,10 @@ pub fn json_report(
         "true_samples": r.truth.points.len(),
         "seconds": seconds,
     });
-    match checked.assignment_numbers() {
-        Some(scene) => {
-            v["straw"] = json!([scene.straw_x(), scene.straw_y()]);
-            v["water_height"] = json!(scene.water_height());
-            v["n_water"] = json!(scene.n_water());
-            v["max_events"] = json!(scene.max_events());
-        }
-        None => {
-            v["scene_file"] = json!(checked.name());
-            v["max_events"] = json!(checked.world.max_events());
+    // The scene's inputs under their documented names (its whole text is the scene file's).
+    for input in checked.inputs() {
+        if !matches!(input.value, InputValue::Text(_)) {
+            v[input.key] = crate::writers::input_json(&input.value);
         }
     }
     v

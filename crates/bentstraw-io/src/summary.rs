@@ -13,40 +13,31 @@ use crate::writers::{ModelPoints, PointSet};
 pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[String]) -> String {
     let (o, cloud) = (set.scene.observer, set.cloud);
     let mut t = String::new();
-    // What was traced: the assignment's glass by its values, a scene file by its name.
-    let (object, counts): (&str, Vec<(usize, usize)>) = match set.scene.assignment_numbers() {
-        Some(s) => {
-            let _ = writeln!(
-                t,
-                "bentstraw simulate: the straw's virtual image ({} model)",
-                set.image_model()
-            );
-            let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
-            let _ = writeln!(t, "  straw axis      ({}, {}) m", s.straw_x(), s.straw_y());
-            let _ = writeln!(
-                t,
-                "  water           height {} m, index {}",
-                s.water_height(),
-                s.n_water()
-            );
-            let _ = writeln!(t, "  event limit     {}", s.max_events());
-            let counts = cloud.counts_per_color().into_iter().enumerate().collect();
-            ("the straw", counts)
-        }
-        None => {
-            let _ = writeln!(
-                t,
-                "bentstraw simulate: the virtual image of {} ({} model)",
-                set.scene.name(),
-                set.image_model()
-            );
-            let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
-            let _ = writeln!(t, "  event limit     {}", set.scene.world.max_events());
-            // The colours the image has (a card has no red).
-            let counts = cloud.counts_per_code().into_iter().enumerate();
-            ("an object", counts.filter(|c| c.1 > 0).collect())
-        }
-    };
+    // What was traced: the straw by its values, a scene file by its name.
+    let scene = set.scene;
+    let _ = writeln!(
+        t,
+        "bentstraw simulate: the virtual image of {} ({} model)",
+        scene.subject().unwrap_or(scene.name()),
+        set.image_model()
+    );
+    let _ = writeln!(t, "  observer        ({}, {}, {}) m", o.x, o.y, o.z);
+    let values: Vec<String> = scene
+        .inputs()
+        .iter()
+        .filter_map(|i| i.heading_phrase())
+        .collect();
+    if !values.is_empty() {
+        let _ = writeln!(t, "  scene           {}", values.join(", "));
+    }
+    let _ = writeln!(t, "  event limit     {}", scene.world.max_events());
+    // The colours the scene's objects can show; a scene file's only where seen (a card has no red).
+    let counts: Vec<(usize, usize)> = cloud.counts_per_code()[..scene.colour_names().len()]
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|&(_, n)| n > 0 || scene.lists_unseen_colours())
+        .collect();
     let _ = writeln!(t, "  rays traced     {}", cloud.rays_traced);
     let _ = writeln!(
         t,
@@ -59,8 +50,9 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
     }
     let _ = writeln!(
         t,
-        "  hit ratio       {:.1} % of the rays reached {object}",
-        100.0 * cloud.hit_ratio()
+        "  hit ratio       {:.1} % of the rays reached {}",
+        100.0 * cloud.hit_ratio(),
+        scene.subject().unwrap_or("an object")
     );
     let _ = writeln!(
         t,
@@ -75,9 +67,9 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
         }
     }
     if cloud.points.len() < set.min_points {
-        let invisible = match set.scene.assignment_numbers().copied() {
-            Some(_) => "the straw is",
-            None => "the objects are",
+        let invisible = match set.scene.subject() {
+            Some(subject) => format!("{subject} is"),
+            None => "the objects are".to_string(),
         };
         let _ = writeln!(
             t,

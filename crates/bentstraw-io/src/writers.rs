@@ -32,9 +32,9 @@ use bentstraw_optics::apparent::{ApparentPoint, StereoImage};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::sampling::ImageCloud;
-use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES, SECTION_RGB};
+use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::text::clip_text;
-use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
+use bentstraw_optics::world::{World, COLOR_COUNT, COLOR_RGB};
 use bentstraw_optics::Vec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -42,6 +42,7 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::files::{shown, write_atomically};
 use crate::parse::QUOTED_MAX;
+use bentstraw_optics::record::InputValue;
 use bentstraw_optics::setup::Setup;
 
 /// A file format for image points.
@@ -360,75 +361,63 @@ pub fn write_model_csv(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
 }
 
 #[derive(Serialize)]
-struct JsonInputs {
-    observer: [f64; 3],
-    straw: [f64; 2],
-    water_height: f64,
-    n_water: f64,
-    max_events: u32,
-    min_points: usize,
-}
-
-#[derive(Serialize)]
-struct JsonCounts {
-    red: usize,
-    orange: usize,
-    magenta: usize,
-    green: usize,
-    blue: usize,
-}
-
-#[derive(Serialize)]
-struct JsonStats {
-    rays_traced: u64,
-    points: usize,
-    hit_ratio: f64,
-    grid_spacing: f64,
-    points_per_color: JsonCounts,
-}
-
-#[derive(Serialize)]
 struct JsonColor {
     code: u8,
     name: &'static str,
     rgb: [f64; 3],
 }
 
-/// JSON: the inputs, statistics and colour legend, then one `[x, y, z, color]` array a line.
+/// JSON: the inputs under their documented names, the statistics and the colour legend, then one
+/// array of the model's fields a line.
 pub fn write_json(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    let Some(s) = set.scene.assignment_numbers() else {
-        return write_world_json(w, set, set.scene);
+    let (scene, cloud) = (set.scene, set.cloud);
+    // Objects written by hand: their keys keep the documented order.
+    let object = |pairs: Vec<(&str, String)>| {
+        let fields: Vec<String> = pairs
+            .into_iter()
+            .map(|(k, v)| format!("{}:{v}", json(k)))
+            .collect();
+        format!("{{{}}}", fields.join(","))
     };
-    let inputs = JsonInputs {
-        observer: set.scene.observer.to_array(),
-        straw: [s.straw_x(), s.straw_y()],
-        water_height: s.water_height(),
-        n_water: s.n_water(),
-        max_events: s.max_events(),
-        min_points: set.min_points,
-    };
-    let c = set.cloud.counts_per_color();
-    let stats = JsonStats {
-        rays_traced: set.cloud.rays_traced,
-        points: set.cloud.points.len(),
-        hit_ratio: set.cloud.hit_ratio(),
-        grid_spacing: set.cloud.spacing,
-        points_per_color: JsonCounts {
-            red: c[0],
-            orange: c[1],
-            magenta: c[2],
-            green: c[3],
-            blue: c[4],
-        },
-    };
-    let colors: Vec<JsonColor> = (0..SECTION_COUNT)
+    let mut inputs: Vec<(&str, String)> = scene
+        .inputs()
+        .into_iter()
+        .map(|i| (i.key, input_json(&i.value).to_string()))
+        .collect();
+    inputs.push(("min_points", json(&set.min_points)));
+    let names = scene.colour_names();
+    let counts = cloud.counts_per_code();
+    let per_colour = scene
+        .counted_codes()
+        .iter()
+        .map(|&c| (names[c as usize - 1], json(&counts[c as usize - 1])))
+        .collect();
+    let stats = object(vec![
+        ("rays_traced", json(&cloud.rays_traced)),
+        ("points", json(&cloud.points.len())),
+        ("hit_ratio", json(&cloud.hit_ratio())),
+        ("grid_spacing", json(&cloud.spacing)),
+        ("points_per_color", object(per_colour)),
+    ]);
+    let colors: Vec<JsonColor> = (0..names.len())
         .map(|k| JsonColor {
             code: k as u8 + 1,
-            name: SECTION_NAMES[k],
-            rgb: SECTION_RGB[k],
+            name: names[k],
+            rgb: COLOR_RGB[k],
         })
         .collect();
-    write_json_object(w, set, &json(&inputs), &json(&stats), &json(&colors))
+    write_json_object(w, set, &object(inputs), &stats, &json(&colors))
+}
+
+/// An input's value as JSON: a point or a pair as an array, a number, a name or text as a string.
+pub(crate) fn input_json(value: &InputValue) -> serde_json::Value {
+    match value {
+        InputValue::Point(p) => p.to_array().into(),
+        InputValue::Pair(p) => p.to_vec().into(),
+        InputValue::Length(x) | InputValue::Number(x) => (*x).into(),
+        InputValue::Count(n) => (*n).into(),
+        InputValue::Name(s) | InputValue::Text(s) => s.as_str().into(),
+    }
 }
 
 /// The JSON object of a point set: its schema, model, inputs, statistics and colours (each
@@ -471,38 +460,47 @@ pub fn section_rgb8(code: u8) -> [u8; 3] {
     COLOR_RGB[code as usize - 1].map(|c| (c * 255.0).round() as u8)
 }
 
-/// PLY, binary little-endian: `double x, y, z`, `uchar red, green, blue`, `uchar color`.
+/// PLY, binary little-endian: `double x, y, z`, `uchar red, green, blue`, `uchar color`; the
+/// header's comments give the inputs under their documented names.
 pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    let Some(s) = set.scene.assignment_numbers() else {
-        return write_world_ply(w, set, set.scene);
-    };
-    let o = set.scene.observer;
+    let scene = set.scene;
+    let o = scene.observer;
     // The header is ASCII by the format's rules.
     writeln!(w, "ply")?;
     writeln!(w, "format binary_little_endian 1.0")?;
+    let of = scene
+        .subject()
+        .map_or(String::new(), |s| format!(" of {s}"));
     writeln!(
         w,
-        "comment bentstraw: virtual image points of the straw ({} model), metres",
+        "comment bentstraw: virtual image points{of} ({} model), metres",
         set.image_model()
     )?;
     writeln!(w, "comment observer {} {} {}", o.x, o.y, o.z)?;
-    writeln!(
-        w,
-        "comment straw {} {} water_height {} n_water {} max_events {}",
-        s.straw_x(),
-        s.straw_y(),
-        s.water_height(),
-        s.n_water(),
-        s.max_events()
-    )?;
+    // A comment is one line: the scene's whole text is left out.
+    let inputs: Vec<String> = scene
+        .inputs()
+        .iter()
+        .filter(|i| i.key != "observer")
+        .filter_map(|i| Some(format!("{} {}", i.key, i.value.bare()?)))
+        .collect();
+    writeln!(w, "comment {}", inputs.join(" "))?;
     writeln!(
         w,
         "comment rays_traced {} min_points {}",
         set.cloud.rays_traced, set.min_points
     )?;
+    let legend: Vec<String> = scene
+        .colour_names()
+        .iter()
+        .enumerate()
+        .map(|(k, n)| format!("{} {n}", k + 1))
+        .collect();
     writeln!(
         w,
-        "comment color: section code 1 red, 2 orange, 3 magenta, 4 green, 5 blue"
+        "comment color: {} {}",
+        scene.code_legend(),
+        legend.join(", ")
     )?;
     write_ply_vertices(w, &set.placed_points())
 }
@@ -529,95 +527,6 @@ fn write_ply_vertices(w: &mut dyn Write, points: &[ImagePoint]) -> io::Result<()
         w.write_all(&record)?;
     }
     Ok(())
-}
-
-#[derive(Serialize)]
-struct JsonWorldInputs<'a> {
-    scene_file: &'a str,
-    scene: String,
-    observer: [f64; 3],
-    max_events: u32,
-    min_points: usize,
-}
-
-#[derive(Serialize)]
-struct JsonWorldStats {
-    rays_traced: u64,
-    points: usize,
-    hit_ratio: f64,
-    grid_spacing: f64,
-    points_per_color: serde_json::Map<String, serde_json::Value>,
-}
-
-/// JSON of a world's points: the inputs (the scene as TOML, every value written out), the
-/// statistics and the eight colours (codes 1..=8: a straw's five bands, a coin, a card, the
-/// picture on a card), then the points as the model's fields.
-fn write_world_json(w: &mut dyn Write, set: &PointSet, world: &Setup) -> io::Result<()> {
-    let (cloud, min_points) = (set.cloud, set.min_points);
-    let counts = cloud.counts_per_code();
-    let inputs = JsonWorldInputs {
-        scene_file: world.name(),
-        scene: world.description.to_toml(),
-        observer: world.observer.to_array(),
-        max_events: world.world.max_events(),
-        min_points,
-    };
-    let stats = JsonWorldStats {
-        rays_traced: cloud.rays_traced,
-        points: cloud.points.len(),
-        hit_ratio: cloud.hit_ratio(),
-        grid_spacing: cloud.spacing,
-        points_per_color: COLOR_NAMES
-            .iter()
-            .zip(counts)
-            .map(|(name, n)| (name.to_string(), n.into()))
-            .collect(),
-    };
-    let colors: Vec<JsonColor> = (0..COLOR_COUNT)
-        .map(|k| JsonColor {
-            code: k as u8 + 1,
-            name: COLOR_NAMES[k],
-            rgb: COLOR_RGB[k],
-        })
-        .collect();
-    write_json_object(w, set, &json(&inputs), &json(&stats), &json(&colors))
-}
-
-/// PLY of a world's points: as [`write_ply`], the scene file named in a comment.
-fn write_world_ply(w: &mut dyn Write, set: &PointSet, world: &Setup) -> io::Result<()> {
-    let (cloud, min_points) = (set.cloud, set.min_points);
-    let o = world.observer;
-    writeln!(w, "ply")?;
-    writeln!(w, "format binary_little_endian 1.0")?;
-    writeln!(
-        w,
-        "comment bentstraw: virtual image points ({} model), metres",
-        set.image_model()
-    )?;
-    writeln!(w, "comment observer {} {} {}", o.x, o.y, o.z)?;
-    // A comment is one line of ASCII: the file's name with anything else replaced.
-    let name: String = world
-        .name()
-        .chars()
-        .map(|c| if c.is_ascii_graphic() { c } else { '_' })
-        .collect();
-    writeln!(
-        w,
-        "comment scene_file {name} max_events {}",
-        world.world.max_events()
-    )?;
-    writeln!(
-        w,
-        "comment rays_traced {} min_points {min_points}",
-        cloud.rays_traced
-    )?;
-    let legend: Vec<String> = COLOR_NAMES
-        .iter()
-        .enumerate()
-        .map(|(k, n)| format!("{} {n}", k + 1))
-        .collect();
-    writeln!(w, "comment color: code {}", legend.join(", "))?;
-    write_ply_vertices(w, &set.placed_points())
 }
 
 /// Writes one colour code per pixel centre, row-major: `row,col,color`.

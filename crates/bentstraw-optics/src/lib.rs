@@ -36,6 +36,7 @@ pub mod packet;
 mod parallel;
 pub mod picture;
 pub mod ray_diagram;
+pub mod record;
 pub mod rule;
 pub mod sampling;
 pub mod scene;

@@ -16,7 +16,10 @@ use crate::scene::{
     STRAW_HEIGHT, STRAW_RADIUS, WATER_INDEX,
 };
 use crate::scene_file::{Observer, SceneDescription, SceneFileError};
-use crate::sketch::{object_outlines, straw_outline, water_segments, world_wireframe};
+use crate::sketch::{
+    object_outlines, straw_outline, straw_schematic, straw_schematic_extent, water_segments,
+    world_schematic, world_schematic_extent, world_wireframe, Mark, Panel,
+};
 use crate::world::{World, COLOR_NAMES};
 use crate::Vec3;
 
@@ -335,6 +338,35 @@ impl Setup {
                 let (lo, hi) = self.world.bounds();
                 (0.5 * (lo + hi), world_wireframe(&self.world))
             }
+        }
+    }
+
+    /// The lines a 3D page draws of the scene besides its points, when it cannot draw the scene
+    /// from its documented values: a scene file's boundaries' edges and objects' outlines. The
+    /// assignment's glass has none here: a page draws its water and its straw from the values
+    /// its data gives (the glass's radius, the water's height, the straw's axis).
+    pub fn page_lines(&self) -> Option<(Vec<[Vec3; 2]>, Vec<Vec<Vec3>>)> {
+        match self.assignment {
+            Some(_) => None,
+            None => Some((world_wireframe(&self.world), object_outlines(&self.world))),
+        }
+    }
+
+    /// The schematic drawing of the scene in `panel`, back to front: the assignment's glass as
+    /// its water, wall and banded straw; a scene file's world as its boundaries' edges and its
+    /// objects' outlines.
+    pub fn schematic(&self, panel: Panel) -> Vec<Mark> {
+        match &self.assignment {
+            Some(scene) => straw_schematic(scene, panel),
+            None => world_schematic(&self.world, panel),
+        }
+    }
+
+    /// The points a schematic's panels must hold, besides the rays.
+    pub fn schematic_extent(&self) -> Vec<Vec3> {
+        match &self.assignment {
+            Some(scene) => straw_schematic_extent(scene),
+            None => world_schematic_extent(&self.world),
         }
     }
 

@@ -200,3 +200,229 @@ pub fn straw_outline(scene: &Scene, right: Vec3) -> Vec<Vec<Vec3>> {
     }
     out
 }
+
+/// A panel of a schematic drawing: a side view along a horizontal unit axis (the distance along
+/// it to the right, the height up), or the view from above (x to the right, y up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Panel {
+    /// Side view along this horizontal unit vector.
+    Side(Vec3),
+    /// Top view.
+    Top,
+}
+
+impl Panel {
+    /// Where the point `p` lands on the panel's plane (m).
+    pub fn project(self, p: Vec3) -> (f64, f64) {
+        match self {
+            Panel::Side(e) => (p.x * e.x + p.y * e.y, p.z),
+            Panel::Top => (p.x, p.y),
+        }
+    }
+}
+
+/// A shape of a schematic, in the panel's coordinates (m).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Figure {
+    /// An upright rectangle by two opposite corners.
+    Rect([(f64, f64); 2]),
+    /// A closed polygon.
+    Polygon(Vec<(f64, f64)>),
+    /// An open polyline.
+    Line(Vec<(f64, f64)>),
+}
+
+/// What a mark of a schematic shows: it sets how the mark is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Part {
+    /// A liquid's body, filled.
+    Liquid,
+    /// A container's wall, a thick line.
+    Wall,
+    /// A part of an object in its colour code, filled.
+    Band(u8),
+    /// An object seen from above, filled grey.
+    Footprint,
+    /// A boundary's edge, a thin line.
+    Edge,
+    /// An object's true outline.
+    Outline,
+}
+
+/// One mark of a schematic: what it shows and its shape.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mark {
+    /// What it shows.
+    pub part: Part,
+    /// Its shape on the panel.
+    pub figure: Figure,
+}
+
+/// Points around the circle of radius `r` centred on `(cx, cy)` of a schematic's top view (96
+/// segments, closed).
+fn flat_circle(cx: f64, cy: f64, r: f64) -> Vec<(f64, f64)> {
+    (0..=96)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / 96.0;
+            (cx + r * a.cos(), cy + r * a.sin())
+        })
+        .collect()
+}
+
+/// The schematic of the assignment's glass in `panel`, back to front: the water, the glass's
+/// wall, the straw (its five bands from the side, its footprint from above).
+pub fn straw_schematic(scene: &Scene, panel: Panel) -> Vec<Mark> {
+    let mark = |part, figure| Mark { part, figure };
+    let rv = GLASS_RADIUS;
+    let mut marks = Vec::new();
+    match panel {
+        Panel::Side(axis) => {
+            if scene.has_water() {
+                marks.push(mark(
+                    Part::Liquid,
+                    Figure::Rect([(-rv, 0.0), (rv, scene.water_height())]),
+                ));
+            }
+            marks.push(mark(
+                Part::Wall,
+                Figure::Line(vec![
+                    (-rv, crate::scene::GLASS_HEIGHT),
+                    (-rv, 0.0),
+                    (rv, 0.0),
+                    (rv, crate::scene::GLASS_HEIGHT),
+                ]),
+            ));
+            let c = scene.straw_x() * axis.x + scene.straw_y() * axis.y;
+            for k in 0..SECTION_COUNT {
+                marks.push(mark(
+                    Part::Band(k as u8 + 1),
+                    Figure::Rect([
+                        (c - STRAW_RADIUS, k as f64 * SECTION_HEIGHT),
+                        (c + STRAW_RADIUS, (k + 1) as f64 * SECTION_HEIGHT),
+                    ]),
+                ));
+            }
+        }
+        Panel::Top => {
+            if scene.has_water() {
+                marks.push(mark(
+                    Part::Liquid,
+                    Figure::Polygon(flat_circle(0.0, 0.0, rv)),
+                ));
+            }
+            marks.push(mark(Part::Wall, Figure::Line(flat_circle(0.0, 0.0, rv))));
+            marks.push(mark(
+                Part::Footprint,
+                Figure::Polygon(flat_circle(scene.straw_x(), scene.straw_y(), STRAW_RADIUS)),
+            ));
+        }
+    }
+    marks
+}
+
+/// The schematic of a scene file's world in `panel`: every boundary's edges, then the objects'
+/// true outlines.
+pub fn world_schematic(world: &World, panel: Panel) -> Vec<Mark> {
+    let edges = world_wireframe(world).into_iter().map(|[a, b]| Mark {
+        part: Part::Edge,
+        figure: Figure::Line(vec![panel.project(a), panel.project(b)]),
+    });
+    let outlines = object_outlines(world).into_iter().map(|line| Mark {
+        part: Part::Outline,
+        figure: Figure::Line(line.iter().map(|p| panel.project(*p)).collect()),
+    });
+    edges.chain(outlines).collect()
+}
+
+/// The points a schematic of the assignment's glass must hold: the glass's square at the floor
+/// and at the straw's top, and the straw's foot.
+pub fn straw_schematic_extent(scene: &Scene) -> Vec<Vec3> {
+    let mut pts = Vec::new();
+    for z in [0.0, STRAW_HEIGHT] {
+        for (x, y) in [(-1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)] {
+            pts.push(Vec3::new(x * GLASS_RADIUS, y * GLASS_RADIUS, z));
+        }
+    }
+    pts.push(Vec3::new(scene.straw_x(), scene.straw_y(), 0.0));
+    pts
+}
+
+/// The points a schematic of a world must hold: the corners of the box holding everything.
+pub fn world_schematic_extent(world: &World) -> Vec<Vec3> {
+    let (lo, hi) = world.bounds();
+    (0..8)
+        .map(|k| {
+            let pick = |bit: i32, a: f64, b: f64| if k & bit == 0 { a } else { b };
+            Vec3::new(
+                pick(1, lo.x, hi.x),
+                pick(2, lo.y, hi.y),
+                pick(4, lo.z, hi.z),
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_glass_from_the_side_is_its_water_its_wall_and_five_bands_on_the_straws_axis() {
+        let scene = Scene::with_defaults(0.02, 0.01, 0.15).unwrap();
+        let axis = Vec3::new(0.6, 0.8, 0.0);
+        let marks = straw_schematic(&scene, Panel::Side(axis));
+        let parts: Vec<Part> = marks.iter().map(|m| m.part).collect();
+        assert_eq!(
+            parts,
+            [
+                Part::Liquid,
+                Part::Wall,
+                Part::Band(1),
+                Part::Band(2),
+                Part::Band(3),
+                Part::Band(4),
+                Part::Band(5)
+            ]
+        );
+        assert_eq!(
+            marks[0].figure,
+            Figure::Rect([(-GLASS_RADIUS, 0.0), (GLASS_RADIUS, 0.15)])
+        );
+        // The bands stand on the straw's axis as the panel projects it, one section high each.
+        let c = 0.02 * 0.6 + 0.01 * 0.8;
+        assert_eq!(
+            Panel::Side(axis).project(Vec3::new(0.02, 0.01, 0.3)),
+            (c, 0.3)
+        );
+        let Figure::Rect([(x0, z0), (x1, z1)]) = marks[4].figure else {
+            panic!("a band is a rectangle")
+        };
+        assert!((x0 - (c - STRAW_RADIUS)).abs() < 1e-15 && (x1 - (c + STRAW_RADIUS)).abs() < 1e-15);
+        assert!(
+            (z0 - 2.0 * SECTION_HEIGHT).abs() < 1e-15 && (z1 - 3.0 * SECTION_HEIGHT).abs() < 1e-15
+        );
+        // An empty glass has no water to fill.
+        let empty = Scene::with_defaults(0.0, 0.0, 0.0).unwrap();
+        assert!(straw_schematic(&empty, Panel::Top)
+            .iter()
+            .all(|m| m.part != Part::Liquid));
+    }
+
+    #[test]
+    fn a_worlds_schematic_is_its_wireframe_then_its_outlines() {
+        let scene = Scene::with_defaults(0.0, 0.0, 0.1).unwrap();
+        let world = World::assignment(&scene);
+        let marks = world_schematic(&world, Panel::Top);
+        let (edges, outlines) = (world_wireframe(&world).len(), object_outlines(&world).len());
+        assert_eq!(marks.len(), edges + outlines);
+        assert!(marks[..edges].iter().all(|m| m.part == Part::Edge));
+        assert!(marks[edges..].iter().all(|m| m.part == Part::Outline));
+        // The box's eight corners hold every boundary.
+        let corners = world_schematic_extent(&world);
+        assert_eq!(corners.len(), 8);
+        let (lo, hi) = world.bounds();
+        assert!(corners
+            .iter()
+            .all(|p| p.cmpge(lo).all() && p.cmple(hi).all()));
+    }
+}

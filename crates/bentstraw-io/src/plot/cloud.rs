@@ -4,9 +4,9 @@
 use std::path::Path;
 
 use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::{SECTION_COUNT, SECTION_NAMES};
+
 use bentstraw_optics::setup::Setup;
-use bentstraw_optics::world::{COLOR_COUNT, COLOR_NAMES, COLOR_RGB};
+use bentstraw_optics::world::COLOR_COUNT;
 use bentstraw_optics::Vec3;
 use plotters::prelude::*;
 
@@ -15,7 +15,7 @@ use super::colours::section_rgb8;
 use super::dots::{draw_dots, visible_dots};
 use super::figure::{figure_bytes, AreaOn, FigureFormat, FIGURE_WIDTH};
 use super::heading::Heading;
-use super::legend::{common_legend, counts, draw_legend_cell, LegendMark};
+use super::legend::{common_legend, draw_legend_cell, LegendMark};
 use super::numbers::{degrees, whole};
 use super::observer::draw_observer;
 use super::panel::{grid, Panel};
@@ -118,35 +118,27 @@ fn draw_cloud_figure<DB: DrawingBackend>(
         draw_axis_labels(root, p, &bx).map_err(e)?;
         draw_observer(root, p, &bx, observer, &dots).map_err(e)?;
     }
-    let mut items: Vec<(LegendMark, String)>;
-    if scene.assignment_numbers().is_some() {
-        let n = counts(points);
-        items = vec![(LegendMark::None, "image points by section:".to_string())];
-        items.extend((0..SECTION_COUNT).map(|k| {
-            (
-                LegendMark::Swatch(section_rgb8(k as u8 + 1)),
-                format!("{} {}: {}", k + 1, SECTION_NAMES[k], n[k]),
-            )
-        }));
-        items.extend(common_legend(bx.observer_inside));
-    } else {
-        // The codes the points have: a straw's bands, coins, cards, pictures.
-        let mut n = [0usize; COLOR_COUNT];
-        for p in points {
-            n[p.color as usize - 1] += 1;
-        }
-        items = vec![(LegendMark::None, "image points by colour:".to_string())];
-        items.extend((0..COLOR_COUNT).filter(|&k| n[k] > 0).map(|k| {
-            (
-                LegendMark::Swatch(COLOR_RGB[k].map(|c| (c * 255.0).round() as u8)),
-                format!("{} {}: {}", k + 1, COLOR_NAMES[k], n[k]),
-            )
-        }));
-        let mut common = common_legend(bx.observer_inside);
-        common[1].1 = "container and liquids (wireframe)".to_string();
-        common[2].1 = "objects, true outlines".to_string();
-        items.extend(common);
+    // The codes the scene's objects show: a straw's sections, coins, cards, pictures.
+    let mut n = [0usize; COLOR_COUNT];
+    for p in points {
+        n[p.color as usize - 1] += 1;
     }
+    let mut items = vec![(
+        LegendMark::None,
+        format!("image points by {}:", scene.code_word()),
+    )];
+    let names = scene.colour_names();
+    items.extend(
+        (0..names.len())
+            .filter(|&k| n[k] > 0 || scene.lists_unseen_colours())
+            .map(|k| {
+                (
+                    LegendMark::Swatch(section_rgb8(k as u8 + 1)),
+                    format!("{} {}: {}", k + 1, names[k], n[k]),
+                )
+            }),
+    );
+    items.extend(common_legend(scene, bx.observer_inside));
     draw_legend_cell(root, legend_cell(heading.height()), &items).map_err(e)?;
     Ok(())
 }
@@ -154,10 +146,11 @@ fn draw_cloud_figure<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plot::counts;
     use crate::plot::tests::{decode, panels_have, panels_of, png_of, point};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::{Scene, REFERENCES, SECTION_HEIGHT, STRAW_RADIUS};
-    use bentstraw_optics::sketch::{water_segments, CIRCLE_SEGMENTS};
+    use bentstraw_optics::sketch::CIRCLE_SEGMENTS;
 
     #[test]
     fn figure_is_a_png_of_the_stated_size_showing_exactly_the_colours_present() {
@@ -225,10 +218,7 @@ mod tests {
         let observer = Vec3::new(0.0, -0.2, 0.3);
         let img = png_of(&scene, observer, &[]);
         assert_eq!(img.width(), FIGURE_WIDTH);
-        assert_eq!(
-            water_segments(scene.assignment_numbers().unwrap()).len(),
-            2 * CIRCLE_SEGMENTS
-        );
+        assert_eq!(scene.wireframe().1.len(), 2 * CIRCLE_SEGMENTS);
     }
 
     #[test]

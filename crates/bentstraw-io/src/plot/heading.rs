@@ -1,8 +1,6 @@
 //! A figure's heading (title and subtitle, wrapped and centred), and the title naming a
 //! simulation's inputs.
 
-use bentstraw_optics::scene::Scene;
-use bentstraw_optics::Vec3;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -57,18 +55,4 @@ impl Heading {
         }
         Ok(())
     }
-}
-
-/// A short title naming the inputs, for figures.
-pub fn simulation_title(scene: &Scene, observer: Vec3) -> String {
-    format!(
-        "observer ({}, {}, {}) m, straw ({}, {}) m, water {} m, n = {}",
-        observer.x,
-        observer.y,
-        observer.z,
-        scene.straw_x(),
-        scene.straw_y(),
-        scene.water_height(),
-        scene.n_water()
-    )
 }

@@ -1,8 +1,8 @@
 //! Legends: the mark before each entry, the words for the straw's sections and the entries
 //! every figure of the scene has, and a column of entries wrapped to its cell.
 
-use bentstraw_optics::image::ImagePoint;
-use bentstraw_optics::scene::{SECTION_COUNT, SECTION_HEIGHT, SECTION_NAMES};
+use bentstraw_optics::scene::{SECTION_HEIGHT, SECTION_NAMES};
+use bentstraw_optics::setup::Setup;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -13,7 +13,11 @@ use super::text::{font, wrap, TEXT};
 use super::wireframe::dashed;
 
 /// Counts of points per section code 1..=5.
-pub(crate) fn counts(points: &[ImagePoint]) -> [usize; SECTION_COUNT] {
+#[cfg(test)]
+pub(crate) fn counts(
+    points: &[bentstraw_optics::image::ImagePoint],
+) -> [usize; bentstraw_optics::scene::SECTION_COUNT] {
+    use bentstraw_optics::scene::SECTION_COUNT;
     let mut n = [0; SECTION_COUNT];
     for p in points {
         if (1..=SECTION_COUNT as u8).contains(&p.color) {
@@ -35,7 +39,8 @@ pub(crate) fn section_words(k: usize) -> String {
 }
 
 /// The legend's entries for the observer, the water and the straw's outline.
-pub(crate) fn common_legend(observer_inside: bool) -> Vec<(LegendMark, String)> {
+pub(crate) fn common_legend(scene: &Setup, observer_inside: bool) -> Vec<(LegendMark, String)> {
+    let words = scene.sketch_words();
     vec![
         (
             LegendMark::Dot,
@@ -45,10 +50,10 @@ pub(crate) fn common_legend(observer_inside: bool) -> Vec<(LegendMark, String)> 
                 "observer (far: arrow)".to_string()
             },
         ),
-        (LegendMark::Line(WATER_RGB), "water (wireframe)".to_string()),
+        (LegendMark::Line(WATER_RGB), words.wireframe.to_string()),
         (
             LegendMark::Dashed(STRAW_OUTLINE_RGB),
-            "straw, true outline".to_string(),
+            words.outlines.to_string(),
         ),
     ]
 }

@@ -87,13 +87,13 @@ pub(crate) fn dashed<DB: DrawingBackend>(
 mod tests {
     use bentstraw_optics::scene::{Scene, GLASS_RADIUS};
     use bentstraw_optics::setup::Setup;
-    use bentstraw_optics::sketch::{water_segments, CIRCLE_SEGMENTS, WIRE_VERTICALS};
+    use bentstraw_optics::sketch::{CIRCLE_SEGMENTS, WIRE_VERTICALS};
     use bentstraw_optics::Vec3;
 
     #[test]
     fn water_wireframe_has_two_circles_and_thirty_verticals() {
         let scene = Setup::assignment(Scene::with_defaults(0.0, 0.0, 0.15).unwrap(), Vec3::ZERO);
-        let segs = water_segments(scene.assignment_numbers().unwrap());
+        let segs = scene.wireframe().1;
         let verticals: Vec<_> = segs
             .iter()
             .filter(|[a, b]| a.x == b.x && a.y == b.y)

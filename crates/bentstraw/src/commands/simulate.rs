@@ -16,7 +16,6 @@ use bentstraw_io::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
     ModelCloud, MODEL_NAMES,
 };
-use bentstraw_io::plot::simulation_title;
 use bentstraw_io::summary::{model_summary, summary};
 use bentstraw_io::words::Lang;
 use bentstraw_io::writers::{check_points_asked, write_points, ModelPoints, PointFormat, PointSet};
@@ -169,9 +168,9 @@ fn write_model_figures(
             .zip(&placed)
             .map(|(name, points)| ModelCloud { name, points })
             .collect();
-        let what = match set.scene.assignment_numbers().copied() {
-            Some(_) => "the straw appears",
-            None => "the objects appear",
+        let what = match set.scene.subject() {
+            Some(subject) => format!("{subject} appears"),
+            None => "the objects appear".to_string(),
         };
         let title = format!("Where {what}: {inputs}");
         write_model_comparison(path, set.scene, set.scene.observer, &clouds, &title)?;
@@ -208,15 +207,5 @@ fn trace_with_spinner(scene: &Setup, min_points: usize) -> ImageCloud {
 /// The inputs in words, for figures' titles: the assignment's values, or a scene file's name and
 /// the observer.
 fn inputs_title(scene: &Setup) -> String {
-    let observer = scene.observer;
-    match scene.assignment_numbers() {
-        Some(numbers) => simulation_title(numbers, observer),
-        None => format!(
-            "{}, observer ({}, {}, {}) m",
-            scene.name(),
-            observer.x,
-            observer.y,
-            observer.z
-        ),
-    }
+    scene.inputs_line(false)
 }
