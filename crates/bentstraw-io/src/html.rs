@@ -194,9 +194,10 @@ fn viewer_data(
         "views": views_json(observer),
     });
     match scene.page_lines() {
-        Some((wire, outlines)) => {
-            data["wire"] = wire.iter().map(|s| [v3(s[0]), v3(s[1])]).collect();
-            data["outlines"] = outlines
+        Some(lines) => {
+            data["wire"] = lines.edges.iter().map(|s| [v3(s[0]), v3(s[1])]).collect();
+            data["outlines"] = lines
+                .outlines
                 .iter()
                 .map(|l| l.iter().map(|&p| v3(p)).collect::<Vec<_>>())
                 .collect();

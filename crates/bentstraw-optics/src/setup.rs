@@ -18,7 +18,7 @@ use crate::scene::{
 use crate::scene_file::{Observer, SceneDescription, SceneFileError};
 use crate::sketch::{
     object_outlines, straw_outline, straw_schematic, straw_schematic_extent, water_segments,
-    world_schematic, world_schematic_extent, world_wireframe, Mark, Panel,
+    world_schematic, world_schematic_extent, world_wireframe, Mark, Panel, SceneLines,
 };
 use crate::world::{World, COLOR_NAMES};
 use crate::Vec3;
@@ -345,10 +345,13 @@ impl Setup {
     /// from its documented values: a scene file's boundaries' edges and objects' outlines. The
     /// assignment's glass has none here: a page draws its water and its straw from the values
     /// its data gives (the glass's radius, the water's height, the straw's axis).
-    pub fn page_lines(&self) -> Option<(Vec<[Vec3; 2]>, Vec<Vec<Vec3>>)> {
+    pub fn page_lines(&self) -> Option<SceneLines> {
         match self.assignment {
             Some(_) => None,
-            None => Some((world_wireframe(&self.world), object_outlines(&self.world))),
+            None => Some(SceneLines {
+                edges: world_wireframe(&self.world),
+                outlines: object_outlines(&self.world),
+            }),
         }
     }
 

@@ -201,6 +201,15 @@ pub fn straw_outline(scene: &Scene, right: Vec3) -> Vec<Vec<Vec3>> {
     out
 }
 
+/// A scene drawn as lines in space: its boundaries' edges and its objects' true outlines.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneLines {
+    /// The boundaries' edges, as segments.
+    pub edges: Vec<[Vec3; 2]>,
+    /// The objects' outlines, as polylines.
+    pub outlines: Vec<Vec<Vec3>>,
+}
+
 /// A panel of a schematic drawing: a side view along a horizontal unit axis (the distance along
 /// it to the right, the height up), or the view from above (x to the right, y up).
 #[derive(Clone, Copy, Debug, PartialEq)]
