@@ -153,7 +153,8 @@ function decodeFrame(buffer, quick) {
  * the models start from them instead of tracing them again. */
 export function requestModels() {
   for (const m of ["eye", "stereo"]) {
-    if (!state.models.includes(m)) { models[m] = null; continue; }
+    // A model switched off gives up its work: on the site it would hold up the next full frame.
+    if (!state.models.includes(m)) { if (models[m]) cancel("model-" + m); models[m] = null; continue; }
     if (models[m] && models[m].query === viewQuery(state)) continue; // shown, or on its way
     requestModel(m);
   }
