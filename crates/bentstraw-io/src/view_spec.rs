@@ -6,6 +6,7 @@
 //! the explorer's own limits are the explorer's.
 
 use std::collections::HashMap;
+use std::path::Path;
 
 use bentstraw_optics::scene::WATER_INDEX;
 use bentstraw_optics::setup::{SceneValues, Setup};
@@ -16,9 +17,10 @@ use bentstraw_optics::view::{
 };
 
 use crate::camera::CameraSpec;
-use crate::error::Result;
+use crate::error::{shown, Result};
 use crate::gallery::GALLERY;
 use crate::parse::{parse_size, parse_vec2, parse_vec3};
+use crate::scene_input::{built_in, read_scene_text};
 
 /// The name a scene file the page holds (its text in the query's `scene-file`) goes by in
 /// messages and commands.
@@ -46,6 +48,21 @@ impl SceneFile {
                 name: stem.to_string(),
                 text: text.to_string(),
             })
+    }
+
+    /// The scene file `--scene PATH` names, read (not yet checked): a built-in scene by its name,
+    /// else the file, named as messages show its path.
+    pub fn read(path: &Path) -> Result<SceneFile> {
+        if let Some((stem, text)) = built_in(path) {
+            return Ok(SceneFile {
+                name: stem.to_string(),
+                text: text.to_string(),
+            });
+        }
+        Ok(SceneFile {
+            name: shown(path),
+            text: read_scene_text(path)?,
+        })
     }
 
     /// The scene file a query names: a scene of the gallery (`scene=NAME`) or a file's whole text

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use bentstraw_io::camera::CameraSpec;
 use bentstraw_io::parse::{parse_size, parse_vec2, parse_vec3};
 use bentstraw_io::scene_input::SceneSource;
+use bentstraw_io::view_spec::{SceneFile, ViewSpec};
 use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
 use bentstraw_optics::setup::{SceneValues, Setup};
 use bentstraw_optics::view::{PictureSpec, DEFAULT_POINTS, DEFAULT_PRUNE, DEFAULT_SAMPLES};
@@ -484,6 +485,18 @@ impl From<&CameraArgs> for CameraSpec {
 }
 
 impl RenderArgs {
+    /// The view these flags ask for, its scene file read but nothing checked yet.
+    pub fn view(&self) -> bentstraw_io::Result<ViewSpec> {
+        let source = self.scene.source();
+        Ok(ViewSpec {
+            scene: source.file.as_deref().map(SceneFile::read).transpose()?,
+            values: source.values,
+            camera: (&self.camera).into(),
+            picture: self.picture(),
+            ..ViewSpec::default()
+        })
+    }
+
     /// The picture as these flags ask for it.
     pub fn picture(&self) -> PictureSpec {
         PictureSpec {

@@ -9,6 +9,7 @@ use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::scene::SECTION_COUNT;
 use bentstraw_optics::shading::ShadingOptions;
+use bentstraw_optics::view::PictureSpec;
 use bentstraw_optics::world::World;
 
 use crate::cli::{ModeArg, RenderArgs};
@@ -23,10 +24,11 @@ use bentstraw_io::writers::{raw_weight_count, write_raw_codes, write_raw_weights
 pub fn run(args: &RenderArgs) -> CliResult {
     let start = Instant::now();
     // Everything is checked before any work, so bad input leaves no file.
-    let loaded = crate::cli::load_scene(&args.scene.source())?;
-    let camera = scene_camera(&loaded, &(&args.camera).into())?;
+    let view = args.view()?;
+    let loaded = crate::cli::with_hints(view.load()?);
+    let camera = scene_camera(&loaded, &view.camera)?;
     let world = loaded.world;
-    let (options, outputs) = shading_and_outputs(args)?;
+    let (options, outputs) = shading_and_outputs(args, &view.picture)?;
     // The explorer's frame call, picture only: the command line draws as fast as the live view,
     // with a bar (after a second) whose estimate follows the rows drawn.
     let mut frame = Frame::default();
@@ -67,10 +69,13 @@ pub fn run(args: &RenderArgs) -> CliResult {
     Ok(())
 }
 
-/// The shading options of `args`, checked, and its outputs reserved (the previous picture and raw
-/// file stay until both new ones are complete).
-fn shading_and_outputs(args: &RenderArgs) -> CliResult<(ShadingOptions, OutputSet)> {
-    let options = checked_shading(&args.picture())?;
+/// The shading options of `picture`, checked, and the outputs of `args` reserved (the previous
+/// picture and raw file stay until both new ones are complete).
+fn shading_and_outputs(
+    args: &RenderArgs,
+    picture: &PictureSpec,
+) -> CliResult<(ShadingOptions, OutputSet)> {
+    let options = checked_shading(picture)?;
     let mut outputs = vec![Output {
         flag: "--output",
         path: &args.output,
