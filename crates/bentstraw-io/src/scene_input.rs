@@ -1,5 +1,6 @@
-//! `--scene FILE.toml`: a scene file (or a gallery scene by name) read, then made into the one
-//! scene value ([`Setup`]) with the flags that override it.
+//! `--scene FILE.toml`: a scene file (or a gallery scene by name) read ([`SceneFile::read`], the
+//! one reading of scene files), then made into the one scene value ([`Setup`]) with the flags
+//! that override it.
 
 use std::path::{Path, PathBuf};
 
@@ -8,7 +9,46 @@ use bentstraw_optics::setup::{self, SceneValues, Setup, MAX_SCENE_FILE_BYTES};
 
 use crate::error::{Error, Result};
 use crate::files::{read_input, shown, Unread};
-use crate::gallery::named_scenes;
+use crate::gallery::{named_scenes, GALLERY};
+
+/// A scene file as a view names it: its name (as messages and commands show it) and its text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneFile {
+    /// The name: a built-in scene's, the page's own (`view_spec::PAGE_SCENE_FILE`), or a path as
+    /// shown.
+    pub name: String,
+    /// The whole text of the file.
+    pub text: String,
+}
+
+impl SceneFile {
+    /// The gallery's scene `name`, if there is one of that name.
+    pub fn gallery(name: &str) -> Option<SceneFile> {
+        GALLERY
+            .iter()
+            .find(|(stem, _)| *stem == name)
+            .map(|(stem, text)| SceneFile {
+                name: stem.to_string(),
+                text: text.to_string(),
+            })
+    }
+
+    /// The scene file `--scene PATH` names, read (not yet checked): a built-in scene by its name
+    /// ([`built_in`]), else the file (at most [`MAX_SCENE_FILE_BYTES`], UTF-8), named as messages
+    /// show its path.
+    pub fn read(path: &Path) -> Result<SceneFile> {
+        if let Some((stem, text)) = built_in(path) {
+            return Ok(SceneFile {
+                name: stem.to_string(),
+                text: text.to_string(),
+            });
+        }
+        Ok(SceneFile {
+            name: shown(path),
+            text: read_scene_text(path)?,
+        })
+    }
+}
 
 /// The scene's inputs as the flags give them: a file (or a gallery scene by name), and the values
 /// that override it or, without a file, make the assignment's scene.
@@ -21,21 +61,14 @@ pub struct SceneSource {
 }
 
 impl SceneSource {
-    /// The validated scene and observer: from the values alone, or from the scene file (read
-    /// here) with the values overriding it ([`Setup::from_description`]).
+    /// The validated scene and observer: from the values alone, or from the scene file (read by
+    /// [`SceneFile::read`]) with the values overriding it ([`Setup::from_text`]).
     pub fn load(&self) -> Result<Setup> {
         let Some(path) = &self.file else {
             return Ok(Setup::from_values(&self.values)?);
         };
-        if let Some((stem, text)) = built_in(path) {
-            return self.load_text(stem, text);
-        }
-        let name = shown(path);
-        Ok(Setup::from_description(
-            &name,
-            read_scene_file(path)?,
-            &self.values,
-        )?)
+        let file = SceneFile::read(path)?;
+        self.load_text(&file.name, &file.text)
     }
 
     /// [`SceneSource::load`] for the scene file whose text is `text` and whose name, as messages
@@ -65,11 +98,6 @@ pub fn built_in(path: &Path) -> Option<(&'static str, &'static str)> {
     let name = path.to_str()?;
     let stem = name.strip_suffix(".toml").unwrap_or(name);
     named_scenes().find(|(s, _)| *s == stem)
-}
-
-/// Reads and checks the scene file at `path`; every refusal names the file.
-pub fn read_scene_file(path: &Path) -> Result<SceneDescription> {
-    parse_scene_text(&shown(path), &read_scene_text(path)?)
 }
 
 /// The text of the scene file at `path` (at most [`MAX_SCENE_FILE_BYTES`], UTF-8), not checked

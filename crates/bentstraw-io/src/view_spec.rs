@@ -6,7 +6,6 @@
 //! the explorer's own limits are the explorer's.
 
 use std::collections::HashMap;
-use std::path::Path;
 
 use bentstraw_optics::scene::WATER_INDEX;
 use bentstraw_optics::setup::{SceneValues, Setup};
@@ -17,10 +16,10 @@ use bentstraw_optics::view::{
 };
 
 use crate::camera::CameraSpec;
-use crate::error::{shown, Result};
+use crate::error::Result;
 use crate::gallery::GALLERY;
 use crate::parse::{parse_size, parse_vec2, parse_vec3};
-use crate::scene_input::{built_in, read_scene_text};
+pub use crate::scene_input::SceneFile;
 
 /// The name a scene file the page holds (its text in the query's `scene-file`) goes by in
 /// messages and commands.
@@ -29,42 +28,8 @@ pub const PAGE_SCENE_FILE: &str = "scene.toml";
 /// Most parameters in one query.
 const MAX_PARAMS: usize = 40;
 
-/// A scene file as a view names it: its name (as messages and commands show it) and its text.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SceneFile {
-    /// The name: a gallery scene's, [`PAGE_SCENE_FILE`] for the page's own, or a path as shown.
-    pub name: String,
-    /// The whole text of the file.
-    pub text: String,
-}
-
+/// A scene file as the page's query names it (its reading from a path is `scene_input`'s).
 impl SceneFile {
-    /// The gallery's scene `name`, if there is one of that name.
-    pub fn gallery(name: &str) -> Option<SceneFile> {
-        GALLERY
-            .iter()
-            .find(|(stem, _)| *stem == name)
-            .map(|(stem, text)| SceneFile {
-                name: stem.to_string(),
-                text: text.to_string(),
-            })
-    }
-
-    /// The scene file `--scene PATH` names, read (not yet checked): a built-in scene by its name,
-    /// else the file, named as messages show its path.
-    pub fn read(path: &Path) -> Result<SceneFile> {
-        if let Some((stem, text)) = built_in(path) {
-            return Ok(SceneFile {
-                name: stem.to_string(),
-                text: text.to_string(),
-            });
-        }
-        Ok(SceneFile {
-            name: shown(path),
-            text: read_scene_text(path)?,
-        })
-    }
-
     /// The scene file a query names: a scene of the gallery (`scene=NAME`) or a file's whole text
     /// (`scene-file=TEXT`, named [`PAGE_SCENE_FILE`]); `None` for the assignment's glass given by
     /// its numbers.

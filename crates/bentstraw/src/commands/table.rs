@@ -8,7 +8,7 @@ use bentstraw_io::files::{self, Output, OutputSet};
 use bentstraw_io::report::Report;
 use bentstraw_io::report_pdf;
 use bentstraw_io::report_plan::{self, checked_points, failed_checks, unwritten, ReportPlan};
-use bentstraw_io::scene_input;
+use bentstraw_io::scene_input::SceneFile;
 use bentstraw_io::words::Lang;
 use indicatif::ProgressBar;
 
@@ -30,10 +30,7 @@ pub fn run(args: &TableArgs) -> CliResult {
     let lang = Lang::from(args.lang);
     let plan = match &args.scene {
         Some(file) => {
-            let (name, text) = match scene_input::built_in(file) {
-                Some((stem, text)) => (stem.to_string(), text.to_string()),
-                None => (files::shown(file), scene_input::read_scene_text(file)?),
-            };
+            let SceneFile { name, text } = SceneFile::read(file)?;
             ReportPlan::scene(name, &text, args.observer, args.points, lang)?
         }
         None if args.observer.is_some() => {
