@@ -484,16 +484,38 @@ impl From<&CameraArgs> for CameraSpec {
     }
 }
 
-impl RenderArgs {
-    /// The view these flags ask for, its scene file read but nothing checked yet.
+impl SceneFlags {
+    /// The view of these flags' scene, its file read but nothing checked yet: the file and the
+    /// values; the camera, the picture and the points as by default.
     pub fn view(&self) -> bentstraw_io::Result<ViewSpec> {
-        let source = self.scene.source();
+        let source = self.source();
         Ok(ViewSpec {
             scene: source.file.as_deref().map(SceneFile::read).transpose()?,
             values: source.values,
+            ..ViewSpec::default()
+        })
+    }
+}
+
+impl SimulateArgs {
+    /// The view these flags ask for (the scene and the points), its scene file read but nothing
+    /// checked yet.
+    pub fn view(&self) -> bentstraw_io::Result<ViewSpec> {
+        Ok(ViewSpec {
+            points: self.points,
+            ..self.scene.view()?
+        })
+    }
+}
+
+impl RenderArgs {
+    /// The view these flags ask for (the scene, the camera and the picture), its scene file read
+    /// but nothing checked yet.
+    pub fn view(&self) -> bentstraw_io::Result<ViewSpec> {
+        Ok(ViewSpec {
             camera: (&self.camera).into(),
             picture: self.picture(),
-            ..ViewSpec::default()
+            ..self.scene.view()?
         })
     }
 

@@ -26,7 +26,8 @@ use bentstraw_optics::setup::Setup;
 /// for a scene file's world.
 pub fn run(args: &SimulateArgs) -> CliResult {
     // 1. Validate everything, trace nothing yet.
-    let loaded = crate::cli::load_scene(&args.scene.source())?;
+    let view = args.view()?;
+    let loaded = crate::cli::with_hints(view.load()?);
     let (scene, observer) = (&loaded, loaded.observer);
     // The model comparison and the gap plot need both the eye and the stereo model.
     let both_models = args.models_plot.is_some() || args.gap_plot.is_some();
@@ -36,7 +37,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
         ImageModelArg::Eye => "eye",
         ImageModelArg::Stereo => "stereo",
     };
-    check_points_asked(args.points, models)?;
+    check_points_asked(view.points, models)?;
     let format = PointFormat::from_path(&args.output)?;
     let mut outputs = vec![Output {
         flag: "--output",
@@ -69,7 +70,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 
     // 2. Trace.
     let started = Instant::now();
-    let cloud = trace_with_spinner(scene, args.points);
+    let cloud = trace_with_spinner(scene, view.points);
     let traced = started.elapsed();
 
     // 3. The apparent-position model, if not the course's.
@@ -94,7 +95,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
     // 4. Write.
     let set = PointSet {
         scene,
-        min_points: args.points,
+        min_points: view.points,
         model,
         cloud: &cloud,
     };
