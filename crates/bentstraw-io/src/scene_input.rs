@@ -1,8 +1,8 @@
 //! `--scene FILE.toml`: a scene file (or a gallery scene by name) read ([`SceneFile::read`], the
-//! one reading of scene files), then made into the one scene value ([`Setup`]) with the flags
-//! that override it.
+//! one reading of scene files), which a [`ViewSpec`](crate::ViewSpec) holds and makes into the
+//! one scene value ([`Setup`]) with the flags that override it (`ViewSpec::load`).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use bentstraw_optics::scene_file::SceneDescription;
 use bentstraw_optics::setup::{self, SceneValues, Setup, MAX_SCENE_FILE_BYTES};
@@ -47,34 +47,6 @@ impl SceneFile {
             name: shown(path),
             text: read_scene_text(path)?,
         })
-    }
-}
-
-/// The scene's inputs as the flags give them: a file (or a gallery scene by name), and the values
-/// that override it or, without a file, make the assignment's scene.
-#[derive(Clone, Debug, Default)]
-pub struct SceneSource {
-    /// `--scene`.
-    pub file: Option<PathBuf>,
-    /// The values: `--observer`, `--straw`, `--water-height`, `--n-water`, `--max-events`.
-    pub values: SceneValues,
-}
-
-impl SceneSource {
-    /// The validated scene and observer: from the values alone, or from the scene file (read by
-    /// [`SceneFile::read`]) with the values overriding it ([`Setup::from_text`]).
-    pub fn load(&self) -> Result<Setup> {
-        let Some(path) = &self.file else {
-            return Ok(Setup::from_values(&self.values)?);
-        };
-        let file = SceneFile::read(path)?;
-        self.load_text(&file.name, &file.text)
-    }
-
-    /// [`SceneSource::load`] for the scene file whose text is `text` and whose name, as messages
-    /// show it, is `name` (the page's scene files; `self.file` is not read).
-    pub fn load_text(&self, name: &str, text: &str) -> Result<Setup> {
-        Ok(Setup::from_text(name, text, &self.values)?)
     }
 }
 

@@ -1,5 +1,5 @@
 //! `bentstraw._engine`: the compiled part of the Python package. Each call loads the scene the
-//! way the command line does ([`SceneSource`]), runs the same library calls as `simulate`,
+//! way the command line does ([`ViewSpec::load`]), runs the same library calls as `simulate`,
 //! `render`, `check` and the explorer's clicked ray, with the interpreter's lock released while
 //! it works, and hands the results to Python as numpy arrays that take over the engine's own
 //! buffers (no copy). The friendly functions, their defaults and documentation are in
@@ -13,10 +13,10 @@ use std::path::PathBuf;
 use bentstraw_io::camera::{scene_camera, CameraSpec};
 use bentstraw_io::gallery::GALLERY;
 use bentstraw_io::pictures::{checked_shading, picture};
-use bentstraw_io::scene_input::{parse_scene_text, read_scene_text, SceneSource};
+use bentstraw_io::scene_input::{parse_scene_text, read_scene_text, SceneFile};
 use bentstraw_io::solution::{json_report, solution_of_points, CheckOptions};
 use bentstraw_io::writers::{check_points_asked, raw_weight_count};
-use bentstraw_io::Error;
+use bentstraw_io::{Error, ViewSpec};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::check::check_solution;
 use bentstraw_optics::image::ImagePoint;
@@ -108,8 +108,16 @@ fn load(
     n_water: Option<f64>,
     max_events: u32,
 ) -> PyResult<LoadedScene> {
-    let source = SceneSource {
-        file: path,
+    let scene = match text {
+        Some((name, text)) => Some(SceneFile { name, text }),
+        None => path
+            .as_deref()
+            .map(SceneFile::read)
+            .transpose()
+            .map_err(python_error)?,
+    };
+    let view = ViewSpec {
+        scene,
         values: SceneValues {
             observer,
             straw,
@@ -117,13 +125,10 @@ fn load(
             n_water,
             max_events,
         },
-    };
-    let loaded = match text {
-        Some((name, text)) => source.load_text(&name, &text),
-        None => source.load(),
+        ..ViewSpec::default()
     };
     Ok(LoadedScene {
-        loaded: loaded.map_err(python_error)?,
+        loaded: view.load().map_err(python_error)?,
     })
 }
 

@@ -1,10 +1,9 @@
 //! Command-line arguments (clap), and parsers for the value forms they use (`X,Y,Z`, `WxH`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use bentstraw_io::camera::CameraSpec;
 use bentstraw_io::parse::{parse_size, parse_vec2, parse_vec3};
-use bentstraw_io::scene_input::SceneSource;
 use bentstraw_io::view_spec::{SceneFile, ViewSpec};
 use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
 use bentstraw_optics::setup::{SceneValues, Setup};
@@ -426,10 +425,10 @@ pub struct ExploreArgs {
     pub mode: ModeArg,
 }
 
-/// The scene of `source`, loaded, with a hint on standard error for each number of its scene
+/// The scene of `view`, loaded, with a hint on standard error for each number of its scene
 /// file that breaks no rule but looks like a slip (centimetres written as metres).
-pub fn load_scene(source: &SceneSource) -> bentstraw_io::Result<Setup> {
-    source.load().map(with_hints)
+pub fn load_scene(view: &ViewSpec) -> bentstraw_io::Result<Setup> {
+    view.load().map(with_hints)
 }
 
 /// `loaded`, after its scene file's hints (numbers that look like centimetres) on stderr.
@@ -442,35 +441,41 @@ pub fn with_hints(loaded: Setup) -> Setup {
     loaded
 }
 
+/// The view of a scene as flags give it, its file (`--scene`) read but nothing checked yet: the
+/// file and the values; the camera, the picture and the points as by default.
+fn scene_view(file: Option<&Path>, values: SceneValues) -> bentstraw_io::Result<ViewSpec> {
+    Ok(ViewSpec {
+        scene: file.map(SceneFile::read).transpose()?,
+        values,
+        ..ViewSpec::default()
+    })
+}
+
 impl SceneFlags {
-    /// The flags as a scene source.
-    pub fn source(&self) -> SceneSource {
-        SceneSource {
-            file: self.scene.clone(),
-            values: SceneValues {
-                observer: self.observer,
-                straw: self.straw,
-                water_height: self.water_height,
-                n_water: self.n_water,
-                max_events: self.max_events,
-            },
-        }
+    /// The view of these flags' scene (see [`scene_view`]).
+    pub fn view(&self) -> bentstraw_io::Result<ViewSpec> {
+        let values = SceneValues {
+            observer: self.observer,
+            straw: self.straw,
+            water_height: self.water_height,
+            n_water: self.n_water,
+            max_events: self.max_events,
+        };
+        scene_view(self.scene.as_deref(), values)
     }
 }
 
 impl OptionalSceneFlags {
-    /// The flags as a scene source.
-    pub fn source(&self) -> SceneSource {
-        SceneSource {
-            file: self.scene.clone(),
-            values: SceneValues {
-                observer: self.observer,
-                straw: self.straw,
-                water_height: self.water_height,
-                n_water: self.n_water,
-                max_events: self.max_events,
-            },
-        }
+    /// The view of these flags' scene (see [`scene_view`]): only the values given.
+    pub fn view(&self) -> bentstraw_io::Result<ViewSpec> {
+        let values = SceneValues {
+            observer: self.observer,
+            straw: self.straw,
+            water_height: self.water_height,
+            n_water: self.n_water,
+            max_events: self.max_events,
+        };
+        scene_view(self.scene.as_deref(), values)
     }
 }
 
@@ -481,19 +486,6 @@ impl From<&CameraArgs> for CameraSpec {
             fov: a.fov,
             size: a.size,
         }
-    }
-}
-
-impl SceneFlags {
-    /// The view of these flags' scene, its file read but nothing checked yet: the file and the
-    /// values; the camera, the picture and the points as by default.
-    pub fn view(&self) -> bentstraw_io::Result<ViewSpec> {
-        let source = self.source();
-        Ok(ViewSpec {
-            scene: source.file.as_deref().map(SceneFile::read).transpose()?,
-            values: source.values,
-            ..ViewSpec::default()
-        })
     }
 }
 

@@ -267,7 +267,7 @@ fn views(args: &BenchArgs) -> CliResult<Vec<View>> {
                 "a single view needs all three of --observer, --straw and --water-height, or a --scene file (give none to time the four reference views)",
             );
         }
-        let loaded = crate::cli::load_scene(&args.view.source())?;
+        let loaded = crate::cli::load_scene(&args.view.view()?)?;
         let target = target_flag.unwrap_or(loaded.default_target());
         let (world, observer) = (loaded.world, loaded.observer);
         let camera = camera_for(observer, target)?;

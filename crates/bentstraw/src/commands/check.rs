@@ -16,7 +16,7 @@ use bentstraw_optics::text::clip_text;
 
 /// Runs `check`; `Ok(true)` for a pass, `Ok(false)` for a fail.
 pub fn run(args: &CheckArgs) -> CliResult<bool> {
-    let loaded = crate::cli::load_scene(&args.scene.source())?;
+    let loaded = crate::cli::load_scene(&args.scene.view()?)?;
     let (checked, observer) = (&loaded, loaded.observer);
     let options = CheckOptions {
         tolerance: args.tolerance,

@@ -25,7 +25,7 @@ pub fn run(args: &RenderArgs) -> CliResult {
     let start = Instant::now();
     // Everything is checked before any work, so bad input leaves no file.
     let view = args.view()?;
-    let loaded = crate::cli::with_hints(view.load()?);
+    let loaded = crate::cli::load_scene(&view)?;
     let camera = scene_camera(&loaded, &view.camera)?;
     let world = loaded.world;
     let (options, outputs) = shading_and_outputs(args, &view.picture)?;

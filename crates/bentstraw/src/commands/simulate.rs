@@ -27,7 +27,7 @@ use bentstraw_optics::setup::Setup;
 pub fn run(args: &SimulateArgs) -> CliResult {
     // 1. Validate everything, trace nothing yet.
     let view = args.view()?;
-    let loaded = crate::cli::with_hints(view.load()?);
+    let loaded = crate::cli::load_scene(&view)?;
     let (scene, observer) = (&loaded, loaded.observer);
     // The model comparison and the gap plot need both the eye and the stereo model.
     let both_models = args.models_plot.is_some() || args.gap_plot.is_some();

@@ -82,7 +82,8 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         points: a.points,
         ..ViewSpec::default()
     };
-    let Some(path) = &v.scene else {
+    let asked = v.view()?;
+    let Some(file) = &asked.scene else {
         // The flags, else the classic view's; checked by the caller, with the page's own rules
         // and messages.
         let classic = view.values;
@@ -95,7 +96,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         };
         return Ok(view.to_query());
     };
-    let loaded = crate::cli::load_scene(&v.source())?;
+    let loaded = crate::cli::load_scene(&asked)?;
     let observer = Some(loaded.observer.to_array());
     // A file of the assignment's kind (named by its values, not by the file) starts the page on
     // its glass: the flags' values, else the file's.
@@ -134,7 +135,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
     // Any other file travels with the view, as the page's own scene file.
     view.scene = Some(SceneFile {
         name: PAGE_SCENE_FILE.to_string(),
-        text: bentstraw_io::scene_input::read_scene_text(path)?,
+        text: file.text.clone(),
     });
     Ok(view.to_query())
 }
