@@ -1,7 +1,7 @@
 //! Rays, and where a ray's line meets the surfaces scenes are made of: the side of an upright
-//! cylinder (a quadratic), a horizontal plane, a sphere around everything.
+//! cylinder and a sphere (quadratics), a horizontal plane, a sphere around everything.
 
-use crate::lanes::{Mask, Real};
+use crate::lanes::{Mask, Real, V3};
 use crate::Vec3;
 
 /// A half-line `origin + t·direction`, `t > 0`, with a unit `direction`.
@@ -70,6 +70,25 @@ impl<R: Real> SideQuadratic<R> {
             half_b: px * dx + py * dy,
             c: px * px + py * py - r2,
             disc: a * r2 - cross * cross,
+        }
+    }
+
+    /// The quadratic of the line from `p` (relative to a sphere's centre) along `d` meeting the
+    /// sphere of radius² `r2`: the same form in three dimensions, its discriminant `a·r² − |p ×
+    /// d|²` by Lagrange's identity again.
+    #[inline(always)]
+    pub fn sphere(p: V3<R>, d: V3<R>, r2: R) -> SideQuadratic<R> {
+        let a = d.dot(d);
+        let cross = V3::new(
+            p.y * d.z - p.z * d.y,
+            p.z * d.x - p.x * d.z,
+            p.x * d.y - p.y * d.x,
+        );
+        SideQuadratic {
+            a,
+            half_b: p.dot(d),
+            c: p.dot(p) - r2,
+            disc: a * r2 - cross.dot(cross),
         }
     }
 

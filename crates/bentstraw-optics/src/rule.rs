@@ -141,6 +141,16 @@ rules! {
     EyeInStraw = "observer.in-straw", "({x}, {y}, {z}) is inside {other}";
     /// The eye is on a card.
     EyeOnCard = "observer.on-card", "({x}, {y}, {z}) is on {other}: the eye must be off it";
+    /// A sphere cuts the container's walls or floor.
+    SphereContainer = "sphere.container", "centred at ({x}, {y}, {z}) with radius {radius}, it cuts the container: a sphere stands inside it, above the floor, or wholly outside it";
+    /// A sphere crosses a liquid's surface.
+    SphereSurface = "sphere.surface", "centred at ({x}, {y}, {z}) with radius {radius}, it crosses the surface of {other} at z = {top}: a sphere lies wholly in one liquid, or wholly above them";
+    /// A sphere overlaps another object.
+    SolidOverlap = "solid.overlap", "it overlaps {other}: they come {gap} close, less than {sum}; a sphere must stand clear of every other object";
+    /// A card cuts a sphere's surface.
+    SphereCard = "sphere.card", "{other} cuts its surface: a card stands wholly inside a sphere or wholly outside it";
+    /// The eye is inside or on a sphere.
+    EyeInSphere = "observer.in-sphere", "({x}, {y}, {z}) is inside or on {other}: the eye must be outside every sphere";
     /// The eye looks at itself.
     TargetAtEye = "observer.target-at-eye", "({x}, {y}, {z}) is the observer's own position: it must look somewhere else";
     /// A required key is missing.

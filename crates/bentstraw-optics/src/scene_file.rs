@@ -252,6 +252,20 @@ impl Container {
             }
     }
 
+    /// Distance (m) from `p` to the container's solid (its walls, floor and the space they
+    /// enclose, up to the rim): 0 inside it.
+    fn distance_to(&self, p: Vec3) -> f64 {
+        let dz = (-p.z).max(p.z - self.height()).max(0.0);
+        let across = match self {
+            Container::Glass(g) => (libm::hypot(p.x, p.y) - g.radius).max(0.0),
+            Container::Tank(t) => libm::hypot(
+                (p.x.abs() - t.half_x).max(0.0),
+                (p.y.abs() - t.half_y).max(0.0),
+            ),
+        };
+        libm::hypot(across, dz)
+    }
+
     /// Whether the horizontal segment from `a` to `b` passes through the container's outline
     /// seen from above (touching it is allowed).
     fn crossed_by(&self, a: (f64, f64), b: (f64, f64)) -> bool {
@@ -260,6 +274,29 @@ impl Container {
             Container::Tank(t) => segment_enters_box(a, b, t.half_x, t.half_y),
         }
     }
+}
+
+/// Distance (m) from `p` to the segment `a`–`b` of positive length.
+fn point_segment_distance(p: Vec3, a: Vec3, b: Vec3) -> f64 {
+    let d = b - a;
+    let s = ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+    (a + s * d - p).length()
+}
+
+/// Distance (m) from `p` to coin `c` lying on the floor at `floor` (a solid disk): 0 inside it.
+fn distance_to_disk_solid(p: Vec3, c: &Coin, floor: f64) -> f64 {
+    let across = (libm::hypot(p.x - c.x, p.y - c.y) - c.radius).max(0.0);
+    let up = (floor - p.z).max(p.z - (floor + c.thickness)).max(0.0);
+    libm::hypot(across, up)
+}
+
+/// Distance (m) from `p` to the flat rectangle of `corners` (in order round it): 0 on it.
+fn distance_to_rectangle(p: Vec3, corners: &[Vec3; 4]) -> f64 {
+    let (o, u, v) = (corners[0], corners[1] - corners[0], corners[3] - corners[0]);
+    let w = p - o;
+    let s = (w.dot(u) / u.length_squared()).clamp(0.0, 1.0);
+    let t = (w.dot(v) / v.length_squared()).clamp(0.0, 1.0);
+    (o + s * u + t * v - p).length()
 }
 
 /// Distance from the origin to the segment `a`–`b` in the plane.
@@ -526,6 +563,21 @@ impl Card {
     }
 
     /// The horizontal ends of its bottom edge: left and right as seen from its front.
+    /// Its four corners, in order round it.
+    fn corners(&self) -> [Vec3; 4] {
+        let ((ax, ay), (bx, by)) = self.ends();
+        let (lo, hi) = (
+            self.center.z - self.height / 2.0,
+            self.center.z + self.height / 2.0,
+        );
+        [
+            Vec3::new(ax, ay, lo),
+            Vec3::new(bx, by, lo),
+            Vec3::new(bx, by, hi),
+            Vec3::new(ax, ay, hi),
+        ]
+    }
+
     fn ends(&self) -> ((f64, f64), (f64, f64)) {
         let f = self.facing_deg.to_radians();
         // To the right of someone facing the card's front, who looks along −(cos f, sin f).
@@ -534,6 +586,35 @@ impl Card {
         (
             (self.center.x - h * ux, self.center.y - h * uy),
             (self.center.x + h * ux, self.center.y + h * uy),
+        )
+    }
+}
+
+/// A transparent ball of its own index: a marble, a bowl of water, a drop. Light refracts where
+/// it enters and leaves; what is around it is whatever fills that place without it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    /// Its centre (m).
+    pub center: Vec3,
+    /// Its radius (m).
+    pub radius: f64,
+    /// Its refractive index.
+    pub index: f64,
+}
+
+impl Sphere {
+    /// Whether it stands inside `container`, above the floor (a valid sphere that does not
+    /// stands wholly outside it).
+    pub fn inside(&self, container: &Container) -> bool {
+        let c = self.center;
+        container.holds_disk(c.x, c.y, self.radius) && c.z - self.radius >= container.floor()
+    }
+
+    /// The corners of a box holding it.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        (
+            self.center - Vec3::splat(self.radius),
+            self.center + Vec3::splat(self.radius),
         )
     }
 }
@@ -560,6 +641,8 @@ pub struct SceneDescription {
     pub coins: Vec<Coin>,
     /// The cards.
     pub cards: Vec<Card>,
+    /// The transparent spheres.
+    pub spheres: Vec<Sphere>,
     /// The view it is meant for, if the file gives one.
     pub observer: Option<Observer>,
 }
@@ -576,7 +659,7 @@ impl SceneDescription {
     pub fn validate(&self) -> Result<(), Box<SceneFileError>> {
         self.validate_container()?;
         let mut broken = Broken::default();
-        let objects = self.straws.len() + self.coins.len() + self.cards.len();
+        let objects = self.straws.len() + self.coins.len() + self.cards.len() + self.spheres.len();
         if self.liquids.len() > MAX_LIQUIDS {
             broken.check(Err(refuse_key(
                 "liquid",
@@ -589,7 +672,7 @@ impl SceneDescription {
         }
         if objects > MAX_OBJECTS {
             broken.check(Err(refuse_key(
-                "straw, coin, card",
+                "straw, coin, card, sphere",
                 Rule::TooManyObjects,
                 vec![
                     ("count", bound(objects as f64)),
@@ -611,7 +694,11 @@ impl SceneDescription {
         for (i, c) in self.cards.iter().enumerate() {
             broken.check(self.validate_card(i, c));
         }
+        for (i, b) in self.spheres.iter().enumerate() {
+            broken.check(self.validate_sphere(i, b));
+        }
         if broken.0.is_empty() {
+            broken.check(self.validate_sphere_overlaps());
             broken.check(self.validate_overlaps());
             broken.check(self.validate_observer());
         }
@@ -814,6 +901,111 @@ impl SceneDescription {
         Ok(())
     }
 
+    /// Sphere `i`'s own rules: its numbers, and its place: inside the container above the floor
+    /// and wholly in one layer (or above them all), or wholly outside the container.
+    fn validate_sphere(&self, i: usize, b: &Sphere) -> Result<(), Box<SceneFileError>> {
+        let key = |k: &str| format!("sphere[{}].{k}", i + 1);
+        for v in b.center.to_array() {
+            length(&key("center"), v)?;
+        }
+        positive(&key("radius"), b.radius)?;
+        finite(&key("index"), b.index)?;
+        if b.index < 1.0 {
+            return Err(refuse(&key("index"), b.index, Rule::IndexMin, vec![]));
+        }
+        let c = b.center;
+        let mut params = point(c);
+        params.push(("radius", number(b.radius)));
+        let inside = b.inside(&self.container);
+        if !inside && self.container.distance_to(c) < b.radius {
+            return Err(refuse_key(
+                &format!("sphere[{}]", i + 1),
+                Rule::SphereContainer,
+                params,
+            ));
+        }
+        if inside {
+            if let Some(k) = self
+                .liquids
+                .iter()
+                .position(|l| (c.z - l.top).abs() < b.radius)
+            {
+                params.extend([
+                    ("other", words(format!("liquid[{}]", k + 1))),
+                    ("top", number(self.liquids[k].top)),
+                ]);
+                return Err(refuse_key(
+                    &format!("sphere[{}]", i + 1),
+                    Rule::SphereSurface,
+                    params,
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Spheres stand clear of one another, of the straws (of the capsule about each straw's
+    /// axis, a slightly larger body) and of the coins; a card lies wholly inside a sphere or
+    /// wholly outside it.
+    fn validate_sphere_overlaps(&self) -> Result<(), Box<SceneFileError>> {
+        let floor = self.container.floor();
+        let overlap = |j: usize, other: String, gap: f64, sum: f64| {
+            refuse_key(
+                &format!("sphere[{}]", j + 1),
+                Rule::SolidOverlap,
+                vec![
+                    ("other", words(other)),
+                    ("gap", number(gap)),
+                    ("sum", number(sum)),
+                ],
+            )
+        };
+        for (j, b) in self.spheres.iter().enumerate() {
+            for (i, a) in self.spheres[..j].iter().enumerate() {
+                let gap = (a.center - b.center).length();
+                if gap < a.radius + b.radius {
+                    return Err(overlap(
+                        j,
+                        format!("sphere[{}]", i + 1),
+                        gap,
+                        a.radius + b.radius,
+                    ));
+                }
+            }
+            for (i, s) in self.straws.iter().enumerate() {
+                let foot = s.bottom_centre(floor);
+                let gap = point_segment_distance(b.center, foot, foot + s.length * s.axis());
+                if gap < b.radius + s.radius {
+                    return Err(overlap(
+                        j,
+                        format!("straw[{}]", i + 1),
+                        gap,
+                        b.radius + s.radius,
+                    ));
+                }
+            }
+            for (i, c) in self.coins.iter().enumerate() {
+                let gap = distance_to_disk_solid(b.center, c, floor);
+                if gap < b.radius {
+                    return Err(overlap(j, format!("coin[{}]", i + 1), gap, b.radius));
+                }
+            }
+            for (i, card) in self.cards.iter().enumerate() {
+                let corners = card.corners();
+                let inside = corners.iter().all(|p| (*p - b.center).length() < b.radius);
+                let outside = distance_to_rectangle(b.center, &corners) > b.radius;
+                if !inside && !outside {
+                    return Err(refuse_key(
+                        &format!("sphere[{}]", j + 1),
+                        Rule::SphereCard,
+                        vec![("other", words(format!("card[{}]", i + 1)))],
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Straws and coins may not share floor, a leaning straw may not lie on a coin, and straws
     /// may not cross. A straw's footprint is taken as the disk of its radius about the point
     /// below its bottom cap's centre, which holds the cap's shadow (an ellipse
@@ -943,6 +1135,17 @@ impl SceneDescription {
                 "observer.position",
                 Rule::EyeInStraw,
                 at(Some(format!("straw[{}]", i + 1))),
+            ));
+        }
+        if let Some(i) = self
+            .spheres
+            .iter()
+            .position(|b| (p - b.center).length() <= b.radius)
+        {
+            return Err(refuse_key(
+                "observer.position",
+                Rule::EyeInSphere,
+                at(Some(format!("sphere[{}]", i + 1))),
             ));
         }
         if let Some(i) = self.cards.iter().position(|c| c.touches(p)) {
@@ -1084,6 +1287,7 @@ impl SceneDescription {
             }],
             coins: vec![],
             cards: vec![],
+            spheres: vec![],
             observer: None,
         }
     }

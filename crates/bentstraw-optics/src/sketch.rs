@@ -107,6 +107,25 @@ fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
             out.push([corner(-1.0, z_min), corner(-1.0, z_max)]);
             out.push([corner(1.0, z_min), corner(1.0, z_max)]);
         }
+        Shape::Sphere {
+            centre,
+            radius,
+            z_min,
+            z_max,
+        } => {
+            // Its equator and two meridians, within the heights it spans.
+            let c = centre;
+            let mut rings = vec![ring(c, Vec3::X, Vec3::Y, radius)];
+            rings.push(ring(c, Vec3::X, Vec3::Z, radius));
+            rings.push(ring(c, Vec3::Y, Vec3::Z, radius));
+            for line in rings {
+                out.extend(
+                    pairs(&line).filter(|[a, b]| {
+                        a.z >= z_min && a.z <= z_max && b.z >= z_min && b.z <= z_max
+                    }),
+                );
+            }
+        }
     }
 }
 

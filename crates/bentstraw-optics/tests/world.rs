@@ -881,6 +881,7 @@ mod random_scenes {
                         straws: vec![straw],
                         coins,
                         cards,
+                        spheres: vec![],
                         observer: Some(Observer {
                             position: Vec3::new(d * oa.cos(), d * oa.sin(), 0.15),
                             target: Vec3::new(0.0, 0.0, 0.08),

@@ -17,7 +17,7 @@
 //! `δd' = η·δd + (δb − η·δa)·n + γ·δn`. A total reflection is the same with `η = 1`, `b = −a`
 //! (`d' = d − 2a·n`). (Igehy, "Tracing ray differentials", SIGGRAPH 1999.)
 
-use crate::world::{Event, Shape, World};
+use crate::world::{Event, World};
 use crate::Vec3;
 
 /// How a ray's point and direction change, to first order, with one parameter of a family of
@@ -84,11 +84,8 @@ impl<const K: usize> Pencil<K> {
     pub fn cross(&mut self, world: &World, e: &Event) {
         let (d, n, out) = (self.direction, e.normal, e.outgoing);
         let t = (e.point - self.origin).dot(d);
-        // Of the faces only upright cylinders (a glass's walls) curve: 1/R across their axis.
-        let curvature = match world.boundaries()[e.boundary].shape {
-            Shape::Upright { radius, .. } => 1.0 / radius,
-            Shape::Horizontal { .. } | Shape::Vertical { .. } => 0.0,
-        };
+        // Curved faces (a glass's walls, a sphere) turn the normal along the step: `dn`.
+        let boundary = &world.boundaries()[e.boundary];
         let a = d.dot(n);
         let (eta, b) = if e.totally_reflected {
             (1.0, -a)
@@ -100,7 +97,7 @@ impl<const K: usize> Pencil<K> {
         for k in &mut self.differentials {
             let x = k.position + t * k.direction;
             let dp = x - (x.dot(n) * along_a) * d;
-            let dn = curvature * Vec3::new(dp.x, dp.y, 0.0);
+            let dn = boundary.normal_change(dp);
             let da = k.direction.dot(n) + d.dot(dn);
             let db = along_b * da;
             k.direction = eta * k.direction + (db - eta * da) * n + gamma * dn;

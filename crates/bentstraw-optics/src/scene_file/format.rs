@@ -39,6 +39,8 @@ struct FileScene {
     coin: Vec<FileCoin>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     card: Vec<FileCard>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    sphere: Vec<FileSphere>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     observer: Option<FileObserver>,
 }
@@ -118,6 +120,17 @@ struct FileCard {
     height: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     picture: Option<String>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileSphere {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    center: Option<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    index: Option<f64>,
 }
 
 #[derive(Deserialize, Serialize)]
@@ -352,6 +365,22 @@ impl SceneDescription {
                 }
             })
             .collect();
+        let spheres: Vec<Sphere> = file
+            .sphere
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                let key = |k: &str| format!("sphere[{}].{k}", i + 1);
+                if b.center.is_none() {
+                    broken.push(*need(key("center")));
+                }
+                Sphere {
+                    center: Vec3::from_array(b.center.unwrap_or_default()),
+                    radius: get(key("radius"), b.radius, &mut broken),
+                    index: get(key("index"), b.index, &mut broken),
+                }
+            })
+            .collect();
         let observer = file.observer.as_ref().map(|o| {
             if o.position.is_none() {
                 broken.push(*need("observer.position".into()));
@@ -372,6 +401,7 @@ impl SceneDescription {
             straws,
             coins,
             cards,
+            spheres,
             observer: observer.map(|(position, target)| Observer {
                 position: Vec3::from_array(position),
                 target: target.map_or(middle, Vec3::from_array),
@@ -447,6 +477,15 @@ impl SceneDescription {
                     width: Some(c.width),
                     height: Some(c.height),
                     picture: Some(c.picture.word().to_string()),
+                })
+                .collect(),
+            sphere: self
+                .spheres
+                .iter()
+                .map(|b| FileSphere {
+                    center: Some(b.center.to_array()),
+                    radius: Some(b.radius),
+                    index: Some(b.index),
                 })
                 .collect(),
             observer: self.observer.map(|o| FileObserver {

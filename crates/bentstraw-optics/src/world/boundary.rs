@@ -1,7 +1,7 @@
 //! The boundaries between media: where light refracts or is totally reflected.
 //!
 //! A boundary is a piece of one simple surface (a horizontal plane, an upright cylinder's side, a
-//! vertical plane) with one medium on each side. Where the medium inside a container's wall
+//! vertical plane, a sphere) with one medium on each side. Where the medium inside a container's wall
 //! changes with the height (liquid layers, air above them), the wall is cut into one boundary per
 //! layer, so that every boundary knows both its media.
 
@@ -105,6 +105,17 @@ pub enum Shape {
         /// Lowest height.
         z_min: f64,
         /// Highest height.
+        z_max: f64,
+    },
+    /// A sphere (the part of it between two heights); its outer side is away from its centre.
+    Sphere {
+        /// Its centre.
+        centre: Vec3,
+        /// Its radius.
+        radius: f64,
+        /// Lowest height (−∞ for the whole sphere: no rounding then loses its poles).
+        z_min: f64,
+        /// Highest height (+∞ for the whole sphere).
         z_max: f64,
     },
 }
@@ -282,6 +293,27 @@ impl Boundary {
                 ));
                 R::select(ok, t, inf)
             }
+            Shape::Sphere {
+                centre,
+                radius,
+                z_min,
+                z_max,
+            } => {
+                let q = SideQuadratic::sphere(o - V3::splat(centre), d, R::splat(radius * radius));
+                // A ray outside the sphere moving away from it meets it nowhere ahead.
+                if !alive.and(q.real()).and_not(q.moving_away()).any() {
+                    return inf;
+                }
+                // `a = |d|²`, 1 to rounding: divided by, not multiplied by its reciprocal.
+                let roots = q.roots(R::splat(1.0) / q.a);
+                let (zl, zh) = (R::splat(z_min), R::splat(z_max));
+                let leaving = leaving.and(alive);
+                R::select(
+                    leaving,
+                    roots.other(o.z, d.z, zl, zh),
+                    roots.nearest(o.z, d.z, zl, zh),
+                )
+            }
         }
     }
 
@@ -297,6 +329,16 @@ impl Boundary {
                 let x = R::quotient(p.x - R::splat(cx), r, inv);
                 let y = R::quotient(p.y - R::splat(cy), r, inv);
                 V3::new(x, y, zero).renormalize()
+            }
+            Shape::Sphere { centre, radius, .. } => {
+                let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
+                let q = p - V3::splat(centre);
+                V3::new(
+                    R::quotient(q.x, r, inv),
+                    R::quotient(q.y, r, inv),
+                    R::quotient(q.z, r, inv),
+                )
+                .renormalize()
             }
             Shape::Vertical { axis, at, .. } => {
                 let s = R::splat(at.signum());
@@ -321,6 +363,20 @@ impl Boundary {
             Shape::Horizontal { region, .. } => region.reach(),
             Shape::Upright { cx, cy, radius, .. } => libm::hypot(cx, cy) + radius,
             Shape::Vertical { at, half, .. } => libm::hypot(at, half),
+            Shape::Sphere { centre, radius, .. } => libm::hypot(centre.x, centre.y) + radius,
+        }
+    }
+
+    /// The curvature of the boundary's surface at its point `p` (unit normal `n` there, to the
+    /// outer side), as the change of the normal along a small step `dp` in it: `dn = K·dp`
+    /// for a sphere of radius `1/K`, only the horizontal part of `dp` over `R` for an upright
+    /// cylinder, nothing for a plane.
+    pub fn normal_change(&self, dp: Vec3) -> Vec3 {
+        // Multiplied by the curvature `1/R`, as the models have always rounded it.
+        match self.shape {
+            Shape::Upright { radius, .. } => (1.0 / radius) * Vec3::new(dp.x, dp.y, 0.0),
+            Shape::Sphere { radius, .. } => (1.0 / radius) * dp,
+            Shape::Horizontal { .. } | Shape::Vertical { .. } => 0.0 * Vec3::new(dp.x, dp.y, 0.0),
         }
     }
 
@@ -330,6 +386,8 @@ impl Boundary {
             Shape::Horizontal { z, .. } => (0, [z, 0.0, 0.0]),
             Shape::Upright { cx, cy, radius, .. } => (1, [cx, cy, radius]),
             Shape::Vertical { axis, at, .. } => (2, [axis as f64, at, 0.0]),
+            // Spheres do not touch one another: a centre names one.
+            Shape::Sphere { centre, .. } => (3, centre.to_array()),
         }
     }
 

@@ -379,6 +379,24 @@ impl World {
         }
         boundaries.push(horizontal(0.0, surface, AIR, medium_above(0.0)));
         boundaries.extend(rings);
+        // Each sphere is a medium of its own, within whatever fills its place without it: the
+        // layer it lies in inside the container (it lies in one), air outside it.
+        for sphere in &scene.spheres {
+            let inner = indices.len() as MediumId;
+            indices.push(sphere.index);
+            let outer = if sphere.inside(&scene.container) {
+                medium_above(sphere.center.z)
+            } else {
+                AIR
+            };
+            let shape = Shape::Sphere {
+                centre: sphere.center,
+                radius: sphere.radius,
+                z_min: f64::NEG_INFINITY,
+                z_max: f64::INFINITY,
+            };
+            boundaries.push(piece(shape, outer, inner));
+        }
         // Where faces between media of the same index are dropped, such media are one medium:
         // light cannot tell them apart, and a ray that crossed a dropped face must still know on
         // which side of the next face it is. Each medium takes the id of the first medium of its
@@ -395,7 +413,8 @@ impl World {
         }
         // Faces with the same medium on both sides are none; faces between media of the same
         // index are kept only as the rule says.
-        let is_liquid = |m: MediumId| m >= 2;
+        let liquids = 2 + scene.liquids.len() as MediumId;
+        let is_liquid = |m: MediumId| (2..liquids).contains(&m);
         boundaries.retain(|b| {
             b.outer != b.inner
                 && (indices[b.outer as usize] != indices[b.inner as usize]
@@ -407,10 +426,11 @@ impl World {
         objects.extend(scene.straws.iter().map(|s| Object::straw(s, floor)));
         objects.extend(scene.coins.iter().map(|c| Object::coin(c, floor)));
         objects.extend(scene.cards.iter().map(Object::card));
-        let (lo, hi) = objects.iter().fold((lo, hi), |(lo, hi), o| {
-            let (a, b) = o.bounds();
-            (lo.min(a), hi.max(b))
-        });
+        let (lo, hi) = objects
+            .iter()
+            .map(Object::bounds)
+            .chain(scene.spheres.iter().map(|s| s.bounds()))
+            .fold((lo, hi), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)));
         let centre = 0.5 * (lo + hi);
         // Rays from afar start on a sphere round the box: its radius is the box's half diagonal
         // rounded up to whole 5 cm (a hair more first, so rounding never puts a face outside it),

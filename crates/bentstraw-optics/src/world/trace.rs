@@ -252,6 +252,7 @@ impl World {
             Shape::Horizontal { .. } if b.outer == AIR => "top surface",
             Shape::Horizontal { .. } if b.inner == AIR => "bottom",
             Shape::Horizontal { .. } => "surface between layers",
+            Shape::Sphere { .. } => "sphere's surface",
             _ => "wall",
         }
     }

@@ -1,0 +1,258 @@
+//! Transparent solids: a sphere of its own index, in air or in a liquid, checked against closed
+//! forms (a ball lens's rays and focal length), its laws (Snell at its faces, a sphere of its
+//! surroundings' index vanishing) and the eye model (a point at a ball's centre seen there).
+
+use bentstraw_optics::apparent::eye_model_points;
+use bentstraw_optics::geometry::Ray;
+use bentstraw_optics::sampling::sample_image;
+use bentstraw_optics::scene_file::SceneDescription;
+use bentstraw_optics::world::{Event, Outcome, World};
+use bentstraw_optics::Vec3;
+
+fn scene(toml: &str) -> SceneDescription {
+    SceneDescription::from_toml(toml).unwrap_or_else(|e| panic!("{e}\n{toml}"))
+}
+
+/// A small empty glass at the origin and a ball of `index` and `radius` centred at `centre`,
+/// wholly outside it, in air.
+fn ball_in_air(centre: Vec3, radius: f64, index: f64) -> World {
+    let d = scene(&format!(
+        "[container]\nshape = \"glass\"\nradius = 0.01\nheight = 0.01\n\n\
+         [[sphere]]\ncenter = [{}, {}, {}]\nradius = {radius}\nindex = {index}\n",
+        centre.x, centre.y, centre.z
+    ));
+    World::new(&d, 10).expect("a valid scene")
+}
+
+fn trace_events(world: &World, ray: Ray) -> (Outcome, Vec<Event>) {
+    let mut events = Vec::new();
+    let outcome = world.trace_with(ray, |e| events.push(*e));
+    (outcome, events)
+}
+
+/// How far beyond `centre` (along `x`) the ray's line, which lies in the plane `z = centre.z`,
+/// crosses the line `y = centre.y` of that plane.
+fn axis_crossing(ray: Ray, centre: Vec3) -> f64 {
+    let s = (centre.y - ray.origin.y) / ray.direction.y;
+    ray.origin.x + s * ray.direction.x - centre.x
+}
+
+/// A ray parallel to a ball lens's axis at height `h` leaves it crossing the axis at distance
+/// `R·sin i / sin δ` beyond the centre, where `sin i = h/R`, `sin r = h/(nR)` and the deviation
+/// is `δ = 2(i − r)`: the ray leaves at the angle it entered (the ball's symmetry), so its line
+/// passes the centre at `R·sin i`. As `h → 0` this is the paraxial focal length `nR/(2(n − 1))`.
+#[test]
+fn a_ball_lens_brings_parallel_rays_to_its_closed_form_focus() {
+    let (centre, radius) = (Vec3::new(0.3, 0.0, 0.2), 0.02);
+    for n in [1.333, 1.5, 1.9] {
+        let world = ball_in_air(centre, radius, n);
+        for h in [1e-5, 0.002, 0.008, 0.014] {
+            let ray = Ray::new(centre + Vec3::new(-0.2, h, 0.0), Vec3::X);
+            let (outcome, events) = trace_events(&world, ray);
+            assert_eq!(events.len(), 2, "in and out of the ball: {events:?}");
+            let Outcome::Escaped { ray: out, .. } = outcome else {
+                panic!("it leaves the scene: {outcome:?}")
+            };
+            let (i, r) = ((h / radius).asin(), (h / (n * radius)).asin());
+            let delta = 2.0 * (i - r);
+            let expected = radius * i.sin() / delta.sin();
+            let t = axis_crossing(out, centre);
+            assert!(
+                (out.origin.z - centre.z).abs() < 1e-15 && out.direction.z.abs() < 1e-15,
+                "the ray stays in the plane of the axis: {out:?}"
+            );
+            assert!(
+                (t - expected).abs() < 1e-11 * expected.max(1.0),
+                "n {n}, h {h}: crosses at {t}, closed form {expected}"
+            );
+            // The ray's line after the ball passes the centre at R·sin i.
+            let gap = (centre - out.origin).cross(out.direction).length();
+            assert!((gap - h).abs() < 1e-13, "{gap} {h}");
+        }
+        // Paraxially: the focal length of a ball lens.
+        let paraxial = n * radius / (2.0 * (n - 1.0));
+        let ray = Ray::new(centre + Vec3::new(-0.2, 1e-6, 0.0), Vec3::X);
+        let Outcome::Escaped { ray: out, .. } = world.trace(ray) else {
+            panic!("it leaves the scene")
+        };
+        let t = axis_crossing(out, centre);
+        assert!(
+            (t - paraxial).abs() < 1e-8,
+            "n {n}: focus {t}, paraxial {paraxial}"
+        );
+    }
+}
+
+/// Every event at a ball's faces obeys Snell's law, rays from every side; a ray through the
+/// centre goes straight.
+#[test]
+fn snell_holds_at_a_balls_faces_and_its_diameters_go_straight() {
+    let centre = Vec3::new(0.0, 0.25, 0.1);
+    let world = ball_in_air(centre, 0.03, 1.5);
+    let eye = Vec3::new(0.2, 0.45, 0.3);
+    let mut events_seen = 0;
+    for k in 0..400u32 {
+        let f = |m: f64| (k as f64 * m).fract() - 0.5;
+        let aim = centre + 0.07 * Vec3::new(f(0.618034), f(0.7548777), f(0.5698403));
+        let (_, events) = trace_events(&world, Ray::new(eye, aim - eye));
+        for e in events {
+            let sine = |d: Vec3| d.cross(e.normal).length();
+            if e.totally_reflected {
+                assert!(e.n1 * sine(e.incoming) > e.n2 * (1.0 - 1e-12));
+            } else {
+                let (a, b) = (e.n1 * sine(e.incoming), e.n2 * sine(e.outgoing));
+                assert!((a - b).abs() < 1e-12, "{e:?}");
+            }
+            // The normal is the radius's direction, outwards.
+            let radial = (e.point - centre).normalize();
+            assert!((e.normal - radial).length() < 1e-12);
+            assert!(((e.point - centre).length() - 0.03).abs() < 1e-15);
+            events_seen += 1;
+        }
+    }
+    assert!(events_seen > 100);
+    let (outcome, events) = trace_events(&world, Ray::new(eye, centre - eye));
+    assert_eq!(events.len(), 2);
+    let Outcome::Escaped { ray, .. } = outcome else {
+        panic!("escapes")
+    };
+    assert!((ray.direction - (centre - eye).normalize()).length() < 1e-15);
+}
+
+/// A ball of its liquid's index is no ball: the world is the same without it, every image point
+/// the same.
+#[test]
+fn a_ball_of_its_liquids_index_vanishes() {
+    let with = |index: f64| {
+        let mut text = String::from(
+            "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
+             [[liquid]]\nname = \"oil\"\nindex = 1.47\ntop = 0.1\n\n\
+             [[straw]]\nx = 0.015\ny = 0.0\n\n",
+        );
+        if index > 0.0 {
+            text += &format!(
+                "[[sphere]]\ncenter = [-0.015, 0.0, 0.04]\nradius = 0.012\nindex = {index}\n"
+            );
+        }
+        World::new(&scene(&text), 10).expect("a valid scene")
+    };
+    let (plain, vanished, seen) = (with(0.0), with(1.47), with(1.5));
+    assert_eq!(plain.boundaries(), vanished.boundaries());
+    assert_eq!(seen.boundaries().len(), plain.boundaries().len() + 1);
+    for eye in [Vec3::new(0.2, 0.0, 0.1), Vec3::new(-0.1, 0.2, 0.25)] {
+        let (a, b) = (
+            sample_image(&plain, eye, 3000, &|_| {}),
+            sample_image(&vanished, eye, 3000, &|_| {}),
+        );
+        assert_eq!(a.points, b.points);
+    }
+}
+
+/// A point at a ball's centre sends its light out along radii, unbent: the eye model sees it at
+/// the centre from anywhere, and a point near the centre near it (magnified at most `n` times).
+#[test]
+fn the_eye_model_sees_a_balls_centre_at_the_centre() {
+    let centre = Vec3::new(0.0, 0.3, 0.1);
+    // A small card at the ball's centre, facing +x, inside the ball.
+    let d = scene(&format!(
+        "[container]\nshape = \"glass\"\nradius = 0.01\nheight = 0.01\n\n\
+         [[sphere]]\ncenter = [{x}, {y}, {z}]\nradius = 0.03\nindex = 1.5\n\n\
+         [[card]]\ncenter = [{x}, {y}, {z}]\nfacing = 0\nwidth = 0.004\nheight = 0.004\npicture = \"none\"\n",
+        x = centre.x,
+        y = centre.y,
+        z = centre.z
+    ));
+    let world = World::new(&d, 10).expect("a valid scene");
+    for eye in [
+        Vec3::new(0.3, 0.3, 0.1),
+        Vec3::new(0.25, 0.45, 0.25),
+        Vec3::new(0.2, 0.2, -0.1),
+    ] {
+        let cloud = sample_image(&world, eye, 4000, &|_| {});
+        let near: Vec<_> = cloud
+            .points
+            .iter()
+            .filter(|p| (p.straw_point - centre).length() < 3e-4)
+            .copied()
+            .collect();
+        assert!(!near.is_empty(), "the card's middle is seen from {eye}");
+        for a in eye_model_points(&world, eye, &near) {
+            let p = a
+                .position
+                .expect("a point of a card seen through a ball is placed");
+            let e = (a.image.straw_point - centre).length();
+            assert!(
+                (p - centre).length() <= 1.5 * e * 1.01 + 1e-9,
+                "from {eye}: {} from the centre for a point {e} from it",
+                (p - centre).length()
+            );
+        }
+    }
+}
+
+/// A sphere's place is checked: inside the container above the floor and in one layer, or
+/// wholly outside it; clear of the other objects; a card wholly inside or outside; the eye
+/// outside it.
+#[test]
+fn a_spheres_place_breaks_no_rule() {
+    let base = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
+                [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.1\n\n\
+                [[straw]]\nx = 0.02\ny = 0.0\n\n";
+    let refused = |sphere: &str, code: &str| {
+        let text = format!("{base}{sphere}");
+        let e = SceneDescription::from_toml(&text).expect_err(sphere);
+        assert!(
+            e.rules().any(|r| r.rule.code() == code),
+            "{sphere}: {e} (wanted {code})"
+        );
+    };
+    let ball = |c: [f64; 3], r: f64| {
+        format!(
+            "[[sphere]]\ncenter = [{}, {}, {}]\nradius = {r}\nindex = 1.5\n",
+            c[0], c[1], c[2]
+        )
+    };
+    // Through the wall, through the floor, across the water's surface.
+    refused(&ball([0.035, 0.0, 0.05], 0.01), "sphere.container");
+    refused(&ball([-0.01, 0.0, 0.005], 0.01), "sphere.container");
+    refused(&ball([-0.015, 0.0, 0.095], 0.01), "sphere.surface");
+    // Into the straw, into another ball.
+    refused(&ball([0.01, 0.0, 0.05], 0.008), "solid.overlap");
+    let two = format!(
+        "{}{}",
+        ball([-0.02, 0.0, 0.03], 0.01),
+        ball([-0.02, 0.0, 0.045], 0.01)
+    );
+    refused(&two, "solid.overlap");
+    // A card through its surface; the eye inside it.
+    let card = "[[card]]\ncenter = [0.3, 0.0, 0.1]\nwidth = 0.02\nheight = 0.02\n";
+    refused(
+        &format!("{}{card}", ball([0.3, 0.0, 0.1], 0.012)),
+        "sphere.card",
+    );
+    let eye = "[observer]\nposition = [0.3, 0.0, 0.1]\n";
+    refused(
+        &format!("{}{eye}", ball([0.3, 0.0, 0.1], 0.02)),
+        "observer.in-sphere",
+    );
+    refused(
+        "[[sphere]]\ncenter = [0.3, 0.0, 0.1]\nradius = 0.02\nindex = 0.9\n",
+        "index.min",
+    );
+    // In the water, in the air above it inside the glass, outside the glass, a card inside it:
+    // each a valid scene, written back as it was read.
+    for ok in [
+        ball([-0.015, 0.0, 0.03], 0.012),
+        ball([-0.015, 0.0, 0.12], 0.012),
+        ball([0.3, 0.0, 0.1], 0.05),
+        format!(
+            "{}{}",
+            ball([0.3, 0.0, 0.1], 0.05),
+            card.replace("0.02\n", "0.01\n")
+        ),
+    ] {
+        let d = scene(&format!("{base}{ok}"));
+        assert_eq!(scene(&d.to_toml()), d);
+        World::new(&d, 10).expect("a world");
+    }
+}
