@@ -521,3 +521,132 @@ impl RenderArgs {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bentstraw_io::view_spec::{ImageModel, Verb};
+    use bentstraw_optics::view::DEFAULT_SIZE;
+
+    /// The command `args` (as `ViewSpec::args` writes them), then `--output out`, parsed by clap.
+    fn parsed(args: &[String], out: &str) -> Command {
+        let line = ["bentstraw"]
+            .into_iter()
+            .chain(args.iter().map(String::as_str))
+            .chain(["--output", out]);
+        match Cli::try_parse_from(line) {
+            Ok(cli) => cli.command.expect("a command"),
+            Err(e) => panic!("{}: {e}", args.join(" ")),
+        }
+    }
+
+    /// The views the round trip is tried on: the assignment's values, a gallery scene by name
+    /// seen from an observer, a scene file by its path, a picture asked for in full, a camera.
+    fn views(file: &Path) -> Vec<ViewSpec> {
+        let glass = ViewSpec {
+            values: SceneValues {
+                observer: Some([0.1, 0.0, 0.1]),
+                straw: Some([0.02, -0.01]),
+                water_height: Some(0.15),
+                n_water: Some(1.4),
+                max_events: 7,
+            },
+            points: 1500,
+            ..ViewSpec::default()
+        };
+        let gallery = ViewSpec {
+            scene: SceneFile::gallery("reversing-arrow"),
+            values: SceneValues {
+                observer: Some([0.3, 0.0, 0.1]),
+                ..SceneValues::default()
+            },
+            ..ViewSpec::default()
+        };
+        let on_disk = ViewSpec {
+            scene: Some(SceneFile::read(file).unwrap()),
+            values: SceneValues {
+                n_water: Some(1.5),
+                ..gallery.values
+            },
+            ..ViewSpec::default()
+        };
+        let picture = ViewSpec {
+            picture: PictureSpec {
+                fresnel: true,
+                checker: true,
+                prune: 1e-3,
+                samples: 5,
+            },
+            ..glass.clone()
+        };
+        let course = ViewSpec {
+            picture: PictureSpec {
+                fresnel: false,
+                checker: false,
+                ..PictureSpec::default()
+            },
+            points: 0,
+            ..ViewSpec::default()
+        };
+        let camera = ViewSpec {
+            camera: CameraSpec {
+                target: Some([0.0, 0.01, -0.125]),
+                fov: Some(40.5),
+                size: Some((40, 30)),
+            },
+            ..gallery.clone()
+        };
+        vec![
+            ViewSpec::default(),
+            glass,
+            gallery,
+            on_disk,
+            picture,
+            course,
+            camera,
+        ]
+    }
+
+    /// A view written as `render`'s and `simulate`'s arguments (`ViewSpec::args`) reads back, by
+    /// clap and `RenderArgs::view` / `SimulateArgs::view`, as itself: all of it that the verb's
+    /// command carries (render: all but the points, its size always; simulate: the scene and
+    /// the points, at least one, and the image model).
+    #[test]
+    fn a_views_command_lines_read_back_as_the_view() {
+        let file = std::env::temp_dir().join(format!("bentstraw-cli-{}.toml", std::process::id()));
+        let text = SceneFile::gallery("tank-pencil").unwrap().text;
+        std::fs::write(&file, text.replace("0.10", "0.11")).unwrap();
+        for view in views(&file) {
+            let args = view.args(Verb::Render);
+            let Command::Render(render) = parsed(&args, "view.png") else {
+                panic!("not render: {args:?}");
+            };
+            let expected = ViewSpec {
+                camera: CameraSpec {
+                    size: Some(view.camera.size.unwrap_or(DEFAULT_SIZE)),
+                    ..view.camera
+                },
+                points: DEFAULT_POINTS,
+                ..view.clone()
+            };
+            assert_eq!(render.view().unwrap(), expected, "{}", args.join(" "));
+
+            for model in [ImageModel::Course, ImageModel::Eye, ImageModel::Stereo] {
+                let args = view.args(Verb::Simulate(model));
+                let Command::Simulate(simulate) = parsed(&args, "points.csv") else {
+                    panic!("not simulate: {args:?}");
+                };
+                let expected = ViewSpec {
+                    camera: CameraSpec::default(),
+                    picture: PictureSpec::default(),
+                    points: view.points.max(1),
+                    ..view.clone()
+                };
+                assert_eq!(simulate.view().unwrap(), expected, "{}", args.join(" "));
+                let name = simulate.image_model.to_possible_value().unwrap();
+                assert_eq!(name.get_name(), model.name(), "{}", args.join(" "));
+            }
+        }
+        std::fs::remove_file(&file).unwrap();
+    }
+}
