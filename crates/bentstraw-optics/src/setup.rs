@@ -258,9 +258,9 @@ impl Setup {
         self.name.as_deref().unwrap_or("")
     }
 
-    /// The assignment's numbers, when the description is of its kind: for the outputs that
-    /// write them under the assignment's documented names.
-    pub fn assignment_numbers(&self) -> Option<&Scene> {
+    /// The assignment's numbers, when the description is of its kind: what the scene's record
+    /// ([`Setup::inputs`]) and sketches are chosen from, here and nowhere else.
+    pub(crate) fn assignment_numbers(&self) -> Option<&Scene> {
         self.assignment.as_ref()
     }
 
