@@ -20,6 +20,8 @@ pub enum Entry {
     Wall,
     /// Through a horizontal face met from below: the container's bottom.
     Bottom,
+    /// Through a transparent solid's face first (a sphere: a marble, a drop, a bowl of water).
+    Solid,
 }
 
 /// The kind of a ray's light path: its entry face and its count of total reflections.
@@ -57,6 +59,7 @@ impl LightPathType {
             Entry::Top => "top",
             Entry::Wall => "wall",
             Entry::Bottom => "bottom",
+            Entry::Solid => "solid",
         };
         match self.total_reflections {
             0 => base.to_string(),
@@ -66,8 +69,8 @@ impl LightPathType {
 
     /// The colour every figure and the page draw this kind of path in, whatever else the
     /// picture shows: one hue per entry face (direct grey, surface blue, wall orange, bottom
-    /// green), another once the light has been totally reflected (purple, red, brown), darker
-    /// with each further reflection.
+    /// green, solid teal), another once the light has been totally reflected (purple, red,
+    /// brown, dark teal), darker with each further reflection.
     pub fn rgb(&self) -> [u8; 3] {
         let base: [u8; 3] = match (self.entry, self.total_reflections) {
             (Entry::Direct, _) => [70, 70, 70],
@@ -77,6 +80,8 @@ impl LightPathType {
             (Entry::Wall, _) => [214, 39, 40],
             (Entry::Bottom, 0) => [44, 160, 44],
             (Entry::Bottom, _) => [140, 86, 75],
+            (Entry::Solid, 0) => [23, 190, 207],
+            (Entry::Solid, _) => [0, 110, 120],
         };
         // Each reflection past the first darkens by a quarter, down to a third of the hue.
         let darker = 0.75f64.powi(self.total_reflections.saturating_sub(1).min(4) as i32);
@@ -99,6 +104,7 @@ impl LightPathType {
             Entry::Top => "par la surface libre",
             Entry::Wall => "par la paroi latérale",
             Entry::Bottom => "par le fond",
+            Entry::Solid => "par un solide transparent",
         };
         match self.total_reflections {
             0 => entry.to_string(),
@@ -116,6 +122,7 @@ impl fmt::Display for LightPathType {
             Entry::Top => "through the surface",
             Entry::Wall => "through the side wall",
             Entry::Bottom => "through the bottom",
+            Entry::Solid => "through a transparent solid",
         })?;
         match self.total_reflections {
             0 => Ok(()),

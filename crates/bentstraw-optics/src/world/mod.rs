@@ -628,4 +628,30 @@ mod tests {
         let dry = Scene::new(0.0, 0.0, 0.0, 1.333, 10).unwrap();
         assert!(World::assignment(&dry).boundaries().is_empty());
     }
+
+    /// A ray that meets a sphere first enters through a solid: its path says so, in its own
+    /// words and colour; one that misses it enters the water as before.
+    #[cfg(feature = "scene-file")]
+    #[test]
+    fn a_path_through_a_sphere_enters_through_a_solid() {
+        use crate::geometry::Ray;
+        use crate::light_path_type::Entry;
+        let d = SceneDescription::from_toml(
+            "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
+             [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.1\n\n\
+             [[straw]]\nx = 0.0\ny = 0.0\n\n\
+             [[sphere]]\ncenter = [0.1, 0.0, 0.05]\nradius = 0.02\nindex = 1.5\n",
+        )
+        .unwrap();
+        let world = World::new(&d, 10).unwrap();
+        let eye = Vec3::new(0.3, 0.0, 0.05);
+        let (outcome, kind) = world.trace_path_type(Ray::new(eye, Vec3::new(-1.0, 0.0, 0.0)));
+        assert!(matches!(outcome, Outcome::Object { .. }), "{outcome:?}");
+        assert_eq!(kind.entry, Entry::Solid);
+        assert_eq!(kind.key(), "solid");
+        assert_eq!(kind.to_string(), "through a transparent solid");
+        let (_, past) = world.trace_path_type(Ray::new(eye, Vec3::new(-0.3, 0.035, 0.0)));
+        assert_eq!(past.entry, Entry::Wall);
+        assert_ne!(kind.rgb(), past.rgb());
+    }
 }

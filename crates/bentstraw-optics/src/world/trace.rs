@@ -233,12 +233,14 @@ impl World {
         .image_point(observer, u0)
     }
 
-    /// How a ray enters the liquid (or the container) at event `e`, its first: through a surface
-    /// from above, through a wall, through a bottom from below.
+    /// How a ray enters the liquid (or the container, or a solid) at event `e`, its first:
+    /// through a surface from above, through a wall, through a bottom from below, through a
+    /// solid's face.
     pub fn entry_of(&self, e: &Event) -> Entry {
         match self.boundaries[e.boundary].shape {
             Shape::Horizontal { .. } if e.incoming.z < 0.0 => Entry::Top,
             Shape::Horizontal { .. } => Entry::Bottom,
+            Shape::Sphere { .. } => Entry::Solid,
             _ => Entry::Wall,
         }
     }
