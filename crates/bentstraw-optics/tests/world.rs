@@ -244,6 +244,9 @@ fn without_refraction(mut d: SceneDescription) -> SceneDescription {
     for l in &mut d.liquids {
         l.index = 1.0;
     }
+    for s in &mut d.spheres {
+        s.index = 1.0;
+    }
     d
 }
 
@@ -784,12 +787,100 @@ fn check_judges_a_worlds_points_and_finds_what_is_missing() {
 mod random_scenes {
     use super::*;
     use bentstraw_optics::scene_file::{
-        Card, Coin, Container, Glass, Liquid, Observer, Picture, Straw, Tank,
+        Card, Coin, Container, Glass, Liquid, Observer, Picture, Sphere, Straw, Tank,
     };
 
+    /// Where the random scene's sphere lies, if it has one.
+    #[derive(Clone, Copy, Debug)]
+    enum Place {
+        None,
+        /// In the first liquid layer (in the air inside the container if there is none).
+        FirstLayer,
+        /// In the air above the liquids, inside the container (it may stand out above the rim).
+        AboveTheLiquids,
+        /// Outside the container, in air (partly below its base, at times).
+        Outside,
+    }
+
+    /// A sphere at `place` in a scene with `container`, `liquids` and `straw`, its size, height
+    /// and bearing chosen by `size`, `height` (0..1) and `bearing` (-1..1), of `index`. Placed so
+    /// that the format's rules accept it: inside, beside the straw's foot on the side away from
+    /// its lean (clear of the straw's capsule however it leans), small enough to fit in the
+    /// container and in its layer, above the coin's thickness; outside, beyond the container's
+    /// widest reach, on the side away from the straw's lean, never near the observers or the
+    /// card.
+    #[allow(clippy::too_many_arguments)]
+    fn sphere(
+        place: Place,
+        container: &Container,
+        liquids: &[Liquid],
+        straw: &Straw,
+        size: f64,
+        height: f64,
+        bearing: f64,
+        index: f64,
+    ) -> Option<Sphere> {
+        let floor = container.floor();
+        let (inner, reach) = match container {
+            Container::Glass(g) => (g.radius - g.wall, g.radius),
+            Container::Tank(t) => (t.half_y, t.half_x.hypot(t.half_y)),
+        };
+        let lean = straw.azimuth_deg.to_radians();
+        let away = -Vec3::new(lean.cos(), lean.sin(), 0.0);
+        let inside = |low: f64, high: f64| {
+            let foot = Vec3::new(straw.x, straw.y, 0.0);
+            // |centre| + radius ≤ |foot| + gap + 2·radius ≤ inner.
+            let mut radius =
+                ((0.05 + 0.25 * size) * inner).min((inner - foot.length() - 0.005) / 2.0);
+            let z = if high.is_finite() {
+                radius = radius.min(0.45 * (high - low));
+                low + radius + (high - low - 2.0 * radius) * (0.05 + 0.9 * height)
+            } else {
+                low + radius + 1e-3 + 0.03 * height
+            };
+            let centre = foot + (radius + straw.radius + 0.001) * away;
+            Sphere {
+                center: Vec3::new(centre.x, centre.y, z),
+                radius,
+                index,
+            }
+        };
+        // Above the coin lying on the floor.
+        let bottom = floor + 0.0025;
+        let top = liquids.last().map_or(bottom, |l| l.top.max(bottom));
+        match place {
+            Place::None => None,
+            Place::FirstLayer => Some(match liquids.first() {
+                Some(l) => inside(bottom, l.top),
+                None => inside(bottom, f64::INFINITY),
+            }),
+            Place::AboveTheLiquids => Some(inside(top, f64::INFINITY)),
+            Place::Outside => {
+                let radius = 0.005 + 0.035 * size;
+                let bearing = lean + std::f64::consts::PI + 2.0 * bearing;
+                let rho = reach + radius + 0.003;
+                Some(Sphere {
+                    center: Vec3::new(
+                        rho * bearing.cos(),
+                        rho * bearing.sin(),
+                        -0.05 + 0.3 * height,
+                    ),
+                    radius,
+                    index,
+                })
+            }
+        }
+    }
+
     /// A random scene of every kind the format allows (glass or tank, thick or thin, up to three
-    /// layers, leaning straws, a coin, a card), kept when the format's rules accept it.
+    /// layers, leaning straws, a coin, a card, a sphere in a liquid, in the air inside the
+    /// container or outside it), kept when the format's rules accept it.
     fn scene() -> impl Strategy<Value = SceneDescription> {
+        any_scene().prop_filter("the format's rules", |d| d.validate().is_ok())
+    }
+
+    /// [`scene`]'s scenes before the format's rules are asked.
+    fn any_scene() -> impl Strategy<Value = SceneDescription> {
         (
             (
                 any::<bool>(),
@@ -804,6 +895,16 @@ mod random_scenes {
             ),
             (0.0f64..1.0, 0.0f64..6.3, 0.0f64..35.0, 0.0f64..360.0),
             (any::<bool>(), any::<bool>(), 0.0f64..6.3),
+            (
+                prop_oneof![
+                    Just(Place::None),
+                    Just(Place::FirstLayer),
+                    Just(Place::AboveTheLiquids),
+                    Just(Place::Outside),
+                ],
+                (0.0f64..1.0, 0.0f64..1.0, -1.0f64..1.0),
+                1.0f64..2.0,
+            ),
         )
             .prop_map(
                 |(
@@ -811,6 +912,7 @@ mod random_scenes {
                     (glass_n, layers),
                     (sr, sa, tilt, az),
                     (coin, card, oa),
+                    (place, (size, height, bearing), sphere_n),
                 )| {
                     let container = if tank {
                         Container::Tank(Tank {
@@ -832,7 +934,7 @@ mod random_scenes {
                     let mut top = floor;
                     let room = h - floor;
                     let total: f64 = layers.iter().map(|l| l.1).sum::<f64>().max(1e-9);
-                    let liquids = layers
+                    let liquids: Vec<Liquid> = layers
                         .iter()
                         .enumerate()
                         .map(|(k, &(n, share))| {
@@ -874,6 +976,11 @@ mod random_scenes {
                     } else {
                         vec![]
                     };
+                    let spheres = sphere(
+                        place, &container, &liquids, &straw, size, height, bearing, sphere_n,
+                    )
+                    .into_iter()
+                    .collect();
                     let d = 0.4;
                     SceneDescription {
                         container,
@@ -881,7 +988,7 @@ mod random_scenes {
                         straws: vec![straw],
                         coins,
                         cards,
-                        spheres: vec![],
+                        spheres,
                         observer: Some(Observer {
                             position: Vec3::new(d * oa.cos(), d * oa.sin(), 0.15),
                             target: Vec3::new(0.0, 0.0, 0.08),
@@ -889,13 +996,70 @@ mod random_scenes {
                     }
                 },
             )
-            .prop_filter("the format's rules", |d| d.validate().is_ok())
+    }
+
+    /// The spheres cost the random scenes nothing: a scene drawn with a sphere is refused only
+    /// where it would be without it (leaning straws through the wall are the usual reason), so
+    /// proptest's rejections stay as they were; and valid scenes hold spheres in each place: in a
+    /// liquid, in the air inside the container, in the air outside it.
+    #[test]
+    fn the_random_spheres_break_no_rule_and_lie_everywhere() {
+        use proptest::strategy::ValueTree;
+        use proptest::test_runner::{Config, TestRng, TestRunner};
+        let mut runner = TestRunner::new_with_rng(
+            Config::default(),
+            TestRng::deterministic_rng(Default::default()),
+        );
+        let strategy = any_scene();
+        let (n, mut valid, mut places) = (2000, 0, [0; 4]);
+        for _ in 0..n {
+            let d = strategy.new_tree(&mut runner).expect("a scene").current();
+            let bare = SceneDescription {
+                spheres: vec![],
+                ..d.clone()
+            };
+            let ok = d.validate().is_ok();
+            assert_eq!(
+                ok,
+                bare.validate().is_ok(),
+                "{:?}: {:?}",
+                d.spheres,
+                d.validate()
+            );
+            if !ok {
+                continue;
+            }
+            valid += 1;
+            let place = d.spheres.first().map_or(0, |s| {
+                if !s.inside(&d.container) {
+                    3
+                } else if index_around(&d, s.center) == 1.0 {
+                    2
+                } else {
+                    1
+                }
+            });
+            places[place] += 1;
+        }
+        eprintln!(
+            "{valid} of {n} valid; no sphere, in a liquid, in air inside, outside: {places:?}"
+        );
+        assert!(valid * 10 >= n * 4, "{valid} of {n} valid");
+        assert!(places.iter().all(|&k| k * 10 >= valid), "{places:?}");
     }
 
     /// The refractive index at `p`, read off the description's geometry alone (nothing of the
-    /// library's media or boundaries): the container's material, the layer whose span holds
-    /// `p`'s height inside the cavity, air elsewhere.
+    /// library's media or boundaries): a sphere's inside it, else the container's material, the
+    /// layer whose span holds `p`'s height inside the cavity, air elsewhere.
     fn index_at(d: &SceneDescription, p: Vec3) -> f64 {
+        d.spheres
+            .iter()
+            .find(|s| (p - s.center).length() < s.radius)
+            .map_or_else(|| index_around(d, p), |s| s.index)
+    }
+
+    /// The refractive index at `p` were there no spheres.
+    fn index_around(d: &SceneDescription, p: Vec3) -> f64 {
         let cavity = |z: f64| {
             d.liquids
                 .iter()
@@ -923,10 +1087,25 @@ mod random_scenes {
         }
     }
 
+    /// Points to aim at: `n` spread evenly over the box `lo..hi` (the world's), and 60 more over
+    /// the box around each sphere, so that small spheres are met too.
+    fn aims(d: &SceneDescription, lo: Vec3, hi: Vec3, n: u32) -> Vec<Vec3> {
+        let spread = |k: u32| {
+            let f = |m: f64| (k as f64 * m).fract();
+            Vec3::new(f(0.618034), f(0.7548777), f(0.5698403))
+        };
+        let mut aims: Vec<Vec3> = (0..n).map(|k| lo + spread(k) * (hi - lo)).collect();
+        for s in &d.spheres {
+            aims.extend((0..60).map(|k| s.center + 2.0 * s.radius * (spread(k) - 0.5)));
+        }
+        aims
+    }
+
     /// A random scene in which media share an index: the glass's index is a liquid's (the
-    /// "vanishing glass"), or 1; a layer has the index of the one below, or 1.
+    /// "vanishing glass"), or 1; a layer has the index of the one below, or 1; the sphere has
+    /// the index of what is around it (a vanishing ball).
     fn equal_index_scene() -> impl Strategy<Value = SceneDescription> {
-        (scene(), 0usize..4).prop_map(|(mut d, how)| {
+        (scene(), 0usize..5).prop_map(|(mut d, how)| {
             let first = d.liquids.first().map_or(1.0, |l| l.index);
             match (how, &mut d.container) {
                 (0, Container::Glass(g)) => g.index = first,
@@ -939,6 +1118,11 @@ mod random_scenes {
             }
             if how == 3 && k >= 1 {
                 d.liquids[k - 1].index = 1.0;
+            }
+            if how == 4 {
+                if let Some(c) = d.spheres.first().map(|s| s.center) {
+                    d.spheres[0].index = index_around(&d, c);
+                }
             }
             d
         })
@@ -961,12 +1145,17 @@ mod random_scenes {
                 Vec3::new(0.01, 0.02, 0.45),
                 Vec3::new(0.06, -0.01, -0.25),
             ] {
-                for k in 0..300u32 {
-                    let f = |m: f64| (k as f64 * m).fract();
-                    let aim = lo + Vec3::new(f(0.618034), f(0.7548777), f(0.5698403)) * (hi - lo);
+                for aim in aims(&d, lo, hi, 300) {
                     let (_, events) = trace_events(&world, ray_to(observer, aim));
                     for e in events {
                         prop_assert!(e.n1 != e.n2, "an event between equal indices: {:?}", e);
+                        // A sphere of the index around it is no sphere: nothing happens on it.
+                        for s in &d.spheres {
+                            if s.index == index_around(&d, s.center) {
+                                let off = ((e.point - s.center).length() - s.radius).abs();
+                                prop_assert!(off > 1e-9, "an event on a vanished sphere: {:?}", e);
+                            }
+                        }
                         if e.incoming.dot(e.normal).abs() < 1e-6 {
                             continue;
                         }
@@ -1003,9 +1192,7 @@ mod random_scenes {
             let world = World::new(&d, 10).expect("a valid scene");
             let observer = d.observer.unwrap().position;
             let (lo, hi) = world.bounds();
-            for k in 0..200u32 {
-                let f = |m: f64| (k as f64 * m).fract();
-                let aim = lo + Vec3::new(f(0.618034), f(0.7548777), f(0.5698403)) * (hi - lo);
+            for aim in aims(&d, lo, hi, 200) {
                 let ray = ray_to(observer, aim);
                 let (_, events) = trace_events(&world, ray);
                 for e in events {
