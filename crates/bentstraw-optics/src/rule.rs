@@ -142,9 +142,7 @@ rules! {
     /// The eye is on a card.
     EyeOnCard = "observer.on-card", "({x}, {y}, {z}) is on {other}: the eye must be off it";
     /// A sphere cuts the container's walls or floor.
-    SphereContainer = "sphere.container", "centred at ({x}, {y}, {z}) with radius {radius}, it cuts the container: a sphere stands inside it, above the floor, or wholly outside it";
-    /// A sphere crosses a liquid's surface.
-    SphereSurface = "sphere.surface", "centred at ({x}, {y}, {z}) with radius {radius}, it crosses the surface of {other} at z = {top}: a sphere lies wholly in one liquid, or wholly above them";
+    SphereContainer = "sphere.container", "centred at ({x}, {y}, {z}) with radius {radius}, it cuts the container: a sphere stands inside it, above the floor (through any liquid's surface), or wholly outside it";
     /// A sphere overlaps another object.
     SolidOverlap = "solid.overlap", "it overlaps {other}: they come {gap} close, less than {sum}; a sphere must stand clear of every other object";
     /// A card cuts a sphere's surface.

@@ -902,7 +902,7 @@ impl SceneDescription {
     }
 
     /// Sphere `i`'s own rules: its numbers, and its place: inside the container above the floor
-    /// and wholly in one layer (or above them all), or wholly outside the container.
+    /// (through any liquid's surface), or wholly outside the container.
     fn validate_sphere(&self, i: usize, b: &Sphere) -> Result<(), Box<SceneFileError>> {
         let key = |k: &str| format!("sphere[{}].{k}", i + 1);
         for v in b.center.to_array() {
@@ -916,30 +916,12 @@ impl SceneDescription {
         let c = b.center;
         let mut params = point(c);
         params.push(("radius", number(b.radius)));
-        let inside = b.inside(&self.container);
-        if !inside && self.container.distance_to(c) < b.radius {
+        if !b.inside(&self.container) && self.container.distance_to(c) < b.radius {
             return Err(refuse_key(
                 &format!("sphere[{}]", i + 1),
                 Rule::SphereContainer,
                 params,
             ));
-        }
-        if inside {
-            if let Some(k) = self
-                .liquids
-                .iter()
-                .position(|l| (c.z - l.top).abs() < b.radius)
-            {
-                params.extend([
-                    ("other", words(format!("liquid[{}]", k + 1))),
-                    ("top", number(self.liquids[k].top)),
-                ]);
-                return Err(refuse_key(
-                    &format!("sphere[{}]", i + 1),
-                    Rule::SphereSurface,
-                    params,
-                ));
-            }
         }
         Ok(())
     }

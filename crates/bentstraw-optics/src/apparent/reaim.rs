@@ -72,6 +72,8 @@ fn newton_step(j: &Jacobian, r: [f64; 2]) -> Option<[f64; 2]> {
 }
 
 /// A world's faces without its objects: made once for a batch, or when first needed.
+// Kept unboxed: it lives beside one aim on the stack, and boxing would allocate per aim.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 enum FacesOnly<'a> {
     Made(&'a World),

@@ -994,7 +994,6 @@ pub(crate) fn broken_samples() -> Vec<(&'static str, String)> {
         ("observer.on-card", glass("[[card]]\ncenter = [0.2, 0, 0.1]\nwidth = 0.05\nheight = 0.05\n[observer]\nposition = [0.2, 0, 0.1]\n")),
         ("observer.target-at-eye", glass("[observer]\nposition = [0.3, 0, 0.1]\ntarget = [0.3, 0, 0.1]\n")),
         ("sphere.container", glass("[[sphere]]\ncenter = [0.035, 0, 0.05]\nradius = 0.01\nindex = 1.5\n")),
-        ("sphere.surface", glass("[[sphere]]\ncenter = [-0.015, 0, 0.145]\nradius = 0.01\nindex = 1.5\n")),
         ("solid.overlap", glass("[[sphere]]\ncenter = [0.3, 0, 0.1]\nradius = 0.02\nindex = 1.5\n[[sphere]]\ncenter = [0.31, 0, 0.1]\nradius = 0.02\nindex = 1.5\n")),
         ("sphere.card", glass("[[sphere]]\ncenter = [0.3, 0, 0.1]\nradius = 0.012\nindex = 1.5\n[[card]]\ncenter = [0.3, 0, 0.1]\nwidth = 0.02\nheight = 0.02\n")),
         ("observer.in-sphere", glass("[[sphere]]\ncenter = [0.3, 0, 0.1]\nradius = 0.02\nindex = 1.5\n[observer]\nposition = [0.3, 0, 0.1]\n")),

@@ -140,6 +140,21 @@ pub struct Boundary {
     pub(crate) optics: Optics,
     /// Its numbers that the tracers compare lanes with, worked out once.
     pub(crate) codes: Codes,
+    /// The holes a horizontal face has where solids pierce it: the range of them in the
+    /// world's list ([`Hole`]), empty for most faces.
+    pub(crate) holes: [u16; 2],
+}
+
+/// Where a solid pierces a horizontal face: the disk of its cross-section, which is no part of
+/// the face (a ball half in the water has no water surface inside it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Hole {
+    /// `x` of the disk's centre.
+    pub cx: f64,
+    /// `y` of the disk's centre.
+    pub cy: f64,
+    /// Its radius².
+    pub r2: f64,
 }
 
 /// A boundary's whole numbers as the tracers' lanes hold them: its place in the world's list, its
@@ -441,6 +456,7 @@ mod tests {
                 inner: 2.0,
                 outer: 0.0,
             },
+            holes: [0, 0],
         }
     }
 

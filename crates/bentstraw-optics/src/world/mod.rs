@@ -25,6 +25,7 @@ use crate::scene::{Scene, SECTION_NAMES, SECTION_RGB};
 use crate::scene_file::{Container, SceneDescription, SceneFileError};
 use crate::Vec3;
 
+use boundary::Hole;
 pub use boundary::{Boundary, MediumId, Region, Shape};
 pub use object::{in_arrow, Object, Part, CARD_COLOR, COIN_COLOR, PICTURE_COLOR};
 pub use trace::{FresnelStep, FRESNEL_SEGMENTS_PER_PIXEL, FRESNEL_SEGMENTS_PER_RAY};
@@ -68,6 +69,8 @@ pub struct World {
     boundaries: Vec<Boundary>,
     /// Every opaque object.
     objects: Vec<Object>,
+    /// Where solids pierce horizontal faces (each face names its range of them).
+    holes: Vec<Hole>,
     /// How many whole surfaces the boundaries lie on: codes `0..surfaces` name them, and
     /// `surfaces + j` names object `j` (what a ray has just left).
     surfaces: u32,
@@ -222,6 +225,7 @@ fn piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
         escape: 0,
         optics: boundary::Optics::default(),
         codes: boundary::Codes::default(),
+        holes: [0, 0],
     }
 }
 
@@ -379,23 +383,40 @@ impl World {
         }
         boundaries.push(horizontal(0.0, surface, AIR, medium_above(0.0)));
         boundaries.extend(rings);
-        // Each sphere is a medium of its own, within whatever fills its place without it: the
-        // layer it lies in inside the container (it lies in one), air outside it.
+        // Each sphere is a medium of its own, within whatever fills its place without it: inside
+        // the container, the layers its height spans (one face piece per layer, its outer
+        // medium that layer's); outside it, air. Its poles lie at infinite heights, so that no
+        // rounding of a hit's height loses them.
         for sphere in &scene.spheres {
             let inner = indices.len() as MediumId;
             indices.push(sphere.index);
-            let outer = if sphere.inside(&scene.container) {
-                medium_above(sphere.center.z)
-            } else {
-                AIR
+            let (c, r) = (sphere.center, sphere.radius);
+            let zone = |z_min: f64, z_max: f64| Shape::Sphere {
+                centre: c,
+                radius: r,
+                z_min: if z_min <= c.z - r {
+                    f64::NEG_INFINITY
+                } else {
+                    z_min
+                },
+                z_max: if z_max >= c.z + r {
+                    f64::INFINITY
+                } else {
+                    z_max
+                },
             };
-            let shape = Shape::Sphere {
-                centre: sphere.center,
-                radius: sphere.radius,
-                z_min: f64::NEG_INFINITY,
-                z_max: f64::INFINITY,
-            };
-            boundaries.push(piece(shape, outer, inner));
+            if !sphere.inside(&scene.container) {
+                boundaries.push(piece(zone(c.z - r, c.z + r), AIR, inner));
+                continue;
+            }
+            let mut below = f64::NEG_INFINITY;
+            for &(top, medium) in &cavity {
+                let (lo, hi) = (below.max(c.z - r), top.min(c.z + r));
+                if lo < hi {
+                    boundaries.push(piece(zone(lo, hi), medium, inner));
+                }
+                below = top;
+            }
         }
         // Where faces between media of the same index are dropped, such media are one medium:
         // light cannot tell them apart, and a ray that crossed a dropped face must still know on
@@ -421,6 +442,27 @@ impl World {
                     || (same_index == SameIndex::LiquidFacesKept
                         && (is_liquid(b.outer) || is_liquid(b.inner))))
         });
+
+        // The faces a sphere inside the container pierces (a liquid's surface, the top of a
+        // layer) have a hole where it passes: its cross-section there.
+        let mut holes = Vec::new();
+        for b in &mut boundaries {
+            let Shape::Horizontal { z, .. } = b.shape else {
+                continue;
+            };
+            let start = holes.len() as u16;
+            for sphere in scene.spheres.iter().filter(|s| s.inside(&scene.container)) {
+                let (c, r) = (sphere.center, sphere.radius);
+                if (z - c.z).abs() < r {
+                    holes.push(Hole {
+                        cx: c.x,
+                        cy: c.y,
+                        r2: r * r - (z - c.z) * (z - c.z),
+                    });
+                }
+            }
+            b.holes = [start, holes.len() as u16];
+        }
 
         let mut objects = Vec::new();
         objects.extend(scene.straws.iter().map(|s| Object::straw(s, floor)));
@@ -485,6 +527,7 @@ impl World {
             indices,
             boundaries,
             objects,
+            holes,
             surfaces: keys.len() as u32,
             lo,
             hi,
@@ -507,6 +550,7 @@ impl World {
             indices: self.indices.clone(),
             boundaries: self.boundaries.clone(),
             objects: Vec::new(),
+            holes: self.holes.clone(),
             ..*self
         }
     }

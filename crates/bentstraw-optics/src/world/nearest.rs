@@ -109,9 +109,24 @@ impl World {
         }
         let mut t = inf;
         let mut code = R::splat(-1.0);
+        let pierced = !self.holes.is_empty();
         for b in &self.boundaries {
             let leaving = left.eq(R::splat(b.codes.surface as f64));
-            let tb = b.crossing(o, d, &inv, leaving, alive, &around);
+            let mut tb = b.crossing(o, d, &inv, leaving, alive, &around);
+            // Where a solid pierces the face, its cross-section is no part of it (scenes without
+            // one skip the look).
+            let holes = if pierced {
+                &self.holes[b.holes[0] as usize..b.holes[1] as usize]
+            } else {
+                &[]
+            };
+            for h in holes {
+                let (u, v) = (
+                    o.x + tb * d.x - R::splat(h.cx),
+                    o.y + tb * d.y - R::splat(h.cy),
+                );
+                tb = R::select((u * u + v * v).lt(R::splat(h.r2)), inf, tb);
+            }
             let m = tb.lt(t);
             t = R::select(m, tb, t);
             code = R::select(m, R::splat(b.codes.index as f64), code);
