@@ -143,12 +143,18 @@ rules! {
     EyeOnCard = "observer.on-card", "({x}, {y}, {z}) is on {other}: the eye must be off it";
     /// A sphere cuts the container's walls or floor.
     SphereContainer = "sphere.container", "centred at ({x}, {y}, {z}) with radius {radius}, it cuts the container: a sphere stands inside it, above the floor (through any liquid's surface), or wholly outside it";
-    /// A sphere overlaps another object.
-    SolidOverlap = "solid.overlap", "it overlaps {other}: they come {gap} close, less than {sum}; a sphere must stand clear of every other object";
-    /// A card cuts a sphere's surface.
-    SphereCard = "sphere.card", "{other} cuts its surface: a card stands wholly inside a sphere or wholly outside it";
-    /// The eye is inside or on a sphere.
-    EyeInSphere = "observer.in-sphere", "({x}, {y}, {z}) is inside or on {other}: the eye must be outside every sphere";
+    /// A prism's corners make no convex polygon.
+    PrismConvex = "prism.convex", "the corners must make a convex polygon of 3 to {max} corners seen from above, in either order round it (it has {count})";
+    /// A prism's top is not above its bottom.
+    PrismTop = "prism.top", "the top must be above the bottom ({bottom})";
+    /// A prism cuts the container's walls or floor.
+    PrismContainer = "prism.container", "it cuts the container: a prism stands inside it, above the floor (through any liquid's surface), or wholly outside it";
+    /// A transparent solid overlaps another object.
+    SolidOverlap = "solid.overlap", "it overlaps {other}: they come {gap} close, less than {sum}; a transparent solid must stand clear of every other object";
+    /// A card cuts a solid's surface.
+    SolidCard = "solid.card", "{other} cuts its surface: a card stands wholly inside a transparent solid or wholly outside it";
+    /// The eye is inside or on a transparent solid.
+    EyeInSolid = "observer.in-solid", "({x}, {y}, {z}) is inside or on {other}: the eye must be outside every transparent solid";
     /// The eye looks at itself.
     TargetAtEye = "observer.target-at-eye", "({x}, {y}, {z}) is the observer's own position: it must look somewhere else";
     /// A required key is missing.

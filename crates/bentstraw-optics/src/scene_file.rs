@@ -266,6 +266,35 @@ impl Container {
         libm::hypot(across, dz)
     }
 
+    /// Whether prism `p` stays clear of the container's solid (its walls, floor and the space
+    /// they enclose, up to the rim): apart in height, or apart seen from above.
+    fn distance_to_prism(&self, p: &Prism) -> f64 {
+        let above_or_below = (p.bottom - self.height()).max(-p.top);
+        if above_or_below > 0.0 {
+            return above_or_below;
+        }
+        let c = p.counterclockwise();
+        match self {
+            Container::Glass(g) => {
+                if convex_contains(&c, (0.0, 0.0)) {
+                    -g.radius
+                } else {
+                    let hull: Vec<(f64, f64)> = c.iter().map(|q| (q[0], q[1])).collect();
+                    distance_to_hull((0.0, 0.0), &hull) - g.radius
+                }
+            }
+            Container::Tank(t) => {
+                let rect = [
+                    [-t.half_x, -t.half_y],
+                    [t.half_x, -t.half_y],
+                    [t.half_x, t.half_y],
+                    [-t.half_x, t.half_y],
+                ];
+                convex_gap(&c, &rect)
+            }
+        }
+    }
+
     /// Whether the horizontal segment from `a` to `b` passes through the container's outline
     /// seen from above (touching it is allowed).
     fn crossed_by(&self, a: (f64, f64), b: (f64, f64)) -> bool {
@@ -619,6 +648,162 @@ impl Sphere {
     }
 }
 
+/// A transparent upright prism or block of its own index: a convex polygon seen from above,
+/// between two heights (a 60° prism, a glass block).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Prism {
+    /// Its corners seen from above, `(x, y)` in metres, in either order round it as the file
+    /// gives them ([`Prism::counterclockwise`] puts them in one order).
+    pub corners: Vec<[f64; 2]>,
+    /// Height of its bottom face (m).
+    pub bottom: f64,
+    /// Height of its top face (m).
+    pub top: f64,
+    /// Its refractive index.
+    pub index: f64,
+}
+
+/// Most corners a prism may have: each is a face every ray is tested against.
+pub const MAX_PRISM_CORNERS: usize = 16;
+
+impl Prism {
+    /// Its corners, counterclockwise seen from above (the file may list them either way).
+    pub fn counterclockwise(&self) -> Vec<[f64; 2]> {
+        let mut c = self.corners.clone();
+        if polygon_area(&c) < 0.0 {
+            c.reverse();
+        }
+        c
+    }
+
+    /// The distance (m) from `p` to the prism's solid: 0 inside it.
+    pub fn distance(&self, p: Vec3) -> f64 {
+        let c = self.counterclockwise();
+        let inside = convex_contains(&c, (p.x, p.y));
+        let across = if inside {
+            0.0
+        } else {
+            distance_to_hull(
+                (p.x, p.y),
+                &c.iter().map(|q| (q[0], q[1])).collect::<Vec<_>>(),
+            )
+        };
+        let up = (self.bottom - p.z).max(p.z - self.top).max(0.0);
+        libm::hypot(across, up)
+    }
+
+    /// Whether it stands inside `container`, above the floor (a valid prism that does not
+    /// stands wholly outside it).
+    pub fn inside(&self, container: &Container) -> bool {
+        self.bottom >= container.floor()
+            && self
+                .corners
+                .iter()
+                .all(|q| container.holds_disk(q[0], q[1], 0.0))
+    }
+
+    /// The corners of a box holding it.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        let (mut lo, mut hi) = (Vec3::splat(f64::INFINITY), Vec3::splat(f64::NEG_INFINITY));
+        for q in &self.corners {
+            lo = lo.min(Vec3::new(q[0], q[1], self.bottom));
+            hi = hi.max(Vec3::new(q[0], q[1], self.top));
+        }
+        (lo, hi)
+    }
+}
+
+/// Twice the signed area of the polygon `c` (positive counterclockwise).
+fn polygon_area(c: &[[f64; 2]]) -> f64 {
+    (0..c.len())
+        .map(|k| {
+            let (a, b) = (c[k], c[(k + 1) % c.len()]);
+            a[0] * b[1] - a[1] * b[0]
+        })
+        .sum()
+}
+
+/// Whether the counterclockwise convex polygon `c` holds `p` (its edges included).
+fn convex_contains(c: &[[f64; 2]], p: (f64, f64)) -> bool {
+    (0..c.len()).all(|k| {
+        let (a, b) = (c[k], c[(k + 1) % c.len()]);
+        (b[0] - a[0]) * (p.1 - a[1]) - (b[1] - a[1]) * (p.0 - a[0]) >= 0.0
+    })
+}
+
+/// How far apart the counterclockwise convex polygons `a` and `b` are along the axis that
+/// separates them best (the separating axis theorem): positive when apart, 0 or less when they
+/// touch or overlap.
+fn convex_gap(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
+    let mut gap = f64::NEG_INFINITY;
+    for poly in [a, b] {
+        for k in 0..poly.len() {
+            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (nx, ny) = (q[1] - p[1], p[0] - q[0]);
+            let len = libm::hypot(nx, ny);
+            let project = |c: &[[f64; 2]]| {
+                c.iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                        let t = (v[0] * nx + v[1] * ny) / len;
+                        (lo.min(t), hi.max(t))
+                    })
+            };
+            let ((alo, ahi), (blo, bhi)) = (project(a), project(b));
+            gap = gap.max((blo - ahi).max(alo - bhi));
+        }
+    }
+    gap
+}
+
+/// Whether the segment `a`–`b` has a point in the counterclockwise convex polygon `c`
+/// (Cyrus–Beck clipping against its edges).
+fn segment_meets_convex(a: (f64, f64), b: (f64, f64), c: &[[f64; 2]]) -> bool {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    let d = (b.0 - a.0, b.1 - a.1);
+    for k in 0..c.len() {
+        let (p, q) = (c[k], c[(k + 1) % c.len()]);
+        // Inside the edge: (q − p) × (x − p) >= 0, linear in t along the segment.
+        let e = (q[0] - p[0], q[1] - p[1]);
+        let f0 = e.0 * (a.1 - p[1]) - e.1 * (a.0 - p[0]);
+        let df = e.0 * d.1 - e.1 * d.0;
+        if df == 0.0 {
+            if f0 < 0.0 {
+                return false;
+            }
+        } else if df > 0.0 {
+            t0 = t0.max(-f0 / df);
+        } else {
+            t1 = t1.min(-f0 / df);
+        }
+    }
+    t0 <= t1
+}
+
+/// Whether the polygon `c` (either order, at least 3 corners) is strictly convex: every turn
+/// the same way, none straight, and it goes round once.
+fn strictly_convex(c: &[[f64; 2]]) -> bool {
+    let n = c.len();
+    let turns: Vec<f64> = (0..n)
+        .map(|k| {
+            let (a, b, d) = (c[k], c[(k + 1) % n], c[(k + 2) % n]);
+            (b[0] - a[0]) * (d[1] - b[1]) - (b[1] - a[1]) * (d[0] - b[0])
+        })
+        .collect();
+    let all_left = turns.iter().all(|&t| t > 0.0);
+    let all_right = turns.iter().all(|&t| t < 0.0);
+    if !(all_left || all_right) {
+        return false;
+    }
+    // The edges' directions turn through one full circle, not more (no star).
+    let mut total = 0.0;
+    for k in 0..n {
+        let (a, b, d) = (c[k], c[(k + 1) % n], c[(k + 2) % n]);
+        let (u, v) = ((b[0] - a[0], b[1] - a[1]), (d[0] - b[0], d[1] - b[1]));
+        total += libm::atan2(u.0 * v.1 - u.1 * v.0, u.0 * v.0 + u.1 * v.1);
+    }
+    (total.abs() - std::f64::consts::TAU).abs() < 1e-6
+}
+
 /// The view a scene is meant for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Observer {
@@ -643,6 +828,8 @@ pub struct SceneDescription {
     pub cards: Vec<Card>,
     /// The transparent spheres.
     pub spheres: Vec<Sphere>,
+    /// The transparent prisms and blocks.
+    pub prisms: Vec<Prism>,
     /// The view it is meant for, if the file gives one.
     pub observer: Option<Observer>,
 }
@@ -672,7 +859,7 @@ impl SceneDescription {
         }
         if objects > MAX_OBJECTS {
             broken.check(Err(refuse_key(
-                "straw, coin, card, sphere",
+                "straw, coin, card, sphere, prism",
                 Rule::TooManyObjects,
                 vec![
                     ("count", bound(objects as f64)),
@@ -697,8 +884,12 @@ impl SceneDescription {
         for (i, b) in self.spheres.iter().enumerate() {
             broken.check(self.validate_sphere(i, b));
         }
+        for (i, p) in self.prisms.iter().enumerate() {
+            broken.check(self.validate_prism(i, p));
+        }
         if broken.0.is_empty() {
             broken.check(self.validate_sphere_overlaps());
+            broken.check(self.validate_prism_overlaps());
             broken.check(self.validate_overlaps());
             broken.check(self.validate_observer());
         }
@@ -926,6 +1117,51 @@ impl SceneDescription {
         Ok(())
     }
 
+    /// Prism `i`'s own rules: its numbers, a convex polygon of at most [`MAX_PRISM_CORNERS`]
+    /// corners, its bottom below its top, and its place: inside the container above the floor
+    /// (through any liquid's surface), or wholly outside the container.
+    fn validate_prism(&self, i: usize, p: &Prism) -> Result<(), Box<SceneFileError>> {
+        let key = |k: &str| format!("prism[{}].{k}", i + 1);
+        for q in &p.corners {
+            for &v in q {
+                length(&key("corners"), v)?;
+            }
+        }
+        length(&key("bottom"), p.bottom)?;
+        length(&key("top"), p.top)?;
+        finite(&key("index"), p.index)?;
+        if p.index < 1.0 {
+            return Err(refuse(&key("index"), p.index, Rule::IndexMin, vec![]));
+        }
+        let n = p.corners.len();
+        if !(3..=MAX_PRISM_CORNERS).contains(&n) || !strictly_convex(&p.corners) {
+            return Err(refuse_key(
+                &key("corners"),
+                Rule::PrismConvex,
+                vec![
+                    ("count", bound(n as f64)),
+                    ("max", bound(MAX_PRISM_CORNERS as f64)),
+                ],
+            ));
+        }
+        if p.top - p.bottom < MIN_SIZE {
+            return Err(refuse(
+                &key("top"),
+                p.top,
+                Rule::PrismTop,
+                vec![("bottom", number(p.bottom))],
+            ));
+        }
+        if !p.inside(&self.container) && self.container.distance_to_prism(p) <= 0.0 {
+            return Err(refuse_key(
+                &format!("prism[{}]", i + 1),
+                Rule::PrismContainer,
+                vec![],
+            ));
+        }
+        Ok(())
+    }
+
     /// Spheres stand clear of one another, of the straws (of the capsule about each straw's
     /// axis, a slightly larger body) and of the coins; a card lies wholly inside a sphere or
     /// wholly outside it.
@@ -979,7 +1215,80 @@ impl SceneDescription {
                 if !inside && !outside {
                     return Err(refuse_key(
                         &format!("sphere[{}]", j + 1),
-                        Rule::SphereCard,
+                        Rule::SolidCard,
+                        vec![("other", words(format!("card[{}]", i + 1)))],
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Prisms stand clear of one another, of the spheres, the straws (each taken at points along
+    /// its axis closer than half its radius) and the coins; a card lies wholly inside a prism or
+    /// wholly outside it.
+    fn validate_prism_overlaps(&self) -> Result<(), Box<SceneFileError>> {
+        let floor = self.container.floor();
+        let overlap = |j: usize, other: String, gap: f64, sum: f64| {
+            refuse_key(
+                &format!("prism[{}]", j + 1),
+                Rule::SolidOverlap,
+                vec![
+                    ("other", words(other)),
+                    ("gap", number(gap)),
+                    ("sum", number(sum)),
+                ],
+            )
+        };
+        let ccw: Vec<Vec<[f64; 2]>> = self.prisms.iter().map(Prism::counterclockwise).collect();
+        for (j, p) in self.prisms.iter().enumerate() {
+            for (i, q) in self.prisms[..j].iter().enumerate() {
+                let apart_z = (p.bottom - q.top).max(q.bottom - p.top);
+                let gap = apart_z.max(convex_gap(&ccw[i], &ccw[j]));
+                if gap <= 0.0 {
+                    return Err(overlap(j, format!("prism[{}]", i + 1), gap.max(0.0), 0.0));
+                }
+            }
+            for (i, b) in self.spheres.iter().enumerate() {
+                let gap = p.distance(b.center);
+                if gap < b.radius {
+                    return Err(overlap(j, format!("sphere[{}]", i + 1), gap, b.radius));
+                }
+            }
+            for (i, s) in self.straws.iter().enumerate() {
+                let foot = s.bottom_centre(floor);
+                let steps = (2.0 * s.length / s.radius).ceil().min(1e5) as usize;
+                let gap = (0..=steps)
+                    .map(|k| p.distance(foot + (k as f64 / steps as f64) * s.length * s.axis()))
+                    .fold(f64::INFINITY, f64::min);
+                if gap < s.radius {
+                    return Err(overlap(j, format!("straw[{}]", i + 1), gap, s.radius));
+                }
+            }
+            for (i, c) in self.coins.iter().enumerate() {
+                let apart_z = (p.bottom - (floor + c.thickness)).max(floor - p.top);
+                let across = if convex_contains(&ccw[j], (c.x, c.y)) {
+                    0.0
+                } else {
+                    let hull: Vec<(f64, f64)> = ccw[j].iter().map(|q| (q[0], q[1])).collect();
+                    distance_to_hull((c.x, c.y), &hull)
+                };
+                if apart_z <= 0.0 && across < c.radius {
+                    return Err(overlap(j, format!("coin[{}]", i + 1), across, c.radius));
+                }
+            }
+            for (i, card) in self.cards.iter().enumerate() {
+                let inside = card.corners().iter().all(|q| p.distance(*q) == 0.0);
+                let (lo, hi) = (
+                    card.center.z - card.height / 2.0,
+                    card.center.z + card.height / 2.0,
+                );
+                let (a, b) = card.ends();
+                let meets = lo < p.top && hi > p.bottom && segment_meets_convex(a, b, &ccw[j]);
+                if !inside && meets {
+                    return Err(refuse_key(
+                        &format!("prism[{}]", j + 1),
+                        Rule::SolidCard,
                         vec![("other", words(format!("card[{}]", i + 1)))],
                     ));
                 }
@@ -1126,8 +1435,15 @@ impl SceneDescription {
         {
             return Err(refuse_key(
                 "observer.position",
-                Rule::EyeInSphere,
+                Rule::EyeInSolid,
                 at(Some(format!("sphere[{}]", i + 1))),
+            ));
+        }
+        if let Some(i) = self.prisms.iter().position(|q| q.distance(p) == 0.0) {
+            return Err(refuse_key(
+                "observer.position",
+                Rule::EyeInSolid,
+                at(Some(format!("prism[{}]", i + 1))),
             ));
         }
         if let Some(i) = self.cards.iter().position(|c| c.touches(p)) {
@@ -1270,6 +1586,7 @@ impl SceneDescription {
             coins: vec![],
             cards: vec![],
             spheres: vec![],
+            prisms: vec![],
             observer: None,
         }
     }

@@ -58,8 +58,12 @@ fn pairs(line: &[Vec3]) -> impl Iterator<Item = [Vec3; 2]> + '_ {
     line.windows(2).map(|w| [w[0], w[1]])
 }
 
-/// The wireframe of one boundary: its circles, rectangles and a few vertical lines.
+/// The wireframe of one boundary: its circles, rectangles and a few vertical lines (a prism's
+/// top and bottom are drawn by its sides' edges).
 fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
+    if b.solid && matches!(b.shape, Shape::Horizontal { .. }) {
+        return;
+    }
     match b.shape {
         Shape::Horizontal { z, region } => match region {
             Region::Disk { cx, cy, radius } => out.extend(pairs(&circle(cx, cy, radius, z))),
@@ -106,6 +110,26 @@ fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
             };
             out.push([corner(-1.0, z_min), corner(-1.0, z_max)]);
             out.push([corner(1.0, z_min), corner(1.0, z_max)]);
+        }
+        Shape::Face {
+            ax,
+            ay,
+            ux,
+            uy,
+            length,
+            z_min,
+            z_max,
+        } => {
+            // Its vertical edges, top and bottom.
+            let (a, b) = (
+                Vec3::new(ax, ay, 0.0),
+                Vec3::new(ax + length * ux, ay + length * uy, 0.0),
+            );
+            let at = |p: Vec3, z: f64| Vec3::new(p.x, p.y, z);
+            out.push([at(a, z_min), at(a, z_max)]);
+            out.push([at(b, z_min), at(b, z_max)]);
+            out.push([at(a, z_min), at(b, z_min)]);
+            out.push([at(a, z_max), at(b, z_max)]);
         }
         Shape::Sphere {
             centre,

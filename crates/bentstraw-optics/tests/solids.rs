@@ -323,3 +323,225 @@ fn a_ball_half_in_the_water_has_no_water_surface_inside_it() {
     assert_eq!(events[0].n2, 1.333);
     assert!(events.iter().skip(1).all(|e| e.point.z < centre.z - radius));
 }
+
+/// A prism in air, its corners `corners` seen from above, from height 0.05 to 0.15, of `index`.
+fn prism_in_air(corners: &[[f64; 2]], index: f64) -> World {
+    let list: Vec<String> = corners
+        .iter()
+        .map(|c| format!("[{}, {}]", c[0], c[1]))
+        .collect();
+    let d = scene(&format!(
+        "[container]\nshape = \"glass\"\nradius = 0.01\nheight = 0.01\n\n\
+         [[prism]]\ncorners = [{}]\nbottom = 0.05\ntop = 0.15\nindex = {index}\n",
+        list.join(", ")
+    ));
+    World::new(&d, 10).expect("a valid scene")
+}
+
+/// The angle (radians) of a horizontal direction from `+x`.
+fn heading(d: Vec3) -> f64 {
+    d.y.atan2(d.x)
+}
+
+/// Through a 60° prism at the angle of minimum deviation the ray inside runs parallel to the
+/// base, and the deviation is `2·asin(n·sin(A/2)) − A`; any other angle deviates it more.
+#[test]
+fn a_prism_deviates_least_by_its_closed_form() {
+    let h = 0.1 * 3f64.sqrt() / 2.0;
+    // Counterclockwise from above, then the other way: the file may list them either way.
+    let corners = [[0.3, 0.0], [0.4, 0.0], [0.35, h]];
+    let apex = std::f64::consts::PI / 3.0;
+    for (n, order) in [(1.5, false), (1.7, true)] {
+        let mut c = corners.to_vec();
+        if order {
+            c.reverse();
+        }
+        let world = prism_in_air(&c, n);
+        let deviation = |i: f64| {
+            // Aimed at the middle of the left face, `i` from its normal, from below the normal.
+            let mid = Vec3::new(0.325, h / 2.0, 0.1);
+            let theta = i - apex / 2.0;
+            let d = Vec3::new(theta.cos(), theta.sin(), 0.0);
+            let (outcome, events) = trace_events(&world, Ray::new(mid - 0.2 * d, d));
+            assert_eq!(events.len(), 2, "in and out: {events:?}");
+            let Outcome::Escaped { ray, .. } = outcome else {
+                panic!("it leaves the scene")
+            };
+            (heading(d) - heading(ray.direction), events[0].outgoing)
+        };
+        let i_min = (n * (apex / 2.0).sin()).asin();
+        let (least, inside) = deviation(i_min);
+        let closed = 2.0 * i_min - apex;
+        assert!((least - closed).abs() < 1e-12, "n {n}: {least} vs {closed}");
+        assert!(
+            inside.y.abs() < 1e-12 && inside.z == 0.0,
+            "parallel to the base: {inside}"
+        );
+        for di in [-0.05, -0.01, 0.01, 0.05] {
+            assert!(deviation(i_min + di).0 > least + 1e-6);
+        }
+    }
+}
+
+/// A glass block shifts a ray sideways by `t·sin(i − r)/cos r` and leaves it parallel to itself.
+#[test]
+fn a_glass_block_shifts_a_ray_by_its_closed_form() {
+    let (t, n) = (0.04, 1.5);
+    let world = prism_in_air(
+        &[[0.3, -0.05], [0.3 + t, -0.05], [0.3 + t, 0.05], [0.3, 0.05]],
+        n,
+    );
+    for i in [0.1f64, 0.5, 1.0] {
+        let d = Vec3::new(i.cos(), i.sin(), 0.0);
+        let start = Vec3::new(0.3, 0.0, 0.1) - 0.2 * d;
+        let (outcome, events) = trace_events(&world, Ray::new(start, d));
+        assert_eq!(events.len(), 2);
+        let Outcome::Escaped { ray, .. } = outcome else {
+            panic!("it leaves the scene")
+        };
+        assert!((ray.direction - d).length() < 1e-14);
+        let shift = (ray.origin - start).cross(d).length();
+        let r = (i.sin() / n).asin();
+        let closed = t * (i - r).sin() / r.cos();
+        assert!((shift - closed).abs() < 1e-13, "i {i}: {shift} vs {closed}");
+    }
+}
+
+/// A block standing on the floor of a glass, through the water's surface: every event's indices
+/// are the geometry's on its two sides (no water surface inside the block, its bottom on the
+/// floor); a block of the water's index keeps only its part above the water.
+#[test]
+fn a_block_through_the_waters_surface_is_traced_as_its_geometry_says() {
+    let (x0, x1, y0, y1, height, top) = (-0.02, 0.0, -0.015, 0.015, 0.13, 0.1);
+    let world_of = |index: f64| {
+        let d = scene(&format!(
+            "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
+             [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = {top}\n\n\
+             [[straw]]\nx = 0.02\ny = 0.0\n\n\
+             [[prism]]\ncorners = [[{x0}, {y0}], [{x1}, {y0}], [{x1}, {y1}], [{x0}, {y1}]]\n\
+             bottom = 0.0\ntop = {height}\nindex = {index}\n"
+        ));
+        World::new(&d, 10).expect("a valid scene")
+    };
+    let index_at = |p: Vec3, block: f64| {
+        let in_block =
+            (x0..x1).contains(&p.x) && (y0..y1).contains(&p.y) && (0.0..height).contains(&p.z);
+        if in_block {
+            block
+        } else if p.x.hypot(p.y) < 0.04 && (0.0..top).contains(&p.z) {
+            1.333
+        } else {
+            1.0
+        }
+    };
+    for (block, eye) in [
+        (1.5, Vec3::new(0.15, 0.1, 0.2)),
+        (1.5, Vec3::new(-0.1, 0.05, -0.1)),
+        (1.333, Vec3::new(0.12, -0.1, 0.25)),
+    ] {
+        let world = world_of(block);
+        let mut checked = 0;
+        for k in 0..800u32 {
+            let f = |m: f64| (k as f64 * m).fract() - 0.5;
+            let aim = Vec3::new(-0.01, 0.0, 0.07)
+                + 0.06 * Vec3::new(f(0.618034), f(0.7548777), f(0.5698403));
+            let (_, events) = trace_events(&world, Ray::new(eye, aim - eye));
+            for e in events {
+                let (before, beyond) = (
+                    index_at(e.point - 1e-9 * e.incoming, block),
+                    index_at(e.point + 1e-9 * e.incoming, block),
+                );
+                // Near an edge of two regions the sides are not told by one step.
+                let t1 = if e.normal.z.abs() < 0.9 {
+                    Vec3::Z
+                } else {
+                    Vec3::X
+                };
+                let t1 = e.normal.cross(t1).normalize();
+                let t2 = e.normal.cross(t1);
+                let near_edge = [t1, -t1, t2, -t2].iter().any(|&t| {
+                    index_at(e.point - 1e-9 * e.incoming + 1e-6 * t, block) != before
+                        || index_at(e.point + 1e-9 * e.incoming + 1e-6 * t, block) != beyond
+                });
+                if near_edge || e.incoming.dot(e.normal).abs() < 1e-6 {
+                    continue;
+                }
+                assert_eq!((e.n1, e.n2), (before, beyond), "{e:?}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 100, "{checked}");
+    }
+}
+
+/// A prism's rules: a convex polygon of 3 to 16 corners, its top above its bottom, inside the
+/// container above the floor or wholly outside it, clear of the other objects, a card wholly
+/// inside or outside, the eye outside.
+#[test]
+fn a_prisms_shape_and_place_break_no_rule() {
+    let base = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
+                [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.1\n\n\
+                [[straw]]\nx = 0.02\ny = 0.0\n\n";
+    let prism = |corners: &str, bottom: f64, top: f64| {
+        format!("[[prism]]\ncorners = {corners}\nbottom = {bottom}\ntop = {top}\nindex = 1.5\n")
+    };
+    let refused = |extra: &str, code: &str| {
+        let e = SceneDescription::from_toml(&format!("{base}{extra}")).expect_err(extra);
+        assert!(
+            e.rules().any(|r| r.rule.code() == code),
+            "{extra}: {e} (wanted {code})"
+        );
+    };
+    let outside = "[[0.3, 0.0], [0.4, 0.0], [0.35, 0.08]]";
+    refused(&prism("[[0.3, 0.0], [0.4, 0.0]]", 0.0, 0.1), "prism.convex");
+    refused(
+        &prism(
+            "[[0.3, 0.0], [0.4, 0.0], [0.32, 0.02], [0.3, 0.1]]",
+            0.0,
+            0.1,
+        ),
+        "prism.convex",
+    );
+    refused(&prism(outside, 0.1, 0.1), "prism.top");
+    refused(
+        &prism("[[0.03, 0.0], [0.06, 0.0], [0.05, 0.02]]", 0.0, 0.1),
+        "prism.container",
+    );
+    refused(
+        &prism("[[-0.03, -0.01], [0.03, -0.01], [0.0, 0.01]]", 0.0, 0.1),
+        "solid.overlap",
+    );
+    refused(
+        &format!(
+            "{}[[sphere]]\ncenter = [0.35, 0.03, 0.05]\nradius = 0.01\nindex = 1.5\n",
+            prism(outside, 0.0, 0.1)
+        ),
+        "solid.overlap",
+    );
+    refused(
+        &format!(
+            "{}[[card]]\ncenter = [0.35, 0.03, 0.05]\nwidth = 0.2\nheight = 0.02\n",
+            prism(outside, 0.0, 0.1)
+        ),
+        "solid.card",
+    );
+    refused(
+        &format!(
+            "{}[observer]\nposition = [0.35, 0.03, 0.05]\n",
+            prism(outside, 0.0, 0.1)
+        ),
+        "observer.in-solid",
+    );
+    for ok in [
+        prism(outside, 0.0, 0.1),
+        prism("[[-0.03, -0.01], [-0.01, -0.01], [-0.02, 0.01]]", 0.0, 0.12),
+        format!(
+            "{}[[card]]\ncenter = [0.35, 0.03, 0.05]\nwidth = 0.01\nheight = 0.01\n",
+            prism(outside, 0.0, 0.1)
+        ),
+    ] {
+        let d = scene(&format!("{base}{ok}"));
+        assert_eq!(scene(&d.to_toml()), d);
+        World::new(&d, 10).expect("a world");
+    }
+}

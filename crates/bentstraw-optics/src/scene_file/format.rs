@@ -41,6 +41,8 @@ struct FileScene {
     card: Vec<FileCard>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     sphere: Vec<FileSphere>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    prism: Vec<FilePrism>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     observer: Option<FileObserver>,
 }
@@ -129,6 +131,19 @@ struct FileSphere {
     center: Option<[f64; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    index: Option<f64>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FilePrism {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    corners: Option<Vec<[f64; 2]>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    bottom: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    top: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     index: Option<f64>,
 }
@@ -381,6 +396,23 @@ impl SceneDescription {
                 }
             })
             .collect();
+        let prisms: Vec<Prism> = file
+            .prism
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let key = |k: &str| format!("prism[{}].{k}", i + 1);
+                if p.corners.is_none() {
+                    broken.push(*need(key("corners")));
+                }
+                Prism {
+                    corners: p.corners.clone().unwrap_or_default(),
+                    bottom: get(key("bottom"), p.bottom, &mut broken),
+                    top: get(key("top"), p.top, &mut broken),
+                    index: get(key("index"), p.index, &mut broken),
+                }
+            })
+            .collect();
         let observer = file.observer.as_ref().map(|o| {
             if o.position.is_none() {
                 broken.push(*need("observer.position".into()));
@@ -402,6 +434,7 @@ impl SceneDescription {
             coins,
             cards,
             spheres,
+            prisms,
             observer: observer.map(|(position, target)| Observer {
                 position: Vec3::from_array(position),
                 target: target.map_or(middle, Vec3::from_array),
@@ -486,6 +519,16 @@ impl SceneDescription {
                     center: Some(b.center.to_array()),
                     radius: Some(b.radius),
                     index: Some(b.index),
+                })
+                .collect(),
+            prism: self
+                .prisms
+                .iter()
+                .map(|p| FilePrism {
+                    corners: Some(p.corners.clone()),
+                    bottom: Some(p.bottom),
+                    top: Some(p.top),
+                    index: Some(p.index),
                 })
                 .collect(),
             observer: self.observer.map(|o| FileObserver {

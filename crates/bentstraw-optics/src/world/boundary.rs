@@ -107,6 +107,25 @@ pub enum Shape {
         /// Highest height.
         z_max: f64,
     },
+    /// A vertical rectangle: from `(ax, ay)` along the horizontal unit `(ux, uy)` for `length`,
+    /// between two heights (a prism's side); its outer side is to the right of `u` seen from
+    /// above (away from a counterclockwise polygon's inside).
+    Face {
+        /// `x` of its first edge.
+        ax: f64,
+        /// `y` of its first edge.
+        ay: f64,
+        /// `x` of the unit vector along it.
+        ux: f64,
+        /// `y` of the unit vector along it.
+        uy: f64,
+        /// Its width.
+        length: f64,
+        /// Lowest height.
+        z_min: f64,
+        /// Highest height.
+        z_max: f64,
+    },
     /// A sphere (the part of it between two heights); its outer side is away from its centre.
     Sphere {
         /// Its centre.
@@ -140,21 +159,42 @@ pub struct Boundary {
     pub(crate) optics: Optics,
     /// Its numbers that the tracers compare lanes with, worked out once.
     pub(crate) codes: Codes,
-    /// The holes a horizontal face has where solids pierce it: the range of them in the
-    /// world's list ([`Hole`]), empty for most faces.
+    /// What solids take from a horizontal face, or the polygon a prism's own top or bottom
+    /// is: the range of [`Clip`]s in the world's list, empty for most faces.
     pub(crate) holes: [u16; 2],
+    /// Whether it is a transparent solid's face (light entering there enters the solid).
+    pub solid: bool,
 }
 
-/// Where a solid pierces a horizontal face: the disk of its cross-section, which is no part of
-/// the face (a ball half in the water has no water surface inside it).
+/// What a transparent solid makes of a horizontal face: where a solid pierces it, its
+/// cross-section is no part of it (a ball half in the water has no water surface inside it); a
+/// prism's top and bottom are the plane within its polygon only.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Hole {
-    /// `x` of the disk's centre.
-    pub cx: f64,
-    /// `y` of the disk's centre.
-    pub cy: f64,
-    /// Its radius².
-    pub r2: f64,
+pub(crate) enum Clip {
+    /// No part of the face lies in this disk.
+    OutsideDisk {
+        /// `x` of the disk's centre.
+        cx: f64,
+        /// `y` of the disk's centre.
+        cy: f64,
+        /// Its radius².
+        r2: f64,
+    },
+    /// No part of the face lies in the convex polygon of these edges (a range of the world's
+    /// [`Edge`]s).
+    OutsidePolygon([u16; 2]),
+    /// The face lies in the convex polygon of these edges only.
+    InsidePolygon([u16; 2]),
+}
+
+/// An edge of a counterclockwise convex polygon seen from above: from `(ax, ay)` along `(ex,
+/// ey)`; the polygon lies to its left.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Edge {
+    pub ax: f64,
+    pub ay: f64,
+    pub ex: f64,
+    pub ey: f64,
 }
 
 /// A boundary's whole numbers as the tracers' lanes hold them: its place in the world's list, its
@@ -308,6 +348,32 @@ impl Boundary {
                 ));
                 R::select(ok, t, inf)
             }
+            Shape::Face {
+                ax,
+                ay,
+                ux,
+                uy,
+                length,
+                z_min,
+                z_max,
+            } => {
+                // The plane n·p = n·a, n = (uy, −ux) its outer normal.
+                let (nx, ny) = (R::splat(uy), R::splat(-ux));
+                let den = nx * d.x + ny * d.y;
+                let (num, ahead) =
+                    plane_ahead(R::splat(uy * ax - ux * ay), nx * o.x + ny * o.y, den);
+                let ahead = ahead.and_not(leaving).and(alive);
+                if !ahead.any() {
+                    return inf;
+                }
+                let t = R::quotient(num, den, R::splat(1.0) / den);
+                let along = R::splat(ux) * (o.x + t * d.x - R::splat(ax))
+                    + R::splat(uy) * (o.y + t * d.y - R::splat(ay));
+                let ok = ahead
+                    .and(in_range(along, R::splat(0.0), R::splat(length)))
+                    .and(in_range(o.z + t * d.z, R::splat(z_min), R::splat(z_max)));
+                R::select(ok, t, inf)
+            }
             Shape::Sphere {
                 centre,
                 radius,
@@ -345,6 +411,7 @@ impl Boundary {
                 let y = R::quotient(p.y - R::splat(cy), r, inv);
                 V3::new(x, y, zero).renormalize()
             }
+            Shape::Face { ux, uy, .. } => V3::new(R::splat(uy), R::splat(-ux), zero),
             Shape::Sphere { centre, radius, .. } => {
                 let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
                 let q = p - V3::splat(centre);
@@ -379,6 +446,14 @@ impl Boundary {
             Shape::Upright { cx, cy, radius, .. } => libm::hypot(cx, cy) + radius,
             Shape::Vertical { at, half, .. } => libm::hypot(at, half),
             Shape::Sphere { centre, radius, .. } => libm::hypot(centre.x, centre.y) + radius,
+            Shape::Face {
+                ax,
+                ay,
+                ux,
+                uy,
+                length,
+                ..
+            } => libm::hypot(ax, ay).max(libm::hypot(ax + length * ux, ay + length * uy)),
         }
     }
 
@@ -391,7 +466,9 @@ impl Boundary {
         match self.shape {
             Shape::Upright { radius, .. } => (1.0 / radius) * Vec3::new(dp.x, dp.y, 0.0),
             Shape::Sphere { radius, .. } => (1.0 / radius) * dp,
-            Shape::Horizontal { .. } | Shape::Vertical { .. } => 0.0 * Vec3::new(dp.x, dp.y, 0.0),
+            Shape::Horizontal { .. } | Shape::Vertical { .. } | Shape::Face { .. } => {
+                0.0 * Vec3::new(dp.x, dp.y, 0.0)
+            }
         }
     }
 
@@ -403,6 +480,8 @@ impl Boundary {
             Shape::Vertical { axis, at, .. } => (2, [axis as f64, at, 0.0]),
             // Spheres do not touch one another: a centre names one.
             Shape::Sphere { centre, .. } => (3, centre.to_array()),
+            // A plane by its outer normal and its offset.
+            Shape::Face { ax, ay, ux, uy, .. } => (4, [uy, -ux, uy * ax - ux * ay]),
         }
     }
 
@@ -457,6 +536,7 @@ mod tests {
                 outer: 0.0,
             },
             holes: [0, 0],
+            solid: false,
         }
     }
 

@@ -25,8 +25,8 @@ use crate::scene::{Scene, SECTION_NAMES, SECTION_RGB};
 use crate::scene_file::{Container, SceneDescription, SceneFileError};
 use crate::Vec3;
 
-use boundary::Hole;
 pub use boundary::{Boundary, MediumId, Region, Shape};
+use boundary::{Clip, Edge};
 pub use object::{in_arrow, Object, Part, CARD_COLOR, COIN_COLOR, PICTURE_COLOR};
 pub use trace::{FresnelStep, FRESNEL_SEGMENTS_PER_PIXEL, FRESNEL_SEGMENTS_PER_RAY};
 
@@ -69,8 +69,10 @@ pub struct World {
     boundaries: Vec<Boundary>,
     /// Every opaque object.
     objects: Vec<Object>,
-    /// Where solids pierce horizontal faces (each face names its range of them).
-    holes: Vec<Hole>,
+    /// What solids make of horizontal faces (each face names its range of them).
+    clips: Vec<Clip>,
+    /// The edges of the prisms' polygons the clips name.
+    edges: Vec<Edge>,
     /// How many whole surfaces the boundaries lie on: codes `0..surfaces` name them, and
     /// `surfaces + j` names object `j` (what a ray has just left).
     surfaces: u32,
@@ -226,6 +228,15 @@ fn piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
         optics: boundary::Optics::default(),
         codes: boundary::Codes::default(),
         holes: [0, 0],
+        solid: false,
+    }
+}
+
+/// A face of a transparent solid: `piece` marked as one.
+fn solid_piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
+    Boundary {
+        solid: true,
+        ..piece(shape, outer, inner)
     }
 }
 
@@ -406,17 +417,101 @@ impl World {
                 },
             };
             if !sphere.inside(&scene.container) {
-                boundaries.push(piece(zone(c.z - r, c.z + r), AIR, inner));
+                boundaries.push(solid_piece(zone(c.z - r, c.z + r), AIR, inner));
                 continue;
             }
             let mut below = f64::NEG_INFINITY;
             for &(top, medium) in &cavity {
                 let (lo, hi) = (below.max(c.z - r), top.min(c.z + r));
                 if lo < hi {
-                    boundaries.push(piece(zone(lo, hi), medium, inner));
+                    boundaries.push(solid_piece(zone(lo, hi), medium, inner));
                 }
                 below = top;
             }
+        }
+        // Each prism likewise: its sides cut by the layers they cross, its top and bottom the
+        // planes within its polygon (clipped below), between it and what lies above or below.
+        let mut edges = Vec::new();
+        let mut prism_edges = Vec::new();
+        for prism in &scene.prisms {
+            let inner = indices.len() as MediumId;
+            indices.push(prism.index);
+            let corners = prism.counterclockwise();
+            let start = edges.len() as u16;
+            for k in 0..corners.len() {
+                let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+                edges.push(Edge {
+                    ax: a[0],
+                    ay: a[1],
+                    ex: b[0] - a[0],
+                    ey: b[1] - a[1],
+                });
+            }
+            let range = [start, edges.len() as u16];
+            prism_edges.push(range);
+            let inside = prism.inside(&scene.container);
+            let around = |z: f64| if inside { medium_above(z) } else { AIR };
+            // Just below the bottom: the floor's material when it stands on a thick bottom.
+            let below = if inside && prism.bottom <= floor && floor > 0.0 {
+                CONTAINER
+            } else if inside && prism.bottom > 0.0 {
+                cavity_medium(&cavity, prism.bottom - f64::EPSILON * prism.bottom.abs())
+            } else {
+                AIR
+            };
+            let layers: Vec<(f64, f64, MediumId)> = if inside {
+                let mut out = Vec::new();
+                let mut low = f64::NEG_INFINITY;
+                for &(top, medium) in &cavity {
+                    let (lo, hi) = (low.max(prism.bottom), top.min(prism.top));
+                    if lo < hi {
+                        out.push((lo, hi, medium));
+                    }
+                    low = top;
+                }
+                out
+            } else {
+                vec![(prism.bottom, prism.top, AIR)]
+            };
+            for k in 0..corners.len() {
+                let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+                let length = libm::hypot(b[0] - a[0], b[1] - a[1]);
+                let (ux, uy) = ((b[0] - a[0]) / length, (b[1] - a[1]) / length);
+                for &(z_min, z_max, medium) in &layers {
+                    let face = Shape::Face {
+                        ax: a[0],
+                        ay: a[1],
+                        ux,
+                        uy,
+                        length,
+                        z_min,
+                        z_max,
+                    };
+                    boundaries.push(solid_piece(face, medium, inner));
+                }
+            }
+            // Top and bottom: the disk round the polygon, clipped to it.
+            let (cx, cy) = corners.iter().fold((0.0, 0.0), |(x, y), q| {
+                (
+                    x + q[0] / corners.len() as f64,
+                    y + q[1] / corners.len() as f64,
+                )
+            });
+            let radius = corners
+                .iter()
+                .map(|q| libm::hypot(q[0] - cx, q[1] - cy))
+                .fold(0.0, f64::max)
+                * (1.0 + 1e-9);
+            let disk = Region::Disk { cx, cy, radius };
+            let mut top = horizontal(prism.top, disk, inner, around(prism.top));
+            let mut bottom = horizontal(prism.bottom, disk, below, inner);
+            for face in [&mut top, &mut bottom] {
+                face.solid = true;
+                // Marked with the prism's edges; its clip is made with the others below.
+                face.holes = range;
+            }
+            boundaries.push(top);
+            boundaries.push(bottom);
         }
         // Where faces between media of the same index are dropped, such media are one medium:
         // light cannot tell them apart, and a ray that crossed a dropped face must still know on
@@ -443,25 +538,36 @@ impl World {
                         && (is_liquid(b.outer) || is_liquid(b.inner))))
         });
 
-        // The faces a sphere inside the container pierces (a liquid's surface, the top of a
-        // layer) have a hole where it passes: its cross-section there.
-        let mut holes = Vec::new();
+        // The faces a solid inside the container pierces (a liquid's surface, the top of a
+        // layer, the floor under a prism standing on it) have a hole where it passes: its
+        // cross-section there. A prism's own top and bottom are clipped to its polygon.
+        let mut clips = Vec::new();
         for b in &mut boundaries {
             let Shape::Horizontal { z, .. } = b.shape else {
                 continue;
             };
-            let start = holes.len() as u16;
+            let start = clips.len() as u16;
+            if b.solid {
+                clips.push(Clip::InsidePolygon(b.holes));
+                b.holes = [start, start + 1];
+                continue;
+            }
             for sphere in scene.spheres.iter().filter(|s| s.inside(&scene.container)) {
                 let (c, r) = (sphere.center, sphere.radius);
                 if (z - c.z).abs() < r {
-                    holes.push(Hole {
+                    clips.push(Clip::OutsideDisk {
                         cx: c.x,
                         cy: c.y,
                         r2: r * r - (z - c.z) * (z - c.z),
                     });
                 }
             }
-            b.holes = [start, holes.len() as u16];
+            for (prism, range) in scene.prisms.iter().zip(&prism_edges) {
+                if prism.inside(&scene.container) && (prism.bottom..=prism.top).contains(&z) {
+                    clips.push(Clip::OutsidePolygon(*range));
+                }
+            }
+            b.holes = [start, clips.len() as u16];
         }
 
         let mut objects = Vec::new();
@@ -472,6 +578,7 @@ impl World {
             .iter()
             .map(Object::bounds)
             .chain(scene.spheres.iter().map(|s| s.bounds()))
+            .chain(scene.prisms.iter().map(|p| p.bounds()))
             .fold((lo, hi), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)));
         let centre = 0.5 * (lo + hi);
         // Rays from afar start on a sphere round the box: its radius is the box's half diagonal
@@ -527,7 +634,8 @@ impl World {
             indices,
             boundaries,
             objects,
-            holes,
+            clips,
+            edges,
             surfaces: keys.len() as u32,
             lo,
             hi,
@@ -550,7 +658,8 @@ impl World {
             indices: self.indices.clone(),
             boundaries: self.boundaries.clone(),
             objects: Vec::new(),
-            holes: self.holes.clone(),
+            clips: self.clips.clone(),
+            edges: self.edges.clone(),
             ..*self
         }
     }

@@ -6,7 +6,7 @@ use crate::geometry::{Ray, SideQuadratic};
 use crate::interface::{reflectance_lanes, scatter_lanes};
 use crate::lanes::{Constant, Mask, Real, V3};
 
-use super::boundary::{Around, Reciprocals};
+use super::boundary::{Around, Clip, Reciprocals};
 use super::{Hit, Part, World};
 
 /// What the rays of a [`Real`] meet first.
@@ -109,23 +109,31 @@ impl World {
         }
         let mut t = inf;
         let mut code = R::splat(-1.0);
-        let pierced = !self.holes.is_empty();
+        let pierced = !self.clips.is_empty();
         for b in &self.boundaries {
             let leaving = left.eq(R::splat(b.codes.surface as f64));
             let mut tb = b.crossing(o, d, &inv, leaving, alive, &around);
-            // Where a solid pierces the face, its cross-section is no part of it (scenes without
-            // one skip the look).
-            let holes = if pierced {
-                &self.holes[b.holes[0] as usize..b.holes[1] as usize]
+            // What solids make of the face: holes where they pierce it, a prism's polygon
+            // (scenes without solids skip the look).
+            let clips = if pierced {
+                &self.clips[b.holes[0] as usize..b.holes[1] as usize]
             } else {
                 &[]
             };
-            for h in holes {
-                let (u, v) = (
-                    o.x + tb * d.x - R::splat(h.cx),
-                    o.y + tb * d.y - R::splat(h.cy),
-                );
-                tb = R::select((u * u + v * v).lt(R::splat(h.r2)), inf, tb);
+            for clip in clips {
+                let (x, y) = (o.x + tb * d.x, o.y + tb * d.y);
+                tb = match *clip {
+                    Clip::OutsideDisk { cx, cy, r2 } => {
+                        let (u, v) = (x - R::splat(cx), y - R::splat(cy));
+                        R::select((u * u + v * v).lt(R::splat(r2)), inf, tb)
+                    }
+                    Clip::OutsidePolygon(range) => {
+                        R::select(self.outside_polygon(x, y, range), tb, inf)
+                    }
+                    Clip::InsidePolygon(range) => {
+                        R::select(self.outside_polygon(x, y, range), inf, tb)
+                    }
+                };
             }
             let m = tb.lt(t);
             t = R::select(m, tb, t);
@@ -150,6 +158,19 @@ impl World {
             }
         }
         Some(Nearest { t, code, part, tag })
+    }
+
+    /// The lanes whose point `(x, y)` lies outside the convex polygon of the world's edges in
+    /// `range` (to the right of one of them).
+    #[inline(always)]
+    fn outside_polygon<R: Real>(&self, x: R, y: R, range: [u16; 2]) -> R::Mask {
+        let mut outside = R::splat(1.0).lt(R::splat(0.0));
+        for e in &self.edges[range[0] as usize..range[1] as usize] {
+            let side =
+                R::splat(e.ex) * (y - R::splat(e.ay)) - R::splat(e.ey) * (x - R::splat(e.ax));
+            outside = outside.or(side.lt(R::splat(0.0)));
+        }
+        outside
     }
 
     /// What light does where the rays of `live`, travelling along `d` in medium `medium`, meet

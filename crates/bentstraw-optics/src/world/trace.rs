@@ -237,10 +237,13 @@ impl World {
     /// through a surface from above, through a wall, through a bottom from below, through a
     /// solid's face.
     pub fn entry_of(&self, e: &Event) -> Entry {
-        match self.boundaries[e.boundary].shape {
+        let b = &self.boundaries[e.boundary];
+        if b.solid {
+            return Entry::Solid;
+        }
+        match b.shape {
             Shape::Horizontal { .. } if e.incoming.z < 0.0 => Entry::Top,
             Shape::Horizontal { .. } => Entry::Bottom,
-            Shape::Sphere { .. } => Entry::Solid,
             _ => Entry::Wall,
         }
     }
@@ -250,11 +253,13 @@ impl World {
     /// (air below it), or the surface between two layers (or a liquid and the glass's floor).
     pub fn face_name(&self, index: usize) -> &'static str {
         let b = &self.boundaries[index];
+        if b.solid {
+            return "a transparent solid's face";
+        }
         match b.shape {
             Shape::Horizontal { .. } if b.outer == AIR => "top surface",
             Shape::Horizontal { .. } if b.inner == AIR => "bottom",
             Shape::Horizontal { .. } => "surface between layers",
-            Shape::Sphere { .. } => "sphere's surface",
             _ => "wall",
         }
     }
