@@ -4,7 +4,7 @@
 // as the file's text, which then goes the way a typed text goes: checked by the same rules, the
 // view following it, refused key by key. One rule, one place.
 import { t } from "./i18n.js";
-import { state, STRAW_R, COIN_R, sceneKey } from "./state.js";
+import { state, STRAW_R, STRAW_H, COIN_R, sceneKey } from "./state.js";
 import { $ } from "./dom.js";
 import { engineFetch, answerText } from "./engine.js";
 import { errorText } from "./errors.js";
@@ -21,7 +21,10 @@ const FORM_FIELDS = {
   straw: [["x", "m"], ["y", "m"], ["tilt", "°"], ["azimuth", "°"], ["radius", "m"], ["length", "m"]],
   coin: [["x", "m"], ["y", "m"], ["radius", "m"], ["thickness", "m"]],
   card: [["center", "m3"], ["facing", "°"], ["width", "m"], ["height", "m"], ["picture", ["arrow", "none"]]],
+  sphere: [["center", "m3"], ["radius", "m"], ["index", ""]],
 };
+/** The tables of objects, in the panel's order (after the container). */
+const TABLES = ["liquid", "straw", "coin", "card", "sphere"];
 /** The step of a control by unit: a millimetre, a tenth of a degree, a thousandth of an index. */
 const STEP = { m: "0.001", "m3": "0.001", "°": "0.1", "": "0.001" };
 const objectsEl = $("objects"), objectsErrorsEl = $("objects-errors");
@@ -55,10 +58,11 @@ function inside(form) {
   return c.shape === "tank" ? { tank: true, hx: c.half_x, hy: c.half_y, height: c.height, floor: 0 }
     : { tank: false, r: c.radius - (c.wall || 0), height: c.height, floor: c.bottom || 0 };
 }
+/** A length rounded to 10 µm (no float noise in the file). */
+const r5 = (v) => Math.round(v * 1e5) / 1e5;
 /** `[x, y]` kept inside the container, `margin` clear of its side (an object's radius). */
 function keepInside(form, [x, y], margin) {
   const c = inside(form), clear = margin + 1e-4;
-  const r5 = (v) => Math.round(v * 1e5) / 1e5;
   if (c.tank) {
     const lx = Math.max(0, c.hx - clear), ly = Math.max(0, c.hy - clear);
     return [r5(Math.max(-lx, Math.min(lx, x))), r5(Math.max(-ly, Math.min(ly, y)))];
@@ -80,6 +84,102 @@ function freeSpot(form, r) {
   }
   return [0, 0];
 }
+/** How far `(x, y)` lies outside the container's outer outline seen from above (0 on or within it). */
+function outsideBy(form, x, y) {
+  const k = form.container || {};
+  if (k.shape === "tank") return Math.hypot(Math.max(0, Math.abs(x) - k.half_x), Math.max(0, Math.abs(y) - k.half_y));
+  return Math.max(0, Math.hypot(x, y) - k.radius);
+}
+/** `[x, y]` pushed out of the container's outer outline seen from above until `margin` clear
+ * of it (a sphere beside the container slides round it). */
+function keepOutside(form, [x, y], margin) {
+  const k = form.container || {};
+  if (k.shape !== "tank") {
+    const d = Math.hypot(x, y), lim = k.radius + margin;
+    if (d >= lim) return [r5(x), r5(y)];
+    return d > 1e-9 ? [r5((x * lim) / d), r5((y * lim) / d)] : [r5(lim), 0];
+  }
+  const sx = x < 0 ? -1 : 1, sy = y < 0 ? -1 : 1, dx = Math.abs(x) - k.half_x, dy = Math.abs(y) - k.half_y;
+  if (dx > 0 && dy > 0) {
+    const d = Math.hypot(dx, dy);
+    if (d < margin) { x = sx * (k.half_x + (dx * margin) / d); y = sy * (k.half_y + (dy * margin) / d); }
+  } else if (dx <= 0 && dy <= 0) {
+    // Within the outline: out through the nearest face.
+    if (dx >= dy) x = sx * (k.half_x + margin); else y = sy * (k.half_y + margin);
+  } else if (dx > 0) {
+    if (dx < margin) x = sx * (k.half_x + margin);
+  } else if (dy < margin) y = sy * (k.half_y + margin);
+  return [r5(x), r5(y)];
+}
+/** Whether a sphere's disk seen from above lies within the walls' inner face. */
+function sphereHeld(form, [x, y], r) {
+  const c = inside(form);
+  return c.tank ? Math.abs(x) + r <= c.hx && Math.abs(y) + r <= c.hy : Math.hypot(x, y) + r <= c.r;
+}
+/** The lowest height of a sphere of radius `r` above `floor`: resting on it, to the rule's bit. */
+function restingOn(floor, r) {
+  let z = Math.ceil((floor + r) * 1e5) / 1e5;
+  if (z - r < floor) z += 1e-5;
+  return z;
+}
+/** Distance from `p` to the segment `a`–`b` (3D). */
+function segmentDistance(p, a, b) {
+  const d = [0, 1, 2].map((i) => b[i] - a[i]), w = [0, 1, 2].map((i) => p[i] - a[i]);
+  const dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const s = dd > 0 ? Math.max(0, Math.min(1, (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd)) : 0;
+  return Math.hypot(w[0] - s * d[0], w[1] - s * d[1], w[2] - s * d[2]);
+}
+/** Whether a sphere of radius `r` at `p` stands `gap` clear of the form's straws, coins, cards,
+ * other spheres (all but sphere `skip`) and eye, as the rules measure them. */
+function sphereClear(form, p, r, gap, skip) {
+  const floor = inside(form).floor, rad = (deg) => (deg * Math.PI) / 180;
+  for (const s of form.straw || []) {
+    const t = rad(s.tilt || 0), a = rad(s.azimuth || 0), R = s.radius || STRAW_R, L = s.length || STRAW_H;
+    const foot = [s.x, s.y, floor + R * Math.sin(t)];
+    const top = [foot[0] + L * Math.sin(t) * Math.cos(a), foot[1] + L * Math.sin(t) * Math.sin(a), foot[2] + L * Math.cos(t)];
+    if (segmentDistance(p, foot, top) < r + R + gap) return false;
+  }
+  for (const c of form.coin || []) {
+    const across = Math.max(0, Math.hypot(p[0] - c.x, p[1] - c.y) - (c.radius || COIN_R));
+    const up = Math.max(0, floor - p[2], p[2] - (floor + (c.thickness || 0)));
+    if (Math.hypot(across, up) < r + gap) return false;
+  }
+  for (const o of form.card || []) {
+    const f = rad(o.facing || 0), h = o.width / 2, u = [-Math.sin(f), Math.cos(f)];
+    const a = [o.center[0] - h * u[0], o.center[1] - h * u[1], 0], b = [o.center[0] + h * u[0], o.center[1] + h * u[1], 0];
+    const across = segmentDistance([p[0], p[1], 0], a, b);
+    const up = Math.max(0, o.center[2] - o.height / 2 - p[2], p[2] - o.center[2] - o.height / 2);
+    if (Math.hypot(across, up) < r + gap) return false;
+  }
+  if ((form.sphere || []).some((o, k) => k !== skip && Math.hypot(p[0] - o.center[0], p[1] - o.center[1], p[2] - o.center[2]) < r + o.radius + gap)) return false;
+  const e = state.observer;
+  return Math.hypot(p[0] - e[0], p[1] - e[1], p[2] - e[2]) > r + gap;
+}
+/** A new sphere: a glass marble (radius 1 cm, index 1.5, smaller in a small container or
+ * shallow water) resting on the floor, in the first place on rings out from the middle 1 mm
+ * clear of every object; failing that, on the table beside the container, away from the eye. */
+function newSphere(form) {
+  const c = inside(form), reach = c.tank ? Math.min(c.hx, c.hy) : c.r, mm = (v) => Math.floor(v * 1000) / 1000;
+  let r = Math.max(0.001, Math.min(0.01, mm(0.3 * reach)));
+  const water = (form.liquid || [])[0];
+  if (water && water.top - c.floor < 2 * r + 0.002) r = Math.max(0.002, Math.min(r, mm((water.top - c.floor - 0.002) / 2)));
+  const z = restingOn(c.floor, r), r4 = (v) => Math.round(v * 1e4) / 1e4;
+  for (const f of [0, 0.25, 0.45, 0.65]) {
+    for (let k = 0; k < (f ? 12 : 1); k++) {
+      const a = (k * Math.PI) / 6, p = [r4(f * reach * Math.cos(a)), r4(f * reach * Math.sin(a)), z];
+      if (sphereHeld(form, p, r + 1e-4) && sphereClear(form, p, r, 1e-3, -1)) return { center: p, radius: r, index: 1.5 };
+    }
+  }
+  const k0 = form.container || {}, out = (k0.shape === "tank" ? Math.hypot(k0.half_x, k0.half_y) : k0.radius) + r + 0.01;
+  const az = Math.atan2(state.observer[1], state.observer[0]);
+  let p = null;
+  for (let k = 0; k < 12; k++) {
+    const a = az + Math.PI / 2 + (k * Math.PI) / 6;
+    p = [r4(out * Math.cos(a)), r4(out * Math.sin(a)), restingOn(0, r)];
+    if (sphereClear(form, p, r, 1e-3, -1)) break;
+  }
+  return { center: p, radius: r, index: 1.5 };
+}
 /** A new object of `kind` for the form: the keys a user would change first, the rest left to
  * the file's defaults. */
 function newObject(kind, form) {
@@ -91,6 +191,7 @@ function newObject(kind, form) {
     return { name, index, top: r3(below + (c.height - below) / 2) };
   }
   if (kind === "straw" || kind === "coin") { const [x, y] = freeSpot(form, kind === "straw" ? STRAW_R : COIN_R); return { x, y }; }
+  if (kind === "sphere") return newSphere(form);
   // A card behind the container, facing the eye.
   const az = Math.atan2(state.observer[1], state.observer[0]);
   const d = (c.tank ? Math.max(c.hx, c.hy) : c.r) + 0.06;
@@ -158,7 +259,7 @@ export function showObjects() {
   const form = viewForm();
   if (!form) return;
   const c = form.container || {};
-  const signature = [c.shape, ...["liquid", "straw", "coin", "card"].map((k) => (form[k] || []).length)].join(",");
+  const signature = [c.shape, ...TABLES.map((k) => (form[k] || []).length)].join(",");
   if (signature === formSignature) { fillObjects(form); return; }
   formSignature = signature;
   const boxes = [];
@@ -168,6 +269,7 @@ export function showObjects() {
     lg.textContent = t(legend, params); // written again with the others when the language changes
     fs.append(lg);
     const prefix = table === "container" ? "container" : `${table}[${k + 1}]`;
+    fs.dataset.object = prefix; // a rule about the whole object (`sphere[1]`) marks its box
     const values = table === "container" ? c : form[table][k];
     if (table === "container") {
       fs.append(field("container.shape", "obj.shape", ["glass", "tank"], c.shape));
@@ -179,12 +281,12 @@ export function showObjects() {
     boxes.push(fs);
   };
   box("obj.container", null, FORM_FIELDS[c.shape === "tank" ? "tank" : "glass"], "container");
-  for (const table of ["liquid", "straw", "coin", "card"]) {
+  for (const table of TABLES) {
     (form[table] || []).forEach((_, k) => box("obj." + table, { i: k + 1 }, FORM_FIELDS[table], table, k));
   }
   const add = document.createElement("div");
   add.className = "add";
-  for (const table of ["liquid", "straw", "coin", "card"]) {
+  for (const table of TABLES) {
     add.append(formButton("obj.add." + table, "obj.add.title", "", () => editForm((f) => { (f[table] = f[table] || []).push(newObject(table, f)); })));
   }
   objectsEl.replaceChildren(...boxes, add);
@@ -262,15 +364,19 @@ objectsEl.addEventListener("change", (e) => {
 export function markObjects(error) {
   for (const el of objectsEl.querySelectorAll("[aria-invalid]")) el.removeAttribute("aria-invalid");
   const keys = error && error.refusal ? error.refusal.rules.map((r) => r.key) : error && error.params && error.params.key ? [error.params.key] : [];
-  for (const key of keys) for (const el of objectsEl.querySelectorAll(`[data-key="${CSS.escape(key)}"]`)) el.setAttribute("aria-invalid", "true");
+  for (const key of keys) {
+    for (const el of objectsEl.querySelectorAll(`[data-key="${CSS.escape(key)}"], [data-object="${CSS.escape(key)}"]`)) el.setAttribute("aria-invalid", "true");
+  }
   const text = errorText(error);
   objectsErrorsEl.replaceChildren(...text.split("\n").filter((l) => l.trim()).map((l) => { const li = document.createElement("li"); li.textContent = l; return li; }));
   objectsErrorsEl.hidden = !text;
 }
 
-// Drags on the maps: a straw, a coin or a card from above, a liquid's surface from the side.
-// Each step is the form changed and sent as a text; a step the rules refuse is left out, so the
-// object stops where it may still be (no banner: the banner is for typed values).
+// Drags on the maps: a straw, a coin, a card or a sphere from above, a liquid's surface or a
+// sphere's height from the side. Each step is the form changed and sent as a text; a step the
+// rules refuse is left out, so the object stops where it may still be (no banner: the banner is
+// for typed values). The body's data-drag is "1" while steps are being sent (tests wait on it),
+// data-drag-steps and data-drag-refused count the steps taken and left out.
 let dragSending = false, dragNext = null;
 /** The object drag under way or last made (a token), and the latest text it made. */
 export let dragGesture = null, dragText = null;
@@ -284,9 +390,13 @@ async function dragForm(change) {
   dragNext = f;
   if (dragSending) return;
   dragSending = true;
+  const body = document.body.dataset, count = (k) => { body[k] = String(Number(body[k] || 0) + 1); };
+  body.drag = "1";
   while (dragNext) {
     const next = dragNext;
     dragNext = null;
+    // A step that moves nothing (an object held at a wall) asks for nothing.
+    if (JSON.stringify(next) === JSON.stringify(viewForm())) continue;
     try {
       const text = await formText(next);
       const observer = await checkScene(text, "hook");
@@ -298,20 +408,35 @@ async function dragForm(change) {
       sceneText.value = text;
       showSceneErrors(null);
       changed();
-    } catch (_) { /* refused: the object stays at its last allowed place */ }
+      count("dragSteps");
+    } catch (_) { count("dragRefused"); /* refused: the object stays at its last allowed place */ }
   }
   dragSending = false;
+  body.drag = "0";
 }
-/** The objects a drag can take on a map: `{ kind, k, at }` (their pixels). */
+/** A sphere's handle: at its centre's pixel `at`, its ring within the sphere's disc of `px`
+ * pixels where that is small, so that the disc shows round it. */
+const sphereHandle = (k, at, px) => ({ kind: "sphere", k, at, ring: px >= 10 ? 5 : Math.max(2.5, px / 2) });
+/** The objects a drag can take on a map: `{ kind, k, at }` (their pixels). From above `P(x, y)`
+ * is the map's pixel; from the side `P(s, z)`, with `side` `{ u, half }`: the horizontal unit
+ * vector `s` runs along and the container's half width along it. */
 export function handlesOf(form, P, side) {
   const hs = [];
   if (side) {
-    // A surface's ring beside the container's side, off the layer's tint.
-    (form.liquid || []).forEach((l, k) => { const [x, y] = P(l.top); hs.push({ kind: "liquid", k, at: [x + 8, y] }); });
+    // A surface's ring beside the container's side, off the layer's tint; a sphere's at its centre.
+    (form.liquid || []).forEach((l, k) => { const [x, y] = P(side.half, l.top); hs.push({ kind: "liquid", k, at: [x + 8, y] }); });
+    (form.sphere || []).forEach((o, k) => {
+      const s = o.center[0] * side.u[0] + o.center[1] * side.u[1], at = P(s, o.center[2]);
+      hs.push(sphereHandle(k, at, Math.abs(P(s + o.radius, o.center[2])[0] - at[0])));
+    });
     return hs;
   }
   for (const kind of ["straw", "coin"]) (form[kind] || []).forEach((o, k) => hs.push({ kind, k, at: P(o.x, o.y) }));
   (form.card || []).forEach((o, k) => hs.push({ kind: "card", k, at: P(o.center[0], o.center[1]) }));
+  (form.sphere || []).forEach((o, k) => {
+    const at = P(o.center[0], o.center[1]);
+    hs.push(sphereHandle(k, at, Math.abs(P(o.center[0] + o.radius, o.center[1])[0] - at[0])));
+  });
   return hs;
 }
 /** The handle within a fingertip of `(x, y)`, nearest first; null if none. */
@@ -323,9 +448,61 @@ export function handleAt(handles, x, y, reach) {
   }
   return best;
 }
+/** How deep `(x, y)` lies within the container's outer outline seen from above (<= 0 outside). */
+function depthIn(form, x, y) {
+  const k = form.container || {};
+  return k.shape === "tank" ? Math.min(k.half_x - Math.abs(x), k.half_y - Math.abs(y)) : k.radius - Math.hypot(x, y);
+}
+/** Sphere `k` of the form `f` moved towards the map's point `q`. From above (`[x, y]`): kept
+ * inside the container if it is in it, else round it (free where it floats above the rim or
+ * below the foot). From the side (`[s, z]`, its height only): down to the floor inside, or
+ * stopped over the rim (or under the foot) where it overhangs the walls. On its way it stops
+ * short of the straws, coins, cards, other spheres and the eye, so that it never jumps over one
+ * within a step; the rules (the engine) have the last word. */
+function moveSphere(f, k, q, side) {
+  const o = f.sphere[k], [x, y, z] = o.center, r = o.radius, height = (f.container || {}).height;
+  const floor = inside(f).floor;
+  let at; // the place at the fraction `t` of the way, or null where it must stop
+  if (!side) {
+    const free = z - r > height || z + r < 0;
+    const held = sphereHeld(f, [x, y], r) && z - r >= floor;
+    at = (t) => {
+      const p = [x + t * (q[0] - x), y + t * (q[1] - y)];
+      if (free) return [r5(p[0]), r5(p[1]), z];
+      if (held) return [...keepInside(f, p, r), z];
+      // Round the container, not through it: the pointer deep inside its outline stops it.
+      return depthIn(f, p[0], p[1]) > r ? null : [...keepOutside(f, p, r + 1e-4), z];
+    };
+  } else {
+    let nz = r5(q[1]);
+    if (sphereHeld(f, [x, y], r)) nz = z >= floor ? Math.max(nz, restingOn(floor, r)) : Math.min(nz, r5(-r - 1e-4));
+    else {
+      const d = outsideBy(f, x, y);
+      if (d < r + 1e-4) {
+        const h = Math.sqrt(Math.max(0, r * r - d * d)) + 1e-4;
+        nz = z >= height / 2 ? Math.max(nz, Math.ceil((height + h) * 1e5) / 1e5) : Math.min(nz, Math.floor(-h * 1e5) / 1e5);
+      }
+    }
+    at = (t) => [x, y, t === 1 ? nz : r5(z + t * (nz - z))];
+  }
+  // Steps of 0.2 mm (at most 600) from where it is; the objects are judged only if the sphere
+  // stands clear of them where it starts (a card wholly inside it, say, is the engine's to judge),
+  // 10 µm clear unless it starts closer (touching one, it may still move away).
+  const end = at(1), way = end ? Math.hypot(end[0] - x, end[1] - y, end[2] - z) : Math.hypot(q[0] - x, q[1] - y);
+  const gap = sphereClear(f, o.center, r, 1e-5, k) ? 1e-5 : 0, judged = gap > 0 || sphereClear(f, o.center, r, 0, k);
+  const n = Math.min(600, Math.max(1, Math.ceil(way / 2e-4)));
+  let last = o.center;
+  for (let i = 1; i <= n; i++) {
+    const p = at(i / n);
+    if (!p || (judged && !sphereClear(f, p, r, gap, k))) break;
+    last = p;
+  }
+  o.center = last;
+}
 /** Moves the handle `h` to the map's point `q` (`[x, y]` from above, `[s, z]` from the side). */
-export function dragHandle(h, q) {
+export function dragHandle(h, q, side) {
   dragForm((f) => {
+    if (h.kind === "sphere") { moveSphere(f, h.k, q, side); return; }
     if (h.kind === "liquid") {
       const c = inside(f), layers = f.liquid;
       const lo = (h.k ? layers[h.k - 1].top : c.floor) + 1e-3;

@@ -1,5 +1,5 @@
-// The side and top maps: the glass or the scene's outlines and liquids, the eye, the straw and
-// the objects' handles, and their drags (the eye, the glass's straw, a scene's objects).
+// The side and top maps: the glass or the scene's outlines and liquids, the eye, the straw, the
+// spheres and the objects' handles, and their drags (the eye, the glass's straw, a scene's objects).
 import { t } from "./i18n.js";
 import { state, SECTION_RGB, GLASS_R, GLASS_H, STRAW_R } from "./state.js";
 import { sideCanvas, topCanvas } from "./dom.js";
@@ -92,9 +92,10 @@ export function drawMaps() {
       drawLiquidsSide(ctx, lines, u, P);
       drawLines(ctx, lines, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]));
       const form = viewForm(), c = lines.container;
+      if (form) drawSpheres(ctx, form, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]), k);
       if (form && c) {
         const half = c.shape === "glass" ? c.radius : Math.abs(u[0]) * c.half_x + Math.abs(u[1]) * c.half_y;
-        sideCanvas.handles = handlesOf(form, (z) => P(half, z), true);
+        sideCanvas.handles = handlesOf(form, P, { u, half });
         drawHandles(ctx, sideCanvas.handles);
       }
     } else {
@@ -126,7 +127,7 @@ export function drawMaps() {
       drawLiquidsTop(ctx, lines, P, k);
       drawLines(ctx, lines, (q) => P(q[0], q[1]));
       const form = viewForm();
-      if (form) { topCanvas.handles = handlesOf(form, P, false); drawHandles(ctx, topCanvas.handles); }
+      if (form) { drawSpheres(ctx, form, (q) => P(q[0], q[1]), k); topCanvas.handles = handlesOf(form, P, null); drawHandles(ctx, topCanvas.handles); }
     }
     else {
       ctx.fillStyle = state.he > 0 ? liquidTint(0, state.n) : "transparent"; ctx.strokeStyle = "#4a7fc1";
@@ -143,12 +144,22 @@ export function drawMaps() {
   }
 }
 
-/** The objects' handles on a map: a small ring where a drag takes each. */
+/** The form's spheres on a map: a disc of its radius about its centre (`at` a point's pixel, `k`
+ * pixels per metre), tinted as glass. */
+function drawSpheres(ctx, form, at, k) {
+  ctx.lineWidth = 1.5; ctx.strokeStyle = "#1b7f86"; ctx.fillStyle = "rgba(27,127,134,0.16)";
+  for (const o of form.sphere || []) {
+    ctx.beginPath(); ctx.arc(...at(o.center), Math.max(2, o.radius * k), 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+  }
+  ctx.lineWidth = 1;
+}
+
+/** The objects' handles on a map: a small ring where a drag takes each (of radius `ring`, else 5 px). */
 function drawHandles(ctx, handles) {
   ctx.lineWidth = 1.5;
   for (const h of handles) {
     ctx.strokeStyle = "#1d2330"; ctx.fillStyle = "rgba(255,255,255,.7)";
-    ctx.beginPath(); ctx.arc(h.at[0], h.at[1], 5, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+    ctx.beginPath(); ctx.arc(h.at[0], h.at[1], h.ring || 5, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
   }
   ctx.lineWidth = 1;
 }
@@ -189,7 +200,7 @@ onDrag(sideCanvas, {
   move: (dx, dy, e) => {
     const r = sideCanvas.getBoundingClientRect();
     const [s, z] = sideCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
-    if (draggingSide) { dragHandle(draggingSide, [s, z]); return; }
+    if (draggingSide) { dragHandle(draggingSide, [s, z], true); return; }
     const o = state.observer, az = Math.atan2(o[1], o[0]);
     const d = Math.max(0.001, s);
     state.observer = outside([d * Math.cos(az), d * Math.sin(az), z]);
