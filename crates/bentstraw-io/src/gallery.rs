@@ -1,7 +1,7 @@
 //! The gallery of classic demonstrations, built into the program: its scene files, by name.
 
 /// The gallery's scene files beyond the assignment's own (`scenes/`): name and text.
-pub const GALLERY: [(&str, &str); 16] = [
+pub const GALLERY: [(&str, &str); 22] = [
     (
         "leaning-straw",
         include_str!("../../../scenes/leaning-straw.toml"),
@@ -65,6 +65,30 @@ pub const GALLERY: [(&str, &str); 16] = [
     (
         "dense-liquid",
         include_str!("../../../scenes/dense-liquid.toml"),
+    ),
+    (
+        "marble-in-water",
+        include_str!("../../../scenes/marble-in-water.toml"),
+    ),
+    (
+        "fish-bowl",
+        include_str!("../../../scenes/fish-bowl.toml"),
+    ),
+    (
+        "water-drop-magnifier",
+        include_str!("../../../scenes/water-drop-magnifier.toml"),
+    ),
+    (
+        "vanishing-ball",
+        include_str!("../../../scenes/vanishing-ball.toml"),
+    ),
+    (
+        "ball-lens",
+        include_str!("../../../scenes/ball-lens.toml"),
+    ),
+    (
+        "half-dipped-ball",
+        include_str!("../../../scenes/half-dipped-ball.toml"),
     ),
 ];
 

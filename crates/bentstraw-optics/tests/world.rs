@@ -27,7 +27,7 @@ fn gallery(name: &str) -> SceneDescription {
     scene(&std::fs::read_to_string(path).expect("a gallery file"))
 }
 
-const GALLERY: [&str; 17] = [
+const GALLERY: [&str; 23] = [
     "spec.toml",
     "leaning-straw.toml",
     "real-glass.toml",
@@ -45,6 +45,12 @@ const GALLERY: [&str; 17] = [
     "pencil-at-a-slant.toml",
     "leaning-straw-above.toml",
     "dense-liquid.toml",
+    "marble-in-water.toml",
+    "fish-bowl.toml",
+    "water-drop-magnifier.toml",
+    "vanishing-ball.toml",
+    "ball-lens.toml",
+    "half-dipped-ball.toml",
 ];
 
 fn ray_to(from: Vec3, to: Vec3) -> Ray {

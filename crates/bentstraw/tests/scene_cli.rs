@@ -357,6 +357,12 @@ fn every_gallery_scene_is_simulated_and_rendered() {
         "pencil-at-a-slant",
         "leaning-straw-above",
         "dense-liquid",
+        "marble-in-water",
+        "fish-bowl",
+        "water-drop-magnifier",
+        "vanishing-ball",
+        "ball-lens",
+        "half-dipped-ball",
     ] {
         let file = gallery(&format!("{name}.toml"));
         for (ext, check) in [("csv", true), ("ply", false), ("json", false)] {
