@@ -149,6 +149,14 @@ rules! {
     PrismTop = "prism.top", "the top must be above the bottom ({bottom})";
     /// A prism cuts the container's walls or floor.
     PrismContainer = "prism.container", "it cuts the container: a prism stands inside it, above the floor (through any liquid's surface), or wholly outside it";
+    /// A lens's axis is zero.
+    LensAxis = "lens.axis", "the axis must be a direction: not (0, 0, 0)";
+    /// A lens's face is more curved than its diameter allows.
+    LensRadius = "lens.radius", "a curved face's radius must be at least half the diameter ({half}) in size, or 0 for a flat face";
+    /// A lens's faces cross inside its diameter.
+    LensFaces = "lens.faces", "its faces cross inside its diameter: {rho} from the axis they are {gap} apart (make it thicker or its faces less curved)";
+    /// A lens cuts the container or a liquid's surface.
+    LensPlace = "lens.place", "centred at ({x}, {y}, {z}), within {radius} of its centre, it cuts the container or a liquid's surface: a lens stands inside the container above the floor, wholly in one liquid or above them, or wholly outside it";
     /// A transparent solid overlaps another object.
     SolidOverlap = "solid.overlap", "it overlaps {other}: they come {gap} close, less than {sum}; a transparent solid must stand clear of every other object";
     /// A card cuts a solid's surface.

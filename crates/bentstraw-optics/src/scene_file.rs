@@ -663,6 +663,83 @@ pub struct Prism {
     pub index: f64,
 }
 
+/// A lens of its own index: two faces, each a sphere's cap (or flat), about its optical axis,
+/// and a rim of its diameter between them. Light along `+axis` meets face 1 first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lens {
+    /// The middle of its axis between the two vertices (m).
+    pub center: Vec3,
+    /// Its optical axis, as the file gives it (any length but 0).
+    pub axis: Vec3,
+    /// Face 1's radius of curvature, signed: positive when its centre of curvature lies on the
+    /// `+axis` side of its vertex; 0 for a flat face (m).
+    pub radius1: f64,
+    /// Face 2's radius of curvature, signed the same way (m).
+    pub radius2: f64,
+    /// Its thickness on the axis, vertex to vertex (m).
+    pub thickness: f64,
+    /// Its diameter (m).
+    pub diameter: f64,
+    /// Its refractive index.
+    pub index: f64,
+}
+
+impl Lens {
+    /// Its axis as a unit vector.
+    pub fn unit_axis(&self) -> Vec3 {
+        self.axis.normalize()
+    }
+
+    /// How far along the axis a face of radius `r` lies at distance `rho` from it, from its
+    /// vertex (its sag; 0 for a flat face).
+    pub fn sag(r: f64, rho: f64) -> f64 {
+        if r == 0.0 {
+            0.0
+        } else {
+            r - r.signum() * (r * r - rho * rho).max(0.0).sqrt()
+        }
+    }
+
+    /// The axial coordinates (from the centre) of face 1 and face 2 at distance `rho` from the
+    /// axis.
+    pub fn faces_at(&self, rho: f64) -> (f64, f64) {
+        (
+            -self.thickness / 2.0 + Lens::sag(self.radius1, rho),
+            self.thickness / 2.0 + Lens::sag(self.radius2, rho),
+        )
+    }
+
+    /// The radius of a sphere about its centre holding it.
+    pub fn reach(&self) -> f64 {
+        let (f1, f2) = self.faces_at(self.diameter / 2.0);
+        let along = (self.thickness / 2.0).max(f1.abs()).max(f2.abs());
+        libm::hypot(self.diameter / 2.0, along)
+    }
+
+    /// Whether the point `p` is in the lens (its faces and rim included).
+    pub fn contains(&self, p: Vec3) -> bool {
+        let a = self.unit_axis();
+        let q = p - self.center;
+        let w = q.dot(a);
+        let rho = (q - w * a).length();
+        let (f1, f2) = self.faces_at(rho);
+        rho <= self.diameter / 2.0 && w >= f1 && w <= f2
+    }
+
+    /// The corners of a box holding it.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        let r = Vec3::splat(self.reach());
+        (self.center - r, self.center + r)
+    }
+
+    /// Whether it stands inside `container`, above the floor (a valid lens that does not
+    /// stands wholly outside it).
+    pub fn inside(&self, container: &Container) -> bool {
+        let (c, r) = (self.center, self.reach());
+        container.holds_disk(c.x, c.y, r) && c.z - r >= container.floor()
+    }
+}
+
 /// Most corners a prism may have: each is a face every ray is tested against.
 pub const MAX_PRISM_CORNERS: usize = 16;
 
@@ -830,6 +907,8 @@ pub struct SceneDescription {
     pub spheres: Vec<Sphere>,
     /// The transparent prisms and blocks.
     pub prisms: Vec<Prism>,
+    /// The lenses.
+    pub lenses: Vec<Lens>,
     /// The view it is meant for, if the file gives one.
     pub observer: Option<Observer>,
 }
@@ -859,7 +938,7 @@ impl SceneDescription {
         }
         if objects > MAX_OBJECTS {
             broken.check(Err(refuse_key(
-                "straw, coin, card, sphere, prism",
+                "straw, coin, card, sphere, prism, lens",
                 Rule::TooManyObjects,
                 vec![
                     ("count", bound(objects as f64)),
@@ -887,9 +966,13 @@ impl SceneDescription {
         for (i, p) in self.prisms.iter().enumerate() {
             broken.check(self.validate_prism(i, p));
         }
+        for (i, l) in self.lenses.iter().enumerate() {
+            broken.check(self.validate_lens(i, l));
+        }
         if broken.0.is_empty() {
             broken.check(self.validate_sphere_overlaps());
             broken.check(self.validate_prism_overlaps());
+            broken.check(self.validate_lens_overlaps());
             broken.check(self.validate_overlaps());
             broken.check(self.validate_observer());
         }
@@ -1158,6 +1241,128 @@ impl SceneDescription {
                 Rule::PrismContainer,
                 vec![],
             ));
+        }
+        Ok(())
+    }
+
+    /// Lens `i`'s own rules: its numbers, its axis not zero, each curved face's radius at least
+    /// half its diameter, its faces apart across the whole diameter, and its place: inside the
+    /// container above the floor and wholly in one layer (or above them all), or wholly outside
+    /// it (taken with the sphere about its centre that holds it).
+    fn validate_lens(&self, i: usize, l: &Lens) -> Result<(), Box<SceneFileError>> {
+        let key = |k: &str| format!("lens[{}].{k}", i + 1);
+        for v in l.center.to_array() {
+            length(&key("center"), v)?;
+        }
+        for v in l.axis.to_array() {
+            finite(&key("axis"), v)?;
+        }
+        if l.axis.length() == 0.0 || !l.axis.length().is_finite() {
+            return Err(refuse_key(&key("axis"), Rule::LensAxis, vec![]));
+        }
+        positive(&key("thickness"), l.thickness)?;
+        positive(&key("diameter"), l.diameter)?;
+        finite(&key("index"), l.index)?;
+        if l.index < 1.0 {
+            return Err(refuse(&key("index"), l.index, Rule::IndexMin, vec![]));
+        }
+        for (name, r) in [("radius1", l.radius1), ("radius2", l.radius2)] {
+            if r != 0.0 {
+                length(&key(name), r)?;
+                if r.abs() < l.diameter / 2.0 {
+                    return Err(refuse(
+                        &key(name),
+                        r,
+                        Rule::LensRadius,
+                        vec![("half", number(l.diameter / 2.0))],
+                    ));
+                }
+            }
+        }
+        // The faces may not meet or cross anywhere within the diameter.
+        for k in 0..=64 {
+            let rho = l.diameter / 2.0 * k as f64 / 64.0;
+            let (f1, f2) = l.faces_at(rho);
+            if f2 - f1 < 0.0 {
+                return Err(refuse_key(
+                    &format!("lens[{}]", i + 1),
+                    Rule::LensFaces,
+                    vec![("rho", number(rho)), ("gap", number(f2 - f1))],
+                ));
+            }
+        }
+        let (c, reach) = (l.center, l.reach());
+        let mut params = point(c);
+        params.push(("radius", number(reach)));
+        let inside = l.inside(&self.container);
+        let crosses = self.liquids.iter().any(|q| (c.z - q.top).abs() < reach);
+        if (!inside && self.container.distance_to(c) < reach) || (inside && crosses) {
+            return Err(refuse_key(
+                &format!("lens[{}]", i + 1),
+                Rule::LensPlace,
+                params,
+            ));
+        }
+        Ok(())
+    }
+
+    /// Lenses stand clear of the other objects, each taken as the sphere about its centre that
+    /// holds it; the eye outside them is checked with the observer.
+    fn validate_lens_overlaps(&self) -> Result<(), Box<SceneFileError>> {
+        let floor = self.container.floor();
+        for (j, l) in self.lenses.iter().enumerate() {
+            let (c, r) = (l.center, l.reach());
+            let overlap = |other: String, gap: f64, sum: f64| {
+                refuse_key(
+                    &format!("lens[{}]", j + 1),
+                    Rule::SolidOverlap,
+                    vec![
+                        ("other", words(other)),
+                        ("gap", number(gap)),
+                        ("sum", number(sum)),
+                    ],
+                )
+            };
+            for (i, m) in self.lenses[..j].iter().enumerate() {
+                let gap = (m.center - c).length();
+                if gap < r + m.reach() {
+                    return Err(overlap(format!("lens[{}]", i + 1), gap, r + m.reach()));
+                }
+            }
+            for (i, b) in self.spheres.iter().enumerate() {
+                let gap = (b.center - c).length();
+                if gap < r + b.radius {
+                    return Err(overlap(format!("sphere[{}]", i + 1), gap, r + b.radius));
+                }
+            }
+            for (i, p) in self.prisms.iter().enumerate() {
+                let gap = p.distance(c);
+                if gap < r {
+                    return Err(overlap(format!("prism[{}]", i + 1), gap, r));
+                }
+            }
+            for (i, s) in self.straws.iter().enumerate() {
+                let foot = s.bottom_centre(floor);
+                let gap = point_segment_distance(c, foot, foot + s.length * s.axis());
+                if gap < r + s.radius {
+                    return Err(overlap(format!("straw[{}]", i + 1), gap, r + s.radius));
+                }
+            }
+            for (i, coin) in self.coins.iter().enumerate() {
+                let gap = distance_to_disk_solid(c, coin, floor);
+                if gap < r {
+                    return Err(overlap(format!("coin[{}]", i + 1), gap, r));
+                }
+            }
+            for (i, card) in self.cards.iter().enumerate() {
+                if distance_to_rectangle(c, &card.corners()) < r {
+                    return Err(refuse_key(
+                        &format!("lens[{}]", j + 1),
+                        Rule::SolidCard,
+                        vec![("other", words(format!("card[{}]", i + 1)))],
+                    ));
+                }
+            }
         }
         Ok(())
     }
@@ -1439,6 +1644,13 @@ impl SceneDescription {
                 at(Some(format!("sphere[{}]", i + 1))),
             ));
         }
+        if let Some(i) = self.lenses.iter().position(|l| l.contains(p)) {
+            return Err(refuse_key(
+                "observer.position",
+                Rule::EyeInSolid,
+                at(Some(format!("lens[{}]", i + 1))),
+            ));
+        }
         if let Some(i) = self.prisms.iter().position(|q| q.distance(p) == 0.0) {
             return Err(refuse_key(
                 "observer.position",
@@ -1587,6 +1799,7 @@ impl SceneDescription {
             cards: vec![],
             spheres: vec![],
             prisms: vec![],
+            lenses: vec![],
             observer: None,
         }
     }

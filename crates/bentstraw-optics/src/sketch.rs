@@ -131,6 +131,53 @@ fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
             out.push([at(a, z_min), at(b, z_min)]);
             out.push([at(a, z_max), at(b, z_max)]);
         }
+        Shape::Cap {
+            centre,
+            radius,
+            toward,
+            rho2,
+        } => {
+            // Its rim, and two arcs across it through its vertex.
+            let (r, rim) = (radius.abs(), rho2.sqrt());
+            let (e1, e2) = toward.any_orthonormal_pair();
+            out.extend(pairs(&ring(
+                centre + (r * r - rho2).max(0.0).sqrt() * toward,
+                e1,
+                e2,
+                rim,
+            )));
+            let half = (rim / r).min(1.0).asin();
+            for e in [e1, e2] {
+                let arc: Vec<Vec3> = (0..=24)
+                    .map(|k| {
+                        let a = -half + 2.0 * half * k as f64 / 24.0;
+                        centre + r * (a.cos() * toward + a.sin() * e)
+                    })
+                    .collect();
+                out.extend(pairs(&arc));
+            }
+        }
+        Shape::Disk { centre, normal, r2 } => {
+            let (e1, e2) = normal.any_orthonormal_pair();
+            out.extend(pairs(&ring(centre, e1, e2, r2.sqrt())));
+        }
+        Shape::Tube {
+            centre,
+            axis,
+            r2,
+            w_min,
+            w_max,
+        } => {
+            // Its two circles and four lines along it.
+            let (e1, e2) = axis.any_orthonormal_pair();
+            let r = r2.sqrt();
+            for w in [w_min, w_max] {
+                out.extend(pairs(&ring(centre + w * axis, e1, e2, r)));
+            }
+            for e in [e1, -e1, e2, -e2] {
+                out.push([centre + w_min * axis + r * e, centre + w_max * axis + r * e]);
+            }
+        }
         Shape::Sphere {
             centre,
             radius,

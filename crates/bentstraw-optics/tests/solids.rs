@@ -227,12 +227,12 @@ fn a_spheres_place_breaks_no_rule() {
     let card = "[[card]]\ncenter = [0.3, 0.0, 0.1]\nwidth = 0.02\nheight = 0.02\n";
     refused(
         &format!("{}{card}", ball([0.3, 0.0, 0.1], 0.012)),
-        "sphere.card",
+        "solid.card",
     );
     let eye = "[observer]\nposition = [0.3, 0.0, 0.1]\n";
     refused(
         &format!("{}{eye}", ball([0.3, 0.0, 0.1], 0.02)),
-        "observer.in-sphere",
+        "observer.in-solid",
     );
     refused(
         "[[sphere]]\ncenter = [0.3, 0.0, 0.1]\nradius = 0.02\nindex = 0.9\n",
@@ -539,6 +539,133 @@ fn a_prisms_shape_and_place_break_no_rule() {
             "{}[[card]]\ncenter = [0.35, 0.03, 0.05]\nwidth = 0.01\nheight = 0.01\n",
             prism(outside, 0.0, 0.1)
         ),
+    ] {
+        let d = scene(&format!("{base}{ok}"));
+        assert_eq!(scene(&d.to_toml()), d);
+        World::new(&d, 10).expect("a world");
+    }
+}
+
+/// A lens in air centred at `centre` with optical axis `axis`.
+fn lens_in_air(centre: Vec3, axis: Vec3, r1: f64, r2: f64, thickness: f64, index: f64) -> World {
+    let d = scene(&format!(
+        "[container]\nshape = \"glass\"\nradius = 0.01\nheight = 0.01\n\n\
+         [[lens]]\ncenter = [{}, {}, {}]\naxis = [{}, {}, {}]\nradius1 = {r1}\nradius2 = {r2}\n\
+         thickness = {thickness}\ndiameter = 0.04\nindex = {index}\n",
+        centre.x, centre.y, centre.z, axis.x, axis.y, axis.z
+    ));
+    World::new(&d, 10).expect("a valid scene")
+}
+
+/// The thick lens's back focal distance, from the back vertex: `1/f = (n − 1)[1/R1 − 1/R2 +
+/// (n − 1)·d/(n·R1·R2)]` and `BFD = f·(1 − (n − 1)·d/(n·R1))` (a flat face has `1/R = 0`).
+fn back_focal_distance(r1: f64, r2: f64, d: f64, n: f64) -> f64 {
+    let inv = |r: f64| if r == 0.0 { 0.0 } else { 1.0 / r };
+    let power = (n - 1.0) * (inv(r1) - inv(r2) + (n - 1.0) * d * inv(r1) * inv(r2) / n);
+    let f = 1.0 / power;
+    f * (1.0 - (n - 1.0) * d * inv(r1) / n)
+}
+
+/// A paraxial ray parallel to a lens's axis crosses it (or seems to come from it, for a
+/// diverging lens) at the back focal distance the lensmaker's formula with thickness gives:
+/// biconvex, plano-convex (face 1 flat, then turned round: face 2 flat), a positive meniscus and
+/// a biconcave lens; along `+x` and along a slanted axis.
+#[test]
+fn a_lens_focuses_at_the_lensmakers_back_focal_distance() {
+    let centre = Vec3::new(0.3, 0.0, 0.2);
+    for (r1, r2, d, n) in [
+        (0.05, -0.05, 0.01, 1.5),
+        (0.0, -0.04, 0.008, 1.5),
+        (0.04, 0.0, 0.008, 1.6),
+        (0.03, 0.06, 0.008, 1.5),
+        (-0.05, 0.05, 0.004, 1.5),
+    ] {
+        let world = lens_in_air(centre, Vec3::X, r1, r2, d, n);
+        let h = 1e-6;
+        let ray = Ray::new(centre + Vec3::new(-0.2, h, 0.0), Vec3::X);
+        let (outcome, events) = trace_events(&world, ray);
+        assert_eq!(events.len(), 2, "({r1}, {r2}): {events:?}");
+        let Outcome::Escaped { ray: out, .. } = outcome else {
+            panic!("it leaves the scene")
+        };
+        let bfd = axis_crossing(out, centre) - d / 2.0;
+        let closed = back_focal_distance(r1, r2, d, n);
+        assert!(
+            (bfd - closed).abs() < 1e-9 * closed.abs().max(1.0),
+            "({r1}, {r2}, {d}, {n}): {bfd} vs {closed}"
+        );
+    }
+    // The same biconvex lens along a slanted axis.
+    let axis = Vec3::new(1.0, -2.0, 0.5).normalize();
+    let world = lens_in_air(centre, axis, 0.05, -0.05, 0.01, 1.5);
+    let side = axis.any_orthonormal_vector();
+    let h = 1e-4;
+    let ray = Ray::new(centre - 0.2 * axis + h * side, axis);
+    let Outcome::Escaped { ray: out, .. } = world.trace(ray) else {
+        panic!("it leaves the scene")
+    };
+    // Where the ray's line comes closest to the axis, along the axis from the back vertex.
+    let w = out.origin - centre;
+    let (b, dd, e) = (out.direction.dot(axis), out.direction.dot(w), axis.dot(w));
+    let s = (b * e - dd) / (1.0 - b * b);
+    let along = (out.at(s) - centre).dot(axis) - 0.005;
+    let closed = back_focal_distance(0.05, -0.05, 0.01, 1.5);
+    assert!((along - closed).abs() < 1e-6, "{along} vs {closed}");
+}
+
+/// A lens's rules: its axis a direction, each curved face's radius at least half its diameter,
+/// its faces apart across the whole diameter, its place inside one layer or outside the
+/// container; the eye outside it.
+#[test]
+fn a_lenss_shape_and_place_break_no_rule() {
+    let base = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
+                [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.1\n\n";
+    let lens = |c: [f64; 3], axis: [f64; 3], r1: f64, r2: f64, t: f64, d: f64| {
+        format!(
+            "[[lens]]\ncenter = [{}, {}, {}]\naxis = [{}, {}, {}]\nradius1 = {r1}\nradius2 = {r2}\n\
+             thickness = {t}\ndiameter = {d}\nindex = 1.5\n",
+            c[0], c[1], c[2], axis[0], axis[1], axis[2]
+        )
+    };
+    let refused = |extra: &str, code: &str| {
+        let e = SceneDescription::from_toml(&format!("{base}{extra}")).expect_err(extra);
+        assert!(
+            e.rules().any(|r| r.rule.code() == code),
+            "{extra}: {e} (wanted {code})"
+        );
+    };
+    let out = [0.3, 0.0, 0.1];
+    refused(
+        &lens(out, [0.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.04),
+        "lens.axis",
+    );
+    refused(
+        &lens(out, [1.0, 0.0, 0.0], 0.015, -0.05, 0.01, 0.04),
+        "lens.radius",
+    );
+    refused(
+        &lens(out, [1.0, 0.0, 0.0], 0.025, -0.025, 0.004, 0.04),
+        "lens.faces",
+    );
+    refused(
+        &lens([0.0, 0.0, 0.1], [1.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.03),
+        "lens.place",
+    );
+    refused(
+        &lens([0.05, 0.0, 0.1], [1.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.04),
+        "lens.place",
+    );
+    refused(
+        &format!(
+            "{}[observer]\nposition = [0.3, 0.0, 0.1]\n",
+            lens(out, [1.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.04)
+        ),
+        "observer.in-solid",
+    );
+    for ok in [
+        lens(out, [1.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.04),
+        lens(out, [0.0, 0.0, 1.0], 0.0, 0.0, 0.01, 0.04),
+        lens([0.0, 0.0, 0.05], [1.0, 1.0, 0.0], 0.05, -0.05, 0.006, 0.03),
     ] {
         let d = scene(&format!("{base}{ok}"));
         assert_eq!(scene(&d.to_toml()), d);

@@ -43,6 +43,8 @@ struct FileScene {
     sphere: Vec<FileSphere>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     prism: Vec<FilePrism>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    lens: Vec<FileLens>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     observer: Option<FileObserver>,
 }
@@ -144,6 +146,25 @@ struct FilePrism {
     bottom: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     top: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    index: Option<f64>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileLens {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    center: Option<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    axis: Option<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    radius1: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    radius2: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    thickness: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    diameter: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     index: Option<f64>,
 }
@@ -413,6 +434,28 @@ impl SceneDescription {
                 }
             })
             .collect();
+        let lenses: Vec<Lens> = file
+            .lens
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let key = |k: &str| format!("lens[{}].{k}", i + 1);
+                for (name, given) in [("center", l.center.is_some()), ("axis", l.axis.is_some())] {
+                    if !given {
+                        broken.push(*need(key(name)));
+                    }
+                }
+                Lens {
+                    center: Vec3::from_array(l.center.unwrap_or_default()),
+                    axis: Vec3::from_array(l.axis.unwrap_or([0.0, 0.0, 1.0])),
+                    radius1: get(key("radius1"), l.radius1, &mut broken),
+                    radius2: get(key("radius2"), l.radius2, &mut broken),
+                    thickness: get(key("thickness"), l.thickness, &mut broken),
+                    diameter: get(key("diameter"), l.diameter, &mut broken),
+                    index: get(key("index"), l.index, &mut broken),
+                }
+            })
+            .collect();
         let observer = file.observer.as_ref().map(|o| {
             if o.position.is_none() {
                 broken.push(*need("observer.position".into()));
@@ -435,6 +478,7 @@ impl SceneDescription {
             cards,
             spheres,
             prisms,
+            lenses,
             observer: observer.map(|(position, target)| Observer {
                 position: Vec3::from_array(position),
                 target: target.map_or(middle, Vec3::from_array),
@@ -529,6 +573,19 @@ impl SceneDescription {
                     bottom: Some(p.bottom),
                     top: Some(p.top),
                     index: Some(p.index),
+                })
+                .collect(),
+            lens: self
+                .lenses
+                .iter()
+                .map(|l| FileLens {
+                    center: Some(l.center.to_array()),
+                    axis: Some(l.axis.to_array()),
+                    radius1: Some(l.radius1),
+                    radius2: Some(l.radius2),
+                    thickness: Some(l.thickness),
+                    diameter: Some(l.diameter),
+                    index: Some(l.index),
                 })
                 .collect(),
             observer: self.observer.map(|o| FileObserver {

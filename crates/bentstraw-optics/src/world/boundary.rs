@@ -126,6 +126,44 @@ pub enum Shape {
         /// Highest height.
         z_max: f64,
     },
+    /// A lens's curved face: the cap of the sphere of `centre` and radius `|radius|` on the side
+    /// `toward` points to (unit), within `√rho2` of the line through the centre along it. Its
+    /// outer side is away from the centre when `radius > 0`, towards it when `radius < 0`.
+    Cap {
+        /// The sphere's centre.
+        centre: Vec3,
+        /// Its radius, signed by the side the outer medium is on.
+        radius: f64,
+        /// Unit vector from the centre towards the cap's vertex (along the lens's axis).
+        toward: Vec3,
+        /// The square of the cap's rim's distance from the axis.
+        rho2: f64,
+    },
+    /// A lens's flat face: the disk of radius² `r2` about `centre` in the plane of unit
+    /// `normal`, which points to its outer side.
+    Disk {
+        /// Its centre.
+        centre: Vec3,
+        /// Its unit normal, to its outer side.
+        normal: Vec3,
+        /// Its radius².
+        r2: f64,
+    },
+    /// A lens's rim: the side of the cylinder of radius² `r2` about the line through `centre`
+    /// along unit `axis`, between axial coordinates `w_min` and `w_max` from the centre; its
+    /// outer side is away from the axis.
+    Tube {
+        /// A point of its axis (the lens's centre).
+        centre: Vec3,
+        /// Unit vector along its axis.
+        axis: Vec3,
+        /// Its radius².
+        r2: f64,
+        /// Lowest axial coordinate.
+        w_min: f64,
+        /// Highest axial coordinate.
+        w_max: f64,
+    },
     /// A sphere (the part of it between two heights); its outer side is away from its centre.
     Sphere {
         /// Its centre.
@@ -374,6 +412,86 @@ impl Boundary {
                     .and(in_range(o.z + t * d.z, R::splat(z_min), R::splat(z_max)));
                 R::select(ok, t, inf)
             }
+            Shape::Cap {
+                centre,
+                radius,
+                toward,
+                rho2,
+            } => {
+                let p = o - V3::splat(centre);
+                let q = SideQuadratic::sphere(p, d, R::splat(radius * radius));
+                if !alive.and(q.real()).and_not(q.moving_away()).any() {
+                    return inf;
+                }
+                let roots = q.roots(R::splat(1.0) / q.a);
+                let h = V3::splat(toward);
+                // On the cap: ahead, on the vertex's side of the centre, within the rim (a hair
+                // wide, so that no ray slips between the cap and the rim by rounding).
+                let on_cap = |t: R| {
+                    let x = p.along(t, d);
+                    let w = x.dot(h);
+                    t.gt(R::splat(0.0))
+                        .and(w.ge(R::splat(0.0)))
+                        .and((x.dot(x) - w * w).le(R::splat(rho2 * (1.0 + 1e-12))))
+                };
+                let leaving = leaving.and(alive);
+                let near = R::select(on_cap(roots.near), roots.near, inf);
+                let near = R::select(
+                    near.lt(inf),
+                    near,
+                    R::select(on_cap(roots.far), roots.far, inf),
+                );
+                let other = R::select(on_cap(roots.q_over_a), roots.q_over_a, inf);
+                R::select(roots.real.and(alive), R::select(leaving, other, near), inf)
+            }
+            Shape::Disk { centre, normal, r2 } => {
+                let n = V3::splat(normal);
+                let den = n.dot(d);
+                let (num, ahead) = plane_ahead(R::splat(normal.dot(centre)), n.dot(o), den);
+                let ahead = ahead.and_not(leaving).and(alive);
+                if !ahead.any() {
+                    return inf;
+                }
+                let t = R::quotient(num, den, R::splat(1.0) / den);
+                let x = o.along(t, d) - V3::splat(centre);
+                R::select(ahead.and(x.dot(x).le(R::splat(r2 * (1.0 + 1e-12)))), t, inf)
+            }
+            Shape::Tube {
+                centre,
+                axis,
+                r2,
+                w_min,
+                w_max,
+            } => {
+                let a = V3::splat(axis);
+                let p = o - V3::splat(centre);
+                let (pw, dw) = (p.dot(a), d.dot(a));
+                let (pp, dp) = (p - a.scale(pw), d - a.scale(dw));
+                let cross = V3::new(
+                    pp.y * dp.z - pp.z * dp.y,
+                    pp.z * dp.x - pp.x * dp.z,
+                    pp.x * dp.y - pp.y * dp.x,
+                );
+                let a2 = dp.dot(dp);
+                let r2 = R::splat(r2);
+                let q = SideQuadratic {
+                    a: a2,
+                    half_b: pp.dot(dp),
+                    c: pp.dot(pp) - r2,
+                    disc: a2 * r2 - cross.dot(cross),
+                };
+                if !alive.and(q.real()).and_not(q.moving_away()).any() {
+                    return inf;
+                }
+                let roots = q.roots(R::splat(1.0) / a2);
+                let (wl, wh) = (R::splat(w_min), R::splat(w_max));
+                let leaving = leaving.and(alive);
+                R::select(
+                    leaving,
+                    roots.other(pw, dw, wl, wh),
+                    roots.nearest(pw, dw, wl, wh),
+                )
+            }
             Shape::Sphere {
                 centre,
                 radius,
@@ -412,6 +530,22 @@ impl Boundary {
                 V3::new(x, y, zero).renormalize()
             }
             Shape::Face { ux, uy, .. } => V3::new(R::splat(uy), R::splat(-ux), zero),
+            Shape::Cap { centre, radius, .. } => {
+                let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
+                let q = p - V3::splat(centre);
+                V3::new(
+                    R::quotient(q.x, r, inv),
+                    R::quotient(q.y, r, inv),
+                    R::quotient(q.z, r, inv),
+                )
+                .renormalize()
+            }
+            Shape::Disk { normal, .. } => V3::splat(normal),
+            Shape::Tube { centre, axis, .. } => {
+                let a = V3::splat(axis);
+                let q = p - V3::splat(centre);
+                (q - a.scale(q.dot(a))).normalize()
+            }
             Shape::Sphere { centre, radius, .. } => {
                 let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
                 let q = p - V3::splat(centre);
@@ -454,6 +588,15 @@ impl Boundary {
                 length,
                 ..
             } => libm::hypot(ax, ay).max(libm::hypot(ax + length * ux, ay + length * uy)),
+            Shape::Cap { centre, radius, .. } => libm::hypot(centre.x, centre.y) + radius.abs(),
+            Shape::Disk { centre, r2, .. } => libm::hypot(centre.x, centre.y) + r2.sqrt(),
+            Shape::Tube {
+                centre,
+                r2,
+                w_min,
+                w_max,
+                ..
+            } => libm::hypot(centre.x, centre.y) + r2.sqrt() + w_min.abs().max(w_max.abs()),
         }
     }
 
@@ -466,6 +609,10 @@ impl Boundary {
         match self.shape {
             Shape::Upright { radius, .. } => (1.0 / radius) * Vec3::new(dp.x, dp.y, 0.0),
             Shape::Sphere { radius, .. } => (1.0 / radius) * dp,
+            // The signed radius turns the normal the way its outer side faces.
+            Shape::Cap { radius, .. } => (1.0 / radius) * dp,
+            Shape::Tube { axis, r2, .. } => (1.0 / r2.sqrt()) * (dp - dp.dot(axis) * axis),
+            Shape::Disk { .. } => Vec3::ZERO,
             Shape::Horizontal { .. } | Shape::Vertical { .. } | Shape::Face { .. } => {
                 0.0 * Vec3::new(dp.x, dp.y, 0.0)
             }
@@ -480,6 +627,10 @@ impl Boundary {
             Shape::Vertical { axis, at, .. } => (2, [axis as f64, at, 0.0]),
             // Spheres do not touch one another: a centre names one.
             Shape::Sphere { centre, .. } => (3, centre.to_array()),
+            // A lens's parts by their centres (lenses do not touch one another).
+            Shape::Cap { centre, .. } => (5, centre.to_array()),
+            Shape::Disk { centre, .. } => (6, centre.to_array()),
+            Shape::Tube { centre, .. } => (7, centre.to_array()),
             // A plane by its outer normal and its offset.
             Shape::Face { ax, ay, ux, uy, .. } => (4, [uy, -ux, uy * ax - ux * ay]),
         }

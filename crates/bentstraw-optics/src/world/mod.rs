@@ -513,6 +513,56 @@ impl World {
             boundaries.push(top);
             boundaries.push(bottom);
         }
+        // Each lens: its two faces (caps of spheres, or flat disks) and its rim between them,
+        // within the layer it lies in (or air).
+        for lens in &scene.lenses {
+            let inner = indices.len() as MediumId;
+            indices.push(lens.index);
+            let outer = if lens.inside(&scene.container) {
+                medium_above(lens.center.z)
+            } else {
+                AIR
+            };
+            let (a, c) = (lens.unit_axis(), lens.center);
+            let rim = lens.diameter / 2.0;
+            // Face 1 faces −axis, face 2 +axis; a face of radius R has its centre of curvature
+            // R along the axis from its vertex, and its cap lies towards the vertex from there.
+            for (radius, vertex, outward) in [
+                (lens.radius1, c - lens.thickness / 2.0 * a, -a),
+                (lens.radius2, c + lens.thickness / 2.0 * a, a),
+            ] {
+                let shape = if radius == 0.0 {
+                    Shape::Disk {
+                        centre: vertex,
+                        normal: outward,
+                        r2: rim * rim,
+                    }
+                } else {
+                    let toward = -radius.signum() * a;
+                    // Outwards is away from the centre where the cap's normal there, `toward`,
+                    // is the face's outward side.
+                    let sign = if toward.dot(outward) > 0.0 { 1.0 } else { -1.0 };
+                    Shape::Cap {
+                        centre: vertex + radius * a,
+                        radius: sign * radius.abs(),
+                        toward,
+                        rho2: rim * rim,
+                    }
+                };
+                boundaries.push(solid_piece(shape, outer, inner));
+            }
+            let (w1, w2) = lens.faces_at(rim);
+            if w2 > w1 {
+                let tube = Shape::Tube {
+                    centre: c,
+                    axis: a,
+                    r2: rim * rim,
+                    w_min: w1,
+                    w_max: w2,
+                };
+                boundaries.push(solid_piece(tube, outer, inner));
+            }
+        }
         // Where faces between media of the same index are dropped, such media are one medium:
         // light cannot tell them apart, and a ray that crossed a dropped face must still know on
         // which side of the next face it is. Each medium takes the id of the first medium of its
@@ -579,6 +629,7 @@ impl World {
             .map(Object::bounds)
             .chain(scene.spheres.iter().map(|s| s.bounds()))
             .chain(scene.prisms.iter().map(|p| p.bounds()))
+            .chain(scene.lenses.iter().map(|l| l.bounds()))
             .fold((lo, hi), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)));
         let centre = 0.5 * (lo + hi);
         // Rays from afar start on a sphere round the box: its radius is the box's half diagonal
