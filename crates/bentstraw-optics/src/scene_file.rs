@@ -636,7 +636,11 @@ impl Sphere {
     /// stands wholly outside it).
     pub fn inside(&self, container: &Container) -> bool {
         let c = self.center;
-        container.holds_disk(c.x, c.y, self.radius) && c.z - self.radius >= container.floor()
+        // A ball resting on the floor, its centre written as floor + radius, may land a hair
+        // below by rounding: it still rests on it.
+        let rounding = 8.0 * f64::EPSILON * (c.z.abs() + self.radius);
+        container.holds_disk(c.x, c.y, self.radius)
+            && c.z - self.radius >= container.floor() - rounding
     }
 
     /// The corners of a box holding it.
