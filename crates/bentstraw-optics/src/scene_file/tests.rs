@@ -908,6 +908,7 @@ proptest::proptest! {
         picks in proptest::collection::vec(0..HOSTILE.len(), 24),
         tank in proptest::prelude::any::<bool>(),
         (liquids, straws, coins, cards) in (0usize..3, 0usize..3, 0usize..2, 0usize..2),
+        (spheres, prisms, lenses) in (0usize..2, 0usize..2, 0usize..2),
     ) {
         let mut k = 0;
         let mut n = || { k += 1; HOSTILE[picks[(k - 1) % picks.len()]] };
@@ -927,6 +928,21 @@ proptest::proptest! {
         }
         for _ in 0..cards {
             text += &format!("[[card]]\ncenter = [{}, {}, {}]\nwidth = {}\nheight = {}\n", n(), n(), n(), n(), n());
+        }
+        for _ in 0..spheres {
+            text += &format!("[[sphere]]\ncenter = [{}, {}, {}]\nradius = {}\nindex = {}\n", n(), n(), n(), n(), n());
+        }
+        for _ in 0..prisms {
+            text += &format!(
+                "[[prism]]\ncorners = [[{}, {}], [{}, {}], [{}, {}]]\nbottom = {}\ntop = {}\nindex = {}\n",
+                n(), n(), n(), n(), n(), n(), n(), n(), n()
+            );
+        }
+        for _ in 0..lenses {
+            text += &format!(
+                "[[lens]]\ncenter = [{}, {}, {}]\naxis = [{}, {}, {}]\nradius1 = {}\nradius2 = -{}\nthickness = {}\ndiameter = {}\nindex = {}\n",
+                n(), n(), n(), n(), n(), n(), n(), n(), n(), n(), n()
+            );
         }
         text += &format!("[observer]\nposition = [{}, {}, {}]\n", n(), n(), n());
         if let Ok(scene) = SceneDescription::from_toml(&text) {
