@@ -337,3 +337,55 @@ def test_the_notebook_runs_top_to_bottom():
         o.get("text", "") for c in notebook.cells if c.cell_type == "code" for o in c.get("outputs", [])
     )
     assert "fail -" in text and "the reference's own points: pass" in text
+
+
+SOLIDS = """[container]
+shape = "glass"
+radius = 0.04
+height = 0.15
+
+[[liquid]]
+name = "water"
+index = 1.333
+top = 0.1
+
+[[straw]]
+x = 0.02
+y = 0.0
+
+[[sphere]]
+center = [-0.015, 0.0, 0.03]
+radius = 0.012
+index = 1.5
+
+[[prism]]
+corners = [[0.1, -0.03], [0.14, -0.03], [0.12, 0.0]]
+bottom = 0.0
+top = 0.1
+index = 1.5
+
+[[lens]]
+center = [0.12, 0.02, 0.085]
+axis = [1, 0, 0]
+radius1 = 0.05
+radius2 = -0.05
+thickness = 0.008
+diameter = 0.03
+index = 1.5
+
+[observer]
+position = [0.25, 0.05, 0.12]
+target = [0.0, 0.0, 0.05]
+"""
+
+
+def test_transparent_solids_give_the_command_lines_points_and_their_rules(tmp_path):
+    scene = tmp_path / "solids.toml"
+    scene.write_text(SOLIDS)
+    (header, rows), sim = simulated(tmp_path, ["--scene", scene, "--points", "3000"], scene=scene, points=3000)
+    assert_same_points(header, rows, sim)
+    # Some light reaches the straw through a solid first.
+    assert "solid" in set(sim.path)
+    with pytest.raises(ValueError) as e:
+        bentstraw.Scene.from_toml(SOLIDS.replace("radius = 0.012", "radius = 0.03"))
+    assert "sphere[1]" in str(e.value)
