@@ -290,7 +290,7 @@ fn packet_pictures_of_sphere_scenes_match_exact() {
                 .filter(|&(i, j)| {
                     let mut on_sphere = false;
                     world.trace_with(camera.pixel_ray(i, j), |e| {
-                        on_sphere |= world.face_name(e.boundary) == "sphere's surface"
+                        on_sphere |= world.boundaries()[e.boundary].solid
                     });
                     on_sphere
                 })

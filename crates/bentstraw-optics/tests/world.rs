@@ -995,6 +995,8 @@ mod random_scenes {
                         coins,
                         cards,
                         spheres,
+                        prisms: vec![],
+                        lenses: vec![],
                         observer: Some(Observer {
                             position: Vec3::new(d * oa.cos(), d * oa.sin(), 0.15),
                             target: Vec3::new(0.0, 0.0, 0.08),
