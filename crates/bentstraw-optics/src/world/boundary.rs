@@ -317,74 +317,8 @@ impl Boundary {
     ) -> R {
         let inf = R::splat(f64::INFINITY);
         match self.shape {
-            Shape::Horizontal { z, region } => {
-                let (num, ahead) = plane_ahead(R::splat(z), o.z, d.z);
-                let ahead = ahead.and_not(leaving).and(alive);
-                if !ahead.any() {
-                    return inf;
-                }
-                let t = plane_distance_of(num, d.z, inv.d.z);
-                let inside = region.contains(o.x + t * d.x, o.y + t * d.y);
-                R::select(ahead.and(inside), t, inf)
-            }
-            Shape::Upright {
-                cx,
-                cy,
-                radius,
-                z_min,
-                z_max,
-            } => {
-                // The circle the whole scene lies within is often this one: its quadratic is done.
-                let q = if cx == 0.0 && cy == 0.0 && radius * radius == around.r2 {
-                    around.quadratic
-                } else {
-                    SideQuadratic::new(
-                        o.x - R::splat(cx),
-                        o.y - R::splat(cy),
-                        d.x,
-                        d.y,
-                        R::splat(radius * radius),
-                    )
-                };
-                // A ray outside the cylinder moving away from it meets it nowhere ahead.
-                if !alive.and(q.real()).and_not(q.moving_away()).any() {
-                    return inf;
-                }
-                let roots = q.roots(inv.a);
-                let (zl, zh) = (R::splat(z_min), R::splat(z_max));
-                let leaving = leaving.and(alive);
-                if !leaving.any() {
-                    roots.nearest(o.z, d.z, zl, zh)
-                } else if !alive.and_not(leaving).any() {
-                    roots.other(o.z, d.z, zl, zh)
-                } else {
-                    R::select(
-                        leaving,
-                        roots.other(o.z, d.z, zl, zh),
-                        roots.nearest(o.z, d.z, zl, zh),
-                    )
-                }
-            }
-            Shape::Vertical {
-                axis,
-                at,
-                half,
-                z_min,
-                z_max,
-            } => {
-                let (num, ahead) = plane_ahead(R::splat(at), o.get(axis), d.get(axis));
-                let ahead = ahead.and_not(leaving).and(alive);
-                if !ahead.any() {
-                    return inf;
-                }
-                let t = plane_distance_of(num, d.get(axis), inv.d.get(axis));
-                let across = o.get(1 - axis) + t * d.get(1 - axis);
-                let ok = ahead.and(across.abs().le(R::splat(half))).and(in_range(
-                    o.z + t * d.z,
-                    R::splat(z_min),
-                    R::splat(z_max),
-                ));
-                R::select(ok, t, inf)
+            Shape::Horizontal { .. } | Shape::Upright { .. } | Shape::Vertical { .. } => {
+                self.plain_crossing(o, d, inv, leaving, alive, around)
             }
             Shape::Face {
                 ax,
@@ -516,18 +450,102 @@ impl Boundary {
         }
     }
 
+    /// [`Boundary::crossing`] for the container's and liquids' faces alone (a plane, an
+    /// upright cylinder's side, a tank's wall): the lean loop over them reads no other shape
+    /// (a solid's face gives infinity here).
+    #[inline(always)]
+    pub(crate) fn plain_crossing<R: Real>(
+        &self,
+        o: V3<R>,
+        d: V3<R>,
+        inv: &Reciprocals<R>,
+        leaving: R::Mask,
+        alive: R::Mask,
+        around: &Around<R>,
+    ) -> R {
+        let inf = R::splat(f64::INFINITY);
+        match self.shape {
+            Shape::Horizontal { z, region } => {
+                let (num, ahead) = plane_ahead(R::splat(z), o.z, d.z);
+                let ahead = ahead.and_not(leaving).and(alive);
+                if !ahead.any() {
+                    return inf;
+                }
+                let t = plane_distance_of(num, d.z, inv.d.z);
+                let inside = region.contains(o.x + t * d.x, o.y + t * d.y);
+                R::select(ahead.and(inside), t, inf)
+            }
+            Shape::Upright {
+                cx,
+                cy,
+                radius,
+                z_min,
+                z_max,
+            } => {
+                // The circle the whole scene lies within is often this one: its quadratic is done.
+                let q = if cx == 0.0 && cy == 0.0 && radius * radius == around.r2 {
+                    around.quadratic
+                } else {
+                    SideQuadratic::new(
+                        o.x - R::splat(cx),
+                        o.y - R::splat(cy),
+                        d.x,
+                        d.y,
+                        R::splat(radius * radius),
+                    )
+                };
+                // A ray outside the cylinder moving away from it meets it nowhere ahead.
+                if !alive.and(q.real()).and_not(q.moving_away()).any() {
+                    return inf;
+                }
+                let roots = q.roots(inv.a);
+                let (zl, zh) = (R::splat(z_min), R::splat(z_max));
+                let leaving = leaving.and(alive);
+                if !leaving.any() {
+                    roots.nearest(o.z, d.z, zl, zh)
+                } else if !alive.and_not(leaving).any() {
+                    roots.other(o.z, d.z, zl, zh)
+                } else {
+                    R::select(
+                        leaving,
+                        roots.other(o.z, d.z, zl, zh),
+                        roots.nearest(o.z, d.z, zl, zh),
+                    )
+                }
+            }
+            Shape::Vertical {
+                axis,
+                at,
+                half,
+                z_min,
+                z_max,
+            } => {
+                let (num, ahead) = plane_ahead(R::splat(at), o.get(axis), d.get(axis));
+                let ahead = ahead.and_not(leaving).and(alive);
+                if !ahead.any() {
+                    return inf;
+                }
+                let t = plane_distance_of(num, d.get(axis), inv.d.get(axis));
+                let across = o.get(1 - axis) + t * d.get(1 - axis);
+                let ok = ahead.and(across.abs().le(R::splat(half))).and(in_range(
+                    o.z + t * d.z,
+                    R::splat(z_min),
+                    R::splat(z_max),
+                ));
+                R::select(ok, t, inf)
+            }
+            _ => inf,
+        }
+    }
+
     /// Unit normal at the points `p` of the boundary, pointing to its outer side: for an upright
     /// side `((p − c)/r).normalize()`, the form the assignment's glass always used.
     #[inline(always)]
     pub(crate) fn normal_at<R: Real>(&self, p: V3<R>) -> V3<R> {
         let zero = R::splat(0.0);
         match self.shape {
-            Shape::Horizontal { .. } => V3::new(zero, zero, R::splat(1.0)),
-            Shape::Upright { cx, cy, radius, .. } => {
-                let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
-                let x = R::quotient(p.x - R::splat(cx), r, inv);
-                let y = R::quotient(p.y - R::splat(cy), r, inv);
-                V3::new(x, y, zero).renormalize()
+            Shape::Horizontal { .. } | Shape::Upright { .. } | Shape::Vertical { .. } => {
+                self.plain_normal_at(p)
             }
             Shape::Face { ux, uy, .. } => V3::new(R::splat(uy), R::splat(-ux), zero),
             Shape::Cap { centre, radius, .. } => {
@@ -556,6 +574,22 @@ impl Boundary {
                 )
                 .renormalize()
             }
+        }
+    }
+
+    /// [`Boundary::normal_at`] for the container's and liquids' faces alone (a solid's face
+    /// gives the zero vector here).
+    #[inline(always)]
+    pub(crate) fn plain_normal_at<R: Real>(&self, p: V3<R>) -> V3<R> {
+        let zero = R::splat(0.0);
+        match self.shape {
+            Shape::Horizontal { .. } => V3::new(zero, zero, R::splat(1.0)),
+            Shape::Upright { cx, cy, radius, .. } => {
+                let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
+                let x = R::quotient(p.x - R::splat(cx), r, inv);
+                let y = R::quotient(p.y - R::splat(cy), r, inv);
+                V3::new(x, y, zero).renormalize()
+            }
             Shape::Vertical { axis, at, .. } => {
                 let s = R::splat(at.signum());
                 if axis == 0 {
@@ -564,6 +598,7 @@ impl Boundary {
                     V3::new(zero, s, zero)
                 }
             }
+            _ => V3::new(zero, zero, zero),
         }
     }
 

@@ -65,8 +65,11 @@ pub const COLOR_NAMES: [&str; COLOR_COUNT] = [
 pub struct World {
     /// Refractive index of each medium, by id.
     indices: Vec<f64>,
-    /// Every boundary where light can refract or be totally reflected.
+    /// Every boundary where light can refract or be totally reflected: the container's and
+    /// liquids' faces first, then the transparent solids' faces.
     boundaries: Vec<Boundary>,
+    /// How many of the boundaries are the container's and liquids' (the rest are solids').
+    plain: usize,
     /// Every opaque object.
     objects: Vec<Object>,
     /// What solids make of horizontal faces (each face names its range of them).
@@ -681,9 +684,12 @@ impl World {
         let verticals = boundaries
             .iter()
             .any(|b| matches!(b.shape, Shape::Vertical { .. }));
+        let plain = boundaries.iter().take_while(|b| !b.solid).count();
+        debug_assert!(boundaries[plain..].iter().all(|b| b.solid));
         World {
             indices,
             boundaries,
+            plain,
             objects,
             clips,
             edges,

@@ -109,35 +109,31 @@ impl World {
         }
         let mut t = inf;
         let mut code = R::splat(-1.0);
-        let pierced = !self.clips.is_empty();
-        for b in &self.boundaries {
-            let leaving = left.eq(R::splat(b.codes.surface as f64));
-            let mut tb = b.crossing(o, d, &inv, leaving, alive, &around);
-            // What solids make of the face: holes where they pierce it, a prism's polygon
-            // (scenes without solids skip the look).
-            let clips = if pierced {
-                &self.clips[b.holes[0] as usize..b.holes[1] as usize]
-            } else {
-                &[]
-            };
-            for clip in clips {
-                let (x, y) = (o.x + tb * d.x, o.y + tb * d.y);
-                tb = match *clip {
-                    Clip::OutsideDisk { cx, cy, r2 } => {
-                        let (u, v) = (x - R::splat(cx), y - R::splat(cy));
-                        R::select((u * u + v * v).lt(R::splat(r2)), inf, tb)
-                    }
-                    Clip::OutsidePolygon(range) => {
-                        R::select(self.outside_polygon(x, y, range), tb, inf)
-                    }
-                    Clip::InsidePolygon(range) => {
-                        R::select(self.outside_polygon(x, y, range), inf, tb)
-                    }
-                };
-            }
+        let mut take = |tb: R, b: &super::Boundary| {
             let m = tb.lt(t);
             t = R::select(m, tb, t);
             code = R::select(m, R::splat(b.codes.index as f64), code);
+        };
+        // The container's and liquids' faces first, with the lean intersection of their three
+        // shapes; without solids nothing is clipped from them (the scenes of old trace as they
+        // did). The solids' faces come last.
+        let (plain, solid) = self.boundaries.split_at(self.plain);
+        if self.clips.is_empty() {
+            for b in plain {
+                let leaving = left.eq(R::splat(b.codes.surface as f64));
+                take(b.plain_crossing(o, d, &inv, leaving, alive, &around), b);
+            }
+        } else {
+            for b in plain {
+                let leaving = left.eq(R::splat(b.codes.surface as f64));
+                let tb = b.plain_crossing(o, d, &inv, leaving, alive, &around);
+                take(self.clipped(b, o, d, tb), b);
+            }
+        }
+        for b in solid {
+            let leaving = left.eq(R::splat(b.codes.surface as f64));
+            let tb = b.crossing(o, d, &inv, leaving, alive, &around);
+            take(self.clipped(b, o, d, tb), b);
         }
         let mut part = R::splat(0.0);
         let mut tag = R::splat(0.0);
@@ -158,6 +154,28 @@ impl World {
             }
         }
         Some(Nearest { t, code, part, tag })
+    }
+
+    /// `tb` (the distances at which the rays from `o` along `d` meet face `b`), infinite where
+    /// what solids make of the face leaves the point out: a hole where one pierces it, outside
+    /// a prism's polygon for its own top and bottom.
+    #[inline(always)]
+    fn clipped<R: Real>(&self, b: &super::Boundary, o: V3<R>, d: V3<R>, mut tb: R) -> R {
+        let inf = R::splat(f64::INFINITY);
+        for clip in &self.clips[b.holes[0] as usize..b.holes[1] as usize] {
+            let (x, y) = (o.x + tb * d.x, o.y + tb * d.y);
+            tb = match *clip {
+                Clip::OutsideDisk { cx, cy, r2 } => {
+                    let (u, v) = (x - R::splat(cx), y - R::splat(cy));
+                    R::select((u * u + v * v).lt(R::splat(r2)), inf, tb)
+                }
+                Clip::OutsidePolygon(range) => {
+                    R::select(self.outside_polygon(x, y, range), tb, inf)
+                }
+                Clip::InsidePolygon(range) => R::select(self.outside_polygon(x, y, range), inf, tb),
+            };
+        }
+        tb
     }
 
     /// The lanes whose point `(x, y)` lies outside the convex polygon of the world's edges in
@@ -205,7 +223,12 @@ impl World {
                     R::Mask::select_mask(m, a, b)
                 }
             };
-            let n = b.normal_at(q);
+            // The container's and liquids' faces (first in the list) by their lean rule.
+            let n = if k < self.plain {
+                b.plain_normal_at(q)
+            } else {
+                b.normal_at(q)
+            };
             normal = V3::new(
                 pick(n.x, normal.x),
                 pick(n.y, normal.y),
