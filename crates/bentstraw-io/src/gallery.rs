@@ -1,7 +1,7 @@
 //! The gallery of classic demonstrations, built into the program: its scene files, by name.
 
 /// The gallery's scene files beyond the assignment's own (`scenes/`): name and text.
-pub const GALLERY: [(&str, &str); 22] = [
+pub const GALLERY: [(&str, &str); 27] = [
     (
         "leaning-straw",
         include_str!("../../../scenes/leaning-straw.toml"),
@@ -89,6 +89,26 @@ pub const GALLERY: [(&str, &str); 22] = [
     (
         "half-dipped-ball",
         include_str!("../../../scenes/half-dipped-ball.toml"),
+    ),
+    (
+        "prism",
+        include_str!("../../../scenes/prism.toml"),
+    ),
+    (
+        "glass-block-pencil",
+        include_str!("../../../scenes/glass-block-pencil.toml"),
+    ),
+    (
+        "magnifying-glass",
+        include_str!("../../../scenes/magnifying-glass.toml"),
+    ),
+    (
+        "diverging-lens",
+        include_str!("../../../scenes/diverging-lens.toml"),
+    ),
+    (
+        "lens-in-water",
+        include_str!("../../../scenes/lens-in-water.toml"),
     ),
 ];
 

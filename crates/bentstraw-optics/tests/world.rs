@@ -27,7 +27,7 @@ fn gallery(name: &str) -> SceneDescription {
     scene(&std::fs::read_to_string(path).expect("a gallery file"))
 }
 
-const GALLERY: [&str; 23] = [
+const GALLERY: [&str; 28] = [
     "spec.toml",
     "leaning-straw.toml",
     "real-glass.toml",
@@ -51,6 +51,11 @@ const GALLERY: [&str; 23] = [
     "vanishing-ball.toml",
     "ball-lens.toml",
     "half-dipped-ball.toml",
+    "prism.toml",
+    "glass-block-pencil.toml",
+    "magnifying-glass.toml",
+    "diverging-lens.toml",
+    "lens-in-water.toml",
 ];
 
 fn ray_to(from: Vec3, to: Vec3) -> Ray {
@@ -252,6 +257,12 @@ fn without_refraction(mut d: SceneDescription) -> SceneDescription {
     }
     for s in &mut d.spheres {
         s.index = 1.0;
+    }
+    for p in &mut d.prisms {
+        p.index = 1.0;
+    }
+    for l in &mut d.lenses {
+        l.index = 1.0;
     }
     d
 }

@@ -363,6 +363,11 @@ fn every_gallery_scene_is_simulated_and_rendered() {
         "vanishing-ball",
         "ball-lens",
         "half-dipped-ball",
+        "prism",
+        "glass-block-pencil",
+        "magnifying-glass",
+        "diverging-lens",
+        "lens-in-water",
     ] {
         let file = gallery(&format!("{name}.toml"));
         for (ext, check) in [("csv", true), ("ply", false), ("json", false)] {
