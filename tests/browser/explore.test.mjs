@@ -1128,3 +1128,106 @@ test("a sphere added from the Objects panel is drawn, dragged on the maps where 
   assert.deepEqual(problems.filter((p) => !/status of 400/.test(p)), []);
   await context.close();
 });
+
+test("a prism and a lens added from the Objects panel are drawn on both maps, dragged where the rules let them go, and kept by a link", async () => {
+  const dir = ON_SITE ? path.join(tmpdir(), "shots-solids-site") : "/tmp/shots-solids";
+  mkdirSync(dir, { recursive: true });
+  const { page, context, problems } = await openPage(browser, server.url, { width: 1500, height: 1000 });
+  await page.goto(server.url + "#scene=two-straws&observer=0.25,0,0.17");
+  await waitReady(page);
+  await page.click("#scene-objects summary");
+  await page.waitForFunction(() => document.querySelectorAll("#objects fieldset").length === 4);
+  assert.equal(await sphereInk(page, "map-top"), 0);
+  const handle = (p, id, kind) => p.evaluate(([id, kind]) => (document.getElementById(id).handles.find((h) => h.kind === kind) || {}).at, [id, kind]);
+  /** Clicks "+ kind", then waits for its table in the file, the frame that shows it and its box. */
+  const add = async (kind, boxes) => {
+    const frames = await page.evaluate(() => window.bentstraw.frames);
+    await page.click(`#objects .add button[data-i18n="obj.add.${kind}"]`);
+    await page.waitForFunction((kind) => new RegExp(`\\[\\[${kind}\\]\\]`).test(window.bentstraw.state.file), kind, { timeout: 30000 });
+    await waitReady(page, frames);
+    await page.waitForFunction((n) => document.querySelectorAll("#objects fieldset").length === n, boxes);
+    await page.waitForFunction((kind) => document.getElementById("map-top").handles.some((h) => h.kind === kind), kind);
+    return page.evaluate(() => window.bentstraw.state.file);
+  };
+  // "+ prism": a 60° glass prism standing on the floor inside the glass, clear of both straws.
+  const before = await pictureDigest(page);
+  let file = await add("prism", 5);
+  assert.equal((await page.locator("#objects legend").allTextContents())[4], "Prism 1");
+  const corners = () => JSON.parse(fileValue(file, "prism", 0, "corners"));
+  let poly = corners();
+  assert.equal(poly.length, 3);
+  const side = (i) => Math.hypot(poly[i][0] - poly[(i + 1) % 3][0], poly[i][1] - poly[(i + 1) % 3][1]);
+  for (const i of [0, 1, 2]) assert.ok(Math.abs(side(i) - 0.02) < 1e-4, `a side of ${side(i)} m`);
+  assert.equal(Number(fileValue(file, "prism", 0, "bottom")), 0);
+  assert.equal(fileValue(file, "prism", 0, "index"), "1.5");
+  for (const [x, y] of poly) assert.ok(Math.hypot(x, y) <= 0.04, `corner ${x}, ${y} inside the glass`);
+  assert.equal(await page.inputValue('[data-key="prism[1].corners"]'), poly.map((q) => q.join(", ")).join("; "));
+  assert.notEqual(await pictureDigest(page), before);
+  assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
+  const inkTop = await sphereInk(page, "map-top"), inkSide = await sphereInk(page, "map-side");
+  assert.ok(inkTop >= 8, "the prism drawn from above");
+  assert.ok(inkSide >= 8, "the prism drawn from the side");
+  // "+ lens": a biconvex lens held between the eye and the glass, its axis towards the glass.
+  file = await add("lens", 6);
+  assert.equal((await page.locator("#objects legend").allTextContents())[5], "Lens 1");
+  const lensCentre = () => JSON.parse(fileValue(file, "lens", 0, "center"));
+  let [lx, ly, lz] = lensCentre();
+  assert.ok(lx > 0.05 && lx < 0.25 && Math.abs(ly) < 1e-9 && lz === 0.1, `${lx}, ${ly}, ${lz}`);
+  assert.deepEqual(JSON.parse(fileValue(file, "lens", 0, "axis")), [-1, 0, 0]);
+  assert.deepEqual(["radius1", "radius2", "thickness", "diameter", "index"].map((k) => Number(fileValue(file, "lens", 0, k))), [0.04, -0.04, 0.007, 0.03, 1.5]);
+  assert.deepEqual(await page.locator('[data-key="lens[1].axis"]').evaluateAll((els) => els.map((e) => Number(e.value))), [-1, 0, 0]);
+  assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
+  assert.ok(await sphereInk(page, "map-top") > inkTop + 8, "the lens drawn from above");
+  assert.ok(await sphereInk(page, "map-side") > inkSide + 8, "the lens drawn from the side");
+  // The prism dragged far out on the map from above: it stops inside the glass, a corner at its
+  // side; its shape stays.
+  await dragOnMap(page, "map-top", await handle(page, "map-top", "prism"), [0, 300]);
+  await dragSettled(page);
+  file = await page.evaluate(() => window.bentstraw.state.file);
+  const moved = corners();
+  const reach = Math.max(...moved.map(([x, y]) => Math.hypot(x, y)));
+  assert.ok(reach <= 0.04 && reach > 0.039, `its farthest corner ${reach} m from the axis, inside 0.04 m`);
+  for (const i of [0, 1, 2]) for (const j of [0, 1]) assert.ok(Math.abs(moved[i][j] - poly[i][j] - (moved[0][j] - poly[0][j])) < 2e-5, "moved, not turned");
+  assert.ok(moved[0][1] < poly[0][1], "towards -y");
+  poly = moved;
+  assert.ok(await page.locator("#error").isHidden());
+  // The lens lifted on the side map: only its height changes.
+  await dragOnMap(page, "map-side", await handle(page, "map-side", "lens"), [0, -25]);
+  await dragSettled(page);
+  file = await page.evaluate(() => window.bentstraw.state.file);
+  const lifted = lensCentre();
+  assert.deepEqual(lifted.slice(0, 2), [lx, ly]);
+  assert.ok(lifted[2] > lz + 0.005, `${lifted[2]}`);
+  assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
+  const digest = await pictureDigest(page);
+  await page.screenshot({ path: path.join(dir, "laptop.png") });
+  // Corners typed wrong: the page's own words under the controls, the box marked; the view stays.
+  const framesBefore = await page.evaluate(() => window.bentstraw.frames);
+  await page.fill('[data-key="prism[1].corners"]', "0.01, 0.02; 0.03");
+  await page.press('[data-key="prism[1].corners"]', "Enter");
+  await page.waitForFunction(() => !document.getElementById("objects-errors").hidden);
+  assert.match((await page.locator("#objects-errors li").allTextContents()).join("\n"), /prism\[1\]\.corners: write the corners as x, y; x, y/);
+  assert.equal(await page.getAttribute('[data-key="prism[1].corners"]', "aria-invalid"), "true");
+  assert.equal(await page.evaluate(() => window.bentstraw.state.file), file);
+  assert.equal(await page.evaluate(() => window.bentstraw.frames), framesBefore);
+  // The link: a fresh page shows the same scene, its prism and lens in their boxes and on the maps.
+  await page.click("#copy-link");
+  const link = await page.evaluate(() => document.body.dataset.link);
+  const fresh = await openPage(browser, server.url, { width: 1500, height: 1000 });
+  await fresh.page.goto(link);
+  await waitReady(fresh.page);
+  assert.equal(await fresh.page.evaluate(() => window.bentstraw.state.file), file);
+  await fresh.page.click("#scene-objects summary");
+  await fresh.page.waitForFunction(() => document.querySelectorAll("#objects fieldset").length === 6);
+  assert.deepEqual((await fresh.page.locator("#objects legend").allTextContents()).slice(4), ["Prism 1", "Lens 1"]);
+  assert.equal(await fresh.page.inputValue('[data-key="prism[1].corners"]'), poly.map((q) => q.join(", ")).join("; "));
+  assert.deepEqual(await fresh.page.locator('[data-key="lens[1].center"]').evaluateAll((els) => els.map((e) => Number(e.value))), lifted);
+  await fresh.page.waitForFunction(() => ["prism", "lens"].every((k) => document.getElementById("map-top").handles.some((h) => h.kind === k)));
+  assert.equal(await pictureDigest(fresh.page), digest);
+  for (const kind of ["prism", "lens"]) assert.deepEqual(await handle(fresh.page, "map-top", kind), await handle(page, "map-top", kind));
+  await fresh.page.screenshot({ path: path.join(dir, "reloaded.png") });
+  assert.deepEqual(fresh.problems, []);
+  await fresh.context.close();
+  assert.deepEqual(problems, []);
+  await context.close();
+});

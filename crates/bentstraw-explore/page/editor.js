@@ -13,7 +13,8 @@ import { drawMaps } from "./maps.js";
 import { showSceneErrors, applySceneText, checkScene, useScene, cancelTyping, sceneText } from "./scenetext.js";
 
 /** Each kind of object's keys as the file names them, with their unit ("" a pure number, "text",
- * "m3" a point, or the words a value may be). */
+ * "m3" a point, "v3" a direction's three numbers, "xy" a list of corners written "x, y; x, y; …",
+ * or the words a value may be), and the key of their words where the name's own are another's. */
 const FORM_FIELDS = {
   glass: [["radius", "m"], ["height", "m"], ["wall", "m"], ["bottom", "m"], ["index", ""]],
   tank: [["half_x", "m"], ["half_y", "m"], ["height", "m"]],
@@ -22,11 +23,14 @@ const FORM_FIELDS = {
   coin: [["x", "m"], ["y", "m"], ["radius", "m"], ["thickness", "m"]],
   card: [["center", "m3"], ["facing", "°"], ["width", "m"], ["height", "m"], ["picture", ["arrow", "none"]]],
   sphere: [["center", "m3"], ["radius", "m"], ["index", ""]],
+  prism: [["corners", "xy"], ["bottom", "m", "field.prism-bottom"], ["top", "m", "field.prism-top"], ["index", ""]],
+  lens: [["center", "m3"], ["axis", "v3"], ["radius1", "m"], ["radius2", "m"], ["thickness", "m", "field.lens-thickness"], ["diameter", "m"], ["index", ""]],
 };
 /** The tables of objects, in the panel's order (after the container). */
-const TABLES = ["liquid", "straw", "coin", "card", "sphere"];
-/** The step of a control by unit: a millimetre, a tenth of a degree, a thousandth of an index. */
-const STEP = { m: "0.001", "m3": "0.001", "°": "0.1", "": "0.001" };
+const TABLES = ["liquid", "straw", "coin", "card", "sphere", "prism", "lens"];
+/** The step of a control by unit: a millimetre, a tenth of a degree, a thousandth of an index, a
+ * hundredth of a direction. */
+const STEP = { m: "0.001", "m3": "0.001", "v3": "0.01", "°": "0.1", "": "0.001" };
 const objectsEl = $("objects"), objectsErrorsEl = $("objects-errors");
 /** The form of the view's scene: { text, key, form } (the text it was read from, the scene's key). */
 let formOf = null;
@@ -129,32 +133,127 @@ function segmentDistance(p, a, b) {
   const s = dd > 0 ? Math.max(0, Math.min(1, (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd)) : 0;
   return Math.hypot(w[0] - s * d[0], w[1] - s * d[1], w[2] - s * d[2]);
 }
-/** Whether a sphere of radius `r` at `p` stands `gap` clear of the form's straws, coins, cards,
- * other spheres (all but sphere `skip`) and eye, as the rules measure them. */
-function sphereClear(form, p, r, gap, skip) {
+/** A lens's axial coordinates of its two faces at `rho` from its axis (from its centre), as the
+ * rules take them: each face's sag from its vertex. */
+function lensFaces(o, rho) {
+  const sag = (r) => (r === 0 ? 0 : r - Math.sign(r) * Math.sqrt(Math.max(0, r * r - rho * rho)));
+  return [-o.thickness / 2 + sag(o.radius1), o.thickness / 2 + sag(o.radius2)];
+}
+/** The radius of the sphere about a lens's centre that holds it (the rules' measure of a lens). */
+function lensReach(o) {
+  const [f1, f2] = lensFaces(o, o.diameter / 2);
+  return Math.hypot(o.diameter / 2, Math.max(o.thickness / 2, Math.abs(f1), Math.abs(f2)));
+}
+/** Distance in the plane from `p` to the segment `a`–`b`. */
+function segmentDistance2(p, a, b) {
+  const dx = b[0] - a[0], dy = b[1] - a[1], dd = dx * dx + dy * dy;
+  const s = dd > 0 ? Math.max(0, Math.min(1, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / dd)) : 0;
+  return Math.hypot(p[0] - a[0] - s * dx, p[1] - a[1] - s * dy);
+}
+/** Whether the convex polygon `poly` (either order round it) holds the point `p` (its edges too). */
+function polygonHolds(poly, p) {
+  let sign = 0;
+  for (let i = 0; i < poly.length; i++) {
+    const a = poly[i], b = poly[(i + 1) % poly.length];
+    const c = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+    if (c !== 0) { if (sign && Math.sign(c) !== sign) return false; sign = Math.sign(c); }
+  }
+  return true;
+}
+/** Distance in the plane from `p` to the convex polygon `poly` (0 within it). */
+function polygonDistance(poly, p) {
+  if (polygonHolds(poly, p)) return 0;
+  let d = Infinity;
+  for (let i = 0; i < poly.length; i++) d = Math.min(d, segmentDistance2(p, poly[i], poly[(i + 1) % poly.length]));
+  return d;
+}
+/** Whether the segments `a`–`b` and `c`–`d` cross. */
+function segmentsCross(a, b, c, d) {
+  const o = (p, q, r) => Math.sign((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]));
+  return o(a, b, c) * o(a, b, d) < 0 && o(c, d, a) * o(c, d, b) < 0;
+}
+/** Distance in the plane between two convex polygons (0 where they meet). */
+function polygonsGap(A, B) {
+  for (let i = 0; i < A.length; i++) {
+    for (let j = 0; j < B.length; j++) if (segmentsCross(A[i], A[(i + 1) % A.length], B[j], B[(j + 1) % B.length])) return 0;
+  }
+  return Math.min(...A.map((p) => polygonDistance(B, p)), ...B.map((p) => polygonDistance(A, p)));
+}
+/** The least of the convex function `f` on [0, 1] (a distance along a segment to a convex body). */
+function leastOn(f) {
+  let lo = 0, hi = 1;
+  for (let i = 0; i < 60; i++) {
+    const m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+    if (f(m1) <= f(m2)) hi = m2; else lo = m1;
+  }
+  return Math.min(f(0), f(1), f((lo + hi) / 2));
+}
+/** Distance from the point `p` (3D) to a prism's solid `{ poly, bottom, top }` (0 within it). */
+function prismDistance(P, p) {
+  return Math.hypot(polygonDistance(P.poly, p), Math.max(0, P.bottom - p[2], p[2] - P.top));
+}
+/** The transparent solids of the form as the rules measure them: a sphere or a lens as a ball
+ * `{ kind, k, c, r }` (a lens as the sphere about its centre that holds it), a prism as its solid
+ * `{ kind, k, poly, bottom, top }`. */
+function solidsOf(form) {
+  return [
+    ...(form.sphere || []).map((o, k) => ({ kind: "sphere", k, c: o.center, r: o.radius })),
+    ...(form.lens || []).map((o, k) => ({ kind: "lens", k, c: o.center, r: lensReach(o) })),
+    ...(form.prism || []).map((o, k) => ({ kind: "prism", k, poly: o.corners, bottom: o.bottom, top: o.top })),
+  ];
+}
+/** How far apart two solids are (at most 0 where they meet). */
+function solidsGap(A, B) {
+  if (A.poly && B.poly) {
+    const up = Math.max(A.bottom - B.top, B.bottom - A.top), across = polygonsGap(A.poly, B.poly);
+    return up > 0 && across > 0 ? Math.hypot(up, across) : Math.max(up, across);
+  }
+  if (A.poly || B.poly) { const [P, b] = A.poly ? [A, B] : [B, A]; return prismDistance(P, b.c) - b.r; }
+  return Math.hypot(A.c[0] - B.c[0], A.c[1] - B.c[1], A.c[2] - B.c[2]) - A.r - B.r;
+}
+/** Whether the solid `S` (as `solidsOf` gives them) stands `gap` clear of the form's straws,
+ * coins, cards, other solids (all but `S` itself, by its kind and number) and eye, as the rules
+ * measure them. */
+function solidClear(form, S, gap) {
   const floor = inside(form).floor, rad = (deg) => (deg * Math.PI) / 180;
+  // Distance from a point to the solid, and from a segment (convex: its least along it).
+  const from = (p) => (S.poly ? prismDistance(S, p) : Math.hypot(p[0] - S.c[0], p[1] - S.c[1], p[2] - S.c[2]) - S.r);
   for (const s of form.straw || []) {
     const t = rad(s.tilt || 0), a = rad(s.azimuth || 0), R = s.radius || STRAW_R, L = s.length || STRAW_H;
     const foot = [s.x, s.y, floor + R * Math.sin(t)];
     const top = [foot[0] + L * Math.sin(t) * Math.cos(a), foot[1] + L * Math.sin(t) * Math.sin(a), foot[2] + L * Math.cos(t)];
-    if (segmentDistance(p, foot, top) < r + R + gap) return false;
+    const d = S.poly ? leastOn((u) => from([0, 1, 2].map((i) => foot[i] + u * (top[i] - foot[i])))) : segmentDistance(S.c, foot, top) - S.r;
+    if (d < R + gap) return false;
   }
   for (const c of form.coin || []) {
-    const across = Math.max(0, Math.hypot(p[0] - c.x, p[1] - c.y) - (c.radius || COIN_R));
-    const up = Math.max(0, floor - p[2], p[2] - (floor + (c.thickness || 0)));
-    if (Math.hypot(across, up) < r + gap) return false;
+    const cr = c.radius || COIN_R, ct = floor + (c.thickness || 0);
+    if (S.poly) {
+      const up = Math.max(0, S.bottom - ct, floor - S.top), across = Math.max(0, polygonDistance(S.poly, [c.x, c.y]) - cr);
+      if (Math.hypot(across, up) < gap) return false;
+    } else {
+      const across = Math.max(0, Math.hypot(S.c[0] - c.x, S.c[1] - c.y) - cr);
+      const up = Math.max(0, floor - S.c[2], S.c[2] - ct);
+      if (Math.hypot(across, up) < S.r + gap) return false;
+    }
   }
   for (const o of form.card || []) {
     const f = rad(o.facing || 0), h = o.width / 2, u = [-Math.sin(f), Math.cos(f)];
     const a = [o.center[0] - h * u[0], o.center[1] - h * u[1], 0], b = [o.center[0] + h * u[0], o.center[1] + h * u[1], 0];
-    const across = segmentDistance([p[0], p[1], 0], a, b);
-    const up = Math.max(0, o.center[2] - o.height / 2 - p[2], p[2] - o.center[2] - o.height / 2);
-    if (Math.hypot(across, up) < r + gap) return false;
+    const lo = o.center[2] - o.height / 2, hi = o.center[2] + o.height / 2;
+    if (S.poly) {
+      const across = leastOn((v) => polygonDistance(S.poly, [a[0] + v * (b[0] - a[0]), a[1] + v * (b[1] - a[1])]));
+      if (Math.hypot(across, Math.max(0, lo - S.top, S.bottom - hi)) < gap) return false;
+    } else {
+      const across = segmentDistance([S.c[0], S.c[1], 0], a, b);
+      if (Math.hypot(across, Math.max(0, lo - S.c[2], S.c[2] - hi)) < S.r + gap) return false;
+    }
   }
-  if ((form.sphere || []).some((o, k) => k !== skip && Math.hypot(p[0] - o.center[0], p[1] - o.center[1], p[2] - o.center[2]) < r + o.radius + gap)) return false;
-  const e = state.observer;
-  return Math.hypot(p[0] - e[0], p[1] - e[1], p[2] - e[2]) > r + gap;
+  if (solidsOf(form).some((T) => !(T.kind === S.kind && T.k === S.k) && solidsGap(S, T) < gap)) return false;
+  return from(state.observer) > gap;
 }
+/** Whether a sphere of radius `r` at `p` stands `gap` clear of the form's objects and eye, as the
+ * rules measure them (sphere `skip` itself left out). */
+const sphereClear = (form, p, r, gap, skip) => solidClear(form, { kind: "sphere", k: skip, c: p, r }, gap);
 /** A new sphere: a glass marble (radius 1 cm, index 1.5, smaller in a small container or
  * shallow water) resting on the floor, in the first place on rings out from the middle 1 mm
  * clear of every object; failing that, on the table beside the container, away from the eye. */
@@ -180,6 +279,81 @@ function newSphere(form) {
   }
   return { center: p, radius: r, index: 1.5 };
 }
+/** Whether the polygon `poly` seen from above lies within the walls' inner face (`margin` clear). */
+function polygonHeld(form, poly, margin = 0) {
+  const c = inside(form);
+  return poly.every(([x, y]) => (c.tank ? Math.abs(x) + margin <= c.hx && Math.abs(y) + margin <= c.hy : Math.hypot(x, y) + margin <= c.r));
+}
+/** How far the polygon `poly` seen from above lies from the container's outer outline (at most 0
+ * where it overlaps it). */
+function polygonOutsideBy(form, poly) {
+  const k = form.container || {};
+  if (k.shape === "tank") return polygonsGap(poly, [[-k.half_x, -k.half_y], [k.half_x, -k.half_y], [k.half_x, k.half_y], [-k.half_x, k.half_y]]);
+  return polygonDistance(poly, [0, 0]) - k.radius;
+}
+/** The middle of a prism seen from above (its corners' mean): where its ring drags it. */
+const polygonMiddle = (poly) => [0, 1].map((i) => poly.reduce((a, q) => a + q[i], 0) / poly.length);
+/** The corners of a 60° prism of side `a` about `(x, y)`, one face towards the eye (rounded to
+ * 10 µm). */
+function triangle([x, y], a) {
+  const az = Math.atan2(state.observer[1], state.observer[0]), R = a / Math.sqrt(3);
+  return [0, 1, 2].map((i) => { const t = az + Math.PI + (2 * Math.PI * i) / 3; return [r5(x + R * Math.cos(t)), r5(y + R * Math.sin(t))]; });
+}
+/** A new prism: a 60° glass prism (2 cm a side and 3 cm high, smaller in a small container)
+ * standing on the floor in the first place on rings out from the middle 1 mm clear of every
+ * object; failing that, on the table beside the container, away from the eye. */
+function newPrism(form) {
+  const c = inside(form), reach = c.tank ? Math.min(c.hx, c.hy) : c.r, mm = (v) => Math.floor(v * 1000) / 1000;
+  const a = Math.max(0.002, Math.min(0.02, mm(0.6 * reach))), h = Math.max(0.002, Math.min(0.03, mm((c.height - c.floor) * 0.6)));
+  for (const f of [0, 0.25, 0.45, 0.65]) {
+    for (let k = 0; k < (f ? 12 : 1); k++) {
+      const t = (k * Math.PI) / 6, poly = triangle([f * reach * Math.cos(t), f * reach * Math.sin(t)], a);
+      const P = { kind: "prism", k: -1, poly, bottom: c.floor, top: r5(c.floor + h) };
+      if (polygonHeld(form, poly, 1e-4) && solidClear(form, P, 1e-3)) return { corners: poly, bottom: P.bottom, top: P.top, index: 1.5 };
+    }
+  }
+  const k0 = form.container || {}, out = (k0.shape === "tank" ? Math.hypot(k0.half_x, k0.half_y) : k0.radius) + a + 0.01;
+  const az = Math.atan2(state.observer[1], state.observer[0]);
+  let poly = null;
+  for (let k = 0; k < 12; k++) {
+    const t = az + Math.PI / 2 + (k * Math.PI) / 6;
+    poly = triangle([out * Math.cos(t), out * Math.sin(t)], a);
+    if (solidClear(form, { kind: "prism", k: -1, poly, bottom: 0, top: h }, 1e-3)) break;
+  }
+  return { corners: poly, bottom: 0, top: h, index: 1.5 };
+}
+/** A new lens: a biconvex glass lens 3 cm across (radii 4 cm, 7 mm thick, index 1.5), its axis
+ * level and towards the container, held between the eye and the container at half its height;
+ * failing that, in the middle of the first liquid layer it fits in (or above them), else beside
+ * the container, 1 mm clear of every object. */
+function newLens(form) {
+  const c = inside(form), k0 = form.container || {}, r4 = (v) => Math.round(v * 1e4) / 1e4;
+  const az = Math.atan2(state.observer[1], state.observer[0]);
+  const lens = { axis: [r4(-Math.cos(az)), r4(-Math.sin(az)), 0], radius1: 0.04, radius2: -0.04, thickness: 0.007, diameter: 0.03, index: 1.5 };
+  const r = lensReach(lens), fits = (p) => solidClear(form, { kind: "lens", k: -1, c: p, r }, 1e-3);
+  const out = (k0.shape === "tank" ? Math.hypot(k0.half_x, k0.half_y) : k0.radius) + r + 0.005;
+  const z = r4(Math.max(r + 0.001, c.height / 2));
+  let p = [r4(out * Math.cos(az)), r4(out * Math.sin(az)), z];
+  if (fits(p)) return { center: p, ...lens };
+  const reach = c.tank ? Math.min(c.hx, c.hy) : c.r, tops = (form.liquid || []).map((l) => l.top);
+  for (const [lo, hi] of tops.map((t, i) => [i ? tops[i - 1] : c.floor, t]).concat([[tops.length ? tops[tops.length - 1] : c.floor, Infinity]])) {
+    const zl = hi === Infinity ? lo + r + 0.002 : (lo + hi) / 2;
+    if (zl - r < lo + 1e-4 || zl + r > hi - 1e-4) continue;
+    for (const f of [0, 0.25, 0.45, 0.65]) {
+      for (let k = 0; k < (f ? 12 : 1); k++) {
+        const t = (k * Math.PI) / 6;
+        p = [r4(f * reach * Math.cos(t)), r4(f * reach * Math.sin(t)), r4(zl)];
+        if (sphereHeld(form, p, r + 1e-4) && fits(p)) return { center: p, ...lens };
+      }
+    }
+  }
+  for (let k = 0; k < 12; k++) {
+    const t = az + Math.PI / 2 + (k * Math.PI) / 6;
+    p = [r4(out * Math.cos(t)), r4(out * Math.sin(t)), z];
+    if (fits(p)) break;
+  }
+  return { center: p, ...lens };
+}
 /** A new object of `kind` for the form: the keys a user would change first, the rest left to
  * the file's defaults. */
 function newObject(kind, form) {
@@ -192,6 +366,8 @@ function newObject(kind, form) {
   }
   if (kind === "straw" || kind === "coin") { const [x, y] = freeSpot(form, kind === "straw" ? STRAW_R : COIN_R); return { x, y }; }
   if (kind === "sphere") return newSphere(form);
+  if (kind === "prism") return newPrism(form);
+  if (kind === "lens") return newLens(form);
   // A card behind the container, facing the eye.
   const az = Math.atan2(state.observer[1], state.observer[0]);
   const d = (c.tank ? Math.max(c.hx, c.hy) : c.r) + 0.06;
@@ -216,7 +392,8 @@ function field(key, name, unit, value) {
   const input = (i, v) => {
     const el = document.createElement("input");
     if (unit === "text") { el.type = "text"; el.value = v ?? ""; }
-    else { el.type = "number"; el.step = STEP[unit]; el.value = v ?? ""; el.inputMode = "decimal"; }
+    else if (unit === "xy") { el.type = "text"; el.value = cornersText(v); el.spellcheck = false; el.style.width = "min(22em, 80vw)"; }
+    else { el.type = "number"; el.step = STEP[unit]; el.value = v ?? ""; el.inputMode = "decimal"; if (unit === "v3") el.style.width = "5em"; }
     el.dataset.key = key; el.dataset.unit = unit;
     if (i !== null) el.dataset.part = String(i);
     return el;
@@ -231,16 +408,15 @@ function field(key, name, unit, value) {
     }
     sel.value = value;
     label.append(sel);
-  } else if (unit === "m3") {
+  } else if (unit === "m3" || unit === "v3") {
     const row = document.createElement("span");
     (value || [0, 0, 0]).forEach((v, i) => row.append(input(i, v)));
-    const u = document.createElement("span"); u.className = "unit"; u.textContent = " m";
-    row.append(u);
+    if (unit === "m3") { const u = document.createElement("span"); u.className = "unit"; u.textContent = " m"; row.append(u); }
     label.append(row);
   } else {
     const row = document.createElement("span");
     row.append(input(null, value));
-    if (unit && unit !== "text") { const u = document.createElement("span"); u.className = "unit"; u.textContent = " " + unit; row.append(u); }
+    if (unit && unit !== "text") { const u = document.createElement("span"); u.className = "unit"; u.textContent = " " + (unit === "xy" ? "m" : unit); row.append(u); }
     label.append(row);
   }
   return label;
@@ -274,7 +450,7 @@ export function showObjects() {
     if (table === "container") {
       fs.append(field("container.shape", "obj.shape", ["glass", "tank"], c.shape));
     }
-    for (const [name, unit] of fields) fs.append(field(`${prefix}.${name}`, name, unit, values[name]));
+    for (const [name, unit, words] of fields) fs.append(field(`${prefix}.${name}`, words || name, unit, values[name]));
     if (table !== "container") {
       fs.append(formButton("obj.remove", "obj.remove.title", "remove", () => editForm((f) => { f[table].splice(k, 1); })));
     }
@@ -298,9 +474,18 @@ function fillObjects(form) {
     if (el === document.activeElement) continue;
     const v = formValue(form, el.dataset.key);
     const part = el.dataset.part;
-    el.value = part !== undefined ? (v ? v[Number(part)] : "") : (v ?? "");
+    el.value = part !== undefined ? (v ? v[Number(part)] : "") : el.dataset.unit === "xy" ? cornersText(v) : (v ?? "");
     el.removeAttribute("aria-invalid");
   }
+}
+/** A prism's corners as its control writes them: "x, y; x, y; …" (metres). */
+function cornersText(corners) {
+  return Array.isArray(corners) ? corners.map((q) => q.join(", ")).join("; ") : "";
+}
+/** The corners a control's text "x, y; x, y; …" gives, or null if it is not such a list. */
+function cornersOf(text) {
+  const corners = text.split(";").filter((p) => p.trim()).map((p) => p.split(",").map((v) => (v.trim() ? Number(v) : NaN)));
+  return corners.length && corners.every((q) => q.length === 2 && q.every(Number.isFinite)) ? corners : null;
 }
 /** The value at a rule's key (`straw[2].tilt`, `container.radius`) of a form. */
 function formValue(form, key) {
@@ -341,7 +526,14 @@ objectsEl.addEventListener("change", (e) => {
   const el = e.target, key = el.dataset.key;
   if (!key) return;
   let value;
-  if (el.tagName === "SELECT" || el.type === "text") value = el.value;
+  if (el.dataset.unit === "xy") {
+    value = cornersOf(el.value);
+    if (!value) {
+      el.setAttribute("aria-invalid", "true");
+      showSceneErrors({ key: "obj.not-corners", params: { key } });
+      return;
+    }
+  } else if (el.tagName === "SELECT" || el.type === "text") value = el.value;
   else {
     value = el.valueAsNumber;
     if (!Number.isFinite(value)) {
@@ -372,8 +564,8 @@ export function markObjects(error) {
   objectsErrorsEl.hidden = !text;
 }
 
-// Drags on the maps: a straw, a coin, a card or a sphere from above, a liquid's surface or a
-// sphere's height from the side. Each step is the form changed and sent as a text; a step the
+// Drags on the maps: a straw, a coin, a card or a solid (a sphere, a prism, a lens) from above, a
+// liquid's surface or a solid's height from the side. Each step is the form changed and sent as a text; a step the
 // rules refuse is left out, so the object stops where it may still be (no banner: the banner is
 // for typed values). The body's data-drag is "1" while steps are being sent (tests wait on it),
 // data-drag-steps and data-drag-refused count the steps taken and left out.
@@ -416,18 +608,28 @@ async function dragForm(change) {
 }
 /** A sphere's handle: at its centre's pixel `at`, its ring within the sphere's disc of `px`
  * pixels where that is small, so that the disc shows round it. */
-const sphereHandle = (k, at, px) => ({ kind: "sphere", k, at, ring: px >= 10 ? 5 : Math.max(2.5, px / 2) });
+const sphereHandle = (k, at, px, kind = "sphere") => ({ kind, k, at, ring: px >= 10 ? 5 : Math.max(2.5, px / 2) });
 /** The objects a drag can take on a map: `{ kind, k, at }` (their pixels). From above `P(x, y)`
  * is the map's pixel; from the side `P(s, z)`, with `side` `{ u, half }`: the horizontal unit
  * vector `s` runs along and the container's half width along it. */
 export function handlesOf(form, P, side) {
   const hs = [];
   if (side) {
-    // A surface's ring beside the container's side, off the layer's tint; a sphere's at its centre.
+    // A surface's ring beside the container's side, off the layer's tint; a sphere's and a
+    // lens's at its centre, a prism's at its middle.
     (form.liquid || []).forEach((l, k) => { const [x, y] = P(side.half, l.top); hs.push({ kind: "liquid", k, at: [x + 8, y] }); });
+    const along = (q) => q[0] * side.u[0] + q[1] * side.u[1];
     (form.sphere || []).forEach((o, k) => {
-      const s = o.center[0] * side.u[0] + o.center[1] * side.u[1], at = P(s, o.center[2]);
+      const s = along(o.center), at = P(s, o.center[2]);
       hs.push(sphereHandle(k, at, Math.abs(P(s + o.radius, o.center[2])[0] - at[0])));
+    });
+    (form.prism || []).forEach((o, k) => {
+      const ss = o.corners.map(along), at = P(along(polygonMiddle(o.corners)), (o.bottom + o.top) / 2);
+      hs.push(sphereHandle(k, at, Math.abs(P(Math.max(...ss), 0)[0] - P(Math.min(...ss), 0)[0]) / 2, "prism"));
+    });
+    (form.lens || []).forEach((o, k) => {
+      const s = along(o.center), at = P(s, o.center[2]);
+      hs.push(sphereHandle(k, at, Math.abs(P(s + o.diameter / 2, o.center[2])[0] - at[0]), "lens"));
     });
     return hs;
   }
@@ -436,6 +638,15 @@ export function handlesOf(form, P, side) {
   (form.sphere || []).forEach((o, k) => {
     const at = P(o.center[0], o.center[1]);
     hs.push(sphereHandle(k, at, Math.abs(P(o.center[0] + o.radius, o.center[1])[0] - at[0])));
+  });
+  (form.prism || []).forEach((o, k) => {
+    const m = polygonMiddle(o.corners), at = P(m[0], m[1]);
+    const px = Math.min(...o.corners.map((q) => Math.hypot(...[0, 1].map((i) => P(q[0], q[1])[i] - at[i]))));
+    hs.push(sphereHandle(k, at, px, "prism"));
+  });
+  (form.lens || []).forEach((o, k) => {
+    const at = P(o.center[0], o.center[1]);
+    hs.push(sphereHandle(k, at, Math.abs(P(o.center[0] + o.diameter / 2, o.center[1])[0] - at[0]), "lens"));
   });
   return hs;
 }
@@ -453,14 +664,22 @@ function depthIn(form, x, y) {
   const k = form.container || {};
   return k.shape === "tank" ? Math.min(k.half_x - Math.abs(x), k.half_y - Math.abs(y)) : k.radius - Math.hypot(x, y);
 }
-/** Sphere `k` of the form `f` moved towards the map's point `q`. From above (`[x, y]`): kept
- * inside the container if it is in it, else round it (free where it floats above the rim or
- * below the foot). From the side (`[s, z]`, its height only): down to the floor inside, or
- * stopped over the rim (or under the foot) where it overhangs the walls. On its way it stops
- * short of the straws, coins, cards, other spheres and the eye, so that it never jumps over one
- * within a step; the rules (the engine) have the last word. */
-function moveSphere(f, k, q, side) {
-  const o = f.sphere[k], [x, y, z] = o.center, r = o.radius, height = (f.container || {}).height;
+/** The bounds `[lo, hi]` of the layer holding the height `z` inside the form's container: the
+ * floor or a surface below it, the next surface above it (Infinity above them all). */
+function layerAround(f, z) {
+  let lo = inside(f).floor;
+  for (const l of f.liquid || []) { if (z <= l.top) return [lo, l.top]; lo = l.top; }
+  return [lo, Infinity];
+}
+/** Sphere or lens `k` of the form `f` (a ball of radius `r`: a lens as the sphere about its
+ * centre that holds it) moved towards the map's point `q`. From above (`[x, y]`): kept inside
+ * the container if it is in it, else round it (free where it floats above the rim or below the
+ * foot). From the side (`[s, z]`, its height only): down to the floor inside (a lens within its
+ * liquid layer, or above them), or stopped over the rim (or under the foot) where it overhangs
+ * the walls. On its way it stops short of the straws, coins, cards, other solids and the eye, so
+ * that it never jumps over one within a step; the rules (the engine) have the last word. */
+function moveBall(f, kind, k, q, side) {
+  const o = f[kind][k], [x, y, z] = o.center, r = kind === "lens" ? lensReach(o) : o.radius, height = (f.container || {}).height;
   const floor = inside(f).floor;
   let at; // the place at the fraction `t` of the way, or null where it must stop
   if (!side) {
@@ -475,8 +694,15 @@ function moveSphere(f, k, q, side) {
     };
   } else {
     let nz = r5(q[1]);
-    if (sphereHeld(f, [x, y], r)) nz = z >= floor ? Math.max(nz, restingOn(floor, r)) : Math.min(nz, r5(-r - 1e-4));
-    else {
+    if (sphereHeld(f, [x, y], r)) {
+      if (z < floor) nz = Math.min(nz, r5(-r - 1e-4));
+      else if (kind === "lens") {
+        // A lens stays in its layer, a hair clear of its surfaces, as the rules ask.
+        const [lo, hi] = layerAround(f, z);
+        nz = Math.max(nz, restingOn(lo, r));
+        if (hi !== Infinity) { let top = Math.floor((hi - r) * 1e5) / 1e5; if (top + r > hi) top -= 1e-5; nz = Math.min(nz, top); }
+      } else nz = Math.max(nz, restingOn(floor, r));
+    } else {
       const d = outsideBy(f, x, y);
       if (d < r + 1e-4) {
         const h = Math.sqrt(Math.max(0, r * r - d * d)) + 1e-4;
@@ -485,24 +711,95 @@ function moveSphere(f, k, q, side) {
     }
     at = (t) => [x, y, t === 1 ? nz : r5(z + t * (nz - z))];
   }
-  // Steps of 0.2 mm (at most 600) from where it is; the objects are judged only if the sphere
-  // stands clear of them where it starts (a card wholly inside it, say, is the engine's to judge),
-  // 10 µm clear unless it starts closer (touching one, it may still move away).
+  // Steps of 0.2 mm (at most 600) from where it is; the objects are judged only if the ball
+  // stands clear of them where it starts (a card wholly inside a sphere, say, is the engine's to
+  // judge), 10 µm clear unless it starts closer (touching one, it may still move away).
+  const ball = (c) => ({ kind, k, c, r });
   const end = at(1), way = end ? Math.hypot(end[0] - x, end[1] - y, end[2] - z) : Math.hypot(q[0] - x, q[1] - y);
-  const gap = sphereClear(f, o.center, r, 1e-5, k) ? 1e-5 : 0, judged = gap > 0 || sphereClear(f, o.center, r, 0, k);
+  const gap = solidClear(f, ball(o.center), 1e-5) ? 1e-5 : 0, judged = gap > 0 || solidClear(f, ball(o.center), 0);
   const n = Math.min(600, Math.max(1, Math.ceil(way / 2e-4)));
   let last = o.center;
   for (let i = 1; i <= n; i++) {
     const p = at(i / n);
-    if (!p || (judged && !sphereClear(f, p, r, gap, k))) break;
+    if (!p || (judged && !solidClear(f, ball(p), gap))) break;
     last = p;
   }
   o.center = last;
 }
+/** Prism `k` of the form `f` moved towards the map's point `q` by its middle. From above
+ * (`[x, y]`): kept inside the container if it stands in it (sliding along its walls), else round
+ * it (free where it stands above the rim or below the foot). From the side (`[s, z]`, its height
+ * only): down to the floor inside, or stopped over the rim (or under the foot) where it overhangs
+ * the walls. On its way it stops short of the straws, coins, cards, other solids and the eye; the
+ * rules (the engine) have the last word. */
+function movePrism(f, k, q, side) {
+  const o = f.prism[k], poly = o.corners, height = (f.container || {}).height, floor = inside(f).floor;
+  const [cx, cy] = polygonMiddle(poly), h = o.top - o.bottom;
+  const moved = (dx, dy) => poly.map(([x, y]) => [r5(x + dx), r5(y + dy)]);
+  let at; // the prism `{ poly, bottom, top }` at the fraction `t` of the way, or null where it must stop
+  if (!side) {
+    const free = o.bottom > height || o.top < 0;
+    const held = polygonHeld(f, poly) && o.bottom >= floor;
+    const c = inside(f), k0 = f.container || {};
+    at = (t) => {
+      let dx = r5(t * (q[0] - cx)), dy = r5(t * (q[1] - cy));
+      if (free) return { poly: moved(dx, dy), bottom: o.bottom, top: o.top };
+      if (held) {
+        if (c.tank) {
+          // Each way on its own: it slides along a wall it meets.
+          const lim = (lo, hi, d, half) => Math.max(-half + 1e-4 - lo, Math.min(half - 1e-4 - hi, d));
+          dx = r5(lim(Math.min(...poly.map((p) => p[0])), Math.max(...poly.map((p) => p[0])), dx, c.hx));
+          dy = r5(lim(Math.min(...poly.map((p) => p[1])), Math.max(...poly.map((p) => p[1])), dy, c.hy));
+        } else if (!polygonHeld(f, moved(dx, dy), 1e-4)) {
+          // Its middle drawn in towards the axis until it fits: it slides round the wall.
+          const fits = (m) => polygonHeld(f, moved(r5(m * (cx + dx) - cx), r5(m * (cy + dy) - cy)), 1e-4);
+          if (!fits(0)) return null;
+          let lo = 0, hi = 1;
+          for (let i = 0; i < 30; i++) { const m = (lo + hi) / 2; if (fits(m)) lo = m; else hi = m; }
+          [dx, dy] = [r5(lo * (cx + dx) - cx), r5(lo * (cy + dy) - cy)];
+          if (!fits(lo)) return null;
+        }
+        return { poly: moved(dx, dy), bottom: o.bottom, top: o.top };
+      }
+      // Round the container, not through it: its middle over the container's outline stops it;
+      // round a glass it is pushed out along its middle's direction until clear of it.
+      if (depthIn(f, cx + dx, cy + dy) > 0) return null;
+      let p = moved(dx, dy);
+      for (let i = 0; i < 8 && polygonOutsideBy(f, p) < 1e-4 && k0.shape !== "tank"; i++) {
+        const m = [cx + dx, cy + dy], d = Math.hypot(...m), push = 1e-4 - polygonOutsideBy(f, p) + 1e-5;
+        dx = r5(dx + (push * m[0]) / d); dy = r5(dy + (push * m[1]) / d);
+        p = moved(dx, dy);
+      }
+      return polygonOutsideBy(f, p) < 1e-4 ? null : { poly: p, bottom: o.bottom, top: o.top };
+    };
+  } else {
+    let nb = r5(q[1] - h / 2);
+    if (polygonHeld(f, poly) && o.bottom >= floor) nb = Math.max(nb, floor);
+    else if (polygonOutsideBy(f, poly) < 1e-4) {
+      nb = o.bottom >= height / 2 ? Math.max(nb, Math.ceil((height + 1e-4) * 1e5) / 1e5) : Math.min(nb, Math.floor((-h - 1e-4) * 1e5) / 1e5);
+    }
+    at = (t) => { const b = t === 1 ? nb : r5(o.bottom + t * (nb - o.bottom)); return { poly, bottom: b, top: r5(b + h) }; };
+  }
+  // Steps of 0.2 mm (at most 600) from where it is, judged as a sphere's are.
+  const solid = (p) => ({ kind: "prism", k, poly: p.poly, bottom: p.bottom, top: p.top });
+  const start = { poly, bottom: o.bottom, top: o.top }, end = at(1);
+  const shift = (p) => Math.max(Math.hypot(p.poly[0][0] - poly[0][0], p.poly[0][1] - poly[0][1]), Math.abs(p.bottom - o.bottom));
+  const way = end ? shift(end) : Math.hypot(q[0] - cx, q[1] - cy);
+  const gap = solidClear(f, solid(start), 1e-5) ? 1e-5 : 0, judged = gap > 0 || solidClear(f, solid(start), 0);
+  const n = Math.min(600, Math.max(1, Math.ceil(way / 2e-4)));
+  let last = start;
+  for (let i = 1; i <= n; i++) {
+    const p = at(i / n);
+    if (!p || (judged && !solidClear(f, solid(p), gap))) break;
+    last = p;
+  }
+  Object.assign(o, { corners: last.poly, bottom: last.bottom, top: last.top });
+}
 /** Moves the handle `h` to the map's point `q` (`[x, y]` from above, `[s, z]` from the side). */
 export function dragHandle(h, q, side) {
   dragForm((f) => {
-    if (h.kind === "sphere") { moveSphere(f, h.k, q, side); return; }
+    if (h.kind === "sphere" || h.kind === "lens") { moveBall(f, h.kind, h.k, q, side); return; }
+    if (h.kind === "prism") { movePrism(f, h.k, q, side); return; }
     if (h.kind === "liquid") {
       const c = inside(f), layers = f.liquid;
       const lo = (h.k ? layers[h.k - 1].top : c.floor) + 1e-3;

@@ -1,5 +1,5 @@
 // The side and top maps: the glass or the scene's outlines and liquids, the eye, the straw, the
-// spheres and the objects' handles, and their drags (the eye, the glass's straw, a scene's objects).
+// transparent solids and the objects' handles, and their drags (the eye, the glass's straw, a scene's objects).
 import { t } from "./i18n.js";
 import { state, SECTION_RGB, GLASS_R, GLASS_H, STRAW_R } from "./state.js";
 import { sideCanvas, topCanvas } from "./dom.js";
@@ -92,7 +92,7 @@ export function drawMaps() {
       drawLiquidsSide(ctx, lines, u, P);
       drawLines(ctx, lines, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]));
       const form = viewForm(), c = lines.container;
-      if (form) drawSpheres(ctx, form, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]), k);
+      if (form) drawSolids(ctx, form, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]), k, [-u[1], u[0], 0]);
       if (form && c) {
         const half = c.shape === "glass" ? c.radius : Math.abs(u[0]) * c.half_x + Math.abs(u[1]) * c.half_y;
         sideCanvas.handles = handlesOf(form, P, { u, half });
@@ -127,7 +127,7 @@ export function drawMaps() {
       drawLiquidsTop(ctx, lines, P, k);
       drawLines(ctx, lines, (q) => P(q[0], q[1]));
       const form = viewForm();
-      if (form) { drawSpheres(ctx, form, (q) => P(q[0], q[1]), k); topCanvas.handles = handlesOf(form, P, null); drawHandles(ctx, topCanvas.handles); }
+      if (form) { drawSolids(ctx, form, (q) => P(q[0], q[1]), k, [0, 0, 1]); topCanvas.handles = handlesOf(form, P, null); drawHandles(ctx, topCanvas.handles); }
     }
     else {
       ctx.fillStyle = state.he > 0 ? liquidTint(0, state.n) : "transparent"; ctx.strokeStyle = "#4a7fc1";
@@ -144,14 +144,53 @@ export function drawMaps() {
   }
 }
 
-/** The form's spheres on a map: a disc of its radius about its centre (`at` a point's pixel, `k`
- * pixels per metre), tinted as glass. */
-function drawSpheres(ctx, form, at, k) {
+/** The form's transparent solids on a map, tinted as glass (`at` a point's pixel, `k` pixels per
+ * metre, `n` the unit vector the map looks along): a sphere's disc of its radius about its
+ * centre; a prism's outline (from above its polygon, from the side the rectangle of its width
+ * along the map and its height); a lens's profile (its section through its axis, across the
+ * line of sight) and its rim's circle (from along its axis a circle, at a slant an ellipse). */
+function drawSolids(ctx, form, at, k, n) {
   ctx.lineWidth = 1.5; ctx.strokeStyle = "#1b7f86"; ctx.fillStyle = "rgba(27,127,134,0.16)";
   for (const o of form.sphere || []) {
     ctx.beginPath(); ctx.arc(...at(o.center), Math.max(2, o.radius * k), 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
   }
+  const outline = (pts) => { ctx.beginPath(); pts.forEach((q, i) => (i ? ctx.lineTo(...q) : ctx.moveTo(...q))); ctx.closePath(); ctx.fill(); ctx.stroke(); };
+  for (const o of form.prism || []) {
+    if (n[2] === 1) { outline(o.corners.map(([x, y]) => at([x, y, 0]))); continue; }
+    // From the side: the corners' extent along the map, from the bottom to the top.
+    const xs = o.corners.map(([x, y]) => at([x, y, o.bottom])[0]);
+    const [x0, x1] = [Math.min(...xs), Math.max(...xs)], y0 = at([0, 0, o.top])[1], y1 = at([0, 0, o.bottom])[1];
+    outline([[x0, y0], [Math.max(x1, x0 + 2), y0], [Math.max(x1, x0 + 2), y1], [x0, y1]]);
+  }
+  for (const o of form.lens || []) drawLens(ctx, o, at, n, outline);
   ctx.lineWidth = 1;
+}
+/** A lens on a map (see drawSolids). */
+function drawLens(ctx, o, at, n, outline) {
+  const norm = (v) => { const l = Math.hypot(...v); return l > 0 ? v.map((c) => c / l) : null; };
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const a = norm(o.axis), half = o.diameter / 2;
+  if (!a) return;
+  const sag = (r, rho) => (r === 0 ? 0 : r - Math.sign(r) * Math.sqrt(Math.max(0, r * r - rho * rho)));
+  const face1 = (rho) => -o.thickness / 2 + sag(o.radius1, rho), face2 = (rho) => o.thickness / 2 + sag(o.radius2, rho);
+  const point = (w, v) => o.center.map((c, i) => c + w * a[i] + v[i]);
+  // Its profile: the section through its axis that the map sees broadside (none along the axis).
+  const e = norm(cross(n, a));
+  if (e) {
+    const N = 24, rhos = [...Array(2 * N + 1).keys()].map((i) => -half + (i * half) / N);
+    outline([...rhos.map((r) => at(point(face1(Math.abs(r)), e.map((c) => c * r)))), ...rhos.reverse().map((r) => at(point(face2(Math.abs(r)), e.map((c) => c * r))))]);
+  }
+  // Its rim's two circles, where the faces meet it.
+  const u = norm(Math.abs(a[2]) < 0.9 ? cross(a, [0, 0, 1]) : cross(a, [1, 0, 0])), v = cross(a, u);
+  for (const w of [face1(half), face2(half)]) {
+    ctx.beginPath();
+    for (let i = 0; i <= 48; i++) {
+      const t = (i * Math.PI) / 24, q = at(point(w, u.map((c, j) => half * (c * Math.cos(t) + v[j] * Math.sin(t)))));
+      if (i) ctx.lineTo(...q); else ctx.moveTo(...q);
+    }
+    if (!e) ctx.fill();
+    ctx.stroke();
+  }
 }
 
 /** The objects' handles on a map: a small ring where a drag takes each (of radius `ring`, else 5 px). */
