@@ -202,6 +202,8 @@ pub struct Boundary {
     pub(crate) holes: [u16; 2],
     /// Whether it is a transparent solid's face (light entering there enters the solid).
     pub solid: bool,
+    /// Which solid it is a face of (its own medium's number as built), for a solid's face.
+    pub(crate) body: u16,
 }
 
 /// What a transparent solid makes of a horizontal face: where a solid pierces it, its
@@ -266,6 +268,19 @@ impl Optics {
             eta_out: Constant::new(n_inner / n_outer),
         }
     }
+}
+
+/// The lanes whose point `p + t·d` (relative to a cap's sphere's centre) lies on the cap: ahead,
+/// on the side `h` points to, within the rim (a hair wide, so that no ray slips between the cap
+/// and the rim by rounding). A function, not a closure: it must be inlined into the packets'
+/// code compiled for their instruction set.
+#[inline(always)]
+fn on_cap<R: Real>(p: V3<R>, d: V3<R>, h: V3<R>, rho2: f64, t: R) -> R::Mask {
+    let x = p.along(t, d);
+    let w = x.dot(h);
+    t.gt(R::splat(0.0))
+        .and(w.ge(R::splat(0.0)))
+        .and((x.dot(x) - w * w).le(R::splat(rho2 * (1.0 + 1e-12))))
 }
 
 /// The circle around the `z` axis that holds the whole scene: its radius² and the quadratic of
@@ -359,23 +374,14 @@ impl Boundary {
                 }
                 let roots = q.roots(R::splat(1.0) / q.a);
                 let h = V3::splat(toward);
-                // On the cap: ahead, on the vertex's side of the centre, within the rim (a hair
-                // wide, so that no ray slips between the cap and the rim by rounding).
-                let on_cap = |t: R| {
-                    let x = p.along(t, d);
-                    let w = x.dot(h);
-                    t.gt(R::splat(0.0))
-                        .and(w.ge(R::splat(0.0)))
-                        .and((x.dot(x) - w * w).le(R::splat(rho2 * (1.0 + 1e-12))))
-                };
                 let leaving = leaving.and(alive);
-                let near = R::select(on_cap(roots.near), roots.near, inf);
+                let near = R::select(on_cap(p, d, h, rho2, roots.near), roots.near, inf);
                 let near = R::select(
                     near.lt(inf),
                     near,
-                    R::select(on_cap(roots.far), roots.far, inf),
+                    R::select(on_cap(p, d, h, rho2, roots.far), roots.far, inf),
                 );
-                let other = R::select(on_cap(roots.q_over_a), roots.q_over_a, inf);
+                let other = R::select(on_cap(p, d, h, rho2, roots.q_over_a), roots.q_over_a, inf);
                 R::select(roots.real.and(alive), R::select(leaving, other, near), inf)
             }
             Shape::Disk { centre, normal, r2 } => {
@@ -723,6 +729,7 @@ mod tests {
             },
             holes: [0, 0],
             solid: false,
+            body: 0,
         }
     }
 

@@ -74,6 +74,8 @@ pub struct World {
     objects: Vec<Object>,
     /// What solids make of horizontal faces (each face names its range of them).
     clips: Vec<Clip>,
+    /// The transparent solids, each with the range of its faces (all after the plain ones).
+    bodies: Vec<Body>,
     /// The edges of the prisms' polygons the clips name.
     edges: Vec<Edge>,
     /// How many whole surfaces the boundaries lie on: codes `0..surfaces` name them, and
@@ -88,6 +90,9 @@ pub struct World {
     /// Radius of a circle around the `z` axis holding everything (a ray whose line passes
     /// clearly outside it meets nothing).
     reach: f64,
+    /// The same for the container's and liquids' faces and the opaque objects alone (the
+    /// solids may stand farther out).
+    plain_reach: f64,
     /// Whether any boundary is a vertical plane (rays then need the reciprocals of `dx`, `dy`).
     verticals: bool,
     /// The radius and height of a glass whose walls have no thickness (pictures may draw its
@@ -232,6 +237,7 @@ fn piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
         codes: boundary::Codes::default(),
         holes: [0, 0],
         solid: false,
+        body: 0,
     }
 }
 
@@ -239,8 +245,21 @@ fn piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
 fn solid_piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
     Boundary {
         solid: true,
+        body: inner,
         ..piece(shape, outer, inner)
     }
+}
+
+/// A transparent solid as the tracers skip it: the ball holding it, and the range of its faces
+/// in the world's list (a line that misses the ball meets none of them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Body {
+    /// The ball's centre.
+    pub centre: Vec3,
+    /// Its radius², a hair over the solid's reach.
+    pub r2: f64,
+    /// The range of the solid's faces in the world's boundaries.
+    pub faces: [usize; 2],
 }
 
 /// The plane `z` over `region`, `below` under it and `above` over it.
@@ -401,9 +420,12 @@ impl World {
         // the container, the layers its height spans (one face piece per layer, its outer
         // medium that layer's); outside it, air. Its poles lie at infinite heights, so that no
         // rounding of a hit's height loses them.
+        // The ball holding each solid, by its medium's number.
+        let mut balls: Vec<(MediumId, Vec3, f64)> = Vec::new();
         for sphere in &scene.spheres {
             let inner = indices.len() as MediumId;
             indices.push(sphere.index);
+            balls.push((inner, sphere.center, sphere.radius));
             let (c, r) = (sphere.center, sphere.radius);
             let zone = |z_min: f64, z_max: f64| Shape::Sphere {
                 centre: c,
@@ -439,6 +461,8 @@ impl World {
         for prism in &scene.prisms {
             let inner = indices.len() as MediumId;
             indices.push(prism.index);
+            let (lo, hi) = prism.bounds();
+            balls.push((inner, 0.5 * (lo + hi), 0.5 * (hi - lo).length()));
             let corners = prism.counterclockwise();
             let start = edges.len() as u16;
             for k in 0..corners.len() {
@@ -510,6 +534,7 @@ impl World {
             let mut bottom = horizontal(prism.bottom, disk, below, inner);
             for face in [&mut top, &mut bottom] {
                 face.solid = true;
+                face.body = inner;
                 // Marked with the prism's edges; its clip is made with the others below.
                 face.holes = range;
             }
@@ -521,6 +546,7 @@ impl World {
         for lens in &scene.lenses {
             let inner = indices.len() as MediumId;
             indices.push(lens.index);
+            balls.push((inner, lens.center, lens.reach()));
             let outer = if lens.inside(&scene.container) {
                 medium_above(lens.center.z)
             } else {
@@ -646,6 +672,12 @@ impl World {
             .map(Boundary::reach)
             .chain(objects.iter().map(Object::reach))
             .fold(0.0, f64::max);
+        let plain_reach = boundaries
+            .iter()
+            .filter(|b| !b.solid)
+            .map(Boundary::reach)
+            .chain(objects.iter().map(Object::reach))
+            .fold(0.0, f64::max);
 
         // Whole surfaces: every plane and cylinder a boundary lies on, numbered once.
         let mut keys: Vec<(u8, [f64; 3])> = Vec::new();
@@ -686,12 +718,33 @@ impl World {
             .any(|b| matches!(b.shape, Shape::Vertical { .. }));
         let plain = boundaries.iter().take_while(|b| !b.solid).count();
         debug_assert!(boundaries[plain..].iter().all(|b| b.solid));
+        // Each solid's faces lie together: one body per run of them.
+        let mut bodies: Vec<Body> = Vec::new();
+        for (k, b) in boundaries.iter().enumerate().skip(plain) {
+            match bodies.last_mut() {
+                Some(last) if boundaries[last.faces[0]].body == b.body => last.faces[1] = k + 1,
+                _ => {
+                    let (_, centre, radius) = balls
+                        .iter()
+                        .find(|(m, _, _)| *m == b.body)
+                        .copied()
+                        .expect("every solid's ball is known");
+                    let r = radius * (1.0 + 1e-9) + 1e-12;
+                    bodies.push(Body {
+                        centre,
+                        r2: r * r,
+                        faces: [k, k + 1],
+                    });
+                }
+            }
+        }
         World {
             indices,
             boundaries,
             plain,
             objects,
             clips,
+            bodies,
             edges,
             surfaces: keys.len() as u32,
             lo,
@@ -699,6 +752,7 @@ impl World {
             centre,
             radius,
             reach,
+            plain_reach,
             verticals,
             thin_glass: match &scene.container {
                 Container::Glass(g) if g.wall == 0.0 => Some((g.radius, g.height)),
@@ -716,6 +770,7 @@ impl World {
             boundaries: self.boundaries.clone(),
             objects: Vec::new(),
             clips: self.clips.clone(),
+            bodies: self.bodies.clone(),
             edges: self.edges.clone(),
             ..*self
         }

@@ -101,6 +101,16 @@ impl World {
         if !alive.any() {
             return None;
         }
+        // The container, its liquids and the objects may lie within a narrower circle than the
+        // solids beside them: lines clearly outside it skip their faces.
+        let (plain_alive, plain_around) = if self.plain_reach < self.reach {
+            let pr2 = self.plain_reach * self.plain_reach;
+            let quadratic = SideQuadratic::new(o.x, o.y, d.x, d.y, R::splat(pr2));
+            let live = alive.and_not(quadratic.clearly_misses(R::splat(pr2)));
+            (live, Around { r2: pr2, quadratic })
+        } else {
+            (alive, around)
+        };
         let mut inv = Reciprocals::new(d);
         if !self.verticals {
             // Not needed: no division by dx or dy (the compiler drops the unused ones).
@@ -109,38 +119,59 @@ impl World {
         }
         let mut t = inf;
         let mut code = R::splat(-1.0);
-        let mut take = |tb: R, b: &super::Boundary| {
-            let m = tb.lt(t);
-            t = R::select(m, tb, t);
-            code = R::select(m, R::splat(b.codes.index as f64), code);
-        };
+        // The nearest so far, without a closure: everything here must be inlined into the
+        // packets' code compiled for their instruction set.
+        macro_rules! take {
+            ($tb:expr, $b:expr) => {{
+                let tb = $tb;
+                let m = tb.lt(t);
+                t = R::select(m, tb, t);
+                code = R::select(m, R::splat($b.codes.index as f64), code);
+            }};
+        }
         // The container's and liquids' faces first, with the lean intersection of their three
         // shapes; without solids nothing is clipped from them (the scenes of old trace as they
         // did). The solids' faces come last.
-        let (plain, solid) = self.boundaries.split_at(self.plain);
-        if self.clips.is_empty() {
+        let plain = &self.boundaries[..self.plain];
+        if !plain_alive.any() {
+            // Every line passes clearly beside the container and its objects.
+        } else if self.clips.is_empty() {
             for b in plain {
                 let leaving = left.eq(R::splat(b.codes.surface as f64));
-                take(b.plain_crossing(o, d, &inv, leaving, alive, &around), b);
+                take!(
+                    b.plain_crossing(o, d, &inv, leaving, plain_alive, &plain_around),
+                    b
+                );
             }
         } else {
             for b in plain {
                 let leaving = left.eq(R::splat(b.codes.surface as f64));
-                let tb = b.plain_crossing(o, d, &inv, leaving, alive, &around);
-                take(self.clipped(b, o, d, tb), b);
+                let tb = b.plain_crossing(o, d, &inv, leaving, plain_alive, &plain_around);
+                take!(self.clipped(b, o, d, tb), b);
             }
         }
-        for b in solid {
-            let leaving = left.eq(R::splat(b.codes.surface as f64));
-            let tb = b.crossing(o, d, &inv, leaving, alive, &around);
-            take(self.clipped(b, o, d, tb), b);
+        // Each solid's faces, unless every line misses the ball holding it (or starts outside
+        // it moving away): a lens's three faces cost one quadratic then.
+        for body in &self.bodies {
+            let faces = &self.boundaries[body.faces[0]..body.faces[1]];
+            if faces.len() > 1 {
+                let q = SideQuadratic::sphere(o - V3::splat(body.centre), d, R::splat(body.r2));
+                if !alive.and(q.real()).and_not(q.moving_away()).any() {
+                    continue;
+                }
+            }
+            for b in faces {
+                let leaving = left.eq(R::splat(b.codes.surface as f64));
+                let tb = b.crossing(o, d, &inv, leaving, alive, &around);
+                take!(self.clipped(b, o, d, tb), b);
+            }
         }
         let mut part = R::splat(0.0);
         let mut tag = R::splat(0.0);
         let first_object = self.boundaries.len();
         for (j, object) in self.objects.iter().enumerate() {
             let own = R::splat(self.object_code(j) as f64);
-            let live = alive.and_not(left.eq(own));
+            let live = plain_alive.and_not(left.eq(own));
             if !live.any() {
                 continue;
             }
