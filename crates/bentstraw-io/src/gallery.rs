@@ -70,10 +70,7 @@ pub const GALLERY: [(&str, &str); 27] = [
         "marble-in-water",
         include_str!("../../../scenes/marble-in-water.toml"),
     ),
-    (
-        "fish-bowl",
-        include_str!("../../../scenes/fish-bowl.toml"),
-    ),
+    ("fish-bowl", include_str!("../../../scenes/fish-bowl.toml")),
     (
         "water-drop-magnifier",
         include_str!("../../../scenes/water-drop-magnifier.toml"),
@@ -82,18 +79,12 @@ pub const GALLERY: [(&str, &str); 27] = [
         "vanishing-ball",
         include_str!("../../../scenes/vanishing-ball.toml"),
     ),
-    (
-        "ball-lens",
-        include_str!("../../../scenes/ball-lens.toml"),
-    ),
+    ("ball-lens", include_str!("../../../scenes/ball-lens.toml")),
     (
         "half-dipped-ball",
         include_str!("../../../scenes/half-dipped-ball.toml"),
     ),
-    (
-        "prism",
-        include_str!("../../../scenes/prism.toml"),
-    ),
+    ("prism", include_str!("../../../scenes/prism.toml")),
     (
         "glass-block-pencil",
         include_str!("../../../scenes/glass-block-pencil.toml"),
