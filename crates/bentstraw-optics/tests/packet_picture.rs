@@ -239,9 +239,12 @@ fn packet_pictures_of_every_gallery_scene_match_exact() {
     }
 }
 
-/// Scenes with transparent spheres, each with its view: a marble in water beside a straw, a ball
-/// in air in front of the glass, a fish-bowl (a ball of water in air with a small card inside).
-fn sphere_scenes() -> Vec<(&'static str, String)> {
+/// Scenes with transparent solids, each with its view: a marble in water beside a straw, a ball
+/// in air in front of the glass, a fish-bowl (a ball of water in air with a small card inside),
+/// a 60° prism in air beside the glass, a glass block standing in the water through its surface,
+/// a biconvex lens in air between the eye and the glass, a biconcave lens in the water in front
+/// of the straw.
+fn solid_scenes() -> Vec<(&'static str, String)> {
     let glass = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
                  [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.1\n\n\
                  [[straw]]\nx = 0.015\ny = 0.0\n\n";
@@ -268,49 +271,84 @@ fn sphere_scenes() -> Vec<(&'static str, String)> {
              [observer]\nposition = [0.25, 0.38, 0.13]\ntarget = [0.0, 0.3, 0.1]\n"
                 .to_string(),
         ),
+        (
+            "60° prism beside the glass",
+            format!(
+                "{glass}[[prism]]\ncorners = [[0.07, -0.02], [0.11, -0.02], [0.09, 0.014641]]\n\
+                 bottom = 0.0\ntop = 0.06\nindex = 1.5\n\n\
+                 [observer]\nposition = [0.4, -0.1, 0.06]\ntarget = [0.09, -0.008, 0.035]\n"
+            ),
+        ),
+        (
+            "glass block through the water's surface",
+            format!(
+                "{glass}[[prism]]\n\
+                 corners = [[-0.025, -0.01], [-0.005, -0.01], [-0.005, 0.02], [-0.025, 0.02]]\n\
+                 bottom = 0.0\ntop = 0.13\nindex = 1.5\n\n\
+                 [observer]\nposition = [-0.2, 0.1, 0.12]\ntarget = [-0.015, 0.005, 0.09]\n"
+            ),
+        ),
+        (
+            "biconvex lens before the glass",
+            format!(
+                "{glass}[[lens]]\ncenter = [0.1, 0.0, 0.08]\naxis = [-1.0, 0.0, 0.0]\n\
+                 radius1 = 0.06\nradius2 = -0.06\nthickness = 0.008\ndiameter = 0.04\n\
+                 index = 1.5\n\n\
+                 [observer]\nposition = [0.35, 0.02, 0.1]\ntarget = [0.0, 0.0, 0.07]\n"
+            ),
+        ),
+        (
+            "biconcave lens in the water",
+            format!(
+                "{glass}[[lens]]\ncenter = [-0.018, 0.0, 0.05]\naxis = [1.0, 0.0, 0.0]\n\
+                 radius1 = -0.03\nradius2 = 0.03\nthickness = 0.002\ndiameter = 0.03\n\
+                 index = 1.6\n\n\
+                 [observer]\nposition = [-0.18, 0.0, 0.06]\ntarget = [-0.018, 0.0, 0.05]\n"
+            ),
+        ),
     ]
 }
 
-/// The packet tracer agrees with the double-precision tracer on sphere scenes as on the gallery's,
-/// seen from each scene's observer, with a wide view (whole balls, partial packets at the row
-/// ends) and a narrow one (a ball's rim and what is seen through it).
+/// The packet tracer agrees with the double-precision tracer on solid scenes (spheres, prisms,
+/// lenses) as on the gallery's, seen from each scene's observer, with a wide view (whole solids,
+/// partial packets at the row ends) and a narrow one (a solid's rim and what is seen through it).
 #[test]
-fn packet_pictures_of_sphere_scenes_match_exact() {
+fn packet_pictures_of_solid_scenes_match_exact() {
     use bentstraw_optics::scene_file::SceneDescription;
-    for (name, text) in sphere_scenes() {
+    for (name, text) in solid_scenes() {
         let d = SceneDescription::from_toml(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
         let world = World::new(&d, 10).expect("a valid scene");
         let o = d.observer.unwrap();
         for (fov, w, h) in [(40.0f64, 240, 180), (15.0, 161, 121)] {
             let camera = Camera::new(o.position, o.target, w, h, fov.to_radians());
             check_world(&format!("{name}, {fov}°"), &world, &camera);
-            // The balls are in view: some pixels' rays refract at a sphere.
+            // The solids are in view: some pixels' rays refract at a solid's face.
             let through = (0..h)
                 .flat_map(|i| (0..w).map(move |j| (i, j)))
                 .filter(|&(i, j)| {
-                    let mut on_sphere = false;
+                    let mut on_solid = false;
                     world.trace_with(camera.pixel_ray(i, j), |e| {
-                        on_sphere |= world.boundaries()[e.boundary].solid
+                        on_solid |= world.boundaries()[e.boundary].solid
                     });
-                    on_sphere
+                    on_solid
                 })
                 .count();
-            eprintln!("{name}, {fov}°: {through} pixels see through a sphere");
+            eprintln!("{name}, {fov}°: {through} pixels see through a solid");
             assert!(
                 through * 100 > (w * h) as usize,
-                "{name}, {fov}°: {through} pixels see through a sphere"
+                "{name}, {fov}°: {through} pixels see through a solid"
             );
         }
     }
 }
 
 /// The packet kernels for the processor's wider instruction sets (AVX2, AVX-512) give the
-/// portable kernel's pixels, bit for bit, on the sphere scenes, course and Fresnel, from each
+/// portable kernel's pixels, bit for bit, on the solid scenes, course and Fresnel, from each
 /// scene's observer and from far away. Without AVX2 there is no second kernel to compare and
 /// the test fails.
 #[test]
 #[ignore = "needs a processor with AVX2 (a packet kernel besides the portable one)"]
-fn every_packet_kernel_gives_the_portable_pixels_on_sphere_scenes() {
+fn every_packet_kernel_gives_the_portable_pixels_on_solid_scenes() {
     use bentstraw_optics::packet::{FresnelWave, Instructions, PacketTracer};
     use bentstraw_optics::scene_file::SceneDescription;
     let any = World::assignment(&Scene::with_defaults(0.02, 0.01, 0.15).unwrap());
@@ -322,7 +360,7 @@ fn every_packet_kernel_gives_the_portable_pixels_on_sphere_scenes() {
         !kernels.is_empty(),
         "no AVX2 here: the packet kernels cannot be compared (run on an x86-64 processor with AVX2)"
     );
-    for (name, text) in sphere_scenes() {
+    for (name, text) in solid_scenes() {
         let d = SceneDescription::from_toml(&text).unwrap();
         let world = World::new(&d, 10).unwrap();
         let o = d.observer.unwrap();
