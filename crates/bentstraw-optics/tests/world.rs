@@ -804,7 +804,7 @@ fn check_judges_a_worlds_points_and_finds_what_is_missing() {
 mod random_scenes {
     use super::*;
     use bentstraw_optics::scene_file::{
-        Card, Coin, Container, Glass, Liquid, Observer, Picture, Sphere, Straw, Tank,
+        Card, Coin, Container, Glass, Lens, Liquid, Observer, Picture, Prism, Sphere, Straw, Tank,
     };
 
     /// Where the random scene's sphere lies, if it has one.
@@ -889,6 +889,143 @@ mod random_scenes {
         }
     }
 
+    /// A prism (`place` 1: inside the container, 2: outside it; else none), a triangle or a
+    /// square box by `triangle`, its size, height and turn chosen by `size`, `height` and `turn`
+    /// (0..1), of `index`. Inside, it stands on the floor near the wall, a quarter turn from the
+    /// straw's lean on the side of +x (away from the coin; clear of the leaning straw, whose
+    /// foot is within 0.4 of the inner radius of the axis, and of a sphere beside its foot);
+    /// outside, it stands on the table beyond the container's widest reach in the direction of
+    /// the straw's lean (the outside sphere lies at least 65° from it), below the rim's height.
+    /// Dropped if it would come near the sphere.
+    #[allow(clippy::too_many_arguments)]
+    fn prism(
+        place: u8,
+        triangle: bool,
+        container: &Container,
+        straw: &Straw,
+        sphere: Option<&Sphere>,
+        (size, height, turn): (f64, f64, f64),
+        index: f64,
+    ) -> Option<Prism> {
+        let (inner, reach, rim) = match container {
+            Container::Glass(g) => (g.radius - g.wall, g.radius, g.height),
+            Container::Tank(t) => (t.half_y, t.half_x.hypot(t.half_y), t.height),
+        };
+        let lean = straw.azimuth_deg.to_radians();
+        let (centre, r, bottom, top) = match place {
+            1 => {
+                let r = (0.04 + 0.03 * size) * inner;
+                let b = lean + std::f64::consts::FRAC_PI_2;
+                let b = if b.cos() >= 0.0 {
+                    b
+                } else {
+                    b + std::f64::consts::PI
+                };
+                let floor = container.floor();
+                let c = 0.8 * inner * Vec3::new(b.cos(), b.sin(), 0.0);
+                (c, r, floor, floor + 0.01 + (rim - floor) * height)
+            }
+            2 => {
+                let r = 0.006 + 0.02 * size;
+                let c = (reach + r + 0.003) * Vec3::new(lean.cos(), lean.sin(), 0.0);
+                (c, r, 0.0, 0.01 + 0.09 * height)
+            }
+            _ => return None,
+        };
+        if let Some(s) = sphere {
+            let (a, b) = (s.center, centre);
+            let below = (s.center.z - s.radius > top) || (s.center.z + s.radius < bottom);
+            if !below && (a.x - b.x).hypot(a.y - b.y) < s.radius + r + 0.002 {
+                return None;
+            }
+        }
+        let k = if triangle { 3 } else { 4 };
+        let turn = turn * std::f64::consts::TAU;
+        let corners = (0..k)
+            .map(|j| {
+                let a = turn + std::f64::consts::TAU * j as f64 / k as f64;
+                [centre.x + r * a.cos(), centre.y + r * a.sin()]
+            })
+            .collect();
+        Some(Prism {
+            corners,
+            bottom,
+            top,
+            index,
+        })
+    }
+
+    /// A lens, if `on`: biconvex or biconcave by `convex`, outside the container on the line from
+    /// the observer at `eye` to the middle of the container (0, 0, 0.08), its axis towards the
+    /// container, its size and distance chosen by `size` and `far` (0..1), of `index`. Dropped if
+    /// its holding sphere would come near the straw, the sphere or the prism.
+    #[allow(clippy::too_many_arguments)]
+    fn lens(
+        on: bool,
+        convex: bool,
+        container: &Container,
+        straw: &Straw,
+        sphere: Option<&Sphere>,
+        prism: Option<&Prism>,
+        eye: Vec3,
+        (size, far): (f64, f64),
+        index: f64,
+    ) -> Option<Lens> {
+        if !on {
+            return None;
+        }
+        let reach = match container {
+            Container::Glass(g) => g.radius,
+            Container::Tank(t) => t.half_x.hypot(t.half_y),
+        };
+        let target = Vec3::new(0.0, 0.0, 0.08);
+        let diameter = 0.015 + 0.025 * size;
+        let (radius1, radius2, thickness) = if convex {
+            let r = 0.04 + 0.04 * far;
+            let sag = r - (r * r - diameter * diameter / 4.0).sqrt();
+            (r, -r, 2.0 * sag + 0.002)
+        } else {
+            let r = -(0.03 + 0.04 * size);
+            (r, -r, 0.0015)
+        };
+        let mut l = Lens {
+            center: target,
+            axis: target - eye,
+            radius1,
+            radius2,
+            thickness,
+            diameter,
+            index,
+        };
+        let held = l.reach();
+        let flat = (eye - target).truncate().length();
+        let rho = reach + held + 0.004 + 0.1 * far;
+        l.center = target + (rho / flat) * (eye - target);
+        // The straw's axis, from its foot up.
+        let (tilt, az) = (straw.tilt_deg.to_radians(), straw.azimuth_deg.to_radians());
+        let foot = Vec3::new(straw.x, straw.y, container.floor());
+        let up = Vec3::new(tilt.sin() * az.cos(), tilt.sin() * az.sin(), tilt.cos());
+        let along = (l.center - foot).dot(up).clamp(0.0, straw.length);
+        if (foot + along * up - l.center).length() < held + straw.radius + 0.003 {
+            return None;
+        }
+        if let Some(s) = sphere {
+            if (s.center - l.center).length() < s.radius + held + 0.002 {
+                return None;
+            }
+        }
+        if let Some(p) = prism {
+            let near = p
+                .corners
+                .iter()
+                .any(|c| (Vec3::new(c[0], c[1], l.center.z) - l.center).length() < held + 0.03);
+            if near && l.center.z - held < p.top + 0.002 {
+                return None;
+            }
+        }
+        Some(l)
+    }
+
     /// A random scene of every kind the format allows (glass or tank, thick or thin, up to three
     /// layers, leaning straws, a coin, a card, a sphere in a liquid, in the air inside the
     /// container or outside it), kept when the format's rules accept it.
@@ -922,6 +1059,18 @@ mod random_scenes {
                 (0.0f64..1.0, 0.0f64..1.0, -1.0f64..1.0),
                 1.0f64..2.0,
             ),
+            (
+                prop_oneof![Just(0u8), Just(1u8), Just(2u8)],
+                any::<bool>(),
+                (0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0),
+                1.0f64..2.0,
+            ),
+            (
+                any::<bool>(),
+                any::<bool>(),
+                (0.0f64..1.0, 0.0f64..1.0),
+                1.0f64..2.0,
+            ),
         )
             .prop_map(
                 |(
@@ -930,6 +1079,8 @@ mod random_scenes {
                     (sr, sa, tilt, az),
                     (coin, card, oa),
                     (place, (size, height, bearing), sphere_n),
+                    (prism_place, triangle, prism_shape, prism_n),
+                    (lens_on, convex, lens_shape, lens_n),
                 )| {
                     let container = if tank {
                         Container::Tank(Tank {
@@ -993,12 +1144,37 @@ mod random_scenes {
                     } else {
                         vec![]
                     };
-                    let spheres = sphere(
+                    let spheres: Vec<Sphere> = sphere(
                         place, &container, &liquids, &straw, size, height, bearing, sphere_n,
                     )
                     .into_iter()
                     .collect();
+                    let prisms: Vec<Prism> = prism(
+                        prism_place,
+                        triangle,
+                        &container,
+                        &straw,
+                        spheres.first(),
+                        prism_shape,
+                        prism_n,
+                    )
+                    .into_iter()
+                    .collect();
                     let d = 0.4;
+                    let eye = Vec3::new(d * oa.cos(), d * oa.sin(), 0.15);
+                    let lenses = lens(
+                        lens_on,
+                        convex,
+                        &container,
+                        &straw,
+                        spheres.first(),
+                        prisms.first(),
+                        eye,
+                        lens_shape,
+                        lens_n,
+                    )
+                    .into_iter()
+                    .collect();
                     SceneDescription {
                         container,
                         liquids,
@@ -1006,10 +1182,10 @@ mod random_scenes {
                         coins,
                         cards,
                         spheres,
-                        prisms: vec![],
-                        lenses: vec![],
+                        prisms,
+                        lenses,
                         observer: Some(Observer {
-                            position: Vec3::new(d * oa.cos(), d * oa.sin(), 0.15),
+                            position: eye,
                             target: Vec3::new(0.0, 0.0, 0.08),
                         }),
                     }
@@ -1017,7 +1193,8 @@ mod random_scenes {
             )
     }
 
-    /// The spheres cost the random scenes nothing: a scene drawn with a sphere is refused only
+    /// The solids cost the random scenes nothing: a scene drawn with a sphere, a prism or a lens
+    /// is refused only
     /// where it would be without it (leaning straws through the wall are the usual reason), so
     /// proptest's rejections stay as they were; and valid scenes hold spheres in each place: in a
     /// liquid, in the air inside the container, in the air outside it.
@@ -1031,18 +1208,23 @@ mod random_scenes {
         );
         let strategy = any_scene();
         let (n, mut valid, mut places) = (2000, 0, [0; 4]);
+        let (mut prisms, mut lenses) = ([0; 2], 0);
         for _ in 0..n {
             let d = strategy.new_tree(&mut runner).expect("a scene").current();
             let bare = SceneDescription {
                 spheres: vec![],
+                prisms: vec![],
+                lenses: vec![],
                 ..d.clone()
             };
             let ok = d.validate().is_ok();
             assert_eq!(
                 ok,
                 bare.validate().is_ok(),
-                "{:?}: {:?}",
+                "{:?} {:?} {:?}: {:?}",
                 d.spheres,
+                d.prisms,
+                d.lenses,
                 d.validate()
             );
             if !ok {
@@ -1059,22 +1241,75 @@ mod random_scenes {
                 }
             });
             places[place] += 1;
+            for p in &d.prisms {
+                prisms[usize::from(!p.inside(&d.container))] += 1;
+            }
+            lenses += d.lenses.len();
         }
         eprintln!(
-            "{valid} of {n} valid; no sphere, in a liquid, in air inside, outside: {places:?}"
+            "{valid} of {n} valid; no sphere, in a liquid, in air inside, outside: {places:?}; \
+             prisms inside, outside: {prisms:?}; lenses: {lenses}"
         );
+        assert!(prisms.iter().all(|&k| k * 10 >= valid), "{prisms:?}");
+        assert!(lenses * 10 >= valid, "{lenses} lenses");
         assert!(valid * 10 >= n * 4, "{valid} of {n} valid");
         assert!(places.iter().all(|&k| k * 10 >= valid), "{places:?}");
     }
 
     /// The refractive index at `p`, read off the description's geometry alone (nothing of the
-    /// library's media or boundaries): a sphere's inside it, else the container's material, the
-    /// layer whose span holds `p`'s height inside the cavity, air elsewhere.
+    /// library's media or boundaries): a solid's inside it (a sphere, a prism, a lens), else the
+    /// container's material, the layer whose span holds `p`'s height inside the cavity, air
+    /// elsewhere.
     fn index_at(d: &SceneDescription, p: Vec3) -> f64 {
-        d.spheres
+        if let Some(s) = d
+            .spheres
             .iter()
             .find(|s| (p - s.center).length() < s.radius)
-            .map_or_else(|| index_around(d, p), |s| s.index)
+        {
+            return s.index;
+        }
+        if let Some(s) = d.prisms.iter().find(|s| in_prism(s, p)) {
+            return s.index;
+        }
+        if let Some(s) = d.lenses.iter().find(|s| in_lens(s, p)) {
+            return s.index;
+        }
+        index_around(d, p)
+    }
+
+    /// Whether `p` is inside the prism: between its bottom and top, and on the same side of
+    /// every edge of its convex polygon (listed in either order).
+    fn in_prism(s: &Prism, p: Vec3) -> bool {
+        if p.z <= s.bottom || p.z >= s.top {
+            return false;
+        }
+        let k = s.corners.len();
+        let sides: Vec<f64> = (0..k)
+            .map(|j| {
+                let (a, b) = (s.corners[j], s.corners[(j + 1) % k]);
+                (b[0] - a[0]) * (p.y - a[1]) - (b[1] - a[1]) * (p.x - a[0])
+            })
+            .collect();
+        sides.iter().all(|&c| c > 0.0) || sides.iter().all(|&c| c < 0.0)
+    }
+
+    /// Whether `p` is inside the lens: within its diameter of its axis, its axial coordinate `w`
+    /// (from the centre) between face 1 (−t/2 + sag(R1, ρ)) and face 2 (t/2 + sag(R2, ρ)).
+    fn in_lens(s: &Lens, p: Vec3) -> bool {
+        let sag = |r: f64, rho: f64| {
+            if r == 0.0 {
+                0.0
+            } else {
+                r - r.signum() * (r * r - rho * rho).sqrt()
+            }
+        };
+        let a = s.axis / s.axis.length();
+        let v = p - s.center;
+        let w = v.dot(a);
+        let rho = (v - w * a).length();
+        rho < s.diameter / 2.0
+            && w > -s.thickness / 2.0 + sag(s.radius1, rho)
+            && w < s.thickness / 2.0 + sag(s.radius2, rho)
     }
 
     /// The refractive index at `p` were there no spheres.
@@ -1107,7 +1342,7 @@ mod random_scenes {
     }
 
     /// Points to aim at: `n` spread evenly over the box `lo..hi` (the world's), and 60 more over
-    /// the box around each sphere, so that small spheres are met too.
+    /// the box around each solid (sphere, prism, lens), so that small solids are met too.
     fn aims(d: &SceneDescription, lo: Vec3, hi: Vec3, n: u32) -> Vec<Vec3> {
         let spread = |k: u32| {
             let f = |m: f64| (k as f64 * m).fract();
@@ -1116,6 +1351,19 @@ mod random_scenes {
         let mut aims: Vec<Vec3> = (0..n).map(|k| lo + spread(k) * (hi - lo)).collect();
         for s in &d.spheres {
             aims.extend((0..60).map(|k| s.center + 2.0 * s.radius * (spread(k) - 0.5)));
+        }
+        for s in &d.prisms {
+            let (x0, x1, y0, y1) = s.corners.iter().fold(
+                (f64::MAX, f64::MIN, f64::MAX, f64::MIN),
+                |(x0, x1, y0, y1), c| (x0.min(c[0]), x1.max(c[0]), y0.min(c[1]), y1.max(c[1])),
+            );
+            let (a, b) = (Vec3::new(x0, y0, s.bottom), Vec3::new(x1, y1, s.top));
+            // Not spread(0), the box's corner: a ray through a prism's corner is left out.
+            aims.extend((1..61).map(|k| a + spread(k) * (b - a)));
+        }
+        for s in &d.lenses {
+            let r = s.reach();
+            aims.extend((0..60).map(|k| s.center + 2.0 * r * (spread(k) - 0.5)));
         }
         aims
     }
