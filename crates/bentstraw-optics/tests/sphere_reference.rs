@@ -20,7 +20,7 @@ use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::scene_file::SceneDescription;
 use bentstraw_optics::world::{FresnelStep, Outcome, World, FRESNEL_SEGMENTS_PER_RAY};
 use bentstraw_optics::Vec3;
-use spheres::{Ball, BallOutcome, Balls, Card, Shares, CARD_CODE};
+use spheres::{Ball, BallOutcome, Balls, Card, Prism, Shares, CARD_CODE};
 
 /// Margin (m) above which a ray's answer is not a matter of rounding.
 const WELL_POSED: f64 = 1e-9;
@@ -71,8 +71,22 @@ impl Rng {
 
 /// The scene file of `balls` and `cards` in air, beside a tiny empty glass at the origin (with
 /// no wall and no liquid it has no face), every number written so that it reads back exactly.
-fn scene_text(balls: &[Ball], cards: &[Card]) -> String {
+fn scene_text(balls: &[Ball], prisms: &[Prism], cards: &[Card]) -> String {
     let mut text = String::from("[container]\nshape = \"glass\"\nradius = 0.01\nheight = 0.01\n\n");
+    for p in prisms {
+        let corners: Vec<String> = p
+            .corners
+            .iter()
+            .map(|c| format!("[{}, {}]", c[0], c[1]))
+            .collect();
+        text += &format!(
+            "[[prism]]\ncorners = [{}]\nbottom = {}\ntop = {}\nindex = {}\n\n",
+            corners.join(", "),
+            p.bottom,
+            p.top,
+            p.index
+        );
+    }
     for b in balls {
         let c = b.centre;
         text += &format!(
@@ -92,10 +106,23 @@ fn scene_text(balls: &[Ball], cards: &[Card]) -> String {
 
 /// The library's world and the reference for the same numbers.
 fn both(balls: &[Ball], cards: &[Card], max_events: u32) -> (World, Balls) {
-    let text = scene_text(balls, cards);
+    both_with_prisms(balls, &[], cards, max_events)
+}
+
+/// The same with `prisms` besides.
+fn both_with_prisms(
+    balls: &[Ball],
+    prisms: &[Prism],
+    cards: &[Card],
+    max_events: u32,
+) -> (World, Balls) {
+    let text = scene_text(balls, prisms, cards);
     let d = SceneDescription::from_toml(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
     let world = World::new(&d, max_events).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    (world, Balls::new(balls, cards, max_events))
+    (
+        world,
+        Balls::new(balls, cards, max_events).with_prisms(prisms),
+    )
 }
 
 /// What was compared over the rays: rays shot, compared in course and in Fresnel mode, with
@@ -250,8 +277,12 @@ fn check(world: &World, reference: &Balls, ray: Ray, tally: &mut Tally) {
         BallOutcome::Escaped { .. } => {}
     }
     // Every event is Snell's, and a ball in air never reflects totally light that came in from
-    // the air.
+    // the air (a prism may: between two of its faces light meets the next past the critical
+    // angle).
     for e in &events {
+        if e.totally_reflected && reference.has_prisms() {
+            continue;
+        }
         assert!(!e.totally_reflected, "{e:?}");
         let sine = |d: Vec3| d.cross(e.normal).length();
         assert!((e.n1 * sine(e.incoming) - e.n2 * sine(e.outgoing)).abs() < 1e-12);
@@ -539,4 +570,68 @@ fn a_fish_bowl_and_a_card_behind_it_trace_as_the_independent_tracer_says() {
         }
     }
     assert_meaningful("fish-bowl", &tally, true);
+}
+
+/// A prism in air (a triangle, at times a 60° one, seen from above; planes for faces, sharp
+/// edges and corners) beside a card: rays from near and far at it, some level (through its sides
+/// only), compared as for the balls.
+#[test]
+fn a_prism_in_air_traces_as_the_independent_tracer_says() {
+    let mut rng = Rng(0x5EED_9815_0004);
+    let mut tally = Tally::default();
+    for _ in 0..40 {
+        let c = somewhere(&mut rng);
+        let side = rng.range(0.01, 0.06);
+        let height = rng.range(0.01, 0.08);
+        let turn = rng.range(0.0, std::f64::consts::TAU);
+        let regular = rng.next_f64() < 0.5;
+        let corners: Vec<[f64; 2]> = (0..3)
+            .map(|j| {
+                // A 60° prism, or a triangle with its corners nudged.
+                let a = turn
+                    + std::f64::consts::TAU * j as f64 / 3.0
+                    + if regular { 0.0 } else { rng.range(-0.4, 0.4) };
+                let r = side / 3f64.sqrt() * if regular { 1.0 } else { rng.range(0.7, 1.3) };
+                [c.x + r * a.cos(), c.y + r * a.sin()]
+            })
+            .collect();
+        let prism = Prism {
+            corners,
+            bottom: c.z - height / 2.0,
+            top: c.z + height / 2.0,
+            index: index(&mut rng),
+        };
+        let r = (side / 3f64.sqrt() * 1.3).hypot(height / 2.0);
+        let beyond = rng.range(0.0, 360.0f64);
+        let card = Card {
+            centre: c
+                + (r + 0.03) * Vec3::new(beyond.to_radians().cos(), beyond.to_radians().sin(), 0.0),
+            facing_deg: beyond + 180.0,
+            width: 0.04,
+            height: 0.03,
+        };
+        let (world, reference) = both_with_prisms(&[], &[prism], &[card], limit(&mut rng));
+        for k in 0..400 {
+            let from = eye(&mut rng, c, r);
+            let aim = match k % 4 {
+                0 => rng.around(card.centre, 0.02),
+                1 => rng.around(c, 1.1 * r),
+                _ => rng.around(c, 0.4 * r),
+            };
+            check(&world, &reference, Ray::new(from, aim - from), &mut tally);
+        }
+        // Level rays through the sides only (the bottom and top never met).
+        for _ in 0..40 {
+            let from = c
+                + Vec3::new(0.0, 0.0, rng.range(-0.4, 0.4) * height)
+                + (r + 0.05) * {
+                    let a = rng.range(0.0, std::f64::consts::TAU);
+                    Vec3::new(a.cos(), a.sin(), 0.0)
+                };
+            let aim = rng.around(c, 0.5 * r);
+            let aim = Vec3::new(aim.x, aim.y, from.z);
+            check(&world, &reference, Ray::new(from, aim - from), &mut tally);
+        }
+    }
+    assert_meaningful("prism", &tally, true);
 }

@@ -8,6 +8,10 @@
 //! amplitude coefficients. Nothing is shared with the library but the numbers of the scene; a ball
 //! of index 1 is no ball (the library's rule: a face between equal indices is none).
 //!
+//! Upright prisms in air too ([`Balls::with_prisms`]): a convex polyhedron of planes (one upright
+//! through each side of the polygon, the bottom and the top), met where a line's span inside
+//! every half-space begins (from outside) or ends (from inside), its face's normal the plane's.
+//!
 //! Along with each result it reports a `margin` (metres): how close the ray came to a decision
 //! that could go the other way (grazing a ball, a card's edge, two hits nearly tied, the critical
 //! angle, a branch's weight at the pruning threshold). Where the margin is far above double
@@ -97,6 +101,17 @@ pub struct Ball {
     pub index: f64,
 }
 
+/// A transparent upright prism: its section's corners seen from above (a convex polygon, listed
+/// in either order), its bottom and top heights, its index. Its faces are planes: one through each
+/// side of the polygon, upright, and the bottom and top.
+#[derive(Clone, Debug)]
+pub struct Prism {
+    pub corners: Vec<[f64; 2]>,
+    pub bottom: f64,
+    pub top: f64,
+    pub index: f64,
+}
+
 /// An opaque upright card: its centre, the direction (degrees from `x`, about `z`) its front faces,
 /// its width and height.
 #[derive(Clone, Copy, Debug)]
@@ -152,6 +167,9 @@ pub struct Shares {
 /// The scene: balls in air and cards, and the event limit.
 pub struct Balls {
     balls: Vec<(V, T, T)>,
+    /// Each prism's planes (outward unit normal `m`, offset `h`: inside where `m·x < h`) and
+    /// index; prism `j` is solid `balls.len() + j`.
+    prisms: Vec<(Vec<(V, T)>, T)>,
     cards: Vec<(V, V, V, T, T)>,
     max_events: u32,
 }
@@ -173,6 +191,7 @@ impl Balls {
                 .iter()
                 .map(|b| (V::of(b.centre), t(b.radius), t(b.index)))
                 .collect(),
+            prisms: Vec::new(),
             cards: cards
                 .iter()
                 .map(|c| {
@@ -184,6 +203,41 @@ impl Balls {
                 .collect(),
             max_events,
         }
+    }
+
+    /// The same with `prisms` besides (solids `balls.len()`, … after the balls).
+    pub fn with_prisms(mut self, prisms: &[Prism]) -> Balls {
+        for p in prisms {
+            let c = &p.corners;
+            let k = c.len();
+            let area: f64 = (0..k)
+                .map(|j| c[j][0] * c[(j + 1) % k][1] - c[(j + 1) % k][0] * c[j][1])
+                .sum();
+            let mut planes = Vec::new();
+            for j in 0..k {
+                let (a, b) = (c[j], c[(j + 1) % k]);
+                let (ax, ay) = (t(a[0]), t(a[1]));
+                let (dx, dy) = (t(b[0]) - ax, t(b[1]) - ay);
+                // Outwards: to the right of a counterclockwise side.
+                let m = V {
+                    x: dy,
+                    y: -dx,
+                    z: t(0.0),
+                };
+                let m = if area > 0.0 { m } else { m.scale(t(-1.0)) }.unit();
+                planes.push((m, m.x * ax + m.y * ay));
+            }
+            let up = V::of(Vec3::Z);
+            planes.push((up, t(p.top)));
+            planes.push((up.scale(t(-1.0)), t(-p.bottom)));
+            self.prisms.push((planes, t(p.index)));
+        }
+        self
+    }
+
+    /// Whether it holds prisms.
+    pub fn has_prisms(&self) -> bool {
+        !self.prisms.is_empty()
     }
 
     /// The nearest thing ahead of `o` along unit `d`, in ball `inside` (or air), having just left
@@ -227,6 +281,69 @@ impl Balls {
             let s = (-hb - disc.sqrt()) / a;
             if s > 0.0 {
                 cands.push((s, Met::Ball(k, s), f64::INFINITY));
+            }
+        }
+        let nb = self.balls.len();
+        for (j, (planes, n)) in self.prisms.iter().enumerate() {
+            let k = nb + j;
+            if *n == 1.0 {
+                continue; // a prism of air's index is no prism
+            }
+            if left == Some(k) && inside != Some(k) {
+                continue; // left outwards: a convex prism is not met again
+            }
+            // The line's span inside each half-space: entering where it crosses a face
+            // inwards, leaving where outwards.
+            let (mut enter, mut exit): (Option<(T, usize)>, Option<(T, usize)>) = (None, None);
+            let mut missed = false;
+            for (f, &(m, h)) in planes.iter().enumerate() {
+                let dn = m.dot(d);
+                let num = h - m.dot(o);
+                if dn == 0.0 {
+                    missed |= num < 0.0;
+                    continue;
+                }
+                let s = num / dn;
+                if dn < 0.0 {
+                    if enter.is_none_or(|(e, _)| s > e) {
+                        enter = Some((s, f));
+                    }
+                } else if exit.is_none_or(|(x, _)| s < x) {
+                    exit = Some((s, f));
+                }
+            }
+            // How deep inside the other faces a point of the line is (negative outside).
+            let depth = |s: T, face: usize| -> T {
+                let q = o.at(d, s);
+                planes
+                    .iter()
+                    .enumerate()
+                    .filter(|&(f, _)| f != face)
+                    .map(|(_, &(m, h))| h - m.dot(q))
+                    .fold(None, |a: Option<T>, x| {
+                        Some(a.map_or(x, |a| if x < a { x } else { a }))
+                    })
+                    .unwrap()
+            };
+            if inside == Some(k) {
+                let (s, f) = exit.expect("a bounded prism");
+                let edge: f64 = depth(s, f).abs().into();
+                cands.push((s, Met::Ball(k, s), edge));
+                continue;
+            }
+            let (Some((se, fe)), Some((sx, fx))) = (enter, exit) else {
+                continue;
+            };
+            if missed {
+                continue;
+            }
+            let at_entry = depth(se, fe);
+            if se < sx && se > 0.0 && at_entry >= 0.0 {
+                cands.push((se, Met::Ball(k, se), at_entry.into()));
+            } else {
+                // Missed: by about how far its crossings lie outside the other faces.
+                let gap: f64 = at_entry.abs().min(depth(sx, fx).abs()).into();
+                grazing.push((se, gap));
             }
         }
         for (k, &(c, front, right, w, h)) in self.cards.iter().enumerate() {
@@ -320,8 +437,19 @@ impl Balls {
     /// The unit normal of ball `k` at `p`, outwards, and the indices on the ray's side and the
     /// other, for a ray `inside` it or not.
     fn face(&self, k: usize, p: V, inside: bool) -> (V, T, T) {
-        let (c, r, n) = self.balls[k];
-        let normal = p.sub(c).scale(t(1.0) / r);
+        let (normal, n) = if k < self.balls.len() {
+            let (c, r, n) = self.balls[k];
+            (p.sub(c).scale(t(1.0) / r), n)
+        } else {
+            // A prism: the face whose plane `p` lies on.
+            let (planes, n) = &self.prisms[k - self.balls.len()];
+            let off = |&(m, h): &(V, T)| (h - m.dot(p)).abs();
+            let f = planes
+                .iter()
+                .min_by(|a, b| off(a).partial_cmp(&off(b)).unwrap())
+                .unwrap();
+            (f.0, *n)
+        };
         if inside {
             (normal, n, t(1.0))
         } else {
