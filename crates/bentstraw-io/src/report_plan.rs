@@ -965,13 +965,16 @@ fn inputs(loaded: &Setup, lang: Lang) -> Vec<(String, String)> {
                         lang.fill(words::LIQUID_VALUE, &[&l.top, &l.index]),
                     ));
                 }
-                rows.push((
-                    lang.of(words::OBJECTS).to_string(),
-                    lang.fill(
-                        words::OBJECTS_VALUE,
-                        &[&d.straws.len(), &d.coins.len(), &d.cards.len()],
-                    ),
-                ));
+                let mut objects = lang.fill(
+                    words::OBJECTS_VALUE,
+                    &[&d.straws.len(), &d.coins.len(), &d.cards.len()],
+                );
+                let solids = [d.spheres.len(), d.prisms.len(), d.lenses.len()];
+                if solids.iter().any(|&n| n > 0) {
+                    objects +=
+                        &lang.fill(words::SOLIDS_VALUE, &[&solids[0], &solids[1], &solids[2]]);
+                }
+                rows.push((lang.of(words::OBJECTS).to_string(), objects));
                 continue;
             }
         };
@@ -980,9 +983,11 @@ fn inputs(loaded: &Setup, lang: Lang) -> Vec<(String, String)> {
     rows
 }
 
-/// The built-in check for `n_water = 1`: every image point lies on the straw.
+/// The built-in check where nothing bends light (`n_water = 1` and nothing else refracting):
+/// every image point lies on the straw.
 fn check(job: &Job, cloud: &ImageCloud, lang: Lang) -> Option<Check> {
-    if job.n_water != 1.0 {
+    // A thick glass or a solid bends light whatever the liquid's index: no check there.
+    if job.n_water != 1.0 || job.loaded.world.refracts() {
         return None;
     }
     let max = max_distance_to_objects(&job.loaded, cloud);

@@ -564,6 +564,11 @@ pub const OBJECTS_VALUE: Text = t(
     "{} straw(s), {} coin(s), {} card(s)",
     "{} paille(s), {} pièce(s), {} carte(s)",
 );
+/// The transparent solids a scene holds, after its objects; the counts fill it.
+pub const SOLIDS_VALUE: Text = t(
+    ", {} sphere(s), {} prism(s), {} lens(es)",
+    ", {} sphère(s), {} prisme(s), {} lentille(s)",
+);
 /// How far the image lies from the objects; the distance fills it.
 pub const SCENE_DISTANCE_NOTE: Text = t(
     "The image points lie up to {} mm from the surface of the objects they show.",
