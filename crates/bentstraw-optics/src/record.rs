@@ -160,12 +160,17 @@ impl Setup {
                 input("n_water", InputValue::Number(s.n_water())),
                 events,
             ],
-            None => vec![
-                input("scene_file", InputValue::Name(self.name().to_string())),
-                input("scene", InputValue::Text(self.description.to_toml())),
-                observer,
-                events,
-            ],
+            None => {
+                let mut inputs = vec![input(
+                    "scene_file",
+                    InputValue::Name(self.name().to_string()),
+                )];
+                // The scene's whole text, where the format's writer is built in.
+                #[cfg(feature = "scene-file")]
+                inputs.push(input("scene", InputValue::Text(self.description.to_toml())));
+                inputs.extend([observer, events]);
+                inputs
+            }
         }
     }
 
