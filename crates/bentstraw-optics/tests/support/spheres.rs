@@ -22,6 +22,8 @@ use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::Vec3;
 use twofloat::TwoFloat as T;
 
+/// Where a ray crosses a prism's face, and which face: none, or the distance and the face.
+type FaceCrossing = Option<(T, usize)>;
 /// Scale turning dimensionless closeness (the critical angle, a weight) into metres.
 const SCALE: f64 = 0.1;
 
@@ -294,7 +296,7 @@ impl Balls {
             }
             // The line's span inside each half-space: entering where it crosses a face
             // inwards, leaving where outwards.
-            let (mut enter, mut exit): (Option<(T, usize)>, Option<(T, usize)>) = (None, None);
+            let (mut enter, mut exit): (FaceCrossing, FaceCrossing) = (None, None);
             let mut missed = false;
             for (f, &(m, h)) in planes.iter().enumerate() {
                 let dn = m.dot(d);
