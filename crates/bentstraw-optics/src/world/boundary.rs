@@ -554,23 +554,14 @@ impl Boundary {
                 self.plain_normal_at(p)
             }
             Shape::Face { ux, uy, .. } => V3::new(R::splat(uy), R::splat(-ux), zero),
-            Shape::Cap { centre, radius, .. } => {
-                let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
-                let q = p - V3::splat(centre);
-                V3::new(
-                    R::quotient(q.x, r, inv),
-                    R::quotient(q.y, r, inv),
-                    R::quotient(q.z, r, inv),
-                )
-                .renormalize()
-            }
             Shape::Disk { normal, .. } => V3::splat(normal),
             Shape::Tube { centre, axis, .. } => {
                 let a = V3::splat(axis);
                 let q = p - V3::splat(centre);
                 (q - a.scale(q.dot(a))).normalize()
             }
-            Shape::Sphere { centre, radius, .. } => {
+            // A cap's radius is signed by its outer side: the same rule.
+            Shape::Sphere { centre, radius, .. } | Shape::Cap { centre, radius, .. } => {
                 let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
                 let q = p - V3::splat(centre);
                 V3::new(
@@ -649,9 +640,8 @@ impl Boundary {
         // Multiplied by the curvature `1/R`, as the models have always rounded it.
         match self.shape {
             Shape::Upright { radius, .. } => (1.0 / radius) * Vec3::new(dp.x, dp.y, 0.0),
-            Shape::Sphere { radius, .. } => (1.0 / radius) * dp,
-            // The signed radius turns the normal the way its outer side faces.
-            Shape::Cap { radius, .. } => (1.0 / radius) * dp,
+            // A cap's signed radius turns the normal the way its outer side faces.
+            Shape::Sphere { radius, .. } | Shape::Cap { radius, .. } => (1.0 / radius) * dp,
             Shape::Tube { axis, r2, .. } => (1.0 / r2.sqrt()) * (dp - dp.dot(axis) * axis),
             Shape::Disk { .. } => Vec3::ZERO,
             Shape::Horizontal { .. } | Shape::Vertical { .. } | Shape::Face { .. } => {

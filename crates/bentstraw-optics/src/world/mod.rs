@@ -276,16 +276,23 @@ fn wall_pieces(
     outside: MediumId,
     shape: impl Fn(f64, f64) -> Shape,
 ) -> Vec<Boundary> {
-    let mut out = Vec::new();
-    let mut below = f64::NEG_INFINITY;
-    for &(top, medium) in cavity {
-        let (lo, hi) = (below.max(z_min), top.min(z_max));
-        if lo < hi {
-            out.push(piece(shape(lo, hi), outside, medium));
-        }
-        below = top;
-    }
-    out
+    layers_between(cavity, z_min, z_max)
+        .map(|(lo, hi, medium)| piece(shape(lo, hi), outside, medium))
+        .collect()
+}
+
+/// The layers of the cavity (`(upper height, medium)`, lowest first) that the heights from
+/// `z_min` to `z_max` span: each part's lowest and highest height and its medium.
+fn layers_between(
+    cavity: &[(f64, MediumId)],
+    z_min: f64,
+    z_max: f64,
+) -> impl Iterator<Item = (f64, f64, MediumId)> + '_ {
+    let belows = std::iter::once(f64::NEG_INFINITY).chain(cavity.iter().map(|(top, _)| *top));
+    belows
+        .zip(cavity)
+        .map(move |(below, &(top, medium))| (below.max(z_min), top.min(z_max), medium))
+        .filter(|(lo, hi, _)| lo < hi)
 }
 
 impl World {
@@ -445,13 +452,8 @@ impl World {
                 boundaries.push(solid_piece(zone(c.z - r, c.z + r), AIR, inner));
                 continue;
             }
-            let mut below = f64::NEG_INFINITY;
-            for &(top, medium) in &cavity {
-                let (lo, hi) = (below.max(c.z - r), top.min(c.z + r));
-                if lo < hi {
-                    boundaries.push(solid_piece(zone(lo, hi), medium, inner));
-                }
-                below = top;
+            for (lo, hi, medium) in layers_between(&cavity, c.z - r, c.z + r) {
+                boundaries.push(solid_piece(zone(lo, hi), medium, inner));
             }
         }
         // Each prism likewise: its sides cut by the layers they cross, its top and bottom the
@@ -487,16 +489,7 @@ impl World {
                 AIR
             };
             let layers: Vec<(f64, f64, MediumId)> = if inside {
-                let mut out = Vec::new();
-                let mut low = f64::NEG_INFINITY;
-                for &(top, medium) in &cavity {
-                    let (lo, hi) = (low.max(prism.bottom), top.min(prism.top));
-                    if lo < hi {
-                        out.push((lo, hi, medium));
-                    }
-                    low = top;
-                }
-                out
+                layers_between(&cavity, prism.bottom, prism.top).collect()
             } else {
                 vec![(prism.bottom, prism.top, AIR)]
             };
