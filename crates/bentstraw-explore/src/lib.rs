@@ -268,8 +268,9 @@ pub fn scene_text_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
     Ok(r)
 }
 
-/// The inside of a scene's container, which its liquids fill: a glass's inner radius or a tank's
-/// half widths (both centred on the z axis), and the floor's height.
+/// The inside of a scene's container, which its liquids fill: a glass's inner radius, a tank's
+/// half widths (both centred on the z axis) or a glass of revolution's profiles, and the
+/// floor's height.
 fn container_json(container: &Container) -> Value {
     match container {
         Container::Glass(g) => json!({
@@ -281,6 +282,14 @@ fn container_json(container: &Container) -> Value {
             "shape": "tank",
             "half_x": t.half_x,
             "half_y": t.half_y,
+            "floor": container.floor(),
+        }),
+        // The page draws it by its profiles; liquids fill the inner one.
+        Container::Revolution(v) => json!({
+            "shape": "revolution",
+            "outer": v.outer,
+            "inner": v.inner,
+            "radius": v.reach(),
             "floor": container.floor(),
         }),
     }

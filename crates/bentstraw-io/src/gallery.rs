@@ -1,7 +1,7 @@
 //! The gallery of classic demonstrations, built into the program: its scene files, by name.
 
 /// The gallery's scene files beyond the assignment's own (`scenes/`): name and text.
-pub const GALLERY: [(&str, &str); 27] = [
+pub const GALLERY: [(&str, &str); 30] = [
     (
         "leaning-straw",
         include_str!("../../../scenes/leaning-straw.toml"),
@@ -100,6 +100,18 @@ pub const GALLERY: [(&str, &str); 27] = [
     (
         "lens-in-water",
         include_str!("../../../scenes/lens-in-water.toml"),
+    ),
+    (
+        "tapered-tumbler",
+        include_str!("../../../scenes/tapered-tumbler.toml"),
+    ),
+    (
+        "wine-glass",
+        include_str!("../../../scenes/wine-glass.toml"),
+    ),
+    (
+        "cocktail-glass",
+        include_str!("../../../scenes/cocktail-glass.toml"),
     ),
 ];
 

@@ -35,6 +35,7 @@ pub mod light_path_type;
 pub mod packet;
 mod parallel;
 pub mod picture;
+pub mod profile;
 pub mod ray_diagram;
 pub mod record;
 pub mod rule;

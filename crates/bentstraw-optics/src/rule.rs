@@ -181,10 +181,30 @@ rules! {
     TankThin = "container.tank-thin", "a tank's walls and bottom have zero thickness (only a glass's may be thick)";
     /// A tank is given an index.
     TankIndex = "container.tank-index", "a tank's walls have zero thickness, so it has no index of its own";
+    /// A container of revolution lacks a profile.
+    RevolutionNeeds = "container.revolution-needs", "is missing: a container of revolution needs it (its outer and inner profiles, [[r, z], …])";
+    /// A container of revolution is given a glass's or a tank's sizes.
+    RevolutionKeys = "container.revolution-keys", "a container of revolution is given by its profiles outer and inner, not by a radius, half widths, a height, a wall or a bottom";
+    /// A glass or a tank is given profiles.
+    ProfilesOnly = "container.profiles", "only a container of revolution (shape = \"revolution\") has profiles";
+    /// A profile has too few or too many points.
+    ProfilePoints = "profile.points", "a profile needs 2 to {max} points [r, z] (it has {count})";
+    /// A profile's heights do not rise.
+    ProfileRise = "profile.rise", "z must rise from point to point: point {k} is at z = {z}, not above the point before ({below})";
+    /// A profile's point lies on or across the axis.
+    ProfileRadius = "profile.radius", "point {k}'s radius {r} must be positive (only the inner profile's first point may lie on the axis: a round bottom)";
+    /// The outer profile does not start at the base.
+    ProfileBase = "profile.base", "the outer profile starts at the base: its first point's z must be 0 (it is {z})";
+    /// The inner profile starts below the base.
+    ProfileFloor = "profile.floor", "the inner profile starts at the floor, on or above the base: its first point's z must be at least 0 (it is {z})";
+    /// The profiles end at different heights.
+    ProfileRim = "profile.rim", "the inner profile ends at the rim: its last point's z must be the outer profile's last, {height} (it is {z})";
+    /// The inner profile leaves the outer one.
+    ProfileInside = "profile.inside", "the inner profile leaves the outer one near z = {z} (radii {inner} and {outer}): the wall must have a thickness below the rim";
     /// The container's shape is not a known one.
-    ShapeUnknown = "shape.unknown", "\"{shape}\" is not a shape: it must be \"glass\" or \"tank\"";
+    ShapeUnknown = "shape.unknown", "\"{shape}\" is not a shape: it must be \"glass\", \"tank\" or \"revolution\"";
     /// The container's shape is missing.
-    ShapeMissing = "shape.missing", "is missing: it must be \"glass\" or \"tank\"";
+    ShapeMissing = "shape.missing", "is missing: it must be \"glass\", \"tank\" or \"revolution\"";
     /// A card's picture is not a known one.
     PictureUnknown = "picture.unknown", "\"{picture}\" is not a picture: it must be \"arrow\" or \"none\"";
     /// The text is not TOML of the format (the parser's own words).

@@ -9,6 +9,7 @@
 
 use std::fmt;
 
+use crate::profile::{self, Piece};
 use crate::rule::{self, number, point, Param, Params, Rule};
 use crate::scene::{
     Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT, STRAW_RADIUS, WATER_INDEX,
@@ -172,13 +173,58 @@ fn bound(x: f64) -> Param {
     Param::Number(x.to_string())
 }
 
-/// The container: a glass or a tank.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The container: a glass, a tank or a container of revolution.
+#[derive(Clone, Debug, PartialEq)]
 pub enum Container {
     /// An upright cylinder.
     Glass(Glass),
     /// A rectangular box with walls of zero thickness.
     Tank(Tank),
+    /// A glass of any profile turned about the `z` axis (a tapered tumbler, a wine glass).
+    Revolution(Revolution),
+}
+
+/// A glass of revolution about the `z` axis, standing with its base on `z = 0`: its wall between
+/// two profiles `[r, z]`, each smooth through its points (see [`crate::profile`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Revolution {
+    /// The outer profile, from the base (`z = 0`) to the rim, `z` rising (m).
+    pub outer: Vec<[f64; 2]>,
+    /// The inner profile, from the floor to the rim, `z` rising (m).
+    pub inner: Vec<[f64; 2]>,
+    /// Refractive index of the glass itself.
+    pub index: f64,
+}
+
+/// Most points a profile may have: each makes one or two faces every ray is tested against.
+pub const MAX_PROFILE_POINTS: usize = 32;
+
+impl Revolution {
+    /// The outer surface's pieces.
+    pub fn outer_pieces(&self) -> Vec<Piece> {
+        profile::pieces(&self.outer)
+    }
+
+    /// The inner surface's pieces.
+    pub fn inner_pieces(&self) -> Vec<Piece> {
+        profile::pieces(&self.inner)
+    }
+
+    /// The greatest outer radius (m): the cylinder about the axis that holds it.
+    pub fn reach(&self) -> f64 {
+        profile::radius_range(&self.outer_pieces(), f64::NEG_INFINITY, f64::INFINITY)
+            .map_or(0.0, |(_, most)| most)
+    }
+
+    /// The least inner radius between heights `lo` and `hi` (the part of them below the rim):
+    /// what an object spanning them must fit in.
+    fn narrowest(&self, lo: f64, hi: f64) -> f64 {
+        let rim = self.outer.last().map_or(0.0, |p| p[1]);
+        if lo > rim {
+            return f64::INFINITY;
+        }
+        profile::radius_range(&self.inner_pieces(), lo, hi.min(rim)).map_or(0.0, |(least, _)| least)
+    }
 }
 
 /// An upright cylindrical glass standing with its outer base on `z = 0`.
@@ -213,6 +259,7 @@ impl Container {
         match self {
             Container::Glass(g) => g.bottom,
             Container::Tank(_) => 0.0,
+            Container::Revolution(v) => v.inner.first().map_or(0.0, |p| p[1]),
         }
     }
 
@@ -221,24 +268,72 @@ impl Container {
         match self {
             Container::Glass(g) => g.height,
             Container::Tank(t) => t.height,
+            Container::Revolution(v) => v.outer.last().map_or(0.0, |p| p[1]),
         }
     }
 
-    /// Whether the horizontal point `(x, y)` lies on or inside the walls' inner face.
-    fn holds(&self, x: f64, y: f64) -> bool {
+    /// The radius of the cylinder about the `z` axis that holds the container (for a tank, the
+    /// one through its corners).
+    pub fn reach(&self) -> f64 {
         match self {
-            Container::Glass(g) => (x * x + y * y).sqrt() <= g.radius - g.wall,
-            Container::Tank(t) => x.abs() <= t.half_x && y.abs() <= t.half_y,
+            Container::Glass(g) => g.radius,
+            Container::Tank(t) => libm::hypot(t.half_x, t.half_y),
+            Container::Revolution(v) => v.reach(),
         }
     }
 
-    /// Whether a horizontal disk of `radius` about `(x, y)` lies inside the walls' inner face.
-    fn holds_disk(&self, x: f64, y: f64, radius: f64) -> bool {
+    /// Whether the point `(x, y, z)` lies on or inside the walls' inner face.
+    fn holds(&self, x: f64, y: f64, z: f64) -> bool {
+        self.holds_disk(x, y, 0.0, z, z)
+    }
+
+    /// Whether the segment from `a` to `b` lies on or inside the walls' inner face: its ends for
+    /// a glass or a tank (whose inside is convex); points along it every 1/64 of its length
+    /// for a container of revolution, whose inner face may bend inwards.
+    fn holds_line(&self, a: Vec3, b: Vec3) -> bool {
+        let steps = if matches!(self, Container::Revolution(_)) {
+            64
+        } else {
+            1
+        };
+        (0..=steps).all(|k| {
+            let p = a.lerp(b, k as f64 / steps as f64);
+            self.holds(p.x, p.y, p.z)
+        })
+    }
+
+    /// Whether the ball of `centre` and `radius` lies inside the walls' inner face: its
+    /// horizontal circle at each of 129 heights across it for a container of revolution (a
+    /// marble resting in a cone touches the wall above its lowest point), its widest circle
+    /// for a glass or a tank.
+    fn holds_ball(&self, centre: Vec3, radius: f64) -> bool {
+        let Container::Revolution(v) = self else {
+            return self.holds_disk(centre.x, centre.y, radius, centre.z, centre.z);
+        };
+        let (inner, rim, off) = (
+            v.inner_pieces(),
+            self.height(),
+            libm::hypot(centre.x, centre.y),
+        );
+        (0..=128).all(|k| {
+            let s = -1.0 + 2.0 * k as f64 / 128.0;
+            let z = centre.z + s * radius;
+            let half = radius * (1.0 - s * s).max(0.0).sqrt();
+            // (A ball resting on the floor may reach a hair below it by rounding.)
+            let z = z.max(v.inner[0][1]);
+            z > rim || profile::radius_at(&inner, z).is_some_and(|r| off + half <= r)
+        })
+    }
+
+    /// Whether a horizontal disk of `radius` about `(x, y)`, at every height from `lo` to `hi`,
+    /// lies inside the walls' inner face.
+    fn holds_disk(&self, x: f64, y: f64, radius: f64, lo: f64, hi: f64) -> bool {
         match self {
             // Computed as the assignment's scene computes its straw's fit, so that the two
             // agree to the last bit on its glass.
             Container::Glass(g) => (x * x + y * y).sqrt() + radius <= g.radius - g.wall,
             Container::Tank(t) => x.abs() + radius <= t.half_x && y.abs() + radius <= t.half_y,
+            Container::Revolution(v) => libm::hypot(x, y) + radius <= v.narrowest(lo, hi),
         }
     }
 
@@ -249,6 +344,8 @@ impl Container {
             && match self {
                 Container::Glass(g) => p.x * p.x + p.y * p.y <= g.radius * g.radius,
                 Container::Tank(t) => p.x.abs() <= t.half_x && p.y.abs() <= t.half_y,
+                Container::Revolution(v) => profile::radius_at(&v.outer_pieces(), p.z)
+                    .is_some_and(|r| libm::hypot(p.x, p.y) <= r),
             }
     }
 
@@ -257,7 +354,10 @@ impl Container {
     fn distance_to(&self, p: Vec3) -> f64 {
         let dz = (-p.z).max(p.z - self.height()).max(0.0);
         let across = match self {
-            Container::Glass(g) => (libm::hypot(p.x, p.y) - g.radius).max(0.0),
+            // A container of revolution is taken as the cylinder that holds it.
+            Container::Glass(_) | Container::Revolution(_) => {
+                (libm::hypot(p.x, p.y) - self.reach()).max(0.0)
+            }
             Container::Tank(t) => libm::hypot(
                 (p.x.abs() - t.half_x).max(0.0),
                 (p.y.abs() - t.half_y).max(0.0),
@@ -275,12 +375,13 @@ impl Container {
         }
         let c = p.counterclockwise();
         match self {
-            Container::Glass(g) => {
+            Container::Glass(_) | Container::Revolution(_) => {
+                let radius = self.reach();
                 if convex_contains(&c, (0.0, 0.0)) {
-                    -g.radius
+                    -radius
                 } else {
                     let hull: Vec<(f64, f64)> = c.iter().map(|q| (q[0], q[1])).collect();
-                    distance_to_hull((0.0, 0.0), &hull) - g.radius
+                    distance_to_hull((0.0, 0.0), &hull) - radius
                 }
             }
             Container::Tank(t) => {
@@ -299,7 +400,9 @@ impl Container {
     /// seen from above (touching it is allowed).
     fn crossed_by(&self, a: (f64, f64), b: (f64, f64)) -> bool {
         match self {
-            Container::Glass(g) => segment_distance_to_origin(a, b) < g.radius,
+            Container::Glass(_) | Container::Revolution(_) => {
+                segment_distance_to_origin(a, b) < self.reach()
+            }
             Container::Tank(t) => segment_enters_box(a, b, t.half_x, t.half_y),
         }
     }
@@ -493,12 +596,11 @@ impl Straw {
         self.bottom_centre(floor) + self.radius * self.downhill()
     }
 
-    /// Horizontal positions, around its circumference, of its outermost points between the
-    /// floor and the height `z_top`. Along each line of its side the horizontal position moves
-    /// linearly, so any convex measure of extent (a distance from the glass's axis, a
-    /// coordinate) is largest at the ends of the part below `z_top`: at the bottom cap's rim, or
-    /// where the line reaches `z_top` or the top cap's rim.
-    fn outline_below(&self, floor: f64, z_top: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
+    /// The lines of its side, around its circumference, between the floor and the height
+    /// `z_top`: from the bottom cap's rim to where the line reaches `z_top` or the top cap's
+    /// rim. Along each the horizontal position moves linearly, so any convex measure of extent
+    /// (a distance from the glass's axis, a coordinate) is largest at its ends.
+    fn outline_below(&self, floor: f64, z_top: f64) -> impl Iterator<Item = [Vec3; 2]> + '_ {
         let c = self.bottom_centre(floor);
         let axis = self.axis();
         let e1 = self.downhill();
@@ -507,17 +609,11 @@ impl Straw {
             libm::cos(self.azimuth_deg.to_radians()),
             0.0,
         );
-        (0..RIM_SAMPLES).flat_map(move |k| {
+        (0..RIM_SAMPLES).filter_map(move |k| {
             let phi = std::f64::consts::TAU * k as f64 / RIM_SAMPLES as f64;
             let rim = c + self.radius * (libm::cos(phi) * e1 + libm::sin(phi) * e2);
             let s_top = ((z_top - rim.z) / axis.z).min(self.length);
-            let ends = if rim.z > z_top {
-                [None, None]
-            } else {
-                let top = rim + s_top * axis;
-                [Some((rim.x, rim.y)), Some((top.x, top.y))]
-            };
-            ends.into_iter().flatten()
+            (rim.z <= z_top).then(|| [rim, rim + s_top * axis])
         })
     }
 
@@ -639,8 +735,7 @@ impl Sphere {
         // A ball resting on the floor, its centre written as floor + radius, may land a hair
         // below by rounding: it still rests on it.
         let rounding = 8.0 * f64::EPSILON * (c.z.abs() + self.radius);
-        container.holds_disk(c.x, c.y, self.radius)
-            && c.z - self.radius >= container.floor() - rounding
+        container.holds_ball(c, self.radius) && c.z - self.radius >= container.floor() - rounding
     }
 
     /// The corners of a box holding it.
@@ -740,7 +835,7 @@ impl Lens {
     /// stands wholly outside it).
     pub fn inside(&self, container: &Container) -> bool {
         let (c, r) = (self.center, self.reach());
-        container.holds_disk(c.x, c.y, r) && c.z - r >= container.floor()
+        container.holds_disk(c.x, c.y, r, c.z - r, c.z + r) && c.z - r >= container.floor()
     }
 }
 
@@ -780,7 +875,7 @@ impl Prism {
             && self
                 .corners
                 .iter()
-                .all(|q| container.holds_disk(q[0], q[1], 0.0))
+                .all(|q| container.holds_disk(q[0], q[1], 0.0, self.bottom, self.top))
     }
 
     /// The corners of a box holding it.
@@ -802,6 +897,104 @@ fn polygon_area(c: &[[f64; 2]]) -> f64 {
             a[0] * b[1] - a[1] * b[0]
         })
         .sum()
+}
+
+/// A profile's own rules (`key` names it): 2 to [`MAX_PROFILE_POINTS`] points of finite
+/// lengths, `z` rising, every radius positive (but the first, on the axis, for an `inner`
+/// profile's round bottom). The smooth wall between them then keeps off the axis (its radius
+/// stays between its points').
+fn validate_profile(
+    key: &str,
+    points: &[[f64; 2]],
+    inner: bool,
+) -> Result<(), Box<SceneFileError>> {
+    if !(2..=MAX_PROFILE_POINTS).contains(&points.len()) {
+        return Err(refuse_key(
+            key,
+            Rule::ProfilePoints,
+            vec![
+                ("max", number(MAX_PROFILE_POINTS as f64)),
+                ("count", number(points.len() as f64)),
+            ],
+        ));
+    }
+    for (k, &[r, z]) in points.iter().enumerate() {
+        let at = format!("{key}[{}]", k + 1);
+        length(&at, r)?;
+        length(&at, z)?;
+        if r < 0.0 || (r == 0.0 && !(inner && k == 0)) {
+            return Err(refuse_key(
+                &at,
+                Rule::ProfileRadius,
+                vec![("k", number((k + 1) as f64)), ("r", number(r))],
+            ));
+        }
+        if k > 0 && z <= points[k - 1][1] {
+            return Err(refuse_key(
+                &at,
+                Rule::ProfileRise,
+                vec![
+                    ("k", number((k + 1) as f64)),
+                    ("z", number(z)),
+                    ("below", number(points[k - 1][1])),
+                ],
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether the inner surface (`inner`'s pieces) lies inside the outer one below the rim (at
+/// `rim`, where they may meet): the difference of their squared radii, a quadratic on each
+/// span where both are one piece, is positive there.
+fn wall_between(outer: &[Piece], inner: &[Piece], rim: f64) -> Result<(), Box<SceneFileError>> {
+    let mut cuts: Vec<f64> = outer
+        .iter()
+        .chain(inner)
+        .flat_map(|p| [p.z0, p.z1])
+        .filter(|&z| z >= inner[0].z0)
+        .collect();
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    for w in cuts.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        let mid = 0.5 * (lo + hi);
+        let (Some(o), Some(i)) = (
+            outer.iter().find(|p| p.z0 <= mid && mid <= p.z1),
+            inner.iter().find(|p| p.z0 <= mid && mid <= p.z1),
+        ) else {
+            continue;
+        };
+        // o.r2 − i.r2 as one quadratic about `lo`.
+        let gap = Piece {
+            zc: lo,
+            c: [
+                o.r2(lo) - i.r2(lo),
+                o.slope(lo) - i.slope(lo),
+                o.c[2] - i.c[2],
+            ],
+            z0: lo,
+            z1: hi,
+        };
+        let top = if hi >= rim { hi - 1e-9 * (hi - lo) } else { hi };
+        let (least, _) = gap.r2_range(lo, top);
+        if least <= 0.0 {
+            let z = [lo, top, mid]
+                .into_iter()
+                .min_by(|a, b| gap.r2(*a).total_cmp(&gap.r2(*b)))
+                .unwrap_or(mid);
+            return Err(refuse_key(
+                "container.inner",
+                Rule::ProfileInside,
+                vec![
+                    ("z", number(z)),
+                    ("inner", number(i.r2(z).max(0.0).sqrt())),
+                    ("outer", number(o.r2(z).max(0.0).sqrt())),
+                ],
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Whether the counterclockwise convex polygon `c` holds `p` (its edges included).
@@ -1016,6 +1209,39 @@ impl SceneDescription {
                 positive("container.half_y", t.half_y)?;
                 positive("container.height", t.height)?;
             }
+            Container::Revolution(v) => {
+                validate_profile("container.outer", &v.outer, false)?;
+                validate_profile("container.inner", &v.inner, true)?;
+                finite("container.index", v.index)?;
+                if v.index < 1.0 {
+                    return Err(refuse("container.index", v.index, Rule::IndexMin, vec![]));
+                }
+                let base = v.outer[0][1];
+                if base != 0.0 {
+                    return Err(refuse_key(
+                        "container.outer[1]",
+                        Rule::ProfileBase,
+                        vec![("z", number(base))],
+                    ));
+                }
+                let floor = v.inner[0][1];
+                if floor < 0.0 {
+                    return Err(refuse_key(
+                        "container.inner[1]",
+                        Rule::ProfileFloor,
+                        vec![("z", number(floor))],
+                    ));
+                }
+                let (rim, end) = (self.container.height(), v.inner[v.inner.len() - 1][1]);
+                if end != rim {
+                    return Err(refuse_key(
+                        &format!("container.inner[{}]", v.inner.len()),
+                        Rule::ProfileRim,
+                        vec![("height", number(rim)), ("z", number(end))],
+                    ));
+                }
+                wall_between(&v.outer_pieces(), &v.inner_pieces(), rim)?;
+            }
         }
         Ok(())
     }
@@ -1092,7 +1318,7 @@ impl SceneDescription {
             } else {
                 s.foot(floor)
             };
-            if !self.container.holds(foot.x, foot.y) {
+            if !self.container.holds(foot.x, foot.y, floor) {
                 return Err(refuse_key(
                     &format!("straw[{}]", i + 1),
                     Rule::StrawFoot,
@@ -1101,10 +1327,11 @@ impl SceneDescription {
             }
             let inside = if s.tilt_deg == 0.0 {
                 // Upright: its cross-section is its own disk at every height.
-                self.container.holds_disk(s.x, s.y, s.radius)
+                self.container
+                    .holds_disk(s.x, s.y, s.radius, floor, floor + s.length)
             } else {
                 s.outline_below(floor, self.container.height())
-                    .all(|(x, y)| self.container.holds(x, y))
+                    .all(|[a, b]| self.container.holds_line(a, b))
             };
             if !inside {
                 return Err(refuse_key(
@@ -1131,7 +1358,10 @@ impl SceneDescription {
             length(&key("y"), c.y)?;
             positive(&key("radius"), c.radius)?;
             positive(&key("thickness"), c.thickness)?;
-            if !self.container.holds_disk(c.x, c.y, c.radius) {
+            if !self
+                .container
+                .holds_disk(c.x, c.y, c.radius, floor, floor + c.thickness)
+            {
                 return Err(refuse_key(
                     &format!("coin[{}]", i + 1),
                     Rule::CoinOutside,
@@ -1558,6 +1788,7 @@ impl SceneDescription {
                 }
                 let low: Vec<(f64, f64)> = s
                     .outline_below(self.container.floor(), self.container.floor() + c.thickness)
+                    .flat_map(|[a, b]| [(a.x, a.y), (b.x, b.y)])
                     .collect();
                 let gap = distance_to_hull((c.x, c.y), &low);
                 if gap < c.radius {
@@ -1690,6 +1921,10 @@ impl SceneDescription {
                 sizes.push(("container.half_y".into(), t.half_y));
                 sizes.push(("container.height".into(), t.height));
             }
+            Container::Revolution(v) => {
+                sizes.push(("container.outer".into(), v.reach()));
+                sizes.push(("container.outer".into(), self.container.height()));
+            }
         }
         for (i, s) in self.straws.iter().enumerate() {
             sizes.push((format!("straw[{}].radius", i + 1), s.radius));
@@ -1720,6 +1955,7 @@ impl SceneDescription {
         let m = |x: f64| format!("{} m", number_text(x));
         match &self.container {
             Container::Tank(_) => out.push("a rectangular tank".to_string()),
+            Container::Revolution(_) => out.push("a glass of revolution".to_string()),
             Container::Glass(g) => {
                 if g.radius != GLASS_RADIUS {
                     out.push(format!("a glass of radius {}", m(g.radius)));

@@ -95,6 +95,30 @@ fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
                 out.push([Vec3::new(x, y, z_min), Vec3::new(x, y, z_max)]);
             }
         }
+        Shape::Revolution {
+            zc,
+            c,
+            z_min,
+            z_max,
+            ..
+        } => {
+            // Its meridians, as upright sides have their vertical lines.
+            let radius = |z: f64| {
+                let u = z - zc;
+                (c[0] + u * (c[1] + u * c[2])).max(0.0).sqrt()
+            };
+            for k in 0..WIRE_VERTICALS {
+                let t = 2.0 * PI * k as f64 / WIRE_VERTICALS as f64;
+                let line: Vec<Vec3> = (0..=8)
+                    .map(|j| {
+                        let z = z_min + (z_max - z_min) * j as f64 / 8.0;
+                        let r = radius(z);
+                        Vec3::new(r * t.cos(), r * t.sin(), z)
+                    })
+                    .collect();
+                out.extend(pairs(&line));
+            }
+        }
         Shape::Vertical {
             axis,
             at,

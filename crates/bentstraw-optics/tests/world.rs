@@ -27,7 +27,7 @@ fn gallery(name: &str) -> SceneDescription {
     scene(&std::fs::read_to_string(path).expect("a gallery file"))
 }
 
-const GALLERY: [&str; 28] = [
+const GALLERY: [&str; 31] = [
     "spec.toml",
     "leaning-straw.toml",
     "real-glass.toml",
@@ -56,6 +56,9 @@ const GALLERY: [&str; 28] = [
     "magnifying-glass.toml",
     "diverging-lens.toml",
     "lens-in-water.toml",
+    "tapered-tumbler.toml",
+    "wine-glass.toml",
+    "cocktail-glass.toml",
 ];
 
 fn ray_to(from: Vec3, to: Vec3) -> Ray {
@@ -249,8 +252,11 @@ fn snell_holds_at_every_event_in_every_gallery_scene() {
 
 /// The description with every index set to 1.
 fn without_refraction(mut d: SceneDescription) -> SceneDescription {
-    if let bentstraw_optics::scene_file::Container::Glass(g) = &mut d.container {
-        g.index = 1.0;
+    use bentstraw_optics::scene_file::Container;
+    match &mut d.container {
+        Container::Glass(g) => g.index = 1.0,
+        Container::Revolution(v) => v.index = 1.0,
+        Container::Tank(_) => {}
     }
     for l in &mut d.liquids {
         l.index = 1.0;
@@ -803,8 +809,10 @@ fn check_judges_a_worlds_points_and_finds_what_is_missing() {
 
 mod random_scenes {
     use super::*;
+    use bentstraw_optics::profile;
     use bentstraw_optics::scene_file::{
-        Card, Coin, Container, Glass, Lens, Liquid, Observer, Picture, Prism, Sphere, Straw, Tank,
+        Card, Coin, Container, Glass, Lens, Liquid, Observer, Picture, Prism, Revolution, Sphere,
+        Straw, Tank,
     };
 
     /// Where the random scene's sphere lies, if it has one.
@@ -841,6 +849,7 @@ mod random_scenes {
         let (inner, reach) = match container {
             Container::Glass(g) => (g.radius - g.wall, g.radius),
             Container::Tank(t) => (t.half_y, t.half_x.hypot(t.half_y)),
+            Container::Revolution(v) => (narrowest(v), v.reach()),
         };
         let lean = straw.azimuth_deg.to_radians();
         let away = -Vec3::new(lean.cos(), lean.sin(), 0.0);
@@ -889,6 +898,13 @@ mod random_scenes {
         }
     }
 
+    /// The least radius of a container of revolution's inner profile: what the random objects
+    /// inside it are sized by (its points' least radius; the wall between them stays between
+    /// its points').
+    fn narrowest(v: &Revolution) -> f64 {
+        v.inner.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min)
+    }
+
     /// A prism (`place` 1: inside the container, 2: outside it; else none), a triangle or a
     /// square box by `triangle`, its size, height and turn chosen by `size`, `height` and `turn`
     /// (0..1), of `index`. Inside, it stands on the floor near the wall, a quarter turn from the
@@ -910,6 +926,7 @@ mod random_scenes {
         let (inner, reach, rim) = match container {
             Container::Glass(g) => (g.radius - g.wall, g.radius, g.height),
             Container::Tank(t) => (t.half_y, t.half_x.hypot(t.half_y), t.height),
+            Container::Revolution(v) => (narrowest(v), v.reach(), container.height()),
         };
         let lean = straw.azimuth_deg.to_radians();
         let (centre, r, bottom, top) = match place {
@@ -974,10 +991,7 @@ mod random_scenes {
         if !on {
             return None;
         }
-        let reach = match container {
-            Container::Glass(g) => g.radius,
-            Container::Tank(t) => t.half_x.hypot(t.half_y),
-        };
+        let reach = container.reach();
         let target = Vec3::new(0.0, 0.0, 0.08);
         let diameter = 0.015 + 0.025 * size;
         let (radius1, radius2, thickness) = if convex {
@@ -1037,7 +1051,7 @@ mod random_scenes {
     fn any_scene() -> impl Strategy<Value = SceneDescription> {
         (
             (
-                any::<bool>(),
+                0u8..3,
                 0.03f64..0.06,
                 0.12f64..0.22,
                 0.0f64..0.004,
@@ -1074,7 +1088,7 @@ mod random_scenes {
         )
             .prop_map(
                 |(
-                    (tank, r, h, wall, bottom),
+                    (kind, r, h, wall, bottom),
                     (glass_n, layers),
                     (sr, sa, tilt, az),
                     (coin, card, oa),
@@ -1082,20 +1096,33 @@ mod random_scenes {
                     (prism_place, triangle, prism_shape, prism_n),
                     (lens_on, convex, lens_shape, lens_n),
                 )| {
-                    let container = if tank {
-                        Container::Tank(Tank {
+                    let tank = kind == 0;
+                    let container = match kind {
+                        0 => Container::Tank(Tank {
                             half_x: r * 1.6,
                             half_y: r,
                             height: h,
-                        })
-                    } else {
-                        Container::Glass(Glass {
+                        }),
+                        1 => Container::Glass(Glass {
                             radius: r,
                             height: h,
                             wall,
                             bottom,
                             index: glass_n,
-                        })
+                        }),
+                        // A tumbler that widens, bulges a little at mid-height, and narrows to
+                        // its rim: three quadrics of revolution a side, walls at least 1 mm.
+                        _ => {
+                            let w = wall + 0.001;
+                            let outer = vec![[0.8 * r, 0.0], [1.05 * r, 0.5 * h], [r, h]];
+                            let inner =
+                                vec![[0.8 * r - w, bottom], [1.05 * r - w, 0.5 * h], [r - w, h]];
+                            Container::Revolution(Revolution {
+                                outer,
+                                inner,
+                                index: glass_n,
+                            })
+                        }
                     };
                     let floor = container.floor();
                     // Tops rising from the floor to the rim.
@@ -1114,7 +1141,11 @@ mod random_scenes {
                             }
                         })
                         .collect();
-                    let inner = if tank { r } else { r - wall };
+                    let inner = match &container {
+                        Container::Revolution(v) => narrowest(v),
+                        _ if tank => r,
+                        _ => r - wall,
+                    };
                     let straw = Straw {
                         x: 0.4 * inner * sr * sa.cos(),
                         y: 0.4 * inner * sr * sa.sin(),
@@ -1194,10 +1225,10 @@ mod random_scenes {
     }
 
     /// The solids cost the random scenes nothing: a scene drawn with a sphere, a prism or a lens
-    /// is refused only
-    /// where it would be without it (leaning straws through the wall are the usual reason), so
-    /// proptest's rejections stay as they were; and valid scenes hold spheres in each place: in a
-    /// liquid, in the air inside the container, in the air outside it.
+    /// is refused only where it would be without it (leaning straws through the wall are the
+    /// usual reason), so proptest's rejections stay as they were; and valid scenes hold spheres
+    /// in each place (in a liquid, in the air inside the container, in the air outside it) and
+    /// each kind of container.
     #[test]
     fn the_random_spheres_break_no_rule_and_lie_everywhere() {
         use proptest::strategy::ValueTree;
@@ -1208,7 +1239,7 @@ mod random_scenes {
         );
         let strategy = any_scene();
         let (n, mut valid, mut places) = (2000, 0, [0; 4]);
-        let (mut prisms, mut lenses) = ([0; 2], 0);
+        let (mut prisms, mut lenses, mut kinds) = ([0; 2], 0, [0; 3]);
         for _ in 0..n {
             let d = strategy.new_tree(&mut runner).expect("a scene").current();
             let bare = SceneDescription {
@@ -1245,11 +1276,18 @@ mod random_scenes {
                 prisms[usize::from(!p.inside(&d.container))] += 1;
             }
             lenses += d.lenses.len();
+            kinds[match d.container {
+                Container::Tank(_) => 0,
+                Container::Glass(_) => 1,
+                Container::Revolution(_) => 2,
+            }] += 1;
         }
         eprintln!(
             "{valid} of {n} valid; no sphere, in a liquid, in air inside, outside: {places:?}; \
-             prisms inside, outside: {prisms:?}; lenses: {lenses}"
+             prisms inside, outside: {prisms:?}; lenses: {lenses}; tanks, glasses, of \
+             revolution: {kinds:?}"
         );
+        assert!(kinds.iter().all(|&k| k * 5 >= valid), "{kinds:?}");
         assert!(prisms.iter().all(|&k| k * 10 >= valid), "{prisms:?}");
         assert!(lenses * 10 >= valid, "{lenses} lenses");
         assert!(valid * 10 >= n * 4, "{valid} of {n} valid");
@@ -1338,6 +1376,18 @@ mod random_scenes {
                     cavity(p.z)
                 }
             }
+            Container::Revolution(v) => {
+                let r = p.x.hypot(p.y);
+                let radius =
+                    |points: &[[f64; 2]]| profile::radius_at(&profile::pieces(points), p.z);
+                match (radius(&v.outer), radius(&v.inner)) {
+                    (Some(outer), _) if r > outer => 1.0,
+                    (None, _) => 1.0,
+                    (Some(_), Some(inner)) if r < inner => cavity(p.z),
+                    // Above the rim's ring only air; within the wall, or below the floor, glass.
+                    _ => v.index,
+                }
+            }
         }
     }
 
@@ -1377,6 +1427,8 @@ mod random_scenes {
             match (how, &mut d.container) {
                 (0, Container::Glass(g)) => g.index = first,
                 (1, Container::Glass(g)) => g.index = 1.0,
+                (0, Container::Revolution(v)) => v.index = first,
+                (1, Container::Revolution(v)) => v.index = 1.0,
                 _ => {}
             }
             let k = d.liquids.len();

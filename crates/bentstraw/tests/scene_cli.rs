@@ -368,6 +368,9 @@ fn every_gallery_scene_is_simulated_and_rendered() {
         "magnifying-glass",
         "diverging-lens",
         "lens-in-water",
+        "tapered-tumbler",
+        "wine-glass",
+        "cocktail-glass",
     ] {
         let file = gallery(&format!("{name}.toml"));
         for (ext, check) in [("csv", true), ("ply", false), ("json", false)] {

@@ -97,7 +97,7 @@ impl<const K: usize> Pencil<K> {
         for k in &mut self.differentials {
             let x = k.position + t * k.direction;
             let dp = x - (x.dot(n) * along_a) * d;
-            let dn = boundary.normal_change(dp);
+            let dn = boundary.normal_change(e.point, dp);
             let da = k.direction.dot(n) + d.dot(dn);
             let db = along_b * da;
             k.direction = eta * k.direction + (db - eta * da) * n + gamma * dn;

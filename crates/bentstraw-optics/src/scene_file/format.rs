@@ -68,6 +68,10 @@ struct FileContainer {
     bottom: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     index: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    outer: Option<Vec<[f64; 2]>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    inner: Option<Vec<[f64; 2]>>,
 }
 
 #[derive(Deserialize, Serialize)]
@@ -287,8 +291,51 @@ impl SceneDescription {
                 0.0
             })
         };
-        let height = get("container.height".into(), c.height, &mut broken);
+        let revolution = c.shape.as_deref() == Some("revolution");
+        let height = if revolution {
+            0.0
+        } else {
+            get("container.height".into(), c.height, &mut broken)
+        };
+        if !revolution {
+            for (key, value) in [("outer", &c.outer), ("inner", &c.inner)] {
+                if value.is_some() {
+                    broken.push(*refuse_key(
+                        &format!("container.{key}"),
+                        Rule::ProfilesOnly,
+                        vec![],
+                    ));
+                }
+            }
+        }
         let container = match c.shape.as_deref() {
+            Some("revolution") => {
+                for (key, value) in [
+                    ("radius", c.radius),
+                    ("half_x", c.half_x),
+                    ("half_y", c.half_y),
+                    ("height", c.height),
+                    ("wall", c.wall),
+                    ("bottom", c.bottom),
+                ] {
+                    given(key, value, Rule::RevolutionKeys, &mut broken);
+                }
+                let mut profile = |key: &str, value: &Option<Vec<[f64; 2]>>| {
+                    value.clone().unwrap_or_else(|| {
+                        broken.push(*refuse_key(
+                            &format!("container.{key}"),
+                            Rule::RevolutionNeeds,
+                            vec![],
+                        ));
+                        Vec::new()
+                    })
+                };
+                Some(Container::Revolution(Revolution {
+                    outer: profile("outer", &c.outer),
+                    inner: profile("inner", &c.inner),
+                    index: c.index.unwrap_or(DEFAULT_CONTAINER_INDEX),
+                }))
+            }
             Some("glass") => {
                 let not_glass = Rule::GlassNoHalfWidths;
                 given("half_x", c.half_x, not_glass, &mut broken);
@@ -502,6 +549,13 @@ impl SceneDescription {
                 wall: Some(g.wall),
                 bottom: Some(g.bottom),
                 index: Some(g.index),
+                ..FileContainer::default()
+            },
+            Container::Revolution(v) => FileContainer {
+                shape: Some("revolution".into()),
+                outer: Some(v.outer.clone()),
+                inner: Some(v.inner.clone()),
+                index: Some(v.index),
                 ..FileContainer::default()
             },
             Container::Tank(t) => FileContainer {

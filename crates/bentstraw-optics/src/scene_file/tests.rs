@@ -207,13 +207,13 @@ fn a_wall_as_thick_as_the_radius_or_a_bottom_as_high_as_the_walls_is_refused() {
 }
 
 #[test]
-fn the_shape_must_be_glass_or_tank() {
+fn the_shape_must_be_glass_tank_or_revolution() {
     let m = refused(
         "[container]\nshape = \"cube\"\nradius = 0.04\nheight = 0.2\n",
         "container.shape",
         "\"cube\"",
     );
-    assert!(m.contains("\"glass\" or \"tank\""), "{m}");
+    assert!(m.contains("\"glass\", \"tank\" or \"revolution\""), "{m}");
 }
 
 #[test]
@@ -772,9 +772,14 @@ fn writing_a_description_and_reading_it_back_gives_it_again() {
     let written = first.to_toml();
     let again = parsed(&written);
     assert_eq!(first, again, "{written}");
-    // A tank too, and an empty one.
+    // A tank too, and an empty one; a glass of revolution.
     let tank = parsed("[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n");
     assert_eq!(parsed(&tank.to_toml()), tank);
+    let turned = parsed(
+        "[container]\nshape = \"revolution\"\nouter = [[0.03, 0], [0.045, 0.06], [0.04, 0.12]]\n\
+         inner = [[0.0, 0.01], [0.04, 0.06], [0.037, 0.12]]\nindex = 1.52\n",
+    );
+    assert_eq!(parsed(&turned.to_toml()), turned);
 }
 
 proptest::proptest! {
@@ -906,16 +911,21 @@ proptest::proptest! {
     #[test]
     fn hostile_numbers_are_refused_or_traced(
         picks in proptest::collection::vec(0..HOSTILE.len(), 24),
-        tank in proptest::prelude::any::<bool>(),
+        shape in 0u8..3,
         (liquids, straws, coins, cards) in (0usize..3, 0usize..3, 0usize..2, 0usize..2),
         (spheres, prisms, lenses) in (0usize..2, 0usize..2, 0usize..2),
     ) {
         let mut k = 0;
         let mut n = || { k += 1; HOSTILE[picks[(k - 1) % picks.len()]] };
-        let mut text = if tank {
-            format!("[container]\nshape = \"tank\"\nhalf_x = {}\nhalf_y = {}\nheight = {}\n", n(), n(), n())
-        } else {
-            format!("[container]\nshape = \"glass\"\nradius = {}\nheight = {}\nwall = {}\n", n(), n(), n())
+        let mut text = match shape {
+            0 => format!("[container]\nshape = \"tank\"\nhalf_x = {}\nhalf_y = {}\nheight = {}\n", n(), n(), n()),
+            1 => format!("[container]\nshape = \"glass\"\nradius = {}\nheight = {}\nwall = {}\n", n(), n(), n()),
+            // Profiles of two and three points, the base at 0 so that some are valid.
+            _ => format!(
+                "[container]\nshape = \"revolution\"\nouter = [[{}, 0], [{}, {}], [{}, {}]]\n\
+                 inner = [[{}, {}], [{}, {}]]\nindex = {}\n",
+                n(), n(), n(), n(), n(), n(), n(), n(), n(), n()
+            ),
         };
         for i in 0..liquids {
             text += &format!("[[liquid]]\nname = \"l{i}\"\nindex = {}\ntop = {}\n", n(), n());
@@ -967,6 +977,12 @@ pub(crate) fn broken_samples() -> Vec<(&'static str, String)> {
     let glass_c = |c: &str| {
         container(&format!(
             "shape = \"glass\"\nradius = 0.04\nheight = 0.2\n{c}"
+        ))
+    };
+    let revolution = |c: &str| {
+        container(&format!(
+            "shape = \"revolution\"\nouter = [[0.04, 0], [0.04, 0.12]]\n\
+             inner = [[0.035, 0.01], [0.035, 0.12]]\n{c}"
         ))
     };
     let layers: String = (0..MAX_LIQUIDS + 1)
@@ -1028,6 +1044,16 @@ pub(crate) fn broken_samples() -> Vec<(&'static str, String)> {
         ("container.tank-radius", tank("radius = 0.1")),
         ("container.tank-thin", tank("wall = 0.001")),
         ("container.tank-index", tank("index = 1.5")),
+        ("container.revolution-needs", revolution("").replace("inner = [[0.035, 0.01], [0.035, 0.12]]\n", "")),
+        ("container.revolution-keys", revolution("height = 0.12")),
+        ("container.profiles", glass_c("outer = [[0.04, 0], [0.04, 0.2]]")),
+        ("profile.points", revolution("").replace("[[0.04, 0], [0.04, 0.12]]", "[[0.04, 0]]")),
+        ("profile.rise", revolution("").replace("[[0.04, 0], [0.04, 0.12]]", "[[0.04, 0], [0.045, 0.08], [0.04, 0.07], [0.04, 0.12]]")),
+        ("profile.radius", revolution("").replace("[[0.035, 0.01]", "[[0.0, 0.01], [0.0, 0.02]")),
+        ("profile.base", revolution("").replace("[[0.04, 0]", "[[0.04, 0.01]")),
+        ("profile.floor", revolution("").replace("[[0.035, 0.01]", "[[0.035, -0.01]")),
+        ("profile.rim", revolution("").replace("[0.035, 0.12]", "[0.035, 0.11]")),
+        ("profile.inside", revolution("").replace("[0.035, 0.12]", "[0.041, 0.12]")),
         ("shape.unknown", container("shape = \"cone\"\nheight = 0.2")),
         ("shape.missing", container("height = 0.2")),
         ("picture.unknown", glass("[[card]]\ncenter = [0.2, 0, 0.1]\nwidth = 0.05\nheight = 0.05\npicture = \"cat\"\n")),

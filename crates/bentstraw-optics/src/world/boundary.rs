@@ -5,7 +5,7 @@
 //! changes with the height (liquid layers, air above them), the wall is cut into one boundary per
 //! layer, so that every boundary knows both its media.
 
-use crate::geometry::{in_range, plane_ahead, plane_distance_of, SideQuadratic};
+use crate::geometry::{in_range, plane_ahead, plane_distance_of, SideQuadratic, SideRoots};
 use crate::lanes::{Constant, Mask, Real, V3};
 use crate::Vec3;
 
@@ -61,7 +61,7 @@ impl Region {
     }
 
     /// The largest distance of a point of the region from the `z` axis.
-    fn reach(&self) -> f64 {
+    pub(crate) fn reach(&self) -> f64 {
         match *self {
             Region::Disk { cx, cy, radius } => libm::hypot(cx, cy) + radius,
             Region::Annulus { outer2, .. } => outer2.sqrt(),
@@ -164,6 +164,24 @@ pub enum Shape {
         /// Highest axial coordinate.
         w_max: f64,
     },
+    /// A piece of a container of revolution's wall (see [`crate::profile`]): the surface
+    /// `x² + y² = c0 + c1·u + c2·u²`, `u = z − zc`, between two heights; its outer side is away
+    /// from the axis.
+    Revolution {
+        /// The height the quadratic is written about.
+        zc: f64,
+        /// Its coefficients.
+        c: [f64; 3],
+        /// Lowest height of this boundary.
+        z_min: f64,
+        /// Highest height of this boundary.
+        z_max: f64,
+        /// Lowest height of the whole piece of the wall on this quadric (a liquid's surface
+        /// cuts a piece in boundaries): a ray leaving from there leaves this quadric.
+        q_min: f64,
+        /// Highest height of the whole piece.
+        q_max: f64,
+    },
     /// A sphere (the part of it between two heights); its outer side is away from its centre.
     Sphere {
         /// Its centre.
@@ -175,6 +193,17 @@ pub enum Shape {
         /// Highest height (+∞ for the whole sphere).
         z_max: f64,
     },
+}
+
+impl Shape {
+    /// Whether it is one of the container's and liquids' plain shapes (a plane, an upright
+    /// cylinder's side, a tank's wall), which the lean loop reads.
+    pub(crate) fn is_plain(&self) -> bool {
+        matches!(
+            self,
+            Shape::Horizontal { .. } | Shape::Upright { .. } | Shape::Vertical { .. }
+        )
+    }
 }
 
 /// A boundary between two media.
@@ -432,6 +461,61 @@ impl Boundary {
                     roots.nearest(pw, dw, wl, wh),
                 )
             }
+            Shape::Revolution {
+                zc,
+                c,
+                z_min,
+                z_max,
+                q_min,
+                q_max,
+            } => {
+                let u = o.z - R::splat(zc);
+                let (c1, c2) = (R::splat(c[1]), R::splat(c[2]));
+                let a_h = d.x * d.x + d.y * d.y;
+                let h = o.x * d.x + o.y * d.y;
+                let p2 = o.x * o.x + o.y * o.y;
+                let f = R::splat(c[0]) + u * (c1 + u * c2);
+                let g = R::splat(0.5) * c1 + c2 * u;
+                let cross = o.x * d.y - o.y * d.x;
+                // a·t² + 2·half_b·t + c: the line's squared distance from the axis less the
+                // profile's squared radius at its height.
+                let a = a_h - c2 * d.z * d.z;
+                let half_b = h - d.z * g;
+                let cc = p2 - f;
+                // half_b² − a·c, rearranged as for a cylinder (Lagrange's identity takes out
+                // the huge equal terms): `(c1/2)² − c0·c2` is the profile's own discriminant.
+                let disc = a_h * f - cross * cross - R::splat(2.0) * h * d.z * g
+                    + d.z * d.z * (R::splat(0.25 * c[1] * c[1] - c[0] * c[2]) + c2 * p2);
+                let zero = R::splat(0.0);
+                let live = alive.and(disc.ge(zero));
+                if !live.any() {
+                    return inf;
+                }
+                let sq = R::select(live, disc, zero).sqrt();
+                let q = R::select(half_b.ge(zero), -(half_b + sq), -half_b + sq);
+                let real = live.and_not(q.eq(zero));
+                // `a` may be 0 or negative (a ray as steep as a cone's side): q/a is then
+                // infinite or the far root, which the heights sort out.
+                let r1 = q / a;
+                let r2 = cc / q;
+                let roots = SideRoots {
+                    near: r1.min(r2),
+                    far: r1.max(r2),
+                    q_over_a: r1,
+                    real,
+                };
+                let (zl, zh) = (R::splat(z_min), R::splat(z_max));
+                // Leaving this quadric (a ray starting on its piece of the wall): the other root.
+                let leaving =
+                    leaving
+                        .and(alive)
+                        .and(in_range(o.z, R::splat(q_min), R::splat(q_max)));
+                R::select(
+                    leaving,
+                    roots.other(o.z, d.z, zl, zh),
+                    roots.nearest(o.z, d.z, zl, zh),
+                )
+            }
             Shape::Sphere {
                 centre,
                 radius,
@@ -555,6 +639,11 @@ impl Boundary {
             }
             Shape::Face { ux, uy, .. } => V3::new(R::splat(uy), R::splat(-ux), zero),
             Shape::Disk { normal, .. } => V3::splat(normal),
+            Shape::Revolution { zc, c, .. } => {
+                // The gradient of x² + y² − r²(z), halved.
+                let g = R::splat(0.5 * c[1]) + R::splat(c[2]) * (p.z - R::splat(zc));
+                V3::new(p.x, p.y, -g).normalize()
+            }
             Shape::Tube { centre, axis, .. } => {
                 let a = V3::splat(axis);
                 let q = p - V3::splat(centre);
@@ -612,6 +701,21 @@ impl Boundary {
             Shape::Upright { cx, cy, radius, .. } => libm::hypot(cx, cy) + radius,
             Shape::Vertical { at, half, .. } => libm::hypot(at, half),
             Shape::Sphere { centre, radius, .. } => libm::hypot(centre.x, centre.y) + radius,
+            Shape::Revolution {
+                zc,
+                c,
+                z_min,
+                z_max,
+                ..
+            } => {
+                let piece = crate::profile::Piece {
+                    zc,
+                    c,
+                    z0: z_min,
+                    z1: z_max,
+                };
+                piece.r2_range(z_min, z_max).1.max(0.0).sqrt()
+            }
             Shape::Face {
                 ax,
                 ay,
@@ -632,13 +736,21 @@ impl Boundary {
         }
     }
 
-    /// The curvature of the boundary's surface at its point `p` (unit normal `n` there, to the
-    /// outer side), as the change of the normal along a small step `dp` in it: `dn = K·dp`
-    /// for a sphere of radius `1/K`, only the horizontal part of `dp` over `R` for an upright
-    /// cylinder, nothing for a plane.
-    pub fn normal_change(&self, dp: Vec3) -> Vec3 {
+    /// The curvature of the boundary's surface at its point `p`, as the change of the unit
+    /// normal along a small step `dp` in the surface there: `dn = K·dp` for a sphere of radius
+    /// `1/K`, only the horizontal part of `dp` over `R` for an upright cylinder, nothing for a
+    /// plane.
+    pub fn normal_change(&self, p: Vec3, dp: Vec3) -> Vec3 {
         // Multiplied by the curvature `1/R`, as the models have always rounded it.
         match self.shape {
+            Shape::Revolution { zc, c, .. } => {
+                // N = (x, y, −r²'(z)/2) and its change (dx, dy, −c2·dz), projected across the
+                // unit normal and divided by |N|.
+                let big = Vec3::new(p.x, p.y, -(0.5 * c[1] + c[2] * (p.z - zc)));
+                let (len, n) = (big.length(), big.normalize());
+                let change = Vec3::new(dp.x, dp.y, -c[2] * dp.z);
+                (change - change.dot(n) * n) / len
+            }
             Shape::Upright { radius, .. } => (1.0 / radius) * Vec3::new(dp.x, dp.y, 0.0),
             // A cap's signed radius turns the normal the way its outer side faces.
             Shape::Sphere { radius, .. } | Shape::Cap { radius, .. } => (1.0 / radius) * dp,
@@ -662,6 +774,8 @@ impl Boundary {
             Shape::Cap { centre, .. } => (5, centre.to_array()),
             Shape::Disk { centre, .. } => (6, centre.to_array()),
             Shape::Tube { centre, .. } => (7, centre.to_array()),
+            // A container of revolution's piece by its quadric (each piece is its own).
+            Shape::Revolution { zc, c, .. } => (8, [zc, c[0], c[1]]),
             // A plane by its outer normal and its offset.
             Shape::Face { ax, ay, ux, uy, .. } => (4, [uy, -ux, uy * ax - ux * ay]),
         }

@@ -21,6 +21,7 @@ mod trace;
 
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
+use crate::profile;
 use crate::scene::{Scene, SECTION_NAMES, SECTION_RGB};
 use crate::scene_file::{Container, SceneDescription, SceneFileError};
 use crate::Vec3;
@@ -241,6 +242,14 @@ fn piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
     }
 }
 
+/// A piece of a container of revolution's wall: `piece`, of the container's body.
+fn wall_piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
+    Boundary {
+        body: CONTAINER,
+        ..piece(shape, outer, inner)
+    }
+}
+
 /// A face of a transparent solid: `piece` marked as one.
 fn solid_piece(shape: Shape, outer: MediumId, inner: MediumId) -> Boundary {
     Boundary {
@@ -342,6 +351,12 @@ impl World {
         // assignment's glass always had it), then the horizontal faces: each liquid's surface,
         // the floor above a thick bottom, the outer base, a glass's rings at its base and rim.
         let mut boundaries = Vec::new();
+        // A container of revolution's curved faces, its inner pieces, its base's face, and the
+        // ball holding it (with each solid's, by its medium's number).
+        let mut curved = Vec::new();
+        let mut cavity_disks: Option<Vec<crate::profile::Piece>> = None;
+        let mut base_region: Option<Region> = None;
+        let mut balls: Vec<(MediumId, Vec3, f64)> = Vec::new();
         let (surface, lo, hi, rings) = match &scene.container {
             Container::Glass(g) => {
                 indices[CONTAINER as usize] = g.index;
@@ -408,27 +423,113 @@ impl World {
                 let hi = Vec3::new(t.half_x, t.half_y, height);
                 (surface, lo, hi, vec![])
             }
+            Container::Revolution(v) => {
+                indices[CONTAINER as usize] = v.index;
+                let (outer, inner) = (v.outer_pieces(), v.inner_pieces());
+                // The cavity's horizontal faces are disks of its radius at their height.
+                let inner_radius = |z: f64| profile::radius_at(&inner, z).unwrap_or(0.0);
+                let disk = |radius: f64| Region::Disk {
+                    cx: 0.0,
+                    cy: 0.0,
+                    radius,
+                };
+                cavity_disks = Some(inner.clone());
+                // Where two pieces of a profile meet, each reaches a hair past the knot, so that
+                // no ray slips between them by rounding (their surfaces agree there).
+                let hair = 1e-12;
+                for (pieces, is_inner) in [(&outer, false), (&inner, true)] {
+                    for p in pieces {
+                        let (q_min, q_max) = (p.z0 - hair, p.z1 + hair);
+                        let shape = |lo: f64, hi: f64| Shape::Revolution {
+                            zc: p.zc,
+                            c: p.c,
+                            z_min: if lo == p.z0 { q_min } else { lo },
+                            z_max: if hi == p.z1 { q_max } else { hi },
+                            q_min,
+                            q_max,
+                        };
+                        if is_inner {
+                            for (lo, hi, medium) in layers_between(&cavity, p.z0, p.z1) {
+                                curved.push(wall_piece(shape(lo, hi), CONTAINER, medium));
+                            }
+                        } else {
+                            curved.push(wall_piece(shape(p.z0, p.z1), AIR, CONTAINER));
+                        }
+                    }
+                }
+                let base = v.outer[0][0];
+                let (rim_in, rim_out) = (inner_radius(height), v.outer[v.outer.len() - 1][0]);
+                let mut rings = Vec::new();
+                if rim_in < rim_out {
+                    let ring = Region::Annulus {
+                        inner2: rim_in * rim_in,
+                        outer2: rim_out * rim_out,
+                    };
+                    rings.push(horizontal(height, ring, CONTAINER, AIR));
+                }
+                if floor == 0.0 {
+                    // A bottom of no thickness: the cavity's disk and the wall's foot.
+                    let foot = inner_radius(0.0);
+                    let ring = Region::Annulus {
+                        inner2: foot * foot,
+                        outer2: base * base,
+                    };
+                    rings.push(horizontal(0.0, ring, AIR, CONTAINER));
+                    base_region = Some(disk(foot));
+                } else {
+                    base_region = Some(disk(base));
+                }
+                let reach = v.reach();
+                let lo = Vec3::new(-reach, -reach, 0.0);
+                let hi = Vec3::new(reach, reach, height);
+                balls.push((
+                    CONTAINER,
+                    Vec3::new(0.0, 0.0, height / 2.0),
+                    libm::hypot(reach, height / 2.0),
+                ));
+                (disk(inner_radius(floor)), lo, hi, rings)
+            }
+        };
+        // The cavity's horizontal face at height `z`: a container of revolution's is the disk
+        // of its radius there, a glass's or a tank's always the same.
+        let surface_at = |z: f64| match &cavity_disks {
+            Some(inner) => Region::Disk {
+                cx: 0.0,
+                cy: 0.0,
+                radius: profile::radius_at(inner, z).unwrap_or(0.0),
+            },
+            None => surface,
         };
         for (k, liquid) in scene.liquids.iter().enumerate() {
             let below = 2 + k as MediumId;
             boundaries.push(horizontal(
                 liquid.top,
-                surface,
+                surface_at(liquid.top),
                 below,
                 medium_above(liquid.top),
             ));
         }
-        if floor > 0.0 {
-            boundaries.push(horizontal(floor, surface, CONTAINER, medium_above(floor)));
+        if floor > 0.0 && surface_at(floor).reach() > 0.0 {
+            boundaries.push(horizontal(
+                floor,
+                surface_at(floor),
+                CONTAINER,
+                medium_above(floor),
+            ));
         }
-        boundaries.push(horizontal(0.0, surface, AIR, medium_above(0.0)));
+        boundaries.push(horizontal(
+            0.0,
+            base_region.unwrap_or(surface),
+            AIR,
+            medium_above(0.0),
+        ));
         boundaries.extend(rings);
+        // A container of revolution's curved wall after the plain faces, as one body.
+        boundaries.extend(curved);
         // Each sphere is a medium of its own, within whatever fills its place without it: inside
         // the container, the layers its height spans (one face piece per layer, its outer
         // medium that layer's); outside it, air. Its poles lie at infinite heights, so that no
         // rounding of a hit's height loses them.
-        // The ball holding each solid, by its medium's number.
-        let mut balls: Vec<(MediumId, Vec3, f64)> = Vec::new();
         for sphere in &scene.spheres {
             let inner = indices.len() as MediumId;
             indices.push(sphere.index);
@@ -709,8 +810,13 @@ impl World {
         let verticals = boundaries
             .iter()
             .any(|b| matches!(b.shape, Shape::Vertical { .. }));
-        let plain = boundaries.iter().take_while(|b| !b.solid).count();
-        debug_assert!(boundaries[plain..].iter().all(|b| b.solid));
+        let plain = boundaries
+            .iter()
+            .take_while(|b| !b.solid && b.shape.is_plain())
+            .count();
+        debug_assert!(boundaries[plain..]
+            .iter()
+            .all(|b| b.solid || !b.shape.is_plain()));
         // Each solid's faces lie together: one body per run of them.
         let mut bodies: Vec<Body> = Vec::new();
         for (k, b) in boundaries.iter().enumerate().skip(plain) {
