@@ -156,7 +156,7 @@ rules! {
     /// A lens's faces cross inside its diameter.
     LensFaces = "lens.faces", "its faces cross inside its diameter: {rho} from the axis they are {gap} apart (make it thicker or its faces less curved)";
     /// A lens cuts the container or a liquid's surface.
-    LensPlace = "lens.place", "centred at ({x}, {y}, {z}), within {radius} of its centre, it cuts the container or a liquid's surface: a lens stands inside the container above the floor, wholly in one liquid or above them, or wholly outside it";
+    LensPlace = "lens.place", "centred at ({x}, {y}, {z}), within {radius} of its centre, it cuts the container: a lens stands inside the container above the floor (through any liquid's surface), or wholly outside it";
     /// A transparent solid overlaps another object.
     SolidOverlap = "solid.overlap", "it overlaps {other}: they come {gap} close, less than {sum}; a transparent solid must stand clear of every other object";
     /// A card cuts a solid's surface.

@@ -1528,9 +1528,9 @@ impl SceneDescription {
         let (c, reach) = (l.center, l.reach());
         let mut params = point(c);
         params.push(("radius", number(reach)));
+        // Inside, it may lie across any liquid's surface (a lens half dipped in water).
         let inside = l.inside(&self.container);
-        let crosses = self.liquids.iter().any(|q| (c.z - q.top).abs() < reach);
-        if (!inside && self.container.distance_to(c) < reach) || (inside && crosses) {
+        if !inside && self.container.distance_to(c) < reach {
             return Err(refuse_key(
                 &format!("lens[{}]", i + 1),
                 Rule::LensPlace,

@@ -242,8 +242,8 @@ fn packet_pictures_of_every_gallery_scene_match_exact() {
 /// Scenes with transparent solids, each with its view: a marble in water beside a straw, a ball
 /// in air in front of the glass, a fish-bowl (a ball of water in air with a small card inside),
 /// a 60° prism in air beside the glass, a glass block standing in the water through its surface,
-/// a biconvex lens in air between the eye and the glass, a biconcave lens in the water in front
-/// of the straw.
+/// a biconvex lens in air between the eye and the glass, one standing through the water's
+/// surface, a biconcave lens in the water in front of the straw.
 fn solid_scenes() -> Vec<(&'static str, String)> {
     let glass = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
                  [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.1\n\n\
@@ -295,6 +295,15 @@ fn solid_scenes() -> Vec<(&'static str, String)> {
                  radius1 = 0.06\nradius2 = -0.06\nthickness = 0.008\ndiameter = 0.04\n\
                  index = 1.5\n\n\
                  [observer]\nposition = [0.35, 0.02, 0.1]\ntarget = [0.0, 0.0, 0.07]\n"
+            ),
+        ),
+        (
+            "biconvex lens through the water's surface",
+            format!(
+                "{glass}[[lens]]\ncenter = [-0.015, 0.0, 0.1]\naxis = [1.0, 0.0, 0.0]\n\
+                 radius1 = 0.04\nradius2 = -0.04\nthickness = 0.008\ndiameter = 0.03\n\
+                 index = 1.5\n\n\
+                 [observer]\nposition = [-0.2, 0.02, 0.11]\ntarget = [-0.015, 0.0, 0.1]\n"
             ),
         ),
         (

@@ -620,8 +620,8 @@ fn a_lens_focuses_at_the_lensmakers_back_focal_distance() {
 }
 
 /// A lens's rules: its axis a direction, each curved face's radius at least half its diameter,
-/// its faces apart across the whole diameter, its place inside one layer or outside the
-/// container; the eye outside it.
+/// its faces apart across the whole diameter, its place inside the container (through any
+/// liquid's surface) or outside it; the eye outside it.
 #[test]
 fn a_lenss_shape_and_place_break_no_rule() {
     let base = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
@@ -654,10 +654,6 @@ fn a_lenss_shape_and_place_break_no_rule() {
         "lens.faces",
     );
     refused(
-        &lens([0.0, 0.0, 0.1], [1.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.03),
-        "lens.place",
-    );
-    refused(
         &lens([0.05, 0.0, 0.1], [1.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.04),
         "lens.place",
     );
@@ -672,6 +668,8 @@ fn a_lenss_shape_and_place_break_no_rule() {
         lens(out, [1.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.04),
         lens(out, [0.0, 0.0, 1.0], 0.0, 0.0, 0.01, 0.04),
         lens([0.0, 0.0, 0.05], [1.0, 1.0, 0.0], 0.05, -0.05, 0.006, 0.03),
+        // Through the water's surface.
+        lens([0.0, 0.0, 0.1], [1.0, 0.0, 0.0], 0.05, -0.05, 0.01, 0.03),
     ] {
         let d = scene(&format!("{base}{ok}"));
         assert_eq!(scene(&d.to_toml()), d);
@@ -736,4 +734,54 @@ fn the_eye_model_sees_through_a_magnifying_glass_where_gauss_says() {
             "seen at {p}, Gauss puts it at {expected}"
         );
     }
+}
+
+/// A lens standing through the water's surface, of the water's own index: below the surface it
+/// vanishes (no event on its faces there), above it is a lens in air (a ray through it bends at
+/// both faces, as the same lens in air bends it), and the water's surface has a hole of its
+/// shape (a ray falling through the lens meets no water surface inside it).
+#[test]
+fn a_lens_through_the_waters_surface_is_a_lens_above_and_vanishes_below() {
+    let (top, centre) = (0.1, Vec3::new(0.0, 0.0, 0.1));
+    let lens = "[[lens]]\ncenter = [0.0, 0.0, 0.1]\naxis = [1.0, 0.0, 0.0]\nradius1 = 0.05\n\
+                radius2 = -0.05\nthickness = 0.01\ndiameter = 0.03\nindex = 1.333\n";
+    let half = World::new(
+        &scene(&format!(
+            "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.15\n\n\
+             [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = {top}\n\n{lens}"
+        )),
+        10,
+    )
+    .expect("a lens through the surface");
+    let in_air = lens_in_air(centre, Vec3::X, 0.05, -0.05, 0.01, 1.333);
+    let on_lens = |e: &Event| {
+        let v = e.point - centre;
+        v.x.abs() < 0.02 && v.y.hypot(v.z) <= 0.015 + 1e-12
+    };
+    // Below the surface, across the lens: only the glass's walls, never the lens.
+    for z in [0.09, 0.095, 0.0995] {
+        let (_, events) = trace_events(&half, Ray::new(Vec3::new(-0.3, 0.002, z), Vec3::X));
+        assert_eq!(events.len(), 2, "at z = {z}: {events:?}");
+        assert!(events.iter().all(|e| !on_lens(e)), "{events:?}");
+    }
+    // Above it, through the lens: its two faces, bent exactly as by the lens in air.
+    for (y, z) in [(0.003, 0.104), (-0.006, 0.11), (0.0, 0.1005)] {
+        let ray = Ray::new(Vec3::new(-0.3, y, z), Vec3::X);
+        let (_, events) = trace_events(&half, ray);
+        let (_, alone) = trace_events(&in_air, ray);
+        let through: Vec<&Event> = events.iter().filter(|e| on_lens(e)).collect();
+        assert_eq!(through.len(), 2, "at ({y}, {z}): {events:?}");
+        for (e, f) in through.iter().zip(&alone) {
+            assert!((e.point - f.point).length() < 1e-12, "{e:?} {f:?}");
+            assert!((e.outgoing - f.outgoing).length() < 1e-12);
+        }
+    }
+    // Falling through the lens: it enters the lens's rim from the air, then meets nothing until
+    // the glass's floor (no water surface inside the lens, no face of the lens below it).
+    let (_, events) = trace_events(&half, Ray::new(Vec3::new(0.001, 0.002, 0.3), -Vec3::Z));
+    assert!(on_lens(&events[0]) && events[0].n1 == 1.0 && events[0].n2 == 1.333);
+    assert!(events[1].point.z < 1e-12, "{events:?}");
+    // Beside the lens, the same ray meets the water's surface.
+    let (_, events) = trace_events(&half, Ray::new(Vec3::new(0.001, 0.025, 0.3), -Vec3::Z));
+    assert!((events[0].point.z - top).abs() < 1e-15, "{events:?}");
 }

@@ -389,3 +389,15 @@ def test_transparent_solids_give_the_command_lines_points_and_their_rules(tmp_pa
     with pytest.raises(ValueError) as e:
         bentstraw.Scene.from_toml(SOLIDS.replace("radius = 0.012", "radius = 0.03"))
     assert "sphere[1]" in str(e.value)
+
+
+def test_a_glass_of_revolution_gives_the_command_lines_points_and_its_rules(tmp_path):
+    (header, rows), sim = simulated(
+        tmp_path, ["--scene", "wine-glass", "--points", "3000"], scene="wine-glass", points=3000
+    )
+    assert_same_points(header, rows, sim)
+    assert "wall" in set(sim.path)
+    text = bentstraw.Scene.gallery("tapered-tumbler").text
+    with pytest.raises(ValueError) as e:
+        bentstraw.Scene.from_toml(text.replace("[0.0395, 0.12]", "[0.043, 0.12]"))
+    assert "container.inner" in str(e.value) and "leaves the outer one" in str(e.value)

@@ -195,14 +195,191 @@ pub enum Shape {
     },
 }
 
+/// The container's and liquids' three plain shapes alone (a plane over a region, an upright
+/// cylinder's side, a tank's wall), as the lean loop over their faces reads them: a compact copy
+/// of their [`Shape`], so that the scenes without solids trace with the code and the data they
+/// always had.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum PlainShape {
+    Horizontal {
+        z: f64,
+        region: Region,
+    },
+    Upright {
+        cx: f64,
+        cy: f64,
+        radius: f64,
+        z_min: f64,
+        z_max: f64,
+    },
+    Vertical {
+        axis: usize,
+        at: f64,
+        half: f64,
+        z_min: f64,
+        z_max: f64,
+    },
+}
+
+/// A face of the container or a liquid as the lean loop reads it: its shape, the numbers its
+/// lanes are compared with, and what solids take from it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PlainFace {
+    pub shape: PlainShape,
+    pub codes: Codes,
+    pub holes: [u16; 2],
+}
+
+impl PlainShape {
+    /// [`Boundary::crossing`] for this shape.
+    #[inline(always)]
+    pub(crate) fn crossing<R: Real>(
+        &self,
+        o: V3<R>,
+        d: V3<R>,
+        inv: &Reciprocals<R>,
+        leaving: R::Mask,
+        alive: R::Mask,
+        around: &Around<R>,
+    ) -> R {
+        let inf = R::splat(f64::INFINITY);
+        if let PlainShape::Horizontal { z, region } = *self {
+            let (num, ahead) = plane_ahead(R::splat(z), o.z, d.z);
+            let ahead = ahead.and_not(leaving).and(alive);
+            if !ahead.any() {
+                return inf;
+            }
+            let t = plane_distance_of(num, d.z, inv.d.z);
+            let inside = region.contains(o.x + t * d.x, o.y + t * d.y);
+            R::select(ahead.and(inside), t, inf)
+        } else if let PlainShape::Upright {
+            cx,
+            cy,
+            radius,
+            z_min,
+            z_max,
+        } = *self
+        {
+            // The circle the whole scene lies within is often this one: its quadratic is done.
+            let q = if cx == 0.0 && cy == 0.0 && radius * radius == around.r2 {
+                around.quadratic
+            } else {
+                SideQuadratic::new(
+                    o.x - R::splat(cx),
+                    o.y - R::splat(cy),
+                    d.x,
+                    d.y,
+                    R::splat(radius * radius),
+                )
+            };
+            // A ray outside the cylinder moving away from it meets it nowhere ahead.
+            if !alive.and(q.real()).and_not(q.moving_away()).any() {
+                return inf;
+            }
+            let roots = q.roots(inv.a);
+            let (zl, zh) = (R::splat(z_min), R::splat(z_max));
+            let leaving = leaving.and(alive);
+            if !leaving.any() {
+                roots.nearest(o.z, d.z, zl, zh)
+            } else if !alive.and_not(leaving).any() {
+                roots.other(o.z, d.z, zl, zh)
+            } else {
+                R::select(
+                    leaving,
+                    roots.other(o.z, d.z, zl, zh),
+                    roots.nearest(o.z, d.z, zl, zh),
+                )
+            }
+        } else if let PlainShape::Vertical {
+            axis,
+            at,
+            half,
+            z_min,
+            z_max,
+        } = *self
+        {
+            let (num, ahead) = plane_ahead(R::splat(at), o.get(axis), d.get(axis));
+            let ahead = ahead.and_not(leaving).and(alive);
+            if !ahead.any() {
+                return inf;
+            }
+            let t = plane_distance_of(num, d.get(axis), inv.d.get(axis));
+            let across = o.get(1 - axis) + t * d.get(1 - axis);
+            let ok = ahead.and(across.abs().le(R::splat(half))).and(in_range(
+                o.z + t * d.z,
+                R::splat(z_min),
+                R::splat(z_max),
+            ));
+            R::select(ok, t, inf)
+        } else {
+            inf
+        }
+    }
+
+    /// [`Boundary::normal_at`] for this shape.
+    #[inline(always)]
+    pub(crate) fn normal_at<R: Real>(&self, p: V3<R>) -> V3<R> {
+        let zero = R::splat(0.0);
+        match *self {
+            PlainShape::Horizontal { .. } => V3::new(zero, zero, R::splat(1.0)),
+            PlainShape::Upright { cx, cy, radius, .. } => {
+                let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
+                let x = R::quotient(p.x - R::splat(cx), r, inv);
+                let y = R::quotient(p.y - R::splat(cy), r, inv);
+                V3::new(x, y, zero).renormalize()
+            }
+            PlainShape::Vertical { axis, at, .. } => {
+                let s = R::splat(at.signum());
+                if axis == 0 {
+                    V3::new(s, zero, zero)
+                } else {
+                    V3::new(zero, s, zero)
+                }
+            }
+        }
+    }
+}
+
 impl Shape {
+    /// Its plain form, for the container's and liquids' shapes.
+    #[inline(always)]
+    pub(crate) fn plain(&self) -> Option<PlainShape> {
+        match *self {
+            Shape::Horizontal { z, region } => Some(PlainShape::Horizontal { z, region }),
+            Shape::Upright {
+                cx,
+                cy,
+                radius,
+                z_min,
+                z_max,
+            } => Some(PlainShape::Upright {
+                cx,
+                cy,
+                radius,
+                z_min,
+                z_max,
+            }),
+            Shape::Vertical {
+                axis,
+                at,
+                half,
+                z_min,
+                z_max,
+            } => Some(PlainShape::Vertical {
+                axis,
+                at,
+                half,
+                z_min,
+                z_max,
+            }),
+            _ => None,
+        }
+    }
+
     /// Whether it is one of the container's and liquids' plain shapes (a plane, an upright
     /// cylinder's side, a tank's wall), which the lean loop reads.
     pub(crate) fn is_plain(&self) -> bool {
-        matches!(
-            self,
-            Shape::Horizontal { .. } | Shape::Upright { .. } | Shape::Vertical { .. }
-        )
+        self.plain().is_some()
     }
 }
 
@@ -254,6 +431,60 @@ pub(crate) enum Clip {
     OutsidePolygon([u16; 2]),
     /// The face lies in the convex polygon of these edges only.
     InsidePolygon([u16; 2]),
+    /// The face lies between these heights only (a lens's face in one of the layers it
+    /// crosses).
+    Between {
+        /// Lowest height.
+        lo: f64,
+        /// Highest height.
+        hi: f64,
+    },
+    /// No part of the face lies inside this lens (the world's [`LensHole`] of this number).
+    OutsideLens(u16),
+}
+
+/// A lens as a face it pierces (a liquid's surface) sees it: the solid between its two faces
+/// within its rim, to test points against.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LensHole {
+    /// Its centre.
+    pub centre: Vec3,
+    /// Its unit axis.
+    pub axis: Vec3,
+    /// Its rim's radius².
+    pub rim2: f64,
+    /// Its faces' vertices' axial coordinates from the centre, and their signed radii (0 flat).
+    pub w1: f64,
+    pub r1: f64,
+    pub w2: f64,
+    pub r2: f64,
+}
+
+impl LensHole {
+    /// The lanes whose point `(x, y, z)` lies inside the lens: within its rim, beyond face 1
+    /// and before face 2 along its axis (each face at its vertex plus its sag there).
+    #[inline(always)]
+    pub fn holds<R: Real>(&self, x: R, y: R, z: R) -> R::Mask {
+        let v = V3::new(x, y, z) - V3::splat(self.centre);
+        let w = v.dot(V3::splat(self.axis));
+        let rho2 = v.dot(v) - w * w;
+        rho2.lt(R::splat(self.rim2))
+            .and(w.gt(R::splat(self.w1) + sag(self.r1, rho2)))
+            .and(w.lt(R::splat(self.w2) + sag(self.r2, rho2)))
+    }
+}
+
+/// How far along the axis a lens's face of signed radius `r` (0 flat) lies from its vertex at
+/// the squared distance `rho2` from the axis. A function, not a closure: it must be inlined into
+/// the packets' code compiled for their instruction set.
+#[inline(always)]
+fn sag<R: Real>(r: f64, rho2: R) -> R {
+    if r == 0.0 {
+        R::splat(0.0)
+    } else {
+        let under = (R::splat(r * r) - rho2).max(R::splat(0.0));
+        R::splat(r) - R::splat(r.signum()) * under.sqrt()
+    }
 }
 
 /// An edge of a counterclockwise convex polygon seen from above: from `(ax, ay)` along `(ex,
@@ -541,8 +772,7 @@ impl Boundary {
     }
 
     /// [`Boundary::crossing`] for the container's and liquids' faces alone (a plane, an
-    /// upright cylinder's side, a tank's wall): the lean loop over them reads no other shape
-    /// (a solid's face gives infinity here).
+    /// upright cylinder's side, a tank's wall; a solid's face gives infinity here).
     #[inline(always)]
     pub(crate) fn plain_crossing<R: Real>(
         &self,
@@ -553,78 +783,9 @@ impl Boundary {
         alive: R::Mask,
         around: &Around<R>,
     ) -> R {
-        let inf = R::splat(f64::INFINITY);
-        match self.shape {
-            Shape::Horizontal { z, region } => {
-                let (num, ahead) = plane_ahead(R::splat(z), o.z, d.z);
-                let ahead = ahead.and_not(leaving).and(alive);
-                if !ahead.any() {
-                    return inf;
-                }
-                let t = plane_distance_of(num, d.z, inv.d.z);
-                let inside = region.contains(o.x + t * d.x, o.y + t * d.y);
-                R::select(ahead.and(inside), t, inf)
-            }
-            Shape::Upright {
-                cx,
-                cy,
-                radius,
-                z_min,
-                z_max,
-            } => {
-                // The circle the whole scene lies within is often this one: its quadratic is done.
-                let q = if cx == 0.0 && cy == 0.0 && radius * radius == around.r2 {
-                    around.quadratic
-                } else {
-                    SideQuadratic::new(
-                        o.x - R::splat(cx),
-                        o.y - R::splat(cy),
-                        d.x,
-                        d.y,
-                        R::splat(radius * radius),
-                    )
-                };
-                // A ray outside the cylinder moving away from it meets it nowhere ahead.
-                if !alive.and(q.real()).and_not(q.moving_away()).any() {
-                    return inf;
-                }
-                let roots = q.roots(inv.a);
-                let (zl, zh) = (R::splat(z_min), R::splat(z_max));
-                let leaving = leaving.and(alive);
-                if !leaving.any() {
-                    roots.nearest(o.z, d.z, zl, zh)
-                } else if !alive.and_not(leaving).any() {
-                    roots.other(o.z, d.z, zl, zh)
-                } else {
-                    R::select(
-                        leaving,
-                        roots.other(o.z, d.z, zl, zh),
-                        roots.nearest(o.z, d.z, zl, zh),
-                    )
-                }
-            }
-            Shape::Vertical {
-                axis,
-                at,
-                half,
-                z_min,
-                z_max,
-            } => {
-                let (num, ahead) = plane_ahead(R::splat(at), o.get(axis), d.get(axis));
-                let ahead = ahead.and_not(leaving).and(alive);
-                if !ahead.any() {
-                    return inf;
-                }
-                let t = plane_distance_of(num, d.get(axis), inv.d.get(axis));
-                let across = o.get(1 - axis) + t * d.get(1 - axis);
-                let ok = ahead.and(across.abs().le(R::splat(half))).and(in_range(
-                    o.z + t * d.z,
-                    R::splat(z_min),
-                    R::splat(z_max),
-                ));
-                R::select(ok, t, inf)
-            }
-            _ => inf,
+        match self.shape.plain() {
+            Some(shape) => shape.crossing(o, d, inv, leaving, alive, around),
+            None => R::splat(f64::INFINITY),
         }
     }
 
@@ -667,24 +828,9 @@ impl Boundary {
     /// gives the zero vector here).
     #[inline(always)]
     pub(crate) fn plain_normal_at<R: Real>(&self, p: V3<R>) -> V3<R> {
-        let zero = R::splat(0.0);
-        match self.shape {
-            Shape::Horizontal { .. } => V3::new(zero, zero, R::splat(1.0)),
-            Shape::Upright { cx, cy, radius, .. } => {
-                let (r, inv) = (R::splat(radius), R::splat(1.0 / radius));
-                let x = R::quotient(p.x - R::splat(cx), r, inv);
-                let y = R::quotient(p.y - R::splat(cy), r, inv);
-                V3::new(x, y, zero).renormalize()
-            }
-            Shape::Vertical { axis, at, .. } => {
-                let s = R::splat(at.signum());
-                if axis == 0 {
-                    V3::new(s, zero, zero)
-                } else {
-                    V3::new(zero, s, zero)
-                }
-            }
-            _ => V3::new(zero, zero, zero),
+        match self.shape.plain() {
+            Some(shape) => shape.normal_at(p),
+            None => V3::splat(Vec3::ZERO),
         }
     }
 

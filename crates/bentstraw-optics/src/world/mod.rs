@@ -69,8 +69,13 @@ pub struct World {
     /// Every boundary where light can refract or be totally reflected: the container's and
     /// liquids' faces first, then the transparent solids' faces.
     boundaries: Vec<Boundary>,
-    /// How many of the boundaries are the container's and liquids' (the rest are solids').
+    /// How many of the boundaries are the container's and liquids' plain faces (the rest are
+    /// solids' and a glass of revolution's curved wall).
     plain: usize,
+    /// Those first `plain` boundaries as the lean loop reads them.
+    plain_faces: Vec<boundary::PlainFace>,
+    /// The lenses inside the container, as the faces they pierce see them.
+    lens_holes: Vec<boundary::LensHole>,
     /// Every opaque object.
     objects: Vec<Object>,
     /// What solids make of horizontal faces (each face names its range of them).
@@ -637,16 +642,39 @@ impl World {
         }
         // Each lens: its two faces (caps of spheres, or flat disks) and its rim between them,
         // within the layer it lies in (or air).
+        // A lens inside the container may cross liquids' surfaces: each face is then one
+        // boundary per layer it may reach, kept between that layer's heights (a clip), and the
+        // surfaces it pierces have a hole of its shape.
+        let mut clips = Vec::new();
+        let mut lens_holes = Vec::new();
         for lens in &scene.lenses {
             let inner = indices.len() as MediumId;
             indices.push(lens.index);
-            balls.push((inner, lens.center, lens.reach()));
-            let outer = if lens.inside(&scene.container) {
-                medium_above(lens.center.z)
-            } else {
-                AIR
-            };
+            let reach = lens.reach();
+            balls.push((inner, lens.center, reach));
             let (a, c) = (lens.unit_axis(), lens.center);
+            let layers: Vec<(f64, f64, MediumId)> = if lens.inside(&scene.container) {
+                layers_between(&cavity, c.z - reach, c.z + reach).collect()
+            } else {
+                vec![(c.z - reach, c.z + reach, AIR)]
+            };
+            if lens.inside(&scene.container) {
+                lens_holes.push((
+                    lens_holes.len(),
+                    c.z - reach,
+                    c.z + reach,
+                    boundary::LensHole {
+                        centre: c,
+                        axis: a,
+                        rim2: lens.diameter * lens.diameter / 4.0,
+                        w1: -lens.thickness / 2.0,
+                        r1: lens.radius1,
+                        w2: lens.thickness / 2.0,
+                        r2: lens.radius2,
+                    },
+                ));
+            }
+            let mut faces = Vec::new();
             let rim = lens.diameter / 2.0;
             // Face 1 faces −axis, face 2 +axis; a face of radius R has its centre of curvature
             // R along the axis from its vertex, and its cap lies towards the vertex from there.
@@ -672,18 +700,28 @@ impl World {
                         rho2: rim * rim,
                     }
                 };
-                boundaries.push(solid_piece(shape, outer, inner));
+                faces.push(shape);
             }
             let (w1, w2) = lens.faces_at(rim);
             if w2 > w1 {
-                let tube = Shape::Tube {
+                faces.push(Shape::Tube {
                     centre: c,
                     axis: a,
                     r2: rim * rim,
                     w_min: w1,
                     w_max: w2,
-                };
-                boundaries.push(solid_piece(tube, outer, inner));
+                });
+            }
+            for shape in faces {
+                for &(lo, hi, outer) in &layers {
+                    let mut face = solid_piece(shape, outer, inner);
+                    if layers.len() > 1 {
+                        let k = clips.len() as u16;
+                        clips.push(Clip::Between { lo, hi });
+                        face.holes = [k, k + 1];
+                    }
+                    boundaries.push(face);
+                }
             }
         }
         // Where faces between media of the same index are dropped, such media are one medium:
@@ -714,7 +752,6 @@ impl World {
         // The faces a solid inside the container pierces (a liquid's surface, the top of a
         // layer, the floor under a prism standing on it) have a hole where it passes: its
         // cross-section there. A prism's own top and bottom are clipped to its polygon.
-        let mut clips = Vec::new();
         for b in &mut boundaries {
             let Shape::Horizontal { z, .. } = b.shape else {
                 continue;
@@ -738,6 +775,11 @@ impl World {
             for (prism, range) in scene.prisms.iter().zip(&prism_edges) {
                 if prism.inside(&scene.container) && (prism.bottom..=prism.top).contains(&z) {
                     clips.push(Clip::OutsidePolygon(*range));
+                }
+            }
+            for &(k, lo, hi, _) in &lens_holes {
+                if lo < z && z < hi {
+                    clips.push(Clip::OutsideLens(k as u16));
                 }
             }
             b.holes = [start, clips.len() as u16];
@@ -837,10 +879,20 @@ impl World {
                 }
             }
         }
+        let plain_faces = boundaries[..plain]
+            .iter()
+            .map(|b| boundary::PlainFace {
+                shape: b.shape.plain().expect("the first faces are plain"),
+                codes: b.codes,
+                holes: b.holes,
+            })
+            .collect();
         World {
             indices,
             boundaries,
             plain,
+            plain_faces,
+            lens_holes: lens_holes.into_iter().map(|(_, _, _, hole)| hole).collect(),
             objects,
             clips,
             bodies,
@@ -867,6 +919,8 @@ impl World {
         World {
             indices: self.indices.clone(),
             boundaries: self.boundaries.clone(),
+            plain_faces: self.plain_faces.clone(),
+            lens_holes: self.lens_holes.clone(),
             objects: Vec::new(),
             clips: self.clips.clone(),
             bodies: self.bodies.clone(),

@@ -101,16 +101,6 @@ impl World {
         if !alive.any() {
             return None;
         }
-        // The container, its liquids and the objects may lie within a narrower circle than the
-        // solids beside them: lines clearly outside it skip their faces.
-        let (plain_alive, plain_around) = if self.plain_reach < self.reach {
-            let pr2 = self.plain_reach * self.plain_reach;
-            let quadratic = SideQuadratic::new(o.x, o.y, d.x, d.y, R::splat(pr2));
-            let live = alive.and_not(quadratic.clearly_misses(R::splat(pr2)));
-            (live, Around { r2: pr2, quadratic })
-        } else {
-            (alive, around)
-        };
         let mut inv = Reciprocals::new(d);
         if !self.verticals {
             // Not needed: no division by dx or dy (the compiler drops the unused ones).
@@ -129,49 +119,63 @@ impl World {
                 code = R::select(m, R::splat($b.codes.index as f64), code);
             }};
         }
-        // The container's and liquids' faces first, with the lean intersection of their three
-        // shapes; without solids nothing is clipped from them (the scenes of old trace as they
-        // did). The solids' faces come last.
-        let plain = &self.boundaries[..self.plain];
-        if !plain_alive.any() {
-            // Every line passes clearly beside the container and its objects.
-        } else if self.clips.is_empty() {
-            for b in plain {
-                let leaving = left.eq(R::splat(b.codes.surface as f64));
-                take!(
-                    b.plain_crossing(o, d, &inv, leaving, plain_alive, &plain_around),
-                    b
-                );
+        // The lanes the objects may be met in: within the circle holding the container and its
+        // objects.
+        let objects_alive;
+        if self.bodies.is_empty() && self.clips.is_empty() {
+            // No solid and no curved wall: the container's and liquids' faces alone, with the
+            // lean intersection of their three shapes, in one loop (the scenes of old trace as
+            // they always did, at their speed).
+            for f in &self.plain_faces {
+                let leaving = left.eq(R::splat(f.codes.surface as f64));
+                take!(f.shape.crossing(o, d, &inv, leaving, alive, &around), f);
             }
+            objects_alive = alive;
         } else {
-            for b in plain {
-                let leaving = left.eq(R::splat(b.codes.surface as f64));
-                let tb = b.plain_crossing(o, d, &inv, leaving, plain_alive, &plain_around);
-                take!(self.clipped(b, o, d, tb), b);
-            }
-        }
-        // Each solid's faces, unless every line misses the ball holding it (or starts outside
-        // it moving away): a lens's three faces cost one quadratic then.
-        for body in &self.bodies {
-            let faces = &self.boundaries[body.faces[0]..body.faces[1]];
-            if faces.len() > 1 {
-                let q = SideQuadratic::sphere(o - V3::splat(body.centre), d, R::splat(body.r2));
-                if !alive.and(q.real()).and_not(q.moving_away()).any() {
-                    continue;
+            // The container, its liquids and the objects may lie within a narrower circle than
+            // the solids beside them: lines clearly outside it skip their faces.
+            let pr2 = R::splat(self.plain_reach * self.plain_reach);
+            let quadratic = SideQuadratic::new(o.x, o.y, d.x, d.y, pr2);
+            let plain_alive = alive.and_not(quadratic.clearly_misses(pr2));
+            let plain_around = Around {
+                r2: self.plain_reach * self.plain_reach,
+                quadratic,
+            };
+            // The container's and liquids' plain faces first, clipped where a solid pierces
+            // them; then each solid's faces (and a glass of revolution's wall), unless every
+            // line misses the ball holding them (or starts outside it moving away): a lens's
+            // three faces cost one quadratic then.
+            if plain_alive.any() {
+                for f in &self.plain_faces {
+                    let leaving = left.eq(R::splat(f.codes.surface as f64));
+                    let tb = f
+                        .shape
+                        .crossing(o, d, &inv, leaving, plain_alive, &plain_around);
+                    take!(self.clipped(f.holes, o, d, tb), f);
                 }
             }
-            for b in faces {
-                let leaving = left.eq(R::splat(b.codes.surface as f64));
-                let tb = b.crossing(o, d, &inv, leaving, alive, &around);
-                take!(self.clipped(b, o, d, tb), b);
+            for body in &self.bodies {
+                let faces = &self.boundaries[body.faces[0]..body.faces[1]];
+                if faces.len() > 1 {
+                    let q = SideQuadratic::sphere(o - V3::splat(body.centre), d, R::splat(body.r2));
+                    if !alive.and(q.real()).and_not(q.moving_away()).any() {
+                        continue;
+                    }
+                }
+                for b in faces {
+                    let leaving = left.eq(R::splat(b.codes.surface as f64));
+                    let tb = b.crossing(o, d, &inv, leaving, alive, &around);
+                    take!(self.clipped(b.holes, o, d, tb), b);
+                }
             }
+            objects_alive = plain_alive;
         }
         let mut part = R::splat(0.0);
         let mut tag = R::splat(0.0);
         let first_object = self.boundaries.len();
         for (j, object) in self.objects.iter().enumerate() {
             let own = R::splat(self.object_code(j) as f64);
-            let live = plain_alive.and_not(left.eq(own));
+            let live = objects_alive.and_not(left.eq(own));
             if !live.any() {
                 continue;
             }
@@ -187,13 +191,13 @@ impl World {
         Some(Nearest { t, code, part, tag })
     }
 
-    /// `tb` (the distances at which the rays from `o` along `d` meet face `b`), infinite where
-    /// what solids make of the face leaves the point out: a hole where one pierces it, outside
+    /// `tb` (the distances at which the rays from `o` along `d` meet a face), infinite where
+    /// what solids make of the face (its `holes` in the clips) leaves the point out: a hole where one pierces it, outside
     /// a prism's polygon for its own top and bottom.
     #[inline(always)]
-    fn clipped<R: Real>(&self, b: &super::Boundary, o: V3<R>, d: V3<R>, mut tb: R) -> R {
+    fn clipped<R: Real>(&self, holes: [u16; 2], o: V3<R>, d: V3<R>, mut tb: R) -> R {
         let inf = R::splat(f64::INFINITY);
-        for clip in &self.clips[b.holes[0] as usize..b.holes[1] as usize] {
+        for clip in &self.clips[holes[0] as usize..holes[1] as usize] {
             let (x, y) = (o.x + tb * d.x, o.y + tb * d.y);
             tb = match *clip {
                 Clip::OutsideDisk { cx, cy, r2 } => {
@@ -204,6 +208,14 @@ impl World {
                     R::select(self.outside_polygon(x, y, range), tb, inf)
                 }
                 Clip::InsidePolygon(range) => R::select(self.outside_polygon(x, y, range), inf, tb),
+                Clip::Between { lo, hi } => {
+                    let z = o.z + tb * d.z;
+                    R::select(z.ge(R::splat(lo)).and(z.le(R::splat(hi))), tb, inf)
+                }
+                Clip::OutsideLens(k) => {
+                    let z = o.z + tb * d.z;
+                    R::select(self.lens_holes[k as usize].holds(x, y, z), inf, tb)
+                }
             };
         }
         tb
@@ -256,7 +268,7 @@ impl World {
             };
             // The container's and liquids' faces (first in the list) by their lean rule.
             let n = if k < self.plain {
-                b.plain_normal_at(q)
+                self.plain_faces[k].shape.normal_at(q)
             } else {
                 b.normal_at(q)
             };

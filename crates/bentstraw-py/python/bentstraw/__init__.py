@@ -87,7 +87,8 @@ Vector2 = Sequence[float]
 
 
 class Scene:
-    """A scene file's text, checked: glasses, tanks, liquids, straws, coins and cards.
+    """A scene file's text, checked: glasses (straight or of any profile), tanks, liquids, straws,
+    coins, cards and transparent solids.
 
     Make one with :meth:`Scene.load` (a file), :meth:`Scene.from_toml` (text) or
     :meth:`Scene.gallery` (one of the built-in demonstrations), and pass it as ``scene=`` to
