@@ -64,6 +64,22 @@ fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
     if b.solid && matches!(b.shape, Shape::Horizontal { .. }) {
         return;
     }
+    // A lens's face cut by a liquid's surface: each piece draws the part between its heights.
+    if let Shape::Cap { z_min, z_max, .. }
+    | Shape::Disk { z_min, z_max, .. }
+    | Shape::Tube { z_min, z_max, .. } = b.shape
+    {
+        let mut all = Vec::new();
+        shape_segments(b, &mut all);
+        let inside = |p: Vec3| (z_min..=z_max).contains(&p.z);
+        out.extend(all.into_iter().filter(|[a, c]| inside(*a) && inside(*c)));
+        return;
+    }
+    shape_segments(b, out);
+}
+
+/// [`boundary_segments`] of any boundary, whole.
+fn shape_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
     match b.shape {
         Shape::Horizontal { z, region } => match region {
             Region::Disk { cx, cy, radius } => out.extend(pairs(&circle(cx, cy, radius, z))),
@@ -160,6 +176,7 @@ fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
             radius,
             toward,
             rho2,
+            ..
         } => {
             // Its rim, and two arcs across it through its vertex.
             let (r, rim) = (radius.abs(), rho2.sqrt());
@@ -181,7 +198,9 @@ fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
                 out.extend(pairs(&arc));
             }
         }
-        Shape::Disk { centre, normal, r2 } => {
+        Shape::Disk {
+            centre, normal, r2, ..
+        } => {
             let (e1, e2) = normal.any_orthonormal_pair();
             out.extend(pairs(&ring(centre, e1, e2, r2.sqrt())));
         }
@@ -191,6 +210,7 @@ fn boundary_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
             r2,
             w_min,
             w_max,
+            ..
         } => {
             // Its two circles and four lines along it.
             let (e1, e2) = axis.any_orthonormal_pair();

@@ -23,12 +23,9 @@
 //! numbers changes in the reference's answer, once for the ray and once more for each event on
 //! its way (a tracer in double rounds its ray again at each): a few rays in a hundred. Where the
 //! library's ray crosses a lens's or a ball's face, the point lies on the face's surface to the
-//! rounding of double precision.
-//!
-//! Two discrepancies the reference shows, whose tests are ignored until the library is fixed:
-//! its crossing of a strongly curved piece of a glass's wall loses up to three digits
-//! (`crossings_of_glasses_of_revolution_lie_on_their_walls`, and one ray in the cocktail glass);
-//! and a lens of the index of a layer it stands through can lose a face's crossing
+//! rounding of double precision, and where it crosses a glass's wall of revolution, on the
+//! wall (`crossings_of_glasses_of_revolution_lie_on_their_walls`); a lens of the index of a
+//! layer it stands through keeps every crossing of its faces in the other layers
 //! (`a_lens_of_its_layers_index_through_a_surface_…`).
 
 #[path = "support/spheres.rs"]
@@ -998,13 +995,11 @@ fn the_wine_glass_traces_as_the_independent_tracer_says() {
 }
 
 /// The cocktail glass: a cone of water coming to a point on the axis, a marble in it, a card
-/// behind. One ray of its 3000 differs by more than rounding explains: it enters the glass where
-/// the stem widens into the bowl (the piece `r² = 1.6e-5 + 1.0534·(z − 0.085)²`), and the library
-/// puts that crossing 2.6e-15 m from the exact crossing of its own ray (what
-/// `crossings_of_glasses_of_revolution_lie_on_their_walls` shows), which four events later turns
-/// the ray leaving the water 1.5e-12 away from the reference's.
+/// behind. Its strongly curved pieces (where the stem widens into the bowl, `r² = 1.6e-5 +
+/// 1.0534·(z − 0.085)²`) are the ones whose crossing needs the library's Newton step (see
+/// `crossings_of_glasses_of_revolution_lie_on_their_walls`): without it one ray in 3000 entered
+/// 2.6e-15 m off and left the water, four events later, 1.5e-12 away from the reference's.
 #[test]
-#[ignore = "fails until the library's crossing of a strongly curved wall piece keeps its digits"]
 fn the_cocktail_glass_traces_as_the_independent_tracer_says() {
     a_gallery_glass("cocktail-glass.toml", 0x5EED_C0C7_0008, true);
 }
@@ -1208,17 +1203,15 @@ fn a_lens_through_a_liquids_surface_traces_as_the_independent_tracer_says() {
 /// The same with the solid of air's index or of the water's: its faces are then none in the
 /// layer of its own index, and light crosses them unbent. A ray from above that enters such a
 /// lens of air's index through its (faceless) part in the air, and first meets the cylinder of
-/// its rim there, passes through its rim under the water unseen and goes on as if in the water:
-/// the library clips each of a lens's faces to the layer it is in (`Clip::Between`) after picking
-/// the crossing nearest along the ray, so that when the nearer crossing of the same surface lies
-/// in a layer where that face is none, the farther one, in the face's own layer, is lost. (Say
-/// the lens centred at `[0.00299, −0.00183, 0.08326]`, axis `[−0.306, 0.441, −0.088]`, radii
+/// its rim there, must still leave through its rim under the water: each piece of a lens's face
+/// chooses its crossing among those within its own layer's heights, so a nearer crossing of
+/// the same surface in a layer where that face is none hides nothing. (Say the lens centred at `[0.00299, −0.00183, 0.08326]`, axis `[−0.306, 0.441, −0.088]`, radii
 /// −0.0930 and 0.0513, 12.1 mm thick, 41.8 mm across, in water up to 0.07 m: the ray from
 /// `[−0.1777, 0.0345, 0.9496]` along `[0.1964, −0.0381, −0.9798]` leaves the lens through its rim
-/// into the water at `[0.000265, −0.0000513, 0.0616]`, which the library does not see: its first
-/// event is the floor, as if it came through water.)
+/// into the water at `[0.000265, −0.0000513, 0.0616]`; when the pieces were clipped to their
+/// heights after choosing the crossing, the library missed it and met the floor first, as if the
+/// ray came through water.)
 #[test]
-#[ignore = "fails until a lens face clipped to a layer looks at its surface's other crossing"]
 fn a_lens_of_its_layers_index_through_a_surface_traces_as_the_independent_tracer_says() {
     let tally = through_a_surface(0x5EED_1E45_000D, 25, |rng| {
         if rng.next_f64() < 0.5 {
@@ -1292,13 +1285,12 @@ fn crossings_of_lenses_and_balls_lie_on_their_surfaces() {
 }
 
 /// The same for the walls of glasses of revolution: the gallery's three and random tapered ones.
-/// The library's crossing of a strongly curved piece of a wall (the quadratic's discriminant,
-/// `half_b² − a·c` rearranged, summed from terms a thousand to a million times larger than
-/// itself when the ray starts some centimetres away) lies off the wall by up to a few hundred
-/// units in the last place (and up to 7e-14 m along the ray): one Newton step from the crossing
-/// found brings it back to a unit or two.
+/// The quadratic's discriminant of a strongly curved piece of a wall (`half_b² − a·c`
+/// rearranged) is summed from terms a thousand to a million times larger than itself when the
+/// ray starts some centimetres away: its root alone lay off the wall by up to a few hundred
+/// units in the last place (up to 7e-14 m along the ray). The library's one Newton step from
+/// that root brings every crossing back within a few units.
 #[test]
-#[ignore = "fails until the library's crossing of a strongly curved wall piece keeps its digits"]
 fn crossings_of_glasses_of_revolution_lie_on_their_walls() {
     let mut rng = Rng(0x5EED_0FF5_000B);
     let mut scenes: Vec<SceneDescription> = [

@@ -138,6 +138,10 @@ pub enum Shape {
         toward: Vec3,
         /// The square of the cap's rim's distance from the axis.
         rho2: f64,
+        /// Lowest height (−∞ unless a liquid's surface cuts the lens).
+        z_min: f64,
+        /// Highest height (+∞ unless a liquid's surface cuts the lens).
+        z_max: f64,
     },
     /// A lens's flat face: the disk of radius² `r2` about `centre` in the plane of unit
     /// `normal`, which points to its outer side.
@@ -148,6 +152,10 @@ pub enum Shape {
         normal: Vec3,
         /// Its radius².
         r2: f64,
+        /// Lowest height (−∞ unless a liquid's surface cuts the lens).
+        z_min: f64,
+        /// Highest height (+∞ unless a liquid's surface cuts the lens).
+        z_max: f64,
     },
     /// A lens's rim: the side of the cylinder of radius² `r2` about the line through `centre`
     /// along unit `axis`, between axial coordinates `w_min` and `w_max` from the centre; its
@@ -163,6 +171,10 @@ pub enum Shape {
         w_min: f64,
         /// Highest axial coordinate.
         w_max: f64,
+        /// Lowest height (−∞ unless a liquid's surface cuts the lens).
+        z_min: f64,
+        /// Highest height (+∞ unless a liquid's surface cuts the lens).
+        z_max: f64,
     },
     /// A piece of a container of revolution's wall (see [`crate::profile`]): the surface
     /// `x² + y² = c0 + c1·u + c2·u²`, `u = z − zc`, between two heights; its outer side is away
@@ -431,14 +443,6 @@ pub(crate) enum Clip {
     OutsidePolygon([u16; 2]),
     /// The face lies in the convex polygon of these edges only.
     InsidePolygon([u16; 2]),
-    /// The face lies between these heights only (a lens's face in one of the layers it
-    /// crosses).
-    Between {
-        /// Lowest height.
-        lo: f64,
-        /// Highest height.
-        hi: f64,
-    },
     /// No part of the face lies inside this lens (the world's [`LensHole`] of this number).
     OutsideLens(u16),
 }
@@ -535,12 +539,23 @@ impl Optics {
 /// and the rim by rounding). A function, not a closure: it must be inlined into the packets'
 /// code compiled for their instruction set.
 #[inline(always)]
-fn on_cap<R: Real>(p: V3<R>, d: V3<R>, h: V3<R>, rho2: f64, t: R) -> R::Mask {
+fn on_cap<R: Real>(p: V3<R>, d: V3<R>, h: V3<R>, rho2: f64, t: R, heights: (R, R)) -> R::Mask {
     let x = p.along(t, d);
     let w = x.dot(h);
     t.gt(R::splat(0.0))
         .and(w.ge(R::splat(0.0)))
         .and((x.dot(x) - w * w).le(R::splat(rho2 * (1.0 + 1e-12))))
+        .and(in_range(x.z, heights.0, heights.1))
+}
+
+/// The lanes whose point at `t` lies on a lens's rim: ahead, between its axial coordinates
+/// (`pw + t·dw`) and between its heights (`oz + t·dz`). A function, not a closure (see
+/// [`on_cap`]).
+#[inline(always)]
+fn on_tube<R: Real>(t: R, along: (R, R), w: (R, R), z: (R, R), heights: (R, R)) -> R::Mask {
+    t.gt(R::splat(0.0))
+        .and(in_range(along.0 + t * along.1, w.0, w.1))
+        .and(in_range(z.0 + t * z.1, heights.0, heights.1))
 }
 
 /// The circle around the `z` axis that holds the whole scene: its radius² and the quadratic of
@@ -626,6 +641,8 @@ impl Boundary {
                 radius,
                 toward,
                 rho2,
+                z_min,
+                z_max,
             } => {
                 let p = o - V3::splat(centre);
                 let q = SideQuadratic::sphere(p, d, R::splat(radius * radius));
@@ -634,17 +651,29 @@ impl Boundary {
                 }
                 let roots = q.roots(R::splat(1.0) / q.a);
                 let h = V3::splat(toward);
+                // Its heights as the centre's offsets (its points are taken from the centre).
+                let zs = (R::splat(z_min - centre.z), R::splat(z_max - centre.z));
                 let leaving = leaving.and(alive);
-                let near = R::select(on_cap(p, d, h, rho2, roots.near), roots.near, inf);
+                let near = R::select(on_cap(p, d, h, rho2, roots.near, zs), roots.near, inf);
                 let near = R::select(
                     near.lt(inf),
                     near,
-                    R::select(on_cap(p, d, h, rho2, roots.far), roots.far, inf),
+                    R::select(on_cap(p, d, h, rho2, roots.far, zs), roots.far, inf),
                 );
-                let other = R::select(on_cap(p, d, h, rho2, roots.q_over_a), roots.q_over_a, inf);
+                let other = R::select(
+                    on_cap(p, d, h, rho2, roots.q_over_a, zs),
+                    roots.q_over_a,
+                    inf,
+                );
                 R::select(roots.real.and(alive), R::select(leaving, other, near), inf)
             }
-            Shape::Disk { centre, normal, r2 } => {
+            Shape::Disk {
+                centre,
+                normal,
+                r2,
+                z_min,
+                z_max,
+            } => {
                 let n = V3::splat(normal);
                 let den = n.dot(d);
                 let (num, ahead) = plane_ahead(R::splat(normal.dot(centre)), n.dot(o), den);
@@ -654,7 +683,14 @@ impl Boundary {
                 }
                 let t = R::quotient(num, den, R::splat(1.0) / den);
                 let x = o.along(t, d) - V3::splat(centre);
-                R::select(ahead.and(x.dot(x).le(R::splat(r2 * (1.0 + 1e-12)))), t, inf)
+                let ok = ahead
+                    .and(x.dot(x).le(R::splat(r2 * (1.0 + 1e-12))))
+                    .and(in_range(
+                        x.z,
+                        R::splat(z_min - centre.z),
+                        R::splat(z_max - centre.z),
+                    ));
+                R::select(ok, t, inf)
             }
             Shape::Tube {
                 centre,
@@ -662,6 +698,8 @@ impl Boundary {
                 r2,
                 w_min,
                 w_max,
+                z_min,
+                z_max,
             } => {
                 let a = V3::splat(axis);
                 let p = o - V3::splat(centre);
@@ -684,13 +722,24 @@ impl Boundary {
                     return inf;
                 }
                 let roots = q.roots(R::splat(1.0) / a2);
-                let (wl, wh) = (R::splat(w_min), R::splat(w_max));
+                let (w, zs) = (
+                    (R::splat(w_min), R::splat(w_max)),
+                    (R::splat(z_min), R::splat(z_max)),
+                );
                 let leaving = leaving.and(alive);
-                R::select(
-                    leaving,
-                    roots.other(pw, dw, wl, wh),
-                    roots.nearest(pw, dw, wl, wh),
-                )
+                let (along, z) = ((pw, dw), (o.z, d.z));
+                let near = R::select(on_tube(roots.near, along, w, z, zs), roots.near, inf);
+                let near = R::select(
+                    near.lt(inf),
+                    near,
+                    R::select(on_tube(roots.far, along, w, z, zs), roots.far, inf),
+                );
+                let other = R::select(
+                    on_tube(roots.q_over_a, along, w, z, zs),
+                    roots.q_over_a,
+                    inf,
+                );
+                R::select(roots.real.and(alive), R::select(leaving, other, near), inf)
             }
             Shape::Revolution {
                 zc,
@@ -741,11 +790,26 @@ impl Boundary {
                     leaving
                         .and(alive)
                         .and(in_range(o.z, R::splat(q_min), R::splat(q_max)));
-                R::select(
+                let t = R::select(
                     leaving,
                     roots.other(o.z, d.z, zl, zh),
                     roots.nearest(o.z, d.z, zl, zh),
-                )
+                );
+                // One Newton step on the line's x² + y² − r²(z) from the root found: for a
+                // strongly curved piece seen from afar the quadratic's terms cancel to a few
+                // digits, which the step gives back (a step larger than 10 nm, near grazing
+                // where the slope vanishes, is not taken).
+                let found = t.lt(inf);
+                let ts = R::select(found, t, zero);
+                let (x, y) = (o.x + ts * d.x, o.y + ts * d.y);
+                let u = o.z + ts * d.z - R::splat(zc);
+                let off = x * x + y * y - (R::splat(c[0]) + u * (c1 + u * c2));
+                let two = R::splat(2.0);
+                let slope = two * (x * d.x + y * d.y) - (c1 + two * c2 * u) * d.z;
+                let steep = slope.abs().gt(R::splat(1e-12));
+                let step = off / R::select(steep, slope, R::splat(1.0));
+                let take = found.and(steep).and(step.abs().lt(R::splat(1e-8)));
+                R::select(take, t - step, t)
             }
             Shape::Sphere {
                 centre,

@@ -643,8 +643,8 @@ impl World {
         // Each lens: its two faces (caps of spheres, or flat disks) and its rim between them,
         // within the layer it lies in (or air).
         // A lens inside the container may cross liquids' surfaces: each face is then one
-        // boundary per layer it may reach, kept between that layer's heights (a clip), and the
-        // surfaces it pierces have a hole of its shape.
+        // boundary per layer it may reach, between that layer's heights, and the surfaces it
+        // pierces have a hole of its shape.
         let mut clips = Vec::new();
         let mut lens_holes = Vec::new();
         for lens in &scene.lenses {
@@ -653,11 +653,15 @@ impl World {
             let reach = lens.reach();
             balls.push((inner, lens.center, reach));
             let (a, c) = (lens.unit_axis(), lens.center);
-            let layers: Vec<(f64, f64, MediumId)> = if lens.inside(&scene.container) {
+            let mut layers: Vec<(f64, f64, MediumId)> = if lens.inside(&scene.container) {
                 layers_between(&cavity, c.z - reach, c.z + reach).collect()
             } else {
                 vec![(c.z - reach, c.z + reach, AIR)]
             };
+            // A lens in one medium has its whole faces: no height cuts them.
+            if let [(lo, hi, _)] = &mut layers[..] {
+                (*lo, *hi) = (f64::NEG_INFINITY, f64::INFINITY);
+            }
             if lens.inside(&scene.container) {
                 lens_holes.push((
                     lens_holes.len(),
@@ -674,53 +678,53 @@ impl World {
                     },
                 ));
             }
-            let mut faces = Vec::new();
+            // Each face, one piece per layer, between that layer's heights: the piece chooses its
+            // crossing among those within its heights (a piece dropped between equal indices
+            // hides no other piece's crossing).
             let rim = lens.diameter / 2.0;
-            // Face 1 faces −axis, face 2 +axis; a face of radius R has its centre of curvature
-            // R along the axis from its vertex, and its cap lies towards the vertex from there.
-            for (radius, vertex, outward) in [
-                (lens.radius1, c - lens.thickness / 2.0 * a, -a),
-                (lens.radius2, c + lens.thickness / 2.0 * a, a),
-            ] {
-                let shape = if radius == 0.0 {
-                    Shape::Disk {
-                        centre: vertex,
-                        normal: outward,
+            for &(z_min, z_max, outer) in &layers {
+                // Face 1 faces −axis, face 2 +axis; a face of radius R has its centre of curvature
+                // R along the axis from its vertex, and its cap lies towards the vertex from there.
+                for (radius, vertex, outward) in [
+                    (lens.radius1, c - lens.thickness / 2.0 * a, -a),
+                    (lens.radius2, c + lens.thickness / 2.0 * a, a),
+                ] {
+                    let shape = if radius == 0.0 {
+                        Shape::Disk {
+                            centre: vertex,
+                            normal: outward,
+                            r2: rim * rim,
+                            z_min,
+                            z_max,
+                        }
+                    } else {
+                        let toward = -radius.signum() * a;
+                        // Outwards is away from the centre where the cap's normal there, `toward`,
+                        // is the face's outward side.
+                        let sign = if toward.dot(outward) > 0.0 { 1.0 } else { -1.0 };
+                        Shape::Cap {
+                            centre: vertex + radius * a,
+                            radius: sign * radius.abs(),
+                            toward,
+                            rho2: rim * rim,
+                            z_min,
+                            z_max,
+                        }
+                    };
+                    boundaries.push(solid_piece(shape, outer, inner));
+                }
+                let (w1, w2) = lens.faces_at(rim);
+                if w2 > w1 {
+                    let tube = Shape::Tube {
+                        centre: c,
+                        axis: a,
                         r2: rim * rim,
-                    }
-                } else {
-                    let toward = -radius.signum() * a;
-                    // Outwards is away from the centre where the cap's normal there, `toward`,
-                    // is the face's outward side.
-                    let sign = if toward.dot(outward) > 0.0 { 1.0 } else { -1.0 };
-                    Shape::Cap {
-                        centre: vertex + radius * a,
-                        radius: sign * radius.abs(),
-                        toward,
-                        rho2: rim * rim,
-                    }
-                };
-                faces.push(shape);
-            }
-            let (w1, w2) = lens.faces_at(rim);
-            if w2 > w1 {
-                faces.push(Shape::Tube {
-                    centre: c,
-                    axis: a,
-                    r2: rim * rim,
-                    w_min: w1,
-                    w_max: w2,
-                });
-            }
-            for shape in faces {
-                for &(lo, hi, outer) in &layers {
-                    let mut face = solid_piece(shape, outer, inner);
-                    if layers.len() > 1 {
-                        let k = clips.len() as u16;
-                        clips.push(Clip::Between { lo, hi });
-                        face.holes = [k, k + 1];
-                    }
-                    boundaries.push(face);
+                        w_min: w1,
+                        w_max: w2,
+                        z_min,
+                        z_max,
+                    };
+                    boundaries.push(solid_piece(tube, outer, inner));
                 }
             }
         }

@@ -208,10 +208,6 @@ impl World {
                     R::select(self.outside_polygon(x, y, range), tb, inf)
                 }
                 Clip::InsidePolygon(range) => R::select(self.outside_polygon(x, y, range), inf, tb),
-                Clip::Between { lo, hi } => {
-                    let z = o.z + tb * d.z;
-                    R::select(z.ge(R::splat(lo)).and(z.le(R::splat(hi))), tb, inf)
-                }
                 Clip::OutsideLens(k) => {
                     let z = o.z + tb * d.z;
                     R::select(self.lens_holes[k as usize].holds(x, y, z), inf, tb)
