@@ -6,6 +6,7 @@
 import { t } from "./i18n.js";
 import { state, STRAW_R, STRAW_H, COIN_R, sceneKey } from "./state.js";
 import { $ } from "./dom.js";
+import { profileAt, widest } from "./geometry.js";
 import { engineFetch, answerText } from "./engine.js";
 import { errorText } from "./errors.js";
 import { changed } from "./frames.js";
@@ -13,11 +14,13 @@ import { drawMaps } from "./maps.js";
 import { showSceneErrors, applySceneText, checkScene, useScene, cancelTyping, sceneText } from "./scenetext.js";
 
 /** Each kind of object's keys as the file names them, with their unit ("" a pure number, "text",
- * "m3" a point, "v3" a direction's three numbers, "xy" a list of corners written "x, y; x, y; …",
- * or the words a value may be), and the key of their words where the name's own are another's. */
+ * "m3" a point, "v3" a direction's three numbers, "xy" a list of pairs written "x, y; x, y; …",
+ * a prism's corners or a profile's points r, z, or the words a value may be), and the key of
+ * their words where the name's own are another's. */
 const FORM_FIELDS = {
   glass: [["radius", "m"], ["height", "m"], ["wall", "m"], ["bottom", "m"], ["index", ""]],
   tank: [["half_x", "m"], ["half_y", "m"], ["height", "m"]],
+  revolution: [["outer", "xy"], ["inner", "xy"], ["index", ""]],
   liquid: [["name", "text"], ["index", ""], ["top", "m"]],
   straw: [["x", "m"], ["y", "m"], ["tilt", "°"], ["azimuth", "°"], ["radius", "m"], ["length", "m"]],
   coin: [["x", "m"], ["y", "m"], ["radius", "m"], ["thickness", "m"]],
@@ -56,17 +59,58 @@ export async function loadForm(text) {
 /** The view's form, if it is the current scene's. */
 export const viewForm = () => (formOf && formOf.key === sceneKey(state) ? formOf.form : null);
 
-/** The inside of the form's container: a glass's inner radius, or a tank's half widths. */
-function inside(form) {
+/** The inside of the form's container: a glass's inner radius, a tank's half widths, or a glass
+ * of revolution's least inner radius over the heights `lo` to `hi` an object spans (all of them
+ * if none are given); and its rim's and its floor's heights. */
+function inside(form, lo = -Infinity, hi = Infinity) {
   const c = form.container || {};
-  return c.shape === "tank" ? { tank: true, hx: c.half_x, hy: c.half_y, height: c.height, floor: 0 }
-    : { tank: false, r: c.radius - (c.wall || 0), height: c.height, floor: c.bottom || 0 };
+  if (c.shape === "tank") return { tank: true, hx: c.half_x, hy: c.half_y, height: c.height, floor: 0 };
+  if (c.shape === "revolution") return { tank: false, r: innerLeast(c.inner, lo, hi), height: c.outer[c.outer.length - 1][1], floor: c.inner[0][1] };
+  return { tank: false, r: c.radius - (c.wall || 0), height: c.height, floor: c.bottom || 0 };
+}
+/** The least radius of the inner profile `inner` over the heights `lo` to `hi`, straight between
+ * its points (see profileAt): free above the rim, none below the floor. */
+function innerLeast(inner, lo, hi) {
+  const floor = inner[0][1], rim = inner[inner.length - 1][1];
+  if (lo > rim) return Infinity;
+  if (hi < floor) return 0;
+  const a = Math.max(lo, floor), b = Math.min(hi, rim);
+  return Math.min(profileAt(inner, a), profileAt(inner, b), ...inner.filter(([, z]) => z > a && z < b).map(([r]) => r));
+}
+/** The container's radius seen from above: a glass's, or a glass of revolution's widest. */
+const outerRadius = (k) => (k.shape === "revolution" ? widest(k.outer) : k.radius);
+/** The radius of the upright cylinder about the axis that holds the container (a tank's through
+ * its corners). */
+const holdingRadius = (k) => (k.shape === "tank" ? Math.hypot(k.half_x, k.half_y) : outerRadius(k));
+/** How far from the axis a ball of radius `r` centred at the height `z` may stand inside a glass
+ * of revolution `k`: the least, over its horizontal circles at 33 heights across it, of the inner
+ * profile's radius less the circle's (a marble in a bowl touches the wall above its lowest
+ * point); free above the rim, -Infinity where it reaches below the floor. */
+function ballRoom(k, z, r) {
+  const floor = k.inner[0][1], rim = k.inner[k.inner.length - 1][1];
+  let room = Infinity;
+  for (let i = 0; i <= 32; i++) {
+    const s = -1 + i / 16, h = z + s * r;
+    if (h > rim) continue;
+    // (A ball resting on the floor may reach a hair below it by rounding.)
+    if (h < floor - 1e-5) return -Infinity;
+    room = Math.min(room, profileAt(k.inner, Math.max(h, floor)) - r * Math.sqrt(Math.max(0, 1 - s * s)));
+  }
+  return room;
+}
+/** The inside of the form's container for a ball of radius `r` centred at the height `z`: in a
+ * glass of revolution, the radius its centre may reach plus its own (so that it is held where
+ * its distance from the axis plus `r` is within it). */
+function ballInside(form, z, r) {
+  const k = form.container || {};
+  return k.shape === "revolution" ? { ...inside(form), r: ballRoom(k, z, r) + r } : inside(form);
 }
 /** A length rounded to 10 µm (no float noise in the file). */
 const r5 = (v) => Math.round(v * 1e5) / 1e5;
-/** `[x, y]` kept inside the container, `margin` clear of its side (an object's radius). */
-function keepInside(form, [x, y], margin) {
-  const c = inside(form), clear = margin + 1e-4;
+/** `[x, y]` kept inside the container `c` (as inside() gives it), `margin` clear of its side (an
+ * object's radius). */
+function keepInside(form, [x, y], margin, c = inside(form)) {
+  const clear = margin + 1e-4;
   if (c.tank) {
     const lx = Math.max(0, c.hx - clear), ly = Math.max(0, c.hy - clear);
     return [r5(Math.max(-lx, Math.min(lx, x))), r5(Math.max(-ly, Math.min(ly, y)))];
@@ -92,14 +136,14 @@ function freeSpot(form, r) {
 function outsideBy(form, x, y) {
   const k = form.container || {};
   if (k.shape === "tank") return Math.hypot(Math.max(0, Math.abs(x) - k.half_x), Math.max(0, Math.abs(y) - k.half_y));
-  return Math.max(0, Math.hypot(x, y) - k.radius);
+  return Math.max(0, Math.hypot(x, y) - outerRadius(k));
 }
 /** `[x, y]` pushed out of the container's outer outline seen from above until `margin` clear
  * of it (a sphere beside the container slides round it). */
 function keepOutside(form, [x, y], margin) {
   const k = form.container || {};
   if (k.shape !== "tank") {
-    const d = Math.hypot(x, y), lim = k.radius + margin;
+    const d = Math.hypot(x, y), lim = outerRadius(k) + margin;
     if (d >= lim) return [r5(x), r5(y)];
     return d > 1e-9 ? [r5((x * lim) / d), r5((y * lim) / d)] : [r5(lim), 0];
   }
@@ -115,16 +159,34 @@ function keepOutside(form, [x, y], margin) {
   } else if (dy < margin) y = sy * (k.half_y + margin);
   return [r5(x), r5(y)];
 }
-/** Whether a sphere's disk seen from above lies within the walls' inner face. */
-function sphereHeld(form, [x, y], r) {
-  const c = inside(form);
-  return c.tank ? Math.abs(x) + r <= c.hx && Math.abs(y) + r <= c.hy : Math.hypot(x, y) + r <= c.r;
+/** How far out from the axis a new solid is sized by and looked for a place: a glass's inner
+ * radius, a tank's narrower half width, a glass of revolution's widest inside (whether it fits
+ * there is asked at its own heights). */
+function reachOf(form) {
+  const c = inside(form), k = form.container || {};
+  return c.tank ? Math.min(c.hx, c.hy) : k.shape === "revolution" ? widest(k.inner) : c.r;
+}
+/** Whether a sphere of radius `r` centred at `[x, y, z]` lies within the walls' inner face,
+ * `margin` clear of it across (seen from above for a glass or a tank, whose walls are upright). */
+function sphereHeld(form, [x, y, z], r, margin = 0) {
+  const c = ballInside(form, z, r), m = r + margin;
+  return c.tank ? Math.abs(x) + m <= c.hx && Math.abs(y) + m <= c.hy : Math.hypot(x, y) + m <= c.r;
 }
 /** The lowest height of a sphere of radius `r` above `floor`: resting on it, to the rule's bit. */
 function restingOn(floor, r) {
   let z = Math.ceil((floor + r) * 1e5) / 1e5;
   if (z - r < floor) z += 1e-5;
   return z;
+}
+/** Where a sphere of radius `r` at `(x, y)` comes to rest inside the container, `margin` clear of
+ * its walls: on the floor, or in a glass of revolution as low as it fits (on a wall that
+ * narrows, by steps of 0.1 mm); null where it fits nowhere below the rim. */
+function restingIn(form, [x, y], r, margin) {
+  const c = inside(form);
+  let z = restingOn(c.floor, r);
+  if ((form.container || {}).shape !== "revolution") return z;
+  for (; z + r <= c.height; z = r5(z + 1e-4)) if (sphereHeld(form, [x, y, z], r, margin)) return z;
+  return null;
 }
 /** Distance from `p` to the segment `a`–`b` (3D). */
 function segmentDistance(p, a, b) {
@@ -255,21 +317,23 @@ function solidClear(form, S, gap) {
  * rules measure them (sphere `skip` itself left out). */
 const sphereClear = (form, p, r, gap, skip) => solidClear(form, { kind: "sphere", k: skip, c: p, r }, gap);
 /** A new sphere: a glass marble (radius 1 cm, index 1.5, smaller in a small container or
- * shallow water) resting on the floor, in the first place on rings out from the middle 1 mm
- * clear of every object; failing that, on the table beside the container, away from the eye. */
+ * shallow water) resting on the floor (in a glass of revolution, as low as it fits), in the first
+ * place on rings out from the middle 1 mm clear of every object; failing that, on the table
+ * beside the container, away from the eye. */
 function newSphere(form) {
-  const c = inside(form), reach = c.tank ? Math.min(c.hx, c.hy) : c.r, mm = (v) => Math.floor(v * 1000) / 1000;
+  const c = inside(form), k0 = form.container || {}, reach = reachOf(form), mm = (v) => Math.floor(v * 1000) / 1000;
   let r = Math.max(0.001, Math.min(0.01, mm(0.3 * reach)));
   const water = (form.liquid || [])[0];
   if (water && water.top - c.floor < 2 * r + 0.002) r = Math.max(0.002, Math.min(r, mm((water.top - c.floor - 0.002) / 2)));
-  const z = restingOn(c.floor, r), r4 = (v) => Math.round(v * 1e4) / 1e4;
+  const r4 = (v) => Math.round(v * 1e4) / 1e4;
   for (const f of [0, 0.25, 0.45, 0.65]) {
     for (let k = 0; k < (f ? 12 : 1); k++) {
-      const a = (k * Math.PI) / 6, p = [r4(f * reach * Math.cos(a)), r4(f * reach * Math.sin(a)), z];
-      if (sphereHeld(form, p, r + 1e-4) && sphereClear(form, p, r, 1e-3, -1)) return { center: p, radius: r, index: 1.5 };
+      const a = (k * Math.PI) / 6, xy = [r4(f * reach * Math.cos(a)), r4(f * reach * Math.sin(a))], z = restingIn(form, xy, r, 1e-4);
+      const p = [...xy, z];
+      if (z !== null && sphereHeld(form, p, r, 1e-4) && sphereClear(form, p, r, 1e-3, -1)) return { center: p, radius: r, index: 1.5 };
     }
   }
-  const k0 = form.container || {}, out = (k0.shape === "tank" ? Math.hypot(k0.half_x, k0.half_y) : k0.radius) + r + 0.01;
+  const out = holdingRadius(k0) + r + 0.01;
   const az = Math.atan2(state.observer[1], state.observer[0]);
   let p = null;
   for (let k = 0; k < 12; k++) {
@@ -279,9 +343,10 @@ function newSphere(form) {
   }
   return { center: p, radius: r, index: 1.5 };
 }
-/** Whether the polygon `poly` seen from above lies within the walls' inner face (`margin` clear). */
-function polygonHeld(form, poly, margin = 0) {
-  const c = inside(form);
+/** Whether the polygon `poly` seen from above lies within the walls' inner face (`margin` clear)
+ * at the heights `lo` to `hi` (a prism's bottom and top). */
+function polygonHeld(form, poly, margin, lo, hi) {
+  const c = inside(form, lo, hi);
   return poly.every(([x, y]) => (c.tank ? Math.abs(x) + margin <= c.hx && Math.abs(y) + margin <= c.hy : Math.hypot(x, y) + margin <= c.r));
 }
 /** How far the polygon `poly` seen from above lies from the container's outer outline (at most 0
@@ -289,7 +354,7 @@ function polygonHeld(form, poly, margin = 0) {
 function polygonOutsideBy(form, poly) {
   const k = form.container || {};
   if (k.shape === "tank") return polygonsGap(poly, [[-k.half_x, -k.half_y], [k.half_x, -k.half_y], [k.half_x, k.half_y], [-k.half_x, k.half_y]]);
-  return polygonDistance(poly, [0, 0]) - k.radius;
+  return polygonDistance(poly, [0, 0]) - outerRadius(k);
 }
 /** The middle of a prism seen from above (its corners' mean): where its ring drags it. */
 const polygonMiddle = (poly) => [0, 1].map((i) => poly.reduce((a, q) => a + q[i], 0) / poly.length);
@@ -303,16 +368,16 @@ function triangle([x, y], a) {
  * standing on the floor in the first place on rings out from the middle 1 mm clear of every
  * object; failing that, on the table beside the container, away from the eye. */
 function newPrism(form) {
-  const c = inside(form), reach = c.tank ? Math.min(c.hx, c.hy) : c.r, mm = (v) => Math.floor(v * 1000) / 1000;
+  const c = inside(form), reach = reachOf(form), mm = (v) => Math.floor(v * 1000) / 1000;
   const a = Math.max(0.002, Math.min(0.02, mm(0.6 * reach))), h = Math.max(0.002, Math.min(0.03, mm((c.height - c.floor) * 0.6)));
   for (const f of [0, 0.25, 0.45, 0.65]) {
     for (let k = 0; k < (f ? 12 : 1); k++) {
       const t = (k * Math.PI) / 6, poly = triangle([f * reach * Math.cos(t), f * reach * Math.sin(t)], a);
       const P = { kind: "prism", k: -1, poly, bottom: c.floor, top: r5(c.floor + h) };
-      if (polygonHeld(form, poly, 1e-4) && solidClear(form, P, 1e-3)) return { corners: poly, bottom: P.bottom, top: P.top, index: 1.5 };
+      if (polygonHeld(form, poly, 1e-4, P.bottom, P.top) && solidClear(form, P, 1e-3)) return { corners: poly, bottom: P.bottom, top: P.top, index: 1.5 };
     }
   }
-  const k0 = form.container || {}, out = (k0.shape === "tank" ? Math.hypot(k0.half_x, k0.half_y) : k0.radius) + a + 0.01;
+  const k0 = form.container || {}, out = holdingRadius(k0) + a + 0.01;
   const az = Math.atan2(state.observer[1], state.observer[0]);
   let poly = null;
   for (let k = 0; k < 12; k++) {
@@ -331,11 +396,11 @@ function newLens(form) {
   const az = Math.atan2(state.observer[1], state.observer[0]);
   const lens = { axis: [r4(-Math.cos(az)), r4(-Math.sin(az)), 0], radius1: 0.04, radius2: -0.04, thickness: 0.007, diameter: 0.03, index: 1.5 };
   const r = lensReach(lens), fits = (p) => solidClear(form, { kind: "lens", k: -1, c: p, r }, 1e-3);
-  const out = (k0.shape === "tank" ? Math.hypot(k0.half_x, k0.half_y) : k0.radius) + r + 0.005;
+  const out = holdingRadius(k0) + r + 0.005;
   const z = r4(Math.max(r + 0.001, c.height / 2));
   let p = [r4(out * Math.cos(az)), r4(out * Math.sin(az)), z];
   if (fits(p)) return { center: p, ...lens };
-  const reach = c.tank ? Math.min(c.hx, c.hy) : c.r, tops = (form.liquid || []).map((l) => l.top);
+  const reach = reachOf(form), tops = (form.liquid || []).map((l) => l.top);
   for (const [lo, hi] of tops.map((t, i) => [i ? tops[i - 1] : c.floor, t]).concat([[tops.length ? tops[tops.length - 1] : c.floor, Infinity]])) {
     const zl = hi === Infinity ? lo + r + 0.002 : (lo + hi) / 2;
     if (zl - r < lo + 1e-4 || zl + r > hi - 1e-4) continue;
@@ -343,7 +408,7 @@ function newLens(form) {
       for (let k = 0; k < (f ? 12 : 1); k++) {
         const t = (k * Math.PI) / 6;
         p = [r4(f * reach * Math.cos(t)), r4(f * reach * Math.sin(t)), r4(zl)];
-        if (sphereHeld(form, p, r + 1e-4) && fits(p)) return { center: p, ...lens };
+        if (sphereHeld(form, p, r, 1e-4) && fits(p)) return { center: p, ...lens };
       }
     }
   }
@@ -370,14 +435,27 @@ function newObject(kind, form) {
   if (kind === "lens") return newLens(form);
   // A card behind the container, facing the eye.
   const az = Math.atan2(state.observer[1], state.observer[0]);
-  const d = (c.tank ? Math.max(c.hx, c.hy) : c.r) + 0.06;
+  const k0 = form.container || {}, d = (c.tank ? Math.max(c.hx, c.hy) : k0.shape === "revolution" ? outerRadius(k0) : c.r) + 0.06;
   return { center: [r3(-d * Math.cos(az)), r3(-d * Math.sin(az)), r3(c.height / 2)], facing: r3(az * 180 / Math.PI), width: 0.08, height: 0.06, picture: "arrow" };
 }
-/** A glass made a tank (and back), its size kept. */
+/** A container made another shape, its size kept: each goes through a glass (a tank's narrower
+ * half width its radius; a glass of revolution's widest its radius, its rim's thickness its wall,
+ * its floor its bottom). A glass of revolution made from a glass has its straight profiles, a
+ * wall and a bottom at least 2 mm thick (the rules want a wall below the rim). */
 function reshape(container, shape) {
   if (shape === container.shape) return container;
-  if (shape === "tank") return { shape, half_x: container.radius, half_y: container.radius, height: container.height };
-  return { shape, radius: Math.min(container.half_x, container.half_y), height: container.height, wall: 0, bottom: 0, index: 1.5 };
+  const g = asGlass(container);
+  if (shape === "glass") return g;
+  if (shape === "tank") return { shape, half_x: g.radius, half_y: g.radius, height: g.height };
+  const r = r5(g.radius - (g.wall > 0 ? g.wall : 0.002)), floor = Math.max(g.bottom, 0.002);
+  return { shape, outer: [[g.radius, 0], [g.radius, g.height]], inner: [[r, floor], [r, g.height]], index: g.index };
+}
+/** The glass a container is nearest to (see reshape). */
+function asGlass(c) {
+  if (c.shape === "glass") return c;
+  if (c.shape === "tank") return { shape: "glass", radius: Math.min(c.half_x, c.half_y), height: c.height, wall: 0, bottom: 0, index: 1.5 };
+  const rim = c.outer[c.outer.length - 1], inner = c.inner[c.inner.length - 1];
+  return { shape: "glass", radius: widest(c.outer), height: rim[1], wall: r5(Math.max(0, rim[0] - inner[0])), bottom: c.inner[0][1], index: c.index };
 }
 
 /** One control: its label (the key's words, the file's key in its tooltip), its value. */
@@ -392,7 +470,7 @@ function field(key, name, unit, value) {
   const input = (i, v) => {
     const el = document.createElement("input");
     if (unit === "text") { el.type = "text"; el.value = v ?? ""; }
-    else if (unit === "xy") { el.type = "text"; el.value = cornersText(v); el.spellcheck = false; el.style.width = "min(22em, 80vw)"; }
+    else if (unit === "xy") { el.type = "text"; el.value = cornersText(v); el.spellcheck = false; }
     else { el.type = "number"; el.step = STEP[unit]; el.value = v ?? ""; el.inputMode = "decimal"; if (unit === "v3") el.style.width = "5em"; }
     el.dataset.key = key; el.dataset.unit = unit;
     if (i !== null) el.dataset.part = String(i);
@@ -448,7 +526,7 @@ export function showObjects() {
     fs.dataset.object = prefix; // a rule about the whole object (`sphere[1]`) marks its box
     const values = table === "container" ? c : form[table][k];
     if (table === "container") {
-      fs.append(field("container.shape", "obj.shape", ["glass", "tank"], c.shape));
+      fs.append(field("container.shape", "obj.shape", ["glass", "tank", "revolution"], c.shape));
     }
     for (const [name, unit, words] of fields) fs.append(field(`${prefix}.${name}`, words || name, unit, values[name]));
     if (table !== "container") {
@@ -456,7 +534,7 @@ export function showObjects() {
     }
     boxes.push(fs);
   };
-  box("obj.container", null, FORM_FIELDS[c.shape === "tank" ? "tank" : "glass"], "container");
+  box("obj.container", null, FORM_FIELDS[c.shape] || FORM_FIELDS.glass, "container");
   for (const table of TABLES) {
     (form[table] || []).forEach((_, k) => box("obj." + table, { i: k + 1 }, FORM_FIELDS[table], table, k));
   }
@@ -478,11 +556,12 @@ function fillObjects(form) {
     el.removeAttribute("aria-invalid");
   }
 }
-/** A prism's corners as its control writes them: "x, y; x, y; …" (metres). */
+/** A prism's corners (or a profile's points r, z) as its control writes them: "x, y; x, y; …"
+ * (metres). */
 function cornersText(corners) {
   return Array.isArray(corners) ? corners.map((q) => q.join(", ")).join("; ") : "";
 }
-/** The corners a control's text "x, y; x, y; …" gives, or null if it is not such a list. */
+/** The pairs a control's text "x, y; x, y; …" gives, or null if it is not such a list. */
 function cornersOf(text) {
   const corners = text.split(";").filter((p) => p.trim()).map((p) => p.split(",").map((v) => (v.trim() ? Number(v) : NaN)));
   return corners.length && corners.every((q) => q.length === 2 && q.every(Number.isFinite)) ? corners : null;
@@ -530,7 +609,8 @@ objectsEl.addEventListener("change", (e) => {
     value = cornersOf(el.value);
     if (!value) {
       el.setAttribute("aria-invalid", "true");
-      showSceneErrors({ key: "obj.not-corners", params: { key } });
+      // (The container's pairs are its profiles' points, r and z; a prism's its corners.)
+      showSceneErrors({ key: key.startsWith("container.") ? "obj.not-profile" : "obj.not-corners", params: { key } });
       return;
     }
   } else if (el.tagName === "SELECT" || el.type === "text") value = el.value;
@@ -555,7 +635,9 @@ objectsEl.addEventListener("change", (e) => {
 /** Marks the controls whose keys a refusal names, and lists its rules under them. */
 export function markObjects(error) {
   for (const el of objectsEl.querySelectorAll("[aria-invalid]")) el.removeAttribute("aria-invalid");
-  const keys = error && error.refusal ? error.refusal.rules.map((r) => r.key) : error && error.params && error.params.key ? [error.params.key] : [];
+  // A rule about one point of a list (`container.inner[2]`) marks the list's control.
+  const keys = (error && error.refusal ? error.refusal.rules.map((r) => r.key) : error && error.params && error.params.key ? [error.params.key] : [])
+    .map((key) => key.replace(/^(\w+(?:\[\d+\])?\.\w+)\[\d+\]$/, "$1"));
   for (const key of keys) {
     for (const el of objectsEl.querySelectorAll(`[data-key="${CSS.escape(key)}"], [data-object="${CSS.escape(key)}"]`)) el.setAttribute("aria-invalid", "true");
   }
@@ -565,10 +647,11 @@ export function markObjects(error) {
 }
 
 // Drags on the maps: a straw, a coin, a card or a solid (a sphere, a prism, a lens) from above, a
-// liquid's surface or a solid's height from the side. Each step is the form changed and sent as a text; a step the
-// rules refuse is left out, so the object stops where it may still be (no banner: the banner is
-// for typed values). The body's data-drag is "1" while steps are being sent (tests wait on it),
-// data-drag-steps and data-drag-refused count the steps taken and left out.
+// liquid's surface, a solid's height or a glass of revolution's profile points from the side.
+// Each step is the form changed and sent as a text; a step the rules refuse is left out, so the
+// object stops where it may still be (no banner: the banner is for typed values). The body's
+// data-drag is "1" while steps are being sent (tests wait on it), data-drag-steps and
+// data-drag-refused count the steps taken and left out.
 let dragSending = false, dragNext = null;
 /** The object drag under way or last made (a token), and the latest text it made. */
 export let dragGesture = null, dragText = null;
@@ -615,6 +698,16 @@ const sphereHandle = (k, at, px, kind = "sphere") => ({ kind, k, at, ring: px >=
 export function handlesOf(form, P, side) {
   const hs = [];
   if (side) {
+    // A glass of revolution's points, a small ring each (smaller where its neighbours are a few
+    // pixels away): the outer profile's left of the axis, the inner's right of it, so that a
+    // wall's two points a pixel or two apart are not one over the other.
+    const c = form.container || {};
+    if (c.shape === "revolution") {
+      for (const [which, sign] of [["outer", -1], ["inner", 1]]) {
+        const at = c[which].map(([r, z]) => P(sign * r, z)), gap = (i, j) => (at[j] ? Math.hypot(at[i][0] - at[j][0], at[i][1] - at[j][1]) : Infinity);
+        at.forEach((p, k) => hs.push({ kind: "profile", which, k, at: p, ring: Math.max(1.5, Math.min(2.5, gap(k, k - 1) / 2, gap(k, k + 1) / 2)) }));
+      }
+    }
     // A surface's ring beside the container's side, off the layer's tint; a sphere's and a
     // lens's at its centre, a prism's at its middle.
     (form.liquid || []).forEach((l, k) => { const [x, y] = P(side.half, l.top); hs.push({ kind: "liquid", k, at: [x + 8, y] }); });
@@ -662,7 +755,7 @@ export function handleAt(handles, x, y, reach) {
 /** How deep `(x, y)` lies within the container's outer outline seen from above (<= 0 outside). */
 function depthIn(form, x, y) {
   const k = form.container || {};
-  return k.shape === "tank" ? Math.min(k.half_x - Math.abs(x), k.half_y - Math.abs(y)) : k.radius - Math.hypot(x, y);
+  return k.shape === "tank" ? Math.min(k.half_x - Math.abs(x), k.half_y - Math.abs(y)) : outerRadius(k) - Math.hypot(x, y);
 }
 /** The bounds `[lo, hi]` of the layer holding the height `z` inside the form's container: the
  * floor or a surface below it, the next surface above it (Infinity above them all). */
@@ -675,26 +768,30 @@ function layerAround(f, z) {
  * centre that holds it) moved towards the map's point `q`. From above (`[x, y]`): kept inside
  * the container if it is in it, else round it (free where it floats above the rim or below the
  * foot). From the side (`[s, z]`, its height only): down to the floor inside (a lens within its
- * liquid layer, or above them), or stopped over the rim (or under the foot) where it overhangs
- * the walls. On its way it stops short of the straws, coins, cards, other solids and the eye, so
- * that it never jumps over one within a step; the rules (the engine) have the last word. */
+ * liquid layer, or above them; in a glass of revolution, down to where the wall narrows round
+ * it), or stopped over the rim (or under the foot) where it overhangs the walls. On its way it
+ * stops short of the straws, coins, cards, other solids and the eye, so that it never jumps over
+ * one within a step; the rules (the engine) have the last word. */
 function moveBall(f, kind, k, q, side) {
-  const o = f[kind][k], [x, y, z] = o.center, r = kind === "lens" ? lensReach(o) : o.radius, height = (f.container || {}).height;
-  const floor = inside(f).floor;
+  const o = f[kind][k], [x, y, z] = o.center, r = kind === "lens" ? lensReach(o) : o.radius;
+  const { floor, height } = inside(f), k0 = f.container || {}, turned = k0.shape === "revolution";
   let at; // the place at the fraction `t` of the way, or null where it must stop
   if (!side) {
     const free = z - r > height || z + r < 0;
-    const held = sphereHeld(f, [x, y], r) && z - r >= floor;
+    const held = sphereHeld(f, [x, y, z], r) && z - r >= floor, room = ballInside(f, z, r);
     at = (t) => {
       const p = [x + t * (q[0] - x), y + t * (q[1] - y)];
       if (free) return [r5(p[0]), r5(p[1]), z];
-      if (held) return [...keepInside(f, p, r), z];
+      if (held) return [...keepInside(f, p, r, room), z];
       // Round the container, not through it: the pointer deep inside its outline stops it.
       return depthIn(f, p[0], p[1]) > r ? null : [...keepOutside(f, p, r + 1e-4), z];
     };
   } else {
     let nz = r5(q[1]);
-    if (sphereHeld(f, [x, y], r)) {
+    // In a glass of revolution: its centre within the inner profile, or above the rim within its
+    // mouth (its fit at each height is judged on the way).
+    const within = turned ? z >= floor && Math.hypot(x, y) < profileAt(k0.inner, Math.min(z, height)) : sphereHeld(f, [x, y, z], r);
+    if (within) {
       if (z < floor) nz = Math.min(nz, r5(-r - 1e-4));
       else if (kind === "lens") {
         // A lens stays in its layer, a hair clear of its surfaces, as the rules ask.
@@ -709,7 +806,12 @@ function moveBall(f, kind, k, q, side) {
         nz = z >= height / 2 ? Math.max(nz, Math.ceil((height + h) * 1e5) / 1e5) : Math.min(nz, Math.floor(-h * 1e5) / 1e5);
       }
     }
-    at = (t) => [x, y, t === 1 ? nz : r5(z + t * (nz - z))];
+    // Fitting where it starts, it stops where it would no longer fit: on a wall that narrows.
+    const fits = within && turned && sphereHeld(f, [x, y, z], r);
+    at = (t) => {
+      const p = [x, y, t === 1 ? nz : r5(z + t * (nz - z))];
+      return fits && !sphereHeld(f, p, r) ? null : p;
+    };
   }
   // Steps of 0.2 mm (at most 600) from where it is; the objects are judged only if the ball
   // stands clear of them where it starts (a card wholly inside a sphere, say, is the engine's to
@@ -729,17 +831,20 @@ function moveBall(f, kind, k, q, side) {
 /** Prism `k` of the form `f` moved towards the map's point `q` by its middle. From above
  * (`[x, y]`): kept inside the container if it stands in it (sliding along its walls), else round
  * it (free where it stands above the rim or below the foot). From the side (`[s, z]`, its height
- * only): down to the floor inside, or stopped over the rim (or under the foot) where it overhangs
- * the walls. On its way it stops short of the straws, coins, cards, other solids and the eye; the
- * rules (the engine) have the last word. */
+ * only): down to the floor inside (in a glass of revolution, down to where the wall narrows
+ * round it), or stopped over the rim (or under the foot) where it overhangs the walls. On its way
+ * it stops short of the straws, coins, cards, other solids and the eye; the rules (the engine)
+ * have the last word. */
 function movePrism(f, k, q, side) {
-  const o = f.prism[k], poly = o.corners, height = (f.container || {}).height, floor = inside(f).floor;
+  const o = f.prism[k], poly = o.corners, { height, floor } = inside(f);
   const [cx, cy] = polygonMiddle(poly), h = o.top - o.bottom;
+  // Within the walls at its own heights (a glass of revolution is narrower at some).
+  const heldAt = (p, margin, bottom = o.bottom) => polygonHeld(f, p, margin, bottom, bottom + h);
   const moved = (dx, dy) => poly.map(([x, y]) => [r5(x + dx), r5(y + dy)]);
   let at; // the prism `{ poly, bottom, top }` at the fraction `t` of the way, or null where it must stop
   if (!side) {
     const free = o.bottom > height || o.top < 0;
-    const held = polygonHeld(f, poly) && o.bottom >= floor;
+    const held = heldAt(poly, 0) && o.bottom >= floor;
     const c = inside(f), k0 = f.container || {};
     at = (t) => {
       let dx = r5(t * (q[0] - cx)), dy = r5(t * (q[1] - cy));
@@ -750,9 +855,9 @@ function movePrism(f, k, q, side) {
           const lim = (lo, hi, d, half) => Math.max(-half + 1e-4 - lo, Math.min(half - 1e-4 - hi, d));
           dx = r5(lim(Math.min(...poly.map((p) => p[0])), Math.max(...poly.map((p) => p[0])), dx, c.hx));
           dy = r5(lim(Math.min(...poly.map((p) => p[1])), Math.max(...poly.map((p) => p[1])), dy, c.hy));
-        } else if (!polygonHeld(f, moved(dx, dy), 1e-4)) {
+        } else if (!heldAt(moved(dx, dy), 1e-4)) {
           // Its middle drawn in towards the axis until it fits: it slides round the wall.
-          const fits = (m) => polygonHeld(f, moved(r5(m * (cx + dx) - cx), r5(m * (cy + dy) - cy)), 1e-4);
+          const fits = (m) => heldAt(moved(r5(m * (cx + dx) - cx), r5(m * (cy + dy) - cy)), 1e-4);
           if (!fits(0)) return null;
           let lo = 0, hi = 1;
           for (let i = 0; i < 30; i++) { const m = (lo + hi) / 2; if (fits(m)) lo = m; else hi = m; }
@@ -774,11 +879,16 @@ function movePrism(f, k, q, side) {
     };
   } else {
     let nb = r5(q[1] - h / 2);
-    if (polygonHeld(f, poly) && o.bottom >= floor) nb = Math.max(nb, floor);
+    const held = heldAt(poly, 0) && o.bottom >= floor;
+    if (held) nb = Math.max(nb, floor);
     else if (polygonOutsideBy(f, poly) < 1e-4) {
       nb = o.bottom >= height / 2 ? Math.max(nb, Math.ceil((height + 1e-4) * 1e5) / 1e5) : Math.min(nb, Math.floor((-h - 1e-4) * 1e5) / 1e5);
     }
-    at = (t) => { const b = t === 1 ? nb : r5(o.bottom + t * (nb - o.bottom)); return { poly, bottom: b, top: r5(b + h) }; };
+    // Held where it starts, it stops where it would no longer fit (a wall that narrows).
+    at = (t) => {
+      const b = t === 1 ? nb : r5(o.bottom + t * (nb - o.bottom));
+      return held && !heldAt(poly, 0, b) ? null : { poly, bottom: b, top: r5(b + h) };
+    };
   }
   // Steps of 0.2 mm (at most 600) from where it is, judged as a sphere's are.
   const solid = (p) => ({ kind: "prism", k, poly: p.poly, bottom: p.bottom, top: p.top });
@@ -800,6 +910,17 @@ export function dragHandle(h, q, side) {
   dragForm((f) => {
     if (h.kind === "sphere" || h.kind === "lens") { moveBall(f, h.kind, h.k, q, side); return; }
     if (h.kind === "prism") { movePrism(f, h.k, q, side); return; }
+    if (h.kind === "profile") {
+      // The point goes to the pointer's distance from the axis (either side of it) and height;
+      // the base stays on z = 0 and the two rims at one height, as the rules ask: a rim's point
+      // takes both rims up or down.
+      const c = f.container, p = (c[h.which] || [])[h.k], z = r5(q[1]);
+      if (!p) return; // (the container changed under the drag: an undo)
+      p[0] = r5(Math.abs(q[0]));
+      if (h.k === c[h.which].length - 1) for (const l of [c.outer, c.inner]) l[l.length - 1][1] = z;
+      else if (h.which === "inner" || h.k > 0) p[1] = z;
+      return;
+    }
     if (h.kind === "liquid") {
       const c = inside(f), layers = f.liquid;
       const lo = (h.k ? layers[h.k - 1].top : c.floor) + 1e-3;

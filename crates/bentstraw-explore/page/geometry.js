@@ -1,4 +1,5 @@
-// Vectors, and the eye's orbit round the glass (azimuth, elevation, distance).
+// Vectors, the eye's orbit round the glass (azimuth, elevation, distance), and a glass of
+// revolution's profiles.
 
 // The centre the eye orbits round: the middle of the glass.
 export const ORBIT = [0, 0, 0.1];
@@ -17,3 +18,17 @@ export function fromOrbit(az, el, dist) {
   const a = az * Math.PI / 180, e = el * Math.PI / 180;
   return add(ORBIT, [dist * Math.cos(e) * Math.cos(a), dist * Math.cos(e) * Math.sin(a), dist * Math.sin(e)]);
 }
+
+/** The radius of a profile (`[r, z]` points, `z` rising) at the height `z`, straight between its
+ * points: the wall is smooth through them and its radius stays between theirs, so this is near
+ * it everywhere and exact for a straight wall; null off the profile's heights. */
+export function profileAt(profile, z) {
+  for (let i = 1; i < profile.length; i++) {
+    const [r0, z0] = profile[i - 1], [r1, z1] = profile[i];
+    if (z >= z0 && z <= z1) return r0 + ((r1 - r0) * (z - z0)) / (z1 - z0);
+  }
+  return null;
+}
+/** The greatest radius of a profile: its widest point's (between two points the wall's radius
+ * stays between theirs). */
+export const widest = (profile) => Math.max(...profile.map((q) => q[0]));

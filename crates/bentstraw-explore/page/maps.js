@@ -7,6 +7,7 @@ import { fit, drawPath } from "./draw.js";
 import { onDrag } from "./pointer.js";
 import { path, changed } from "./frames.js";
 import { sceneLines } from "./sketch.js";
+import { profileAt } from "./geometry.js";
 import { outside, pinchEye } from "./picture.js";
 import { viewForm, handlesOf, handleAt, dragHandle, startGesture } from "./editor.js";
 
@@ -30,18 +31,30 @@ function liquidLayers(lines) {
   const floor = lines.container ? lines.container.floor : 0;
   return lines.liquids.map((l, k) => [k ? lines.liquids[k - 1].top : floor, l.top, l.index, l.name]);
 }
+/** The container's half width along the side map's horizontal `u`: a glass's inner radius, a
+ * tank's half width in that direction, a glass of revolution's widest outer radius. */
+const halfWidth = (c, u) => (c.shape === "tank" ? Math.abs(u[0]) * c.half_x + Math.abs(u[1]) * c.half_y : c.radius);
 /**
  * The liquids on the side map, each layer tinted across the container's inside as seen along the
- * eye's azimuth `u` (a glass's inner diameter, a tank's width in that direction), its name and
- * index beside it; `P(s, z)` is the map's pixel.
+ * eye's azimuth `u` (a glass's inner diameter, a tank's width in that direction, a glass of
+ * revolution's inner profile at each height, straight between its points), its name and index
+ * beside it; `P(s, z)` is the map's pixel.
  */
 function drawLiquidsSide(ctx, lines, u, P) {
   const c = lines.container;
   if (!c) return;
-  const half = c.shape === "glass" ? c.radius : Math.abs(u[0]) * c.half_x + Math.abs(u[1]) * c.half_y;
+  const half = halfWidth(c, u);
   liquidLayers(lines).forEach(([z0, z1, n, name], k) => {
     const [x0, y0] = P(-half, z1), [x1, y1] = P(half, z0);
-    ctx.fillStyle = liquidTint(k, n); ctx.fillRect(x0, y0, x1 - x0, y1 - y0);
+    ctx.fillStyle = liquidTint(k, n);
+    if (c.shape === "revolution") {
+      const at = (z) => [profileAt(c.inner, z) ?? 0, z];
+      const right = [at(z0), ...c.inner.filter(([, z]) => z > z0 && z < z1), at(z1)];
+      ctx.beginPath();
+      right.forEach(([r, z], i) => (i ? ctx.lineTo(...P(r, z)) : ctx.moveTo(...P(r, z))));
+      for (const [r, z] of right.reverse()) ctx.lineTo(...P(-r, z));
+      ctx.fill();
+    } else ctx.fillRect(x0, y0, x1 - x0, y1 - y0);
     if (y1 - y0 >= 12) {
       ctx.fillStyle = "#3b4454"; ctx.font = "11px system-ui";
       ctx.fillText(`${name} · n ${n}`, x1 + 4, Math.min(y1 - 2, y0 + 12));
@@ -55,9 +68,23 @@ function drawLiquidsTop(ctx, lines, P, k) {
   const top = layers.length - 1;
   ctx.fillStyle = liquidTint(top, layers[top][2]);
   ctx.beginPath();
+  // (A glass of revolution's inside at the top liquid's surface.)
   if (c.shape === "glass") ctx.arc(...P(0, 0), c.radius * k, 0, 2 * Math.PI);
+  else if (c.shape === "revolution") ctx.arc(...P(0, 0), (profileAt(c.inner, layers[top][1]) ?? 0) * k, 0, 2 * Math.PI);
   else ctx.rect(...P(-c.half_x, c.half_y), 2 * c.half_x * k, 2 * c.half_y * k);
   ctx.fill();
+}
+/** A glass of revolution on the side map: its wall's section, both profiles mirrored about the
+ * axis, straight between their points (the wireframe's meridians show the smooth wall). */
+function drawProfilesSide(ctx, c, P) {
+  const section = [...c.outer, ...[...c.inner].reverse()];
+  ctx.beginPath();
+  section.forEach(([r, z], i) => (i ? ctx.lineTo(...P(r, z)) : ctx.moveTo(...P(r, z))));
+  for (const [r, z] of section.reverse()) ctx.lineTo(...P(-r, z));
+  ctx.closePath();
+  ctx.fillStyle = "rgba(74,127,193,0.18)"; ctx.strokeStyle = "#4a7fc1"; ctx.lineWidth = 1.25;
+  ctx.fill(); ctx.stroke();
+  ctx.lineWidth = 1;
 }
 
 /** A gallery scene's wireframe and outlines on a map, through `at` (a point to the map's pixels). */
@@ -92,10 +119,10 @@ export function drawMaps() {
       drawLiquidsSide(ctx, lines, u, P);
       drawLines(ctx, lines, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]));
       const form = viewForm(), c = lines.container;
+      if (c && c.shape === "revolution") drawProfilesSide(ctx, c, P);
       if (form) drawSolids(ctx, form, (q) => P(q[0] * u[0] + q[1] * u[1], q[2]), k, [-u[1], u[0], 0]);
       if (form && c) {
-        const half = c.shape === "glass" ? c.radius : Math.abs(u[0]) * c.half_x + Math.abs(u[1]) * c.half_y;
-        sideCanvas.handles = handlesOf(form, P, { u, half });
+        sideCanvas.handles = handlesOf(form, P, { u, half: halfWidth(c, u) });
         drawHandles(ctx, sideCanvas.handles);
       }
     } else {
@@ -126,6 +153,9 @@ export function drawMaps() {
     if (lines) {
       drawLiquidsTop(ctx, lines, P, k);
       drawLines(ctx, lines, (q) => P(q[0], q[1]));
+      // A glass of revolution's outline from above: its widest circle.
+      const c = lines.container;
+      if (c && c.shape === "revolution") { ctx.strokeStyle = "#4a7fc1"; ctx.beginPath(); ctx.arc(...P(0, 0), c.radius * k, 0, 2 * Math.PI); ctx.stroke(); }
       const form = viewForm();
       if (form) { drawSolids(ctx, form, (q) => P(q[0], q[1]), k, [0, 0, 1]); topCanvas.handles = handlesOf(form, P, null); drawHandles(ctx, topCanvas.handles); }
     }
@@ -193,10 +223,11 @@ function drawLens(ctx, o, at, n, outline) {
   }
 }
 
-/** The objects' handles on a map: a small ring where a drag takes each (of radius `ring`, else 5 px). */
+/** The objects' handles on a map: a small ring where a drag takes each (of radius `ring`, else 5 px;
+ * the smallest drawn finer, so that a glass's many points do not hide it). */
 function drawHandles(ctx, handles) {
-  ctx.lineWidth = 1.5;
   for (const h of handles) {
+    ctx.lineWidth = h.ring < 3 ? 1 : 1.5;
     ctx.strokeStyle = "#1d2330"; ctx.fillStyle = "rgba(255,255,255,.7)";
     ctx.beginPath(); ctx.arc(h.at[0], h.at[1], h.ring || 5, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
   }
