@@ -225,6 +225,18 @@ impl<'w> PacketTracer<'w> {
             // Rays made one by one in double precision: eight at a time, as they are made.
             return self.course_row_generic::<F8Avx>(camera, row, codes);
         }
+        if self.world.plain_only() {
+            self.course_row_wide_in::<W, false>(&rays, codes);
+        } else {
+            self.course_row_wide_in::<W, true>(&rays, codes);
+        }
+    }
+
+    /// [`Self::course_row_wide`]'s loop, for a world with solids or without (see
+    /// [`World::nearest_lanes_in`]).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    fn course_row_wide_in<W: Wide, const SOLIDS: bool>(&self, rays: &RowRays, codes: &mut [u8]) {
         let zero = W::splat(0.0);
         let all = W::Mask::splat(true);
         // The next packet's rays are made while this one is traced: their square root and
@@ -233,9 +245,14 @@ impl<'w> PacketTracer<'w> {
         for (p, chunk) in codes.chunks_mut(W::LANES).enumerate() {
             let (o, d) = next;
             next = rays.wide_packet::<W>(p + 1);
-            let ends = self
-                .world
-                .follow_course(o, d, all, zero, self.world.max_events(), |_| {});
+            let ends = self.world.follow_course_in::<W, SOLIDS>(
+                o,
+                d,
+                all,
+                zero,
+                self.world.max_events(),
+                |_| {},
+            );
             W::select(ends.reached, ends.color, zero).store_bytes(chunk);
         }
     }
@@ -248,12 +265,28 @@ impl<'w> PacketTracer<'w> {
     #[inline(always)]
     fn course_row_generic<P: Packet>(&self, camera: &Camera, row: u32, codes: &mut [u8]) {
         let rays = RowRays::new(camera, row, self.world.bounding_sphere());
+        if self.world.plain_only() {
+            self.course_row_in::<P, false>(&rays, codes);
+        } else {
+            self.course_row_in::<P, true>(&rays, codes);
+        }
+    }
+
+    /// [`Self::course_row_generic`]'s loop, for a world with solids or without (see
+    /// [`World::nearest_lanes_in`]).
+    #[inline(always)]
+    fn course_row_in<P: Packet, const SOLIDS: bool>(&self, rays: &RowRays, codes: &mut [u8]) {
         let zero = P::splat(0.0);
         for (p, chunk) in codes.chunks_mut(LANES).enumerate() {
             let (o, d, alive) = rays.packet::<P>(p);
-            let ends = self
-                .world
-                .follow_course(o, d, alive, zero, self.world.max_events(), |_| {});
+            let ends = self.world.follow_course_in::<P, SOLIDS>(
+                o,
+                d,
+                alive,
+                zero,
+                self.world.max_events(),
+                |_| {},
+            );
             let code = P::select(ends.reached, ends.color, zero);
             for (c, x) in chunk.iter_mut().zip(code.to_array()) {
                 *c = x as u8;
@@ -362,7 +395,12 @@ impl<'w> PacketTracer<'w> {
             for (p, start) in (0..width).step_by(LANES).enumerate() {
                 let (o, d, alive) = rays.packet::<P>(p);
                 let n = LANES.min(width - start);
-                self.course_ends(eye, o, d, alive, n, &mut |k, end| on_end(start + k, end));
+                let on_end = &mut |k, end| on_end(start + k, end);
+                if self.world.plain_only() {
+                    self.course_ends::<P, false>(eye, o, d, alive, n, on_end);
+                } else {
+                    self.course_ends::<P, true>(eye, o, d, alive, n, on_end);
+                }
             }
             return;
         }
@@ -396,13 +434,18 @@ impl<'w> PacketTracer<'w> {
                 );
             }
         }
-        self.follow_branches::<P, _>(prune_below, FRESNEL_SEGMENTS_PER_RAY, width, wave, on_end);
+        let segments = FRESNEL_SEGMENTS_PER_RAY;
+        if self.world.plain_only() {
+            self.follow_branches::<P, _, false>(prune_below, segments, width, wave, on_end);
+        } else {
+            self.follow_branches::<P, _, true>(prune_below, segments, width, wave, on_end);
+        }
     }
 
     /// How the course rays of the `n` first lanes of `(o, d, alive)` end, told to `on_end` with
     /// their lane; `eye` is where they come from (a ray that meets nothing is the ray from it).
     #[inline(always)]
-    fn course_ends<P: Packet>(
+    fn course_ends<P: Packet, const SOLIDS: bool>(
         &self,
         eye: [f32; 3],
         o: V3<P>,
@@ -411,9 +454,14 @@ impl<'w> PacketTracer<'w> {
         n: usize,
         on_end: &mut impl FnMut(usize, BranchEnd),
     ) {
-        let ends =
-            self.world
-                .follow_course(o, d, alive, P::splat(0.0), self.world.max_events(), |_| {});
+        let ends = self.world.follow_course_in::<P, SOLIDS>(
+            o,
+            d,
+            alive,
+            P::splat(0.0),
+            self.world.max_events(),
+            |_| {},
+        );
         let (color, object, part) = (
             ends.color.to_array(),
             ends.object.to_array(),
@@ -515,9 +563,15 @@ impl<'w> PacketTracer<'w> {
                     )
                 };
                 let alive = P::Mask::from_lanes(alive);
-                self.course_ends(eye32, v(o), v(d), alive, chunk.len(), &mut |k, end| {
-                    on_end(c * LANES + k, end)
-                });
+                // (Rays in any directions, a few at a time: the one kernel for every world.)
+                self.course_ends::<P, true>(
+                    eye32,
+                    v(o),
+                    v(d),
+                    alive,
+                    chunk.len(),
+                    &mut |k, end| on_end(c * LANES + k, end),
+                );
             }
             return;
         }
@@ -538,14 +592,19 @@ impl<'w> PacketTracer<'w> {
                 ),
             }
         }
-        self.follow_branches::<P, _>(prune_below, max_segments, directions.len(), wave, on_end);
+        let pixels = directions.len();
+        if self.world.plain_only() {
+            self.follow_branches::<P, _, false>(prune_below, max_segments, pixels, wave, on_end);
+        } else {
+            self.follow_branches::<P, _, true>(prune_below, max_segments, pixels, wave, on_end);
+        }
     }
 
     /// Follows the Fresnel branches in `wave.current` to their ends, breadth first (see
     /// [`Self::branch_ends_row`]), at most `max_segments` segments for each of the `pixels`
     /// pixels (what still travels then is dropped).
     #[inline(always)]
-    fn follow_branches<P: Packet, E: FnMut(usize, BranchEnd)>(
+    fn follow_branches<P: Packet, E: FnMut(usize, BranchEnd), const SOLIDS: bool>(
         &self,
         prune_below: f64,
         max_segments: u32,
@@ -599,7 +658,7 @@ impl<'w> PacketTracer<'w> {
                         },
                     )
                 };
-                let Some(hit) = world.nearest_lanes(o, d, alive, left) else {
+                let Some(hit) = world.nearest_lanes_in::<P, SOLIDS>(o, d, alive, left) else {
                     for k in alive.lanes() {
                         escape(k, on_end);
                     }
@@ -642,7 +701,13 @@ impl<'w> PacketTracer<'w> {
                     continue;
                 }
                 let q = o.along(hit.t, d);
-                let b = world.bend_lanes(hit.code, on_boundary, q, d, P::from_array(block.medium));
+                let b = world.bend_lanes_in::<P, SOLIDS>(
+                    hit.code,
+                    on_boundary,
+                    q,
+                    d,
+                    P::from_array(block.medium),
+                );
                 let (wr, wt) = split(P::from_array(block.w), b.reflectance(), b.total);
                 let (keep_r, keep_t) =
                     (followed_lanes(wr, threshold), followed_lanes(wt, threshold));

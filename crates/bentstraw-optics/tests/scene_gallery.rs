@@ -24,7 +24,11 @@ fn gallery() -> Vec<(PathBuf, String)> {
 #[test]
 fn every_gallery_file_parses_validates_and_says_what_it_shows() {
     let files = gallery();
-    assert_eq!(files.len(), 31, "the gallery's thirty scenes and the assignment's");
+    assert_eq!(
+        files.len(),
+        31,
+        "the gallery's thirty scenes and the assignment's"
+    );
     for (path, text) in &files {
         let d =
             SceneDescription::from_toml(text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

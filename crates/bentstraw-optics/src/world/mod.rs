@@ -933,6 +933,12 @@ impl World {
         }
     }
 
+    /// Whether the world has only plain faces (the container's and liquids' planes, upright
+    /// sides and tank walls): no transparent solid, no curved wall of revolution.
+    pub(crate) fn plain_only(&self) -> bool {
+        self.bodies.is_empty() && self.clips.is_empty()
+    }
+
     /// The refractive index of medium `m`.
     #[inline]
     pub fn index(&self, m: MediumId) -> f64 {

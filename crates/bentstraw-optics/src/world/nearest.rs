@@ -89,6 +89,20 @@ impl World {
         alive: R::Mask,
         left: R,
     ) -> Option<Nearest<R>> {
+        self.nearest_lanes_in::<R, true>(o, d, alive, left)
+    }
+
+    /// [`World::nearest_lanes`], compiled for a world with transparent solids or a curved wall
+    /// (`SOLIDS`) or for one of plain faces alone ([`World::plain_only`]): the packet tracers
+    /// choose once per row, so that the plain scenes' loop carries none of the solids' code.
+    #[inline(always)]
+    pub(crate) fn nearest_lanes_in<R: Real, const SOLIDS: bool>(
+        &self,
+        o: V3<R>,
+        d: V3<R>,
+        alive: R::Mask,
+        left: R,
+    ) -> Option<Nearest<R>> {
         let inf = R::splat(f64::INFINITY);
         // Everything lies within the reach around the z axis: a line clearly outside meets nothing.
         let reach2 = self.reach * self.reach;
@@ -122,7 +136,7 @@ impl World {
         // The lanes the objects may be met in: within the circle holding the container and its
         // objects.
         let objects_alive;
-        if self.bodies.is_empty() && self.clips.is_empty() {
+        if !SOLIDS || self.plain_only() {
             // No solid and no curved wall: the container's and liquids' faces alone, with the
             // lean intersection of their three shapes, in one loop (the scenes of old trace as
             // they always did, at their speed).
@@ -242,6 +256,20 @@ impl World {
         d: V3<R>,
         medium: R,
     ) -> Bend<R> {
+        self.bend_lanes_in::<R, true>(code, live, q, d, medium)
+    }
+
+    /// [`World::bend_lanes`] for a world with solids or without (see
+    /// [`World::nearest_lanes_in`]).
+    #[inline(always)]
+    pub(crate) fn bend_lanes_in<R: Real, const SOLIDS: bool>(
+        &self,
+        code: R,
+        live: R::Mask,
+        q: V3<R>,
+        d: V3<R>,
+        medium: R,
+    ) -> Bend<R> {
         let zero = R::splat(0.0);
         let none = R::Mask::splat(false);
         let mut normal = V3::new(zero, zero, zero);
@@ -263,7 +291,7 @@ impl World {
                 }
             };
             // The container's and liquids' faces (first in the list) by their lean rule.
-            let n = if k < self.plain {
+            let n = if !SOLIDS || k < self.plain {
                 self.plain_faces[k].shape.normal_at(q)
             } else {
                 b.normal_at(q)

@@ -66,6 +66,21 @@ impl World {
     #[inline(always)]
     pub(crate) fn follow_course<R: Real>(
         &self,
+        o: V3<R>,
+        d: V3<R>,
+        alive: R::Mask,
+        length: R,
+        max_events: u32,
+        on_event: impl FnMut(&LaneEvent<R>),
+    ) -> CourseEnds<R> {
+        self.follow_course_in::<R, true>(o, d, alive, length, max_events, on_event)
+    }
+
+    /// [`World::follow_course`] for a world with solids or without (see
+    /// [`World::nearest_lanes_in`]).
+    #[inline(always)]
+    pub(crate) fn follow_course_in<R: Real, const SOLIDS: bool>(
+        &self,
         mut o: V3<R>,
         mut d: V3<R>,
         mut alive: R::Mask,
@@ -98,7 +113,7 @@ impl World {
             if !alive.any() {
                 break;
             }
-            let Some(hit) = self.nearest_lanes(o, d, alive, left) else {
+            let Some(hit) = self.nearest_lanes_in::<R, SOLIDS>(o, d, alive, left) else {
                 break;
             };
             let met = alive.and(hit.t.lt(inf));
@@ -123,7 +138,7 @@ impl World {
             }
             let q = o.along(hit.t, d);
             length = R::select(alive, length + hit.t, length);
-            let bend = self.bend_lanes(hit.code, alive, q, d, medium);
+            let bend = self.bend_lanes_in::<R, SOLIDS>(hit.code, alive, q, d, medium);
             let out = bend.outgoing();
             on_event(&LaneEvent {
                 boundary: hit.code,
