@@ -1363,3 +1363,53 @@ test("a glass of revolution: its profiles in the Objects panel and on both maps,
   assert.deepEqual(phone.problems, []);
   await phone.context.close();
 });
+
+test("a prism's corner dragged on the map from above, and a lens's axis turned by its handle", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, { width: 1500, height: 1000 });
+  const handles = () => page.evaluate(() => document.getElementById("map-top").handles);
+  const pairs = (list) => list.map((q) => q.join(", ")).join("; ");
+  // The prism: a ring on each corner; one dragged outwards from its middle moves that corner alone.
+  await page.goto(server.url + "#scene=prism");
+  await waitReady(page);
+  await page.click("#scene-objects summary");
+  await page.waitForFunction(() => document.getElementById("map-top").handles.filter((h) => h.kind === "corner").length === 3);
+  let file = await boxText(page);
+  const poly = JSON.parse(fileValue(file, "prism", 0, "corners"));
+  assert.equal(await page.inputValue('[data-key="prism[1].corners"]'), pairs(poly));
+  const middle = (await handles()).find((h) => h.kind === "prism").at;
+  const corner = (await handles()).find((h) => h.kind === "corner" && h.k === 0 && h.j === 0).at;
+  const out = [corner[0] - middle[0], corner[1] - middle[1]], d = Math.hypot(...out);
+  await dragOnMap(page, "map-top", corner, [(12 * out[0]) / d, (12 * out[1]) / d], 6);
+  await dragSettled(page);
+  file = await page.evaluate(() => window.bentstraw.state.file);
+  const moved = JSON.parse(fileValue(file, "prism", 0, "corners"));
+  assert.deepEqual(moved.slice(1), poly.slice(1), "the other corners stay");
+  const mid = [0, 1].map((i) => poly.reduce((a, q) => a + q[i], 0) / 3), far = (q) => Math.hypot(q[0] - mid[0], q[1] - mid[1]);
+  assert.ok(far(moved[0]) > far(poly[0]) + 1e-3, `corner 1 at ${moved[0]}, from ${poly[0]}`);
+  assert.equal(await page.inputValue('[data-key="prism[1].corners"]'), pairs(moved));
+  assert.ok(await page.locator("#error").isHidden());
+  // The lens: its axis's handle 22 px from its centre along the axis (-x); dragged sideways, the
+  // axis turns towards the pointer, still level and of length 1.
+  await page.goto(server.url + "#scene=magnifying-glass");
+  await waitReady(page);
+  await page.waitForFunction(() => document.getElementById("map-top").handles.some((h) => h.kind === "axis"));
+  const axisHandle = (await handles()).find((h) => h.kind === "axis"), centre = (await handles()).find((h) => h.kind === "lens").at;
+  assert.ok(Math.abs(Math.hypot(axisHandle.at[0] - centre[0], axisHandle.at[1] - centre[1]) - 22) < 0.01);
+  const along = [(axisHandle.at[0] - centre[0]) / 22, (axisHandle.at[1] - centre[1]) / 22];
+  const drop = [axisHandle.at[0] - 15 * along[1], axisHandle.at[1] + 15 * along[0]];
+  await dragOnMap(page, "map-top", axisHandle.at, [-15 * along[1], 15 * along[0]], 6);
+  await dragSettled(page);
+  file = await page.evaluate(() => window.bentstraw.state.file);
+  const axis = JSON.parse(fileValue(file, "lens", 0, "axis"));
+  assert.equal(axis[2], 0);
+  assert.ok(Math.abs(Math.hypot(axis[0], axis[1]) - 1) < 2e-4, `${axis}`);
+  assert.ok(axis[0] < -0.6 && Math.abs(axis[1]) > 0.4, `the axis turned: ${axis}`);
+  assert.deepEqual(await page.locator('[data-key="lens[1].axis"]').evaluateAll((els) => els.map((e) => Number(e.value))), axis);
+  // Its handle now points towards where the pointer left it.
+  const turned = (await handles()).find((h) => h.kind === "axis").at;
+  const angle = (p) => Math.atan2(p[1] - centre[1], p[0] - centre[0]);
+  assert.ok(Math.abs(angle(turned) - angle(drop)) < 0.02, `${angle(turned)} vs ${angle(drop)}`);
+  assert.ok(await page.locator("#error").isHidden());
+  assert.deepEqual(problems, []);
+  await context.close();
+});

@@ -736,13 +736,22 @@ export function handlesOf(form, P, side) {
     const m = polygonMiddle(o.corners), at = P(m[0], m[1]);
     const px = Math.min(...o.corners.map((q) => Math.hypot(...[0, 1].map((i) => P(q[0], q[1])[i] - at[i]))));
     hs.push(sphereHandle(k, at, px, "prism"));
+    // Each corner's small ring: a drag moves that corner alone.
+    o.corners.forEach((q, j) => hs.push({ kind: "corner", k, j, at: P(q[0], q[1]), ring: 3 }));
   });
   (form.lens || []).forEach((o, k) => {
     const at = P(o.center[0], o.center[1]);
     hs.push(sphereHandle(k, at, Math.abs(P(o.center[0] + o.diameter / 2, o.center[1])[0] - at[0]), "lens"));
+    // Its axis's handle, AXIS_PX pixels from its centre along the axis's horizontal part (to the
+    // right where the axis is upright): a drag turns that part towards the pointer.
+    const [ax, ay] = o.axis || [0, 0, 1], flat = Math.hypot(ax, ay) < 1e-9;
+    const e = P(o.center[0] + (flat ? 1 : ax) * 1e-3, o.center[1] + (flat ? 0 : ay) * 1e-3), dx = e[0] - at[0], dy = e[1] - at[1], d = Math.hypot(dx, dy) || 1;
+    hs.push({ kind: "axis", k, from: at, at: [at[0] + (AXIS_PX * dx) / d, at[1] + (AXIS_PX * dy) / d], ring: 3.5 });
   });
   return hs;
 }
+/** How far from a lens's centre its axis's handle stands on the map from above (pixels). */
+const AXIS_PX = 22;
 /** The handle within a fingertip of `(x, y)`, nearest first; null if none. */
 export function handleAt(handles, x, y, reach) {
   let best = null, bestD = reach;
@@ -910,6 +919,26 @@ export function dragHandle(h, q, side) {
   dragForm((f) => {
     if (h.kind === "sphere" || h.kind === "lens") { moveBall(f, h.kind, h.k, q, side); return; }
     if (h.kind === "prism") { movePrism(f, h.k, q, side); return; }
+    if (h.kind === "corner") {
+      // The corner goes to the pointer; a polygon the rules refuse (not convex, or cutting
+      // something) is a step left out.
+      const o = (f.prism || [])[h.k], p = o && o.corners[h.j];
+      if (!p) return; // (the prism changed under the drag: an undo)
+      o.corners[h.j] = [r5(q[0]), r5(q[1])];
+      return;
+    }
+    if (h.kind === "axis") {
+      // The axis's horizontal part turned towards the pointer, its slope kept (an upright axis
+      // laid flat).
+      const o = (f.lens || [])[h.k];
+      if (!o) return;
+      const a = o.axis || [0, 0, 1], n = Math.hypot(...a) || 1, [ax, ay, az] = a.map((v) => v / n);
+      let hz = Math.hypot(ax, ay), vz = az;
+      if (hz < 1e-9) { hz = 1; vz = 0; }
+      const phi = Math.atan2(q[1] - o.center[1], q[0] - o.center[0]), r4 = (v) => Math.round(v * 1e4) / 1e4 + 0;
+      o.axis = [r4(Math.cos(phi) * hz), r4(Math.sin(phi) * hz), r4(vz)];
+      return;
+    }
     if (h.kind === "profile") {
       // The point goes to the pointer's distance from the axis (either side of it) and height;
       // the base stays on z = 0 and the two rims at one height, as the rules ask: a rim's point

@@ -229,7 +229,13 @@ function drawHandles(ctx, handles) {
   for (const h of handles) {
     ctx.lineWidth = h.ring < 3 ? 1 : 1.5;
     ctx.strokeStyle = "#1d2330"; ctx.fillStyle = "rgba(255,255,255,.7)";
-    ctx.beginPath(); ctx.arc(h.at[0], h.at[1], h.ring || 5, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+    // (A lens's axis handle: a thin line from its centre.)
+    if (h.from) { ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(...h.from); ctx.lineTo(...h.at); ctx.stroke(); ctx.lineWidth = 1.5; }
+    // (A prism's corner: a fine hollow ring, so that its outline shows through.)
+    if (h.kind === "corner") ctx.lineWidth = 1;
+    ctx.beginPath(); ctx.arc(h.at[0], h.at[1], h.ring || 5, 0, 2 * Math.PI);
+    if (h.kind !== "corner") ctx.fill();
+    ctx.stroke();
   }
   ctx.lineWidth = 1;
 }
