@@ -119,10 +119,13 @@ fn shape_segments(b: &Boundary, out: &mut Vec<[Vec3; 2]>) {
             ..
         } => {
             // Its meridians, as upright sides have their vertical lines.
-            let radius = |z: f64| {
-                let u = z - zc;
-                (c[0] + u * (c[1] + u * c[2])).max(0.0).sqrt()
+            let piece = crate::profile::Piece {
+                zc,
+                c,
+                z0: z_min,
+                z1: z_max,
             };
+            let radius = |z: f64| piece.r2(z).max(0.0).sqrt();
             for k in 0..WIRE_VERTICALS {
                 let t = 2.0 * PI * k as f64 / WIRE_VERTICALS as f64;
                 let line: Vec<Vec3> = (0..=8)

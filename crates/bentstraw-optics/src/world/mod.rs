@@ -664,7 +664,6 @@ impl World {
             }
             if lens.inside(&scene.container) {
                 lens_holes.push((
-                    lens_holes.len(),
                     c.z - reach,
                     c.z + reach,
                     boundary::LensHole {
@@ -781,7 +780,7 @@ impl World {
                     clips.push(Clip::OutsidePolygon(*range));
                 }
             }
-            for &(k, lo, hi, _) in &lens_holes {
+            for (k, &(lo, hi, _)) in lens_holes.iter().enumerate() {
                 if lo < z && z < hi {
                     clips.push(Clip::OutsideLens(k as u16));
                 }
@@ -896,7 +895,7 @@ impl World {
             boundaries,
             plain,
             plain_faces,
-            lens_holes: lens_holes.into_iter().map(|(_, _, _, hole)| hole).collect(),
+            lens_holes: lens_holes.into_iter().map(|(_, _, hole)| hole).collect(),
             objects,
             clips,
             bodies,
