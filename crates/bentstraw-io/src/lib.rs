@@ -15,6 +15,7 @@ pub mod files;
 pub mod gallery;
 #[cfg(feature = "figures")]
 pub mod gallery_report;
+pub mod grade;
 #[cfg(feature = "figures")]
 pub mod html;
 #[cfg(feature = "figures")]

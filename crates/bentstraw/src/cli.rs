@@ -58,6 +58,16 @@ comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit 
 --water-height 0.15 --json"
     )]
     Check(CheckArgs),
+    /// Grade a class: every student's solution files checked, a gradebook and Gradescope's results.
+    #[command(
+        after_help = "CLASS holds one folder per student (Moodle's \"download all submissions\" \
+folders, Name_Id_assignsubmission_file_, give the name). Each student hands in sim1 … sim4 (.csv, \
+.txt or .dat), the four reference simulations, 25 points each: a pass scores them, a fail the \
+share of right points times the coverage over the coverage asked for, a missing or unreadable file \
+none. Writes DIR/grades.csv and DIR/<student>/results.json (Gradescope's format). Exit code 0 \
+when the class is graded, 2 for bad input.\n\nExample:\n  bentstraw grade submissions/ --out grades/"
+    )]
+    Grade(GradeArgs),
     /// Explore live in the browser: drag the eye around the glass, click to see the light's path.
     #[command(
         after_help = "Example:\n  bentstraw explore                       # opens http://127.0.0.1:8157/\n  bentstraw explore --port 0 --no-open --observer 0.3,0,0.1 --straw 0,0 --water-height 0.15"
@@ -395,6 +405,17 @@ pub struct CheckArgs {
     /// How many of the worst points to list
     #[arg(long, value_name = "N", default_value_t = 10)]
     pub worst: usize,
+}
+
+/// Arguments of `grade`.
+#[derive(Args, Debug)]
+pub struct GradeArgs {
+    /// The class: a folder with one sub-folder per student
+    #[arg(value_name = "CLASS")]
+    pub class: PathBuf,
+    /// Folder for the gradebook (grades.csv) and each student's results.json
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
 }
 
 /// Arguments of `explore`.

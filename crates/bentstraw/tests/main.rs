@@ -14,6 +14,7 @@ mod cli;
 mod explore_server;
 mod figures_cli;
 mod golden;
+mod grade_cli;
 mod outputs_cli;
 mod render_cli;
 mod report_cli;

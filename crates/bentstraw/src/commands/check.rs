@@ -6,12 +6,11 @@
 
 use std::time::Instant;
 
-use bentstraw_optics::check::check_solution;
-
 use crate::cli::CheckArgs;
 use crate::error::{CliError, CliResult};
 use bentstraw_io::files::check_writable;
-use bentstraw_io::solution::{json_report, read_solution_of, summary, CheckOptions};
+use bentstraw_io::grade::check_file;
+use bentstraw_io::solution::{json_report, summary, CheckOptions};
 use bentstraw_optics::text::clip_text;
 
 /// Runs `check`; `Ok(true)` for a pass, `Ok(false)` for a fail.
@@ -29,14 +28,7 @@ pub fn run(args: &CheckArgs) -> CliResult<bool> {
         check_writable(p)?;
     }
     let started = Instant::now();
-    let solution = read_solution_of(&args.file, checked.colour_names().len())?;
-    let report = check_solution(
-        &checked.world,
-        observer,
-        &solution.points,
-        args.tolerance,
-        args.min_coverage,
-    );
+    let (solution, report) = check_file(checked, &args.file, args.tolerance, args.min_coverage)?;
     let seconds = started.elapsed().as_secs_f64();
     if let Some(p) = &args.plot {
         let title = format!(

@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod check;
+pub mod grade;
 pub mod render;
 pub mod simulate;
 pub mod table;
@@ -33,6 +34,7 @@ pub fn run(cli: Cli) -> CliResult {
             }
             Ok(())
         }
+        Some(Command::Grade(a)) => grade::run(&a),
         Some(Command::Explore(a)) => crate::explore::run(&a),
     }
 }

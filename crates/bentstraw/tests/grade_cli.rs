@@ -1,0 +1,168 @@
+//! `bentstraw grade` on a class whose every case's fault is known: bentstraw's own points (a
+//! pass, Moodle's folder name and an upper-case file name included), another view's points (a
+//! fail with a partial score), a binary file and a link (unreadable), files not handed in
+//! (missing). The verdicts are `check`'s on the same files.
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output};
+
+use bentstraw_optics::scene::REFERENCES;
+use serde_json::Value;
+
+fn bentstraw(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// The scene flags of reference simulation `k` (1..=4).
+fn reference_flags(k: usize) -> Vec<String> {
+    let r = &REFERENCES[k - 1];
+    let o = r.observer;
+    vec![
+        "--observer".into(),
+        format!("{},{},{}", o.x, o.y, o.z),
+        "--straw".into(),
+        format!("{},{}", r.straw.0, r.straw.1),
+        "--water-height".into(),
+        format!("{}", r.water_height),
+    ]
+}
+
+/// bentstraw's own points of reference `k`, written to `path` (a .csv).
+fn simulate(dir: &Path, k: usize, path: &Path) {
+    let mut args = vec!["simulate".to_string(), "--points".into(), "3000".into()];
+    args.extend(reference_flags(k));
+    args.extend(["--output".into(), path.display().to_string()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = bentstraw(dir, &args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// `check`'s exit code for `file` as reference `k`'s solution.
+fn check_code(dir: &Path, file: &Path, k: usize) -> i32 {
+    let mut args = vec!["check".to_string(), file.display().to_string()];
+    args.extend(reference_flags(k));
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    bentstraw(dir, &args).status.code().unwrap()
+}
+
+#[test]
+fn a_class_gets_check_verdicts_partial_scores_and_gradescope_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let class = dir.path().join("class");
+    let (ada, marie, bob, carl) = (
+        class.join("ada"),
+        class.join("Marie Curie_123456_assignsubmission_file_"),
+        class.join("bob"),
+        class.join("carl"),
+    );
+    for d in [&ada, &marie, &bob, &carl] {
+        fs::create_dir_all(d).unwrap();
+    }
+    simulate(dir.path(), 1, &ada.join("sim1.csv"));
+    simulate(dir.path(), 2, &dir.path().join("two.csv"));
+    fs::copy(dir.path().join("two.csv"), marie.join("SIM2.TXT")).unwrap();
+    fs::copy(dir.path().join("two.csv"), bob.join("sim1.csv")).unwrap();
+    fs::write(carl.join("sim1.dat"), [0u8, 159, 146, 150, 0, 1]).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(ada.join("sim1.csv"), carl.join("sim2.csv")).unwrap();
+    fs::write(class.join("notes.txt"), "not a student").unwrap();
+
+    let out = dir.path().join("grades");
+    let o = bentstraw(dir.path(), &["grade", "class", "--out", "grades"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = fs::read_to_string(out.join("grades.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "student,case,verdict,score,max_score,points,correct,coverage,note"
+    );
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| {
+            // The note, last, may be quoted: the first eight fields have no comma.
+            l.splitn(9, ',').map(str::to_string).collect()
+        })
+        .collect();
+    assert_eq!(rows.len(), 4 * 4, "{csv}");
+    let row = |student: &str, case: &str| {
+        rows.iter()
+            .find(|r| r[0] == student && r[1] == case)
+            .unwrap_or_else(|| panic!("no row {student} {case} in {csv}"))
+            .clone()
+    };
+    // A pass scores the case's 25 points; the verdict is check's.
+    let a = row("ada", "sim1");
+    assert_eq!(
+        (a[2].as_str(), a[3].as_str(), a[4].as_str()),
+        ("pass", "25", "25")
+    );
+    assert_eq!(check_code(dir.path(), &ada.join("sim1.csv"), 1), 0);
+    let m = row("Marie Curie", "sim2");
+    assert_eq!(m[2], "pass", "{m:?}");
+    // Another view's points: a fail, scored by the share of right points and the coverage.
+    let b = row("bob", "sim1");
+    assert_eq!(b[2], "fail", "{b:?}");
+    assert_eq!(check_code(dir.path(), &bob.join("sim1.csv"), 1), 1);
+    let (points, correct, coverage): (f64, f64, f64) = (
+        b[5].parse().unwrap(),
+        b[6].parse().unwrap(),
+        b[7].parse().unwrap(),
+    );
+    let expected = 25.0 * correct / points * (coverage / 0.98).min(1.0);
+    let score: f64 = b[3].parse().unwrap();
+    assert!((score - expected).abs() <= 0.006, "{score} vs {expected}");
+    assert!(score < 25.0);
+    // Unreadable files say why, naming the file as handed in (not where the class lies).
+    let c = row("carl", "sim1");
+    assert_eq!((c[2].as_str(), c[3].as_str()), ("unreadable", "0"), "{c:?}");
+    assert!(
+        c[8].contains("sim1.dat") && !c[8].contains("class/carl"),
+        "{c:?}"
+    );
+    #[cfg(unix)]
+    {
+        let l = row("carl", "sim2");
+        assert_eq!(l[2], "unreadable", "{l:?}");
+        assert!(l[8].contains("link"), "{l:?}");
+    }
+    let miss = row("ada", "sim4");
+    assert_eq!((miss[2].as_str(), miss[3].as_str()), ("missing", "0"));
+
+    // Gradescope's results: the total and a test per case.
+    let v: Value =
+        serde_json::from_slice(&fs::read(out.join("bob").join("results.json")).unwrap()).unwrap();
+    let tests = v["tests"].as_array().unwrap();
+    assert_eq!(tests.len(), 4);
+    let names: Vec<&str> = tests.iter().map(|t| t["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["sim1", "sim2", "sim3", "sim4"]);
+    let total: f64 = tests.iter().map(|t| t["score"].as_f64().unwrap()).sum();
+    assert!((v["score"].as_f64().unwrap() - total).abs() < 1e-9);
+    assert_eq!(tests[0]["max_score"].as_f64(), Some(25.0));
+    assert!(tests[0]["output"].as_str().unwrap().starts_with("fail: "));
+    assert!(out
+        .join("Marie Curie_123456_assignsubmission_file_")
+        .join("results.json")
+        .is_file());
+}
+
+#[test]
+fn a_class_folder_that_is_not_one_is_refused_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    fs::write(dir.path().join("file"), "x").unwrap();
+    for class in ["absent", "file"] {
+        let o = bentstraw(dir.path(), &["grade", class, "--out", "grades"]);
+        assert_eq!(o.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("class folder"), "{err}");
+        assert!(!dir.path().join("grades").exists());
+    }
+    fs::create_dir(dir.path().join("empty")).unwrap();
+    let o = bentstraw(dir.path(), &["grade", "empty", "--out", "grades"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no sub-folder"));
+    assert!(!dir.path().join("grades").exists());
+}
