@@ -6,15 +6,18 @@
 use std::path::{Path, PathBuf};
 
 use bentstraw_optics::check::{
-    check_solution, CheckReport, DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE,
+    check_solution, CheckReport, Place, DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE,
 };
+use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::scene::{DEFAULT_MAX_EVENTS, REFERENCES};
 use bentstraw_optics::setup::{SceneValues, Setup};
 
 use bentstraw_optics::text::clip_text;
 
 use crate::error::{Error, Result};
-use crate::solution::{read_solution_of, region_words, Solution};
+use crate::escape::escape_html;
+use crate::solution::{read_solution_of, Solution};
+use crate::words::{self, Lang};
 
 /// Points of each case of the default assignment (four cases: 100 in all).
 pub const REFERENCE_CASE_POINTS: f64 = 25.0;
@@ -163,6 +166,8 @@ pub struct CaseGrade {
     pub student: String,
     /// The case's name.
     pub case: String,
+    /// The case's file name without its extension.
+    pub stem: String,
     /// The verdict.
     pub verdict: CaseVerdict,
     /// The score (see [`partial_score`]).
@@ -175,10 +180,76 @@ pub struct CaseGrade {
     pub correct: usize,
     /// The smallest share of a colour's true image the points cover (0 when not read).
     pub coverage: f64,
-    /// Why, in one line: the file read, the reason it was not, or what is wrong.
-    pub note: String,
-    /// The parts of the true image the points miss, in words.
-    pub missing_regions: Vec<String>,
+    /// The case's file name as handed in, if found.
+    pub file: Option<String>,
+    /// Why the file could not be read (the reader's words), if it could not.
+    pub unread: Option<String>,
+    /// The coverage asked for.
+    pub min_coverage: f64,
+    /// The parts of the true image the points miss, largest first.
+    pub missing: Vec<Missed>,
+}
+
+/// A part of the true image a solution misses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Missed {
+    /// Colour code, 1..=8.
+    pub color: u8,
+    /// The light path that makes this part of the image.
+    pub path: LightPathType,
+    /// Its share of the colour's image, 0..=1.
+    pub share: f64,
+    /// Where along the colour's visible height it lies.
+    pub place: Place,
+}
+
+impl Missed {
+    /// The missing part in words.
+    pub fn words(&self, lang: Lang) -> String {
+        lang.fill(
+            words::GRADE_MISSING_REGION,
+            &[
+                &lang.colour_name(self.color as usize - 1),
+                &format!("{:.1}", 100.0 * self.share),
+                &lang.light_path(&self.path),
+                &lang.of(words::GRADE_PLACES[self.place as usize]),
+            ],
+        )
+    }
+}
+
+impl CaseGrade {
+    /// Why, in one line: what is wrong, or why the file was not read.
+    pub fn note(&self, lang: Lang) -> String {
+        let file = self.file.as_deref().unwrap_or("");
+        match self.verdict {
+            CaseVerdict::Pass => lang.fill(words::GRADE_NOTE_PASS, &[&file]),
+            CaseVerdict::Missing => lang.fill(words::GRADE_NOTE_MISSING, &[&self.stem]),
+            CaseVerdict::Unreadable => self.unread.clone().unwrap_or_default(),
+            CaseVerdict::Fail => {
+                let mut why = Vec::new();
+                if self.correct < self.points {
+                    why.push(lang.fill(
+                        words::GRADE_NOTE_WRONG,
+                        &[&(self.points - self.correct), &self.points],
+                    ));
+                }
+                if self.coverage < self.min_coverage {
+                    why.push(lang.fill(
+                        words::GRADE_NOTE_COVERAGE,
+                        &[
+                            &format!("{:.1}", 100.0 * self.coverage),
+                            &format!("{:.1}", 100.0 * self.min_coverage),
+                        ],
+                    ));
+                }
+                match lang {
+                    Lang::En => format!("{file}: {}", why.join("; ")),
+                    Lang::Fr => format!("{file} : {}", why.join(" ; ")),
+                }
+            }
+        }
+    }
 }
 
 /// The score of a failed case worth `max_score`: its share of correct points times its coverage
@@ -245,41 +316,35 @@ pub fn check_file(
 
 /// Grades `student`'s file for `case`.
 pub fn grade_case(student: &Student, case: &Case) -> CaseGrade {
-    let row = |verdict, note: String| CaseGrade {
+    let row = |verdict, file: Option<String>, unread: Option<String>| CaseGrade {
         student: student.name.clone(),
         case: case.name.clone(),
+        stem: case.stem.clone(),
         verdict,
         score: 0.0,
         max_score: case.points,
         points: 0,
         correct: 0,
         coverage: 0.0,
-        note,
-        missing_regions: Vec::new(),
+        file,
+        unread,
+        min_coverage: case.min_coverage,
+        missing: Vec::new(),
     };
     let Some(path) = case_file(&student.folder, case) else {
-        return row(
-            CaseVerdict::Missing,
-            format!(
-                "no file {}.csv, .txt or .dat in the student's folder",
-                case.stem
-            ),
-        );
+        return row(CaseVerdict::Missing, None, None);
     };
     let file_name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
+    let unreadable = |why: String| row(CaseVerdict::Unreadable, Some(file_name.clone()), Some(why));
     if std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_symlink()) {
-        return row(
-            CaseVerdict::Unreadable,
-            format!("{file_name} is a link: hand in the file itself"),
-        );
+        return unreadable(format!("{file_name} is a link: hand in the file itself"));
     }
     match check_file(&case.setup, &path, case.tolerance, case.min_coverage) {
         // The file named as the student named it, not by where the class was unpacked.
-        Err(e) => row(
-            CaseVerdict::Unreadable,
+        Err(e) => unreadable(
             e.to_string()
                 .replace(&clip_text(&path.display().to_string(), 80), &file_name),
         ),
@@ -291,25 +356,18 @@ pub fn grade_case(student: &Student, case: &Case) -> CaseGrade {
                 .map(|c| c.share())
                 .fold(1.0_f64, f64::min);
             let (points, correct) = (report.tally.points, report.tally.correct);
-            let missing_regions: Vec<String> =
-                report.coverage.missing.iter().map(region_words).collect();
+            let missing = report
+                .coverage
+                .missing
+                .iter()
+                .map(|m| Missed {
+                    color: m.color,
+                    path: m.path,
+                    share: m.share_of_colour,
+                    place: m.place,
+                })
+                .collect();
             let passes = report.passes();
-            let note = if passes {
-                format!("{file_name}: every point right, the image covered")
-            } else {
-                let mut why = Vec::new();
-                if correct < points {
-                    why.push(format!("{} of {points} points wrong", points - correct));
-                }
-                if !report.complete {
-                    why.push(format!(
-                        "{:.1} % of a colour's image covered (at least {:.1} % asked)",
-                        100.0 * coverage,
-                        100.0 * case.min_coverage
-                    ));
-                }
-                format!("{file_name}: {}", why.join("; "))
-            };
             CaseGrade {
                 verdict: if passes {
                     CaseVerdict::Pass
@@ -324,9 +382,8 @@ pub fn grade_case(student: &Student, case: &Case) -> CaseGrade {
                 points,
                 correct,
                 coverage,
-                note,
-                missing_regions,
-                ..row(CaseVerdict::Fail, String::new())
+                missing,
+                ..row(CaseVerdict::Fail, Some(file_name.clone()), None)
             }
         }
     }
@@ -356,7 +413,7 @@ pub fn grades_csv(rows: &[CaseGrade]) -> String {
             r.points,
             r.correct,
             r.coverage,
-            csv_field(&r.note)
+            csv_field(&r.note(Lang::En))
         ));
     }
     out
@@ -368,9 +425,10 @@ pub fn gradescope_results(rows: &[CaseGrade]) -> String {
     let tests: Vec<serde_json::Value> = rows
         .iter()
         .map(|r| {
-            let mut output = format!("{}: {}", r.verdict.key(), r.note);
-            for region in &r.missing_regions {
-                output.push_str(&format!("\nmissing: {region}"));
+            let mut output = format!("{}: {}", r.verdict.key(), r.note(Lang::En));
+            for m in &r.missing {
+                output.push('\n');
+                output.push_str(&m.words(Lang::En));
             }
             serde_json::json!({
                 "name": r.case,
@@ -386,6 +444,219 @@ pub fn gradescope_results(rows: &[CaseGrade]) -> String {
         "tests": tests,
     });
     format!("{v:#}\n")
+}
+
+/// The style of the grading pages: plain, printable, readable on a phone.
+const PAGE_STYLE: &str = "body{font-family:system-ui,sans-serif;max-width:52rem;margin:1rem auto;\
+padding:0 1rem;line-height:1.4}table{border-collapse:collapse;width:100%}th,td{border-bottom:1px \
+solid #ccc;padding:.3rem;text-align:left;vertical-align:top}.pass{color:#1a7f37}.fail{color:#b35900}\
+.missing,.unreadable{color:#b00020}.bar{display:inline-block;height:.8rem;background:#4a78c2;max-width:80%}\
+tr:not(.why)>td:first-child{white-space:nowrap}tr.why td{padding-top:0;font-size:.95rem}tr:has(+tr.why) td\
+{border-bottom:none}ul{margin:.2rem 0}";
+
+/// A page's frame around `body`.
+fn page(lang: Lang, title: &str, body: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"{}\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <title>{}</title>\n<style>{PAGE_STYLE}</style>\n</head>\n<body>\n<h1>{}</h1>\n{body}</body>\n</html>\n",
+        lang.code(),
+        escape_html(title),
+        escape_html(title)
+    )
+}
+
+/// A score as the pages write it: at most two decimals.
+fn score_text(score: f64) -> String {
+    let text = format!("{score:.2}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// The feedback page of one student (`rows`: their cases, in the assignment's order).
+pub fn student_page(lang: Lang, student: &str, rows: &[CaseGrade]) -> String {
+    let mut body = String::from("<table>\n<tr>");
+    for head in words::GRADE_CASE_HEADS {
+        body.push_str(&format!("<th>{}</th>", lang.of(head)));
+    }
+    body.push_str("</tr>\n");
+    for r in rows {
+        let verdict = lang.of(words::GRADE_VERDICTS[r.verdict as usize]);
+        let mut note = escape_html(&r.note(lang));
+        if !r.missing.is_empty() {
+            note.push_str("<ul>");
+            for m in &r.missing {
+                note.push_str(&format!("<li>{}</li>", escape_html(&m.words(lang))));
+            }
+            note.push_str("</ul>");
+        }
+        let read = matches!(r.verdict, CaseVerdict::Pass | CaseVerdict::Fail);
+        body.push_str(&format!(
+            "<tr><td>{}</td><td class=\"{}\">{verdict}</td><td>{} / {}</td><td>{}</td><td>{}</td></tr>\n\
+             <tr class=\"why\"><td colspan=\"5\">{note}</td></tr>\n",
+            escape_html(&r.case),
+            r.verdict.key(),
+            score_text(r.score),
+            score_text(r.max_score),
+            if read { format!("{} / {}", r.correct, r.points) } else { "–".into() },
+            if read { format!("{:.1} %", 100.0 * r.coverage) } else { "–".into() },
+        ));
+    }
+    body.push_str("</table>\n");
+    let total: f64 = rows.iter().map(|r| r.score).sum();
+    let most: f64 = rows.iter().map(|r| r.max_score).sum();
+    body.push_str(&format!(
+        "<p><strong>{}</strong></p>\n<p>{}</p>\n",
+        lang.fill(words::GRADE_TOTAL, &[&score_text(total), &score_text(most)]),
+        lang.of(words::GRADE_HOW)
+    ));
+    page(
+        lang,
+        &lang.fill(words::GRADE_STUDENT_TITLE, &[&student]),
+        &body,
+    )
+}
+
+/// One student on the class page: the name, the folder of their page, their cases.
+pub struct Graded<'a> {
+    /// The student's name.
+    pub name: &'a str,
+    /// The folder (in the output) holding their page.
+    pub folder: &'a str,
+    /// Their cases, in the assignment's order.
+    pub rows: &'a [CaseGrade],
+}
+
+/// The class at a glance: the distribution of the scores, each case's verdicts, and the parts of
+/// the image most students miss.
+pub fn class_page(lang: Lang, class: &[Graded]) -> String {
+    let most: f64 = class
+        .first()
+        .map(|g| g.rows.iter().map(|r| r.max_score).sum())
+        .unwrap_or(0.0);
+    let totals: Vec<f64> = class
+        .iter()
+        .map(|g| g.rows.iter().map(|r| r.score).sum())
+        .collect();
+    let mean = totals.iter().sum::<f64>() / totals.len().max(1) as f64;
+    let cases = class.first().map_or(0, |g| g.rows.len());
+    let mut body = format!(
+        "<p>{}</p>\n",
+        lang.fill(
+            words::GRADE_CLASS_LINE,
+            &[&class.len(), &cases, &score_text(mean), &score_text(most)]
+        )
+    );
+    // Scores in ten bins of a tenth of the most (the top bin holds full marks).
+    body.push_str(&format!(
+        "<h2>{}</h2>\n<table>\n",
+        lang.of(words::GRADE_SCORES)
+    ));
+    let mut bins = [0usize; 10];
+    for t in &totals {
+        let k = if most > 0.0 {
+            (10.0 * t / most).floor() as usize
+        } else {
+            0
+        };
+        bins[k.min(9)] += 1;
+    }
+    let tallest = bins.iter().copied().max().unwrap_or(0).max(1);
+    for (k, n) in bins.iter().enumerate() {
+        let (lo, hi) = (most * k as f64 / 10.0, most * (k + 1) as f64 / 10.0);
+        body.push_str(&format!(
+            "<tr><td>{}–{}</td><td><span class=\"bar\" style=\"width:{:.1}%\"></span> {n}</td></tr>\n",
+            score_text(lo),
+            score_text(hi),
+            100.0 * *n as f64 / tallest as f64
+        ));
+    }
+    body.push_str("</table>\n");
+    // Each case's verdicts.
+    body.push_str(&format!(
+        "<h2>{}</h2>\n<table>\n<tr>",
+        lang.of(words::GRADE_PASS_RATES)
+    ));
+    for head in words::GRADE_RATE_HEADS {
+        body.push_str(&format!("<th>{}</th>", lang.of(head)));
+    }
+    body.push_str("</tr>\n");
+    for k in 0..cases {
+        let name = &class[0].rows[k].case;
+        let count = |v: CaseVerdict| class.iter().filter(|g| g.rows[k].verdict == v).count();
+        body.push_str(&format!(
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+            escape_html(name),
+            count(CaseVerdict::Pass),
+            count(CaseVerdict::Fail),
+            count(CaseVerdict::Missing),
+            count(CaseVerdict::Unreadable)
+        ));
+    }
+    body.push_str("</table>\n");
+    // The parts of the image missed, counted once per student.
+    let mut missed: Vec<((u8, LightPathType), usize)> = Vec::new();
+    for g in class {
+        let mut own: Vec<(u8, LightPathType)> = g
+            .rows
+            .iter()
+            .flat_map(|r| r.missing.iter().map(|m| (m.color, m.path)))
+            .collect();
+        own.sort();
+        own.dedup();
+        for key in own {
+            match missed.iter_mut().find(|(k, _)| *k == key) {
+                Some((_, n)) => *n += 1,
+                None => missed.push((key, 1)),
+            }
+        }
+    }
+    missed.retain(|(_, n)| *n >= 2);
+    missed.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    body.push_str(&format!("<h2>{}</h2>\n", lang.of(words::GRADE_MISTAKES)));
+    if missed.is_empty() {
+        body.push_str(&format!("<p>{}</p>\n", lang.of(words::GRADE_NO_MISTAKE)));
+    } else {
+        body.push_str("<ul>\n");
+        for ((color, path), n) in missed.iter().take(12) {
+            body.push_str(&format!(
+                "<li>{}</li>\n",
+                escape_html(&lang.fill(
+                    words::GRADE_MISTAKE,
+                    &[
+                        n,
+                        &lang.colour_name(*color as usize - 1),
+                        &lang.light_path(path)
+                    ]
+                ))
+            ));
+        }
+        body.push_str("</ul>\n");
+    }
+    // Each student's total, linking their page.
+    body.push_str("<table>\n");
+    for (g, t) in class.iter().zip(&totals) {
+        body.push_str(&format!(
+            "<tr><td><a href=\"{}/index.html\">{}</a></td><td>{} / {}</td></tr>\n",
+            escape_html(&percent_path(g.folder)),
+            escape_html(g.name),
+            score_text(*t),
+            score_text(most)
+        ));
+    }
+    body.push_str("</table>\n");
+    page(lang, lang.of(words::GRADE_CLASS_TITLE), &body)
+}
+
+/// A folder name as a relative link: every byte outside the unreserved set percent-encoded.
+fn percent_path(name: &str) -> String {
+    name.bytes()
+        .map(|b| match b {
+            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'-' | b'_' | b'.' | b'~' => {
+                (b as char).to_string()
+            }
+            _ => format!("%{b:02X}"),
+        })
+        .collect()
 }
 
 #[cfg(test)]

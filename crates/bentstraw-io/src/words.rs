@@ -727,3 +727,96 @@ mod tests {
         assert_eq!(Lang::Fr.code(), "fr");
     }
 }
+
+// Grading a class.
+/// The class page's title.
+pub const GRADE_CLASS_TITLE: Text = t("The class at a glance", "La classe d'un coup d'œil");
+/// A student's feedback page's title.
+pub const GRADE_STUDENT_TITLE: Text = t("{}: feedback", "{} : retour");
+/// The class page's line on the class.
+pub const GRADE_CLASS_LINE: Text = t(
+    "{} students, {} cases each; mean score {} of {}.",
+    "{} élèves, {} cas chacun ; note moyenne {} sur {}.",
+);
+/// Heading of the distribution of scores.
+pub const GRADE_SCORES: Text = t("Scores", "Notes");
+/// Heading of the pass rates.
+pub const GRADE_PASS_RATES: Text = t("Each case", "Chaque cas");
+/// Heading of the common mistakes.
+pub const GRADE_MISTAKES: Text = t("Common mistakes", "Erreurs fréquentes");
+/// A common mistake: how many students miss a part of the image.
+pub const GRADE_MISTAKE: Text = t(
+    "{} students miss the {} points seen {}",
+    "{} élèves n'ont pas les points {} vus {}",
+);
+/// No common mistake.
+pub const GRADE_NO_MISTAKE: Text = t(
+    "No part of the image is missed by two students or more.",
+    "Aucune partie de l'image ne manque à deux élèves ou plus.",
+);
+/// Column heads of the case table.
+pub const GRADE_CASE_HEADS: [Text; 5] = [
+    t("case", "cas"),
+    t("verdict", "verdict"),
+    t("score", "note"),
+    t("points right", "points justes"),
+    t("coverage", "couverture"),
+];
+/// Column heads of the pass rates.
+pub const GRADE_RATE_HEADS: [Text; 5] = [
+    t("case", "cas"),
+    t("pass", "réussi"),
+    t("fail", "échoué"),
+    t("missing", "manquant"),
+    t("unreadable", "illisible"),
+];
+/// The verdicts, in the order of `CaseVerdict`.
+pub const GRADE_VERDICTS: [Text; 4] = [
+    t("pass", "réussi"),
+    t("fail", "échoué"),
+    t("missing", "manquant"),
+    t("unreadable", "illisible"),
+];
+/// A missing region of the image.
+pub const GRADE_MISSING_REGION: Text = t(
+    "missing: {} ({} % of its image), seen {}, {}",
+    "manquent : {} ({} % de son image), vu {}, {}",
+);
+/// Where a missing region lies along its section, in the order of `Place`.
+pub const GRADE_PLACES: [Text; 4] = [
+    t(
+        "over its whole visible height",
+        "sur toute sa hauteur visible",
+    ),
+    t("at the top end", "en haut"),
+    t("at the bottom end", "en bas"),
+    t("in the middle", "au milieu"),
+];
+/// The total of a student.
+pub const GRADE_TOTAL: Text = t("Total: {} of {}", "Total : {} sur {}");
+/// The note under a student's table: how a fail is scored.
+pub const GRADE_HOW: Text = t(
+    "A pass scores the case's points; a fail scores them times the share of right points times \
+     the coverage over the coverage asked for (at most 1); a missing or unreadable file scores 0. \
+     Why the points are where they are: bentstraw's docs/physics.md.",
+    "Un cas réussi rapporte ses points ; un cas échoué, ses points fois la part de points justes \
+     fois la couverture rapportée à celle demandée (au plus 1) ; un fichier manquant ou illisible, \
+     0. Pourquoi les points sont où ils sont : docs/physics.md de bentstraw.",
+);
+/// A case passed.
+pub const GRADE_NOTE_PASS: Text = t(
+    "{}: every point right, the image covered",
+    "{} : tous les points justes, l'image couverte",
+);
+/// Points wrong.
+pub const GRADE_NOTE_WRONG: Text = t("{} of {} points wrong", "{} points faux sur {}");
+/// Coverage short.
+pub const GRADE_NOTE_COVERAGE: Text = t(
+    "{} % of a colour's image covered (at least {} % asked)",
+    "{} % de l'image d'une couleur couverte (au moins {} % demandés)",
+);
+/// No file handed in.
+pub const GRADE_NOTE_MISSING: Text = t(
+    "no file {}.csv, .txt or .dat in the student's folder",
+    "aucun fichier {}.csv, .txt ou .dat dans le dossier de l'élève",
+);

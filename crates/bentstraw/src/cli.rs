@@ -64,8 +64,9 @@ comma, semicolon, tab or spaces; lines starting with # or % are comments). Exit 
 folders, Name_Id_assignsubmission_file_, give the name). Each student hands in sim1 … sim4 (.csv, \
 .txt or .dat), the four reference simulations, 25 points each: a pass scores them, a fail the \
 share of right points times the coverage over the coverage asked for, a missing or unreadable file \
-none. Writes DIR/grades.csv and DIR/<student>/results.json (Gradescope's format). Exit code 0 \
-when the class is graded, 2 for bad input.\n\nExample:\n  bentstraw grade submissions/ --out grades/"
+none. Writes DIR/grades.csv, the class at a glance (DIR/index.html), and for each student the \
+feedback page (DIR/<student>/index.html) and Gradescope's results (DIR/<student>/results.json). \
+Exit code 0 when the class is graded, 2 for bad input.\n\nExample:\n  bentstraw grade submissions/ --out grades/"
     )]
     Grade(GradeArgs),
     /// Explore live in the browser: drag the eye around the glass, click to see the light's path.
@@ -413,9 +414,13 @@ pub struct GradeArgs {
     /// The class: a folder with one sub-folder per student
     #[arg(value_name = "CLASS")]
     pub class: PathBuf,
-    /// Folder for the gradebook (grades.csv) and each student's results.json
+    /// Folder for the gradebook (grades.csv), the class's page (index.html) and each student's
+    /// feedback page and Gradescope results (STUDENT/index.html, STUDENT/results.json)
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+    /// The language of the feedback pages
+    #[arg(long, value_enum, default_value_t = LangArg::En)]
+    pub lang: LangArg,
 }
 
 /// Arguments of `explore`.

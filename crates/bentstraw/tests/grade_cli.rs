@@ -147,6 +147,30 @@ fn a_class_gets_check_verdicts_partial_scores_and_gradescope_results() {
         .join("Marie Curie_123456_assignsubmission_file_")
         .join("results.json")
         .is_file());
+
+    // The feedback pages: each student's, and the class's linking them.
+    let bob_page = fs::read_to_string(out.join("bob").join("index.html")).unwrap();
+    assert!(bob_page.contains("<html lang=\"en\">") && bob_page.contains("missing: "));
+    assert!(bob_page.contains(&format!("{} / 25", b[3])), "{bob_page}");
+    let overview = fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(overview.contains("href=\"Marie%20Curie_123456_assignsubmission_file_/index.html\""));
+    assert!(overview.contains("Common mistakes"));
+    // In French, the same verdicts in the explorer's words.
+    let o = bentstraw(
+        dir.path(),
+        &["grade", "class", "--out", "fr", "--lang", "fr"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let fr = fs::read_to_string(dir.path().join("fr").join("bob").join("index.html")).unwrap();
+    assert!(
+        fr.contains("<html lang=\"fr\">") && fr.contains("échoué"),
+        "{fr}"
+    );
+    assert!(fr.contains("manquent : "), "{fr}");
+    assert_eq!(
+        fs::read_to_string(dir.path().join("fr").join("grades.csv")).unwrap(),
+        csv
+    );
 }
 
 #[test]
