@@ -709,25 +709,6 @@ pub const DIAGRAM_KEY: [Text; 2] = [
     t("dashed: the line of sight", "tireté : la ligne de visée"),
 ];
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_template_takes_its_values_in_order() {
-        assert_eq!(
-            Lang::En.fill(SIMULATION_CHECK, &[&1, &1.05]),
-            "Simulation 1, check n_water = 1.05"
-        );
-        assert_eq!(
-            Lang::Fr.fill(SIMULATION_CHECK, &[&1, &1.05]),
-            "Simulation 1, vérification n_water = 1.05"
-        );
-        assert_eq!(Lang::Fr.section_name(3), "vert");
-        assert_eq!(Lang::Fr.code(), "fr");
-    }
-}
-
 // Grading a class.
 /// The class page's title.
 pub const GRADE_CLASS_TITLE: Text = t("The class at a glance", "La classe d'un coup d'œil");
@@ -820,3 +801,22 @@ pub const GRADE_NOTE_MISSING: Text = t(
     "no file {}.csv, .txt or .dat in the student's folder",
     "aucun fichier {}.csv, .txt ou .dat dans le dossier de l'élève",
 );
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_template_takes_its_values_in_order() {
+        assert_eq!(
+            Lang::En.fill(SIMULATION_CHECK, &[&1, &1.05]),
+            "Simulation 1, check n_water = 1.05"
+        );
+        assert_eq!(
+            Lang::Fr.fill(SIMULATION_CHECK, &[&1, &1.05]),
+            "Simulation 1, vérification n_water = 1.05"
+        );
+        assert_eq!(Lang::Fr.section_name(3), "vert");
+        assert_eq!(Lang::Fr.code(), "fr");
+    }
+}
