@@ -14,9 +14,14 @@ use bentstraw_optics::setup::{SceneValues, Setup};
 
 use bentstraw_optics::text::clip_text;
 
+use serde::Deserialize;
+
 use crate::error::{Error, Result};
 use crate::escape::escape_html;
+use crate::files::{read_input, Unread};
+use crate::solution::CheckOptions;
 use crate::solution::{read_solution_of, Solution};
+use crate::view_spec::{SceneFile, ViewSpec};
 use crate::words::{self, Lang};
 
 /// Points of each case of the default assignment (four cases: 100 in all).
@@ -33,8 +38,9 @@ const MOODLE_SUFFIX: &str = "_assignsubmission_file_";
 pub struct Case {
     /// The case's name (a column of the gradebook), e.g. `sim1`.
     pub name: String,
-    /// The file's name without its extension, matched whatever the letters' case.
-    pub stem: String,
+    /// The names the case's file may have: patterns where `*` stands for any characters and `?`
+    /// for one, matched whatever the letters' case.
+    pub files: Vec<String>,
     /// The scene and observer the solution is computed for.
     pub setup: Setup,
     /// Points a pass scores.
@@ -60,7 +66,10 @@ pub fn reference_assignment() -> Result<Vec<Case>> {
             };
             Ok(Case {
                 name: format!("sim{}", r.number),
-                stem: format!("sim{}", r.number),
+                files: SOLUTION_EXTENSIONS
+                    .iter()
+                    .map(|e| format!("sim{}.{e}", r.number))
+                    .collect(),
                 setup: Setup::from_values(&values)?,
                 points: REFERENCE_CASE_POINTS,
                 tolerance: DEFAULT_TOLERANCE,
@@ -68,6 +77,176 @@ pub fn reference_assignment() -> Result<Vec<Case>> {
             })
         })
         .collect()
+}
+
+/// Most cases in an assignment file.
+pub const MAX_CASES: usize = 100;
+/// Largest assignment file read (bytes).
+pub const MAX_ASSIGNMENT_BYTES: u64 = 1 << 20;
+
+/// One `[[case]]` of an assignment file, as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CaseEntry {
+    name: String,
+    file: Option<String>,
+    points: Option<f64>,
+    scene: Option<String>,
+    observer: Option<[f64; 3]>,
+    straw: Option<[f64; 2]>,
+    water_height: Option<f64>,
+    n_water: Option<f64>,
+    max_events: Option<u32>,
+    tolerance: Option<f64>,
+    min_coverage: Option<f64>,
+}
+
+/// An assignment file, as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AssignmentEntries {
+    case: Vec<CaseEntry>,
+}
+
+/// Reads the assignment file at `path` (see [`parse_assignment`]); its scene files are found
+/// beside it.
+pub fn read_assignment(path: &Path) -> Result<Vec<Case>> {
+    let name = clip_text(&path.display().to_string(), 80);
+    let bytes = read_input(path, MAX_ASSIGNMENT_BYTES).map_err(|unread| {
+        Error::Refused(match unread {
+            Unread::Io(e) => format!("cannot read the assignment {name}: {e}"),
+            Unread::NotAFile(why) => format!("cannot read the assignment {name}: {why}"),
+            Unread::TooLarge(size) => {
+                format!("the assignment {name} is {size}: at most {MAX_ASSIGNMENT_BYTES} bytes")
+            }
+        })
+    })?;
+    let text = String::from_utf8(bytes)
+        .map_err(|_| Error::Refused(format!("the assignment {name} is not UTF-8 text")))?;
+    let folder = path.parent().unwrap_or(Path::new("."));
+    parse_assignment(&name, &text, folder)
+}
+
+/// The cases of the assignment file `text` (named `name` in messages): a `[[case]]` table each,
+/// with `name`, and optionally `file` (its names: a pattern or a list of them; `NAME.csv`,
+/// `NAME.txt` or `NAME.dat` by default), `points` (25), the scene as `scene` (a gallery scene's
+/// name or a scene file beside the assignment, in `folder`) and the values `observer`, `straw`,
+/// `water_height`, `n_water` and `max_events` as the command line takes them, `tolerance` and
+/// `min_coverage` (`check`'s). Every broken rule is told, together.
+pub fn parse_assignment(name: &str, text: &str, folder: &Path) -> Result<Vec<Case>> {
+    let entries: AssignmentEntries = toml::from_str(text).map_err(|e| {
+        let line = e
+            .span()
+            .map(|s| {
+                let line = text.get(..s.start).map_or(0, |t| t.matches('\n').count()) + 1;
+                format!(" (line {line})")
+            })
+            .unwrap_or_default();
+        Error::Refused(format!("{name}{line}: {}", e.message().trim()))
+    })?;
+    let mut broken = Vec::new();
+    if entries.case.is_empty() {
+        broken.push(format!("{name}: no [[case]]: list at least one"));
+    }
+    if entries.case.len() > MAX_CASES {
+        broken.push(format!(
+            "{name}: {} cases: at most {MAX_CASES}",
+            entries.case.len()
+        ));
+    }
+    let mut cases = Vec::new();
+    for (k, c) in entries.case.iter().enumerate().take(MAX_CASES) {
+        let at = format!("{name}: case {} ({})", k + 1, clip_text(&c.name, 40));
+        let before = broken.len();
+        let plain = |s: &str| {
+            !s.is_empty()
+                && s.len() <= 64
+                && s.chars()
+                    .all(|ch| ch.is_alphanumeric() || "-_.".contains(ch))
+        };
+        if !plain(&c.name) {
+            broken.push(format!(
+                "{at}: name {:?} is not allowed: 1 to 64 letters, digits, '-', '_' or '.'",
+                clip_text(&c.name, 40)
+            ));
+        }
+        if entries.case[..k].iter().any(|o| o.name == c.name) {
+            broken.push(format!(
+                "{at}: another case has this name: give each its own"
+            ));
+        }
+        let files = match &c.file {
+            Some(f) if f.is_empty() || f.contains(['/', '\\']) || f.len() > 255 => {
+                broken.push(format!(
+                    "{at}: file {:?} is not allowed: a file name (with * or ?), no folder",
+                    clip_text(f, 40)
+                ));
+                Vec::new()
+            }
+            Some(f) => vec![f.clone()],
+            None => SOLUTION_EXTENSIONS
+                .iter()
+                .map(|e| format!("{}.{e}", c.name))
+                .collect(),
+        };
+        let points = c.points.unwrap_or(REFERENCE_CASE_POINTS);
+        if !(points.is_finite() && points > 0.0) {
+            broken.push(format!(
+                "{at}: points {points} is not allowed: it must be > 0"
+            ));
+        }
+        let tolerance = c.tolerance.unwrap_or(DEFAULT_TOLERANCE);
+        let min_coverage = c.min_coverage.unwrap_or(DEFAULT_MIN_COVERAGE);
+        let options = CheckOptions {
+            tolerance,
+            min_coverage,
+            worst: 0,
+        };
+        if let Err(e) = options.validate() {
+            broken.extend(e.to_string().lines().map(|l| format!("{at}: {l}")));
+        }
+        let scene = match &c.scene {
+            None => None,
+            Some(s) => match SceneFile::gallery(s) {
+                Some(file) => Some(file),
+                None => match SceneFile::read(&folder.join(s)) {
+                    Ok(file) => Some(file),
+                    Err(e) => {
+                        broken.push(format!("{at}: scene {s:?}: {e}"));
+                        continue;
+                    }
+                },
+            },
+        };
+        let view = ViewSpec {
+            scene,
+            values: SceneValues {
+                observer: c.observer,
+                straw: c.straw,
+                water_height: c.water_height,
+                n_water: c.n_water,
+                max_events: c.max_events.unwrap_or(DEFAULT_MAX_EVENTS),
+            },
+            ..ViewSpec::default()
+        };
+        match view.load() {
+            Ok(setup) if broken.len() == before => cases.push(Case {
+                name: c.name.clone(),
+                files,
+                setup,
+                points,
+                tolerance,
+                min_coverage,
+            }),
+            Ok(_) => {}
+            Err(e) => broken.extend(e.to_string().lines().map(|l| format!("{at}: {l}"))),
+        }
+    }
+    if broken.is_empty() {
+        Ok(cases)
+    } else {
+        Err(Error::Refused(broken.join("\n")))
+    }
 }
 
 /// A student: a name and the folder holding their files.
@@ -166,8 +345,8 @@ pub struct CaseGrade {
     pub student: String,
     /// The case's name.
     pub case: String,
-    /// The case's file name without its extension.
-    pub stem: String,
+    /// The names the case's file may have (as [`Case::files`]).
+    pub files: Vec<String>,
     /// The verdict.
     pub verdict: CaseVerdict,
     /// The score (see [`partial_score`]).
@@ -224,7 +403,18 @@ impl CaseGrade {
         let file = self.file.as_deref().unwrap_or("");
         match self.verdict {
             CaseVerdict::Pass => lang.fill(words::GRADE_NOTE_PASS, &[&file]),
-            CaseVerdict::Missing => lang.fill(words::GRADE_NOTE_MISSING, &[&self.stem]),
+            CaseVerdict::Missing => {
+                let or = match lang {
+                    Lang::En => " or ",
+                    Lang::Fr => " ou ",
+                };
+                let names = match self.files.split_last() {
+                    Some((last, [])) => last.clone(),
+                    Some((last, rest)) => format!("{}{or}{last}", rest.join(", ")),
+                    None => String::new(),
+                };
+                lang.fill(words::GRADE_NOTE_MISSING, &[&names])
+            }
             CaseVerdict::Unreadable => self.unread.clone().unwrap_or_default(),
             CaseVerdict::Fail => {
                 let mut why = Vec::new();
@@ -275,25 +465,47 @@ pub fn partial_score(
     (score * 100.0).round() / 100.0
 }
 
-/// The file in `folder` that holds `case`'s solution: `stem` with one of the solution
-/// extensions, whatever the letters' case; the first in name order if several.
+/// Whether the file name `name` matches `pattern` (`*` any characters, `?` one), whatever the
+/// letters' case.
+pub fn name_matches(pattern: &str, name: &str) -> bool {
+    let p: Vec<char> = pattern.to_lowercase().chars().collect();
+    let n: Vec<char> = name.to_lowercase().chars().collect();
+    // Greedy with one backtrack point per star: linear in practice, quadratic at worst.
+    let (mut i, mut j) = (0, 0);
+    let mut star: Option<(usize, usize)> = None;
+    while j < n.len() {
+        if i < p.len() && (p[i] == '?' || p[i] == n[j]) {
+            i += 1;
+            j += 1;
+        } else if i < p.len() && p[i] == '*' {
+            star = Some((i, j));
+            i += 1;
+        } else if let Some((si, sj)) = star {
+            i = si + 1;
+            j = sj + 1;
+            star = Some((si, sj + 1));
+        } else {
+            return false;
+        }
+    }
+    p[i..].iter().all(|&c| c == '*')
+}
+
+/// The file in `folder` that holds `case`'s solution: the first of its names that a file has
+/// (the first in name order if a pattern matches several).
 pub fn case_file(folder: &Path, case: &Case) -> Option<PathBuf> {
-    let mut candidates: Vec<PathBuf> = std::fs::read_dir(folder)
+    let names: Vec<(String, PathBuf)> = std::fs::read_dir(folder)
         .ok()?
         .flatten()
-        .map(|e| e.path())
-        .filter(|p| {
-            let (Some(stem), Some(ext)) = (p.file_stem(), p.extension()) else {
-                return false;
-            };
-            stem.to_string_lossy().eq_ignore_ascii_case(&case.stem)
-                && SOLUTION_EXTENSIONS
-                    .iter()
-                    .any(|e| ext.to_string_lossy().eq_ignore_ascii_case(e))
-        })
+        .map(|e| (e.file_name().to_string_lossy().into_owned(), e.path()))
         .collect();
-    candidates.sort();
-    candidates.into_iter().next()
+    case.files.iter().find_map(|pattern| {
+        names
+            .iter()
+            .filter(|(name, _)| name_matches(pattern, name))
+            .min_by(|a, b| a.0.cmp(&b.0))
+            .map(|(_, path)| path.clone())
+    })
 }
 
 /// Reads the solution at `path` and judges it as `check` does: the file, and the judgement.
@@ -319,7 +531,7 @@ pub fn grade_case(student: &Student, case: &Case) -> CaseGrade {
     let row = |verdict, file: Option<String>, unread: Option<String>| CaseGrade {
         student: student.name.clone(),
         case: case.name.clone(),
-        stem: case.stem.clone(),
+        files: case.files.clone(),
         verdict,
         score: 0.0,
         max_score: case.points,
@@ -681,6 +893,110 @@ mod tests {
         assert_eq!(partial_score(25.0, 0, 0, 0.0, 0.98), 0.0);
         // Coverage beyond the bar does not add.
         assert_eq!(partial_score(20.0, 10, 9, 1.0, 0.5), 18.0);
+    }
+
+    #[test]
+    fn file_name_patterns_match_whatever_the_case() {
+        assert!(name_matches("sim1.csv", "SIM1.CSV"));
+        assert!(name_matches("sim1.*", "sim1.txt"));
+        assert!(name_matches("*prism*.csv", "my_prism_v2.csv"));
+        assert!(name_matches("sim?.dat", "sim4.dat"));
+        assert!(!name_matches("sim1.*", "sim12.txt"));
+        assert!(!name_matches("*.csv", "a.csv.txt"));
+        assert!(name_matches("**", ""));
+    }
+
+    #[test]
+    fn an_assignment_file_gives_its_cases_with_the_defaults() {
+        let text = r#"
+[[case]]
+name = "straight"
+observer = [0.1, 0.0, 0.1]
+straw = [0.02, 0.01]
+water_height = 0.15
+
+[[case]]
+name = "leaning"
+file = "*lean*.csv"
+scene = "leaning-straw"
+points = 10
+tolerance = 2e-6
+min_coverage = 0.9
+"#;
+        let cases = parse_assignment("lab.toml", text, Path::new(".")).unwrap();
+        assert_eq!(cases.len(), 2);
+        assert_eq!(
+            cases[0].files,
+            ["straight.csv", "straight.txt", "straight.dat"]
+        );
+        assert_eq!(cases[0].points, REFERENCE_CASE_POINTS);
+        assert_eq!(cases[0].tolerance, DEFAULT_TOLERANCE);
+        assert_eq!(cases[0].setup.observer.to_array(), [0.1, 0.0, 0.1]);
+        assert_eq!(cases[1].files, ["*lean*.csv"]);
+        assert_eq!((cases[1].points, cases[1].min_coverage), (10.0, 0.9));
+        // The gallery scene's own observer.
+        let gallery = crate::view_spec::SceneFile::gallery("leaning-straw").unwrap();
+        let own = ViewSpec {
+            scene: Some(gallery),
+            values: SceneValues::default(),
+            ..ViewSpec::default()
+        }
+        .load()
+        .unwrap();
+        assert_eq!(cases[1].setup.observer, own.observer);
+    }
+
+    #[test]
+    fn an_assignment_file_is_refused_with_every_broken_rule_at_once() {
+        let text = r#"
+[[case]]
+name = "a b"
+points = -1
+min_coverage = 2
+observer = [0.1, 0.0, 0.1]
+straw = [0.02, 0.01]
+water_height = 0.15
+
+[[case]]
+name = "twice"
+file = "../x.csv"
+scene = "no-such-scene"
+
+[[case]]
+name = "twice"
+observer = [0.1, 0.0, 0.1]
+straw = [0.02, 0.01]
+water_height = 0.15
+"#;
+        let e = parse_assignment("lab.toml", text, Path::new("/nonexistent"))
+            .unwrap_err()
+            .to_string();
+        for part in [
+            "case 1 (a b): name",
+            "points -1",
+            "--min-coverage 2",
+            "case 2 (twice): file \"../x.csv\"",
+            "case 2 (twice): scene \"no-such-scene\"",
+            "case 3 (twice): another case has this name",
+        ] {
+            assert!(e.contains(part), "{part:?} not in {e}");
+        }
+        // Unknown keys and malformed TOML name the line.
+        let e = parse_assignment(
+            "lab.toml",
+            "[[case]]\nname = \"x\"\ncolour = 3\n",
+            Path::new("."),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("lab.toml (line 3)") && e.contains("colour"),
+            "{e}"
+        );
+        let e = parse_assignment("lab.toml", "case = []\n", Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("no [[case]]"), "{e}");
     }
 
     #[test]

@@ -798,8 +798,8 @@ pub const GRADE_NOTE_COVERAGE: Text = t(
 );
 /// No file handed in.
 pub const GRADE_NOTE_MISSING: Text = t(
-    "no file {}.csv, .txt or .dat in the student's folder",
-    "aucun fichier {}.csv, .txt ou .dat dans le dossier de l'élève",
+    "no file {} in the student's folder",
+    "aucun fichier {} dans le dossier de l'élève",
 );
 
 #[cfg(test)]

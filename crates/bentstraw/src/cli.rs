@@ -66,7 +66,8 @@ folders, Name_Id_assignsubmission_file_, give the name). Each student hands in s
 share of right points times the coverage over the coverage asked for, a missing or unreadable file \
 none. Writes DIR/grades.csv, the class at a glance (DIR/index.html), and for each student the \
 feedback page (DIR/<student>/index.html) and Gradescope's results (DIR/<student>/results.json). \
-Exit code 0 when the class is graded, 2 for bad input.\n\nExample:\n  bentstraw grade submissions/ --out grades/"
+Exit code 0 when the class is graded, 2 for bad input. --assignment FILE.toml grades other cases: scenes, \
+observers, files and points of your own.\n\nExample:\n  bentstraw grade submissions/ --out grades/\n  bentstraw grade submissions/ --out grades/ --assignment prism-lab.toml --lang fr"
     )]
     Grade(GradeArgs),
     /// Explore live in the browser: drag the eye around the glass, click to see the light's path.
@@ -418,6 +419,10 @@ pub struct GradeArgs {
     /// feedback page and Gradescope results (STUDENT/index.html, STUDENT/results.json)
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+    /// The cases to grade (TOML: a [[case]] table each, see docs/usage.md) instead of the four
+    /// reference simulations
+    #[arg(long, value_name = "FILE.toml")]
+    pub assignment: Option<PathBuf>,
     /// The language of the feedback pages
     #[arg(long, value_enum, default_value_t = LangArg::En)]
     pub lang: LangArg,

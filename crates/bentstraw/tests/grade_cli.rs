@@ -190,3 +190,68 @@ fn a_class_folder_that_is_not_one_is_refused_and_nothing_is_written() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("no sub-folder"));
     assert!(!dir.path().join("grades").exists());
 }
+
+#[test]
+fn an_assignment_file_grades_its_own_scenes_files_and_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let student = dir.path().join("class").join("dana");
+    fs::create_dir_all(&student).unwrap();
+    let o = bentstraw(
+        dir.path(),
+        &[
+            "simulate",
+            "--scene",
+            "leaning-straw",
+            "--points",
+            "3000",
+            "--output",
+            "class/dana/My_Leaning.csv",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    fs::write(
+        dir.path().join("lab.toml"),
+        "[[case]]\nname = \"leaning\"\nfile = \"*leaning*.csv\"\nscene = \"leaning-straw\"\npoints = 10\n\n\
+         [[case]]\nname = \"classic\"\nobserver = [0.1, 0.0, 0.1]\nstraw = [0.02, 0.01]\nwater_height = 0.15\n",
+    )
+    .unwrap();
+    let o = bentstraw(
+        dir.path(),
+        &["grade", "class", "--out", "out", "--assignment", "lab.toml"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = fs::read_to_string(dir.path().join("out").join("grades.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    assert!(rows[0].starts_with("dana,leaning,pass,10,10,"), "{csv}");
+    assert!(
+        rows[1].starts_with("dana,classic,missing,0,25,")
+            && rows[1].contains("classic.csv, classic.txt or classic.dat"),
+        "{csv}"
+    );
+
+    // A broken assignment: every mistake told, exit 2, nothing written.
+    fs::write(
+        dir.path().join("bad.toml"),
+        "[[case]]\nname = \"x\"\npoints = 0\nscene = \"nowhere\"\n",
+    )
+    .unwrap();
+    let o = bentstraw(
+        dir.path(),
+        &[
+            "grade",
+            "class",
+            "--out",
+            "out2",
+            "--assignment",
+            "bad.toml",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("points 0") && err.contains("scene \"nowhere\""),
+        "{err}"
+    );
+    assert!(!dir.path().join("out2").exists());
+}

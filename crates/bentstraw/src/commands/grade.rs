@@ -8,8 +8,8 @@ use rayon::prelude::*;
 
 use bentstraw_io::files::{self, Output, OutputSet};
 use bentstraw_io::grade::{
-    class_page, grade_case, grades_csv, gradescope_results, reference_assignment, student_page,
-    students, CaseGrade, CaseVerdict, Graded,
+    class_page, grade_case, grades_csv, gradescope_results, read_assignment, reference_assignment,
+    student_page, students, CaseGrade, CaseVerdict, Graded,
 };
 use bentstraw_io::words::Lang;
 
@@ -19,7 +19,10 @@ use crate::progress;
 
 /// Runs `grade`.
 pub fn run(args: &GradeArgs) -> CliResult {
-    let cases = reference_assignment()?;
+    let cases = match &args.assignment {
+        Some(path) => read_assignment(path)?,
+        None => reference_assignment()?,
+    };
     let class = students(&args.class)?;
     let made = files::make_folder(&args.out)?;
     let result = write(args, &class, &cases);
