@@ -1,6 +1,6 @@
 //! Grading a class: every student's solution files judged as `check` judges one (the same
-//! reading and the same verdict), a score per case, and the class's table and Gradescope's
-//! results. A student whose file is missing or cannot be read gets that case's verdict with the
+//! reading and the same verdict), a score per case, the gradebook, Gradescope's results and the
+//! feedback pages. A student whose file is missing or cannot be read gets that case's verdict with the
 //! reason; the rest of the class is graded.
 
 use std::path::{Path, PathBuf};
@@ -11,16 +11,13 @@ use bentstraw_optics::check::{
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::scene::{DEFAULT_MAX_EVENTS, REFERENCES};
 use bentstraw_optics::setup::{SceneValues, Setup};
-
 use bentstraw_optics::text::clip_text;
-
 use serde::Deserialize;
 
 use crate::error::{Error, Result};
 use crate::escape::escape_html;
 use crate::files::{read_input, Unread};
-use crate::solution::CheckOptions;
-use crate::solution::{read_solution_of, Solution};
+use crate::solution::{read_solution_of, CheckOptions, Solution};
 use crate::view_spec::{SceneFile, ViewSpec};
 use crate::words::{self, Lang};
 
