@@ -419,7 +419,7 @@ pub struct GradeArgs {
     /// feedback page and Gradescope results (STUDENT/index.html, STUDENT/results.json)
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// The cases to grade (TOML: a [[case]] table each, see docs/usage.md) instead of the four
+    /// The cases to grade (TOML, one table per case, see docs/usage.md) instead of the four
     /// reference simulations
     #[arg(long, value_name = "FILE.toml")]
     pub assignment: Option<PathBuf>,
