@@ -48,6 +48,24 @@ pub struct Case {
     pub min_coverage: f64,
 }
 
+/// The names a case's file may have when the assignment does not say: `NAME` with one of the
+/// solution extensions.
+fn default_files(name: &str) -> Vec<String> {
+    SOLUTION_EXTENSIONS
+        .iter()
+        .map(|e| format!("{name}.{e}"))
+        .collect()
+}
+
+/// The cases to grade: the assignment file's (see [`read_assignment`]), else the four reference
+/// simulations ([`reference_assignment`]).
+pub fn assignment(file: Option<&Path>) -> Result<Vec<Case>> {
+    match file {
+        Some(path) => read_assignment(path),
+        None => reference_assignment(),
+    }
+}
+
 /// The four reference simulations, as the course sets them: files `sim1` … `sim4` (.csv, .txt or
 /// .dat), 25 points each, `check`'s tolerance and coverage.
 pub fn reference_assignment() -> Result<Vec<Case>> {
@@ -63,10 +81,7 @@ pub fn reference_assignment() -> Result<Vec<Case>> {
             };
             Ok(Case {
                 name: format!("sim{}", r.number),
-                files: SOLUTION_EXTENSIONS
-                    .iter()
-                    .map(|e| format!("sim{}.{e}", r.number))
-                    .collect(),
+                files: default_files(&format!("sim{}", r.number)),
                 setup: Setup::from_values(&values)?,
                 points: REFERENCE_CASE_POINTS,
                 tolerance: DEFAULT_TOLERANCE,
@@ -181,10 +196,7 @@ pub fn parse_assignment(name: &str, text: &str, folder: &Path) -> Result<Vec<Cas
                 Vec::new()
             }
             Some(f) => vec![f.clone()],
-            None => SOLUTION_EXTENSIONS
-                .iter()
-                .map(|e| format!("{}.{e}", c.name))
-                .collect(),
+            None => default_files(&c.name),
         };
         let points = c.points.unwrap_or(REFERENCE_CASE_POINTS);
         if !(points.is_finite() && points > 0.0) {
@@ -253,6 +265,17 @@ pub struct Student {
     pub name: String,
     /// The student's folder.
     pub folder: PathBuf,
+}
+
+impl Student {
+    /// The name of the student's folder (unique in the class): their outputs' folder too.
+    pub fn folder_name(&self) -> String {
+        self.folder
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned()
+    }
 }
 
 /// The name of a student's folder: Moodle's `Name_Id_assignsubmission_file_` gives `Name`.
@@ -785,7 +808,7 @@ pub fn class_page(lang: Lang, class: &[Graded]) -> String {
         "<h2>{}</h2>\n<table>\n<tr>",
         lang.of(words::GRADE_PASS_RATES)
     ));
-    for head in words::GRADE_RATE_HEADS {
+    for head in std::iter::once(words::GRADE_CASE_HEADS[0]).chain(words::GRADE_VERDICTS) {
         body.push_str(&format!("<th>{}</th>", lang.of(head)));
     }
     body.push_str("</tr>\n");

@@ -743,14 +743,6 @@ pub const GRADE_CASE_HEADS: [Text; 5] = [
     t("points right", "points justes"),
     t("coverage", "couverture"),
 ];
-/// Column heads of the pass rates.
-pub const GRADE_RATE_HEADS: [Text; 5] = [
-    t("case", "cas"),
-    t("pass", "réussi"),
-    t("fail", "échoué"),
-    t("missing", "manquant"),
-    t("unreadable", "illisible"),
-];
 /// The verdicts, in the order of `CaseVerdict`.
 pub const GRADE_VERDICTS: [Text; 4] = [
     t("pass", "réussi"),

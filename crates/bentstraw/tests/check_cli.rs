@@ -22,7 +22,7 @@ fn bentstraw(dir: &Path, args: &[String]) -> Output {
 }
 
 /// The scene flags of reference simulation `k` (1..=4).
-fn reference_flags(k: usize) -> Vec<String> {
+pub(crate) fn reference_flags(k: usize) -> Vec<String> {
     let r = &REFERENCES[k - 1];
     let o = r.observer;
     vec![

@@ -5,32 +5,11 @@
 
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
 
-use bentstraw_optics::scene::REFERENCES;
 use serde_json::Value;
 
-fn bentstraw(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_bentstraw"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-/// The scene flags of reference simulation `k` (1..=4).
-fn reference_flags(k: usize) -> Vec<String> {
-    let r = &REFERENCES[k - 1];
-    let o = r.observer;
-    vec![
-        "--observer".into(),
-        format!("{},{},{}", o.x, o.y, o.z),
-        "--straw".into(),
-        format!("{},{}", r.straw.0, r.straw.1),
-        "--water-height".into(),
-        format!("{}", r.water_height),
-    ]
-}
+use crate::bentstraw;
+use crate::check_cli::reference_flags;
 
 /// bentstraw's own points of reference `k`, written to `path` (a .csv).
 fn simulate(dir: &Path, k: usize, path: &Path) {

@@ -2,14 +2,14 @@
 //! one, with a progress line; the gradebook, the class's page, and each student's feedback page
 //! and Gradescope results written as one set (nothing replaced unless all are written).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use rayon::prelude::*;
 
 use bentstraw_io::files::{self, Output, OutputSet};
 use bentstraw_io::grade::{
-    class_page, grade_case, grades_csv, gradescope_results, read_assignment, reference_assignment,
-    student_page, students, CaseGrade, CaseVerdict, Graded,
+    assignment, class_page, grade_case, grades_csv, gradescope_results, student_page, students,
+    CaseGrade, CaseVerdict, Graded,
 };
 use bentstraw_io::words::Lang;
 
@@ -19,10 +19,7 @@ use crate::progress;
 
 /// Runs `grade`.
 pub fn run(args: &GradeArgs) -> CliResult {
-    let cases = match &args.assignment {
-        Some(path) => read_assignment(path)?,
-        None => reference_assignment()?,
-    };
+    let cases = assignment(args.assignment.as_deref())?;
     let class = students(&args.class)?;
     let made = files::make_folder(&args.out)?;
     let result = write(args, &class, &cases);
@@ -32,31 +29,27 @@ pub fn run(args: &GradeArgs) -> CliResult {
     result
 }
 
-/// The folder of a student's outputs: their folder's own name (unique in the class).
-fn output_folder(out: &Path, student: &bentstraw_io::grade::Student) -> PathBuf {
-    out.join(student.folder.file_name().unwrap_or_default())
-}
-
 fn write(
     args: &GradeArgs,
     class: &[bentstraw_io::grade::Student],
     cases: &[bentstraw_io::grade::Case],
 ) -> CliResult {
+    let folders: Vec<String> = class.iter().map(|s| s.folder_name()).collect();
     let mut made = Vec::new();
-    for s in class {
-        made.extend(files::make_folder(&output_folder(&args.out, s))?);
+    for f in &folders {
+        made.extend(files::make_folder(&args.out.join(f))?);
     }
     let result = (|| -> CliResult {
         let lang = Lang::from(args.lang);
         let grades = args.out.join("grades.csv");
         let overview = args.out.join("index.html");
-        let results: Vec<PathBuf> = class
+        let results: Vec<PathBuf> = folders
             .iter()
-            .map(|s| output_folder(&args.out, s).join("results.json"))
+            .map(|f| args.out.join(f).join("results.json"))
             .collect();
-        let pages: Vec<PathBuf> = class
+        let pages: Vec<PathBuf> = folders
             .iter()
-            .map(|s| output_folder(&args.out, s).join("index.html"))
+            .map(|f| args.out.join(f).join("index.html"))
             .collect();
         let mut outputs = vec![
             Output {
@@ -103,16 +96,6 @@ fn write(
             let page = student_page(lang, &class[k].name, student_rows);
             files::write_bytes(&pages[k], page.as_bytes())?;
         }
-        let folders: Vec<String> = class
-            .iter()
-            .map(|s| {
-                s.folder
-                    .file_name()
-                    .unwrap_or_default()
-                    .to_string_lossy()
-                    .into_owned()
-            })
-            .collect();
         let graded: Vec<Graded> = class
             .iter()
             .zip(&rows)
