@@ -76,7 +76,8 @@
 //! # Where the code is
 //! One concept per file: `eye` (the eye model: foci, apparent points), `stereo` (the stereo model:
 //! two eyes, triangulation), `reaim` (re-aiming at a straw point by Newton's method, and the
-//! oracles the tests check both models with), `pencil` (ray differentials). This module keeps what
+//! oracles the tests check both models with), `pencil` (ray differentials), `sweep` (one point's
+//! apparent position as the eye moves round the glass or up and down). This module keeps what
 //! they share: the light path, the pupil's axes, both models' images of the same points.
 //!
 //! # Example
@@ -106,6 +107,7 @@ mod eye;
 mod pencil;
 mod reaim;
 mod stereo;
+mod sweep;
 
 pub use eye::{
     eye_model_points, eye_model_points_until, ApparentPoint, Focus, INFINITY_VERGENCE, PUPIL_STEP,
@@ -114,6 +116,11 @@ pub use reaim::REACH_TOLERANCE;
 pub use stereo::{
     stereo_point_each, stereo_point_each_until, stereo_points, stereo_points_until, StereoEyes,
     StereoImage, StereoPoint, EYE_SEPARATION,
+};
+pub use sweep::{
+    default_sweep_point, sweep_apparent, sweep_apparent_until, sweep_seats, Sight, Sweep,
+    SweepKind, SweepRow, SweepSight, DEFAULT_SWEEP_ROWS, MAX_SWEEP_ROWS, MIN_SWEEP_ROWS,
+    SWEEP_POINT_TOLERANCE,
 };
 
 use crate::geometry::Ray;

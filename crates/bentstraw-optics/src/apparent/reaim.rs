@@ -460,7 +460,12 @@ impl<'a> Aim<'a> {
     }
 
     /// [`Aim::converge`], then a check with the tracer that the ray really reaches the straw point.
-    fn solve(&self, eye: Vec3, x0: [f64; 2], jacobian: &mut Option<Jacobian>) -> Option<[f64; 2]> {
+    pub(super) fn solve(
+        &self,
+        eye: Vec3,
+        x0: [f64; 2],
+        jacobian: &mut Option<Jacobian>,
+    ) -> Option<[f64; 2]> {
         let x = self.converge(eye, x0, jacobian, NEWTON_TOLERANCE)?;
         self.reaches(eye, x).then_some(x)
     }
