@@ -29,6 +29,7 @@ use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
 pub mod page;
+pub mod sweep;
 
 // The query's codec and the page's scene file's name, where the view as asked for is read.
 pub use bentstraw_io::view_spec::{parse_query, query_value, PAGE_SCENE_FILE};
@@ -936,6 +937,7 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame, memory: &Memory) -> Re
         "/api/ray" => ray_reply(&view, &q),
         "/api/export" => export_reply(&view, &q, &frame.stop_flag()),
         "/api/scene-file" => scene_file_reply(&view),
+        "/api/sweep" => sweep::sweep_reply(&view, &q, &frame.stop_flag()),
         _ => return Reply::text(404, format!("no such route: {}", clip_text(path, 60))),
     };
     result.unwrap_or_else(|e| Reply::text(400, e))

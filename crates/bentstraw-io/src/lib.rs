@@ -35,6 +35,7 @@ pub mod report_plan;
 pub mod scene_input;
 pub mod solution;
 pub mod summary;
+pub mod sweep;
 #[cfg(feature = "figures")]
 mod svg_marks;
 #[cfg(test)]

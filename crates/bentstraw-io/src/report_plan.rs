@@ -6,7 +6,10 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use bentstraw_optics::apparent::{eye_model_points, stereo_points};
+use bentstraw_optics::apparent::{
+    default_sweep_point, eye_model_points, stereo_points, sweep_apparent, Sweep, SweepKind,
+    DEFAULT_SWEEP_ROWS,
+};
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::check::{
     check_solution, ClaimedPoint, DEFAULT_MIN_COVERAGE, DEFAULT_TOLERANCE,
@@ -155,6 +158,7 @@ impl ReportPlan {
                 plan.jobs
                     .iter()
                     .flat_map(|job| job.outputs())
+                    .chain(sweep_files())
                     .chain([SCENE_PICTURE_FILE.to_string(), REPORT_FILE.to_string()])
                     .chain(validated.then(|| VALIDATION_FILE.to_string()))
                     .collect()
@@ -216,12 +220,14 @@ impl ReportPlan {
                     || scene_closing(plan, out, lang),
                 );
                 progress.step();
+                let mut closing = closing?;
+                closing.insert(0, sweep_section(plan, out, lang));
                 Report {
                     title: lang.fill(words::SCENE_TITLE, &[&plan.name]),
                     subtitle: lang.fill(words::SCENE_SUBTITLE, &[&plan.comment, &points]),
                     intro,
                     simulations: entries,
-                    closing: closing?,
+                    closing,
                     total: started.elapsed(),
                     lang,
                     footer: words::SCENE_FOOTER,
@@ -369,6 +375,9 @@ struct ScenePlan {
     refused: Vec<(f64, String)>,
     /// The scene file's hints: numbers that break no rule but look like a slip.
     hints: Vec<String>,
+    /// The point the observers look at: the other observers turn about the vertical through it,
+    /// and so does the eye in the sweep round the glass.
+    target: Vec3,
 }
 
 impl ScenePlan {
@@ -427,6 +436,7 @@ impl ScenePlan {
             jobs,
             turns,
             refused,
+            target,
         })
     }
 }
@@ -524,6 +534,108 @@ fn scene_intro(plan: &ScenePlan, out: &Path, lang: Lang) -> Vec<Section> {
             table: Vec::new(),
         },
     ]
+}
+
+/// The sweeps' kinds, in the report's order.
+const SWEEPS: [SweepKind; 2] = [SweepKind::Around, SweepKind::UpDown];
+/// Image points of the file's observer among which the sweeps' point is chosen.
+const SWEEP_CLOUD_POINTS: usize = 2000;
+
+/// A sweep's files: its figure and its CSV.
+fn sweep_file(kind: SweepKind, extension: &str) -> String {
+    format!("sweep_{}.{extension}", kind.name())
+}
+
+/// Every sweep's files.
+fn sweep_files() -> impl Iterator<Item = String> {
+    SWEEPS
+        .into_iter()
+        .flat_map(|k| [sweep_file(k, "svg"), sweep_file(k, "csv")])
+}
+
+/// Apparent depth against the viewing angle: one point the file's observer sees (the middle one,
+/// by height, of its lowest colour code: under water for a straw), followed as the eye moves
+/// round the glass and up and down; a figure and a CSV file each.
+fn sweep_section(plan: &ScenePlan, out: &Path, lang: Lang) -> Section {
+    let first = &plan.jobs[0].loaded;
+    let cloud = sample_image(&first.world, first.observer, SWEEP_CLOUD_POINTS, &|_| {});
+    let picked = default_sweep_point(&cloud.points);
+    let (lo, hi) = first.world.bounds();
+    let margin = first.size();
+    let limits = (lo.z - margin, hi.z + margin);
+    let figures = SWEEPS
+        .iter()
+        .map(|&kind| {
+            let rows = picked.map_or_else(Vec::new, |p| {
+                let sweep = Sweep {
+                    kind,
+                    centre: plan.target,
+                    rows: DEFAULT_SWEEP_ROWS,
+                };
+                sweep_apparent(
+                    first,
+                    first.observer,
+                    p.straw_point,
+                    Some(p.direction),
+                    &sweep,
+                )
+            });
+            let point = picked.map_or(plan.target, |p| p.straw_point);
+            let caption = match kind {
+                SweepKind::Around => {
+                    let mm = |v: f64| number_text((v * 1e4).round() / 1e4);
+                    lang.fill(
+                        words::SWEEP_AROUND_CAPTION,
+                        &[&mm(point.x), &mm(point.y), &mm(point.z)],
+                    )
+                }
+                SweepKind::UpDown => lang.of(words::SWEEP_UPDOWN_CAPTION).into(),
+            };
+            let (svg, csv) = (sweep_file(kind, "svg"), sweep_file(kind, "csv"));
+            let mut figure = Figure::image(&svg, &caption);
+            figure.error = crate::sweep::write_sweep_plot(
+                &out.join(&svg),
+                kind,
+                &rows,
+                point,
+                limits,
+                &caption_title(kind, lang),
+                lang,
+            )
+            .err()
+            .map(|e| e.to_string());
+            let written = crate::files::write_atomically(&out.join(&csv), |w| {
+                crate::sweep::write_sweep_csv(w, &rows)
+            });
+            figure.links.push(Link::new(
+                &csv,
+                lang.of(words::SWEEP_CSV),
+                written.err().map(|e| e.to_string()),
+            ));
+            figure
+        })
+        .collect();
+    let mut notes = vec![lang.of(words::SWEEP_NOTE).to_string()];
+    if picked.is_none() {
+        notes.push(lang.of(words::SWEEP_NONE).into());
+    }
+    Section {
+        title: lang.of(words::SWEEP).into(),
+        figures,
+        notes,
+        side_by_side: false,
+        printed: true,
+        table: Vec::new(),
+    }
+}
+
+/// A sweep figure's title: its x axis's words without the arrow.
+fn caption_title(kind: SweepKind, lang: Lang) -> String {
+    let axis = match kind {
+        SweepKind::Around => words::SWEEP_AROUND_AXIS,
+        SweepKind::UpDown => words::SWEEP_UPDOWN_AXIS,
+    };
+    lang.of(axis).trim_end_matches(" →").to_string()
 }
 
 /// The scene report's closing: the validation over the index of its bottom liquid, seen by every

@@ -680,6 +680,72 @@ pub const GAP_AXIS: Text = t(
     "gap to the course's point (mm) →",
     "écart au point du cours (mm) →",
 );
+/// The sweep section's heading: apparent depth against the viewing angle.
+pub const SWEEP: Text = t(
+    "Apparent depth from every seat",
+    "La profondeur apparente depuis chaque place",
+);
+/// The round-the-glass sweep's caption: the object point's coordinates fill it.
+pub const SWEEP_AROUND_CAPTION: Text = t(
+    "The point ({}, {}, {}) m as the eye moves round the glass at the observer's height and \
+     distance: the height of the course's point, of the eye model's two focal lines and of the \
+     stereo point at each seat; gaps where the point is hidden.",
+    "Le point ({}, {}, {}) m quand l'œil tourne autour du verre, à la hauteur et à la distance \
+     de l'observateur : la hauteur du point du cours, des deux focales du modèle de l'œil et du \
+     point stéréo depuis chaque place ; des trous là où le point est caché.",
+);
+/// The up-and-down sweep's caption: the object point's coordinates fill it.
+pub const SWEEP_UPDOWN_CAPTION: Text = t(
+    "The same point as the eye moves up and down at the same distance, from straight below to \
+     straight above.",
+    "Le même point quand l'œil monte et descend à la même distance, de juste en dessous à juste \
+     au-dessus.",
+);
+/// The sweep section's note: what the figures show and why.
+pub const SWEEP_NOTE: Text = t(
+    "Each seat sees the point along its own light path: the steeper the light leaves the water, \
+     the less the refraction lifts the point, and the farther apart the two focal lines lie. \
+     That is why the straw looks broken differently from every seat of a classroom. The eye \
+     follows one image of the point from the observer's seat as long as it lasts; where it is \
+     lost the point is looked for afresh (the path's kind is in the CSV). Heights in the \
+     figures; every position in the CSV files.",
+    "Chaque place voit le point par son propre chemin de lumière : plus la lumière sort de \
+     l'eau à la verticale, moins la réfraction relève le point, et plus les deux focales sont \
+     proches. C'est pourquoi la paille paraît brisée autrement depuis chaque place d'une classe. \
+     L'œil suit une image du point depuis la place de l'observateur tant qu'elle dure ; là où \
+     elle se perd, le point est cherché à nouveau (le genre du chemin est dans le CSV). Les \
+     hauteurs dans les figures ; toutes les positions dans les fichiers CSV.",
+);
+/// The round-the-glass sweep's x axis.
+pub const SWEEP_AROUND_AXIS: Text = t(
+    "turn of the eye round the glass from the observer's seat (°) →",
+    "rotation de l'œil autour du verre depuis la place de l'observateur (°) →",
+);
+/// The up-and-down sweep's x axis.
+pub const SWEEP_UPDOWN_AXIS: Text = t("elevation of the eye (°) →", "élévation de l'œil (°) →");
+/// The sweep's y axis.
+pub const SWEEP_HEIGHT_AXIS: Text = t(
+    "height z of the apparent point (cm) →",
+    "hauteur z du point apparent (cm) →",
+);
+/// The sweep's models, in the order of its figure and CSV.
+pub const SWEEP_MODELS: [Text; 4] = [
+    t("course's point (O + L·u0)", "point du cours (O + L·u0)"),
+    t("eye: horizontal focal line", "œil : focale horizontale"),
+    t("eye: vertical focal line", "œil : focale verticale"),
+    t("stereo point (two eyes)", "point stéréo (deux yeux)"),
+];
+/// The sweep's dashed line: the object point's own height.
+pub const SWEEP_TRUE: Text = t("the point itself", "le point lui-même");
+/// The sweep's mark of the observer's seat.
+pub const SWEEP_SEAT: Text = t("the observer's seat", "la place de l'observateur");
+/// The sweep section's note when the observer sees no object to follow.
+pub const SWEEP_NONE: Text = t(
+    "The file's observer sees no object: there is no point to follow.",
+    "L'observateur du fichier ne voit aucun objet : il n'y a pas de point à suivre.",
+);
+/// The link to a sweep's CSV.
+pub const SWEEP_CSV: Text = t("numbers (CSV)", "nombres (CSV)");
 /// The gap plot's series.
 pub const EYE_MODEL: Text = t("eye model", "modèle de l'œil");
 /// The gap plot's series.

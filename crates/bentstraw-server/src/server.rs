@@ -365,7 +365,7 @@ impl App {
         let heavy = matches!(
             path,
             "/api/frame" | "/api/model" | "/api/ray" | "/api/export"
-        );
+        ) || path == "/api/sweep";
         if !heavy {
             // Light routes remember nothing: a memory of their own, empty.
             let memory = api::Memory::default();

@@ -156,6 +156,7 @@ pub fn the_scene_report_has_its_observers_and_validation(folder: &Path) {
         "Observer 2: turned +45° about the vertical through the target",
         "Observer 3: turned −45° about the vertical through the target",
         "Observer 4: turned +90° about the vertical through the target",
+        "Apparent depth from every seat",
         "Validation",
         "Limits",
     ] {
@@ -185,6 +186,31 @@ pub fn the_scene_report_has_its_observers_and_validation(folder: &Path) {
     }
     for file in ["scene_view.png", "validation.svg"] {
         assert!(folder.join(file).is_file(), "no {file}");
+    }
+    // Apparent depth against the viewing angle: a figure and a CSV file for each sweep, a row
+    // per seat (61 on the grid, and the observer's own unless the grid holds it), the observer's
+    // seat seeing the point.
+    for kind in ["around", "updown"] {
+        for extension in ["svg", "csv"] {
+            let file = format!("sweep_{kind}.{extension}");
+            assert!(folder.join(&file).is_file(), "no {file}");
+            assert!(
+                index.contains(&format!("\"{file}\"")),
+                "{file} not in the report"
+            );
+        }
+        let csv = fs::read_to_string(folder.join(format!("sweep_{kind}.csv"))).unwrap();
+        let lines: Vec<&str> = csv.lines().collect();
+        assert!(lines[0].starts_with("angle_deg,eye_x_m,eye_y_m,eye_z_m,current,sight,path,"));
+        assert!((62..=63).contains(&lines.len()), "{} lines", lines.len());
+        let own: Vec<&&str> = lines
+            .iter()
+            .filter(|l| l.split(',').nth(4) == Some("1"))
+            .collect();
+        assert_eq!(own.len(), 1);
+        assert_eq!(own[0].split(',').nth(5), Some("seen"));
+        let svg = fs::read_to_string(folder.join(format!("sweep_{kind}.svg"))).unwrap();
+        assert!(svg.contains("height z of the apparent point (cm)"));
     }
     // Each observer's points checked as a solution, and its light paths counted.
     assert_eq!(index.matches("class=\"check pass solution\"").count(), 4);
@@ -224,6 +250,7 @@ pub fn the_french_scene_report_is_in_french(folder: &Path) {
         "Vue d'ensemble",
         "Observateur 1 : celui du fichier",
         "Observateur 2 : tourné de +45° autour de la verticale passant par la cible",
+        "La profondeur apparente depuis chaque place",
         "Validation",
         "Limites",
     ] {
