@@ -5,6 +5,7 @@ import { SECTION_RGB } from "./state.js";
 import { $ } from "./dom.js";
 import { wasm } from "./engine.js";
 import { frame, path } from "./frames.js";
+import { syncSweep } from "./sweep.js";
 
 // The engine's words in the page's language, from the keys its answers give.
 /** A colour code's name (1 red … 5 blue; 6 coin, 7 card, 8 arrow). */
@@ -31,6 +32,7 @@ const escapeHtml = (s) => String(s).replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "
 export function showHint() {
   $("readout").innerHTML = '<p class="hint" data-i18n="readout.hint"></p>';
   applyI18n($("readout"));
+  syncSweep();
 }
 
 /** The clicked ray's table: what it hit, its events, its image points and their gaps. */
@@ -56,6 +58,7 @@ export function showReadout() {
     row(t("ro.gap-stereo"), m(path.gap_stereo));
   }
   el.innerHTML = `<table id="path-table">${rows.join("")}</table>`;
+  syncSweep();
 }
 
 /** The status line: the frame's size, its points and the time it took. */

@@ -1,6 +1,7 @@
 //! `GET /api/sweep`: apparent depth against the viewing angle. One object point, picked in the
 //! picture (`row`, `col`, as `/api/ray` takes them) or given (`point=x,y,z`, on an object's
-//! surface), followed as the eye moves round the glass (`sweep=around`) or up and down
+//! surface, with `direction=dx,dy,dz` the direction the observer sees it along, if known: the
+//! readout's ray), followed as the eye moves round the glass (`sweep=around`) or up and down
 //! (`sweep=updown`) at the same distance from where the camera looks; `rows=N` seats (2 to 361,
 //! 61 when not given); `format=json` (the page's plot) or `format=csv` (the file, see
 //! `bentstraw_io::sweep`).
@@ -34,6 +35,21 @@ fn object_point(view: &View, q: &HashMap<String, String>) -> Result<(Vec3, Optio
                 clip_text(text, 40)
             ));
         }
+        let seen_along = match get(q, "direction") {
+            Some(d) => {
+                let u = parse_vec3(d).map(Vec3::from_array).map_err(|e| {
+                    format!("invalid value '{}' for 'direction': {e}", clip_text(d, 40))
+                })?;
+                if !u.is_finite() || u.length() < 1e-12 {
+                    return Err(format!(
+                        "invalid value '{}' for 'direction': not a direction (finite, not zero)",
+                        clip_text(d, 40)
+                    ));
+                }
+                Some(u)
+            }
+            None => None,
+        };
         let off = world.distance_to_objects(p);
         if off > SWEEP_POINT_TOLERANCE {
             return Err(format!(
@@ -46,7 +62,7 @@ fn object_point(view: &View, q: &HashMap<String, String>) -> Result<(Vec3, Optio
                 SWEEP_POINT_TOLERANCE * 1e3
             ));
         }
-        return Ok((p, None));
+        return Ok((p, seen_along));
     }
     let row: f64 = number(required(q, "row")?, "row")?;
     let col: f64 = number(required(q, "col")?, "col")?;
@@ -228,6 +244,17 @@ mod tests {
                 p[0], p[1], p[2]
             ));
             assert_eq!(by_point.status, 200);
+            // With the readout's direction too: exactly the readout's numbers at the seat.
+            let u = &ray["direction"];
+            let along: serde_json::Value = serde_json::from_slice(
+                &get(&format!(
+                    "/api/sweep?{REF2}{size}&point={},{},{}&direction={},{},{}&sweep={kind}&rows=21",
+                    p[0], p[1], p[2], u[0], u[1], u[2]
+                ))
+                .body,
+            )
+            .unwrap();
+            assert_eq!(along["rows"], v["rows"]);
         }
     }
 
@@ -250,6 +277,7 @@ mod tests {
         let off = refused("point=0.5,0.5,0.5");
         assert!(off.contains("from the nearest object's surface"), "{off}");
         assert!(refused("point=nan,0,0").contains("point"));
+        assert!(refused("point=0.02,0.015,0.05&direction=0,0,0").contains("'direction'"));
         assert!(refused("row=0&col=0").contains("reaches no object"));
         assert!(refused("row=500&col=0").contains("outside"));
         assert!(refused("sweep=around").contains("'row'"));
