@@ -55,9 +55,23 @@ pub fn write_check_figure(
     title: &str,
 ) -> Result {
     let format = FigureFormat::of(path)?;
+    let bytes = check_figure_bytes(path, format, scene, observer, points, report, title)?;
+    files::write_bytes(path, &bytes)
+}
+
+/// The check figure's bytes in `format` (`name` names it in an error).
+pub fn check_figure_bytes(
+    name: &Path,
+    format: FigureFormat,
+    scene: &Setup,
+    observer: Vec3,
+    points: &[ClaimedPoint],
+    report: &CheckReport,
+    title: &str,
+) -> Result<Vec<u8>> {
     let heading = check_heading(report, title, colours(scene));
-    let bytes = figure_bytes(
-        path,
+    figure_bytes(
+        name,
         format,
         three_view_size(&heading),
         |root| {
@@ -84,8 +98,7 @@ pub fn write_check_figure(
             )
             .map_err(|x| x.to_string())
         },
-    )?;
-    files::write_bytes(path, &bytes)
+    )
 }
 
 /// The check figure's heading: `title`, then the tally and the coverage.

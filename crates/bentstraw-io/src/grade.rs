@@ -12,12 +12,17 @@ use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::scene::{DEFAULT_MAX_EVENTS, REFERENCES};
 use bentstraw_optics::setup::{SceneValues, Setup};
 use bentstraw_optics::text::clip_text;
+use rayon::prelude::*;
 use serde::Deserialize;
 
+use crate::check_plot::check_figure_bytes;
+pub use crate::class::{students, HandIn, Student};
 use crate::error::{Error, Result};
 use crate::escape::escape_html;
-use crate::files::{read_input, Unread};
-use crate::solution::{read_solution_of, CheckOptions, Solution};
+use crate::files::{self, read_input, Output, OutputSet, Unread};
+use crate::html::base64;
+use crate::plot::FigureFormat;
+use crate::solution::{read_solution_of, solution_from_bytes, CheckOptions, Solution};
 use crate::view_spec::{SceneFile, ViewSpec};
 use crate::words::{self, Lang};
 
@@ -25,10 +30,6 @@ use crate::words::{self, Lang};
 pub const REFERENCE_CASE_POINTS: f64 = 25.0;
 /// The extensions a solution file of the default assignment may have.
 pub const SOLUTION_EXTENSIONS: [&str; 3] = ["csv", "txt", "dat"];
-/// Most students in a class (sub-folders read): a folder with more is not a class.
-pub const MAX_STUDENTS: usize = 5000;
-/// The suffix Moodle gives each student's folder in "download all submissions".
-const MOODLE_SUFFIX: &str = "_assignsubmission_file_";
 
 /// One case of an assignment: a solution file each student hands in, for one scene and observer.
 #[derive(Clone, Debug)]
@@ -258,81 +259,6 @@ pub fn parse_assignment(name: &str, text: &str, folder: &Path) -> Result<Vec<Cas
     }
 }
 
-/// A student: a name and the folder holding their files.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Student {
-    /// The name shown in the gradebook: the folder's, or Moodle's name part of it.
-    pub name: String,
-    /// The student's folder.
-    pub folder: PathBuf,
-}
-
-impl Student {
-    /// The name of the student's folder (unique in the class): their outputs' folder too.
-    pub fn folder_name(&self) -> String {
-        self.folder
-            .file_name()
-            .unwrap_or_default()
-            .to_string_lossy()
-            .into_owned()
-    }
-}
-
-/// The name of a student's folder: Moodle's `Name_Id_assignsubmission_file_` gives `Name`.
-pub fn student_name(folder_name: &str) -> String {
-    match folder_name.strip_suffix(MOODLE_SUFFIX) {
-        Some(rest) => match rest.rsplit_once('_') {
-            Some((name, id)) if !name.is_empty() && id.chars().all(|c| c.is_ascii_digit()) => {
-                name.to_string()
-            }
-            _ => rest.to_string(),
-        },
-        None => folder_name.to_string(),
-    }
-}
-
-/// The students of the class folder `class`: one per sub-folder (links are not followed), in
-/// the order of their names.
-pub fn students(class: &Path) -> Result<Vec<Student>> {
-    let entries = std::fs::read_dir(class).map_err(|e| {
-        Error::Refused(format!(
-            "cannot read the class folder {} ({e}): give a folder with one sub-folder per student",
-            class.display()
-        ))
-    })?;
-    let mut found = Vec::new();
-    for entry in entries.flatten() {
-        let Ok(kind) = entry.file_type() else {
-            continue;
-        };
-        if !kind.is_dir() {
-            continue; // files beside the students' folders, and links, are not students
-        }
-        let folder_name = entry.file_name().to_string_lossy().into_owned();
-        if folder_name.starts_with('.') {
-            continue;
-        }
-        found.push(Student {
-            name: student_name(&folder_name),
-            folder: entry.path(),
-        });
-        if found.len() > MAX_STUDENTS {
-            return Err(Error::Refused(format!(
-                "{} has more than {MAX_STUDENTS} sub-folders: not a class",
-                class.display()
-            )));
-        }
-    }
-    if found.is_empty() {
-        return Err(Error::Refused(format!(
-            "{} has no sub-folder: give a folder with one sub-folder per student",
-            class.display()
-        )));
-    }
-    found.sort_by(|a, b| a.name.cmp(&b.name).then(a.folder.cmp(&b.folder)));
-    Ok(found)
-}
-
 /// The verdict on one student's case.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CaseVerdict {
@@ -418,6 +344,59 @@ impl Missed {
 }
 
 impl CaseGrade {
+    /// The row of a case worth `max_score` whose file `file` was read and judged as `report`
+    /// says, with the coverage `min_coverage` asked for: a pass scores `max_score`, a fail its
+    /// [`partial_score`].
+    pub fn judged(
+        student: &str,
+        case: &str,
+        (max_score, min_coverage): (f64, f64),
+        file: &str,
+        report: &CheckReport,
+    ) -> CaseGrade {
+        let coverage = report
+            .coverage
+            .per_colour
+            .iter()
+            .map(|c| c.share())
+            .fold(1.0_f64, f64::min);
+        let (points, correct) = (report.tally.points, report.tally.correct);
+        let passes = report.passes();
+        CaseGrade {
+            student: student.to_string(),
+            case: case.to_string(),
+            files: Vec::new(),
+            verdict: if passes {
+                CaseVerdict::Pass
+            } else {
+                CaseVerdict::Fail
+            },
+            score: if passes {
+                max_score
+            } else {
+                partial_score(max_score, points, correct, coverage, min_coverage)
+            },
+            max_score,
+            points,
+            correct,
+            coverage,
+            file: Some(file.to_string()),
+            unread: None,
+            min_coverage,
+            missing: report
+                .coverage
+                .missing
+                .iter()
+                .map(|m| Missed {
+                    color: m.color,
+                    path: m.path,
+                    share: m.share_of_colour,
+                    place: m.place,
+                })
+                .collect(),
+        }
+    }
+
     /// Why, in one line: what is wrong, or why the file was not read.
     pub fn note(&self, lang: Lang) -> String {
         let file = self.file.as_deref().unwrap_or("");
@@ -511,21 +490,28 @@ pub fn name_matches(pattern: &str, name: &str) -> bool {
     p[i..].iter().all(|&c| c == '*')
 }
 
-/// The file in `folder` that holds `case`'s solution: the first of its names that a file has
-/// (the first in name order if a pattern matches several).
-pub fn case_file(folder: &Path, case: &Case) -> Option<PathBuf> {
-    let names: Vec<(String, PathBuf)> = std::fs::read_dir(folder)
-        .ok()?
-        .flatten()
-        .map(|e| (e.file_name().to_string_lossy().into_owned(), e.path()))
-        .collect();
+/// The file `student` handed in for `case`: the first of its names that a file has (the first
+/// in name order if a pattern matches several).
+pub fn case_file(student: &Student, case: &Case) -> Option<HandIn> {
+    let files = student.hand_ins();
     case.files.iter().find_map(|pattern| {
-        names
+        files
             .iter()
-            .filter(|(name, _)| name_matches(pattern, name))
-            .min_by(|a, b| a.0.cmp(&b.0))
-            .map(|(_, path)| path.clone())
+            .filter(|f| name_matches(pattern, &f.name))
+            .min_by(|a, b| a.name.cmp(&b.name))
+            .cloned()
     })
+}
+
+/// Judges `solution` as `check` does.
+fn judge(setup: &Setup, solution: &Solution, tolerance: f64, min_coverage: f64) -> CheckReport {
+    check_solution(
+        &setup.world,
+        setup.observer,
+        &solution.points,
+        tolerance,
+        min_coverage,
+    )
 }
 
 /// Reads the solution at `path` and judges it as `check` does: the file, and the judgement.
@@ -536,18 +522,18 @@ pub fn check_file(
     min_coverage: f64,
 ) -> Result<(Solution, CheckReport)> {
     let solution = read_solution_of(path, setup.colour_names().len())?;
-    let report = check_solution(
-        &setup.world,
-        setup.observer,
-        &solution.points,
-        tolerance,
-        min_coverage,
-    );
+    let report = judge(setup, &solution, tolerance, min_coverage);
     Ok((solution, report))
 }
 
 /// Grades `student`'s file for `case`.
 pub fn grade_case(student: &Student, case: &Case) -> CaseGrade {
+    judge_case(student, case).0
+}
+
+/// Grades `student`'s file for `case`: the row, and the solution with its judgement when the
+/// file was read.
+fn judge_case(student: &Student, case: &Case) -> (CaseGrade, Option<(Solution, CheckReport)>) {
     let row = |verdict, file: Option<String>, unread: Option<String>| CaseGrade {
         student: student.name.clone(),
         case: case.name.clone(),
@@ -563,62 +549,36 @@ pub fn grade_case(student: &Student, case: &Case) -> CaseGrade {
         min_coverage: case.min_coverage,
         missing: Vec::new(),
     };
-    let Some(path) = case_file(&student.folder, case) else {
-        return row(CaseVerdict::Missing, None, None);
+    let Some(file) = case_file(student, case) else {
+        return (row(CaseVerdict::Missing, None, None), None);
     };
-    let file_name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let unreadable = |why: String| row(CaseVerdict::Unreadable, Some(file_name.clone()), Some(why));
-    if std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_symlink()) {
-        return unreadable(format!("{file_name} is a link: hand in the file itself"));
-    }
-    match check_file(&case.setup, &path, case.tolerance, case.min_coverage) {
-        // The file named as the student named it, not by where the class was unpacked.
-        Err(e) => unreadable(
-            e.to_string()
-                .replace(&clip_text(&path.display().to_string(), 80), &file_name),
-        ),
-        Ok((_, report)) => {
-            let coverage = report
-                .coverage
-                .per_colour
-                .iter()
-                .map(|c| c.share())
-                .fold(1.0_f64, f64::min);
-            let (points, correct) = (report.tally.points, report.tally.correct);
-            let missing = report
-                .coverage
-                .missing
-                .iter()
-                .map(|m| Missed {
-                    color: m.color,
-                    path: m.path,
-                    share: m.share_of_colour,
-                    place: m.place,
-                })
-                .collect();
-            let passes = report.passes();
-            CaseGrade {
-                verdict: if passes {
-                    CaseVerdict::Pass
-                } else {
-                    CaseVerdict::Fail
-                },
-                score: if passes {
-                    case.points
-                } else {
-                    partial_score(case.points, points, correct, coverage, case.min_coverage)
-                },
-                points,
-                correct,
-                coverage,
-                missing,
-                ..row(CaseVerdict::Fail, Some(file_name.clone()), None)
-            }
-        }
-    }
+    let unreadable = |why: String| {
+        let row = row(CaseVerdict::Unreadable, Some(file.name.clone()), Some(why));
+        (row, None)
+    };
+    // The file named as the student named it, not by where the class was unpacked.
+    let name = clip_text(&file.name, 80);
+    let bytes = match student.read(&file) {
+        Ok(bytes) => bytes,
+        Err(why) => return unreadable(why),
+    };
+    let solution = match solution_from_bytes(&name, &bytes, case.setup.colour_names().len()) {
+        Ok(solution) => solution,
+        Err(e) => return unreadable(e.to_string()),
+    };
+    drop(bytes);
+    let report = judge(&case.setup, &solution, case.tolerance, case.min_coverage);
+    let graded = CaseGrade {
+        files: case.files.clone(),
+        ..CaseGrade::judged(
+            &student.name,
+            &case.name,
+            (case.points, case.min_coverage),
+            &file.name,
+            &report,
+        )
+    };
+    (graded, Some((solution, report)))
 }
 
 /// A field of the gradebook's CSV, quoted when it holds a comma, a quote or a line break.
@@ -649,6 +609,27 @@ pub fn grades_csv(rows: &[CaseGrade]) -> String {
         ));
     }
     out
+}
+
+/// The rows as JSON, for scripts and notebooks: the gradebook's columns (the note in `lang`), and
+/// the parts of the image each solution misses, in words.
+pub fn rows_json(rows: &[CaseGrade], lang: Lang) -> serde_json::Value {
+    rows.iter()
+        .map(|r| {
+            serde_json::json!({
+                "student": r.student,
+                "case": r.case,
+                "verdict": r.verdict.key(),
+                "score": r.score,
+                "max_score": r.max_score,
+                "points": r.points,
+                "correct": r.correct,
+                "coverage": r.coverage,
+                "note": r.note(lang),
+                "missing": r.missing.iter().map(|m| m.words(lang)).collect::<Vec<_>>(),
+            })
+        })
+        .collect()
 }
 
 /// One student's results in Gradescope's autograder format (`results.json`): the total score and
@@ -684,7 +665,7 @@ padding:0 1rem;line-height:1.4}table{border-collapse:collapse;width:100%}th,td{b
 solid #ccc;padding:.3rem;text-align:left;vertical-align:top}.pass{color:#1a7f37}.fail{color:#b35900}\
 .missing,.unreadable{color:#b00020}.bar{display:inline-block;height:.8rem;background:#4a78c2;max-width:80%}\
 tr:not(.why)>td:first-child{white-space:nowrap}tr.why td{padding-top:0;font-size:.95rem}tr:has(+tr.why) td\
-{border-bottom:none}ul{margin:.2rem 0}";
+{border-bottom:none}ul{margin:.2rem 0}figure{margin:1rem 0}figure img{max-width:100%;height:auto}";
 
 /// A page's frame around `body`.
 fn page(lang: Lang, title: &str, body: &str) -> String {
@@ -704,8 +685,14 @@ fn score_text(score: f64) -> String {
     text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
-/// The feedback page of one student (`rows`: their cases, in the assignment's order).
-pub fn student_page(lang: Lang, student: &str, rows: &[CaseGrade]) -> String {
+/// The feedback page of one student (`rows`: their cases, in the assignment's order; `figures`:
+/// each case's check figure as PNG, for the cases read).
+pub fn student_page(
+    lang: Lang,
+    student: &str,
+    rows: &[CaseGrade],
+    figures: &[Option<Vec<u8>>],
+) -> String {
     let mut body = String::from("<table>\n<tr>");
     for head in words::GRADE_CASE_HEADS {
         body.push_str(&format!("<th>{}</th>", lang.of(head)));
@@ -741,6 +728,20 @@ pub fn student_page(lang: Lang, student: &str, rows: &[CaseGrade]) -> String {
         lang.fill(words::GRADE_TOTAL, &[&score_text(total), &score_text(most)]),
         lang.of(words::GRADE_HOW)
     ));
+    // Each read case's check figure, in the page itself: one file a student can keep.
+    for (r, figure) in rows.iter().zip(figures) {
+        if let Some(png) = figure {
+            let caption = lang.fill(words::GRADE_FIGURE, &[&r.case]);
+            body.push_str(&format!(
+                "<figure id=\"figure-{}\"><img src=\"data:image/png;base64,{}\" alt=\"{}\">\
+                 <figcaption>{}</figcaption></figure>\n",
+                escape_html(&percent_path(&r.case)),
+                base64(png),
+                escape_html(&caption),
+                escape_html(&caption),
+            ));
+        }
+    }
     page(
         lang,
         &lang.fill(words::GRADE_STUDENT_TITLE, &[&student]),
@@ -891,20 +892,154 @@ fn percent_path(name: &str) -> String {
         .collect()
 }
 
+/// What [`grade_class`] graded and wrote.
+pub struct ClassGrades {
+    /// The students, in the class's order.
+    pub students: Vec<Student>,
+    /// Each student's cases, in the assignment's order.
+    pub rows: Vec<Vec<CaseGrade>>,
+    /// The gradebook written.
+    pub grades: PathBuf,
+    /// The class's page written.
+    pub overview: PathBuf,
+}
+
+/// Grades the class `class` (a folder or a zip: see [`students`]) on `cases` and writes into
+/// `out`, as one set (nothing is replaced unless all is written): the gradebook `grades.csv`,
+/// the class's page `index.html`, and in a folder per student their Gradescope `results.json`
+/// and their feedback page `index.html` with each read case's check figure, in `lang`. Students
+/// are graded in parallel; `graded(done, total)` is called after each case (for a progress line).
+pub fn grade_class(
+    class: &Path,
+    cases: &[Case],
+    out: &Path,
+    lang: Lang,
+    graded: &(dyn Fn(usize, usize) + Sync),
+) -> Result<ClassGrades> {
+    let students = students(class)?;
+    let made = files::make_folder(out)?;
+    let result = write_class(students, cases, out, lang, graded);
+    if result.is_err() {
+        files::remove_made_folders(&made);
+    }
+    result
+}
+
+/// [`grade_class`] once the students are known and `out` is made.
+fn write_class(
+    students: Vec<Student>,
+    cases: &[Case],
+    out: &Path,
+    lang: Lang,
+    graded: &(dyn Fn(usize, usize) + Sync),
+) -> Result<ClassGrades> {
+    let mut made = Vec::new();
+    let result = (|| {
+        for s in &students {
+            made.extend(files::make_folder(&out.join(&s.folder))?);
+        }
+        let grades = out.join("grades.csv");
+        let overview = out.join("index.html");
+        let results: Vec<PathBuf> = students
+            .iter()
+            .map(|s| out.join(&s.folder).join("results.json"))
+            .collect();
+        let pages: Vec<PathBuf> = students
+            .iter()
+            .map(|s| out.join(&s.folder).join("index.html"))
+            .collect();
+        let mut outputs = vec![
+            Output {
+                flag: "--out",
+                path: &grades,
+                extensions: &["csv"],
+            },
+            Output {
+                flag: "--out",
+                path: &overview,
+                extensions: &["html"],
+            },
+        ];
+        outputs.extend(results.iter().chain(&pages).map(|path| Output {
+            flag: "--out",
+            path,
+            extensions: &[],
+        }));
+        let set = OutputSet::reserve(&outputs)?;
+        let total = students.len() * cases.len();
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        // Each student's files are written as soon as they are graded: the figures are not all
+        // held at once.
+        let rows = students
+            .par_iter()
+            .enumerate()
+            .map(|(k, student)| {
+                let mut rows = Vec::with_capacity(cases.len());
+                let mut figures = Vec::with_capacity(cases.len());
+                for case in cases {
+                    let (row, judged) = judge_case(student, case);
+                    let figure = match judged {
+                        Some((solution, report)) => Some(check_figure_bytes(
+                            &pages[k],
+                            FigureFormat::Png,
+                            &case.setup,
+                            case.setup.observer,
+                            &solution.points,
+                            &report,
+                            &format!(
+                                "{}: {}: {}",
+                                clip_text(&student.name, 40),
+                                case.name,
+                                row.verdict.key()
+                            ),
+                        )?),
+                        None => None,
+                    };
+                    rows.push(row);
+                    figures.push(figure);
+                    graded(
+                        done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
+                        total,
+                    );
+                }
+                files::write_bytes(&results[k], gradescope_results(&rows).as_bytes())?;
+                let page = student_page(lang, &student.name, &rows, &figures);
+                files::write_bytes(&pages[k], page.as_bytes())?;
+                Ok(rows)
+            })
+            .collect::<Result<Vec<Vec<CaseGrade>>>>()?;
+        let all: Vec<CaseGrade> = rows.iter().flatten().cloned().collect();
+        files::write_bytes(&grades, grades_csv(&all).as_bytes())?;
+        let class: Vec<Graded> = students
+            .iter()
+            .zip(&rows)
+            .map(|(s, r)| Graded {
+                name: &s.name,
+                folder: &s.folder,
+                rows: r,
+            })
+            .collect();
+        files::write_bytes(&overview, class_page(lang, &class).as_bytes())?;
+        set.commit()?;
+        Ok((rows, grades, overview))
+    })();
+    match result {
+        Ok((rows, grades, overview)) => Ok(ClassGrades {
+            students,
+            rows,
+            grades,
+            overview,
+        }),
+        Err(e) => {
+            files::remove_made_folders(&made);
+            Err(e)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn moodle_folders_give_the_students_names() {
-        assert_eq!(
-            student_name("Marie Curie_123456_assignsubmission_file_"),
-            "Marie Curie"
-        );
-        assert_eq!(student_name("ada"), "ada");
-        // Not Moodle's id: kept whole.
-        assert_eq!(student_name("x_y_assignsubmission_file_"), "x_y");
-    }
 
     #[test]
     fn a_partial_score_weighs_right_points_by_coverage() {

@@ -9,12 +9,15 @@
 pub mod camera;
 #[cfg(feature = "figures")]
 pub mod check_plot;
+#[cfg(feature = "grade")]
+pub mod class;
 pub mod error;
 pub mod escape;
 pub mod files;
 pub mod gallery;
 #[cfg(feature = "figures")]
 pub mod gallery_report;
+#[cfg(feature = "grade")]
 pub mod grade;
 #[cfg(feature = "figures")]
 pub mod html;
@@ -35,9 +38,9 @@ pub mod report_plan;
 pub mod scene_input;
 pub mod solution;
 pub mod summary;
-pub mod sweep;
 #[cfg(feature = "figures")]
 mod svg_marks;
+pub mod sweep;
 #[cfg(test)]
 mod test_support;
 #[cfg(feature = "figures")]

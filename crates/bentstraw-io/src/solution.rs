@@ -97,17 +97,26 @@ fn rounding_error(digits: usize, largest: f64) -> f64 {
 /// scene whose colour codes go from 1 to `codes`.
 pub fn read_solution_of(path: &Path, codes: usize) -> Result<Solution> {
     let name = clip_text(&path.display().to_string(), 80);
-    let bytes = read_input(path, MAX_FILE_BYTES).map_err(|unread| {
-        Error::Refused(match unread {
-            Unread::Io(e) => format!("cannot read {name}: {e}"),
-            Unread::NotAFile(why) => format!("cannot read {name}: {why}"),
-            Unread::TooLarge(size) => format!(
-                "{name} is {size}: larger than any reasonable image (at most {MAX_FILE_BYTES} \
-                 bytes, {MAX_POINTS} points), not read"
-            ),
-        })
-    })?;
-    parse_solution_of(&bytes, codes).map_err(|e| Error::Refused(format!("{name}: {e}")))
+    let bytes =
+        read_input(path, MAX_FILE_BYTES).map_err(|u| Error::Refused(unread_words(&name, u)))?;
+    solution_from_bytes(&name, &bytes, codes)
+}
+
+/// Parses the bytes of the solution file `name` (see [`parse_solution_of`]); a refusal names it.
+pub fn solution_from_bytes(name: &str, bytes: &[u8], codes: usize) -> Result<Solution> {
+    parse_solution_of(bytes, codes).map_err(|e| Error::Refused(format!("{name}: {e}")))
+}
+
+/// Why the solution file `name` was not read, in words.
+pub fn unread_words(name: &str, unread: Unread) -> String {
+    match unread {
+        Unread::Io(e) => format!("cannot read {name}: {e}"),
+        Unread::NotAFile(why) => format!("cannot read {name}: {why}"),
+        Unread::TooLarge(size) => format!(
+            "{name} is {size}: larger than any reasonable image (at most {MAX_FILE_BYTES} \
+             bytes, {MAX_POINTS} points), not read"
+        ),
+    }
 }
 
 /// The colour columns' accepted names.

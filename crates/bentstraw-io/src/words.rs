@@ -29,6 +29,17 @@ pub struct Text {
 }
 
 impl Lang {
+    /// The language of the code `code` (`en` or `fr`), or a refusal naming the choices.
+    pub fn from_code(code: &str) -> Result<Lang, String> {
+        match code {
+            "en" => Ok(Lang::En),
+            "fr" => Ok(Lang::Fr),
+            other => Err(format!(
+                "language {other:?} is not known: choose \"en\" (English) or \"fr\" (French)"
+            )),
+        }
+    }
+
     /// The language's code, as `<html lang>` takes it.
     pub fn code(self) -> &'static str {
         match self {
@@ -735,6 +746,11 @@ pub const SWEEP_MODELS: [Text; 4] = [
     t("eye: vertical focal line", "œil : focale verticale"),
     t("stereo point (two eyes)", "point stéréo (deux yeux)"),
 ];
+/// The sweeps' figures' titles after the section's heading: round the glass, up and down.
+pub const SWEEP_KINDS: [Text; 2] = [
+    t("round the glass", "autour du verre"),
+    t("up and down", "de haut en bas"),
+];
 /// The sweep's dashed line: the object point's own height.
 pub const SWEEP_TRUE: Text = t("the point itself", "le point lui-même");
 /// The sweep's mark of the observer's seat.
@@ -833,6 +849,14 @@ pub const GRADE_PLACES: [Text; 4] = [
 ];
 /// The total of a student.
 pub const GRADE_TOTAL: Text = t("Total: {} of {}", "Total : {} sur {}");
+/// The caption of a case's check figure on a student's page.
+pub const GRADE_FIGURE: Text = t(
+    "{}: the true image pale, your points over it in full colour; wrong points marked by kind, \
+     the parts you miss outlined and numbered.",
+    "{} : l'image vraie en pâle, vos points par-dessus en couleurs vives ; les points faux marqués \
+     selon leur faute, les parties manquantes entourées et numérotées (le texte de la figure est \
+     en anglais).",
+);
 /// The note under a student's table: how a fail is scored.
 pub const GRADE_HOW: Text = t(
     "A pass scores the case's points; a fail scores them times the share of right points times \

@@ -12,13 +12,15 @@ use std::path::PathBuf;
 
 use bentstraw_io::camera::{scene_camera, CameraSpec};
 use bentstraw_io::gallery::GALLERY;
+use bentstraw_io::grade as grading;
 use bentstraw_io::pictures::{checked_shading, picture};
 use bentstraw_io::scene_input::{parse_scene_text, read_scene_text, SceneFile};
-use bentstraw_io::solution::{json_report, solution_of_points, CheckOptions};
+use bentstraw_io::solution::{json_report, solution_of_points, CheckOptions, Solution};
+use bentstraw_io::words::Lang;
 use bentstraw_io::writers::{check_points_asked, raw_weight_count};
 use bentstraw_io::{Error, ViewSpec};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
-use bentstraw_optics::check::check_solution;
+use bentstraw_optics::check::{check_solution, CheckReport};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
@@ -515,6 +517,37 @@ fn check(
         worst,
     };
     options.validate().map_err(python_error)?;
+    let started = std::time::Instant::now();
+    let (solution, report) = judged_points(py, scene, xyz, color, tolerance, min_coverage)?;
+    let seconds = started.elapsed().as_secs_f64();
+    let v = json_report(
+        "(arrays)",
+        &scene.loaded,
+        &solution,
+        &report,
+        &options,
+        seconds,
+    );
+    Ok(v.to_string())
+}
+
+/// The points `xyz` (n × 3, m) of colour codes `color` (n) as a solution, and their judgement
+/// from the scene's observer (the interpreter's lock released while it works).
+fn judged_points(
+    py: Python<'_>,
+    scene: &LoadedScene,
+    xyz: PyReadonlyArray2<'_, f64>,
+    color: PyReadonlyArray1<'_, f64>,
+    tolerance: f64,
+    min_coverage: f64,
+) -> PyResult<(Solution, CheckReport)> {
+    CheckOptions {
+        tolerance,
+        min_coverage,
+        worst: 0,
+    }
+    .validate()
+    .map_err(python_error)?;
     let loaded = &scene.loaded;
     let xyz = xyz.as_array();
     if xyz.ncols() != 3 {
@@ -527,7 +560,6 @@ fn check(
     let colors: Vec<f64> = color.as_array().iter().copied().collect();
     let solution = solution_of_points(&points, &colors, loaded.colour_names().len())
         .map_err(PyValueError::new_err)?;
-    let started = std::time::Instant::now();
     let report = py.detach(|| {
         check_solution(
             &loaded.world,
@@ -537,9 +569,55 @@ fn check(
             min_coverage,
         )
     });
-    let seconds = started.elapsed().as_secs_f64();
-    let v = json_report("(arrays)", loaded, &solution, &report, &options, seconds);
-    Ok(v.to_string())
+    Ok((solution, report))
+}
+
+/// Grades the class `class_dir` (a folder or zip of students' folders) as `bentstraw grade` does,
+/// on the assignment file's cases or the four reference simulations, writing its files into
+/// `out` (in `lang`): the gradebook's rows as JSON text.
+#[pyfunction]
+#[pyo3(signature = (class_dir, out, assignment, lang))]
+fn grade(
+    py: Python<'_>,
+    class_dir: PathBuf,
+    out: PathBuf,
+    assignment: Option<PathBuf>,
+    lang: &str,
+) -> PyResult<String> {
+    let lang = Lang::from_code(lang).map_err(PyValueError::new_err)?;
+    let cases = grading::assignment(assignment.as_deref()).map_err(python_error)?;
+    let graded = py
+        .detach(|| grading::grade_class(&class_dir, &cases, &out, lang, &|_, _| {}))
+        .map_err(python_error)?;
+    let rows: Vec<grading::CaseGrade> = graded.rows.into_iter().flatten().collect();
+    Ok(grading::rows_json(&rows, lang).to_string())
+}
+
+/// Grades the points `xyz` (n × 3, m) of colour codes `color` (n) as one case worth
+/// `max_score` is graded (the verdict `check` gives, and the same partial score): its row as
+/// JSON text, the note and the missing parts in `lang`.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn grade_points(
+    py: Python<'_>,
+    scene: &LoadedScene,
+    xyz: PyReadonlyArray2<'_, f64>,
+    color: PyReadonlyArray1<'_, f64>,
+    tolerance: f64,
+    min_coverage: f64,
+    max_score: f64,
+    lang: &str,
+) -> PyResult<String> {
+    let lang = Lang::from_code(lang).map_err(PyValueError::new_err)?;
+    if !(max_score.is_finite() && max_score >= 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "points {max_score} is not allowed: a case is worth a finite number >= 0 of points"
+        )));
+    }
+    let (solution, report) = judged_points(py, scene, xyz, color, tolerance, min_coverage)?;
+    drop(solution);
+    let row = grading::CaseGrade::judged("", "solution", (max_score, min_coverage), "xyz", &report);
+    Ok(grading::rows_json(&[row], lang)[0].to_string())
 }
 
 /// The light path of one ray from the scene's observer, along `direction` or toward the point
@@ -598,6 +676,8 @@ fn _engine(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(light_paths, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_function(wrap_pyfunction!(grade, m)?)?;
+    m.add_function(wrap_pyfunction!(grade_points, m)?)?;
     m.add_function(wrap_pyfunction!(trace, m)?)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     m.add("WATER_INDEX", bentstraw_optics::scene::WATER_INDEX)?;

@@ -211,6 +211,77 @@ def test_check_gives_the_command_lines_verdicts(tmp_path):
     assert bentstraw.check(faulty, colors, **REF2)["verdict"] == "fail"
 
 
+def test_grade_writes_the_command_lines_files_and_returns_its_rows(tmp_path):
+    """A class of three (a pass, a fail, a malformed file, files missing) as a folder and as a zip:
+    the rows are the gradebook's, and the files the command line's, byte for byte."""
+    import zipfile
+
+    class_dir = tmp_path / "class"
+    flags = ["--observer", "0,0.1,0.1", "--straw", "0.02,0.01", "--water-height", "0.15"]
+    for student in ["ada", "bob", "carl"]:
+        (class_dir / student).mkdir(parents=True)
+    run("simulate", *flags, "--points", "3000", "--output", class_dir / "ada" / "sim1.csv")
+    run("simulate", "--observer", "0.1,0,0.1", "--straw", "0.02,0.01", "--water-height", "0.15",
+        "--points", "3000", "--output", class_dir / "bob" / "sim1.csv")
+    (class_dir / "carl" / "sim1.txt").write_text("x y z color\n0.1 0.2 oops 1\n")
+    rows = bentstraw.grade(class_dir, tmp_path / "py")
+    run("grade", class_dir, "--out", tmp_path / "cli")
+    for name in ["grades.csv", "index.html", "ada/index.html", "bob/results.json"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    with open(tmp_path / "cli" / "grades.csv", newline="") as f:
+        book = list(csv.DictReader(f))
+    assert len(rows) == len(book) == 12
+    for row, line in zip(rows, book):
+        for key in ["student", "case", "verdict", "note"]:
+            assert str(row[key]) == line[key]
+        for key in ["score", "max_score", "points", "correct"]:
+            assert float(row[key]) == float(line[key])
+    verdicts = {(r["student"], r["case"]): r for r in rows}
+    assert verdicts["ada", "sim1"]["verdict"] == "pass"
+    assert verdicts["bob", "sim1"]["verdict"] == "fail" and 0 < verdicts["bob", "sim1"]["score"] < 25
+    assert verdicts["carl", "sim1"]["verdict"] == "unreadable"
+    assert "line 2" in verdicts["carl", "sim1"]["note"]
+    assert verdicts["ada", "sim2"]["verdict"] == "missing"
+    # A zip of the same folders grades the same.
+    with zipfile.ZipFile(tmp_path / "class.zip", "w", zipfile.ZIP_DEFLATED) as z:
+        for f in sorted(class_dir.rglob("*.*")):
+            z.write(f, f.relative_to(tmp_path))
+    assert bentstraw.grade(tmp_path / "class.zip", tmp_path / "zipped") == rows
+    fr = bentstraw.grade(class_dir, tmp_path / "fr", lang="fr")
+    assert [r["score"] for r in fr] == [r["score"] for r in rows]
+    assert "<html lang=\"fr\">" in (tmp_path / "fr" / "bob" / "index.html").read_text()
+    with pytest.raises(ValueError, match="no sub-folder"):
+        bentstraw.grade(tmp_path / "fr" / "ada", tmp_path / "none")
+    assert not (tmp_path / "none").exists()
+    with pytest.raises(ValueError, match="language"):
+        bentstraw.grade(class_dir, tmp_path / "none", lang="de")
+
+
+def test_assert_solution_passes_the_image_and_fails_the_rest_with_its_partial_score():
+    sim = bentstraw.simulate(**REF2, points=3000)
+    assert bentstraw.assert_solution(sim.xyz, sim.color, **REF2)["verdict"] == "pass"
+    # Every third point's length wrong, and only the upper half of the image: a fail, scored by
+    # the share of right points times the coverage over the coverage asked for.
+    upper = sim.xyz[:, 2] > np.median(sim.xyz[:, 2])
+    xyz, color = sim.xyz[upper].copy(), sim.color[upper]
+    xyz[::3, 2] += 0.004
+    with pytest.raises(AssertionError) as e:
+        bentstraw.assert_solution(xyz, color, **REF2, points=10)
+    report = bentstraw.check(xyz, color, **REF2)
+    share = report["correct"] / report["points"]
+    coverage = min(report["coverage"].values()) if isinstance(report["coverage"], dict) else min(report["coverage"])
+    expected = 10 * share * min(1.0, coverage / bentstraw.DEFAULT_MIN_COVERAGE)
+    assert isinstance(e.value, bentstraw.SolutionError)
+    assert abs(e.value.score - expected) <= 0.006 and e.value.max_score == 10
+    message = str(e.value)
+    assert f"{report['points'] - report['correct']} of {report['points']} points wrong" in message
+    assert "of its image" in message and "partial score" in message
+    # Each missing region named as check names it.
+    for region in e.value.row["missing"]:
+        assert region in message
+    assert len(e.value.row["missing"]) >= 1
+
+
 @pytest.mark.parametrize(
     "call, words",
     [

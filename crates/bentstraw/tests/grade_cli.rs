@@ -134,6 +134,51 @@ fn a_class_gets_check_verdicts_partial_scores_and_gradescope_results() {
     let overview = fs::read_to_string(out.join("index.html")).unwrap();
     assert!(overview.contains("href=\"Marie%20Curie_123456_assignsubmission_file_/index.html\""));
     assert!(overview.contains("Common mistakes"));
+    // Each read case's check figure is in the student's page; a missing one has none.
+    assert_eq!(
+        bob_page
+            .matches("<img src=\"data:image/png;base64,")
+            .count(),
+        1
+    );
+    let carl_page = fs::read_to_string(out.join("carl").join("index.html")).unwrap();
+    assert!(!carl_page.contains("<img"));
+
+    // The same class handed in as one zip (with Moodle's folder and a zip bomb): the same rows.
+    let zipped = dir.path().join("class.zip");
+    let mut zip = zip::ZipWriter::new(fs::File::create(&zipped).unwrap());
+    let deflated = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    for (folder, name) in [
+        (&ada, "sim1.csv"),
+        (&marie, "SIM2.TXT"),
+        (&bob, "sim1.csv"),
+        (&carl, "sim1.dat"),
+    ] {
+        let inside = format!(
+            "class/{}/{name}",
+            folder.file_name().unwrap().to_str().unwrap()
+        );
+        zip.start_file(inside, deflated).unwrap();
+        std::io::Write::write_all(&mut zip, &fs::read(folder.join(name)).unwrap()).unwrap();
+    }
+    #[cfg(unix)]
+    zip.add_symlink("class/carl/sim2.csv", "../ada/sim1.csv", deflated)
+        .unwrap();
+    zip.start_file("class/dan/sim3.csv", deflated).unwrap();
+    std::io::Write::write_all(&mut zip, &vec![b' '; 30 << 20]).unwrap();
+    zip.finish().unwrap();
+    let o = bentstraw(dir.path(), &["grade", "class.zip", "--out", "zipped"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let from_zip = fs::read_to_string(dir.path().join("zipped").join("grades.csv")).unwrap();
+    let (dan, others): (Vec<&str>, Vec<&str>) =
+        from_zip.lines().partition(|l| l.starts_with("dan,"));
+    assert_eq!(others.join("\n") + "\n", csv);
+    assert!(
+        dan[2].starts_with("dan,sim3,unreadable,0,") && dan[2].contains("zip bomb"),
+        "{dan:?}"
+    );
+
     // In French, the same verdicts in the explorer's words.
     let o = bentstraw(
         dir.path(),
@@ -156,11 +201,11 @@ fn a_class_gets_check_verdicts_partial_scores_and_gradescope_results() {
 fn a_class_folder_that_is_not_one_is_refused_and_nothing_is_written() {
     let dir = tempfile::tempdir().unwrap();
     fs::write(dir.path().join("file"), "x").unwrap();
-    for class in ["absent", "file"] {
+    for (class, why) in [("absent", "class folder"), ("file", "as a zip")] {
         let o = bentstraw(dir.path(), &["grade", class, "--out", "grades"]);
         assert_eq!(o.status.code(), Some(2));
         let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains("class folder"), "{err}");
+        assert!(err.contains(why), "{err}");
         assert!(!dir.path().join("grades").exists());
     }
     fs::create_dir(dir.path().join("empty")).unwrap();

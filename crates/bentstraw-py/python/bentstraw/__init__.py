@@ -38,6 +38,9 @@ __all__ = [
     "simulate",
     "render",
     "check",
+    "grade",
+    "assert_solution",
+    "SolutionError",
     "trace",
     "gallery",
     "WATER_INDEX",
@@ -458,16 +461,110 @@ def check(
     ...                 water_height=0.1)["verdict"]
     'pass'
     """
+    points, codes = _points(xyz, color)
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    report = _engine.check(loaded, points, codes, _number(tolerance, "tolerance"),
+                           _number(min_coverage, "min_coverage"), _count(worst, "worst"))
+    return json.loads(report)
+
+
+def grade(
+    class_dir: Union[str, "os.PathLike[str]"],
+    out: Union[str, "os.PathLike[str]"],
+    *,
+    assignment: Optional[Union[str, "os.PathLike[str]"]] = None,
+    lang: str = "en",
+) -> List[Dict[str, Any]]:
+    """Grades a whole class as ``bentstraw grade CLASS --out OUT`` does, and returns the
+    gradebook's rows.
+
+    ``class_dir`` is a folder with one sub-folder per student (Moodle's "download all
+    submissions" layout included), or a zip of such folders. The cases are the assignment file's
+    (``assignment``, TOML), else the four reference simulations (files ``sim1`` ... ``sim4``, 25
+    points each). Into ``out`` go, all together or not at all, ``grades.csv``, the class's page
+    ``index.html``, and per student their Gradescope ``results.json`` and feedback page with the
+    check figures (in French with ``lang="fr"``). Each row is a dict with ``student``, ``case``,
+    ``verdict`` (``"pass"``, ``"fail"``, ``"missing"`` or ``"unreadable"``), ``score``,
+    ``max_score``, ``points``, ``correct``, ``coverage``, ``note`` and ``missing`` (the parts of
+    the image the points miss, in words). A student's bad file is that case's verdict, with the
+    reason; the rest of the class is graded.
+    """
+    return json.loads(_engine.grade(os.fspath(class_dir), os.fspath(out),
+                                    None if assignment is None else os.fspath(assignment), lang))
+
+
+class SolutionError(AssertionError):
+    """Raised by :func:`assert_solution` when the points are not the image: the message names
+    what is wrong and the parts of the image missed; ``score`` is the partial score out of
+    ``max_score``, and ``row`` the whole grade (as :func:`grade` gives a row)."""
+
+    def __init__(self, message: str, row: Dict[str, Any]):
+        super().__init__(message)
+        self.row = row
+        self.score: float = row["score"]
+        self.max_score: float = row["max_score"]
+
+
+def assert_solution(
+    xyz: Any,
+    color: Any,
+    scene: SceneLike = None,
+    *,
+    observer: Optional[Vector3] = None,
+    straw: Optional[Vector2] = None,
+    water_height: Optional[float] = None,
+    n_water: Optional[float] = None,
+    max_events: int = DEFAULT_MAX_EVENTS,
+    tolerance: float = DEFAULT_TOLERANCE,
+    min_coverage: float = DEFAULT_MIN_COVERAGE,
+    points: float = 25.0,
+    lang: str = "en",
+) -> Dict[str, Any]:
+    """Asserts that ``xyz`` (``(N, 3)``, m) with colour codes ``color`` (``(N,)``) are the image
+    points of the scene seen from ``observer``, for notebook graders (nbgrader, Otter): passes
+    silently with the grade (a dict, as a row of :func:`grade`) when every point is right and the
+    image covered, as ``bentstraw check`` judges it; otherwise raises :class:`SolutionError` (an
+    ``AssertionError``) naming what is wrong and the parts of the image missed, carrying the
+    partial score out of ``points``.
+
+    >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+    >>> bentstraw.assert_solution(sim.xyz, sim.color, observer=(0.1, 0, 0.1), straw=(0, 0.02),
+    ...                           water_height=0.1)["score"]
+    25.0
+    >>> try:
+    ...     bentstraw.assert_solution(sim.xyz[::2], sim.color[::2] % 5 + 1,
+    ...                               observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+    ... except AssertionError as e:
+    ...     print(e.score < 25.0, str(e).split(":")[0])
+    True xyz
+    """
+    pts, codes = _points(xyz, color)
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    row = json.loads(_engine.grade_points(loaded, pts, codes, _number(tolerance, "tolerance"),
+                                          _number(min_coverage, "min_coverage"),
+                                          _number(points, "points"), lang))
+    if row["verdict"] != "pass":
+        message = row["note"]
+        if row["missing"]:
+            message += "\n" + "\n".join(row["missing"])
+        if lang == "fr":
+            message += f"\nnote partielle : {row['score']} sur {row['max_score']}"
+        else:
+            message += f"\npartial score: {row['score']} of {row['max_score']}"
+        raise SolutionError(message, row)
+    return row
+
+
+def _points(xyz: Any, color: Any) -> Tuple[np.ndarray, np.ndarray]:
+    """``xyz`` and ``color`` as contiguous float arrays of shapes ``(N, 3)`` and ``(N,)``, or a
+    ValueError naming the one that is not."""
     points = np.ascontiguousarray(np.asarray(xyz, dtype=np.float64))
     codes = np.ascontiguousarray(np.asarray(color, dtype=np.float64))
     if points.ndim != 2 or points.shape[1:] != (3,):
         raise ValueError(f"xyz has shape {points.shape}: it must be (N, 3), points x, y, z in metres")
     if codes.ndim != 1:
         raise ValueError(f"color has shape {codes.shape}: it must be (N,), one colour code per point")
-    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
-    report = _engine.check(loaded, points, codes, _number(tolerance, "tolerance"),
-                           _number(min_coverage, "min_coverage"), _count(worst, "worst"))
-    return json.loads(report)
+    return points, codes
 
 
 def trace(

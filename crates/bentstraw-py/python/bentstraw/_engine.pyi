@@ -66,6 +66,16 @@ def check(
     min_coverage: float,
     worst: int,
 ) -> str: ...
+def grade(class_dir: str, out: str, assignment: Optional[str], lang: str) -> str: ...
+def grade_points(
+    scene: LoadedScene,
+    xyz: npt.NDArray[np.float64],
+    color: npt.NDArray[np.float64],
+    tolerance: float,
+    min_coverage: float,
+    max_score: float,
+    lang: str,
+) -> str: ...
 def trace(
     scene: LoadedScene,
     direction: Optional[Tuple[float, float, float]],
