@@ -1413,3 +1413,210 @@ test("a prism's corner dragged on the map from above, and a lens's axis turned b
   assert.deepEqual(problems, []);
   await context.close();
 });
+
+// ---- predict, then look ----
+
+/** The marks' canvas over the picture (or the side map) is drawn at the window's point [x, y]. */
+const markedAt = (page, id, [x, y]) => page.evaluate(([id, x, y]) => {
+  const c = document.getElementById(id), r = c.getBoundingClientRect(), d = c.width / r.width;
+  const px = c.getContext("2d").getImageData(Math.round((x - r.left) * d), Math.round((y - r.top) * d), 1, 1).data;
+  return px[3] > 0;
+}, [id, x, y]);
+
+/** Waits until the page in predict mode has the engine's answer for the view it shows. */
+const waitAnswer = (page) => page.waitForFunction(() => window.bentstraw.predict.answer && document.body.dataset.predictAnswer);
+
+test("predict, then look: a teacher's link hides the picture; a guess is revealed with the true image and the distance, in English and French", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url + "#predict=1&lang=en");
+  await waitReady(page);
+  await waitAnswer(page);
+  // The picture and the 3D view are hidden; the bar says what to click; nothing to reveal yet.
+  assert.equal(await page.evaluate(() => window.bentstraw.predict.phase), "guess");
+  assert.equal(await page.getAttribute("#predict", "aria-pressed"), "true");
+  assert.ok(await page.locator("#predict-cover").isVisible());
+  assert.ok(await page.locator("#predict-cloud-cover").isVisible());
+  assert.equal(await page.evaluate(() => getComputedStyle(document.getElementById("picture")).visibility), "hidden");
+  assert.equal(await page.evaluate(() => getComputedStyle(document.getElementById("cloud")).visibility), "hidden");
+  const [cover, picture] = [await page.locator("#predict-cover").boundingBox(), await page.locator("#picture").boundingBox()];
+  for (const k of ["x", "y", "width", "height"]) assert.ok(Math.abs(cover[k] - picture[k]) < 1.5, `${k}: ${cover[k]} vs ${picture[k]}`);
+  assert.match(await page.locator("#predict-text").textContent(), /^Click where you expect the bottom of the straw to appear/);
+  assert.equal(await page.locator("#predict-question").textContent(), "Where will you see the bottom of the straw?");
+  assert.ok(await page.locator("#predict-reveal").isDisabled());
+  assert.match(await page.evaluate(() => window.bentstraw.link()), /[#&]predict=1(&|$)/);
+  await page.screenshot({ path: shot("explorer-predict-hidden.png") });
+  // A guess off the mark, in the picture and on the side map; revealed: both marked, and the distances.
+  await page.mouse.click(cover.x + 0.3 * cover.width, cover.y + 0.35 * cover.height);
+  const side = await page.locator("#map-side").boundingBox();
+  await page.mouse.click(side.x + 0.75 * side.width, side.y + 0.3 * side.height);
+  assert.ok(await page.locator("#predict-reveal").isEnabled());
+  await page.click("#predict-reveal");
+  await page.waitForFunction(() => document.body.dataset.predict === "shown");
+  assert.equal(await page.evaluate(() => getComputedStyle(document.getElementById("picture")).visibility), "visible");
+  assert.ok(await page.locator("#predict-cover").isHidden());
+  const far = await page.evaluate(() => window.bentstraw.predict.results());
+  assert.ok(far.picture.degrees > 2 && far.map.metres > 0.01, JSON.stringify(far));
+  const said = await page.locator("#predict-text").textContent();
+  assert.match(said, new RegExp(`In the picture, your guess is ${far.picture.degrees.toFixed(1)}° away from where the bottom of the straw appears\\.`));
+  assert.match(said, new RegExp(`On the side map, your guess is ${(100 * far.map.metres).toFixed(1)} cm away from where (two eyes see|one eye, focusing, sees) the bottom of the straw\\.`));
+  const image = await page.evaluate((k) => window.bentstraw.predict.screenOfImage(k), far.picture.image);
+  assert.ok(await markedAt(page, "predict-marks", image), "the true image is marked");
+  assert.ok(await markedAt(page, "predict-marks", await page.evaluate(() => window.bentstraw.predict.screenOfGuess())), "the guess is marked");
+  // Each image's ray reaches the straw's lower end (the engine's answer, red: section 1).
+  const answer = await page.evaluate(() => window.bentstraw.predict.answer);
+  assert.equal(answer.target.kind, "straw-bottom");
+  for (const im of answer.images) assert.equal(im.ray.color, 1);
+  // Try again, a guess exactly where it appears: about no distance, in the picture and on the map.
+  await page.click("#predict-again");
+  await page.waitForFunction(() => document.body.dataset.predict === "guess");
+  assert.ok(await page.locator("#predict-cover").isVisible());
+  const [at, onMap] = await page.evaluate(() => [window.bentstraw.predict.screenOfImage(0), window.bentstraw.predict.screenOfApparent(0)]);
+  await page.mouse.click(...at);
+  await page.mouse.click(...onMap);
+  // The keyboard too: Enter on the hidden picture reveals.
+  await page.focus("#predict-cover");
+  await page.keyboard.press("Enter");
+  await page.waitForFunction(() => document.body.dataset.predict === "shown");
+  const near = await page.evaluate(() => window.bentstraw.predict.results());
+  assert.equal(near.picture.image, 0);
+  // (A click lands on a whole pixel: on the side map one is about 3 mm.)
+  assert.ok(near.picture.degrees < 0.15 && near.map.metres < 0.006, JSON.stringify(near));
+  assert.match(await page.locator("#predict-text").textContent(), /your guess is 0\.[01]° away/);
+  await page.screenshot({ path: shot("explorer-predict.png") });
+  // In French, every text of the mode.
+  await page.selectOption("#lang", "fr");
+  const fr = await page.locator("#predict-text").textContent();
+  assert.match(fr, /Dans l'image, votre prédiction est à 0,[01]° de l'endroit où apparaît le bas de la paille\./);
+  assert.match(fr, /Sur la vue de côté, votre prédiction est à 0,\d cm de l'endroit où (deux yeux voient|un œil qui accommode voit) le bas de la paille\./);
+  assert.equal(await page.locator("#predict-again").textContent(), "Recommencer");
+  assert.equal(await page.locator("#predict").textContent(), "Prédire, puis regarder");
+  assert.deepEqual(await i18nMismatches(page, "fr"), []);
+  // Moving the eye starts a new guess, the picture hidden again; the toggle leaves the mode.
+  await page.selectOption("#preset", "4");
+  await page.waitForFunction(() => document.body.dataset.predict === "guess");
+  assert.ok(await page.locator("#predict-cover").isVisible());
+  await page.click("#predict");
+  await page.waitForFunction(() => document.body.dataset.predict === "off");
+  assert.ok(await page.locator("#predict-cover").isHidden());
+  assert.ok(await page.locator("#predict-bar").isHidden());
+  assert.equal(await page.evaluate(() => getComputedStyle(document.getElementById("picture")).visibility), "visible");
+  assert.doesNotMatch(await page.evaluate(() => window.bentstraw.link()), /predict=/);
+  assert.ok(await page.locator("#error").isHidden());
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
+test("predict, then look on a phone, in French: a tap in the hidden picture, the coin's centre revealed", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, { width: 390, height: 844 }, { ...PHONE, locale: "fr-FR" });
+  await page.goto(server.url + "#scene=coin-in-glass&observer=0.25,0,0.12&predict=1");
+  await waitReady(page);
+  await waitAnswer(page);
+  assert.equal(await page.evaluate(() => document.documentElement.lang), "fr");
+  assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
+  assert.match(await page.locator("#predict-text").textContent(), /^Touchez l'endroit où vous pensez voir le centre de la pièce/);
+  assert.equal(await page.evaluate(() => getComputedStyle(document.getElementById("picture")).visibility), "hidden");
+  const answer = await page.evaluate(() => window.bentstraw.predict.answer);
+  assert.equal(answer.target.kind, "coin-centre");
+  assert.ok(answer.images.length >= 1);
+  for (const id of ["#predict", "#predict-reveal"]) assert.ok((await page.locator(id).boundingBox()).height >= 44, id);
+  await page.screenshot({ path: path.join(tmpdir(), (ON_SITE ? "bentstraw-site-" : "bentstraw-") + "predict-phone-hidden.png") });
+  // A tap exactly where the coin's centre appears.
+  const at = await page.evaluate(() => window.bentstraw.predict.screenOfImage(0));
+  await page.evaluate(() => document.getElementById("predict-cover").scrollIntoView({ block: "start" }));
+  const at2 = await page.evaluate(() => window.bentstraw.predict.screenOfImage(0));
+  await page.touchscreen.tap(...at2);
+  await page.tap("#predict-reveal");
+  await page.waitForFunction(() => document.body.dataset.predict === "shown");
+  const r = await page.evaluate(() => window.bentstraw.predict.results());
+  assert.ok(r.picture.degrees < 0.3, JSON.stringify({ r, at, at2 }));
+  assert.match(await page.locator("#predict-text").textContent(), /Dans l'image, votre prédiction est à 0,\d° de l'endroit où apparaît le centre de la pièce\./);
+  assert.ok(await markedAt(page, "predict-marks", await page.evaluate(() => window.bentstraw.predict.screenOfImage(0))));
+  assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
+  await page.locator("#eye-panel").screenshot({ path: path.join(tmpdir(), (ON_SITE ? "bentstraw-site-" : "bentstraw-") + "predict-phone.png") });
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
+test("apparent depth as the eye moves: the clicked point's plot and its CSV, the current eye's numbers the readout's and the server's, in English and French, on a laptop and a phone", async () => {
+  // The same numbers from bentstraw explore's own route: on the site, from a server started here.
+  const native = ON_SITE ? await startServer() : server;
+  const dir = ON_SITE ? path.join(tmpdir(), "shots-sweep-site") : "/tmp/shots-sweep";
+  mkdirSync(dir, { recursive: true });
+  try {
+    for (const [name, viewport, options] of [["laptop", { width: 1400, height: 900 }, {}], ["phone", { width: 390, height: 844 }, PHONE]]) {
+      for (const lang of ["en", "fr"]) {
+        const { page, context, problems } = await openPage(browser, server.url, viewport, { ...options, locale: lang === "fr" ? "fr-FR" : "en-US" });
+        const view = "observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&points=20000";
+        await page.goto(server.url + "#" + view);
+        await waitReady(page);
+        // Nothing to follow before a point is clicked.
+        assert.ok(await page.isHidden("#sweep"));
+        await page.evaluate(() => window.bentstraw.pickPoint(1234));
+        await page.waitForFunction(() => document.body.dataset.picked === "point:1234");
+        await page.waitForSelector("#sweep:not([hidden])");
+        assert.equal(await page.inputValue("#sweep-kind"), "off");
+        assert.ok(await page.isHidden("#sweep-plot"));
+        const p = await page.evaluate(() => window.bentstraw.path);
+        for (const kind of ["around", "updown"]) {
+          await page.selectOption("#sweep-kind", kind);
+          await page.waitForFunction((k) => (document.body.dataset.sweep || "").startsWith(k + ":"), kind);
+          const n = Number((await page.evaluate(() => document.body.dataset.sweep)).split(":")[1]);
+          // 61 positions of the eye, and the current one if the grid misses it.
+          assert.ok(n === 61 || n === 62, String(n));
+          const [download] = await Promise.all([page.waitForEvent("download"), page.click("#sweep-csv")]);
+          assert.equal(download.suggestedFilename(), `sweep-${kind}.csv`);
+          const csv = readFileSync(await download.path(), "utf8");
+          const [head, ...lines] = csv.trim().split("\n");
+          assert.match(head, /^angle_deg,eye_x_m,eye_y_m,eye_z_m,current,sight,path,course_x_m,/);
+          assert.equal(lines.length, n);
+          const col = Object.fromEntries(head.split(",").map((c, i) => [c, i]));
+          const rows = lines.map((l) => l.split(","));
+          const own = rows.filter((r) => r[col.current] === "1");
+          assert.equal(own.length, 1);
+          const xyz = (r, what) => ["x", "y", "z"].map((a) => Number(r[col[`${what}_${a}_m`]]));
+          // The current eye is the observer, and sees the point along the readout's ray: the same
+          // numbers, to the bit.
+          assert.deepEqual(xyz(own[0], "eye"), p.observer);
+          assert.equal(own[0][col.sight], "seen");
+          assert.deepEqual(xyz(own[0], "course"), p.image_point);
+          assert.deepEqual(xyz(own[0], "stereo"), p.stereo_point);
+          assert.equal(Number(own[0][col.s_h_m]), p.s_h.distance);
+          assert.equal(Number(own[0][col.s_v_m]), p.s_v.distance);
+          // The angles run over the whole sweep, in order; the unseen positions have no numbers.
+          const angles = rows.map((r) => Number(r[col.angle_deg]));
+          assert.deepEqual(angles.slice().sort((a, b) => a - b), angles);
+          assert.deepEqual([angles[0], angles[n - 1]], kind === "around" ? [-180, 180] : [-90, 90]);
+          for (const r of rows) if (r[col.sight] !== "seen") assert.equal(r[col.course_z_m], "");
+          // The legend gives the readout's height of the course's point here.
+          const legend = await page.textContent("#sweep-legend");
+          const here = p.image_point[2].toFixed(4);
+          assert.ok(legend.includes(lang === "fr" ? here.replace(".", ",") : here), legend);
+          // bentstraw explore's route gives the same file, to the byte.
+          const query = `${view}&point=${p.straw_point.join(",")}&direction=${p.direction.join(",")}&sweep=${kind}&rows=61&format=csv`;
+          const r = await fetch(`${native.url}api/sweep?${query}`);
+          assert.equal(r.status, 200);
+          assert.equal(await r.text(), csv);
+        }
+        // Axes labelled with their units, in the page's language.
+        const words = await page.textContent("#sweep-plot");
+        assert.match(words, lang === "fr" ? /hauteur z \(cm\)/ : /height z \(cm\)/);
+        assert.match(words, lang === "fr" ? /élévation de l'œil \(°\)/ : /elevation of the eye \(°\)/);
+        // One line per model, the current eye marked on each it places.
+        assert.ok(await page.locator("#sweep-plot polyline").count() >= 4);
+        assert.ok(await page.locator("#sweep-plot circle.here").count() >= 3);
+        if (name === "phone") {
+          assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
+          const small = await page.evaluate(() => ["sweep-kind", "sweep-csv"].map((id) => [id, document.getElementById(id).getBoundingClientRect().height]).filter(([, h]) => h < 44));
+          assert.deepEqual(small, []);
+        }
+        // The panel scrolled to the plot (on a laptop the readout's panel scrolls on its own).
+        await page.evaluate(() => document.getElementById("sweep").scrollIntoView({ block: "start" }));
+        await page.locator("#readout-panel").screenshot({ path: path.join(dir, `${name}-${lang}.png`) });
+        assert.deepEqual(problems, []);
+        await context.close();
+      }
+    }
+  } finally {
+    if (ON_SITE) native.stop();
+  }
+});

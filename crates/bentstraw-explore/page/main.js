@@ -12,6 +12,7 @@ import { showHint, showReadout, showStatus, showCommands } from "./readout.js";
 import { syncControls, fullscreenLabel } from "./controls.js";
 import { sceneErrorShown, showSceneErrors, checkScene, useScene, refused } from "./scenetext.js";
 import { relabelObjects } from "./editor.js";
+import { syncPredict, relabelPredict, predictHook } from "./predict.js";
 
 /** Reads a query or fragment (the address's, the command line's) into the state. */
 async function readAddress(text) {
@@ -34,6 +35,7 @@ function relabel() {
   syncControls();
   drawMaps(); drawCloud(); drawLegend();
   fullscreenLabel();
+  relabelPredict();
 }
 $("lang").value = LANG;
 $("lang").addEventListener("change", (e) => {
@@ -45,7 +47,7 @@ $("lang").addEventListener("change", (e) => {
 window.addEventListener("resize", () => { drawMaps(); drawCloud(); resized(); });
 window.addEventListener("hashchange", async () => {
   if (location.hash === stateHash(state)) return; // the page's own change of the address
-  await readAddress(location.hash); syncControls(); drawMaps(); requestFrame(false);
+  await readAddress(location.hash); syncControls(); drawMaps(); syncPredict(); requestFrame(false);
 });
 
 window.bentstraw = Object.assign(hook, {
@@ -89,6 +91,8 @@ window.bentstraw = Object.assign(hook, {
   /** The address that restores this view, its scene included. */
   link() { return location.origin + location.pathname + stateHash(state); },
   engine: ENGINE,
+  /** "Predict, then look": its phase, the engine's answer, the distances (predict.js). */
+  predict: predictHook,
 });
 
 // The start: the address's state, else the command line's.
@@ -98,5 +102,6 @@ window.bentstraw = Object.assign(hook, {
   if (state.file) history.replaceState(null, "", stateHash(state));
   syncControls();
   drawMaps();
+  syncPredict();
   sendFrame(false);
 })();

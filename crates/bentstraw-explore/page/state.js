@@ -48,7 +48,8 @@ const point = { parse: list, format: (v) => v.map(num).join(",") };
  * a change `redoes` ("frame": a new view; "keep-path": a new view, the clicked ray kept;
  * "cloud": the cloud redrawn), and `out` (the text of the output beside a slider, `ID-out`, if
  * any); for the glass's water, `liquid` names what its slider shows of a scene file's bottom
- * liquid instead.
+ * liquid instead. `optional`: written into the address only when it is not its default (and
+ * back to its default when an address leaves it out).
  */
 export const FIELDS = [
   // The first view shows the effect: the straw seen from the side, broken at the water's surface.
@@ -72,6 +73,8 @@ export const FIELDS = [
   { prop: "view", query: "view", initial: [-35, 22, 1],
     parse: (v) => { const l = list(v); return l.length === 3 && l.every(Number.isFinite) ? l : undefined; },
     format: (v) => v.map((x) => Math.round(x * 100) / 100).join(",") },
+  // "Predict, then look" (predict.js): a teacher's link opens the page with the picture hidden.
+  { prop: "predict", query: "predict", initial: false, parse: (v) => v === "1", format: (v) => (v ? "1" : "0"), optional: true },
 ];
 
 /** The default of the state's value `prop`. */
@@ -137,7 +140,7 @@ export function viewQuery(s, extra) {
 export function stateHash(s) {
   const p = new URLSearchParams(viewQuery(s));
   if (s.file) { p.delete("scene-file"); p.set("file", fileCode.text === s.file ? fileCode.code : ""); }
-  for (const f of FIELDS) if (!f.engine) p.set(f.query, f.format(s[f.prop]));
+  for (const f of FIELDS) if (!f.engine && !(f.optional && s[f.prop] === f.initial)) p.set(f.query, f.format(s[f.prop]));
   if (s.pick) p.set("pick", s.pick);
   p.set("lang", LANG);
   return "#" + p.toString();
@@ -157,7 +160,7 @@ export async function readParams(text, s) {
   }
   if (s.file) { s.scene = ""; await packFile(s.file); }
   for (const f of FIELDS) {
-    if (!p.has(f.query)) continue;
+    if (!p.has(f.query)) { if (f.optional) s[f.prop] = copy(f.initial); continue; }
     const v = f.parse(p.get(f.query));
     if (v !== undefined) s[f.prop] = v;
   }

@@ -4,7 +4,7 @@
 "use strict";
 const CACHE = "bentstraw-site";
 // The page's modules: main.js and every module it imports, each a file the page fetches.
-const MODULES = ["main.js", "i18n.js", "state.js", "geometry.js", "dom.js", "engine.js", "errors.js", "frames.js", "draw.js", "pointer.js", "sketch.js", "picture.js", "cloud.js", "maps.js", "readout.js", "sweep.js", "controls.js", "scenetext.js", "editor.js"];
+const MODULES = ["main.js", "i18n.js", "state.js", "geometry.js", "dom.js", "engine.js", "errors.js", "frames.js", "draw.js", "pointer.js", "sketch.js", "picture.js", "cloud.js", "maps.js", "readout.js", "sweep.js", "controls.js", "scenetext.js", "editor.js", "predict.js"];
 const FILES = ["./", "index.html", ...MODULES, "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"];
 
 self.addEventListener("install", (e) => {

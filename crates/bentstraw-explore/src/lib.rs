@@ -28,6 +28,7 @@ use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
 
+pub mod aim;
 pub mod page;
 pub mod sweep;
 
@@ -786,6 +787,16 @@ fn reached_json(out: &mut Value, world: &World, eye: Vec3, image: &ImagePoint) {
     out["gap_stereo"] = json!(sp.and_then(|p| p.gap_to_course()));
 }
 
+/// `GET /api/aim`: where the scene's target (its first straw's bottom end, else a coin's centre,
+/// else an arrow's tip) appears in the view's picture, for the page's "Predict, then look": the
+/// target, and each image's pixel and ray ([`aim::aim_json`]); no image when the eye does not
+/// see it there.
+pub fn aim_reply(view: &View) -> Reply {
+    let world = &view.scene.world;
+    let target = aim::scene_target(world, view.observer);
+    Reply::json(&aim::aim_json(world, &view.camera, target))
+}
+
 /// `GET /api/export?format=csv|ply|png` (`&model=eye|stereo` for the points): the file `simulate`
 /// or `render` would write for this view. Setting `stop` abandons the picture or the model's
 /// points half-way (a 409 answer).
@@ -935,6 +946,7 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame, memory: &Memory) -> Re
             Err(e) => Err(e),
         },
         "/api/ray" => ray_reply(&view, &q),
+        "/api/aim" => Ok(aim_reply(&view)),
         "/api/export" => export_reply(&view, &q, &frame.stop_flag()),
         "/api/scene-file" => scene_file_reply(&view),
         "/api/sweep" => sweep::sweep_reply(&view, &q, &frame.stop_flag()),

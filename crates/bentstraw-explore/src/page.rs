@@ -31,7 +31,7 @@ const INDEX: &str = include_str!("../page/index.html");
 const JS: &str = "text/javascript; charset=utf-8";
 
 /// The page's files other than its HTML ([`index_html`]).
-pub const PAGE_FILES: [PageFile; 22] = [
+pub const PAGE_FILES: [PageFile; 23] = [
     // The page's entry module (index.html loads it; it imports the others, each one concept).
     PageFile {
         name: "main.js",
@@ -123,6 +123,11 @@ pub const PAGE_FILES: [PageFile; 22] = [
         name: "editor.js",
         content_type: JS,
         text: include_str!("../page/editor.js"),
+    },
+    PageFile {
+        name: "predict.js",
+        content_type: JS,
+        text: include_str!("../page/predict.js"),
     },
     PageFile {
         name: "sweep.js",

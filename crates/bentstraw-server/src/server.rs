@@ -364,7 +364,7 @@ impl App {
         }
         let heavy = matches!(
             path,
-            "/api/frame" | "/api/model" | "/api/ray" | "/api/export"
+            "/api/frame" | "/api/model" | "/api/ray" | "/api/aim" | "/api/export"
         ) || path == "/api/sweep";
         if !heavy {
             // Light routes remember nothing: a memory of their own, empty.
