@@ -698,7 +698,8 @@ pub fn student_page(
         body.push_str(&format!("<th>{}</th>", lang.of(head)));
     }
     body.push_str("</tr>\n");
-    for r in rows {
+    for (k, r) in rows.iter().enumerate() {
+        let figure = figures.get(k).and_then(Option::as_ref);
         let verdict = lang.of(words::GRADE_VERDICTS[r.verdict as usize]);
         let mut note = escape_html(&r.note(lang));
         if !r.missing.is_empty() {
@@ -712,7 +713,15 @@ pub fn student_page(
         body.push_str(&format!(
             "<tr><td>{}</td><td class=\"{}\">{verdict}</td><td>{} / {}</td><td>{}</td><td>{}</td></tr>\n\
              <tr class=\"why\"><td colspan=\"5\">{note}</td></tr>\n",
-            escape_html(&r.case),
+            // A read case's name leads to its figure, below the table.
+            match figure {
+                Some(_) => format!(
+                    "<a href=\"#figure-{}\">{}</a>",
+                    escape_html(&percent_path(&r.case)),
+                    escape_html(&r.case)
+                ),
+                None => escape_html(&r.case),
+            },
             r.verdict.key(),
             score_text(r.score),
             score_text(r.max_score),
