@@ -19,9 +19,6 @@ const MODELS = [
   { field: "focus_v", key: "sweep.focus-v", colour: "#960096" },
   { field: "stereo", key: "sweep.stereo", colour: "#00823c" },
 ];
-/** Heights farther than this from the point's own (m) are left out of the plot: a focus far away
- * (nearly parallel light) would squash everything else. */
-const SHOWN_SPAN = 0.3;
 const SVG = "http://www.w3.org/2000/svg";
 
 let kind = SWEEP_DEFAULT;
@@ -53,7 +50,8 @@ export async function syncSweep() {
   box.hidden = false;
   $("sweep-kind").value = kind;
   const on = kind !== SWEEP_DEFAULT;
-  $("sweep-plot").hidden = !on;
+  // An SVG element has no `hidden` property: its attribute, which the style sheet hides.
+  $("sweep-plot").toggleAttribute("hidden", !on);
   $("sweep-csv").hidden = !on;
   $("sweep-legend").hidden = !on;
   $("sweep-note").hidden = !on;
@@ -90,11 +88,12 @@ function niceStep(span, count) {
 function draw(answer) {
   const svg = $("sweep-plot");
   svg.replaceChildren();
-  const W = 360, H = 210, L = 46, R = 10, T = 10, B = 40;
+  const W = 400, H = 200, L = 46, R = 10, T = 10, B = 40;
   svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
   const [x0, x1] = answer.range;
   const z0 = answer.point[2];
-  const near = (p) => p && Math.abs(p[2] - z0) <= SHOWN_SPAN;
+  // The heights the report's figures show too: a focus far away would squash everything else.
+  const near = (p) => p && p[2] >= answer.shown[0] && p[2] <= answer.shown[1];
   let lo = z0, hi = z0;
   for (const row of answer.rows) for (const md of MODELS) if (near(row[md.field])) { lo = Math.min(lo, row[md.field][2]); hi = Math.max(hi, row[md.field][2]); }
   const pad = Math.max((hi - lo) * 0.08, 0.002);
@@ -107,7 +106,7 @@ function draw(answer) {
     el(svg, "line", { x1: X(a), x2: X(a), y1: T, y2: H - B, class: "grid" });
     el(svg, "text", { x: X(a), y: H - B + 13, "text-anchor": "middle", class: "tick" }, localNumber(String(a)));
   }
-  const yStep = niceStep(y1 - y0, 4);
+  const yStep = niceStep(y1 - y0, 5);
   for (let v = Math.ceil(y0 / yStep) * yStep; v <= y1 + 1e-9; v += yStep) {
     el(svg, "line", { x1: L, x2: W - R, y1: Y(v), y2: Y(v), class: "grid" });
     const decimals = yStep >= 1 ? 0 : yStep >= 0.1 ? 1 : 2;
@@ -171,6 +170,11 @@ async function downloadCsv(e) {
   setTimeout(() => URL.revokeObjectURL(a.href), 10000);
 }
 
-$("sweep-kind").addEventListener("change", (e) => { kind = e.target.value; syncSweep(); });
+$("sweep-kind").addEventListener("change", async (e) => {
+  kind = e.target.value;
+  await syncSweep();
+  // The readout's panel scrolls on its own: the plot brought into it.
+  if (kind !== SWEEP_DEFAULT) $("sweep").scrollIntoView({ block: "nearest" });
+});
 $("sweep-csv").addEventListener("click", downloadCsv);
 applyI18n($("sweep"));

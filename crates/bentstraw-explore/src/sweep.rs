@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::sync::atomic::AtomicBool;
 
 use bentstraw_io::parse::parse_vec3;
-use bentstraw_io::sweep::{model_points, write_sweep_csv};
+use bentstraw_io::sweep::{model_points, shown_heights, write_sweep_csv};
 use bentstraw_io::view_spec::{number, required};
 use bentstraw_optics::apparent::{
     sweep_apparent_until, Sight, Sweep, SweepKind, DEFAULT_SWEEP_ROWS, MAX_SWEEP_ROWS,
@@ -173,6 +173,7 @@ pub fn sweep_reply(
         "range": sweep.kind.range(),
         "centre": vec_json(sweep.centre),
         "point": vec_json(point),
+        "shown": shown_heights(point),
         "observer": vec_json(view.observer),
         "rows": rows,
     })))

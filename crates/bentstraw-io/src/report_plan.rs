@@ -560,9 +560,6 @@ fn sweep_section(plan: &ScenePlan, out: &Path, lang: Lang) -> Section {
     let first = &plan.jobs[0].loaded;
     let cloud = sample_image(&first.world, first.observer, SWEEP_CLOUD_POINTS, &|_| {});
     let picked = default_sweep_point(&cloud.points);
-    let (lo, hi) = first.world.bounds();
-    let margin = first.size();
-    let limits = (lo.z - margin, hi.z + margin);
     let figures = SWEEPS
         .iter()
         .map(|&kind| {
@@ -598,7 +595,7 @@ fn sweep_section(plan: &ScenePlan, out: &Path, lang: Lang) -> Section {
                 kind,
                 &rows,
                 point,
-                limits,
+                crate::sweep::shown_heights(point),
                 &caption_title(kind, lang),
                 lang,
             )
@@ -629,13 +626,14 @@ fn sweep_section(plan: &ScenePlan, out: &Path, lang: Lang) -> Section {
     }
 }
 
-/// A sweep figure's title: its x axis's words without the arrow.
+/// A sweep figure's title: the section's heading and how the eye moves.
 fn caption_title(kind: SweepKind, lang: Lang) -> String {
-    let axis = match kind {
-        SweepKind::Around => words::SWEEP_AROUND_AXIS,
-        SweepKind::UpDown => words::SWEEP_UPDOWN_AXIS,
+    let how = match kind {
+        SweepKind::Around => words::SWEEP_KINDS[0],
+        SweepKind::UpDown => words::SWEEP_KINDS[1],
     };
-    lang.of(axis).trim_end_matches(" →").to_string()
+    let colon = if lang == Lang::Fr { " : " } else { ": " };
+    format!("{}{colon}{}", lang.of(words::SWEEP), lang.of(how))
 }
 
 /// The scene report's closing: the validation over the index of its bottom liquid, seen by every

@@ -19,6 +19,16 @@ use bentstraw_optics::Vec3;
 #[cfg(feature = "figures")]
 pub use figure::write_sweep_plot;
 
+/// How far above or below the object point (m) the sweep's figures show a model's point: the
+/// question is how deep the point looks, and a focus far away (nearly parallel light) would
+/// squash everything else into a line.
+pub const SWEEP_SHOWN_SPAN: f64 = 0.1;
+
+/// The heights (m) the sweep's figures show for the object point `point`.
+pub fn shown_heights(point: Vec3) -> (f64, f64) {
+    (point.z - SWEEP_SHOWN_SPAN, point.z + SWEEP_SHOWN_SPAN)
+}
+
 /// The CSV's header line (without its newline).
 pub const SWEEP_CSV_HEADER: &str = "angle_deg,eye_x_m,eye_y_m,eye_z_m,current,sight,path,\
 course_x_m,course_y_m,course_z_m,focus_h_x_m,focus_h_y_m,focus_h_z_m,\
@@ -108,7 +118,7 @@ mod figure {
     /// Plots the height of each model's point against the eye's angle into `path` (PNG, SVG or PDF
     /// by its extension): one line per model (broken where the seat does not see the point or the
     /// light path changes), the object point's own height dashed, the observer's seat marked.
-    /// `limits` bounds the heights shown (m): a focus far beyond the scene is left out.
+    /// `limits` bounds the heights shown (m, [`shown_heights`]): a focus far away is left out.
     pub fn write_sweep_plot(
         path: &Path,
         kind: SweepKind,
