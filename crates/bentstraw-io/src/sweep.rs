@@ -118,7 +118,8 @@ mod figure {
     /// Plots the height of each model's point against the eye's angle into `path` (PNG, SVG or PDF
     /// by its extension): one line per model (broken where the seat does not see the point or the
     /// light path changes), the object point's own height dashed, the observer's seat marked.
-    /// `limits` bounds the heights shown (m, [`shown_heights`]): a focus far away is left out.
+    /// `limits` bounds the heights shown (m, [`super::shown_heights`]): a focus far away is left
+    /// out.
     pub fn write_sweep_plot(
         path: &Path,
         kind: SweepKind,
