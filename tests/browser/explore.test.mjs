@@ -1466,10 +1466,24 @@ test("predict, then look: a teacher's link hides the picture; a guess is reveale
   const answer = await page.evaluate(() => window.bentstraw.predict.answer);
   assert.equal(answer.target.kind, "straw-bottom");
   for (const im of answer.images) assert.equal(im.ray.color, 1);
+  // The light's path of that image: the readout's ray reaches the straw's red end.
+  await page.click("#predict-path");
+  await page.waitForFunction(() => /^px:/.test(document.body.dataset.picked || "") && window.bentstraw.path);
+  assert.equal(await page.evaluate(() => window.bentstraw.path.color), 1);
+  assert.match(await page.locator("#readout").textContent(), /1 red/);
   // Try again, a guess exactly where it appears: about no distance, in the picture and on the map.
   await page.click("#predict-again");
   await page.waitForFunction(() => document.body.dataset.predict === "guess");
   assert.ok(await page.locator("#predict-cover").isVisible());
+  assert.equal(await page.evaluate(() => window.bentstraw.path), null, "the light's path is hidden again");
+  // (Nothing of it left on the side map: only the eye's dot is black there.)
+  assert.equal(await page.evaluate(() => {
+    const c = document.getElementById("map-side"), d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let dark = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i + 3] > 200 && d[i] < 40 && d[i + 1] < 40 && d[i + 2] < 40) dark++;
+    return dark < 200 * devicePixelRatio ** 2;
+  }), true);
+  await waitReady(page);
   const [at, onMap] = await page.evaluate(() => [window.bentstraw.predict.screenOfImage(0), window.bentstraw.predict.screenOfApparent(0)]);
   await page.mouse.click(...at);
   await page.mouse.click(...onMap);

@@ -11,6 +11,7 @@ import { ask, refusalOf } from "./engine.js";
 import { showError } from "./errors.js";
 import { frame, path, changed, pick } from "./frames.js";
 import { dot } from "./geometry.js";
+import { drawMaps } from "./maps.js";
 
 const bar = $("predict-bar"), text = $("predict-text"), cover = $("predict-cover");
 const marks = $("predict-marks"), mapMarks = $("predict-map-marks"), cloudCover = $("predict-cloud-cover");
@@ -257,13 +258,16 @@ new MutationObserver(framed).observe(document.body, { attributes: true, attribut
 new ResizeObserver(redraw).observe(pictureCanvas);
 new ResizeObserver(redraw).observe(sideCanvas);
 
+/** Drops the clicked ray (a new frame of the same view), and its lines on the maps at once. */
+function forgetPath() { changed({}); drawMaps(); }
+
 /** Into the mode or out of it, as the state says (a link, the toggle). */
 export function syncPredict() {
   const on = Boolean(state.predict);
   if (on === (P.phase !== "off")) return;
   Object.assign(P, { phase: on ? "guess" : "off", key: null, answer: null, asked: null, guessDir: null, guessMap: null });
   // A clicked ray on the picture or the maps would give the answer away.
-  if (on && (path || state.pick)) changed({});
+  if (on && (path || state.pick)) forgetPath();
   show();
   framed();
 }
@@ -286,6 +290,8 @@ toggle.addEventListener("click", () => {
 revealButton.addEventListener("click", () => reveal());
 againButton.addEventListener("click", () => {
   Object.assign(P, { phase: "guess", guessDir: null, guessMap: null });
+  // The light's path shown would give the answer away (the view is the same: a new frame of it).
+  if (path || state.pick) forgetPath();
   show();
   cover.focus({ preventScroll: true });
 });
