@@ -1634,3 +1634,22 @@ test("apparent depth as the eye moves: the clicked point's plot and its CSV, the
     if (ON_SITE) native.stop();
   }
 });
+
+test("predict, then look: a target the eye cannot see is said to be unseen, in both languages", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  // The marble in front hides the straw's bottom from this eye.
+  await page.goto(server.url + "#scene=marble-in-water&observer=0.18,0,0.04&predict=1&lang=en");
+  await waitReady(page);
+  await waitAnswer(page);
+  assert.deepEqual(await page.evaluate(() => window.bentstraw.predict.answer.images), []);
+  const cover = await page.locator("#predict-cover").boundingBox();
+  await page.mouse.click(cover.x + cover.width / 2, cover.y + cover.height / 2);
+  await page.click("#predict-reveal");
+  await page.waitForFunction(() => document.body.dataset.predict === "shown");
+  assert.equal(await page.locator("#predict-text").textContent(), "From this eye, the bottom of the straw cannot be seen in this picture.");
+  assert.ok(await page.locator("#predict-path").isHidden());
+  await page.selectOption("#lang", "fr");
+  assert.equal(await page.locator("#predict-text").textContent(), "Depuis cet œil, on ne voit pas le bas de la paille dans cette image.");
+  assert.deepEqual(problems, []);
+  await context.close();
+});
