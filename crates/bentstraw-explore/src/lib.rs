@@ -990,6 +990,21 @@ mod tests {
         );
         let inside = msg("observer=0,0,0.1&straw=0.02,0.01&water-height=0.1");
         assert!(inside.contains("is inside or on the glass"), "{inside}");
+        // One range for the eye whatever gives it: a scene file's thousand kilometres.
+        for far in ["1e7", "1e308", "-1000000.5"] {
+            let e = msg(&format!(
+                "observer={far},0,0.1&straw=0.02,0.01&water-height=0.1"
+            ));
+            assert!(
+                e.starts_with("observer x = ")
+                    && e.contains("m is too far: a position must be at most 1000000 m"),
+                "{e}"
+            );
+        }
+        assert!(View::from_query(&query(
+            "observer=1000000,0,0.1&straw=0.02,0.01&water-height=0.1"
+        ))
+        .is_ok());
         let n = msg(&format!("{REF2}&n-water=0.5"));
         assert!(n.contains("water index 0.5 is not allowed"), "{n}");
         let ev = msg(&format!("{REF2}&max-events=0"));

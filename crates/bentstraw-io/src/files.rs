@@ -58,6 +58,8 @@ struct Registry {
     created: Vec<PathBuf>,
     /// Folders whose every output a live set has reserved (set, canonical folder).
     claimed: Vec<(u64, PathBuf)>,
+    /// Whether the run was interrupted: no set may be reserved or put in place any more.
+    stopped: bool,
 }
 
 static LIVE: Mutex<Registry> = Mutex::new(Registry {
@@ -65,7 +67,17 @@ static LIVE: Mutex<Registry> = Mutex::new(Registry {
     staged: Vec::new(),
     created: Vec::new(),
     claimed: Vec::new(),
+    stopped: false,
 });
+
+/// The refusal of a set after an interruption.
+const INTERRUPTED: &str = "interrupted: no output was replaced";
+
+/// Whether the run was interrupted ([`remove_all_temporaries`] was called): every output set
+/// still live was dropped, and none will be put in place.
+pub fn interrupted() -> bool {
+    live().stopped
+}
 
 /// The registry, even after a panic elsewhere (its content stays consistent under the lock).
 fn live() -> MutexGuard<'static, Registry> {
@@ -77,6 +89,7 @@ fn live() -> MutexGuard<'static, Registry> {
 /// A set being renamed into place holds the registry, so this waits until the whole set is in place.
 pub fn remove_all_temporaries() -> bool {
     let mut reg = live();
+    reg.stopped = true;
     let replaced_none = !reg.staged.is_empty();
     reg.staged.clear();
     for dir in reg.created.iter().rev() {
@@ -111,6 +124,9 @@ impl OutputSet {
             targets.push((target, id));
         }
         let mut reg = live();
+        if reg.stopped {
+            return Err(Error::Refused(INTERRUPTED.into()));
+        }
         for (out, (target, _)) in outputs.iter().zip(&targets) {
             if reg.staged.iter().any(|s| s.target == *target) {
                 return Err(Error::Refused(format!(
@@ -163,6 +179,11 @@ impl OutputSet {
     /// already replaced get their previous content back. Every target must have been written.
     pub fn commit(self) -> Result {
         let mut reg = live();
+        // An interruption that came first removed the set's temporaries: nothing to put in place,
+        // and no success to report.
+        if reg.stopped {
+            return Err(Error::Refused(INTERRUPTED.into()));
+        }
         if let Some(s) = reg.staged.iter().find(|s| s.set == self.id && !s.written) {
             return Err(Error::Refused(format!(
                 "{} was not written: no output was replaced",

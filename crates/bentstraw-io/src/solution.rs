@@ -57,6 +57,9 @@ impl CheckOptions {
 pub const MAX_POINTS: usize = 2_000_000;
 /// Largest solution file read (bytes, 128 MiB): two million points of generous width.
 pub const MAX_FILE_BYTES: u64 = 128 << 20;
+/// Most values on a line of a solution file (a header may name extra columns, such as the ones
+/// `simulate` writes).
+pub const MAX_FIELDS: usize = 64;
 /// How many characters of a user's text an error quotes.
 const QUOTE: usize = 40;
 
@@ -280,13 +283,28 @@ pub fn solution_of_points(
 
 /// The fields of a data or header line: split at commas, at semicolons, or at runs of spaces and tabs.
 fn split_fields(line: &str) -> Result<Vec<&str>, String> {
+    // At most one field past the limit is collected: a line of millions of fields costs no more
+    // memory than a short one.
     let fields: Vec<&str> = if line.contains(';') {
-        line.split(';').map(str::trim).collect()
+        line.split(';')
+            .map(str::trim)
+            .take(MAX_FIELDS + 1)
+            .collect()
     } else if line.contains(',') {
-        line.split(',').map(str::trim).collect()
+        line.split(',')
+            .map(str::trim)
+            .take(MAX_FIELDS + 1)
+            .collect()
     } else {
-        line.split_whitespace().collect()
+        line.split_whitespace().take(MAX_FIELDS + 1).collect()
     };
+    if fields.len() > MAX_FIELDS {
+        return Err(format!(
+            "more than {MAX_FIELDS} values: a solution's line holds x y z color (and a few other \
+             columns at most): '{}'",
+            clip_text(line, QUOTE)
+        ));
+    }
     if let Some(n) = fields.iter().position(|f| f.is_empty()) {
         return Err(format!(
             "empty value in column {}: '{}'",
@@ -691,6 +709,26 @@ mod tests {
 
     fn parse(s: &str) -> Result<Solution, String> {
         parse_solution(s.as_bytes())
+    }
+
+    #[test]
+    fn a_line_of_too_many_values_is_refused_before_they_are_collected() {
+        // A header of five million names: refused, quoting its start only.
+        let wide = vec!["x"; 5_000_000].join(",");
+        let e = parse(&wide).unwrap_err();
+        assert!(e.starts_with("line 1: more than 64 values"), "{e}");
+        assert!(e.len() < 300, "{} bytes", e.len());
+        let row = vec!["0.5"; 65].join(" ");
+        assert!(parse(&format!("0 0 0 1\n{row}\n"))
+            .unwrap_err()
+            .starts_with("line 2: more than 64 values"));
+        // Sixty-four are read (a header naming its columns).
+        let mut names: Vec<String> = (4..64).map(|k| format!("extra{k}")).collect();
+        names.splice(0..0, ["x", "y", "z", "color"].map(String::from));
+        let mut line: Vec<&str> = vec!["0.5", "0.5", "0.5", "1"];
+        line.extend(vec!["7"; 60]);
+        let ok = format!("{}\n{}\n", names.join(","), line.join(","));
+        assert_eq!(parse(&ok).unwrap().points.len(), 1);
     }
 
     #[test]

@@ -24,6 +24,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::parallel::*;
 
+mod nearest;
+use nearest::nearest_spacing;
+
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::light_path_type::LightPathType;
@@ -673,49 +676,6 @@ impl Bins {
             Bins::Sparse(map) => map.get(&(i, j)).map(Vec::as_slice).unwrap_or(&[]),
         }
     }
-}
-
-/// For each point `(a, b, colour)` on the map, the distance to its nearest neighbour of the same
-/// colour, or `cap` if there is none nearer (searched on bins of size `bin`, ring by ring).
-fn nearest_spacing(points: &[(f64, f64, u8)], bin: f64, cap: f64) -> Vec<f64> {
-    let key = |a: f64, b: f64| ((a / bin).floor() as i64, (b / bin).floor() as i64);
-    let bins = Bins::new(
-        &points
-            .iter()
-            .map(|&(a, b, _)| key(a, b))
-            .collect::<Vec<_>>(),
-    );
-    let rings = (cap / bin).ceil().min(1e6) as i64 + 1;
-    points
-        .par_iter()
-        .enumerate()
-        .with_min_len(256)
-        .map(|(n, &(a, b, c))| {
-            let (i, j) = key(a, b);
-            let mut best = cap;
-            for r in 0..=rings {
-                // Points in ring r are at least (r − 1) bins away.
-                if (r - 1) as f64 * bin > best {
-                    break;
-                }
-                for ii in i - r..=i + r {
-                    for jj in j - r..=j + r {
-                        if (ii - i).abs() != r && (jj - j).abs() != r {
-                            continue;
-                        }
-                        for &m in bins.get(ii, jj) {
-                            let (x, y, cm) = points[m as usize];
-                            if m as usize != n && cm == c {
-                                let (dx, dy) = (x - a, y - b);
-                                best = best.min((dx * dx + dy * dy).sqrt());
-                            }
-                        }
-                    }
-                }
-            }
-            best
-        })
-        .collect()
 }
 
 /// Groups the unreached true samples into regions: same colour, same kind of light path, and

@@ -219,6 +219,8 @@ rules! {
     GlassEyeInside = "glass.eye-inside", "observer ({x}, {y}, {z}) is inside or on the glass: it must not satisfy 0 <= z <= {height} and x² + y² <= {radius}²";
     /// The eye is inside the assignment's straw above the glass.
     GlassEyeInStraw = "glass.eye-in-straw", "observer ({x}, {y}, {z}) is inside the straw where it sticks out of the glass";
+    /// The eye is farther than any scene reaches.
+    GlassEyeFar = "glass.eye-far", "{name} = {value} m is too far: a position must be at most {max} m in size";
     /// The assignment's water index is below 1.
     GlassWaterIndex = "glass.water-index", "water index {value} is not allowed: it must be a finite number >= 1";
     /// The event limit is out of range.

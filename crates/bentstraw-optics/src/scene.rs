@@ -71,6 +71,13 @@ pub enum SceneError {
     ObserverInGlass(Vec3),
     /// The observer is inside the part of the straw above the glass.
     ObserverInStraw(Vec3),
+    /// One of the observer's coordinates is larger than [`MAX_LENGTH`] in size.
+    ObserverTooFar {
+        /// Which coordinate.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// The refractive index of water is below 1.
     WaterIndex(f64),
     /// The event limit is 0 or larger than [`MAX_EVENTS_LIMIT`].
@@ -116,6 +123,14 @@ impl SceneError {
             ),
             SceneError::ObserverInGlass(o) => (Rule::GlassEyeInside, at(o, true)),
             SceneError::ObserverInStraw(o) => (Rule::GlassEyeInStraw, at(o, false)),
+            SceneError::ObserverTooFar { name, value } => (
+                Rule::GlassEyeFar,
+                vec![
+                    ("name", Param::Text(name.to_string())),
+                    ("value", n(*value)),
+                    ("max", bound(MAX_LENGTH)),
+                ],
+            ),
             SceneError::WaterIndex(v) => (Rule::GlassWaterIndex, vec![("value", n(*v))]),
             SceneError::MaxEvents(m) => (
                 Rule::MaxEvents,
@@ -238,6 +253,16 @@ impl Scene {
         require_finite("observer x", observer.x)?;
         require_finite("observer y", observer.y)?;
         require_finite("observer z", observer.z)?;
+        // The scene files' rule: positions within a thousand kilometres.
+        for (name, value) in [
+            ("observer x", observer.x),
+            ("observer y", observer.y),
+            ("observer z", observer.z),
+        ] {
+            if value.abs() > MAX_LENGTH {
+                return Err(SceneError::ObserverTooFar { name, value });
+            }
+        }
         let r2 = observer.x * observer.x + observer.y * observer.y;
         if (0.0..=GLASS_HEIGHT).contains(&observer.z) && r2 <= GLASS_RADIUS * GLASS_RADIUS {
             return Err(SceneError::ObserverInGlass(observer));
@@ -258,6 +283,10 @@ impl Scene {
         self.water_height > 0.0
     }
 }
+
+/// Largest length or coordinate (m) in a scene, the observer's included, a thousand kilometres:
+/// beyond it, squared distances lose the precision of the sizes beside them.
+pub const MAX_LENGTH: f64 = 1e6;
 
 /// The centre of the box enclosing the glass and the straw, `(0, 0, 0.125)`: the default target.
 pub const SCENE_CENTRE: Vec3 = Vec3::new(0.0, 0.0, STRAW_HEIGHT / 2.0);

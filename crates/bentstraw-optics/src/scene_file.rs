@@ -41,9 +41,7 @@ pub const MAX_OBJECTS: usize = 100;
 /// Smallest size (m) of anything in a scene, a micrometre: below it, squared sizes lose their
 /// precision and objects vanish from the rays that should meet them.
 pub const MIN_SIZE: f64 = 1e-6;
-/// Largest length or coordinate (m) in a scene, a thousand kilometres: beyond it, squared
-/// distances lose the precision of the sizes beside them.
-pub const MAX_LENGTH: f64 = 1e6;
+pub use crate::scene::MAX_LENGTH;
 /// Smallest tilt (degrees) of a leaning straw: a straw tilted less is upright to within a
 /// nanometre over its length, and is written `tilt = 0`.
 pub const MIN_TILT_DEG: f64 = 1e-6;

@@ -28,6 +28,10 @@ fn main() {
         },
     };
     if let Err(e) = commands::run(cli) {
+        if bentstraw_io::files::interrupted() {
+            // The interruption's handler says so and ends the program with its exit code.
+            progress::wait_for_interruption();
+        }
         progress::tell(&format!("error: {e}\n"));
         std::process::exit(2);
     }

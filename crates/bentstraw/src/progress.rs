@@ -48,6 +48,13 @@ pub fn tell(text: &str) {
     let _ = std::io::stderr().write_all(text.as_bytes());
 }
 
+/// Waits while the interruption's handler ends the program (exit code 130, with its message).
+pub fn wait_for_interruption() -> ! {
+    loop {
+        std::thread::park();
+    }
+}
+
 /// Exit code after Ctrl-C or SIGTERM (128 + SIGINT, the shell's convention for an interruption).
 const INTERRUPTED_EXIT: i32 = 130;
 
