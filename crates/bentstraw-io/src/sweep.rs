@@ -103,6 +103,7 @@ mod figure {
     use bentstraw_optics::Vec3;
     use plotters::coord::Shift;
     use plotters::prelude::*;
+    use plotters::style::text_anchor::{HPos, Pos, VPos};
 
     use super::model_points;
     use crate::error::Result;
@@ -110,8 +111,12 @@ mod figure {
     use crate::plot::{figure_bytes, font, rgb, FigureFormat, Heading, FIGURE_WIDTH, TEXT};
     use crate::words::{self, Lang};
 
-    /// The figure's size (pixels, before its heading).
-    const SWEEP_CHART: (u32, u32) = (FIGURE_WIDTH, 760);
+    /// The figure's size (pixels, before its heading): the chart and its legend.
+    const SWEEP_CHART: (u32, u32) = (FIGURE_WIDTH, 900);
+    /// The legend's strip under the chart (pixels): three rows.
+    const LEGEND_HEIGHT: u32 = 150;
+    /// One row of the legend (pixels).
+    const LEGEND_ROW: i32 = 42;
     /// The models' colours: the course's point, the two focal lines, the stereo point.
     const MODEL_RGB: [(u8, u8, u8); 4] = [(20, 40, 140), (210, 80, 0), (150, 0, 150), (0, 130, 60)];
 
@@ -141,7 +146,8 @@ mod figure {
         files::write_bytes(path, &bytes)
     }
 
-    /// The sweep's figure on any backend.
+    /// The sweep's figure on any backend: the chart, and its legend in a strip under it (the
+    /// lines may run anywhere in the chart).
     fn draw_sweep<DB: DrawingBackend>(
         root: &DrawingArea<DB, Shift>,
         kind: SweepKind,
@@ -154,7 +160,8 @@ mod figure {
         let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
         root.fill(&WHITE).map_err(e)?;
         heading.draw(root).map_err(e)?;
-        let area = root.margin(heading.height() as u32, 20, 0, 0);
+        let area = root.margin(heading.height() as u32, 0, 0, 0);
+        let (chart_area, legend_area) = area.split_vertically(SWEEP_CHART.1 - LEGEND_HEIGHT);
         // Heights in centimetres: the scene's scale.
         let cm = |z: f64| z * 100.0;
         let shown = |z: f64| z >= limits.0 && z <= limits.1;
@@ -171,7 +178,16 @@ mod figure {
         let pad = ((hi - lo) * 0.08).max(0.002);
         let (y0, y1) = (cm(lo - pad), cm(hi + pad));
         let (x0, x1) = kind.range();
-        let mut chart = ChartBuilder::on(&area)
+        // Ticks every 45° round the glass, every 30° up and down.
+        let step = match kind {
+            SweepKind::Around => 45.0,
+            SweepKind::UpDown => 30.0,
+        };
+        let ticks: Vec<f64> = (0..)
+            .map(|k| x0 + k as f64 * step)
+            .take_while(|a| *a <= x1)
+            .collect();
+        let mut chart = ChartBuilder::on(&chart_area)
             .margin(20)
             .margin_right(40)
             .x_label_area_size(100)
@@ -188,15 +204,32 @@ mod figure {
             .y_desc(lang.of(words::SWEEP_HEIGHT_AXIS))
             .axis_desc_style(font(TEXT))
             .label_style(font(TEXT))
-            .x_labels(9)
             .y_labels(7)
+            // The angle's ticks are drawn below, at round angles.
+            .x_labels(0)
+            .disable_x_mesh()
             .max_light_lines(1)
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(200, 200, 200))
-            .x_label_formatter(&|v| format!("{v:.0}"))
             .y_label_formatter(&|v| format!("{v:.1}"))
             .draw()
             .map_err(e)?;
+        for &a in &ticks {
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(a, y0), (a, y1)],
+                    RGBColor(200, 200, 200).stroke_width(1),
+                )))
+                .map_err(e)?;
+            // In the backend's pixels: the root's own.
+            let (px, py) = chart.backend_coord(&(a, y0));
+            root.draw(&Text::new(
+                format!("{a:.0}").replace('-', "−"),
+                (px, py + 12),
+                font(TEXT).pos(Pos::new(HPos::Center, VPos::Top)),
+            ))
+            .map_err(e)?;
+        }
         // The object point's own height, dashed: where it would seem without refraction.
         let grey = RGBColor(90, 90, 90);
         let dashes = (0..60).map(|k| {
@@ -207,29 +240,19 @@ mod figure {
                 grey.stroke_width(2),
             )
         });
-        chart
-            .draw_series(dashes)
-            .map_err(e)?
-            .label(lang.of(words::SWEEP_TRUE))
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 16, y)], grey.stroke_width(2))
-            });
+        chart.draw_series(dashes).map_err(e)?;
         // The observer's seat.
+        let black = RGBColor(0, 0, 0);
         if let Some(seat) = rows.iter().find(|r| r.current) {
-            let black = RGBColor(0, 0, 0);
             chart
                 .draw_series(std::iter::once(PathElement::new(
                     vec![(seat.angle, y0), (seat.angle, y1)],
                     black.stroke_width(1),
                 )))
-                .map_err(e)?
-                .label(lang.of(words::SWEEP_SEAT))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x + 8, y - 8), (x + 8, y + 8)], black.stroke_width(2))
-                });
+                .map_err(e)?;
         }
-        for (m, name) in words::SWEEP_MODELS.iter().enumerate() {
-            let color = rgb(MODEL_RGB[m]);
+        for (m, &colour) in MODEL_RGB.iter().enumerate() {
+            let color = rgb(colour);
             // Runs of seats that see the point along one kind of path.
             let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
             let mut last_path = None;
@@ -257,24 +280,59 @@ mod figure {
                     .draw_series(run.iter().map(|&p| Circle::new(p, 4, color.filled())))
                     .map_err(e)?;
             }
-            chart
-                .draw_series(std::iter::empty::<Circle<(f64, f64), u32>>())
-                .map_err(e)?
-                .label(lang.of(*name))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(4))
-                });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(160, 160, 160))
-            .label_font(font(TEXT))
-            .draw()
+        // The legend: two columns, three rows, a sample of each line and its words.
+        let entries = words::SWEEP_MODELS
+            .iter()
+            .enumerate()
+            .map(|(m, name)| (lang.of(*name), Mark::Line(rgb(MODEL_RGB[m]))))
+            .chain([
+                (lang.of(words::SWEEP_TRUE), Mark::Dashed(grey)),
+                (lang.of(words::SWEEP_SEAT), Mark::Upright(black)),
+            ]);
+        let (width, _) = legend_area.dim_in_pixel();
+        let column = width as i32 / 2;
+        for (k, (label, mark)) in entries.enumerate() {
+            let x = 60 + (k as i32 / 3) * column;
+            let y = 20 + (k as i32 % 3) * LEGEND_ROW;
+            match mark {
+                Mark::Line(c) => legend_area.draw(&PathElement::new(
+                    vec![(x, y), (x + 50, y)],
+                    c.stroke_width(5),
+                )),
+                Mark::Dashed(c) => (0..3).try_for_each(|d| {
+                    let a = x + d * 20;
+                    legend_area.draw(&PathElement::new(
+                        vec![(a, y), (a + 12, y)],
+                        c.stroke_width(3),
+                    ))
+                }),
+                Mark::Upright(c) => legend_area.draw(&PathElement::new(
+                    vec![(x + 25, y - 14), (x + 25, y + 14)],
+                    c.stroke_width(2),
+                )),
+            }
             .map_err(e)?;
+            legend_area
+                .draw(&Text::new(
+                    label.to_string(),
+                    (x + 66, y),
+                    font(TEXT).pos(Pos::new(HPos::Left, VPos::Center)),
+                ))
+                .map_err(e)?;
+        }
         root.present().map_err(e)?;
         Ok(())
+    }
+
+    /// How a legend entry's sample is drawn.
+    enum Mark {
+        /// A model's line, in its colour.
+        Line(RGBColor),
+        /// The object point's own height, dashed.
+        Dashed(RGBColor),
+        /// The observer's seat, an upright line.
+        Upright(RGBColor),
     }
 }
 

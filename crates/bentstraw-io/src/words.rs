@@ -729,8 +729,8 @@ pub const SWEEP_NOTE: Text = t(
 );
 /// The round-the-glass sweep's x axis.
 pub const SWEEP_AROUND_AXIS: Text = t(
-    "turn of the eye round the glass from the observer's seat (°) →",
-    "rotation de l'œil autour du verre depuis la place de l'observateur (°) →",
+    "turn of the eye from the observer's seat (°) →",
+    "rotation de l'œil depuis la place de l'observateur (°) →",
 );
 /// The up-and-down sweep's x axis.
 pub const SWEEP_UPDOWN_AXIS: Text = t("elevation of the eye (°) →", "élévation de l'œil (°) →");
