@@ -309,6 +309,13 @@ impl App {
         {
             return closing(Reply::text(400, "a GET request has no body"));
         }
+        // HTTP names one server a request: with two, which one was meant cannot be known.
+        if headers.get_all(header::HOST).iter().nth(1).is_some() {
+            return closing(Reply::text(
+                400,
+                "two Host headers: a request names its server once",
+            ));
+        }
         let uri = request.uri();
         let path = uri.path();
         let api = path.starts_with("/api/");

@@ -451,6 +451,16 @@ fn foreign_pages_are_refused() {
         .unwrap();
         assert_eq!(read_answer(&mut s).status, 200, "{host}");
     }
+    // Two Host headers, the own one first: which server was meant cannot be known.
+    let mut s = server.connect();
+    write!(
+        s,
+        "GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nHost: rebound.example\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let a = read_answer(&mut s);
+    assert_eq!(a.status, 400, "{}", a.text());
+    assert!(a.text().contains("two Host headers"), "{}", a.text());
     // Nothing was computed for the refusals (checked above): a frame comes.
     frame_answered(&server);
 }
