@@ -280,3 +280,34 @@ test("on a phone's screen the page works", async () => {
   assert.deepEqual(problems, []);
   await context.close();
 });
+
+/** The largest peak memory (resident, MB) of the browser's page processes so far (Linux's /proc). */
+function pagePeakMB() {
+  let peak = 0;
+  for (const pid of readdirSync("/proc").filter((d) => /^\d+$/.test(d))) {
+    try {
+      if (!readFileSync(`/proc/${pid}/cmdline`, "utf8").includes("--type=renderer")) continue;
+      const hwm = /VmHWM:\s+(\d+) kB/.exec(readFileSync(`/proc/${pid}/status`, "utf8"));
+      if (hwm) peak = Math.max(peak, Number(hwm[1]) / 1024);
+    } catch { /* a process that ended meanwhile */ }
+  }
+  return peak;
+}
+
+test("a link whose scene file unpacks to 300 MB is refused, the page unpacking no more than it needs", async () => {
+  const { deflateRawSync } = await import("node:zlib");
+  // 300 MB of spaces pack into 300 kilobytes: a link a chat could carry.
+  const packed = deflateRawSync(Buffer.alloc(300 << 20, 0x20), { level: 9 }).toString("base64url");
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  const before = await page.evaluate(() => window.bentstraw.state.file);
+  await page.evaluate((code) => { location.hash = `file=${code}`; }, packed);
+  await page.waitForFunction(() => /larger than 1 MB/.test(document.body.innerText), null, { timeout: 30000 });
+  // No other scene took its place, and no page process held the unpacked text (300 MB).
+  assert.equal(await page.evaluate(() => window.bentstraw.state.file), before);
+  const peak = pagePeakMB();
+  assert.ok(peak > 0 && peak < 250, `a page process peaked at ${peak.toFixed(0)} MB`);
+  assert.deepEqual(problems.filter((p) => !p.includes("larger than 1 MB")), []);
+  await context.close();
+});

@@ -110,8 +110,17 @@ async function unpackFile(code) {
   const bin = atob(code.replace(/-/g, "+").replace(/_/g, "/"));
   if (bin.length > MAX_FILE_BYTES) throw new Error(t("error.packed-size"));
   const z = Uint8Array.from(bin, (c) => c.charCodeAt(0));
-  // Unpacked a piece at a time, stopping past 1 MB: a link cannot make the page unpack more.
-  const reader = new Blob([z]).stream().pipeThrough(new DecompressionStream("deflate-raw")).getReader();
+  // Fed to the unpacker a kilobyte at a time, each piece's output read before the next goes in,
+  // and stopped past 1 MB: deflate makes at most about a megabyte of a kilobyte, so a link cannot
+  // make the page hold more than that whatever it unpacks to.
+  const unpacker = new DecompressionStream("deflate-raw");
+  const writer = unpacker.writable.getWriter();
+  const reader = unpacker.readable.getReader();
+  const feeding = (async () => {
+    for (let k = 0; k < z.length; k += 1024) await writer.write(z.subarray(k, k + 1024));
+    await writer.close();
+  })();
+  feeding.catch(() => {}); // a cancelled unpacking refuses the pieces still to come
   const parts = [];
   let size = 0;
   for (;;) {
@@ -121,6 +130,7 @@ async function unpackFile(code) {
     if (size > MAX_FILE_BYTES) { reader.cancel(); throw new Error(t("error.file-size")); }
     parts.push(value);
   }
+  await feeding;
   return new TextDecoder("utf-8", { fatal: true }).decode(await new Blob(parts).arrayBuffer());
 }
 
