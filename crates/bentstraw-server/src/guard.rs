@@ -6,10 +6,10 @@
 use std::future::Future;
 use std::io;
 use std::pin::Pin;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 use std::task::{Context, Poll};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 use tokio::time::Sleep;
@@ -57,7 +57,43 @@ pub struct Guarded<S> {
     too_long: Arc<AtomicBool>,
     /// When the write waiting for the client gives up.
     write_deadline: Option<Pin<Box<Sleep>>>,
+    /// What the connection is doing, for the server's choice of one to close.
+    activity: Arc<Activity>,
 }
+
+/// What a connection is doing, as the server sees it when it must close one to make room: the
+/// one quiet the longest goes, never one writing an answer or in the middle of a request's head.
+#[derive(Debug, Default)]
+pub struct Activity {
+    /// When bytes last came or went, in milliseconds from the server's start.
+    last: AtomicU64,
+    /// Whether a write waits for the client to take what was sent (an answer under way).
+    writing: AtomicBool,
+    /// Whether part of a request's head has come and not the whole of it.
+    in_head: AtomicBool,
+}
+
+impl Activity {
+    /// Notes that something happened now.
+    pub fn touch(&self) {
+        let now = START.get_or_init(Instant::now).elapsed().as_millis() as u64;
+        self.last.store(now, Ordering::Relaxed);
+    }
+
+    /// When something last happened (ms from the server's start).
+    pub fn last(&self) -> u64 {
+        self.last.load(Ordering::Relaxed)
+    }
+
+    /// Whether the connection may be closed to make room: it is writing nothing and holds no
+    /// part of a request.
+    pub fn quiet(&self) -> bool {
+        !self.writing.load(Ordering::Relaxed) && !self.in_head.load(Ordering::Relaxed)
+    }
+}
+
+/// The server's start, the origin of [`Activity`]'s times.
+static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
 
 impl<S> Guarded<S> {
     /// `io` guarded; `too_long` is set when a request line is refused.
@@ -70,7 +106,15 @@ impl<S> Guarded<S> {
             ready_at: 0,
             too_long,
             write_deadline: None,
+            activity: Arc::default(),
         }
+    }
+
+    /// The socket, its doings noted in `activity`.
+    pub fn watched(mut self, activity: Arc<Activity>) -> Guarded<S> {
+        activity.touch();
+        self.activity = activity;
+        self
     }
 
     /// The socket.
@@ -192,6 +236,10 @@ impl<S: AsyncRead + Unpin> AsyncRead for Guarded<S> {
                 Poll::Ready(Ok(())) => {
                     let n = into.filled().len();
                     this.take(&chunk[..n]);
+                    this.activity.touch();
+                    let in_head =
+                        !this.line.is_empty() || matches!(this.reading, Reading::Headers { .. });
+                    this.activity.in_head.store(in_head, Ordering::Relaxed);
                 }
                 other => return other,
             }
@@ -209,6 +257,7 @@ impl<S: AsyncWrite + Unpin> Guarded<S> {
     ) -> Poll<io::Result<T>> {
         match write(Pin::new(&mut self.io), cx) {
             Poll::Pending => {
+                self.activity.writing.store(true, Ordering::Relaxed);
                 let deadline = self
                     .write_deadline
                     .get_or_insert_with(|| Box::pin(tokio::time::sleep(WRITE_TIMEOUT)));
@@ -222,6 +271,8 @@ impl<S: AsyncWrite + Unpin> Guarded<S> {
             }
             done => {
                 self.write_deadline = None;
+                self.activity.writing.store(false, Ordering::Relaxed);
+                self.activity.touch();
                 done
             }
         }

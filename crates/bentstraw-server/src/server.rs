@@ -1,8 +1,9 @@
 //! The explorer's web server (hyper on tokio), built so that no client can stop it or freeze it:
 //!
 //! - at most [`max_connections`] connections at once (fewer under a low limit of open files);
-//!   when they are all taken, the one idle the longest is closed to make room, and if none is
-//!   idle new ones wait in the listening backlog. An error accepting one (no file descriptor
+//!   when they are all taken, the one quiet the longest is closed to make room (never one
+//!   answering, writing an answer or holding part of a request), and if none is quiet new ones
+//!   wait in the listening backlog. An error accepting one (no file descriptor
 //!   left, say) is waited out, never fatal, and lowers the number kept to what the process can
 //!   really open;
 //! - every connection is bounded in time (a request's head within [`HEAD_TIMEOUT`], each write
@@ -36,7 +37,7 @@ use tokio::sync::{Notify, Semaphore};
 use bentstraw_explore::{self as api, Reply, MAX_URL};
 use bentstraw_optics::frame::Frame;
 
-use super::guard::{self, Guarded};
+use super::guard::{self, Activity, Guarded};
 use super::origin::Local;
 use super::work::Pool;
 
@@ -89,6 +90,8 @@ struct Conn {
     evicted: AtomicBool,
     /// Set when its request line was too long (answered 414, then closed).
     too_long: Arc<AtomicBool>,
+    /// What it is doing, and when it last did something.
+    activity: Arc<Activity>,
 }
 
 /// The open connections, oldest first.
@@ -106,7 +109,9 @@ impl Conns {
             evict: Notify::new(),
             evicted: AtomicBool::new(false),
             too_long: Arc::new(AtomicBool::new(false)),
+            activity: Arc::default(),
         });
+        conn.activity.touch();
         let mut open = self.open.lock().unwrap_or_else(|e| e.into_inner());
         open.insert(id, Arc::clone(&conn));
         (id, conn)
@@ -119,17 +124,26 @@ impl Conns {
             .remove(&id);
     }
 
-    /// Closes the oldest connection with no request under way; whether there was one.
-    fn evict_oldest_idle(&self) -> bool {
+    /// Closes the connection quiet the longest (no request under way, nothing being written,
+    /// no part of a request held); whether there was one.
+    fn evict_least_active(&self) -> bool {
         let open = self.open.lock().unwrap_or_else(|e| e.into_inner());
-        for conn in open.values() {
-            if conn.busy.load(Ordering::Relaxed) == 0 && !conn.evicted.swap(true, Ordering::Relaxed)
-            {
+        let quietest = open
+            .values()
+            .filter(|c| {
+                c.busy.load(Ordering::Relaxed) == 0
+                    && c.activity.quiet()
+                    && !c.evicted.load(Ordering::Relaxed)
+            })
+            .min_by_key(|c| c.activity.last());
+        match quietest {
+            Some(conn) => {
+                conn.evicted.store(true, Ordering::Relaxed);
                 conn.evict.notify_one();
-                return true;
+                true
             }
+            None => false,
         }
-        false
     }
 }
 
@@ -139,12 +153,14 @@ struct Busy(Arc<Conn>);
 impl Busy {
     fn new(conn: &Arc<Conn>) -> Busy {
         conn.busy.fetch_add(1, Ordering::Relaxed);
+        conn.activity.touch();
         Busy(Arc::clone(conn))
     }
 }
 
 impl Drop for Busy {
     fn drop(&mut self) {
+        self.0.activity.touch();
         self.0.busy.fetch_sub(1, Ordering::Relaxed);
     }
 }
@@ -191,7 +207,7 @@ async fn accept_loop(listener: TcpListener, app: Arc<App>) {
             Err(_) => {
                 // All taken: make room by closing an idle one; if none is, wait for one to end
                 // (new connections wait in the backlog meanwhile).
-                conns.evict_oldest_idle();
+                conns.evict_least_active();
                 match Arc::clone(&slots).acquire_owned().await {
                     Ok(slot) => slot,
                     Err(_) => return,
@@ -209,7 +225,7 @@ async fn accept_loop(listener: TcpListener, app: Arc<App>) {
                     slot.forget();
                     limit -= 1;
                 }
-                conns.evict_oldest_idle();
+                conns.evict_least_active();
                 tokio::time::sleep(ACCEPT_PAUSE).await;
                 continue;
             }
@@ -239,7 +255,8 @@ async fn connection(stream: TcpStream, app: &Arc<App>, conn: Arc<Conn>) {
     // Frames go out as soon as they are written: without this, a frame's last pieces wait for
     // the browser's delayed acknowledgement (Nagle's algorithm), up to 40 ms a frame.
     let _ = stream.set_nodelay(true);
-    let mut io = Guarded::new(stream, Arc::clone(&conn.too_long));
+    let mut io =
+        Guarded::new(stream, Arc::clone(&conn.too_long)).watched(Arc::clone(&conn.activity));
     let refused = {
         let service = hyper::service::service_fn(|request| {
             let app = Arc::clone(app);

@@ -344,6 +344,35 @@ fn more_connections_than_files_leave_the_server_serving() {
     assert!(server.alive());
 }
 
+/// With every connection taken, the one quiet the longest makes room: not a page's kept-alive
+/// connection that asked something a moment ago, though it is the oldest.
+#[test]
+#[cfg(unix)]
+fn the_connection_quiet_the_longest_makes_room() {
+    // 96 files: room for 64 connections.
+    let server = Server::start_with_file_limit(96, 0, &[]);
+    let ask = |s: &mut TcpStream| {
+        write!(
+            s,
+            "GET /api/scenes HTTP/1.1\r\nHost: {}\r\n\r\n",
+            server.host
+        )
+        .unwrap();
+        read_answer(s).status
+    };
+    let mut page = server.connect();
+    assert_eq!(ask(&mut page), 200);
+    let mut quiet: Vec<TcpStream> = (0..62).map(|_| server.connect()).collect();
+    // Served once all are accepted: the page asks again, and is the latest to have spoken.
+    assert_eq!(ask(&mut quiet[61]), 200);
+    assert_eq!(ask(&mut page), 200);
+    // Eight more: the server is full and closes eight quiet ones, the longest quiet first.
+    let mut more: Vec<TcpStream> = (0..8).map(|_| server.connect()).collect();
+    assert_eq!(ask(&mut more[7]), 200);
+    assert_eq!(ask(&mut page), 200, "the page's connection was closed");
+    drop(quiet);
+}
+
 /// Descriptors running out while accepting (most of them taken before the server started):
 /// the server waits it out and makes room, and a new client is served.
 #[test]
