@@ -85,6 +85,14 @@ impl Activity {
         self.last.load(Ordering::Relaxed)
     }
 
+    /// Notes that the connection was refused and closed on the server's side: it is the first
+    /// to go when room is needed.
+    pub fn refused(&self) {
+        self.writing.store(false, Ordering::Relaxed);
+        self.in_head.store(false, Ordering::Relaxed);
+        self.last.store(0, Ordering::Relaxed);
+    }
+
     /// Whether the connection may be closed to make room: it is writing nothing and holds no
     /// part of a request.
     pub fn quiet(&self) -> bool {

@@ -283,7 +283,13 @@ async fn connection(stream: TcpStream, app: &Arc<App>, conn: Arc<Conn>) {
         }
     };
     if refused {
-        linger(io.get_mut()).await;
+        // Answered and closed on our side; what the client still sends is read and dropped for
+        // a moment, unless the room is needed first.
+        conn.activity.refused();
+        tokio::select! {
+            _ = linger(io.get_mut()) => {}
+            _ = conn.evict.notified() => {}
+        }
     }
 }
 

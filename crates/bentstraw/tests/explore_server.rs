@@ -373,6 +373,31 @@ fn the_connection_quiet_the_longest_makes_room() {
     drop(quiet);
 }
 
+/// Clients that sent a malformed request and were answered make room at once for a good one:
+/// they do not keep their slots while the server drops what they still send.
+#[test]
+#[cfg(unix)]
+fn refused_clients_make_room_at_once() {
+    // 96 files: room for 64 connections, all taken by clients sending nonsense.
+    let server = Server::start_with_file_limit(96, 0, &[]);
+    let mut refused: Vec<TcpStream> = (0..64).map(|_| server.connect()).collect();
+    for s in &mut refused {
+        s.write_all(b"\x01\x02 nonsense\r\n\r\n").unwrap();
+    }
+    for s in &mut refused {
+        assert_eq!(read_answer(s).status, 400);
+    }
+    let asked = Instant::now();
+    assert_eq!(server.get("/api/scenes", "").status, 200);
+    // Well within the two seconds a refused connection's leftovers are read for.
+    assert!(
+        asked.elapsed() < Duration::from_secs(1),
+        "served after {:?}",
+        asked.elapsed()
+    );
+    drop(refused);
+}
+
 /// Descriptors running out while accepting (most of them taken before the server started):
 /// the server waits it out and makes room, and a new client is served.
 #[test]
