@@ -699,21 +699,30 @@ pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, Stri
         };
         p.direction
     } else {
-        let row: f64 = number(required(q, "row")?, "row")?;
-        let col: f64 = number(required(q, "col")?, "col")?;
-        let (w, h) = (view.camera.width as f64, view.camera.height as f64);
-        if !(0.0..=h).contains(&row) || !(0.0..=w).contains(&col) {
-            return Err(format!(
-                "pixel ({}, {}) is outside the {}x{} picture",
-                clip_text(&row.to_string(), 24),
-                clip_text(&col.to_string(), 24),
-                view.camera.width,
-                view.camera.height
-            ));
-        }
-        view.camera.direction_at(row, col).normalize()
+        pixel_direction(view, q)?.2
     };
     Ok(Reply::json(&ray_json(&view.scene.world, view.observer, u0)))
+}
+
+/// The query's pixel `row`, `col` (within the picture) and the unit direction of its ray from
+/// the eye.
+pub(crate) fn pixel_direction(
+    view: &View,
+    q: &HashMap<String, String>,
+) -> Result<(f64, f64, Vec3), String> {
+    let row: f64 = number(required(q, "row")?, "row")?;
+    let col: f64 = number(required(q, "col")?, "col")?;
+    let (w, h) = (view.camera.width as f64, view.camera.height as f64);
+    if !(0.0..=h).contains(&row) || !(0.0..=w).contains(&col) {
+        return Err(format!(
+            "pixel ({}, {}) is outside the {}x{} picture",
+            clip_text(&row.to_string(), 24),
+            clip_text(&col.to_string(), 24),
+            view.camera.width,
+            view.camera.height
+        ));
+    }
+    Ok((row, col, view.camera.direction_at(row, col).normalize()))
 }
 
 /// The light path of the ray from `eye` along unit `u0` through `world`, as the page shows it

@@ -11,13 +11,15 @@ use std::sync::atomic::AtomicBool;
 
 use bentstraw_io::parse::parse_vec3;
 use bentstraw_io::sweep::{model_points, shown_heights, write_sweep_csv};
-use bentstraw_io::view_spec::{number, required};
+use bentstraw_io::view_spec::number;
 use bentstraw_optics::apparent::{
     sweep_apparent_until, Sight, Sweep, SweepKind, DEFAULT_SWEEP_ROWS, MAX_SWEEP_ROWS,
     MIN_SWEEP_ROWS, SWEEP_POINT_TOLERANCE,
 };
 use bentstraw_optics::text::{clip_text, refuse_choice};
 use bentstraw_optics::Vec3;
+
+use crate::pixel_direction;
 use serde_json::{json, Value};
 
 use super::{get, stopped, vec_json, Reply, View};
@@ -64,19 +66,7 @@ fn object_point(view: &View, q: &HashMap<String, String>) -> Result<(Vec3, Optio
         }
         return Ok((p, seen_along));
     }
-    let row: f64 = number(required(q, "row")?, "row")?;
-    let col: f64 = number(required(q, "col")?, "col")?;
-    let (w, h) = (view.camera.width as f64, view.camera.height as f64);
-    if !(0.0..=h).contains(&row) || !(0.0..=w).contains(&col) {
-        return Err(format!(
-            "pixel ({}, {}) is outside the {}x{} picture",
-            clip_text(&row.to_string(), 24),
-            clip_text(&col.to_string(), 24),
-            view.camera.width,
-            view.camera.height
-        ));
-    }
-    let u0 = view.camera.direction_at(row, col).normalize();
+    let (row, col, u0) = pixel_direction(view, q)?;
     match world.image_point(view.observer, u0) {
         Some(image) => Ok((image.straw_point, Some(u0))),
         None => Err(format!(

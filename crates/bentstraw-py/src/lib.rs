@@ -516,9 +516,8 @@ fn check(
         min_coverage,
         worst,
     };
-    options.validate().map_err(python_error)?;
     let started = std::time::Instant::now();
-    let (solution, report) = judged_points(py, scene, xyz, color, tolerance, min_coverage)?;
+    let (solution, report) = judged_points(py, scene, xyz, color, &options)?;
     let seconds = started.elapsed().as_secs_f64();
     let v = json_report(
         "(arrays)",
@@ -532,22 +531,21 @@ fn check(
 }
 
 /// The points `xyz` (n × 3, m) of colour codes `color` (n) as a solution, and their judgement
-/// from the scene's observer (the interpreter's lock released while it works).
+/// from the scene's observer with `options` (checked first; the interpreter's lock released
+/// while it works).
 fn judged_points(
     py: Python<'_>,
     scene: &LoadedScene,
     xyz: PyReadonlyArray2<'_, f64>,
     color: PyReadonlyArray1<'_, f64>,
-    tolerance: f64,
-    min_coverage: f64,
+    options: &CheckOptions,
 ) -> PyResult<(Solution, CheckReport)> {
-    CheckOptions {
+    options.validate().map_err(python_error)?;
+    let CheckOptions {
         tolerance,
         min_coverage,
-        worst: 0,
-    }
-    .validate()
-    .map_err(python_error)?;
+        ..
+    } = *options;
     let loaded = &scene.loaded;
     let xyz = xyz.as_array();
     if xyz.ncols() != 3 {
@@ -614,8 +612,12 @@ fn grade_points(
             "points {max_score} is not allowed: a case is worth a finite number >= 0 of points"
         )));
     }
-    let (solution, report) = judged_points(py, scene, xyz, color, tolerance, min_coverage)?;
-    drop(solution);
+    let options = CheckOptions {
+        tolerance,
+        min_coverage,
+        worst: 0,
+    };
+    let (_, report) = judged_points(py, scene, xyz, color, &options)?;
     let row = grading::CaseGrade::judged("", "solution", (max_score, min_coverage), "xyz", &report);
     Ok(grading::rows_json(&[row], lang)[0].to_string())
 }
