@@ -19,7 +19,7 @@ use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::rule::{Param, Rule};
-use bentstraw_optics::sampling::{sample_image, ImageCloud};
+use bentstraw_optics::sampling::{sample_image_until, ImageCloud};
 use bentstraw_optics::scene::{DEFAULT_MAX_EVENTS, WATER_INDEX};
 use bentstraw_optics::scene_file::{Container, Observer, SceneForm, DEFAULT_COIN_RADIUS};
 use bentstraw_optics::shading::{RgbPicture, ShadingOptions};
@@ -56,6 +56,13 @@ pub const MAX_POINTS: usize = 1_000_000;
 /// Most pixels of a picture the explorer draws (4K); the command line allows more, but a page
 /// never shows more than its screen.
 pub const MAX_PICTURE_PIXELS: u64 = 3840 * 2160;
+/// Most work one request may ask for, in ray-surface tests at worst ([`View::work`]): a 4K
+/// picture with 16×16 samples of the classic glass and its 1000 events fits; a hundred straws under
+/// 32 layers drawn so does not (it would hold a worker for minutes).
+pub const MAX_WORK: f64 = 2e13;
+/// Work beyond which a request is heavy ([`View::work`]): the explorer computes one heavy request
+/// at a time, so that the page's frames (about a hundredth of this) never wait behind them.
+pub const HEAVY_WORK: f64 = 1e10;
 /// Longest request address accepted (bytes): room for a scene file of a few kilobytes, which
 /// travels in the address (`scene-file`).
 pub const MAX_URL: usize = 16 * 1024;
@@ -392,17 +399,53 @@ impl View {
             )
             .into());
         }
-        Ok(View {
+        let view = View {
             spec,
             scene: Arc::new(scene),
             observer,
             camera,
-        })
+        };
+        let work = view.work();
+        if work > MAX_WORK {
+            let (w, h) = (view.camera.width, view.camera.height);
+            return Err(format!(
+                "this view asks too much work of the explorer: {w}x{h} pixels with {s}x{s} samples and \
+                 {p} points, through {n} surfaces with up to {e} events each, is {work:.1e} \
+                 ray-surface tests at worst, and the explorer does at most {MAX_WORK:.0e}: ask for \
+                 fewer pixels, samples, points or events (the command line has no such limit)",
+                s = view.spec.picture.samples,
+                p = view.spec.points,
+                n = view.surfaces(),
+                e = view.scene.world.max_events(),
+            )
+            .into());
+        }
+        Ok(view)
     }
 
-    /// At least `points` image points of the view's scene, as `simulate` traces them.
-    fn sample(&self, points: usize) -> ImageCloud {
-        sample_image(&self.scene.world, self.observer, points, &|_| {})
+    /// The surfaces a ray of this view may meet: the boundaries between media and the objects.
+    fn surfaces(&self) -> usize {
+        let world = &self.scene.world;
+        (world.boundaries().len() + world.objects().len()).max(1)
+    }
+
+    /// The most work any answer for this view may take, in ray-surface tests: every ray of the
+    /// picture (`samples²` per pixel) and of the points (16 per point asked, for the sampling's
+    /// coarse levels and the models), times the events each may make, times the surfaces each
+    /// event tests; twice that in Fresnel mode, whose rays branch. The explorer refuses a view
+    /// beyond [`MAX_WORK`] and computes one beyond [`HEAVY_WORK`] at a time.
+    pub fn work(&self) -> f64 {
+        let pixels = self.camera.width as f64 * self.camera.height as f64;
+        let samples = self.spec.picture.samples.max(1) as f64;
+        let rays = pixels * samples * samples + 16.0 * self.spec.points as f64;
+        let branches = if self.spec.picture.fresnel { 2.0 } else { 1.0 };
+        rays * self.scene.world.max_events().max(1) as f64 * self.surfaces() as f64 * branches
+    }
+
+    /// At least `points` image points of the view's scene, as `simulate` traces them; none if
+    /// `stop` is set meanwhile.
+    fn sample(&self, points: usize, stop: &AtomicBool) -> Option<ImageCloud> {
+        sample_image_until(&self.scene.world, self.observer, points, &|_| {}, stop)
     }
 
     fn shading(&self) -> ShadingOptions {
@@ -457,6 +500,10 @@ pub fn frame_reply(view: &View, frame: &mut Frame, memory: &Memory) -> Reply {
     // The colour codes a scene can show: the straw's five, or all eight in a scene file.
     let codes = view.scene.colour_names().len();
     draw_frame(&view.scene.world, &request, frame);
+    // Abandoned half-way: its points are not this view's, and are not remembered as such.
+    if frame.stop_flag().load(Ordering::Relaxed) {
+        return stopped();
+    }
     #[cfg(not(target_arch = "wasm32"))]
     let ms = started.elapsed().as_secs_f64() * 1e3;
     #[cfg(target_arch = "wasm32")]
@@ -552,17 +599,22 @@ impl Memory {
 pub const MAX_EVERY: usize = 64;
 
 /// The course image points of `view`: the last frame's when it was this view's (then `true`).
-fn course_points(view: &View, memory: &Memory) -> (Arc<Vec<ImagePoint>>, bool) {
+fn course_points(
+    view: &View,
+    memory: &Memory,
+    stop: &AtomicBool,
+) -> Option<(Arc<Vec<ImagePoint>>, bool)> {
     let key = view.points_key();
     let last = memory.points.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((k, points)) = last.as_ref() {
         if *k == key {
             memory.reused.fetch_add(1, Ordering::Relaxed);
-            return (Arc::clone(points), true);
+            return Some((Arc::clone(points), true));
         }
     }
     drop(last);
-    (Arc::new(view.sample(view.spec.points.max(1)).points), false)
+    let cloud = view.sample(view.spec.points.max(1), stop)?;
+    Some((Arc::new(cloud.points), false))
 }
 
 /// A model's answers for the last few views asked: the view and model, the step `every`, and
@@ -618,7 +670,9 @@ pub fn model_reply(
     stop: &AtomicBool,
     memory: &Memory,
 ) -> Reply {
-    let (all, reused_points) = course_points(view, memory);
+    let Some((all, reused_points)) = course_points(view, memory, stop) else {
+        return stopped();
+    };
     let every = every.max(1);
     let key = format!("{} {model}", view.points_key());
     // A coarser answer for this view, if one was given: its points are taken from it.
@@ -687,10 +741,16 @@ fn focus_json(f: &Focus) -> Value {
 /// `GET /api/ray?row=R&col=C` (a point of the picture, in its pixels) or `?point=K` (the K-th
 /// image point, as `simulate` numbers them): the ray's broken path, its events, and the course's,
 /// eye model's and stereo model's points.
-pub fn ray_reply(view: &View, q: &HashMap<String, String>) -> Result<Reply, String> {
+pub fn ray_reply(
+    view: &View,
+    q: &HashMap<String, String>,
+    stop: &AtomicBool,
+) -> Result<Reply, String> {
     let u0 = if let Some(k) = get(q, "point") {
         let k: usize = number(k, "point")?;
-        let cloud = view.sample(view.spec.points.max(1));
+        let Some(cloud) = view.sample(view.spec.points.max(1), stop) else {
+            return Ok(stopped());
+        };
         let Some(p) = cloud.points.get(k) else {
             return Err(format!(
                 "point {k} does not exist: the view has {} image points",
@@ -842,7 +902,9 @@ pub fn export_reply(
         ));
     }
     let points = view.spec.points.max(1);
-    let cloud = view.sample(points);
+    let Some(cloud) = view.sample(points, stop) else {
+        return Ok(stopped());
+    };
     let eye;
     let stereo;
     let world = &view.scene.world;
@@ -954,7 +1016,7 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame, memory: &Memory) -> Re
             )),
             Err(e) => Err(e),
         },
-        "/api/ray" => ray_reply(&view, &q),
+        "/api/ray" => ray_reply(&view, &q, &frame.stop_flag()),
         "/api/aim" => Ok(aim_reply(&view)),
         "/api/export" => export_reply(&view, &q, &frame.stop_flag()),
         "/api/scene-file" => scene_file_reply(&view),
@@ -967,6 +1029,7 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame, memory: &Memory) -> Re
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene_file::SceneDescription;
 
     fn query(s: &str) -> HashMap<String, String> {
@@ -974,6 +1037,85 @@ mod tests {
     }
 
     const REF2: &str = "observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15";
+
+    /// A glass of radius 0.3 m with `straws` straws in a grid and `layers` liquids.
+    fn crowded_scene(straws: usize, layers: usize) -> String {
+        let mut text = String::from("[container]\nshape = \"glass\"\nradius = 0.3\nheight = 0.5\n");
+        for k in 0..layers {
+            let top = 0.4 * (k + 1) as f64 / layers as f64;
+            text += &format!(
+                "[[liquid]]\nname = \"l{k}\"\nindex = {}\ntop = {top}\n",
+                1.3 + 0.005 * k as f64
+            );
+        }
+        for k in 0..straws {
+            let (x, y) = (
+                (k % 10) as f64 * 0.03 - 0.135,
+                (k / 10) as f64 * 0.03 - 0.135,
+            );
+            text += &format!("[[straw]]\nx = {x}\ny = {y}\n");
+        }
+        text + "[observer]\nposition = [1.0, 0.0, 0.3]\n"
+    }
+
+    #[test]
+    fn work_is_bounded_and_heavy_views_are_told_apart() {
+        let classic = |extra: &str| View::checked(&query(&format!("{REF2}{extra}")));
+        // The page's full frame: light, far below the line.
+        let page = classic("").unwrap();
+        assert!(page.work() < HEAVY_WORK / 20.0, "{:e}", page.work());
+        // The largest classic picture the explorer draws is allowed, and heavy.
+        let largest = classic("&size=3840x2160&samples=16&max-events=1000&mode=fresnel").unwrap();
+        assert!(
+            largest.work() > HEAVY_WORK && largest.work() <= MAX_WORK,
+            "{:e}",
+            largest.work()
+        );
+        // The work grows with every factor: pixels, samples², events, points.
+        let w = |extra: &str| classic(extra).unwrap().work();
+        let base = w("&size=100x100&samples=2&max-events=10&points=1&mode=course");
+        let twice = |extra: &str| w(extra) / base;
+        assert!(
+            (twice("&size=200x100&samples=2&max-events=10&points=1&mode=course") - 2.0).abs()
+                < 1e-3
+        );
+        assert!(
+            (twice("&size=100x100&samples=4&max-events=10&points=1&mode=course") - 4.0).abs()
+                < 1e-2
+        );
+        assert!(
+            (twice("&size=100x100&samples=2&max-events=20&points=1&mode=course") - 2.0).abs()
+                < 1e-9
+        );
+        assert!(
+            (twice("&size=100x100&samples=2&max-events=10&points=1&mode=fresnel") - 2.0).abs()
+                < 1e-9
+        );
+        assert!(twice("&size=100x100&samples=2&max-events=10&points=2500&mode=course") > 1.9);
+        // A hundred straws under 32 layers drawn in 4K with every sample and event: refused,
+        // the message naming what to lower.
+        let mut q =
+            query("observer=1,0,0.3&size=3840x2160&samples=16&max-events=1000&points=1000000");
+        q.insert("scene-file".into(), crowded_scene(100, 32));
+        let refused = View::checked(&q).err().expect("refused");
+        for word in [
+            "3840x2160",
+            "16x16",
+            "1000000 points",
+            "1000 events",
+            "ray-surface tests",
+        ] {
+            assert!(
+                refused.message.contains(word),
+                "{word} in {}",
+                refused.message
+            );
+        }
+        // The same scene at the page's size is allowed.
+        let mut q = query("observer=1,0,0.3");
+        q.insert("scene-file".into(), crowded_scene(100, 32));
+        assert!(View::checked(&q).is_ok());
+    }
 
     #[test]
     fn queries_decode_escapes_and_refuse_broken_ones() {
@@ -1128,7 +1270,7 @@ mod tests {
     fn ray_of_a_point_is_that_point() {
         let view = View::from_query(&query(&format!("{REF2}&points=1000"))).unwrap();
         let pts = sample_image(&view.scene.world, view.observer, 1000, &|_| {}).points;
-        let r = ray_reply(&view, &query("point=17")).unwrap();
+        let r = ray_reply(&view, &query("point=17"), &AtomicBool::new(false)).unwrap();
         let v: Value = serde_json::from_slice(&r.body).unwrap();
         let p = pts[17];
         assert_eq!(
@@ -1138,8 +1280,8 @@ mod tests {
         assert_eq!(v["path_length"], json!(p.path_length));
         assert_eq!(v["color"], json!(p.color));
         assert_eq!(v["events"].as_array().unwrap().len(), p.events as usize);
-        assert!(ray_reply(&view, &query("point=99999999")).is_err());
-        assert!(ray_reply(&view, &query("row=-1&col=3")).is_err());
+        assert!(ray_reply(&view, &query("point=99999999"), &AtomicBool::new(false)).is_err());
+        assert!(ray_reply(&view, &query("row=-1&col=3"), &AtomicBool::new(false)).is_err());
     }
 
     /// A gallery scene: its frame holds the objects' points (codes up to 8) and what the page draws

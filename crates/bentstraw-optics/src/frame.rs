@@ -10,7 +10,7 @@ use crate::parallel::*;
 use crate::camera::Camera;
 use crate::image::ImagePoint;
 use crate::light_path_type::LightPathType;
-use crate::sampling::{light_path_types, sample_image};
+use crate::sampling::{light_path_types, sample_image_until};
 use crate::shading::{shaded_picture_into, RgbPicture, ShadingBuffers, ShadingOptions};
 use crate::world::World;
 
@@ -89,6 +89,8 @@ pub fn draw_frame(world: &World, request: &FrameRequest, frame: &mut Frame) {
         shading,
     } = frame;
     let observer = request.camera.eye;
+    // The picture's stop flag abandons the points too (a frame given up is thrown away whole).
+    let stop = shading.stop_flag();
     join(
         || shaded_picture_into(world, &request.camera, &request.shading, shading, picture),
         || {
@@ -98,10 +100,16 @@ pub fn draw_frame(world: &World, request: &FrameRequest, frame: &mut Frame) {
             if request.min_points == 0 {
                 return;
             }
-            let cloud = sample_image(world, observer, request.min_points, &|_| {});
+            let Some(cloud) =
+                sample_image_until(world, observer, request.min_points, &|_| {}, &stop)
+            else {
+                return;
+            };
             *points = cloud.points;
             *rays_traced = cloud.rays_traced;
-            light_path_types(world, observer, points, |p| p.direction, paths);
+            if !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                light_path_types(world, observer, points, |p| p.direction, paths);
+            }
         },
     );
 }

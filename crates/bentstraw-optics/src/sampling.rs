@@ -16,6 +16,7 @@
 //! points in the same order, whatever the number of threads.
 
 use std::f64::consts::PI;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::parallel::*;
 
@@ -200,6 +201,21 @@ pub fn sample_image(
     min_points: usize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> ImageCloud {
+    let never = AtomicBool::new(false);
+    sample_image_until(world, observer, min_points, progress, &never)
+        .expect("a stop flag never set does not stop the sampling")
+}
+
+/// [`sample_image`], abandoned (`None`) soon after `stop` is set: every ray looks at the flag
+/// first, so a client that hangs up frees its worker within a ray's time.
+pub fn sample_image_until(
+    world: &World,
+    observer: Vec3,
+    min_points: usize,
+    progress: &(dyn Fn(u64) + Sync),
+    stop: &AtomicBool,
+) -> Option<ImageCloud> {
+    let stopped = || stop.load(Ordering::Relaxed);
     let frame = DirectionMap::of_box(observer, world.bounds());
     let longest = frame.width.max(frame.height);
     let mut spacing = longest / COARSE_CELLS;
@@ -214,6 +230,9 @@ pub fn sample_image(
             .par_iter()
             .with_min_len(256)
             .map(|&(i, j)| {
+                if stopped() {
+                    return false;
+                }
                 let a = frame.a_min + (i as f64 + 0.5) * spacing;
                 let b = frame.b_min + (j as f64 + 0.5) * spacing;
                 world
@@ -230,6 +249,9 @@ pub fn sample_image(
     let mut blind = 0;
     loop {
         let hit = trace_cells(&cells, spacing);
+        if stopped() {
+            return None;
+        }
         rays += cells.len() as u64;
         progress(rays);
         let hits: Vec<Cell> = cells
@@ -240,11 +262,11 @@ pub fn sample_image(
             .collect();
         if hits.is_empty() {
             if blind == BLIND_LEVELS {
-                return ImageCloud {
+                return Some(ImageCloud {
                     points: Vec::new(),
                     rays_traced: rays,
                     spacing,
-                };
+                });
             }
             blind += 1;
             cells = split(&cells);
@@ -262,14 +284,19 @@ pub fn sample_image(
         // Final level: a uniform grid of spacing `h`, traced where the last level saw the straw.
         let mut h = target.min(spacing);
         loop {
-            let points = final_level(world, observer, &frame, &active, spacing, h, &mut rays);
+            let points = final_level(
+                world, observer, &frame, &active, spacing, h, &mut rays, stop,
+            );
+            if stopped() {
+                return None;
+            }
             progress(rays);
             if points.len() >= min_points || h < 1e-7 * longest {
-                return ImageCloud {
+                return Some(ImageCloud {
                     points,
                     rays_traced: rays,
                     spacing: h,
-                };
+                });
             }
             h /= (min_points as f64 / points.len().max(1) as f64).sqrt() * 1.02;
         }
@@ -325,7 +352,8 @@ fn dilate(hits: &[Cell], frame: &DirectionMap, spacing: f64) -> Vec<Cell> {
 }
 
 /// Traces the points of the uniform grid of spacing `h` whose centres lie in `active` cells (of
-/// size `spacing`), and returns the image points, in cell order.
+/// size `spacing`), and returns the image points, in cell order (cut short once `stop` is set).
+#[allow(clippy::too_many_arguments)]
 fn final_level(
     world: &World,
     observer: Vec3,
@@ -334,6 +362,7 @@ fn final_level(
     spacing: f64,
     h: f64,
     rays: &mut u64,
+    stop: &AtomicBool,
 ) -> Vec<ImagePoint> {
     // Final-grid indices whose centres (index + 0.5)·h fall in [lo, hi) of a cell.
     let range = |cell_index: u32| -> (u64, u64) {
@@ -350,6 +379,9 @@ fn final_level(
             let mut pts = Vec::new();
             let mut n = 0;
             for &(i, j) in chunk {
+                if stop.load(Ordering::Relaxed) {
+                    break;
+                }
                 let (i0, i1) = range(i);
                 let (j0, j1) = range(j);
                 for jj in j0..j1 {

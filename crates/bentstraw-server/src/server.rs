@@ -39,7 +39,7 @@ use bentstraw_optics::frame::Frame;
 
 use super::guard::{self, Activity, Guarded};
 use super::origin::Local;
-use super::work::Pool;
+use super::work::{self, Pool};
 
 /// Most connections open at once, when the limit of open files allows it.
 pub const MAX_CONNECTIONS: usize = 256;
@@ -60,6 +60,20 @@ const MIN_CONNECTIONS: usize = 8;
 /// long (at most [`LINGER_BYTES`]), so that it reads the refusal rather than a reset.
 const LINGER: Duration = Duration::from_secs(2);
 const LINGER_BYTES: usize = 4 << 20;
+/// How often a request being computed is checked against [`work::MAX_COMPUTE`].
+const OVERTIME_CHECK: Duration = Duration::from_millis(250);
+
+/// The answer to a request computed for longer than [`work::MAX_COMPUTE`] (then stopped).
+fn overtime() -> Reply {
+    Reply::text(
+        422,
+        format!(
+            "this view took more than {} s of the explorer's time and was stopped: ask for fewer \
+             pixels, samples, points or events (the command line has no such limit)",
+            work::MAX_COMPUTE.as_secs()
+        ),
+    )
+}
 
 /// Most connections this process can keep open: [`MAX_CONNECTIONS`], or fewer when the limit of
 /// open files is low (each connection is one).
@@ -405,21 +419,32 @@ impl App {
         // (A scene's broken rules go as data, as the page's own engine sends them.)
         let parsed = api::parse_query(query)
             .map_err(api::Refused::from)
-            .and_then(|q| api::View::checked(&q).map(|_| q));
-        let q = match parsed {
-            Ok(q) => q,
+            .and_then(|q| api::View::checked(&q).map(|view| (q, view.work())));
+        let (q, work) = match parsed {
+            Ok(checked) => checked,
             Err(e) => return respond(e.reply()),
         };
         let chan = q
             .get("chan")
             .zip(q.get("seq").and_then(|s| s.parse::<u64>().ok()))
             .map(|(chan, seq)| (bentstraw_optics::text::clip_text(chan, 64), seq));
-        match self.pool.submit(path, query, chan) {
-            Ok(mut waiting) => match (&mut waiting.answer).await {
-                Ok(answer) => timed(respond(answer.reply), answer.engine_ms),
-                Err(_) => respond(Reply::text(500, "the request was lost")),
-            },
-            Err(refusal) => respond(refusal),
+        let mut waiting = match self.pool.submit(path, query, chan, work > api::HEAVY_WORK) {
+            Ok(waiting) => waiting,
+            Err(refusal) => return respond(refusal),
+        };
+        loop {
+            tokio::select! {
+                answer = &mut waiting.answer => return match answer {
+                    Ok(answer) => timed(respond(answer.reply), answer.engine_ms),
+                    Err(_) => respond(Reply::text(500, "the request was lost")),
+                },
+                _ = tokio::time::sleep(OVERTIME_CHECK) => {
+                    // Given up (and its work stopped) when `waiting` is dropped.
+                    if waiting.overtime(work::MAX_COMPUTE) {
+                        return respond(overtime());
+                    }
+                }
+            }
         }
     }
 }

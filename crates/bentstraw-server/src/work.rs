@@ -1,6 +1,9 @@
 //! The explorer's heavy work (frames, models, rays, exports): [`WORKERS`] threads, each with its
 //! own frame buffers, take requests from a queue of at most [`QUEUE`]; beyond it the server
-//! answers 503 at once. A request stops being worked on when nobody waits for it any more: its
+//! answers 503 at once. Requests whose work is large ([`bentstraw_explore::HEAVY_WORK`]) wait in a
+//! queue of their own ([`HEAVY_QUEUE`]) and are computed one at a time, the other worker kept for
+//! the rest, so that a 4K export never makes a page's frames wait; a request computed for longer
+//! than [`MAX_COMPUTE`] is stopped and refused. A request stops being worked on when nobody waits for it any more: its
 //! client left (the connection closed) or the same page asked for something newer on the same
 //! channel (`chan=…&seq=N`), which is then answered 409 ("stale"), as the page expects. Work
 //! already under way is abandoned through its frame's stop flag, so a fast drag never piles up
@@ -20,6 +23,12 @@ use tokio::sync::oneshot;
 pub const WORKERS: usize = 2;
 /// Requests waiting for a worker, beyond which the server answers 503.
 pub const QUEUE: usize = 4;
+/// Heavy requests waiting, beyond which the server answers 503.
+pub const HEAVY_QUEUE: usize = 2;
+/// Heavy requests computed at once: the other workers are kept for the light ones.
+const HEAVY_RUNNING: usize = WORKERS - 1;
+/// Longest a request is computed before it is stopped and refused.
+pub const MAX_COMPUTE: std::time::Duration = std::time::Duration::from_secs(30);
 /// Most channels (page × kind of request) whose latest sequence number is remembered.
 const MAX_CHANNELS: usize = 256;
 
@@ -38,6 +47,8 @@ struct Ticket {
     /// While a worker computes it: that worker's stop flag. Guarded, so that a request given up
     /// just as a worker takes it is stopped all the same.
     running: Mutex<Option<Arc<AtomicBool>>>,
+    /// When a worker started computing it.
+    started: Mutex<Option<Instant>>,
 }
 
 impl Ticket {
@@ -61,6 +72,7 @@ impl Ticket {
 struct Job {
     path: String,
     query: String,
+    heavy: bool,
     ticket: Arc<Ticket>,
     answer: oneshot::Sender<Answer>,
 }
@@ -85,9 +97,27 @@ struct Channel {
 #[derive(Default)]
 struct Queue {
     jobs: VecDeque<Job>,
+    /// Heavy requests waiting.
+    heavy: VecDeque<Job>,
     /// Requests a worker has taken and not yet answered: the queue is full when these and
     /// those waiting make [`WORKERS`] + [`QUEUE`] (whether or not the workers have woken yet).
     running: usize,
+    /// Of those, the heavy ones.
+    running_heavy: usize,
+}
+
+impl Queue {
+    /// The next request a free worker takes: a light one first; a heavy one only while fewer
+    /// than [`HEAVY_RUNNING`] are computed.
+    fn next(&mut self) -> Option<Job> {
+        if let Some(job) = self.jobs.pop_front() {
+            return Some(job);
+        }
+        if self.running_heavy < HEAVY_RUNNING {
+            return self.heavy.pop_front();
+        }
+        None
+    }
 }
 
 /// The workers and their queue.
@@ -105,6 +135,18 @@ pub struct Waiting {
     /// The answer.
     pub answer: oneshot::Receiver<Answer>,
     ticket: Arc<Ticket>,
+}
+
+impl Waiting {
+    /// Whether a worker has computed it for longer than `limit`.
+    pub fn overtime(&self, limit: std::time::Duration) -> bool {
+        let started = *self
+            .ticket
+            .started
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        started.is_some_and(|t| t.elapsed() > limit)
+    }
 }
 
 impl Drop for Waiting {
@@ -142,13 +184,15 @@ impl Pool {
         Ok(pool)
     }
 
-    /// Queues `path?query` (`chan`: its channel and sequence number, if it has them); the answer
-    /// to wait for, or the refusal to send at once (409 when already replaced, 503 when full).
+    /// Queues `path?query` (`chan`: its channel and sequence number, if it has them; `heavy`:
+    /// whether its work is beyond [`bentstraw_explore::HEAVY_WORK`]); the answer to wait for, or
+    /// the refusal to send at once (409 when already replaced, 503 when full).
     pub fn submit(
         &self,
         path: &str,
         query: &str,
         chan: Option<(String, u64)>,
+        heavy: bool,
     ) -> Result<Waiting, Reply> {
         let ticket = Arc::new(Ticket::default());
         if let Some((name, seq)) = chan {
@@ -176,17 +220,30 @@ impl Pool {
         let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
         // Requests given up leave the queue now, not when a worker comes to them.
         queue.jobs.retain(|job| job.ticket.fate() == WANTED);
-        if queue.jobs.len() + queue.running >= QUEUE + WORKERS {
+        queue.heavy.retain(|job| job.ticket.fate() == WANTED);
+        let full = if heavy {
+            queue.heavy.len() + queue.running_heavy >= HEAVY_QUEUE + HEAVY_RUNNING
+        } else {
+            queue.jobs.len() + queue.running - queue.running_heavy >= QUEUE + WORKERS
+        };
+        if full {
             return Err(busy());
         }
-        queue.jobs.push_back(Job {
+        let job = Job {
             path: path.to_string(),
             query: query.to_string(),
+            heavy,
             ticket: Arc::clone(&ticket),
             answer: tx,
-        });
+        };
+        if heavy {
+            queue.heavy.push_back(job);
+        } else {
+            queue.jobs.push_back(job);
+        }
         drop(queue);
-        self.ready.notify_one();
+        // Every worker looks: the one woken may be kept for light work.
+        self.ready.notify_all();
         Ok(Waiting { answer: rx, ticket })
     }
 
@@ -197,9 +254,10 @@ impl Pool {
             let job = {
                 let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
                 loop {
-                    match queue.jobs.pop_front() {
+                    match queue.next() {
                         Some(job) => {
                             queue.running += 1;
+                            queue.running_heavy += usize::from(job.heavy);
                             break job;
                         }
                         None => queue = self.ready.wait(queue).unwrap_or_else(|e| e.into_inner()),
@@ -209,6 +267,7 @@ impl Pool {
             let Job {
                 path,
                 query,
+                heavy,
                 ticket,
                 answer,
             } = job;
@@ -216,7 +275,15 @@ impl Pool {
             let reply = compute(&path, &query, &ticket, &mut frame, &self.memory);
             let engine_ms = started.elapsed().as_secs_f64() * 1e3;
             // Free before answering: the client's next request finds room.
-            self.queue.lock().unwrap_or_else(|e| e.into_inner()).running -= 1;
+            {
+                let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
+                queue.running -= 1;
+                queue.running_heavy -= usize::from(heavy);
+            }
+            // A heavy one done: a waiting heavy one may start.
+            if heavy {
+                self.ready.notify_all();
+            }
             // A client that left reads nothing: that is fine.
             if let Some(reply) = reply {
                 let _ = answer.send(Answer { reply, engine_ms });
@@ -245,6 +312,7 @@ fn compute(
         // Cleared under the lock: giving the request up can only set it from now on.
         stop.store(false, Ordering::Relaxed);
         *running = Some(Arc::clone(&stop));
+        *ticket.started.lock().unwrap_or_else(|e| e.into_inner()) = Some(Instant::now());
     }
     let reply = catch_unwind(AssertUnwindSafe(|| api::handle(path, query, frame, memory)))
         .unwrap_or_else(|_| {

@@ -573,15 +573,16 @@ fn bentstraw_explore_max_url() -> usize {
 }
 
 /// Clients that hang up mid-computation stop their work; more work than the server takes at
-/// once is refused with 503 and `Retry-After`; then everything is served promptly again.
+/// once is refused with 503 and `Retry-After`; heavy work never makes a page's frames wait; then
+/// everything is served promptly again.
 #[test]
 fn work_of_clients_that_left_is_abandoned_and_overload_gets_503() {
     let server = Server::start(&[]);
     let export = heavy_export();
-    // Two at work and four waiting fill the server, even when they come all at once: of seven
-    // sent at once, one is refused with 503 (its answer is the event waited for: by then the six
-    // others are in), and the six others are not answered.
-    let mut sent: Vec<TcpStream> = (0..7).map(|_| send_only(&server, &export)).collect();
+    // One heavy request at work and two waiting fill the server's room for heavy work, even when
+    // they come all at once: of four sent at once, one is refused with 503 (its answer is the
+    // event waited for: by then the three others are in), and the three others are not answered.
+    let mut sent: Vec<TcpStream> = (0..4).map(|_| send_only(&server, &export)).collect();
     let refused = wait_for_first_answer(&sent);
     let mut s = sent.remove(refused);
     let a = read_answer(&mut s);
@@ -590,22 +591,25 @@ fn work_of_clients_that_left_is_abandoned_and_overload_gets_503() {
     let held = sent;
     assert!(
         held.iter().all(nothing_yet),
-        "one of the six was answered at once"
+        "one of the three was answered at once"
     );
+    // The page's frames are computed beside them, by the worker kept for light work.
+    for _ in 0..3 {
+        frame_answered(&server);
+    }
     // Cheap requests are not queued behind the exports: answered while all six still wait.
     assert_eq!(server.get("/", "").status, 200);
     assert_eq!(server.get("/api/scenes", "").status, 200);
     assert_eq!(server.get("/api/sketch?scene=tank-pencil", "").status, 200);
     assert!(
         held.iter().all(nothing_yet),
-        "the cheap requests were answered after an export"
+        "the cheap requests and frames were answered after an export"
     );
     // Everyone hangs up: the work stops (the server goes idle having used little processor time,
-    // where finishing the two exports under way would take tens of seconds of it), and a frame
-    // comes.
+    // where finishing the export under way would take tens of seconds of it), and a frame comes.
     let mark = server.cpu();
     drop(held);
-    server.assert_little_work_since(mark, "two exports whose clients left");
+    server.assert_little_work_since(mark, "exports whose clients left");
     frame_answered(&server);
     // A single client that leaves mid-export frees its worker too.
     for _ in 0..2 {
@@ -616,6 +620,67 @@ fn work_of_clients_that_left_is_abandoned_and_overload_gets_503() {
         drop(one);
         server.assert_little_work_since(mark, "an export whose client left");
     }
+    frame_answered(&server);
+}
+
+/// A hundred straws under 32 layers of liquid in a wide glass (a scene file of about 4 KB).
+fn crowded_scene() -> String {
+    let mut text = String::from("[container]\nshape = \"glass\"\nradius = 0.3\nheight = 0.5\n");
+    for k in 0..32 {
+        let top = 0.4 * (k + 1) as f64 / 32.0;
+        let index = 1.3 + 0.005 * k as f64;
+        text += &format!("[[liquid]]\nname = \"l{k}\"\nindex = {index}\ntop = {top}\n");
+    }
+    for k in 0..100 {
+        let (x, y) = (
+            (k % 10) as f64 * 0.03 - 0.135,
+            (k / 10) as f64 * 0.03 - 0.135,
+        );
+        text += &format!("[[straw]]\nx = {x}\ny = {y}\n");
+    }
+    text
+}
+
+/// `text` as a query's value (every byte but letters and digits escaped).
+fn escaped(text: &str) -> String {
+    text.bytes()
+        .map(|b| {
+            if b.is_ascii_alphanumeric() {
+                (b as char).to_string()
+            } else {
+                format!("%{b:02X}")
+            }
+        })
+        .collect()
+}
+
+/// A client that hangs up while the points are sampled (a million of them in a crowded scene, with
+/// a thousand events each: seconds of work) stops that work too, not only a picture's.
+#[test]
+fn point_sampling_stops_when_its_client_leaves() {
+    let server = Server::start(&[]);
+    let export = format!(
+        "/api/export?format=csv&points=1000000&max-events=1000&observer=1,0,0.3&scene-file={}",
+        escaped(&crowded_scene())
+    );
+    for _ in 0..2 {
+        let mark = server.cpu();
+        let one = send_only(&server, &export);
+        server.wait_computing(mark);
+        let mark = server.cpu();
+        drop(one);
+        server.assert_little_work_since(mark, "points whose client left");
+    }
+    // The same asked beyond the explorer's work: refused at once, saying what to lower.
+    let too_much = format!(
+        "/api/frame?size=3840x2160&samples=16&points=1000000&max-events=1000&observer=1,0,0.3&scene-file={}",
+        escaped(&crowded_scene())
+    );
+    let mark = server.cpu();
+    let a = server.get(&too_much, "");
+    assert_eq!(a.status, 400, "{}", a.text());
+    assert!(a.text().contains("ray-surface tests"), "{}", a.text());
+    server.assert_little_work_since(mark, "a view beyond the explorer's work");
     frame_answered(&server);
 }
 
