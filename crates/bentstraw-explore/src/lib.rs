@@ -761,6 +761,10 @@ pub fn ray_reply(
     } else {
         pixel_direction(view, q)?.2
     };
+    // JSON has no NaN: a direction that is not a number is refused, never written as null.
+    if !(u0.x.is_finite() && u0.y.is_finite() && u0.z.is_finite()) {
+        return Err("this ray has no direction: the view's camera is degenerate".into());
+    }
     Ok(Reply::json(&ray_json(&view.scene.world, view.observer, u0)))
 }
 
@@ -1851,6 +1855,43 @@ mod tests {
             })
         }
 
+        /// Whether a ray's answer has its observer, direction and every event's point and angles
+        /// as numbers.
+        fn ray_numbers_finite(v: &Value) -> bool {
+            let triple = |x: &Value| {
+                x.as_array()
+                    .is_some_and(|a| a.len() == 3 && a.iter().all(Value::is_f64))
+            };
+            triple(&v["observer"])
+                && triple(&v["direction"])
+                && v["events"].as_array().is_some_and(|events| {
+                    events.iter().all(|e| {
+                        triple(&e["point"])
+                            && e["incidence_deg"].is_f64()
+                            && e["outgoing_deg"].is_f64()
+                    })
+                })
+        }
+
+        /// Rays of the farthest, narrowest and widest views the rules allow, through the
+        /// picture's corners: every number of the answer is a number.
+        #[test]
+        fn rays_of_extreme_views_are_numbers() {
+            for observer in ["1e6,0,0.1", "-1e6,1e6,1e6", "0,0,-1e6", "0.0401,0,0.1", "0,0,0.1"] {
+                for camera in ["", "&fov=0.01", "&fov=150", "&size=1x1", "&target=0,0,0"] {
+                    let q = format!("observer={observer}&straw=0.02,0.01&water-height=0.15{camera}&size=9x7");
+                    let Ok(view) = View::checked(&super::query(&q)) else { continue };
+                    let (w, h) = (view.camera.width, view.camera.height);
+                    for (row, col) in [(0, 0), (h, w), (h / 2, w / 2), (0, w)] {
+                        let q = super::query(&format!("{q}&row={row}&col={col}"));
+                        let Ok(r) = ray_reply(&view, &q, &AtomicBool::new(false)) else { continue };
+                        let v: Value = serde_json::from_slice(&r.body).unwrap();
+                        assert!(ray_numbers_finite(&v), "{v} for {q:?}");
+                    }
+                }
+            }
+        }
+
         proptest! {
             #![proptest_config(ProptestConfig::with_cases(400))]
 
@@ -1865,6 +1906,10 @@ mod tests {
                 if r.status != 200 {
                     let text = String::from_utf8(r.body).unwrap();
                     prop_assert!(!text.is_empty() && !text.contains('\n'), "{text:?}");
+                } else if ROUTES[route] == "/api/ray" {
+                    // Numbers stay numbers: a ray's direction and events are never null.
+                    let v: Value = serde_json::from_slice(&r.body).unwrap();
+                    prop_assert!(ray_numbers_finite(&v), "{v} for {q}");
                 }
             }
 
