@@ -1877,14 +1877,26 @@ mod tests {
         /// picture's corners: every number of the answer is a number.
         #[test]
         fn rays_of_extreme_views_are_numbers() {
-            for observer in ["1e6,0,0.1", "-1e6,1e6,1e6", "0,0,-1e6", "0.0401,0,0.1", "0,0,0.1"] {
+            for observer in [
+                "1e6,0,0.1",
+                "-1e6,1e6,1e6",
+                "0,0,-1e6",
+                "0.0401,0,0.1",
+                "0,0,0.1",
+            ] {
                 for camera in ["", "&fov=0.01", "&fov=150", "&size=1x1", "&target=0,0,0"] {
-                    let q = format!("observer={observer}&straw=0.02,0.01&water-height=0.15{camera}&size=9x7");
-                    let Ok(view) = View::checked(&super::query(&q)) else { continue };
+                    let q = format!(
+                        "observer={observer}&straw=0.02,0.01&water-height=0.15{camera}&size=9x7"
+                    );
+                    let Ok(view) = View::checked(&super::query(&q)) else {
+                        continue;
+                    };
                     let (w, h) = (view.camera.width, view.camera.height);
                     for (row, col) in [(0, 0), (h, w), (h / 2, w / 2), (0, w)] {
                         let q = super::query(&format!("{q}&row={row}&col={col}"));
-                        let Ok(r) = ray_reply(&view, &q, &AtomicBool::new(false)) else { continue };
+                        let Ok(r) = ray_reply(&view, &q, &AtomicBool::new(false)) else {
+                            continue;
+                        };
                         let v: Value = serde_json::from_slice(&r.body).unwrap();
                         assert!(ray_numbers_finite(&v), "{v} for {q:?}");
                     }

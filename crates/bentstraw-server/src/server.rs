@@ -24,8 +24,6 @@ use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Duration;
 
-use bytes::Bytes;
-use http_body_util::Full;
 use hyper::body::Incoming;
 use hyper::header::{self, HeaderValue};
 use hyper::{Method, Request, Response};
@@ -37,6 +35,7 @@ use tokio::sync::{Notify, Semaphore};
 use bentstraw_explore::{self as api, Reply, MAX_URL};
 use bentstraw_optics::frame::Frame;
 
+use super::answer::AnswerBody;
 use super::guard::{self, Activity, Guarded};
 use super::origin::Local;
 use super::work::{self, Pool};
@@ -325,7 +324,7 @@ async fn linger(stream: &mut TcpStream) {
 
 impl App {
     /// The answer to one request.
-    async fn answer(&self, request: Request<Incoming>, conn: &Conn) -> Response<Full<Bytes>> {
+    async fn answer(&self, request: Request<Incoming>, conn: &Conn) -> Response<AnswerBody> {
         if conn.too_long.load(Ordering::Relaxed) {
             return closing(Reply::text(
                 414,
@@ -401,7 +400,7 @@ impl App {
 
     /// The answer to an API request: the heavy ones through the workers' queue, the others
     /// (and any refusal of a query) at once.
-    async fn api(&self, path: &str, query: &str) -> Response<Full<Bytes>> {
+    async fn api(&self, path: &str, query: &str) -> Response<AnswerBody> {
         if path == "/api/scenes" {
             static SCENES: OnceLock<Reply> = OnceLock::new();
             return respond(SCENES.get_or_init(api::scenes_reply).clone());
@@ -435,7 +434,7 @@ impl App {
         loop {
             tokio::select! {
                 answer = &mut waiting.answer => return match answer {
-                    Ok(answer) => timed(respond(answer.reply), answer.engine_ms),
+                    Ok(answer) => timed(respond_with(answer.reply, answer.body), answer.engine_ms),
                     Err(_) => respond(Reply::text(500, "the request was lost")),
                 },
                 _ = tokio::time::sleep(OVERTIME_CHECK) => {
@@ -459,10 +458,16 @@ fn asset(content_type: &'static str, text: &str) -> Reply {
     }
 }
 
-/// `reply` as an HTTP response, sent whole with its length (hyper writes `Content-Length` for a
+/// `reply` as an HTTP response, sent with its length (hyper writes `Content-Length` for a
 /// body of known size: no chunks, which stall for the peer's delayed acknowledgement).
-fn respond(reply: Reply) -> Response<Full<Bytes>> {
-    let mut response = Response::new(Full::new(Bytes::from(reply.body)));
+fn respond(mut reply: Reply) -> Response<AnswerBody> {
+    let body = AnswerBody::small(std::mem::take(&mut reply.body));
+    respond_with(reply, body)
+}
+
+/// `reply`'s status and headers with `body` (held within the answers' budgets).
+fn respond_with(reply: Reply, body: AnswerBody) -> Response<AnswerBody> {
+    let mut response = Response::new(body);
     *response.status_mut() = hyper::StatusCode::from_u16(reply.status)
         .unwrap_or(hyper::StatusCode::INTERNAL_SERVER_ERROR);
     let headers = response.headers_mut();
@@ -493,7 +498,7 @@ fn respond(reply: Reply) -> Response<Full<Bytes>> {
 
 /// `response` with the engine's time for it, as `Server-Timing: engine;dur=MS` (what a browser's
 /// developer tools show, and what the page measures the native engine by).
-fn timed(mut response: Response<Full<Bytes>>, engine_ms: f64) -> Response<Full<Bytes>> {
+fn timed(mut response: Response<AnswerBody>, engine_ms: f64) -> Response<AnswerBody> {
     if let Ok(value) = HeaderValue::from_str(&format!("engine;dur={engine_ms:.3}")) {
         response.headers_mut().insert("server-timing", value);
     }
@@ -501,7 +506,7 @@ fn timed(mut response: Response<Full<Bytes>>, engine_ms: f64) -> Response<Full<B
 }
 
 /// [`respond`], closing the connection after it (what follows on it is not read).
-fn closing(reply: Reply) -> Response<Full<Bytes>> {
+fn closing(reply: Reply) -> Response<AnswerBody> {
     let mut response = respond(reply);
     response
         .headers_mut()

@@ -19,6 +19,8 @@ use bentstraw_explore::{self as api, Reply};
 use bentstraw_optics::frame::Frame;
 use tokio::sync::oneshot;
 
+use super::answer::{AnswerBody, Budgets};
+
 /// Requests computed at once (each is itself parallel over the cores).
 pub const WORKERS: usize = 2;
 /// Requests waiting for a worker, beyond which the server answers 503.
@@ -80,8 +82,10 @@ struct Job {
 /// A worker's answer: the reply, and how long the engine took to compute it (sent to the page as
 /// `Server-Timing`, so that it can be set beside the WebAssembly engine's own time).
 pub struct Answer {
-    /// The reply.
+    /// The reply, its body taken out into `body`.
     pub reply: Reply,
+    /// The reply's body, held within the answers' budgets.
+    pub body: AnswerBody,
     /// The engine's time, in milliseconds.
     pub engine_ms: f64,
 }
@@ -124,6 +128,8 @@ impl Queue {
 pub struct Pool {
     /// What the workers remember between requests (a frame's points for the models that follow).
     memory: api::Memory,
+    /// Room for the answers waiting to be sent.
+    budgets: Budgets,
     queue: Mutex<Queue>,
     ready: Condvar,
     channels: Mutex<HashMap<String, Channel>>,
@@ -171,6 +177,7 @@ impl Pool {
     pub fn start() -> std::io::Result<Arc<Pool>> {
         let pool = Arc::new(Pool {
             memory: api::Memory::default(),
+            budgets: Budgets::default(),
             queue: Mutex::new(Queue::default()),
             ready: Condvar::new(),
             channels: Mutex::new(HashMap::new()),
@@ -285,8 +292,22 @@ impl Pool {
                 self.ready.notify_all();
             }
             // A client that left reads nothing: that is fine.
-            if let Some(reply) = reply {
-                let _ = answer.send(Answer { reply, engine_ms });
+            if let Some(mut reply) = reply {
+                if ticket.fate() != WANTED {
+                    continue;
+                }
+                let body = match self.budgets.hold(std::mem::take(&mut reply.body)) {
+                    Some(body) => body,
+                    None => {
+                        reply = busy();
+                        AnswerBody::small(std::mem::take(&mut reply.body))
+                    }
+                };
+                let _ = answer.send(Answer {
+                    reply,
+                    body,
+                    engine_ms,
+                });
             }
         }
     }

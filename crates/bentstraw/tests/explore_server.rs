@@ -463,6 +463,44 @@ fn clients_that_never_read_freeze_nobody() {
     let _ = greedy.flush();
 }
 
+/// Clients that read their large answers slowly do not make the server hold them all in memory:
+/// sixty full-HD frames (8 MB each, 500 MB in all) waiting for their readers grow it by less than
+/// the memory it keeps for answers and a little more; each answer then arrives whole.
+#[test]
+#[cfg(target_os = "linux")]
+fn slow_readers_are_sent_their_answers_without_holding_them_in_memory() {
+    let server = Server::start(&[]);
+    let big = format!("/api/frame?{VIEW}&size=1920x1080&samples=1&points=100&mode=course");
+    // Both workers' buffers grown to this size first (each computes one while the other works).
+    let warm: Vec<TcpStream> = (0..2).map(|_| send_only(&server, &big)).collect();
+    for mut s in warm {
+        assert_eq!(read_answer(&mut s).status, 200);
+    }
+    let before = server.resident_kb().unwrap();
+    let mut slow = Vec::new();
+    for _ in 0..60 {
+        let s = send_only(&server, &big);
+        wait_for_answer_bytes(&s);
+        slow.push(s);
+    }
+    let grown_mb = (server.resident_kb().unwrap().saturating_sub(before)) / 1024;
+    // 128 MB kept for answers in memory, and a margin for the connections' buffers.
+    assert!(
+        grown_mb < 220,
+        "the server grew by {grown_mb} MB with 60 frames waiting for their readers"
+    );
+    // Every one arrives whole (its length as announced, a picture of the size asked).
+    for s in &mut slow {
+        let a = read_answer(s);
+        assert_eq!(a.status, 200);
+        let header_len = u32::from_le_bytes(a.body[..4].try_into().unwrap()) as usize;
+        let header: serde_json::Value = serde_json::from_slice(&a.body[4..4 + header_len]).unwrap();
+        assert_eq!(header["width"], 1920);
+        assert!(a.body.len() > 1920 * 1080 * 4);
+    }
+    frame_answered(&server);
+}
+
 /// Only this machine's pages: a foreign `Host` (DNS rebinding), a foreign `Origin` or a
 /// cross-site request is refused with 403 and computes nothing.
 #[test]
