@@ -468,6 +468,40 @@ test("the server survives a burst of malformed requests", SERVER_ONLY, async () 
   assert.equal(after.status, 200);
 });
 
+test("a large scene file (a hundred coins, 300 KB with its comments) opens in explore: sent once, named by a key", SERVER_ONLY, async () => {
+  const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-large-"));
+  const file = path.join(dir, "coins.toml");
+  let text = "# A hundred coins at the bottom of a wide tank.\n" + "# comment line to make the file large\n".repeat(7500);
+  text += '[container]\nshape = "glass"\nradius = 0.5\nheight = 0.3\n[[liquid]]\nname = "water"\nindex = 1.333\ntop = 0.2\n';
+  for (let k = 0; k < 100; k++) text += `[[coin]]\nx = ${((k % 10) * 0.05 - 0.225).toFixed(3)}\ny = ${(Math.floor(k / 10) * 0.05 - 0.225).toFixed(3)}\nradius = 0.01\nthickness = 0.002\n`;
+  text += "[observer]\nposition = [0.8, 0.0, 0.6]\ntarget = [0.0, 0.0, 0.0]\n";
+  writeFileSync(file, text);
+  assert.ok(text.length > 250000);
+  const own = await startServer(["--scene", file]);
+  try {
+    const { page, context, problems } = await openPage(browser, own.url);
+    const api = [];
+    page.on("request", (r) => { if (r.url().includes("/api/")) api.push({ method: r.method(), url: r.url() }); });
+    await page.goto(own.url);
+    await waitReady(page);
+    const shown = await page.evaluate(() => ({ n: window.bentstraw.frame.header.n, colours: window.bentstraw.frame.header.points_per_color.filter((c) => c > 0).length }));
+    assert.ok(shown.n > 1000 && shown.colours >= 1, JSON.stringify(shown));
+    // The text went once; every view's address is short.
+    const posts = api.filter((r) => r.method === "POST");
+    assert.equal(posts.length, 1, JSON.stringify(posts));
+    assert.ok(api.every((r) => r.url.length < 2048), api.map((r) => r.url.length).join(","));
+    assert.deepEqual(problems, []);
+    await context.close();
+    // A key the server no longer has is answered 410 (the page then sends the text again).
+    assert.equal((await fetch(own.url + "api/frame?scene-key=0123&observer=1,0,0.3")).status, 410);
+    // More than the command line's 1 MB is refused before it is read.
+    const huge = await fetch(own.url + "api/keep", { method: "POST", body: "#".repeat((1 << 20) + 1) });
+    assert.equal(huge.status, 413);
+  } finally {
+    own.stop();
+  }
+});
+
 test("a busy port is named in one line, exit code 2; Ctrl-C stops the server", SERVER_ONLY, async () => {
   const port = new URL(server.url).port;
   const r = await runCli(["explore", "--no-open", "--port", port]);

@@ -90,7 +90,34 @@ function wasmEngine() {
 /** Asks the engine for `route?query` on channel `name`: a `Response`, or null if aborted. */
 export function engineFetch(name, route, query, signal) {
   if (wasm) return wasm.request(name, route, query, signal);
-  return fetch(`${route}?${query}`, { signal });
+  return serverFetch(route, query, signal);
+}
+
+// The server's addresses are short: a scene file's text is sent to it once (POST /api/keep) and
+// named by its key in each view's address. The last few texts' keys are remembered here; a key
+// the server has forgotten (410) is sent again.
+const keys = new Map(); // text → promise of its key (one request per text, however many ask)
+function sceneKey(text) {
+  if (!keys.has(text)) {
+    const key = fetch("/api/keep", { method: "POST", body: text, headers: { "Content-Type": "text/plain; charset=utf-8" } })
+      .then(async (r) => { if (!r.ok) throw new Error(await r.text()); return (await r.json()).key; });
+    key.catch(() => keys.delete(text));
+    keys.set(text, key);
+    if (keys.size > 8) keys.delete(keys.keys().next().value);
+  }
+  return keys.get(text);
+}
+async function serverFetch(route, query, signal) {
+  const p = new URLSearchParams(query);
+  const text = p.get("scene-file");
+  if (text === null) return fetch(`${route}?${query}`, { signal });
+  for (let attempt = 0; ; attempt++) {
+    p.delete("scene-file");
+    p.set("scene-key", await sceneKey(text));
+    const r = await fetch(`${route}?${p}`, { signal });
+    if (r.status !== 410 || attempt > 0) return r;
+    keys.delete(text);
+  }
 }
 
 // At most one request per channel in flight; newer input waits for it and is then sent as

@@ -105,7 +105,8 @@ impl Reply {
         }
     }
 
-    fn bytes(content_type: &'static str, body: Vec<u8>) -> Reply {
+    /// A success: `body`, of `content_type`.
+    pub fn bytes(content_type: &'static str, body: Vec<u8>) -> Reply {
         Reply {
             status: 200,
             content_type,

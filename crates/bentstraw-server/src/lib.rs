@@ -7,6 +7,7 @@
 
 mod answer;
 mod guard;
+mod kept;
 mod origin;
 mod server;
 mod work;

@@ -34,11 +34,17 @@ use tokio::sync::{Notify, Semaphore};
 
 use bentstraw_explore::{self as api, Reply, MAX_URL};
 use bentstraw_optics::frame::Frame;
+use bentstraw_optics::setup::MAX_SCENE_FILE_BYTES;
+use http_body_util::BodyExt;
 
 use super::answer::AnswerBody;
 use super::guard::{self, Activity, Guarded};
+use super::kept::Kept;
 use super::origin::Local;
 use super::work::{self, Pool};
+
+/// Where the page sends a scene file's text once, to name it by a key afterwards.
+const KEEP: &str = "/api/keep";
 
 /// Most connections open at once, when the limit of open files allows it.
 pub const MAX_CONNECTIONS: usize = 256;
@@ -184,6 +190,8 @@ struct App {
     page: String,
     local: Local,
     pool: Arc<Pool>,
+    /// The scene files pages have sent.
+    kept: Kept,
 }
 
 /// Serves the explorer on `listener` until the process ends; `initial` is the query of the view
@@ -195,6 +203,7 @@ pub fn serve(listener: std::net::TcpListener, initial: &str) -> std::io::Result<
         page: api::page::index_html(initial, api::page::Engine::Server),
         local,
         pool: Pool::start()?,
+        kept: Kept::default(),
     });
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
@@ -331,18 +340,40 @@ impl App {
                 format!("request line longer than {} bytes", guard::MAX_REQUEST_LINE),
             ));
         }
-        if !matches!(*request.method(), Method::GET | Method::HEAD) {
-            let mut response = closing(Reply::text(405, "only GET is served"));
+        let (request, body) = request.into_parts();
+        // The one request with a body: a scene file's text sent to be kept.
+        let keep = request.method == Method::POST && request.uri.path() == KEEP;
+        if !keep && !matches!(request.method, Method::GET | Method::HEAD) {
+            let mut response = closing(Reply::text(
+                405,
+                format!("only GET is served (and POST to {KEEP})"),
+            ));
             response
                 .headers_mut()
                 .insert(header::ALLOW, HeaderValue::from_static("GET, HEAD"));
             return response;
         }
-        let headers = request.headers();
+        let headers = &request.headers;
         let text = |name: header::HeaderName| headers.get(name).and_then(|v| v.to_str().ok());
-        if headers.contains_key(header::CONTENT_LENGTH)
-            || headers.contains_key(header::TRANSFER_ENCODING)
-        {
+        let length = headers.get(header::CONTENT_LENGTH);
+        if keep {
+            if headers.contains_key(header::TRANSFER_ENCODING) || length.is_none() {
+                return closing(Reply::text(
+                    411,
+                    "a scene file is sent with its length (Content-Length)",
+                ));
+            }
+            let too_long = length
+                .and_then(|v| v.to_str().ok())
+                .and_then(|v| v.parse::<u64>().ok())
+                .is_none_or(|n| n > MAX_SCENE_FILE_BYTES);
+            if too_long {
+                return closing(Reply::text(
+                    413,
+                    format!("a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB)"),
+                ));
+            }
+        } else if length.is_some() || headers.contains_key(header::TRANSFER_ENCODING) {
             return closing(Reply::text(400, "a GET request has no body"));
         }
         // HTTP names one server a request: with two, which one was meant cannot be known.
@@ -352,7 +383,7 @@ impl App {
                 "two Host headers: a request names its server once",
             ));
         }
-        let uri = request.uri();
+        let uri = &request.uri;
         let path = uri.path();
         let api = path.starts_with("/api/");
         let mut host = text(header::HOST);
@@ -383,6 +414,9 @@ impl App {
                 format!("address longer than {MAX_URL} bytes"),
             ));
         }
+        if keep {
+            return self.keep(body).await;
+        }
         let reply = match path {
             "/" | "/index.html" => asset("text/html; charset=utf-8", &self.page),
             _ if api => return self.api(path, query).await,
@@ -398,6 +432,69 @@ impl App {
         respond(reply)
     }
 
+    /// `POST /api/keep`: keeps the scene file's text sent (within its length, read within
+    /// [`HEAD_TIMEOUT`]); its key as JSON, `{"key": KEY}`. The connection closes after it.
+    async fn keep(&self, body: Incoming) -> Response<AnswerBody> {
+        let limited = http_body_util::Limited::new(body, MAX_SCENE_FILE_BYTES as usize);
+        let bytes = match tokio::time::timeout(HEAD_TIMEOUT, limited.collect()).await {
+            Ok(Ok(collected)) => collected.to_bytes(),
+            Ok(Err(_)) => {
+                return closing(Reply::text(
+                    413,
+                    format!("a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB)"),
+                ))
+            }
+            Err(_) => {
+                return closing(Reply::text(
+                    408,
+                    format!(
+                        "the scene file did not arrive within {} s",
+                        HEAD_TIMEOUT.as_secs()
+                    ),
+                ))
+            }
+        };
+        let Ok(text) = std::str::from_utf8(&bytes) else {
+            return closing(Reply::text(400, "a scene file is UTF-8 text"));
+        };
+        let key = self.kept.keep(text);
+        closing(Reply::bytes(
+            "application/json",
+            format!("{{\"key\":\"{key}\"}}").into_bytes(),
+        ))
+    }
+
+    /// `query` with its `scene-key=KEY` replaced by the text kept under that key
+    /// (`scene-file=TEXT`); `None` when it names none; 410 when the key is no longer kept.
+    fn resolve(&self, query: &str) -> Result<Option<String>, Reply> {
+        if !query.contains("scene-key=") {
+            return Ok(None);
+        }
+        let mut q = api::parse_query(query).map_err(|e| Reply::text(400, e))?;
+        let Some(key) = q.remove("scene-key") else {
+            return Ok(None);
+        };
+        if q.contains_key("scene-file") {
+            return Err(Reply::text(
+                400,
+                "give either 'scene-key' (a scene file sent before) or 'scene-file', not both",
+            ));
+        }
+        let Some(text) = self.kept.get(&key) else {
+            return Err(Reply::text(
+                410,
+                "this scene file is no longer kept by the explorer: send it again (POST /api/keep)",
+            ));
+        };
+        q.insert("scene-file".into(), text.to_string());
+        let mut pairs: Vec<String> = q
+            .iter()
+            .map(|(k, v)| format!("{}={}", api::query_value(k), api::query_value(v)))
+            .collect();
+        pairs.sort();
+        Ok(Some(pairs.join("&")))
+    }
+
     /// The answer to an API request: the heavy ones through the workers' queue, the others
     /// (and any refusal of a query) at once.
     async fn api(&self, path: &str, query: &str) -> Response<AnswerBody> {
@@ -405,6 +502,11 @@ impl App {
             static SCENES: OnceLock<Reply> = OnceLock::new();
             return respond(SCENES.get_or_init(api::scenes_reply).clone());
         }
+        let resolved = match self.resolve(query) {
+            Ok(resolved) => resolved,
+            Err(refusal) => return respond(refusal),
+        };
+        let query = resolved.as_deref().unwrap_or(query);
         let heavy = matches!(
             path,
             "/api/frame" | "/api/model" | "/api/ray" | "/api/aim" | "/api/export"
@@ -449,13 +551,7 @@ impl App {
 }
 
 fn asset(content_type: &'static str, text: &str) -> Reply {
-    Reply {
-        status: 200,
-        content_type,
-        body: text.as_bytes().to_vec(),
-        file_name: None,
-        reused_points: false,
-    }
+    Reply::bytes(content_type, text.as_bytes().to_vec())
 }
 
 /// `reply` as an HTTP response, sent with its length (hyper writes `Content-Length` for a
