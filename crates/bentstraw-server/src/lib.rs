@@ -12,4 +12,5 @@ mod origin;
 mod server;
 mod work;
 
+pub use origin::{new_token, Access};
 pub use server::{serve, url_host};

@@ -40,7 +40,7 @@ use http_body_util::BodyExt;
 use super::answer::AnswerBody;
 use super::guard::{self, Activity, Guarded};
 use super::kept::Kept;
-use super::origin::Local;
+use super::origin::{Access, Local};
 use super::work::{self, Pool};
 
 /// Where the page sends a scene file's text once, to name it by a key afterwards.
@@ -195,9 +195,14 @@ struct App {
 }
 
 /// Serves the explorer on `listener` until the process ends; `initial` is the query of the view
-/// the page starts with (when its address holds none). An error only if it cannot start.
-pub fn serve(listener: std::net::TcpListener, initial: &str) -> std::io::Result<()> {
-    let local = Local::new(listener.local_addr()?);
+/// the page starts with (when its address holds none); `access` the other names it answers to and
+/// the token it asks for. An error only if it cannot start.
+pub fn serve(
+    listener: std::net::TcpListener,
+    initial: &str,
+    access: Access,
+) -> std::io::Result<()> {
+    let local = Local::with_access(listener.local_addr()?, access);
     listener.set_nonblocking(true)?;
     let app = Arc::new(App {
         page: api::page::index_html(initial, api::page::Engine::Server),
@@ -402,6 +407,14 @@ impl App {
             return respond(Reply::text(403, why));
         }
         let query = uri.query().unwrap_or("");
+        // Reachable from other machines: only with the token it printed.
+        let Some(token_in_query) = self.local.token_given(query, text(header::COOKIE)) else {
+            return respond(Reply::text(
+                403,
+                "this explorer asks for its token: open the whole address it printed \
+                 (http://…/?token=…)",
+            ));
+        };
         let length = path.len()
             + if uri.query().is_some() {
                 1 + query.len()
@@ -417,7 +430,7 @@ impl App {
         if keep {
             return self.keep(body).await;
         }
-        let reply = match path {
+        let page = match path {
             "/" | "/index.html" => asset("text/html; charset=utf-8", &self.page),
             _ if api => return self.api(path, query).await,
             p => match (api::page::PAGE_FILES.iter()).find(|f| p.strip_prefix('/') == Some(f.name))
@@ -429,7 +442,19 @@ impl App {
                 ),
             },
         };
-        respond(reply)
+        let mut response = respond(page);
+        // The token given in the address is kept by the browser for the page's own requests.
+        if token_in_query {
+            let cookie = format!(
+                "{}={}; Path=/; HttpOnly; SameSite=Strict",
+                self.local.cookie_name(),
+                self.local.token().unwrap_or_default()
+            );
+            if let Ok(value) = HeaderValue::from_str(&cookie) {
+                response.headers_mut().insert(header::SET_COOKIE, value);
+            }
+        }
+        response
     }
 
     /// `POST /api/keep`: keeps the scene file's text sent (within its length, read within

@@ -293,7 +293,8 @@ impl Pool {
             }
             // A client that left reads nothing: that is fine.
             if let Some(mut reply) = reply {
-                if ticket.fate() != WANTED {
+                // Its client left meanwhile: no room taken for an answer nobody reads.
+                if ticket.fate() == GONE {
                     continue;
                 }
                 let body = match self.budgets.hold(std::mem::take(&mut reply.body)) {

@@ -434,9 +434,14 @@ pub struct ExploreArgs {
     /// Port to listen on (0: any free port)
     #[arg(long, value_name = "N", default_value_t = 8157)]
     pub port: u16,
-    /// Address to listen on; only 127.0.0.1 (this machine) unless you give another
+    /// Address to listen on; only 127.0.0.1 (this machine) unless you give another (then a
+    /// random token in the printed address is asked for on every request)
     #[arg(long, value_name = "ADDR", default_value = "127.0.0.1")]
     pub host: String,
+    /// Another name of this machine to answer to (a classroom machine's, as the other machines
+    /// write it); may be given more than once
+    #[arg(long, value_name = "NAME")]
+    pub allow_host: Vec<String>,
     /// Do not open a browser (print the address only)
     #[arg(long)]
     pub no_open: bool,

@@ -30,6 +30,8 @@ struct Server {
     child: Child,
     /// `host:port` as its URL gives it.
     host: String,
+    /// The token its address carries, when it asks for one.
+    token: Option<String>,
     /// Its standard error's first line, if it printed one before the address.
     stderr: Option<std::process::ChildStderr>,
 }
@@ -71,14 +73,16 @@ impl Server {
             .split_whitespace()
             .find(|w| w.starts_with("http://"))
             .unwrap_or_else(|| panic!("no address in {line:?}"));
-        let host = url
+        let (host, token) = url
             .trim_start_matches("http://")
-            .trim_end_matches('/')
-            .to_string();
+            .split_once('/')
+            .expect("an address ends its host with '/'");
+        let token = token.strip_prefix("?token=").map(str::to_string);
         let stderr = child.stderr.take();
         Server {
             child,
-            host,
+            host: host.to_string(),
+            token,
             stderr,
         }
     }
@@ -820,7 +824,36 @@ fn no_answer_names_the_users_folders() {
 fn host_addresses_are_shown_usable_and_warned_about() {
     let mut any = Server::start(&["--host", "0.0.0.0"]);
     assert!(any.host.starts_with("127.0.0.1:"), "{}", any.host);
-    assert_eq!(any.get("/", "").status, 200);
+    // Reachable from the network: a token in the address, asked for on every request.
+    let token = any.token.clone().expect("a token in the printed address");
+    assert_eq!(token.len(), 32);
+    assert_eq!(any.get("/", "").status, 403);
+    assert_eq!(
+        any.get(&format!("/api/frame?{VIEW}&size=64x48"), "").status,
+        403
+    );
+    assert!(any.get("/", "").text().contains("token"));
+    assert_eq!(
+        any.get(&format!("/?token={}", &token[..31]), "").status,
+        403
+    );
+    let page = any.get(&format!("/?token={token}"), "");
+    assert_eq!(page.status, 200);
+    // The browser keeps it as a cookie, which its page's requests then carry.
+    let cookie = page
+        .header("set-cookie")
+        .expect("the token as a cookie")
+        .to_string();
+    assert!(
+        cookie.contains("HttpOnly") && cookie.contains("SameSite=Strict"),
+        "{cookie}"
+    );
+    let pair = cookie.split(';').next().unwrap();
+    let frame = any.get(
+        &format!("/api/frame?{VIEW}&size=64x48&points=500"),
+        &format!("Cookie: {pair}\r\n"),
+    );
+    assert_eq!(frame.status, 200, "{}", frame.text());
     let err = any.stderr_after_kill();
     assert!(
         err.starts_with("warning: ") && err.contains("network") && err.lines().count() == 1,
@@ -830,10 +863,54 @@ fn host_addresses_are_shown_usable_and_warned_about() {
     if std::net::TcpListener::bind("[::1]:0").is_ok() {
         let mut v6 = Server::start(&["--host", "::1"]);
         assert!(v6.host.starts_with("[::1]:"), "{}", v6.host);
+        assert!(v6.token.is_none());
         assert_eq!(v6.get("/", "").status, 200);
         assert_eq!(v6.stderr_after_kill(), "");
     }
     let mut local = Server::start(&[]);
     assert!(local.host.starts_with("127.0.0.1:"));
+    assert!(local.token.is_none());
     assert_eq!(local.stderr_after_kill(), "");
+}
+
+/// A classroom machine's name is answered to when allowed (`--allow-host`), and only then; a name
+/// that cannot be one is refused, with every such name said at once.
+#[test]
+fn allowed_host_names_are_answered() {
+    let server = Server::start(&["--allow-host", "lab-pc.school.example"]);
+    let port = server.host.rsplit_once(':').unwrap().1.to_string();
+    let as_named = |name: &str| {
+        let mut s = server.connect();
+        write!(
+            s,
+            "GET / HTTP/1.1\r\nHost: {name}:{port}\r\nConnection: close\r\n\r\n"
+        )
+        .unwrap();
+        read_answer(&mut s).status
+    };
+    assert_eq!(as_named("lab-pc.school.example"), 200);
+    assert_eq!(as_named("LAB-PC.school.example"), 200);
+    assert_eq!(as_named("other-pc.school.example"), 403);
+    let out = Command::new(env!("CARGO_BIN_EXE_bentstraw"))
+        .args([
+            "explore",
+            "--no-open",
+            "--port",
+            "0",
+            "--allow-host",
+            "a b",
+            "--allow-host",
+            "ok",
+            "--allow-host",
+            "c/d",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("\"a b\"") && err.contains("\"c/d\"") && !err.contains("\"ok\""),
+        "{err}"
+    );
+    assert!(out.stdout.is_empty());
 }

@@ -18,6 +18,15 @@ use bentstraw_io::view_spec::{SceneFile, ViewSpec, PAGE_SCENE_FILE};
 /// Runs `explore`.
 pub fn run(args: &ExploreArgs) -> CliResult {
     let initial = initial_query(args)?;
+    let bad: Vec<String> = args
+        .allow_host
+        .iter()
+        .filter(|name| !is_host_name(name))
+        .map(|name| format!("--allow-host {name:?} is not a machine's name: letters, digits, '-' and '.', at most 253 characters"))
+        .collect();
+    if !bad.is_empty() {
+        return fail(bad.join("\n"));
+    }
     // The starting view obeys the same rules as the page's: refuse it before listening.
     let q = api::parse_query(&initial).map_err(crate::error::CliError)?;
     api::View::from_query(&q).map_err(crate::error::CliError)?;
@@ -40,9 +49,11 @@ pub fn run(args: &ExploreArgs) -> CliResult {
     let cannot =
         |e: std::io::Error| crate::error::CliError(format!("cannot listen on {}: {e}", args.host));
     let bound = listener.local_addr().map_err(cannot)?;
+    // Reachable from other machines: only with the token printed in the address.
+    let token = (!bound.ip().is_loopback()).then(bentstraw_server::new_token);
     if !bound.ip().is_loopback() {
         crate::progress::tell(&format!(
-            "warning: listening on {}: anyone who can reach this machine over the network can use the explorer and make it compute (--host 127.0.0.1 keeps it to this machine)\n",
+            "warning: listening on {}: whoever has the address below (with its token) can use the explorer from the network and make it compute (--host 127.0.0.1 keeps it to this machine)\n",
             bentstraw_server::url_host(bound)
         ));
     }
@@ -57,16 +68,23 @@ pub fn run(args: &ExploreArgs) -> CliResult {
         bound
     };
     let url = format!(
-        "http://{}:{}/",
+        "http://{}:{}/{}",
         bentstraw_server::url_host(shown),
-        shown.port()
+        shown.port(),
+        token
+            .as_ref()
+            .map_or(String::new(), |t| format!("?token={t}"))
     );
     println!("bentstraw explore: open {url}  (Ctrl-C stops the server)");
     let _ = std::io::stdout().flush();
     if !args.no_open {
         open_browser(&url);
     }
-    bentstraw_server::serve(listener, &initial).map_err(cannot)
+    let access = bentstraw_server::Access {
+        allow_hosts: args.allow_host.clone(),
+        token,
+    };
+    bentstraw_server::serve(listener, &initial, access).map_err(cannot)
 }
 
 /// The query of the view given on the command line (flags as the page's parameters): a scene file
@@ -138,6 +156,15 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
         text: file.text.clone(),
     });
     Ok(view.to_query())
+}
+
+/// Whether `name` can be a machine's name in an address: letters, digits, '-' and '.'.
+fn is_host_name(name: &str) -> bool {
+    !name.is_empty()
+        && name.len() <= 253
+        && name
+            .bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'.')
 }
 
 /// Opens `url` in the default browser if one can be found; says nothing if none.
