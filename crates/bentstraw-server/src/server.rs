@@ -14,8 +14,12 @@
 //!   `Retry-After` when its queue is full, and are abandoned when their client leaves or is
 //!   superseded; everything else (the page, its files, the scene list, a scene's sketch, refusals)
 //!   is answered at once;
+//! - answers are sent a chunk at a time, held in memory within a budget and beyond it from
+//!   temporary files ([`answer`](super::answer)), so slow readers cannot grow the server;
+//! - a scene file is sent once (`POST /api/keep`) and named by a key afterwards
+//!   ([`kept`](super::kept)), so that addresses stay short;
 //! - only this machine's pages are served ([`origin`](super::origin)): a foreign `Host` or
-//!   `Origin` gets 403.
+//!   `Origin` gets 403, and so does a request without the token when one is asked for.
 
 use std::collections::BTreeMap;
 use std::convert::Infallible;
