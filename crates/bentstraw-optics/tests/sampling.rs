@@ -153,3 +153,35 @@ fn a_far_observer_and_a_close_one_still_see_the_straw() {
         assert!(c.points.len() >= 3000, "{observer}: {}", c.points.len());
     }
 }
+
+/// A sampling whose stop flag is set gives up (no points that are not the view's), set before it
+/// starts or while it runs; left alone, the same call gives `sample_image`'s points exactly.
+#[test]
+fn a_stopped_sampling_gives_up() {
+    use bentstraw_optics::sampling::sample_image_until;
+    use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+    let r = REFERENCES[1];
+    let world = World::assignment(&r.scene(1.333));
+    let stop = AtomicBool::new(true);
+    assert!(sample_image_until(&world, r.observer, 20_000, &|_| {}, &stop).is_none());
+    // Set by the progress of its first level: the levels after it are not traced.
+    let stop = AtomicBool::new(false);
+    let told = AtomicU64::new(0);
+    let stopped = sample_image_until(
+        &world,
+        r.observer,
+        200_000,
+        &|rays| {
+            told.store(rays, Ordering::Relaxed);
+            stop.store(true, Ordering::Relaxed);
+        },
+        &stop,
+    );
+    assert!(stopped.is_none());
+    let whole = sample_image(&world, r.observer, 200_000, &|_| {});
+    assert!(told.load(Ordering::Relaxed) < whole.rays_traced / 4);
+    let never = AtomicBool::new(false);
+    let same = sample_image_until(&world, r.observer, 200_000, &|_| {}, &never).unwrap();
+    assert_eq!(same.points, whole.points);
+    assert_eq!(same.rays_traced, whole.rays_traced);
+}
