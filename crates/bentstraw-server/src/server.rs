@@ -10,7 +10,7 @@
 //!   taken within [`guard::WRITE_TIMEOUT`]) and in size (a request line within
 //!   [`guard::MAX_REQUEST_LINE`], else 414; a head within [`MAX_HEAD`], else 431), answered by its
 //!   own task: the accepting loop writes nothing;
-//! - the heavy requests go to a small pool of workers ([`work`](super::work)), 503 with
+//! - the heavy requests go to a small pool of workers ([`work`]), 503 with
 //!   `Retry-After` when its queue is full, and are abandoned when their client leaves or is
 //!   superseded; everything else (the page, its files, the scene list, a scene's sketch, refusals)
 //!   is answered at once;
