@@ -426,6 +426,83 @@ test("a copied link reproduces the state in a fresh page", async () => {
   await context.close();
 });
 
+/** Opens `link` in a fresh page (of `options`' locale or device) and waits until the page has
+ * refused it: its alert shown, and `bentstraw.scene()` rejected. Resolves to what it said and
+ * whether a frame was drawn. */
+async function refusedLink(link, options = {}) {
+  const { page, context, problems } = await openPage(browser, server.url, options.viewport, options.context);
+  await page.goto(link);
+  await page.waitForFunction(() => !document.getElementById("error").hidden);
+  const rejected = await page.evaluate(() => window.bentstraw.scene().then(() => null, (e) => e.message));
+  const shown = await page.evaluate(() => ({
+    alert: document.getElementById("error").textContent,
+    role: document.getElementById("error").getAttribute("role"),
+    frames: document.body.dataset.frames || "0",
+  }));
+  return { ...shown, rejected, page, context, problems };
+}
+
+test("a damaged or cut link is refused in an alert, in the page's language; no other scene is drawn in its place", async () => {
+  // A teacher's own scene, her eye moved, a ray clicked: the link she copies.
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url + "#scene=coin-in-glass&observer=0.15,0,0.35");
+  await waitReady(page);
+  const toml = (await page.evaluate(() => window.bentstraw.scene())).replace("radius = 0.0115", "radius = 0.013");
+  await page.evaluate((t) => window.bentstraw.setScene(t), toml);
+  await waitReady(page);
+  const link = await page.evaluate(() => window.bentstraw.link());
+  assert.match(link, /#sum=[0-9a-f]{8}&/);
+  assert.ok(link.length > 300, `${link.length} characters`);
+  assert.deepEqual(problems, []);
+  await context.close();
+  // Characters lost at the end of the scene file's code, or the whole address cut at 300.
+  const file = /[#&]file=([^&]*)/.exec(link);
+  const at = file.index + file[0].length;
+  const damaged = [1, 5, 20, 144].map((n) => link.slice(0, at - n) + link.slice(at));
+  damaged.push(link.slice(0, 300));
+  for (const bad of damaged) {
+    const r = await refusedLink(bad);
+    assert.equal(r.role, "alert");
+    assert.match(r.alert, /this link is damaged/);
+    assert.equal(r.rejected, r.alert);
+    assert.equal(r.frames, "0", "a scene was drawn in place of the damaged link's");
+    assert.deepEqual(r.problems, []);
+    await r.context.close();
+  }
+  // In French, on a phone: said in French.
+  const fr = await refusedLink(link.replace("lang=en", "lang=fr").slice(0, 300), {
+    viewport: { width: 390, height: 844 }, context: { locale: "fr-FR", isMobile: true, hasTouch: true, deviceScaleFactor: 2 },
+  });
+  assert.match(fr.alert, /ce lien est abîmé/);
+  assert.equal(fr.frames, "0");
+  await fr.page.screenshot({ path: shot("explorer-damaged-link-fr.png") });
+  await fr.context.close();
+  // The whole link opens the teacher's scene; a link written by hand (no sum) is read as before.
+  const whole = await openPage(browser, server.url);
+  await whole.page.goto(link);
+  await waitReady(whole.page);
+  assert.match(await whole.page.evaluate(() => window.bentstraw.scene()), /radius = 0\.013/);
+  assert.ok(await whole.page.evaluate(() => document.getElementById("error").hidden));
+  assert.deepEqual(whole.problems, []);
+  await whole.context.close();
+});
+
+test("a gallery scene named without an eye is seen from the eye the scene is meant for", async () => {
+  const own = readFileSync(path.join(ROOT, "scenes", "leaning-straw.toml"), "utf8");
+  const eye = /\[observer\][^[]*?position\s*=\s*\[([^\]]*)\]/.exec(own)[1].split(",").map(Number);
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url + "#scene=leaning-straw");
+  await waitReady(page);
+  assert.deepEqual(await page.evaluate(() => window.bentstraw.state.observer), eye);
+  // An eye the link gives is kept.
+  await page.goto(server.url + "#scene=leaning-straw&observer=0.3,0,0.1");
+  await page.reload();
+  await waitReady(page);
+  assert.deepEqual(await page.evaluate(() => window.bentstraw.state.observer), [0.3, 0, 0.1]);
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("an invalid parameter in the address shows the command line's message", async () => {
   const r = await runCli(["simulate", "--observer", "0.1,0,0.1", "--straw", "0.02,0.01", "--water-height", "0.3", "--output", "/tmp/never.csv"]);
   assert.equal(r.code, 2);

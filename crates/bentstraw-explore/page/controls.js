@@ -71,7 +71,8 @@ function fileOption() {
 
 // The gallery's scenes, from the engine: choosing one moves the eye to the view it is meant for.
 let gallery = [];
-engineFetch("scenes", "/api/scenes", "").then((r) => r.json()).then((list) => {
+/** The gallery's scenes (name, title, what each shows, its eye), once the engine has said them. */
+export const galleryReady = engineFetch("scenes", "/api/scenes", "").then((r) => r.json()).then((list) => {
   gallery = list;
   for (const g of list) {
     const o = document.createElement("option");
@@ -80,6 +81,7 @@ engineFetch("scenes", "/api/scenes", "").then((r) => r.json()).then((list) => {
   }
   syncControls();
   document.body.dataset.scenes = String(list.length);
+  return list;
 });
 $("scene").addEventListener("change", (e) => {
   if (e.target.value === "file") return;

@@ -30,9 +30,19 @@ export function errorText(error) {
   return error.refusal ? refusalText(error.refusal) : t(error.key, error.params);
 }
 
-/** Shows an error (see errorText), translated again when the language changes. */
+/** A link the page refused (damaged, cut, or its scene file unreadable): said until the page is
+ * given another address or the user changes the view; no scene is drawn meanwhile. */
+export let linkRefusal = null;
+export function refuseLink(error) {
+  linkRefusal = error;
+  showError(error || "");
+}
+
+/** Shows an error (see errorText), translated again when the language changes. A refused link
+ * stays said when nothing else is. */
 export let errorShown = "";
 export function showError(error) {
+  if (!error && linkRefusal) error = linkRefusal;
   errorShown = error;
   const e = $("error");
   const text = errorText(error);

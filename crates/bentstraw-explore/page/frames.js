@@ -4,7 +4,7 @@
 import { state, viewQuery, stateHash } from "./state.js";
 import { ask, cancel, refusalOf } from "./engine.js";
 import { $, pictureCanvas } from "./dom.js";
-import { showError } from "./errors.js";
+import { showError, linkRefusal, refuseLink } from "./errors.js";
 import { drawPicture } from "./picture.js";
 import { drawCloud, drawLegend } from "./cloud.js";
 import { drawMaps } from "./maps.js";
@@ -52,6 +52,8 @@ export function pictureSize() {
 
 /** Called on every change of the state by the user. */
 export function changed(options) {
+  // The user moves on from a refused link: the view they make is drawn.
+  if (linkRefusal) refuseLink(null);
   if (inputSince === null) inputSince = performance.now();
   document.body.dataset.ready = "0";
   history.replaceState(null, "", stateHash(state));
@@ -76,6 +78,8 @@ export function requestFrame(quick) {
 }
 
 export async function sendFrame(quick) {
+  // A refused link: nothing in its place.
+  if (linkRefusal) return;
   const [w, h, d] = pictureSize();
   // Quick frames are QUICK times coarser than the box in CSS pixels, whatever the screen's density.
   const size = quick ? [Math.max(40, Math.round(w / (QUICK * d))), Math.max(30, Math.round(h / (QUICK * d)))] : [w, h];

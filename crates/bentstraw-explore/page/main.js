@@ -4,22 +4,31 @@ import { LANG, setLang, applyI18n } from "./i18n.js";
 import { state, viewQuery, stateHash, readParams } from "./state.js";
 import { $ } from "./dom.js";
 import { ENGINE, wasm, engineFetch, answerText } from "./engine.js";
-import { errorShown, showError } from "./errors.js";
+import { errorShown, showError, errorText, linkRefusal, refuseLink } from "./errors.js";
 import { hook, frame, path, changed, requestFrame, sendFrame, settled, pick, forgetFrame, resized } from "./frames.js";
 import { drawCloud, drawLegend, screenOfPoint } from "./cloud.js";
 import { drawMaps } from "./maps.js";
 import { showHint, showReadout, showStatus, showCommands } from "./readout.js";
-import { syncControls, fullscreenLabel } from "./controls.js";
+import { syncControls, fullscreenLabel, galleryReady } from "./controls.js";
 import { sceneErrorShown, showSceneErrors, checkScene, useScene, refused } from "./scenetext.js";
 import { relabelObjects } from "./editor.js";
 import { syncPredict, relabelPredict, predictHook } from "./predict.js";
 
-/** Reads a query or fragment (the address's, the command line's) into the state. */
+/** Reads a query or fragment (the address's, the command line's) into the state. A damaged link,
+ * or one whose scene file cannot be read, changes nothing: it is refused, said in an alert, and no
+ * other scene is drawn in its place. A gallery scene named without an eye is seen from the eye
+ * the scene is meant for. */
 async function readAddress(text) {
-  const { lang, fileError } = await readParams(text, state);
-  if (fileError) showError({ key: "error.link-file", params: { message: fileError.message } });
+  const { lang, fileError, damaged, eyeGiven } = await readParams(text, state);
   // The page's language (not the view's): a link opens in the language it was copied in.
   if (lang !== null && lang !== LANG && setLang(lang, false)) relabel();
+  if (damaged) return refuseLink({ key: "error.link-damaged" });
+  if (fileError) return refuseLink({ key: "error.link-file", params: { message: fileError.message } });
+  refuseLink(null);
+  if (state.scene && !eyeGiven) {
+    const g = (await galleryReady).find((x) => x.name === state.scene);
+    if (g) state.observer = g.observer.slice();
+  }
 }
 
 /** Writes again every text the page has drawn or written in the former language. */
@@ -58,8 +67,12 @@ window.bentstraw = Object.assign(hook, {
   async points() { await settled(); return answerText(await engineFetch("hook", "/api/export", viewQuery(state, { format: "csv" }))); },
   /** The arguments of the `bentstraw simulate` command giving those points (a page's own scene file is scene.toml). */
   async command() { await settled(); return frame.header.simulate_args.slice(); },
-  /** The current scene as the text of a scene file, its [observer] the current eye. */
-  async scene() { return answerText(await engineFetch("hook", "/api/scene-file", viewQuery(state))); },
+  /** The current scene as the text of a scene file, its [observer] the current eye; rejects with
+   * the page's message while it refuses its link. */
+  async scene() {
+    if (linkRefusal) throw new Error(errorText(linkRefusal));
+    return answerText(await engineFetch("hook", "/api/scene-file", viewQuery(state)));
+  },
   /** Shows the scene file `toml` (from its own [observer], if it has one); rejects with the
    * command line's message if a rule is broken, and the page shows it. */
   async setScene(toml) {
@@ -99,7 +112,7 @@ window.bentstraw = Object.assign(hook, {
 (async () => {
   await readAddress(document.body.dataset.initial || "");
   if (location.hash.length > 1) await readAddress(location.hash);
-  if (state.file) history.replaceState(null, "", stateHash(state));
+  if (state.file && !linkRefusal) history.replaceState(null, "", stateHash(state));
   syncControls();
   drawMaps();
   syncPredict();

@@ -146,28 +146,49 @@ export function viewQuery(s, extra) {
   return p.toString();
 }
 
-/** The address's fragment for the state: a scene file travels compressed (`file`). */
+/** A checksum of `text`: FNV-1a's 32 bits, as 8 hexadecimal digits. It finds a link damaged on its
+ * way (characters lost, the address cut by a chat or a learning platform), not a forgery. */
+export function checksum(text) {
+  let h = 2166136261;
+  for (let i = 0; i < text.length; i++) h = Math.imul(h ^ text.charCodeAt(i), 16777619);
+  return (h >>> 0).toString(16).padStart(8, "0");
+}
+
+/** The address's fragment for the state: a scene file travels compressed (`file`), and the whole
+ * is checked by the sum that comes first (`sum`), so that a link cut anywhere is known to be. */
 export function stateHash(s) {
   const p = new URLSearchParams(viewQuery(s));
   if (s.file) { p.delete("scene-file"); p.set("file", fileCode.text === s.file ? fileCode.code : ""); }
   for (const f of FIELDS) if (!f.engine && !(f.optional && s[f.prop] === f.initial)) p.set(f.query, f.format(s[f.prop]));
   if (s.pick) p.set("pick", s.pick);
   p.set("lang", LANG);
-  return "#" + p.toString();
+  const rest = p.toString();
+  return `#sum=${checksum(rest)}&${rest}`;
+}
+
+/** Whether an address's text is damaged: it begins with a sum (as every link the page makes) that
+ * the rest does not match. Addresses written by hand (`#scene=prism`) have none, and are read. */
+export function damaged(text) {
+  const body = text.replace(/^[#?]/, "");
+  const m = /^sum=([0-9a-f]{0,8})(&|$)/.exec(body);
+  if (!body.startsWith("sum=")) return false;
+  return !m || m[1].length !== 8 || checksum(body.slice(m[0].length)) !== m[1];
 }
 
 /** Reads a query or fragment into the state; values are kept as text-parsed numbers, checked by
  * the engine. A compressed scene file (`file`) is unpacked before the state changes. Resolves to
- * what the state does not hold: `{ lang }` (the language the address asks for, or null) and
- * `fileError` (why its scene file could not be unpacked, or null). */
+ * what the state does not hold: `{ lang }` (the language the address asks for, or null),
+ * `fileError` (why its scene file could not be unpacked, or null), `damaged` (its sum does not
+ * match: the state is left as it was) and `eyeGiven` (whether it names an observer). */
 export async function readParams(text, s) {
   const p = new URLSearchParams(text.replace(/^[#?]/, ""));
-  let fileError = null;
-  s.scene = p.get("scene") || "";
-  s.file = p.get("scene-file") || "";
+  if (damaged(text)) return { lang: p.get("lang"), fileError: null, damaged: true, eyeGiven: false };
+  let file = p.get("scene-file") || "";
   if (p.get("file")) {
-    try { s.file = await unpackFile(p.get("file")); } catch (e) { s.file = ""; fileError = e; }
+    try { file = await unpackFile(p.get("file")); } catch (e) { return { lang: p.get("lang"), fileError: e, damaged: false, eyeGiven: false }; }
   }
+  s.scene = p.get("scene") || "";
+  s.file = file;
   if (s.file) { s.scene = ""; await packFile(s.file); }
   for (const f of FIELDS) {
     if (!p.has(f.query)) { if (f.optional) s[f.prop] = copy(f.initial); continue; }
@@ -175,7 +196,7 @@ export async function readParams(text, s) {
     if (v !== undefined) s[f.prop] = v;
   }
   s.pick = p.get("pick") || "";
-  return { lang: p.get("lang"), fileError };
+  return { lang: p.get("lang"), fileError: null, damaged: false, eyeGiven: p.has("observer") };
 }
 
 /** The key of the state's scene file among the sketches: a gallery name, or the file's text. */

@@ -107,9 +107,7 @@ pub fn draw_frame(world: &World, request: &FrameRequest, frame: &mut Frame) {
             };
             *points = cloud.points;
             *rays_traced = cloud.rays_traced;
-            if !stop.load(std::sync::atomic::Ordering::Relaxed) {
-                light_path_types(world, observer, points, |p| p.direction, paths);
-            }
+            light_path_types(world, observer, points, |p| p.direction, paths, &stop);
         },
     );
 }

@@ -172,17 +172,22 @@ const BLIND_LEVELS: u32 = 2;
 
 /// The kind of light path that makes each of `points` (image points seen from `observer`, or
 /// anything `direction` gives a ray's first direction `u0` of), in order, into `paths`: the ray
-/// of each traced again, its entry face and total reflections noted.
+/// of each traced again, its entry face and total reflections noted. Once `stop` is set the rays
+/// left are not traced (their kinds are then meaningless, and the caller throws them away).
 pub fn light_path_types<P: Sync>(
     world: &World,
     observer: Vec3,
     points: &[P],
     direction: impl Fn(&P) -> Vec3 + Sync + Send,
     paths: &mut Vec<LightPathType>,
+    stop: &AtomicBool,
 ) {
     points
         .par_iter()
         .map(|p| {
+            if stop.load(Ordering::Relaxed) {
+                return LightPathType::DIRECT;
+            }
             let ray = Ray {
                 origin: observer,
                 direction: direction(p),

@@ -320,6 +320,7 @@ fn light_paths<'py>(
             &directions,
             |d| *d,
             &mut paths,
+            &std::sync::atomic::AtomicBool::new(false),
         );
         paths
     });
