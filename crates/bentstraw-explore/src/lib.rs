@@ -1472,7 +1472,7 @@ mod tests {
         assert_eq!(v["file"], json!("scene.toml"));
         let rules = v["rules"].as_array().unwrap();
         assert_eq!(rules.len(), 2);
-        assert_eq!(rules[0]["code"], json!("index.min"));
+        assert_eq!(rules[0]["code"], json!("index.range"));
         assert_eq!(rules[0]["key"], json!("liquid[1].index"));
         assert_eq!(rules[0]["value"], json!("0.8"));
         assert_eq!(rules[1]["code"], json!("tilt.range"));

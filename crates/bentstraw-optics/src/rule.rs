@@ -103,8 +103,8 @@ rules! {
     WallThinner = "wall.thinner", "the wall must be thinner than the glass's radius {radius} (something must fit inside)";
     /// A glass's bottom is as thick as the glass is high.
     BottomThinner = "bottom.thinner", "the bottom must be thinner than the glass's height {height}";
-    /// A refractive index is below 1.
-    IndexMin = "index.min", "a refractive index must be >= 1";
+    /// A refractive index is outside the physical range.
+    IndexRange = "index.range", "a refractive index must be between 1 and 5 (vacuum is 1; the most refractive materials known are about 4)";
     /// The first liquid's top is not above the floor.
     LiquidAboveFloor = "liquid.above-floor", "the liquid's top must be above the floor at z = {floor}";
     /// A liquid's top is not above the layer below it.
@@ -221,8 +221,8 @@ rules! {
     GlassEyeInStraw = "glass.eye-in-straw", "observer ({x}, {y}, {z}) is inside the straw where it sticks out of the glass";
     /// The eye is farther than any scene reaches.
     GlassEyeFar = "glass.eye-far", "{name} = {value} m is too far: a position must be at most {max} m in size";
-    /// The assignment's water index is below 1.
-    GlassWaterIndex = "glass.water-index", "water index {value} is not allowed: it must be a finite number >= 1";
+    /// The assignment's water index is outside the physical range.
+    GlassWaterIndex = "glass.water-index", "water index {value} is not allowed: it must be a number between 1 and 5";
     /// The event limit is out of range.
     MaxEvents = "glass.max-events", "event limit {value} is not allowed: it must be between 1 and {max}";
 }

@@ -210,7 +210,7 @@ impl Scene {
         require_finite("straw x", xp)?;
         require_finite("straw y", yp)?;
         require_finite("water height", he)?;
-        if !n_water.is_finite() || n_water < 1.0 {
+        if !is_physical_index(n_water) {
             return Err(SceneError::WaterIndex(n_water));
         }
         if !(0.0..=GLASS_HEIGHT).contains(&he) {
@@ -287,6 +287,16 @@ impl Scene {
 /// Largest length or coordinate (m) in a scene, the observer's included, a thousand kilometres:
 /// beyond it, squared distances lose the precision of the sizes beside them.
 pub const MAX_LENGTH: f64 = 1e6;
+
+/// Largest refractive index a scene may give: vacuum is 1, and the most refractive materials
+/// known (germanium in the infrared, some semiconductors) are about 4; beyond 5 a number is a
+/// typing error, not a material.
+pub const MAX_INDEX: f64 = 5.0;
+
+/// Whether `n` is a refractive index a scene may give: a number from 1 to [`MAX_INDEX`].
+pub fn is_physical_index(n: f64) -> bool {
+    (1.0..=MAX_INDEX).contains(&n)
+}
 
 /// The centre of the box enclosing the glass and the straw, `(0, 0, 0.125)`: the default target.
 pub const SCENE_CENTRE: Vec3 = Vec3::new(0.0, 0.0, STRAW_HEIGHT / 2.0);

@@ -12,7 +12,8 @@ use std::fmt;
 use crate::profile::{self, Piece};
 use crate::rule::{self, number, point, Param, Params, Rule};
 use crate::scene::{
-    Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT, STRAW_RADIUS, WATER_INDEX,
+    is_physical_index, Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT, STRAW_RADIUS,
+    WATER_INDEX,
 };
 use crate::text::number_text;
 use crate::Vec3;
@@ -1198,8 +1199,8 @@ impl SceneDescription {
                         vec![("height", number(g.height))],
                     ));
                 }
-                if g.index < 1.0 {
-                    return Err(refuse("container.index", g.index, Rule::IndexMin, vec![]));
+                if !is_physical_index(g.index) {
+                    return Err(refuse("container.index", g.index, Rule::IndexRange, vec![]));
                 }
             }
             Container::Tank(t) => {
@@ -1211,8 +1212,8 @@ impl SceneDescription {
                 validate_profile("container.outer", &v.outer, false)?;
                 validate_profile("container.inner", &v.inner, true)?;
                 finite("container.index", v.index)?;
-                if v.index < 1.0 {
-                    return Err(refuse("container.index", v.index, Rule::IndexMin, vec![]));
+                if !is_physical_index(v.index) {
+                    return Err(refuse("container.index", v.index, Rule::IndexRange, vec![]));
                 }
                 let base = v.outer[0][1];
                 if base != 0.0 {
@@ -1263,8 +1264,8 @@ impl SceneDescription {
         {
             let key = |k: &str| format!("liquid[{}].{k}", i + 1);
             finite(&key("index"), l.index)?;
-            if l.index < 1.0 {
-                return Err(refuse(&key("index"), l.index, Rule::IndexMin, vec![]));
+            if !is_physical_index(l.index) {
+                return Err(refuse(&key("index"), l.index, Rule::IndexRange, vec![]));
             }
             length(&key("top"), l.top)?;
             if l.top <= below {
@@ -1416,8 +1417,8 @@ impl SceneDescription {
         }
         positive(&key("radius"), b.radius)?;
         finite(&key("index"), b.index)?;
-        if b.index < 1.0 {
-            return Err(refuse(&key("index"), b.index, Rule::IndexMin, vec![]));
+        if !is_physical_index(b.index) {
+            return Err(refuse(&key("index"), b.index, Rule::IndexRange, vec![]));
         }
         let c = b.center;
         let mut params = point(c);
@@ -1445,8 +1446,8 @@ impl SceneDescription {
         length(&key("bottom"), p.bottom)?;
         length(&key("top"), p.top)?;
         finite(&key("index"), p.index)?;
-        if p.index < 1.0 {
-            return Err(refuse(&key("index"), p.index, Rule::IndexMin, vec![]));
+        if !is_physical_index(p.index) {
+            return Err(refuse(&key("index"), p.index, Rule::IndexRange, vec![]));
         }
         let n = p.corners.len();
         if !(3..=MAX_PRISM_CORNERS).contains(&n) || !strictly_convex(&p.corners) {
@@ -1495,8 +1496,8 @@ impl SceneDescription {
         positive(&key("thickness"), l.thickness)?;
         positive(&key("diameter"), l.diameter)?;
         finite(&key("index"), l.index)?;
-        if l.index < 1.0 {
-            return Err(refuse(&key("index"), l.index, Rule::IndexMin, vec![]));
+        if !is_physical_index(l.index) {
+            return Err(refuse(&key("index"), l.index, Rule::IndexRange, vec![]));
         }
         for (name, r) in [("radius1", l.radius1), ("radius2", l.radius2)] {
             if r != 0.0 {

@@ -236,7 +236,7 @@ fn a_spheres_place_breaks_no_rule() {
     );
     refused(
         "[[sphere]]\ncenter = [0.3, 0.0, 0.1]\nradius = 0.02\nindex = 0.9\n",
-        "index.min",
+        "index.range",
     );
     // A ball resting on a thick bottom, its centre written as floor + radius (0.037 − 0.025 is
     // a hair below 0.012 in binary): it rests on the floor.

@@ -14,7 +14,7 @@ use super::{Event, Outcome, Part, Shape, World, AIR, COLOR_COUNT};
 /// Most straight ray segments a Fresnel trace follows for one ray from the eye, all its branches
 /// together (a picture's pixel with several samples shares [`FRESNEL_SEGMENTS_PER_PIXEL`]).
 ///
-/// Without a bound the work has none: light trapped by total reflection (water of index 10, an
+/// Without a bound the work has none: light trapped by total reflection (water of index 5, an
 /// event limit of 1000) bounces a thousand times in every branch. Past the bound, what is still
 /// travelling is dropped, exactly like light that would need an event past the limit; ordinary
 /// scenes use a few dozen segments per ray.
