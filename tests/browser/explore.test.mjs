@@ -138,6 +138,49 @@ test("the 3D view's legend covers none of its points", async () => {
   await context.close();
 });
 
+test("Save writes the scene file with the eye the view has now; a view from the list keeps one's scene", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url + "#scene=two-straws&observer=0.25,0,0.17");
+  await waitReady(page);
+  // One's own scene file (with a comment), the box open while the eye is dragged.
+  const own = "# my two straws\n" + (await page.evaluate(() => window.bentstraw.scene()));
+  await page.evaluate((t) => window.bentstraw.setScene(t), own);
+  await waitReady(page);
+  await page.click("#scene-edit summary");
+  const box = await page.locator("#picture").boundingBox();
+  const frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; i++) await page.mouse.move(box.x + box.width / 2 + 10 * i, box.y + box.height / 2);
+  await page.mouse.up();
+  await waitReady(page, frames);
+  const eye = await page.evaluate(() => window.bentstraw.state.observer.slice());
+  assert.notDeepEqual(eye, [0.25, 0, 0.17]);
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click("#scene-save")]);
+  const saved = readFileSync(await download.path(), "utf8");
+  const boxText = await page.inputValue("#scene-text");
+  assert.equal(boxText, own);
+  // The box's text, its comment included, but for the observer's position.
+  const position = /\[observer\][^[]*?position = \[([^\]]*)\]/.exec(saved)[1].split(",").map(Number);
+  for (let i = 0; i < 3; i++) assert.ok(Math.abs(position[i] - eye[i]) < 1e-7, `${position} against ${eye}`);
+  const without = (t) => t.replace(/position = \[[^\]]*\]/g, "");
+  assert.equal(without(saved), without(boxText));
+  // The file saved shows the same view.
+  const frames2 = await page.evaluate(() => window.bentstraw.frames);
+  await page.evaluate((t) => window.bentstraw.setScene(t), saved);
+  await waitReady(page, frames2);
+  const again = await page.evaluate(() => window.bentstraw.state.observer.slice());
+  for (let i = 0; i < 3; i++) assert.ok(Math.abs(again[i] - eye[i]) < 1e-7);
+  // A view chosen from the list keeps one's own scene and moves the eye only.
+  const frames3 = await page.evaluate(() => window.bentstraw.frames);
+  await page.selectOption("#preset", "0");
+  await waitReady(page, frames3);
+  assert.equal(await page.evaluate(() => window.bentstraw.state.file), saved);
+  assert.notDeepEqual(await page.evaluate(() => window.bentstraw.state.observer.slice()), again);
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("dragging in the picture moves the observer and changes the picture", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);

@@ -53,6 +53,12 @@ PRESETS.forEach((p, i) => { const o = document.createElement("option"); o.value 
 $("preset").addEventListener("change", (e) => {
   const p = PRESETS[Number(e.target.value)];
   if (!p) return;
+  // A scene of the gallery or of one's own is kept: the view moves its eye only.
+  if (state.scene || state.file) {
+    state.observer = p.v.observer.slice();
+    changed();
+    return;
+  }
   Object.assign(state, { scene: "", file: "", n: initialOf("n"), events: initialOf("events"), color: initialOf("color") }, p.v);
   state.observer = p.v.observer.slice(); state.straw = p.v.straw.slice();
   changed();

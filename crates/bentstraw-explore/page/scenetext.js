@@ -1,6 +1,6 @@
 // The scene file's text box: the view's scene as the text of its file, typed, opened or saved,
 // checked by the engine before the view follows it; the history of the scenes shown (undo, redo).
-import { state, MAX_FILE_BYTES, packFile, viewQuery } from "./state.js";
+import { state, MAX_FILE_BYTES, packFile, viewQuery, num } from "./state.js";
 import { $ } from "./dom.js";
 import { engineFetch, answerText } from "./engine.js";
 import { errorText } from "./errors.js";
@@ -182,10 +182,30 @@ $("scene-input").addEventListener("change", (e) => {
   reader.onerror = () => showSceneErrors({ key: "edit.unreadable", params: { name: file.name, message: String(reader.error && reader.error.message) } });
   reader.readAsText(file);
 });
-// Save: the box's text as scene.toml.
+/** A scene file's `text` with its observer at `eye`: the position of its `[observer]` table
+ * written again where it differs (the rest of the text, comments included, as it is), the table
+ * added when there is none. */
+export function withEye(text, eye) {
+  const written = `[${eye.map(num).join(", ")}]`;
+  const header = /^[ \t]*\[observer\][ \t]*(#.*)?$/m.exec(text);
+  if (!header) return text.replace(/\s*$/, "") + `\n\n[observer]\nposition = ${written}\n`;
+  const start = header.index + header[0].length;
+  const next = /^[ \t]*\[/m.exec(text.slice(start));
+  const end = next ? start + next.index : text.length;
+  const section = text.slice(start, end);
+  const position = /^([ \t]*position[ \t]*=[ \t]*)\[([^\]]*)\]/m.exec(section);
+  if (!position) return text.slice(0, start) + `\nposition = ${written}` + text.slice(start);
+  const old = position[2].split(",").map(Number);
+  if (old.length === 3 && old.every((v, i) => Math.abs(v - eye[i]) < 1e-9)) return text;
+  const at = start + position.index;
+  return text.slice(0, at) + position[1] + written + text.slice(at + position[0].length);
+}
+
+// Save: the box's text as scene.toml, its observer the view's eye (a page's own file keeps the
+// eye it was opened with in the box, however far the eye was dragged since).
 $("scene-save").addEventListener("click", () => {
   const a = document.createElement("a");
-  a.href = URL.createObjectURL(new Blob([sceneText.value], { type: "application/toml" }));
+  a.href = URL.createObjectURL(new Blob([withEye(sceneText.value, state.observer)], { type: "application/toml" }));
   a.download = "scene.toml";
   document.body.appendChild(a); a.click(); a.remove();
   setTimeout(() => URL.revokeObjectURL(a.href), 10000);
