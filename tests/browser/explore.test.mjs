@@ -181,6 +181,32 @@ test("Save writes the scene file with the eye the view has now; a view from the 
   await context.close();
 });
 
+test("a size that looks like centimetres written as metres gets the command line's hint, in the page's language", async () => {
+  const cm = '[container]\nshape = "glass"\nradius = 4\nheight = 0.2\n[[liquid]]\nname = "water"\nindex = 1.333\ntop = 0.15\n[[straw]]\nx = 0\ny = 0\n[observer]\nposition = [9, 0, 0.1]\n';
+  for (const locale of ["en-GB", "fr-FR"]) {
+    const { page, context, problems } = await openPage(browser, server.url, undefined, { locale });
+    await page.goto(server.url);
+    await waitReady(page);
+    assert.ok(await page.locator("#notice").isHidden());
+    const frames = await page.evaluate(() => window.bentstraw.frames);
+    await page.evaluate((t) => window.bentstraw.setScene(t), cm);
+    await waitReady(page, frames);
+    const notice = await page.textContent("#notice");
+    assert.equal(notice, locale === "fr-FR"
+      ? "container.radius = 4 : les longueurs sont en mètres, c'est donc 4 m ; si vous vouliez 4 cm, écrivez 0,04"
+      : "container.radius = 4: lengths are in metres, so this is 4 m; if you meant 4 cm, write 0.04");
+    if (locale === "en-GB") {
+      // The command line's own words for the same file.
+      const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-cm-"));
+      writeFileSync(path.join(dir, "cm.toml"), cm);
+      const cli = await runCli(["simulate", "--scene", "cm.toml", "--points", "100", "--output", "p.csv"], dir);
+      assert.ok(cli.stderr.includes(notice), cli.stderr);
+    }
+    assert.deepEqual(problems, []);
+    await context.close();
+  }
+});
+
 test("dragging in the picture moves the observer and changes the picture", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);

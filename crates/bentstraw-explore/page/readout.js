@@ -67,6 +67,10 @@ export function showStatus() {
   const h = frame.header;
   const where = wasm ? t("status.wasm", { ms: frame.engineMs.toFixed(0) }) : t("status.server", { ms: h.ms.toFixed(0) });
   $("status").textContent = t("status.frame", { w: h.width, h: h.height, n: h.n, rays: h.rays_traced, fov: localNumber(h.fov_deg.toFixed(1)), where });
+  // Sizes that look like centimetres written as metres: said, as the command line says them.
+  const hints = h.hints || [];
+  $("notice").textContent = hints.map((x) => t("hint.centimetres", { key: x.key, value: localNumber(x.value), metres: localNumber(x.metres) })).join("\n");
+  $("notice").hidden = hints.length === 0;
 }
 
 /** The command lines giving this view, when they are shown. */

@@ -45,7 +45,7 @@ use bentstraw_io::writers::{write_csv, write_model_csv, write_ply, ModelPoints, 
 use bentstraw_optics::scene::{GLASS_HEIGHT, GLASS_RADIUS, REFERENCES, STRAW_HEIGHT, STRAW_RADIUS};
 use bentstraw_optics::setup::{Setup, MAX_SCENE_FILE_BYTES};
 use bentstraw_optics::sketch::{object_outlines, world_wireframe};
-use bentstraw_optics::text::refuse_choice;
+use bentstraw_optics::text::{number_text, refuse_choice};
 use bentstraw_optics::view::{
     PictureSpec, BACKDROPS, CLASSIC_OBSERVER, CLASSIC_STRAW, CLASSIC_WATER_HEIGHT, DEFAULT_POINTS,
     DEFAULT_SIZE, MAX_SAMPLES, MODES,
@@ -537,6 +537,12 @@ pub fn frame_reply(view: &View, frame: &mut Frame, memory: &Memory) -> Reply {
         "ms": ms,
         "simulate": view.simulate_command(ImageModel::Course),
         "simulate_args": view.simulate_args(ImageModel::Course),
+        // Sizes that read like centimetres written as metres (the command line's hints).
+        "hints": view.scene.description.size_hints().iter().map(|(key, v)| json!({
+            "key": key,
+            "value": number_text(*v),
+            "metres": number_text(*v / 100.0),
+        })).collect::<Vec<_>>(),
         "render": view.render_command(),
     });
     let kind_of = frame

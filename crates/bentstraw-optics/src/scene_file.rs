@@ -12,8 +12,8 @@ use std::fmt;
 use crate::profile::{self, Piece};
 use crate::rule::{self, number, point, Param, Params, Rule};
 use crate::scene::{
-    is_physical_index, Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT, STRAW_RADIUS,
-    WATER_INDEX,
+    is_physical_index, Scene, DEFAULT_MAX_EVENTS, GLASS_HEIGHT, GLASS_RADIUS, STRAW_HEIGHT,
+    STRAW_RADIUS, WATER_INDEX,
 };
 use crate::text::number_text;
 use crate::Vec3;
@@ -1909,6 +1909,23 @@ impl SceneDescription {
     /// a size above [`LARGEST_LIKELY_SIZE`] reads like centimetres written as metres (`radius =
     /// 4` is a glass 8 m wide, its straw a speck in it). Empty when nothing looks wrong.
     pub fn hints(&self) -> Vec<String> {
+        self.size_hints()
+            .into_iter()
+            .map(|(key, v)| {
+                format!(
+                    "{key} = {}: lengths are in metres, so this is {} m; if you meant {} cm, write {}",
+                    number_text(v),
+                    number_text(v),
+                    number_text(v),
+                    number_text(v / 100.0)
+                )
+            })
+            .collect()
+    }
+
+    /// The sizes [`SceneDescription::hints`] speaks of: each key with its value (m), for a page
+    /// to say in its own language.
+    pub fn size_hints(&self) -> Vec<(String, f64)> {
         let mut sizes: Vec<(String, f64)> = Vec::new();
         match &self.container {
             Container::Glass(g) => {
@@ -1932,19 +1949,8 @@ impl SceneDescription {
         for (i, c) in self.coins.iter().enumerate() {
             sizes.push((format!("coin[{}].radius", i + 1), c.radius));
         }
+        sizes.retain(|&(_, v)| v > LARGEST_LIKELY_SIZE);
         sizes
-            .into_iter()
-            .filter(|&(_, v)| v > LARGEST_LIKELY_SIZE)
-            .map(|(key, v)| {
-                format!(
-                    "{key} = {}: lengths are in metres, so this is {} m; if you meant {} cm, write {}",
-                    number_text(v),
-                    number_text(v),
-                    number_text(v),
-                    number_text(v / 100.0)
-                )
-            })
-            .collect()
     }
 
     /// What this scene has that the assignment's scene has not, in words ("a straw tilted 15°"),
