@@ -1166,6 +1166,39 @@ test("the objects' controls and the maps' rings edit the scene: the box and the 
   await context.close();
 });
 
+test("a decimal comma is read in French, refused with its message in English; the arrow keys step a value", async () => {
+  for (const locale of ["fr-FR", "en-GB"]) {
+    const { page, context, problems } = await openPage(browser, server.url, { width: 1500, height: 1000 }, { locale });
+    await page.goto(server.url + "#scene=coin-in-glass&observer=0.15,0,0.35");
+    await waitReady(page);
+    await page.click("#scene-objects summary");
+    await page.waitForFunction(() => document.querySelectorAll("#objects fieldset").length === 3);
+    const index = '[data-key="liquid[1].index"]';
+    // Shown as the language writes numbers.
+    assert.equal(await page.inputValue(index), locale === "fr-FR" ? "1,333" : "1.333");
+    let file = await page.evaluate(() => window.bentstraw.state.file);
+    await page.fill(index, "1,5");
+    await page.press(index, "Enter");
+    if (locale === "fr-FR") {
+      file = await nextFile(page, file);
+      assert.equal(fileValue(file, "liquid", 0, "index"), "1.5");
+      assert.equal(await page.inputValue(index), "1,5");
+      // The arrow keys step it by a thousandth.
+      await page.focus(index);
+      await page.keyboard.press("ArrowUp");
+      file = await nextFile(page, file);
+      assert.equal(fileValue(file, "liquid", 0, "index"), "1.501");
+    } else {
+      await page.waitForFunction(() => !document.getElementById("objects-errors").hidden);
+      assert.equal(await page.getAttribute(index, "aria-invalid"), "true");
+      assert.match(await page.textContent("#objects-errors"), /liquid\[1\]\.index: not a number/);
+      assert.equal(await page.evaluate(() => window.bentstraw.state.file), file);
+    }
+    assert.deepEqual(problems, []);
+    await context.close();
+  }
+});
+
 test("the objects' controls on a phone, in French: a finger can hit each, nothing scrolls sideways", async () => {
   mkdirSync("/tmp/shots-edit", { recursive: true });
   const { page, context, problems } = await openPage(browser, server.url, { width: 390, height: 844 }, { ...PHONE, locale: "fr-FR" });

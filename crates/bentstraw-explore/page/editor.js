@@ -3,7 +3,7 @@
 // form (its file's keys and values, as the engine reads them); the engine writes the form back
 // as the file's text, which then goes the way a typed text goes: checked by the same rules, the
 // view following it, refused key by key. One rule, one place.
-import { t } from "./i18n.js";
+import { t, localNumber, readNumber } from "./i18n.js";
 import { state, STRAW_R, STRAW_H, COIN_R, sceneKey } from "./state.js";
 import { $ } from "./dom.js";
 import { profileAt, widest } from "./geometry.js";
@@ -471,7 +471,21 @@ function field(key, name, unit, value) {
     const el = document.createElement("input");
     if (unit === "text") { el.type = "text"; el.value = v ?? ""; }
     else if (unit === "xy") { el.type = "text"; el.value = cornersText(v); el.spellcheck = false; }
-    else { el.type = "number"; el.step = STEP[unit]; el.value = v ?? ""; el.inputMode = "decimal"; if (unit === "v3") el.style.width = "5em"; }
+    else {
+      // Text, read as the page's language writes numbers (a decimal comma in French); the arrow
+      // keys step it as a number control would.
+      el.type = "text"; el.inputMode = "decimal"; el.value = shownNumber(v); el.spellcheck = false;
+      el.addEventListener("keydown", (e) => {
+        if (e.key !== "ArrowUp" && e.key !== "ArrowDown") return;
+        const x = readNumber(el.value);
+        if (!Number.isFinite(x)) return;
+        e.preventDefault();
+        const step = Number(STEP[unit]);
+        el.value = shownNumber(Math.round((x + (e.key === "ArrowUp" ? step : -step)) / step) * step);
+        el.dispatchEvent(new Event("change", { bubbles: true }));
+      });
+      if (unit === "v3") el.style.width = "5em";
+    }
     el.dataset.key = key; el.dataset.unit = unit;
     if (i !== null) el.dataset.part = String(i);
     return el;
@@ -552,9 +566,17 @@ function fillObjects(form) {
     if (el === document.activeElement) continue;
     const v = formValue(form, el.dataset.key);
     const part = el.dataset.part;
-    el.value = part !== undefined ? (v ? v[Number(part)] : "") : el.dataset.unit === "xy" ? cornersText(v) : (v ?? "");
+    const unit = el.dataset.unit;
+    el.value = part !== undefined ? shownNumber(v ? v[Number(part)] : "") : unit === "xy" ? cornersText(v) : unit === "text" || el.tagName === "SELECT" ? (v ?? "") : shownNumber(v);
     el.removeAttribute("aria-invalid");
   }
+}
+/** A number as its control shows it, in the page's language (a decimal comma in French); text
+ * as it is. */
+function shownNumber(v) {
+  if (typeof v !== "number") return v ?? "";
+  // Rounded to a nanometre's digits: no float noise in the fields.
+  return localNumber(String(Math.round(v * 1e9) / 1e9));
 }
 /** A prism's corners (or a profile's points r, z) as its control writes them: "x, y; x, y; …"
  * (metres). */
@@ -613,9 +635,9 @@ objectsEl.addEventListener("change", (e) => {
       showSceneErrors({ key: key.startsWith("container.") ? "obj.not-profile" : "obj.not-corners", params: { key } });
       return;
     }
-  } else if (el.tagName === "SELECT" || el.type === "text") value = el.value;
+  } else if (el.tagName === "SELECT" || el.dataset.unit === "text") value = el.value;
   else {
-    value = el.valueAsNumber;
+    value = readNumber(el.value);
     if (!Number.isFinite(value)) {
       el.setAttribute("aria-invalid", "true");
       showSceneErrors({ key: "obj.not-a-number", params: { key } });

@@ -682,6 +682,15 @@ export const touchKey = (key) => (TOUCH && (key + ".touch") in I18N.en ? key + "
 /** A number's text in the page's language (a decimal comma in French). */
 export function localNumber(text) { return LANG === "fr" ? String(text).replace(/\./g, ",") : String(text); }
 
+/** The number a person typed, as the page's language writes it (in French `1,5` as well as
+ * `1.5`), or NaN when it is not one (`1,5` in English: a comma there is no decimal mark). */
+export function readNumber(text) {
+  let s = String(text).trim();
+  if (LANG === "fr" && /^[-+]?\d*,\d+(e[-+]?\d+)?$/i.test(s)) s = s.replace(",", ".");
+  if (!/^[-+]?(\d+\.?\d*|\.\d+)(e[-+]?\d+)?$/i.test(s)) return NaN;
+  return Number(s);
+}
+
 /** Fills the texts of the elements under `root` marked with `data-i18n` / `data-i18n-title`. */
 export function applyI18n(root) {
   const r = root || document;
