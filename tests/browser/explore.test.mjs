@@ -778,11 +778,11 @@ test("on a phone: no sideways scrolling, controls a finger can hit, a swipe scro
   await waitReady(page);
   assert.ok(await page.evaluate(() => window.matchMedia("(pointer: coarse)").matches));
   assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
-  // Every visible control at least 44 px tall.
-  const small = await page.evaluate(() => [...document.querySelectorAll("button, select, input[type=range], label:has(input[type=checkbox])")]
+  // Every visible control at least 44x44 px (a checkbox by its label, which a tap on toggles it).
+  const small = await page.evaluate(() => [...document.querySelectorAll("button, select, input[type=range], input[type=text], label:has(input[type=checkbox]), summary")]
     .filter((el) => el.getClientRects().length && getComputedStyle(el).visibility !== "hidden")
-    .map((el) => [el.id || el.textContent.trim().slice(0, 20), el.getBoundingClientRect().height])
-    .filter(([, h]) => h < 44));
+    .map((el) => { const r = el.getBoundingClientRect(); return [el.id || el.textContent.trim().slice(0, 20), Math.round(r.width), Math.round(r.height)]; })
+    .filter(([, w, h]) => w < 44 || h < 44));
   assert.deepEqual(small, []);
   // The hints name the touch gestures.
   assert.match(await page.textContent('[data-i18n="eye.hint"]'), /drag sideways .* pinch/);
