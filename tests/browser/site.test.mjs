@@ -7,6 +7,7 @@ import { existsSync, mkdtempSync, readFileSync, readdirSync, statSync, writeFile
 import { tmpdir } from "node:os";
 import path from "node:path";
 import { spawn } from "node:child_process";
+import http from "node:http";
 import { launch, openPage, waitReady, BIN, SITE, startStaticServer } from "./harness.mjs";
 
 let server, browser;
@@ -131,6 +132,68 @@ test("a page opened once opens again without a network", async () => {
   assert.ok((await page.evaluate(() => window.bentstraw.points())).startsWith("x,y,z,color\n"));
   assert.deepEqual(problems, []);
   await context.close();
+});
+
+/** The site served by a server that can be made to hang (connect, never answer) or to answer
+ * every request with a captive portal's page, as a school's or a café's network does. */
+async function unreliableServer(dir) {
+  const types = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".wasm": "application/wasm" };
+  let mode = "serve";
+  const server = http.createServer((req, res) => {
+    if (mode === "hang") return;
+    if (mode === "portal") { res.writeHead(200, { "Content-Type": "text/html" }); res.end("<h1>Welcome to the school's network: log in</h1>"); return; }
+    let name = decodeURIComponent(new URL(req.url, "http://x").pathname).slice(1) || "index.html";
+    const file = path.join(dir, name);
+    if (name.includes("..") || !existsSync(file) || statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
+    res.writeHead(200, { "Content-Type": types[path.extname(name)] || "application/octet-stream" });
+    res.end(readFileSync(file));
+  });
+  await new Promise((done) => server.listen(0, "127.0.0.1", done));
+  return {
+    url: `http://127.0.0.1:${server.address().port}/`,
+    set mode(m) { mode = m; },
+    close() { server.closeAllConnections(); server.close(); },
+  };
+}
+
+test("once ready offline, the page opens at once on a network that hangs, and a captive portal's page never replaces it", async () => {
+  const site = await unreliableServer(SITE);
+  try {
+    const { page, context, problems } = await openPage(browser, site.url);
+    await page.goto(site.url);
+    await waitReady(page);
+    // Said once every file is kept and checked.
+    await page.waitForFunction(() => document.body.dataset.offline === "ready");
+    assert.equal(await page.textContent("#offline"), "✓ ready offline");
+    assert.ok(await page.locator("#offline").isVisible());
+    const digest = await page.evaluate(() => window.bentstraw.points());
+    // The network connects and never answers: the page comes from the copy, at once.
+    site.mode = "hang";
+    const started = Date.now();
+    await page.reload();
+    await waitReady(page);
+    const ms = Date.now() - started;
+    assert.ok(ms < 10000, `the page took ${ms} ms on a hanging network`);
+    assert.equal(await page.evaluate(() => window.bentstraw.points()), digest);
+    // A captive portal answers everything with its own page: the site's copy is kept and used.
+    site.mode = "portal";
+    await page.reload();
+    await waitReady(page);
+    assert.equal(await page.evaluate(() => window.bentstraw.points()), digest);
+    const kept = await page.evaluate(async () => {
+      const names = await caches.keys();
+      const cache = await caches.open(names.find((n) => n.startsWith("bentstraw-site-")));
+      return (await (await cache.match("index.html")).text()).includes("bentstraw");
+    });
+    assert.ok(kept, "the kept index.html is not the site's");
+    // In French, the mark says so.
+    await page.selectOption("#lang", "fr");
+    assert.equal(await page.textContent("#offline"), "✓ disponible hors ligne");
+    assert.deepEqual(problems, []);
+    await context.close();
+  } finally {
+    site.close();
+  }
 });
 
 test("the points are simulate's to the byte: at the start, after a long drag", async () => {

@@ -78,9 +78,15 @@ fn site(dir: &Path) -> Result<(), String> {
         std::fs::write(fresh.join(name), text).map_err(|e| format!("cannot write {name}: {e}"))
     };
     write("index.html", &index_html("", Engine::Wasm))?;
-    for f in PAGE_FILES {
+    for f in PAGE_FILES.iter().filter(|f| f.name != "sw.js") {
         write(f.name, f.text)?;
     }
+    // The service worker last: it lists every file written, each with its hash.
+    let sw = PAGE_FILES
+        .iter()
+        .find(|f| f.name == "sw.js")
+        .ok_or("the page has no service worker")?;
+    write("sw.js", &with_manifest(sw.text, &fresh)?)?;
     // GitHub Pages serves the files as they are (no Jekyll).
     write(".nojekyll", "")?;
     let _ = std::fs::remove_dir_all(dir);
@@ -93,6 +99,59 @@ fn site(dir: &Path) -> Result<(), String> {
         bytes as f64 / 1e6,
         dir.display()
     );
+    Ok(())
+}
+
+/// The service worker's text `sw` with the list of the site's files in `dir` (all but itself and
+/// `.nojekyll`), each with its SHA-256, and the version they make together, in place of its
+/// `const MANIFEST = null;`.
+fn with_manifest(sw: &str, dir: &Path) -> Result<String, String> {
+    use sha2::{Digest, Sha256};
+    let mut names = Vec::new();
+    list_files(dir, dir, &mut names)?;
+    names.sort();
+    let mut files = Vec::new();
+    let mut all = Sha256::new();
+    for name in names.iter().filter(|n| *n != "sw.js" && !n.starts_with('.')) {
+        let bytes =
+            std::fs::read(dir.join(name)).map_err(|e| format!("cannot read {name}: {e}"))?;
+        let hash = hex(&Sha256::digest(&bytes));
+        all.update(format!("{name} {hash}\n"));
+        files.push(format!("{name:?}: {hash:?}"));
+    }
+    let version = hex(&all.finalize())[..16].to_string();
+    let manifest = format!(
+        "const MANIFEST = {{ version: {version:?}, files: {{ {} }} }};",
+        files.join(", ")
+    );
+    let line = sw
+        .lines()
+        .find(|l| l.starts_with("const MANIFEST = null;"))
+        .ok_or("sw.js has no `const MANIFEST = null;` line to fill in")?;
+    Ok(sw.replacen(line, &manifest, 1))
+}
+
+/// Lowercase hexadecimal digits of `bytes`.
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// The files under `dir`, as paths relative to `root` with `/` between folders.
+fn list_files(root: &Path, dir: &Path, out: &mut Vec<String>) -> Result<(), String> {
+    let entries =
+        std::fs::read_dir(dir).map_err(|e| format!("cannot list {}: {e}", dir.display()))?;
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            list_files(root, &path, out)?;
+        } else if let Ok(rel) = path.strip_prefix(root) {
+            let parts: Vec<String> = rel
+                .components()
+                .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                .collect();
+            out.push(parts.join("/"));
+        }
+    }
     Ok(())
 }
 

@@ -5,8 +5,14 @@ import { t } from "./i18n.js";
 
 export const ENGINE = document.body.dataset.engine === "wasm" ? "wasm" : "server";
 export const wasm = ENGINE === "wasm" ? wasmEngine() : null;
-// The site keeps a copy of itself, to open again without a network.
-if (wasm && "serviceWorker" in navigator) navigator.serviceWorker.register("sw.js").catch(() => {});
+// The site keeps a copy of itself, to open again without a network; once every file is kept
+// (and checked), the page says it is ready offline.
+if (wasm && "serviceWorker" in navigator) {
+  navigator.serviceWorker.register("sw.js")
+    .then(() => navigator.serviceWorker.ready)
+    .then(() => { document.body.dataset.offline = "ready"; document.getElementById("offline").hidden = false; })
+    .catch(() => {});
+}
 
 /** The engine compiled to WebAssembly in Web Workers, each named by the page (by default one per
  * channel): quick frames have a worker of their own, so a drag never waits for the rest; full

@@ -1,28 +1,73 @@
 // The static site's service worker: keeps a copy of the site's files, so that a page opened once
-// opens again without a network (in a classroom with none). Network first, so a new version of
-// the site is picked up whenever the network is there; the copy when it is not.
+// opens again at once, with or without a network (in a classroom with none, or one that connects
+// and never answers). The site's build writes the list of its files with each one's SHA-256 below
+// (MANIFEST): a copy is made only of the files the build wrote, each checked against its hash, all
+// of them or none (a captive portal's page or a half-downloaded file is never kept). The copy is
+// served first; a new build of the site (a new list, so a new worker) is fetched and checked in
+// the background and takes over at the next visit. Anything else goes to the network, given
+// NETWORK_MS before the copy (if any) answers instead.
 "use strict";
-const CACHE = "bentstraw-site";
-// The page's modules: main.js and every module it imports, each a file the page fetches.
-const MODULES = ["main.js", "i18n.js", "state.js", "geometry.js", "dom.js", "engine.js", "errors.js", "frames.js", "draw.js", "pointer.js", "sketch.js", "picture.js", "cloud.js", "maps.js", "readout.js", "sweep.js", "controls.js", "scenetext.js", "editor.js", "predict.js"];
-const FILES = ["./", "index.html", ...MODULES, "explorer.css", "worker.js", "pkg/bentstraw_web.js", "pkg/bentstraw_web_bg.wasm"];
+const MANIFEST = null; // { version, files: { "index.html": "<sha-256, hex>", … } }: the site's build fills it in
+const CACHE = "bentstraw-site-" + (MANIFEST ? MANIFEST.version : "unbuilt");
+const NETWORK_MS = 3000;
+
+/** A file's name as the list has it, for a request of this site (`./` is index.html). */
+function fileOf(request) {
+  const scope = new URL(self.registration.scope);
+  const url = new URL(request.url);
+  if (url.origin !== scope.origin || !url.pathname.startsWith(scope.pathname)) return null;
+  const name = url.pathname.slice(scope.pathname.length);
+  return name === "" ? "index.html" : name;
+}
+
+async function sha256(bytes) {
+  const digest = new Uint8Array(await crypto.subtle.digest("SHA-256", bytes));
+  return [...digest].map((b) => b.toString(16).padStart(2, "0")).join("");
+}
 
 self.addEventListener("install", (e) => {
-  e.waitUntil(caches.open(CACHE).then((c) => c.addAll(FILES)).then(() => self.skipWaiting()));
+  e.waitUntil((async () => {
+    if (!MANIFEST) return self.skipWaiting();
+    // Every file fetched afresh and checked before any is kept: one that differs from what the
+    // build wrote fails the whole install, and the copy made before stays in use.
+    const checked = await Promise.all(Object.entries(MANIFEST.files).map(async ([name, hash]) => {
+      const r = await fetch(name, { cache: "no-store" });
+      const body = await r.arrayBuffer();
+      if (!r.ok || (await sha256(body)) !== hash) throw new Error(`${name} is not the site's own file`);
+      return [name, new Response(body, { headers: { "Content-Type": r.headers.get("Content-Type") || "" } })];
+    }));
+    const cache = await caches.open(CACHE);
+    await Promise.all(checked.map(([name, response]) => cache.put(name, response)));
+    await self.skipWaiting();
+  })());
 });
-self.addEventListener("activate", (e) => e.waitUntil(self.clients.claim()));
+
+self.addEventListener("activate", (e) => {
+  e.waitUntil((async () => {
+    for (const name of await caches.keys()) if (name.startsWith("bentstraw-site") && name !== CACHE) await caches.delete(name);
+    await self.clients.claim();
+  })());
+});
+
+/** The network's answer within NETWORK_MS, else null. */
+function network(request) {
+  const controller = new AbortController();
+  const timer = setTimeout(() => controller.abort(), NETWORK_MS);
+  return fetch(request, { signal: controller.signal }).catch(() => null).finally(() => clearTimeout(timer));
+}
+
 self.addEventListener("fetch", (e) => {
-  const url = new URL(e.request.url);
-  if (e.request.method !== "GET" || url.origin !== self.location.origin) return;
-  e.respondWith(
-    fetch(e.request)
-      .then((r) => {
-        if (r.ok) {
-          const copy = r.clone();
-          e.waitUntil(caches.open(CACHE).then((c) => c.put(e.request, copy)));
-        }
-        return r;
-      })
-      .catch(() => caches.match(e.request, { ignoreSearch: true }).then((r) => r || Response.error())),
-  );
+  if (e.request.method !== "GET") return;
+  const name = fileOf(e.request);
+  if (name === null) return;
+  e.respondWith((async () => {
+    const cache = await caches.open(CACHE);
+    // The site's own files: the checked copy first.
+    if (MANIFEST && name in MANIFEST.files) {
+      const kept = await cache.match(name);
+      if (kept) return kept;
+    }
+    const r = await network(e.request);
+    return r || (await cache.match(name)) || Response.error();
+  })());
 });

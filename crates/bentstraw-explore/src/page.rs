@@ -202,11 +202,12 @@ mod tests {
         }
     }
 
-    /// Every module the page imports is one of its files, and the site's service worker keeps
-    /// a copy of each.
+    /// Every module the page imports is one of its files (the site's service worker keeps a copy
+    /// of every file the site's build writes).
     #[test]
-    fn every_module_imported_is_served_and_kept_offline() {
+    fn every_module_imported_is_served() {
         let sw = PAGE_FILES.iter().find(|f| f.name == "sw.js").unwrap().text;
+        assert!(sw.lines().any(|l| l.starts_with("const MANIFEST = null;")));
         for f in PAGE_FILES.iter().filter(|f| f.name.ends_with(".js")) {
             for line in f.text.lines().filter(|l| l.starts_with("import ")) {
                 let name = line
@@ -216,10 +217,6 @@ mod tests {
                 let served = PAGE_FILES.iter().find(|g| g.name == name);
                 assert!(served.is_some(), "{} imports {name}", f.name);
                 assert_eq!(served.unwrap().content_type, JS, "{name}");
-                assert!(
-                    sw.contains(&format!("\"{name}\"")),
-                    "sw.js does not keep {name}"
-                );
             }
         }
     }
