@@ -134,6 +134,30 @@ test("a page opened once opens again without a network", async () => {
   await context.close();
 });
 
+test("while the engine downloads its progress is shown, in the page's language; it goes with the first picture", async () => {
+  for (const locale of ["en-GB", "fr-FR"]) {
+    const { page, context, problems } = await openPage(browser, server.url, undefined, { locale });
+    // What the indicator said while it was shown, noted as it changed.
+    await page.addInitScript(() => {
+      window.loadingSeen = [];
+      new MutationObserver(() => {
+        const box = document.getElementById("loading");
+        if (box && !box.hidden) window.loadingSeen.push([document.getElementById("loading-text").textContent, document.getElementById("loading-bar").value]);
+      }).observe(document, { subtree: true, childList: true, characterData: true, attributes: true });
+    });
+    await page.goto(server.url);
+    await waitReady(page);
+    const seen = await page.evaluate(() => window.loadingSeen);
+    assert.ok(seen.length > 0, "the progress was never shown");
+    const last = seen[seen.length - 1];
+    assert.match(last[0], locale === "fr-FR" ? /^Chargement du moteur .*100 %$/ : /^Loading the engine .*100 %$/);
+    assert.equal(last[1], 100);
+    assert.ok(await page.locator("#loading").isHidden());
+    assert.deepEqual(problems, []);
+    await context.close();
+  }
+});
+
 /** The site served by a server that can be made to hang (connect, never answer) or to answer
  * every request with a captive portal's page, as a school's or a café's network does. */
 async function unreliableServer(dir) {

@@ -1,7 +1,7 @@
 // The engine's transport: bentstraw explore's server over HTTP, or the WebAssembly engine in Web
 // Workers; the same requests, the same answers (as `Response`s). Channels keep one request each
 // in flight, a newer one aborting the older; refusals are read here too.
-import { t } from "./i18n.js";
+import { t, localNumber } from "./i18n.js";
 
 export const ENGINE = document.body.dataset.engine === "wasm" ? "wasm" : "server";
 export const wasm = ENGINE === "wasm" ? wasmEngine() : null;
@@ -23,8 +23,9 @@ if (wasm && "serviceWorker" in navigator) {
  * while it waits is only taken out of its worker's queue. */
 function wasmEngine() {
   const files = Promise.all([
-    // Compiled while it downloads; a host that does not call it application/wasm gets it compiled after.
-    WebAssembly.compileStreaming(fetch("pkg/bentstraw_web_bg.wasm")).catch(() =>
+    // Compiled while it downloads, its progress shown; a host that does not call it
+    // application/wasm gets it compiled after.
+    WebAssembly.compileStreaming(counted(fetch("pkg/bentstraw_web_bg.wasm"))).catch(() =>
       fetch("pkg/bentstraw_web_bg.wasm").then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b))),
     fetch("pkg/bentstraw_web.js").then((r) => r.text()),
     fetch("worker.js").then((r) => r.text()),
@@ -91,6 +92,27 @@ function wasmEngine() {
       });
     },
   };
+}
+
+/** The engine's download as it comes, its progress shown under the picture's heading until the
+ * first picture is drawn (a phone on a slow network waits seconds for it). */
+function counted(response) {
+  const box = document.getElementById("loading"), bar = document.getElementById("loading-bar"), text = document.getElementById("loading-text");
+  box.hidden = false;
+  const show = (got, total) => {
+    const amount = total ? `${Math.round((100 * got) / total)} %` : `${(got / 1e6).toFixed(1)} MB`;
+    text.textContent = t("loading.engine", { amount: localNumber(amount) });
+    if (total) bar.value = Math.round((100 * got) / total); else bar.removeAttribute("value");
+    document.body.dataset.loaded = String(total ? Math.round((100 * got) / total) : got);
+  };
+  show(0, 0);
+  return response.then((r) => {
+    if (!r.body) return r;
+    const total = Number(r.headers.get("Content-Length")) || 0;
+    let got = 0;
+    const body = r.body.pipeThrough(new TransformStream({ transform(chunk, c) { got += chunk.length; show(got, total); c.enqueue(chunk); } }));
+    return new Response(body, { status: r.status, headers: r.headers });
+  });
 }
 
 /** Asks the engine for `route?query` on channel `name`: a `Response`, or null if aborted. */

@@ -116,6 +116,8 @@ export async function sendFrame(quick) {
   frame.query = query;
   frame.engineMs = r.engineMs || 0;
   showError("");
+  // The first picture is here: the engine's download is over.
+  $("loading").hidden = true;
   const t = performance.now();
   paintAll();
   const paintMs = performance.now() - t;
