@@ -112,7 +112,10 @@ fn with_manifest(sw: &str, dir: &Path) -> Result<String, String> {
     names.sort();
     let mut files = Vec::new();
     let mut all = Sha256::new();
-    for name in names.iter().filter(|n| *n != "sw.js" && !n.starts_with('.')) {
+    for name in names
+        .iter()
+        .filter(|n| *n != "sw.js" && !n.starts_with('.'))
+    {
         let bytes =
             std::fs::read(dir.join(name)).map_err(|e| format!("cannot read {name}: {e}"))?;
         let hash = hex(&Sha256::digest(&bytes));
