@@ -1036,7 +1036,7 @@ test("a French browser gets a broken scene's rules in French, naming each key an
     await page.waitForFunction(() => !document.getElementById("scene-errors").hidden);
     assert.deepEqual(await page.locator("#scene-errors li").allTextContents(), [
       "scene.toml : 2 règles ne sont pas respectées :",
-      "  liquid[1].index = 0,8 : un indice de réfraction doit être >= 1",
+      "  liquid[1].index = 0,8 : un indice de réfraction doit être compris entre 1 et 5 (le vide vaut 1 ; les matériaux les plus réfringents connus valent environ 4)",
       "  straw[1].tilt = 95 : l'inclinaison par rapport à la verticale doit vérifier 0 <= tilt < 90 (degrés)",
     ]);
     // The last good view stays: no new frame, the same scene and points.
