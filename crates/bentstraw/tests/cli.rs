@@ -571,10 +571,14 @@ fn observer_in_the_straw_above_the_glass_is_rejected() {
 }
 
 #[test]
-fn water_index_below_one_is_rejected() {
+fn water_index_outside_one_to_five_is_rejected() {
     assert_rejected(
         &simulate_args("0,0.1,0.1", "0.02,0.01", "0.15", &["--n-water", "0.99"]),
-        &["0.99", ">= 1"],
+        &["0.99", "between 1 and 5"],
+    );
+    assert_rejected(
+        &simulate_args("0,0.1,0.1", "0.02,0.01", "0.15", &["--n-water", "5.5"]),
+        &["5.5", "between 1 and 5"],
     );
     assert_rejected(
         &simulate_args("0,0.1,0.1", "0.02,0.01", "0.15", &["--n-water", "-1.333"]),
