@@ -25,6 +25,14 @@ const LITTLE_WORK: Duration = Duration::from_secs(3);
 /// Safety net of the waits for the server's threads: a hang fails the test.
 const DEADLINE: Duration = Duration::from_secs(60);
 
+/// Holds the machine for one test of this file at a time: each starts a server and measures it
+/// (its processor time, its memory, its timeouts), which another test's server computing beside
+/// it on the same cores would blur.
+fn one_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+    static ONE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    ONE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// A running `bentstraw explore`, killed when dropped.
 struct Server {
     child: Child,
@@ -232,7 +240,7 @@ impl Answer {
 }
 
 /// Reads one response from `s` (its body by its `Content-Length`).
-fn read_answer(s: &mut TcpStream) -> Answer {
+fn read_answer(s: &mut impl Read) -> Answer {
     let mut reader = BufReader::new(s);
     let mut status_line = String::new();
     reader.read_line(&mut status_line).expect("a status line");
@@ -318,6 +326,7 @@ fn nothing_yet(s: &TcpStream) -> bool {
 #[test]
 #[cfg(unix)]
 fn more_connections_than_files_leave_the_server_serving() {
+    let _one_at_a_time = one_at_a_time();
     let mut server = Server::start_with_file_limit(256, 0, &[]);
     let opened = Instant::now();
     let mut idle = Vec::new();
@@ -353,6 +362,7 @@ fn more_connections_than_files_leave_the_server_serving() {
 #[test]
 #[cfg(unix)]
 fn the_connection_quiet_the_longest_makes_room() {
+    let _one_at_a_time = one_at_a_time();
     // 96 files: room for 64 connections.
     let server = Server::start_with_file_limit(96, 0, &[]);
     let ask = |s: &mut TcpStream| {
@@ -382,6 +392,7 @@ fn the_connection_quiet_the_longest_makes_room() {
 #[test]
 #[cfg(unix)]
 fn refused_clients_make_room_at_once() {
+    let _one_at_a_time = one_at_a_time();
     // 96 files: room for 64 connections, all taken by clients sending nonsense.
     let server = Server::start_with_file_limit(96, 0, &[]);
     let mut refused: Vec<TcpStream> = (0..64).map(|_| server.connect()).collect();
@@ -407,6 +418,7 @@ fn refused_clients_make_room_at_once() {
 #[test]
 #[cfg(unix)]
 fn running_out_of_descriptors_is_survived() {
+    let _one_at_a_time = one_at_a_time();
     let mut server = Server::start_with_file_limit(64, 40, &[]);
     let opened = Instant::now();
     let idle: Vec<TcpStream> = (0..100)
@@ -428,6 +440,7 @@ fn running_out_of_descriptors_is_survived() {
 /// nor do two clients that never read their large frames.
 #[test]
 fn clients_that_never_read_freeze_nobody() {
+    let _one_at_a_time = one_at_a_time();
     let server = Server::start(&[]);
     // Pipelined requests for the page's largest file, never read: megabytes of answers.
     let mut greedy = server.connect();
@@ -473,6 +486,7 @@ fn clients_that_never_read_freeze_nobody() {
 #[test]
 #[cfg(target_os = "linux")]
 fn slow_readers_are_sent_their_answers_without_holding_them_in_memory() {
+    let _one_at_a_time = one_at_a_time();
     let server = Server::start(&[]);
     let big = format!("/api/frame?{VIEW}&size=1920x1080&samples=1&points=100&mode=course");
     // Both workers' buffers grown to this size first (each computes one while the other works).
@@ -481,21 +495,46 @@ fn slow_readers_are_sent_their_answers_without_holding_them_in_memory() {
         assert_eq!(read_answer(&mut s).status, 200);
     }
     let before = server.resident_kb().unwrap();
+    // Slow readers: a couple of kilobytes from each every 20 ms (so that no write of the server's
+    // waits long enough to be given up), the rest held by the server meanwhile.
+    let trickled: std::sync::Arc<std::sync::Mutex<Vec<(TcpStream, Vec<u8>)>>> = Default::default();
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let reader = {
+        let (trickled, stop) = (trickled.clone(), stop.clone());
+        std::thread::spawn(move || {
+            while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                for (s, got) in trickled.lock().unwrap().iter_mut() {
+                    let mut buf = [0u8; 2048];
+                    if let Ok(n) = s.read(&mut buf) {
+                        got.extend_from_slice(&buf[..n]);
+                    }
+                }
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        })
+    };
     let mut slow = Vec::new();
     for _ in 0..60 {
         let s = send_only(&server, &big);
         wait_for_answer_bytes(&s);
+        let clone = s.try_clone().unwrap();
+        clone.set_nonblocking(true).unwrap();
+        trickled.lock().unwrap().push((clone, Vec::new()));
         slow.push(s);
     }
     let grown_mb = (server.resident_kb().unwrap().saturating_sub(before)) / 1024;
+    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+    reader.join().unwrap();
     // 128 MB kept for answers in memory, and a margin for the connections' buffers.
     assert!(
         grown_mb < 220,
         "the server grew by {grown_mb} MB with 60 frames waiting for their readers"
     );
     // Every one arrives whole (its length as announced, a picture of the size asked).
-    for s in &mut slow {
-        let a = read_answer(s);
+    let trickled = std::mem::take(&mut *trickled.lock().unwrap());
+    for (s, (_, got)) in slow.iter_mut().zip(trickled) {
+        s.set_nonblocking(false).unwrap();
+        let a = read_answer(&mut std::io::Cursor::new(got).chain(s));
         assert_eq!(a.status, 200);
         let header_len = u32::from_le_bytes(a.body[..4].try_into().unwrap()) as usize;
         let header: serde_json::Value = serde_json::from_slice(&a.body[4..4 + header_len]).unwrap();
@@ -509,6 +548,7 @@ fn slow_readers_are_sent_their_answers_without_holding_them_in_memory() {
 /// cross-site request is refused with 403 and computes nothing.
 #[test]
 fn foreign_pages_are_refused() {
+    let _one_at_a_time = one_at_a_time();
     let server = Server::start(&[]);
     let port = server.addr().port();
     let export = heavy_export();
@@ -565,6 +605,7 @@ fn foreign_pages_are_refused() {
 /// request line with 414 before it has even ended.
 #[test]
 fn huge_heads_are_refused_before_they_are_read() {
+    let _one_at_a_time = one_at_a_time();
     let server = Server::start(&[]);
     let before = server.resident_kb();
     for _ in 0..4 {
@@ -619,6 +660,7 @@ fn bentstraw_explore_max_url() -> usize {
 /// everything is served promptly again.
 #[test]
 fn work_of_clients_that_left_is_abandoned_and_overload_gets_503() {
+    let _one_at_a_time = one_at_a_time();
     let server = Server::start(&[]);
     let export = heavy_export();
     // One heavy request at work and two waiting fill the server's room for heavy work, even when
@@ -700,6 +742,7 @@ fn escaped(text: &str) -> String {
 /// a thousand events each: seconds of work) stops that work too, not only a picture's.
 #[test]
 fn point_sampling_stops_when_its_client_leaves() {
+    let _one_at_a_time = one_at_a_time();
     let server = Server::start(&[]);
     let export = format!(
         "/api/export?format=csv&points=1000000&max-events=1000&observer=1,0,0.3&scene-file={}",
@@ -743,6 +786,7 @@ fn wait_for_first_answer(sockets: &[TcpStream]) -> usize {
 /// answered 409, as the page expects.
 #[test]
 fn superseded_requests_are_stale() {
+    let _one_at_a_time = one_at_a_time();
     let server = Server::start(&[]);
     let chan = "chan=test-frame";
     let mark = server.cpu();
@@ -767,6 +811,7 @@ fn superseded_requests_are_stale() {
 /// The answers name no file of the user's: a scene file given by its path appears by its name.
 #[test]
 fn no_answer_names_the_users_folders() {
+    let _one_at_a_time = one_at_a_time();
     let dir = tempfile::tempdir().unwrap();
     let folder = dir.path().display().to_string();
     let gallery = |name: &str| {
@@ -822,6 +867,7 @@ fn no_answer_names_the_users_folders() {
 /// address is written in brackets.
 #[test]
 fn host_addresses_are_shown_usable_and_warned_about() {
+    let _one_at_a_time = one_at_a_time();
     let mut any = Server::start(&["--host", "0.0.0.0"]);
     assert!(any.host.starts_with("127.0.0.1:"), "{}", any.host);
     // Reachable from the network: a token in the address, asked for on every request.
@@ -877,6 +923,7 @@ fn host_addresses_are_shown_usable_and_warned_about() {
 /// that cannot be one is refused, with every such name said at once.
 #[test]
 fn allowed_host_names_are_answered() {
+    let _one_at_a_time = one_at_a_time();
     let server = Server::start(&["--allow-host", "lab-pc.school.example"]);
     let port = server.host.rsplit_once(':').unwrap().1.to_string();
     let as_named = |name: &str| {
