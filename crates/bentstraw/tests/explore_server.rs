@@ -480,6 +480,9 @@ fn clients_that_never_read_freeze_nobody() {
     let _ = greedy.flush();
 }
 
+/// Sockets read a little at a time by a slow reader, each with what it has read so far.
+type Trickled = std::sync::Arc<std::sync::Mutex<Vec<(TcpStream, Vec<u8>)>>>;
+
 /// Clients that read their large answers slowly do not make the server hold them all in memory:
 /// sixty full-HD frames (8 MB each, 500 MB in all) waiting for their readers grow it by less than
 /// the memory it keeps for answers and a little more; each answer then arrives whole.
@@ -497,7 +500,7 @@ fn slow_readers_are_sent_their_answers_without_holding_them_in_memory() {
     let before = server.resident_kb().unwrap();
     // Slow readers: a couple of kilobytes from each every 20 ms (so that no write of the server's
     // waits long enough to be given up), the rest held by the server meanwhile.
-    let trickled: std::sync::Arc<std::sync::Mutex<Vec<(TcpStream, Vec<u8>)>>> = Default::default();
+    let trickled: Trickled = Default::default();
     let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     let reader = {
         let (trickled, stop) = (trickled.clone(), stop.clone());
