@@ -170,9 +170,9 @@ export function stateHash(s) {
  * the rest does not match. Addresses written by hand (`#scene=prism`) have none, and are read. */
 export function damaged(text) {
   const body = text.replace(/^[#?]/, "");
-  const m = /^sum=([0-9a-f]{0,8})(&|$)/.exec(body);
   if (!body.startsWith("sum=")) return false;
-  return !m || m[1].length !== 8 || checksum(body.slice(m[0].length)) !== m[1];
+  const m = /^sum=([0-9a-f]{8})(&|$)/.exec(body);
+  return !m || checksum(body.slice(m[0].length)) !== m[1];
 }
 
 /** Reads a query or fragment into the state; values are kept as text-parsed numbers, checked by

@@ -72,6 +72,14 @@ const LINGER_BYTES: usize = 4 << 20;
 /// How often a request being computed is checked against [`work::MAX_COMPUTE`].
 const OVERTIME_CHECK: Duration = Duration::from_millis(250);
 
+/// The refusal of a scene file longer than the command line takes (by its length, or as it comes).
+fn scene_too_large() -> Reply {
+    Reply::text(
+        413,
+        format!("a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB)"),
+    )
+}
+
 /// The answer to a request computed for longer than [`work::MAX_COMPUTE`] (then stopped).
 fn overtime() -> Reply {
     Reply::text(
@@ -377,10 +385,7 @@ impl App {
                 .and_then(|v| v.parse::<u64>().ok())
                 .is_none_or(|n| n > MAX_SCENE_FILE_BYTES);
             if too_long {
-                return closing(Reply::text(
-                    413,
-                    format!("a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB)"),
-                ));
+                return closing(scene_too_large());
             }
         } else if length.is_some() || headers.contains_key(header::TRANSFER_ENCODING) {
             return closing(Reply::text(400, "a GET request has no body"));
@@ -467,12 +472,7 @@ impl App {
         let limited = http_body_util::Limited::new(body, MAX_SCENE_FILE_BYTES as usize);
         let bytes = match tokio::time::timeout(HEAD_TIMEOUT, limited.collect()).await {
             Ok(Ok(collected)) => collected.to_bytes(),
-            Ok(Err(_)) => {
-                return closing(Reply::text(
-                    413,
-                    format!("a scene file is at most {MAX_SCENE_FILE_BYTES} bytes (1 MB)"),
-                ))
-            }
+            Ok(Err(_)) => return closing(scene_too_large()),
             Err(_) => {
                 return closing(Reply::text(
                     408,

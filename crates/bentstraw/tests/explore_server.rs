@@ -699,15 +699,21 @@ fn work_of_clients_that_left_is_abandoned_and_overload_gets_503() {
     server.assert_little_work_since(mark, "exports whose clients left");
     frame_answered(&server);
     // A single client that leaves mid-export frees its worker too.
+    hang_up_twice(&server, &export, "an export whose client left");
+    frame_answered(&server);
+}
+
+/// Twice: `target` sent, its client hanging up once the server computes it, after which the server
+/// must go idle having done little more (`what` names the work in the failure).
+fn hang_up_twice(server: &Server, target: &str, what: &str) {
     for _ in 0..2 {
         let mark = server.cpu();
-        let one = send_only(&server, &export);
+        let one = send_only(server, target);
         server.wait_computing(mark);
         let mark = server.cpu();
         drop(one);
-        server.assert_little_work_since(mark, "an export whose client left");
+        server.assert_little_work_since(mark, what);
     }
-    frame_answered(&server);
 }
 
 /// A hundred straws under 32 layers of liquid in a wide glass (a scene file of about 4 KB).
@@ -728,19 +734,6 @@ fn crowded_scene() -> String {
     text
 }
 
-/// `text` as a query's value (every byte but letters and digits escaped).
-fn escaped(text: &str) -> String {
-    text.bytes()
-        .map(|b| {
-            if b.is_ascii_alphanumeric() {
-                (b as char).to_string()
-            } else {
-                format!("%{b:02X}")
-            }
-        })
-        .collect()
-}
-
 /// A client that hangs up while the points are sampled (a million of them in a crowded scene, with
 /// a thousand events each: seconds of work) stops that work too, not only a picture's.
 #[test]
@@ -749,20 +742,13 @@ fn point_sampling_stops_when_its_client_leaves() {
     let server = Server::start(&[]);
     let export = format!(
         "/api/export?format=csv&points=1000000&max-events=1000&observer=1,0,0.3&scene-file={}",
-        escaped(&crowded_scene())
+        bentstraw_explore::query_value(&crowded_scene())
     );
-    for _ in 0..2 {
-        let mark = server.cpu();
-        let one = send_only(&server, &export);
-        server.wait_computing(mark);
-        let mark = server.cpu();
-        drop(one);
-        server.assert_little_work_since(mark, "points whose client left");
-    }
+    hang_up_twice(&server, &export, "points whose client left");
     // The same asked beyond the explorer's work: refused at once, saying what to lower.
     let too_much = format!(
         "/api/frame?size=3840x2160&samples=16&points=1000000&max-events=1000&observer=1,0,0.3&scene-file={}",
-        escaped(&crowded_scene())
+        bentstraw_explore::query_value(&crowded_scene())
     );
     let mark = server.cpu();
     let a = server.get(&too_much, "");
