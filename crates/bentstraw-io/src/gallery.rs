@@ -123,6 +123,19 @@ pub fn named_scenes() -> impl Iterator<Item = (&'static str, &'static str)> {
     std::iter::once(SPEC).chain(GALLERY)
 }
 
+/// What a scene file teaches, in `lang` (else in the other language): its lesson's title, and
+/// its text followed by each question, numbered, as a report's notes. None without a lesson.
+pub fn lesson_notes(text: &str, lang: crate::words::Lang) -> Option<(String, Vec<String>)> {
+    let d = bentstraw_optics::scene_file::SceneDescription::from_toml(text).ok()?;
+    let lesson = d.lesson?;
+    let l = lesson.in_language(lang.code())?;
+    let mut notes = vec![l.text.clone()];
+    for (k, q) in l.questions.iter().enumerate() {
+        notes.push(lang.fill(crate::words::LESSON_QUESTION, &[&(k + 1), q]));
+    }
+    Some((l.title.clone(), notes))
+}
+
 /// What a scene file says it shows: its opening comment, as one paragraph.
 pub fn opening_comment(text: &str) -> String {
     text.lines()
@@ -184,6 +197,41 @@ mod tests {
             let world = gallery_setup(stem, text, DEFAULT_MAX_EVENTS).unwrap();
             assert!(!world.world.objects().is_empty(), "{stem}");
             assert!(opening_comment(text).len() > 60, "{stem}");
+        }
+    }
+
+    /// Every named scene teaches in both languages: a title, a text and one or two questions in
+    /// English and in French, the French written with French spacing and no English left; the
+    /// lesson comes back whole from the file the page writes.
+    #[test]
+    fn every_named_scene_has_its_lesson_in_english_and_french() {
+        use bentstraw_optics::scene_file::SceneDescription;
+        for (stem, text) in named_scenes() {
+            let d = SceneDescription::from_toml(text).unwrap();
+            let lesson = d
+                .lesson
+                .clone()
+                .unwrap_or_else(|| panic!("{stem} has no lesson"));
+            for (lang, l) in [("en", &lesson.en), ("fr", &lesson.fr)] {
+                let l = l
+                    .as_ref()
+                    .unwrap_or_else(|| panic!("{stem}: no lesson in {lang}"));
+                assert!(l.text.len() > 40, "{stem} {lang}");
+                assert!((1..=2).contains(&l.questions.len()), "{stem} {lang}");
+                for q in &l.questions {
+                    assert!(q.ends_with('?'), "{stem} {lang}: {q}");
+                    // French puts a (no-break) space before ? : ; and !; English does not.
+                    assert_eq!(q.ends_with("\u{a0}?"), lang == "fr", "{stem} {lang}: {q}");
+                }
+                if lang == "fr" {
+                    let words = format!("{} {} {}", l.title, l.text, l.questions.join(" "));
+                    for english in [" the ", " and ", " of ", " is ", " straw", " glass "] {
+                        assert!(!words.contains(english), "{stem}: {english:?} in {words}");
+                    }
+                }
+            }
+            let again = SceneDescription::from_toml(&d.to_toml()).unwrap();
+            assert_eq!(again.lesson, d.lesson, "{stem}");
         }
     }
 

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use crate::camera::{scene_camera, CameraSpec};
 use crate::error::Result;
-use crate::gallery::{opening_comment, GALLERY};
+use crate::gallery::{lesson_notes, opening_comment, GALLERY};
 use crate::pictures::png_bytes;
 use crate::ray_diagram::{write_ray_diagram, Diagram};
 use crate::report::{Figure, Section};
@@ -97,10 +97,13 @@ fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Setup) 
     )
     .err()
     .map(|e| e.to_string());
+    // Its lesson's title and words when it has one (every gallery scene has), else its comment.
+    let (title, notes) = lesson_notes(text, lang)
+        .unwrap_or_else(|| (stem.replace('-', " "), vec![opening_comment(text)]));
     Section {
-        title: lang.fill(words::GALLERY, &[&stem.replace('-', " ")]),
+        title: lang.fill(words::GALLERY, &[&title]),
         figures: vec![picture, points, rays],
-        notes: vec![opening_comment(text)],
+        notes,
         side_by_side: true,
         printed: false,
         table: vec![],

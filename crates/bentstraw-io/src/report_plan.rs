@@ -28,7 +28,7 @@ use rayon::prelude::*;
 
 use crate::camera::{scene_camera, CameraSpec};
 use crate::error::{fail, Result};
-use crate::gallery::{opening_comment, GALLERY};
+use crate::gallery::{lesson_notes, opening_comment, GALLERY};
 use crate::gallery_report::{gallery_files, gallery_sections, write_picture};
 use crate::model_plots::{
     eye_gap_samples, stereo_gap_samples, write_gap_plot, write_model_comparison, GapSeries,
@@ -367,6 +367,8 @@ struct ScenePlan {
     name: String,
     /// The file's opening comment: what the scene shows.
     comment: String,
+    /// Its lesson's title and notes (text, questions) in the report's language, if it has one.
+    lesson: Option<(String, Vec<String>)>,
     /// One simulation per observer: the file's first.
     jobs: Vec<Job>,
     /// The turns taken, in degrees, and the ones refused with why.
@@ -432,6 +434,7 @@ impl ScenePlan {
         Ok(ScenePlan {
             name,
             comment: opening_comment(text),
+            lesson: lesson_notes(text, lang),
             hints,
             jobs,
             turns,
@@ -506,10 +509,13 @@ fn scene_intro(plan: &ScenePlan, out: &Path, lang: Lang) -> Vec<Section> {
         .iter()
         .map(|t| format!("{}°", signed(*t)))
         .collect();
-    let mut notes = vec![
-        plan.comment.clone(),
-        lang.fill(words::OBSERVERS_NOTE, &[&turns.join(", ")]),
-    ];
+    let mut notes = vec![plan.comment.clone()];
+    // What the scene teaches, when its file says.
+    if let Some((title, lesson)) = &plan.lesson {
+        notes.push(title.clone());
+        notes.extend(lesson.iter().cloned());
+    }
+    notes.push(lang.fill(words::OBSERVERS_NOTE, &[&turns.join(", ")]));
     for (turn, why) in &plan.refused {
         notes.push(lang.fill(words::TURN_REFUSED, &[&signed(*turn), why]));
     }

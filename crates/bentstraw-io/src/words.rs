@@ -478,6 +478,8 @@ pub const DISTANCE_NOTE: Text = t(
 // The gallery.
 /// A gallery scene's section; its name fills it.
 pub const GALLERY: Text = t("Gallery: {}", "Galerie : {}");
+/// A lesson's question to the class; its number and its words fill it.
+pub const LESSON_QUESTION: Text = t("Question {}: {}", "Question {} : {}");
 /// A gallery scene's picture; its stem fills it.
 pub const GALLERY_PICTURE: Text = t(
     "What the eye sees (bentstraw render --scene scenes/{}.toml): Fresnel reflection \

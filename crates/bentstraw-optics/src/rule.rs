@@ -165,6 +165,8 @@ rules! {
     EyeInSolid = "observer.in-solid", "({x}, {y}, {z}) is inside or on {other}: the eye must be outside every transparent solid";
     /// The eye looks at itself.
     TargetAtEye = "observer.target-at-eye", "({x}, {y}, {z}) is the observer's own position: it must look somewhere else";
+    /// A lesson's texts are empty or too long for the page.
+    LessonLength = "lesson.length", "a lesson's title must have 1 to {title} characters, its text at most {text}, and it asks at most {questions} questions of at most {question} characters each";
     /// A required key is missing.
     Required = "required", "is missing: it is required";
     /// The file has no `[container]`.

@@ -1077,6 +1077,79 @@ fn strictly_convex(c: &[[f64; 2]]) -> bool {
     (total.abs() - std::f64::consts::TAU).abs() < 1e-6
 }
 
+/// A lesson's lengths: a title of 1 to [`LESSON_TITLE_MAX`] characters, a text of at most
+/// [`LESSON_TEXT_MAX`], at most [`LESSON_QUESTIONS_MAX`] questions of at most
+/// [`LESSON_QUESTION_MAX`] each (what a page has room for).
+fn validate_lesson(lang: &str, l: &LessonText) -> Result<(), Box<SceneFileError>> {
+    let long = |s: &String, max: usize| s.chars().count() > max;
+    let key = if l.title.trim().is_empty() || long(&l.title, LESSON_TITLE_MAX) {
+        Some("title")
+    } else if long(&l.text, LESSON_TEXT_MAX) {
+        Some("text")
+    } else if l.questions.len() > LESSON_QUESTIONS_MAX
+        || l.questions.iter().any(|q| long(q, LESSON_QUESTION_MAX))
+    {
+        Some("questions")
+    } else {
+        None
+    };
+    match key {
+        None => Ok(()),
+        Some(k) => Err(refuse_key(
+            &format!("lesson.{lang}.{k}"),
+            Rule::LessonLength,
+            vec![
+                ("title", bound(LESSON_TITLE_MAX as f64)),
+                ("text", bound(LESSON_TEXT_MAX as f64)),
+                ("questions", bound(LESSON_QUESTIONS_MAX as f64)),
+                ("question", bound(LESSON_QUESTION_MAX as f64)),
+            ],
+        )),
+    }
+}
+
+/// Longest lesson title, in characters (a heading on a phone).
+pub const LESSON_TITLE_MAX: usize = 80;
+/// Longest lesson text, in characters (a paragraph beside the picture).
+pub const LESSON_TEXT_MAX: usize = 600;
+/// Most questions a lesson asks.
+pub const LESSON_QUESTIONS_MAX: usize = 3;
+/// Longest question, in characters.
+pub const LESSON_QUESTION_MAX: usize = 240;
+
+/// What a scene teaches, in words: a title, a few sentences and guiding questions, in English
+/// and in French (either may be missing; the page shows its own language's, else the other).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Lesson {
+    /// In English.
+    pub en: Option<LessonText>,
+    /// In French.
+    pub fr: Option<LessonText>,
+}
+
+/// A lesson in one language.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LessonText {
+    /// Its title.
+    pub title: String,
+    /// What the scene shows, and why.
+    pub text: String,
+    /// Questions to ask the class.
+    pub questions: Vec<String>,
+}
+
+impl Lesson {
+    /// The lesson in `lang` ("en" or "fr"), else in the other language.
+    pub fn in_language(&self, lang: &str) -> Option<&LessonText> {
+        let (first, second) = if lang == "fr" {
+            (&self.fr, &self.en)
+        } else {
+            (&self.en, &self.fr)
+        };
+        first.as_ref().or(second.as_ref())
+    }
+}
+
 /// The view a scene is meant for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Observer {
@@ -1107,6 +1180,8 @@ pub struct SceneDescription {
     pub lenses: Vec<Lens>,
     /// The view it is meant for, if the file gives one.
     pub observer: Option<Observer>,
+    /// What it teaches, if the file says.
+    pub lesson: Option<Lesson>,
 }
 
 impl SceneDescription {
@@ -1171,6 +1246,13 @@ impl SceneDescription {
             broken.check(self.validate_lens_overlaps());
             broken.check(self.validate_overlaps());
             broken.check(self.validate_observer());
+        }
+        if let Some(lesson) = &self.lesson {
+            for (lang, text) in [("en", &lesson.en), ("fr", &lesson.fr)] {
+                if let Some(text) = text {
+                    broken.check(validate_lesson(lang, text));
+                }
+            }
         }
         broken.done()
     }
@@ -2046,6 +2128,7 @@ impl SceneDescription {
             prisms: vec![],
             lenses: vec![],
             observer: None,
+            lesson: None,
         }
     }
 

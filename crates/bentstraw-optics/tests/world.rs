@@ -1219,6 +1219,7 @@ mod random_scenes {
                             position: eye,
                             target: Vec3::new(0.0, 0.0, 0.08),
                         }),
+                        lesson: None,
                     }
                 },
             )

@@ -47,6 +47,28 @@ struct FileScene {
     lens: Vec<FileLens>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     observer: Option<FileObserver>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    lesson: Option<FileLesson>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileLesson {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    en: Option<FileLessonText>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    fr: Option<FileLessonText>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileLessonText {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    title: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    text: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    questions: Option<Vec<String>>,
 }
 
 #[derive(Deserialize, Serialize, Default)]
@@ -509,6 +531,24 @@ impl SceneDescription {
             }
             (o.position.unwrap_or_default(), o.target)
         });
+        let lesson = file.lesson.as_ref().map(|l| {
+            let mut text = |lang: &str, t: &Option<FileLessonText>| {
+                t.as_ref().map(|t| {
+                    if t.title.is_none() {
+                        broken.push(*need(format!("lesson.{lang}.title")));
+                    }
+                    LessonText {
+                        title: t.title.clone().unwrap_or_default(),
+                        text: t.text.clone().unwrap_or_default(),
+                        questions: t.questions.clone().unwrap_or_default(),
+                    }
+                })
+            };
+            Lesson {
+                en: text("en", &l.en),
+                fr: text("fr", &l.fr),
+            }
+        });
         if let Some(e) = SceneFileError::all(broken) {
             return Err(e);
         }
@@ -530,6 +570,7 @@ impl SceneDescription {
                 position: Vec3::from_array(position),
                 target: target.map_or(middle, Vec3::from_array),
             }),
+            lesson,
         })
     }
 
@@ -645,6 +686,19 @@ impl SceneDescription {
             observer: self.observer.map(|o| FileObserver {
                 position: Some(o.position.to_array()),
                 target: Some(o.target.to_array()),
+            }),
+            lesson: self.lesson.as_ref().map(|l| {
+                let text = |t: &Option<LessonText>| {
+                    t.as_ref().map(|t| FileLessonText {
+                        title: Some(t.title.clone()),
+                        text: Some(t.text.clone()),
+                        questions: Some(t.questions.clone()),
+                    })
+                };
+                FileLesson {
+                    en: text(&l.en),
+                    fr: text(&l.fr),
+                }
             }),
         };
         SceneForm(file)
