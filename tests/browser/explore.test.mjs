@@ -6,6 +6,7 @@ import assert from "node:assert/strict";
 import { mkdirSync, mkdtempSync, readdirSync, readFileSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
+import jsQR from "jsqr";
 import { startServer, startStaticServer, launch, openPage, waitReady, runCli, ROOT } from "./harness.mjs";
 
 /** The page from the static site (its engine in WebAssembly) instead of `bentstraw explore`. */
@@ -398,6 +399,70 @@ test("a clicked ray is drawn on the picture and on both maps, each event marked"
   await context.close();
 });
 
+/** Taps (or clicks) the picture on the first pixel showing the straw's red section below the
+ * water, and waits for that ray's path. */
+async function tapTheStraw(page, touch) {
+  const [col, row] = await page.evaluate(() => {
+    const f = window.bentstraw.frame, w = f.header.width, d = f.rgba;
+    for (let i = d.length / 4 - 1; i >= 0; i--) if (d[4 * i] > 200 && d[4 * i + 1] < 40 && d[4 * i + 2] < 40) return [i % w, Math.floor(i / w)];
+    return null;
+  });
+  await page.locator("#picture").scrollIntoViewIfNeeded();
+  const box = await page.locator("#picture").boundingBox();
+  const k = await page.evaluate(() => window.bentstraw.frame.header.width) / box.width;
+  const [x, y] = [box.x + (col + 0.5) / k, box.y + (row - 3) / k];
+  if (touch) await page.touchscreen.tap(x, y); else await page.mouse.click(x, y);
+  await page.waitForFunction(() => document.body.dataset.picked && window.bentstraw.pathMarks);
+}
+
+/** Pixels of the picture inside `box` [x, y, w, h] near each colour of `colours` (name → RGB). */
+const pixelsNear = (page, box, colours) => page.evaluate(([box, colours]) => {
+  const c = document.getElementById("picture");
+  const d = c.getContext("2d").getImageData(...box.map(Math.round)).data;
+  const n = Object.fromEntries(Object.keys(colours).map((k) => [k, 0]));
+  for (let i = 0; i < d.length; i += 4) {
+    for (const [k, [r, g, b]] of Object.entries(colours)) if (Math.abs(d[i] - r) + Math.abs(d[i + 1] - g) + Math.abs(d[i + 2] - b) < 30) n[k]++;
+  }
+  return n;
+}, [box, colours]);
+
+test("a clicked ray's geometry is read on the picture: the light's arrows, each event's normal and angles with their values, on a laptop and a French phone", async () => {
+  for (const [name, viewport, options] of [["laptop", { width: 1366, height: 768 }, {}], ["phone", { width: 390, height: 844 }, { ...PHONE, locale: "fr-FR" }]]) {
+    const { page, context, problems } = await openPage(browser, server.url, viewport, options);
+    await page.goto(server.url + `#observer=${REF2.observer}&straw=${REF2.straw}&he=${REF2.he}`);
+    await waitReady(page);
+    await tapTheStraw(page, name === "phone");
+    const [p, marks] = await page.evaluate(() => [window.bentstraw.path, window.bentstraw.pathMarks]);
+    assert.equal(p.outcome, "straw");
+    // A drawing for each event, with its normal (blue), both angles' arcs (red on the eye's side,
+    // green on the other) and the light's two arrows (orange).
+    assert.equal(marks.boxes.length, p.events.length);
+    for (const box of marks.boxes) {
+      const n = await pixelsNear(page, box, { arrow: [243, 156, 18], normal: [31, 119, 180], first: [192, 57, 43], second: [30, 132, 73] });
+      for (const [k, count] of Object.entries(n)) assert.ok(count >= 15, `${name}: ${k} ${count} in ${box}`);
+    }
+    // The arrows point the light's way: inside each box, the leaving arrow is on the eye's side.
+    assert.ok(marks.arrows.length >= 2 * p.events.length);
+    // Each angle's value and each index, written as the page's language writes numbers.
+    const e = p.events[0], fmt = (x, d) => (d === undefined ? String(x) : x.toFixed(d)).replace(".", name === "phone" ? "," : ".");
+    for (const text of [`${fmt(e.incidence_deg, 1)}°`, `${fmt(e.outgoing_deg, 1)}°`, `n ${fmt(e.n1)}`, `n ${fmt(e.n2)}`]) assert.ok(marks.texts.includes(text), `${name}: ${text} in ${marks.texts}`);
+    // Snell–Descartes between the two values drawn.
+    const [a, b] = [e.incidence_deg, e.outgoing_deg].map((x) => x * Math.PI / 180);
+    assert.ok(Math.abs(e.n1 * Math.sin(a) - e.n2 * Math.sin(b)) < 1e-9);
+    // Where the straw really is, marked in the picture.
+    assert.ok(marks.real);
+    // On a phone the ray's words are right under the picture, not below the other views.
+    if (name === "phone") {
+      const [pic, words] = [await page.locator("#picture").boundingBox(), await page.locator("#readout").boundingBox()];
+      assert.ok(words.y - (pic.y + pic.height) < 200, `${words.y} after ${pic.y + pic.height}`);
+      assert.match(await page.textContent("#readout"), /réfraction à la paroi/);
+    }
+    await page.locator("#eye-panel").screenshot({ path: shot(`explorer-ray-${name}.png`) });
+    assert.deepEqual(problems, []);
+    await context.close();
+  }
+});
+
 test("the scene chooser shows a gallery scene whose points and paths are simulate's", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);
@@ -477,6 +542,19 @@ test("the scene chooser shows a gallery scene whose points and paths are simulat
   await context.close();
 });
 
+/** The text of the QR code the page shows (#qr), decoded by jsQR from its pixels. */
+async function scanQr(page) {
+  const { data, width, height } = await page.evaluate(() => {
+    const img = document.getElementById("qr"), c = document.createElement("canvas");
+    c.width = img.naturalWidth; c.height = img.naturalHeight;
+    const ctx = c.getContext("2d");
+    ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, c.width, c.height); ctx.drawImage(img, 0, 0);
+    return { data: [...ctx.getImageData(0, 0, c.width, c.height).data], width: c.width, height: c.height };
+  });
+  const code = jsQR(Uint8ClampedArray.from(data), width, height);
+  return code && code.data;
+}
+
 test("a copied link reproduces the state in a fresh page", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url + "#observer=0.12,0.05,0.14&straw=0.01,-0.01&water-height=0.12&n-water=1.5&mode=course&color=path&models=course,eye&view=20,10,1.5");
@@ -485,6 +563,13 @@ test("a copied link reproduces the state in a fresh page", async () => {
   const link = await page.evaluate(() => document.body.dataset.link);
   const state = await page.evaluate(() => JSON.stringify(window.bentstraw.state));
   const digest = await pictureDigest(page);
+  // Its QR code, shown over the picture, read back by an independent decoder: the same link.
+  await page.waitForFunction(() => document.body.dataset.qr === "shown" && document.getElementById("qr").complete);
+  assert.equal(await scanQr(page), link);
+  const qrBox = await page.locator("#qr").boundingBox();
+  assert.ok(qrBox.width >= 200, `${qrBox.width} px`);
+  await page.click("#qr-close");
+  assert.ok(await page.isHidden("#qr-panel"));
   const fresh = await openPage(browser, server.url);
   await fresh.page.goto(link);
   await waitReady(fresh.page);
@@ -1226,12 +1311,16 @@ async function dragSettled(page) {
   await waitReady(page);
 }
 /** The pixels of a map within a few levels of the spheres' outline colour. */
-const sphereInk = (page, id) => page.evaluate((id) => {
-  const c = document.getElementById(id), d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+const sphereInk = (page, id, at, reach) => page.evaluate(([id, at, reach]) => {
+  const c = document.getElementById(id), d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data, k = c.width / c.clientWidth;
   let n = 0;
-  for (let i = 0; i < d.length; i += 4) if (d[i + 3] > 200 && Math.abs(d[i] - 27) + Math.abs(d[i + 1] - 127) + Math.abs(d[i + 2] - 134) < 40) n++;
+  for (let i = 0; i < d.length; i += 4) {
+    // (Within `reach` CSS pixels of `at` only, when given.)
+    if (at && Math.hypot((i / 4) % c.width / k - at[0], Math.floor(i / 4 / c.width) / k - at[1]) > reach) continue;
+    if (d[i + 3] > 200 && Math.abs(d[i] - 27) + Math.abs(d[i + 1] - 127) + Math.abs(d[i + 2] - 134) < 40) n++;
+  }
   return n;
-}, id);
+}, [id, at || null, reach || 0]);
 
 test("a sphere added from the Objects panel is drawn, dragged on the maps where the rules let it go, kept by a link; a broken centre shows its rule", async () => {
   const dir = ON_SITE ? path.join(tmpdir(), "shots-sphere-site") : "/tmp/shots-sphere";
@@ -1390,8 +1479,8 @@ test("a prism and a lens added from the Objects panel are drawn on both maps, dr
   assert.deepEqual(["radius1", "radius2", "thickness", "diameter", "index"].map((k) => Number(fileValue(file, "lens", 0, k))), [0.04, -0.04, 0.007, 0.03, 1.5]);
   assert.deepEqual(await page.locator('[data-key="lens[1].axis"]').evaluateAll((els) => els.map((e) => Number(e.value))), [-1, 0, 0]);
   assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
-  assert.ok(await sphereInk(page, "map-top") > inkTop + 8, "the lens drawn from above");
-  assert.ok(await sphereInk(page, "map-side") > inkSide + 8, "the lens drawn from the side");
+  // (The maps widen to take the lens in, so its own ink is counted round its handle.)
+  for (const id of ["map-top", "map-side"]) assert.ok(await sphereInk(page, id, await handle(page, id, "lens"), 30) >= 8, `the lens drawn on ${id}`);
   // The prism dragged far out on the map from above: it stops inside the glass, a corner at its
   // side; its shape stays.
   await dragOnMap(page, "map-top", await handle(page, "map-top", "prism"), [0, 300]);
@@ -1468,19 +1557,22 @@ test("a glass of revolution: its profiles in the Objects panel and on both maps,
   const point = async (which, k) => (await handles()).find((h) => h.kind === "profile" && h.which === which && h.k === k).at;
   assert.deepEqual((await handles()).filter((h) => h.kind === "profile").map((h) => h.which[0]).join(""), "o".repeat(11) + "i".repeat(4));
   /** The share of a map's pixels along the row at height `z`, from `s0` to `s1` across (metres),
-   * that are tinted (neither white nor clear). */
+   * that are tinted (neither white nor clear), and the longest run of them side by side (a
+   * liquid's tint fills the row; the wall's lines are a pixel or two each). */
   const tinted = (id, z, s0, s1) => page.evaluate(([id, z, s0, s1]) => {
     const c = document.getElementById(id), d = c.width / c.clientWidth, k = c.clientWidth / 2;
     const inv = c.mapInverse, [a0] = inv(k, 0), [a1, zz] = inv(k + 1, 0), scale = 1 / (a1 - a0);
     const y = Math.round((0 - (z - zz) * scale) * d), xs = [s0, s1].map((s) => Math.round((k + (s - a0) * scale) * d));
     const row = c.getContext("2d").getImageData(xs[0], y, xs[1] - xs[0], 1).data;
-    let n = 0;
-    for (let i = 0; i < row.length; i += 4) if (row[i + 3] > 20 && row[i] + row[i + 1] + row[i + 2] < 3 * 245) n++;
-    return n / (row.length / 4);
+    let n = 0, run = 0, longest = 0;
+    for (let i = 0; i < row.length; i += 4) {
+      if (row[i + 3] > 20 && row[i] + row[i + 1] + row[i + 2] < 3 * 245) { n++; run++; longest = Math.max(longest, run); } else run = 0;
+    }
+    return { share: n / (row.length / 4), longest };
   }, [id, z, s0, s1]);
-  assert.ok(await tinted("map-side", 0.115, 0.006, 0.02) > 0.9, "the water in the bowl");
-  assert.ok(await tinted("map-side", 0.16, 0.006, 0.02) < 0.5, "nothing but the wall's lines above the water");
-  assert.ok(await tinted("map-top", 0, 0.006, 0.03) > 0.9, "the water from above");
+  assert.ok((await tinted("map-side", 0.115, 0.006, 0.02)).share > 0.9, "the water in the bowl");
+  assert.ok((await tinted("map-side", 0.16, 0.006, 0.02)).longest <= 3, "nothing but the wall's lines above the water");
+  assert.ok((await tinted("map-top", 0, 0.006, 0.03)).share > 0.9, "the water from above");
   await page.locator("#map-panel").scrollIntoViewIfNeeded();
   await page.screenshot({ path: path.join(dir, "laptop.png") });
   // A profile changed in its control: the file says it, the view is simulate's for that text,
@@ -1575,6 +1667,43 @@ test("a glass of revolution: its profiles in the Objects panel and on both maps,
   await phone.page.screenshot({ path: path.join(dir, "phone-objects.png") });
   assert.deepEqual(phone.problems, []);
   await phone.context.close();
+});
+
+test("the maps are framed on the glass: handles a finger apart, a far eye at the edge, a straw leaned by its handle from above", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, { width: 1366, height: 768 });
+  await page.goto(server.url + "#scene=two-straws&observer=0.25,0,0.17");
+  await waitReady(page);
+  await page.waitForFunction(() => document.getElementById("map-top").handles.some((h) => h.kind === "lean"));
+  // The glass (radius 4 cm) is well over a hundred pixels across from above, not a speck.
+  const across = await page.evaluate(() => { const inv = document.getElementById("map-top").mapInverse; return 0.08 / (inv(101, 0)[0] - inv(1, 0)[0]) * 100; });
+  assert.ok(across >= 100, `the glass is ${across} px across`);
+  // Every handle (the straws' feet and leans) and the eye at least 44 px from each other.
+  const points = await page.evaluate(() => { const c = document.getElementById("map-top"); return [...c.handles.map((h) => h.at), c.eyeAt]; });
+  for (let i = 0; i < points.length; i++) for (let j = i + 1; j < points.length; j++) {
+    const d = Math.hypot(points[i][0] - points[j][0], points[i][1] - points[j][1]);
+    assert.ok(d >= 44, `handles ${i} and ${j} are ${d} px apart`);
+  }
+  // The eye, 25 cm away, is beyond the map's frame: drawn at its edge.
+  assert.ok(await page.evaluate(() => document.getElementById("map-top").eyeFar));
+  // The upright straw on the axis leaned by its handle (44 px beyond its foot towards +x), moved
+  // 30 px further out and 30 px up (+y): its azimuth points at the pointer, and its tilt is
+  // the pointer's distance beyond those 44 px over the straw's length (25 cm), as a sine.
+  const [lean, foot, perPx] = await page.evaluate(() => {
+    const c = document.getElementById("map-top"), h = c.handles.find((h) => h.kind === "lean" && h.k === 0);
+    return [h.at, h.from, c.mapInverse(1, 0)[0] - c.mapInverse(0, 0)[0]];
+  });
+  const [px, py] = [lean[0] + 30 - foot[0], lean[1] - 30 - foot[1]];
+  const wantAzimuth = Math.atan2(-py, px) * 180 / Math.PI, wantTilt = Math.asin((Math.hypot(px, py) - 44) * perPx / 0.25) * 180 / Math.PI;
+  const before = await page.evaluate(() => window.bentstraw.state.file);
+  await dragOnMap(page, "map-top", lean, [30, -30]);
+  const file = await nextFile(page, before);
+  const tilt = Number(fileValue(file, "straw", 0, "tilt")), azimuth = Number(fileValue(file, "straw", 0, "azimuth"));
+  assert.ok(Math.abs(tilt - wantTilt) < 0.3, `tilt ${tilt}, not ${wantTilt}`);
+  assert.ok(Math.abs(azimuth - wantAzimuth) < 0.3, `azimuth ${azimuth}, not ${wantAzimuth}`);
+  assert.equal((await simulateText(file)).csv, await page.evaluate(() => window.bentstraw.points()));
+  await page.locator("#map-panel").screenshot({ path: shot("explorer-maps.png") });
+  assert.deepEqual(problems, []);
+  await context.close();
 });
 
 test("a prism's corner dragged on the map from above, and a lens's axis turned by its handle", async () => {

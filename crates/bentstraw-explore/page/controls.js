@@ -8,6 +8,7 @@ import { showError } from "./errors.js";
 import { changed, requestModels, pictureSize, forgetFrame } from "./frames.js";
 import { drawCloud, drawLegend } from "./cloud.js";
 import { sceneLines } from "./sketch.js";
+import { inLanguage } from "./lesson.js";
 
 /** The controls showing the state as it is. */
 export function syncControls() {
@@ -82,13 +83,22 @@ export const galleryReady = engineFetch("scenes", "/api/scenes", "").then((r) =>
   gallery = list;
   for (const g of list) {
     const o = document.createElement("option");
-    o.value = g.name; o.textContent = g.title; o.title = g.shows;
+    o.value = g.name;
     $("scene").appendChild(o);
   }
+  relabelGallery();
   syncControls();
   document.body.dataset.scenes = String(list.length);
   return list;
 });
+/** The gallery's entries named in the page's language (their lessons' titles). */
+export function relabelGallery() {
+  for (const g of gallery) {
+    const o = $("scene").querySelector(`option[value="${g.name}"]`);
+    const l = inLanguage(g.lesson);
+    if (o) { o.textContent = l ? l.title : g.title; o.title = l ? l.text : g.shows; }
+  }
+}
 $("scene").addEventListener("change", (e) => {
   if (e.target.value === "file") return;
   state.scene = e.target.value;
@@ -100,11 +110,31 @@ $("scene").addEventListener("change", (e) => {
   changed();
 });
 
+// On a narrow screen the header's settings fold behind "Menu".
+$("menu").addEventListener("click", () => {
+  const open = document.querySelector("header").classList.toggle("open");
+  $("menu").setAttribute("aria-expanded", String(open));
+});
+
 $("copy-link").addEventListener("click", async () => {
   const link = window.bentstraw.link();
   document.body.dataset.link = link;
+  showQr(link);
   try { await navigator.clipboard.writeText(link); $("status").textContent = t("status.copied", { link }); } catch (_) { prompt(t("prompt.copy"), link); }
 });
+/** The link's QR code over the picture, for a class to scan from a projector (the engine draws
+ * it; a link too long for one is said so). */
+async function showQr(link) {
+  const r = await engineFetch("qr", "/api/qr", "text=" + encodeURIComponent(link));
+  const img = $("qr");
+  if (img.src.startsWith("blob:")) URL.revokeObjectURL(img.src);
+  img.hidden = !r.ok;
+  if (r.ok) { img.src = URL.createObjectURL(await r.blob()); $("qr-note").textContent = ""; }
+  else $("qr-note").textContent = t("qr.too-long", { n: link.length });
+  $("qr-panel").hidden = false;
+  document.body.dataset.qr = r.ok ? "shown" : "too-long";
+}
+$("qr-close").addEventListener("click", () => { $("qr-panel").hidden = true; });
 /** Saves the file `simulate` or `render` would write for this view, computed by the engine. */
 async function download(format, model) {
   const [w, h] = pictureSize();

@@ -749,6 +749,15 @@ export function handlesOf(form, P, side) {
     return hs;
   }
   for (const kind of ["straw", "coin"]) (form[kind] || []).forEach((o, k) => hs.push({ kind, k, at: P(o.x, o.y) }));
+  // A straw's lean: a handle where its top end is seen from above (LEAN_PX beyond its foot along
+  // its azimuth, so that an upright straw's two handles stay apart); a drag sets its tilt from
+  // the handle's distance and its azimuth from its direction.
+  const perMetre = Math.hypot(P(1e-3, 0)[0] - P(0, 0)[0], P(1e-3, 0)[1] - P(0, 0)[1]) / 1e-3;
+  (form.straw || []).forEach((o, k) => {
+    const a = ((o.azimuth || 0) * Math.PI) / 180, reach = LEAN_PX / perMetre + (o.length || STRAW_H) * Math.sin(((o.tilt || 0) * Math.PI) / 180);
+    const foot = P(o.x, o.y);
+    hs.push({ kind: "lean", k, from: foot, at: P(o.x + reach * Math.cos(a), o.y + reach * Math.sin(a)), ring: 4, dead: LEAN_PX / perMetre });
+  });
   (form.card || []).forEach((o, k) => hs.push({ kind: "card", k, at: P(o.center[0], o.center[1]) }));
   (form.sphere || []).forEach((o, k) => {
     const at = P(o.center[0], o.center[1]);
@@ -774,6 +783,8 @@ export function handlesOf(form, P, side) {
 }
 /** How far from a lens's centre its axis's handle stands on the map from above (pixels). */
 const AXIS_PX = 22;
+/** How far beyond an upright straw's foot its lean's handle stands on the map from above (pixels). */
+const LEAN_PX = 44;
 /** The handle within a fingertip of `(x, y)`, nearest first; null if none. */
 export function handleAt(handles, x, y, reach) {
   let best = null, bestD = reach;
@@ -947,6 +958,15 @@ export function dragHandle(h, q, side) {
       const o = (f.prism || [])[h.k], p = o && o.corners[h.j];
       if (!p) return; // (the prism changed under the drag: an undo)
       o.corners[h.j] = [r5(q[0]), r5(q[1])];
+      return;
+    }
+    if (h.kind === "lean") {
+      const o = (f.straw || [])[h.k];
+      if (!o) return; // (the straw changed under the drag: an undo)
+      const d = Math.hypot(q[0] - o.x, q[1] - o.y) - h.dead, s = Math.max(0, Math.min(Math.sin((80 * Math.PI) / 180), d / (o.length || STRAW_H)));
+      const tilt = Math.round((Math.asin(s) * 1800) / Math.PI) / 10;
+      o.tilt = tilt < 0.1 ? 0 : tilt;
+      o.azimuth = Math.round((Math.atan2(q[1] - o.y, q[0] - o.x) * 1800) / Math.PI) / 10 + 0;
       return;
     }
     if (h.kind === "axis") {

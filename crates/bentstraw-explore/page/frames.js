@@ -11,6 +11,7 @@ import { drawMaps } from "./maps.js";
 import { syncControls } from "./controls.js";
 import { showHint, showReadout, showStatus, showCommands } from "./readout.js";
 import { syncSceneText } from "./scenetext.js";
+import { showLesson } from "./lesson.js";
 
 // Quick frames (while dragging) have this many times fewer pixels along each side, and this many
 // times fewer image points (the full frame, when the input stops, has them all).
@@ -189,6 +190,7 @@ function paintAll() {
   drawCloud();
   drawLegend();
   showStatus();
+  showLesson();
   if (!$("commands").hidden) showCommands();
 }
 
@@ -209,6 +211,8 @@ export async function pick(what) {
   if (!r.ok) { showError(await refusalOf(r)); return; }
   path = await r.json();
   showReadout();
+  // The ray's words in view: its panel opens (the lesson, the objects and the file fold away).
+  $("path-details").open = true;
   document.body.dataset.picked = what;
   drawPicture(); drawCloud(); drawMaps();
 }

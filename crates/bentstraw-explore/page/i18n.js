@@ -42,6 +42,12 @@ export const I18N = {
     "fullscreen.leave": "Leave full screen",
     "fullscreen.title": "Show the picture on the whole screen (for a projector)",
     "predict": "Predict, then look",
+    "menu": "Menu",
+    "menu.title": "The view's settings, links and exports",
+    "qr.heading": "Scan to open this view",
+    "qr.title": "This view's link as a QR code",
+    "qr.close": "Close",
+    "qr.too-long": "This link is {n} characters, too long for a QR code (at most 2953): a gallery scene's link fits, or save the scene file and share it.",
     "predict.title": "Hide the picture, guess where the straw's bottom (the coin, the arrow's tip) will appear, then look",
     "predict.question": "Where will you see {target}?",
     "predict.click": "Click where you expect {target} to appear: in the hidden picture, or on the side map. Arrow keys move the guess, Enter reveals.",
@@ -67,6 +73,7 @@ export const I18N = {
     "predict.result.many": "The picture shows it {n} times (each ringed); the distance is to the nearest.",
     "mark.guess": "your guess",
     "mark.seen": "appears here",
+    "mark.real": "really here",
     "eye.heading": "What the eye sees",
     "eye.hint": "drag to move the eye round the glass · wheel: nearer/farther · click: the light's path",
     "eye.hint.touch": "drag sideways to move the eye round the glass · pinch: nearer/farther · tap: the light's path",
@@ -88,6 +95,7 @@ export const I18N = {
     "map.side": "side",
     "map.top": "from above (x →, y ↑)",
     "readout.heading": "The light's path",
+    "lesson.heading": "Lesson",
     "readout.hint": "Click the picture or a point of the cloud.",
     "readout.hint.touch": "Tap the picture or a point of the cloud.",
     "ro.colour": "colour",
@@ -267,6 +275,7 @@ export const I18N = {
     "rule.thickness.range": "a thickness must be 0, or between {min} and {max} (metres)",
     "rule.wall.thinner": "the wall must be thinner than the glass's radius {radius} (something must fit inside)",
     "rule.bottom.thinner": "the bottom must be thinner than the glass's height {height}",
+    "rule.lesson.length": "a lesson's title must have 1 to {title} characters, its text at most {text}, and it asks at most {questions} questions of at most {question} characters each",
     "rule.index.range": "a refractive index must be between 1 and 5 (vacuum is 1; the most refractive materials known are about 4)",
     "rule.liquid.above-floor": "the liquid's top must be above the floor at z = {floor}",
     "rule.liquid.above-layer": "each liquid's top must be above the top of the layer below it ({below})",
@@ -364,6 +373,12 @@ export const I18N = {
     "fullscreen.leave": "Quitter le plein écran",
     "fullscreen.title": "Afficher l'image sur tout l'écran (pour un vidéoprojecteur)",
     "predict": "Prédire, puis regarder",
+    "menu": "Menu",
+    "menu.title": "Les réglages de la vue, les liens et les exports",
+    "qr.heading": "Scannez pour ouvrir cette vue",
+    "qr.title": "Le lien de cette vue en code QR",
+    "qr.close": "Fermer",
+    "qr.too-long": "Ce lien fait {n} caractères, trop pour un code QR (2953 au plus) : le lien d'une scène de la galerie tient, ou enregistrez le fichier de scène et partagez-le.",
     "predict.title": "Cacher l'image, deviner où apparaîtra le bas de la paille (la pièce, la pointe de la flèche), puis regarder",
     "predict.question": "Où verrez-vous {target} ?",
     "predict.click": "Cliquez là où vous pensez voir {target} : dans l'image cachée, ou sur la vue de côté. Les flèches du clavier déplacent la prédiction, Entrée la révèle.",
@@ -389,6 +404,7 @@ export const I18N = {
     "predict.result.many": "L'image en montre {n} (chacune entourée) ; la distance est comptée jusqu'à la plus proche.",
     "mark.guess": "votre prédiction",
     "mark.seen": "apparaît ici",
+    "mark.real": "réellement ici",
     "eye.heading": "Ce que voit l'œil",
     "eye.hint": "faire glisser pour déplacer l'œil autour du verre · molette : plus près/plus loin · clic : le chemin de la lumière",
     "eye.hint.touch": "glisser latéralement pour déplacer l'œil autour du verre · pincer : plus près/plus loin · toucher : le chemin de la lumière",
@@ -410,6 +426,7 @@ export const I18N = {
     "map.side": "de côté",
     "map.top": "vue de dessus (x →, y ↑)",
     "readout.heading": "Le chemin de la lumière",
+    "lesson.heading": "Leçon",
     "readout.hint": "Cliquer sur l'image ou sur un point du nuage.",
     "readout.hint.touch": "Toucher l'image ou un point du nuage.",
     "ro.colour": "couleur",
@@ -589,6 +606,7 @@ export const I18N = {
     "rule.thickness.range": "une épaisseur doit être nulle, ou comprise entre {min} et {max} (mètres)",
     "rule.wall.thinner": "la paroi doit être plus mince que le rayon du verre, {radius} (il faut de la place à l'intérieur)",
     "rule.bottom.thinner": "le fond doit être plus mince que la hauteur du verre, {height}",
+    "rule.lesson.length": "le titre d'une leçon doit avoir de 1 à {title} caractères, son texte au plus {text}, et elle pose au plus {questions} questions d'au plus {question} caractères chacune",
     "rule.index.range": "un indice de réfraction doit être compris entre 1 et 5 (le vide vaut 1 ; les matériaux les plus réfringents connus valent environ 4)",
     "rule.liquid.above-floor": "la surface du liquide doit être au-dessus du fond, en z = {floor}",
     "rule.liquid.above-layer": "la surface de chaque liquide doit être au-dessus de celle de la couche du dessous ({below})",
@@ -684,6 +702,12 @@ export function t(key, params) {
 
 /** `key`'s touch-screen variant (`key.touch`) on a touch screen, if there is one. */
 export const touchKey = (key) => (TOUCH && (key + ".touch") in I18N.en ? key + ".touch" : key);
+
+/** Liquids' usual names in French (a scene file names its liquids in its own words: a name
+ * not in this list is shown as written). */
+const LIQUIDS_FR = { water: "eau", oil: "huile", "vegetable oil": "huile végétale", "olive oil": "huile d'olive", syrup: "sirop", "carbon disulfide": "disulfure de carbone", glycerol: "glycérol", glycerine: "glycérine", ethanol: "éthanol", alcohol: "alcool", "salt water": "eau salée", brine: "saumure", honey: "miel", milk: "lait", "sugar water": "eau sucrée" };
+/** A liquid's name in the page's language. */
+export function liquidName(name) { return LANG === "fr" ? LIQUIDS_FR[String(name).toLowerCase()] || name : name; }
 
 /** A number's text in the page's language (a decimal comma in French). */
 export function localNumber(text) { return LANG === "fr" ? String(text).replace(/\./g, ",") : String(text); }

@@ -8,10 +8,12 @@ import { errorShown, showError, errorText, linkRefusal, refuseLink } from "./err
 import { hook, frame, path, changed, requestFrame, sendFrame, settled, pick, forgetFrame, resized } from "./frames.js";
 import { drawCloud, drawLegend, screenOfPoint } from "./cloud.js";
 import { drawMaps } from "./maps.js";
+import { pathMarks } from "./picture.js";
 import { showHint, showReadout, showStatus, showCommands } from "./readout.js";
-import { syncControls, fullscreenLabel, galleryReady } from "./controls.js";
+import { syncControls, fullscreenLabel, galleryReady, relabelGallery } from "./controls.js";
 import { sceneErrorShown, showSceneErrors, checkScene, useScene, refused } from "./scenetext.js";
 import { relabelObjects } from "./editor.js";
+import { showLesson } from "./lesson.js";
 import { syncPredict, relabelPredict, predictHook } from "./predict.js";
 
 /** Reads a query or fragment (the address's, the command line's) into the state. A damaged link,
@@ -45,6 +47,8 @@ function relabel() {
   drawMaps(); drawCloud(); drawLegend();
   fullscreenLabel();
   relabelPredict();
+  showLesson();
+  relabelGallery();
 }
 $("lang").value = LANG;
 $("lang").addEventListener("change", (e) => {
@@ -107,6 +111,11 @@ window.bentstraw = Object.assign(hook, {
   /** "Predict, then look": its phase, the engine's answer, the distances (predict.js). */
   predict: predictHook,
 });
+
+/** Where the clicked ray's drawing is on the picture (its frame's pixels): the arrows' tips, each
+ * event's box [x, y, w, h], the texts written, the object's real point; null without one. (A
+ * getter: Object.assign would copy its value once.) */
+Object.defineProperty(window.bentstraw, "pathMarks", { get: () => pathMarks });
 
 // The start: the address's state, else the command line's.
 (async () => {

@@ -1,7 +1,7 @@
 // The side and top maps: the glass or the scene's outlines and liquids, the eye, the straw, the
 // transparent solids and the objects' handles, and their drags (the eye, the glass's straw, a scene's objects).
-import { t } from "./i18n.js";
-import { state, SECTION_RGB, GLASS_R, GLASS_H, STRAW_R } from "./state.js";
+import { t, localNumber, liquidName } from "./i18n.js";
+import { state, SECTION_RGB, GLASS_R, GLASS_H, STRAW_R, STRAW_H } from "./state.js";
 import { sideCanvas, topCanvas } from "./dom.js";
 import { fit, drawPath } from "./draw.js";
 import { onDrag } from "./pointer.js";
@@ -11,11 +11,39 @@ import { profileAt } from "./geometry.js";
 import { outside, pinchEye } from "./picture.js";
 import { viewForm, handlesOf, handleAt, dragHandle, startGesture } from "./editor.js";
 
-function mapScale(w, h, extent) { return Math.min(w, h) / (2.2 * extent); }
-function mapGeometry() {
-  const o = state.observer;
-  const extent = Math.max(0.07, 1.1 * Math.max(Math.hypot(o[0], o[1]), Math.abs(o[2] - 0.1), 0.15));
-  return { extent };
+/** The scene's box [x0, y0, z0, x1, y1, z1]: the glass and its straw, or a scene file's. */
+function sceneBounds(lines) {
+  return lines ? lines.bounds : [-GLASS_R, -GLASS_R, 0, GLASS_R, GLASS_R, Math.max(GLASS_H, STRAW_H)];
+}
+/** How far a map shows, about its centre, along each of its axes: the container and its objects
+ * with a margin, widened towards the eye while the container keeps two thirds of the map (a
+ * far eye is drawn at the map's edge, pointing its way). */
+function mapHalf(room, eye) { return Math.max(room, Math.min(1.1 * Math.abs(eye), 1.5 * room)); }
+/** Pixels per metre of a map `w` by `h` showing half extents `hx`, `hy`. */
+const mapScale = (w, h, hx, hy) => Math.max(1e-3, Math.min(w / (2 * hx), (h - 32) / (2 * hy)));
+/**
+ * The eye's place on a map: its pixel, or where the line from the map's centre to it leaves the
+ * map (then `far`: it is farther than the map shows).
+ */
+function eyeOnMap([x, y], w, h) {
+  const [cx, cy] = [w / 2, h / 2], m = 12;
+  const f = Math.min(1, ...[[x - cx, cx - m], [y - cy, cy - 16 - m]].map(([d, room]) => (Math.abs(d) > room ? room / Math.abs(d) : 1)));
+  return { at: [cx + f * (x - cx), cy + f * (y - cy)], far: f < 1 };
+}
+/** The eye on a map: a disc, or at the edge a ring with an arrow its way and its distance. */
+function drawEye(ctx, eye, [x, y], distance) {
+  const [ex, ey] = eye.at;
+  ctx.fillStyle = "#000"; ctx.strokeStyle = "#000"; ctx.lineWidth = 2;
+  ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI);
+  if (!eye.far) { ctx.fill(); ctx.lineWidth = 1; return; }
+  ctx.fillStyle = "#fff"; ctx.fill(); ctx.stroke();
+  const d = Math.hypot(x - ex, y - ey) || 1, u = [(x - ex) / d, (y - ey) / d];
+  ctx.beginPath(); ctx.moveTo(ex + 9 * u[0], ey + 9 * u[1]); ctx.lineTo(ex + 4 * u[0] - 4 * u[1], ey + 4 * u[1] + 4 * u[0]); ctx.lineTo(ex + 4 * u[0] + 4 * u[1], ey + 4 * u[1] - 4 * u[0]); ctx.closePath();
+  ctx.fillStyle = "#000"; ctx.fill();
+  ctx.font = "11px system-ui"; ctx.fillStyle = "#1d2330";
+  const text = `${localNumber(distance.toFixed(2))} m`, tw = ctx.measureText(text).width;
+  ctx.fillText(text, Math.max(2, Math.min(ex - tw / 2, ctx.canvas.clientWidth - tw - 2)), ey + (u[1] > 0 ? -10 : 18));
+  ctx.lineWidth = 1;
 }
 
 /** Each liquid layer's colour on the maps, bottom first (water blue, then amber, green, purple). */
@@ -57,7 +85,7 @@ function drawLiquidsSide(ctx, lines, u, P) {
     } else ctx.fillRect(x0, y0, x1 - x0, y1 - y0);
     if (y1 - y0 >= 12) {
       ctx.fillStyle = "#3b4454"; ctx.font = "11px system-ui";
-      ctx.fillText(`${name} · n ${n}`, x1 + 4, Math.min(y1 - 2, y0 + 12));
+      ctx.fillText(`${liquidName(name)} · n ${localNumber(n)}`, x1 + 4, Math.min(y1 - 2, y0 + 12));
     }
   });
 }
@@ -101,17 +129,24 @@ function drawLines(ctx, lines, at) {
 
 /** Both maps: side (the plane through the glass's axis and the eye) and top. */
 export function drawMaps() {
-  const g = mapGeometry();
   const o = state.observer, [sx, sy] = state.straw;
   const lines = sceneLines();
+  const b = sceneBounds(lines).slice();
+  // The transparent solids too, wherever they stand (a lens between the eye and the glass).
+  const form = lines ? viewForm() : null;
+  for (const [c, r] of form ? [...(form.sphere || []).map((o) => [o.center, o.radius]), ...(form.lens || []).map((o) => [o.center, o.diameter / 2]), ...(form.prism || []).flatMap((o) => o.corners.map(([x, y]) => [[x, y, (o.bottom + o.top) / 2], (o.top - o.bottom) / 2]))] : []) {
+    for (let i = 0; i < 3; i++) { b[i] = Math.min(b[i], c[i] - r); b[i + 3] = Math.max(b[i + 3], c[i] + r); }
+  }
+  const reach = 1.15 * Math.max(...[0, 1, 3, 4].map((i) => Math.abs(b[i])));
+  const zc = (b[2] + b[5]) / 2, zHalf = 0.55 * (b[5] - b[2]) + 0.01;
   // Side: horizontal axis along the eye's azimuth.
   {
     const { ctx, w, h } = fit(sideCanvas);
     ctx.clearRect(0, 0, w, h);
-    const k = mapScale(w, h, g.extent);
     const az = Math.atan2(o[1], o[0]);
     const u = [Math.cos(az), Math.sin(az)];
-    const P = (s, z) => [w / 2 + k * s, h / 2 - k * (z - 0.1)];
+    const k = mapScale(w, h, mapHalf(reach, Math.hypot(o[0], o[1])), mapHalf(zHalf, o[2] - zc));
+    const P = (s, z) => [w / 2 + k * s, h / 2 - k * (z - zc)];
     ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.side"), 6, 14);
     sideCanvas.handles = [];
     if (lines) {
@@ -136,17 +171,17 @@ export function drawMaps() {
       }
     }
     ctx.strokeStyle = "#999"; ctx.beginPath(); ctx.moveTo(0, P(0, 0)[1]); ctx.lineTo(w, P(0, 0)[1]); ctx.stroke();
-    const [ex, ey] = P(Math.hypot(o[0], o[1]), o[2]);
-    ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
+    const eyePx = P(Math.hypot(o[0], o[1]), o[2]), eye = eyeOnMap(eyePx, w, h);
     if (path) drawPath(ctx, { p: (q) => P(q[0] * u[0] + q[1] * u[1], q[2]) }, { labels: false, size: 0.8 });
-    sideCanvas.mapInverse = (x, y) => [(x - w / 2) / k, 0.1 - (y - h / 2) / k];
-    sideCanvas.eyeAt = [ex, ey];
+    drawEye(ctx, eye, eyePx, Math.hypot(o[0], o[1], o[2] - zc));
+    sideCanvas.mapInverse = (x, y) => [(x - w / 2) / k, zc - (y - h / 2) / k];
+    sideCanvas.eyeAt = eye.at; sideCanvas.eyeFar = eye.far; sideCanvas.centre = [0, zc];
   }
   // Top.
   {
     const { ctx, w, h } = fit(topCanvas);
     ctx.clearRect(0, 0, w, h);
-    const k = mapScale(w, h, g.extent);
+    const k = mapScale(w, h, mapHalf(reach, o[0]), mapHalf(reach, o[1]));
     const P = (x, y) => [w / 2 + k * x, h / 2 - k * y]; // x right, y up: as the report's top views
     ctx.fillStyle = "#5b667a"; ctx.font = "12px system-ui"; ctx.fillText(t("map.top"), 6, 14);
     topCanvas.handles = [];
@@ -164,12 +199,12 @@ export function drawMaps() {
       ctx.beginPath(); ctx.arc(...P(0, 0), GLASS_R * k, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
       ctx.fillStyle = SECTION_RGB[4]; ctx.beginPath(); ctx.arc(...P(sx, sy), Math.max(3, STRAW_R * k), 0, 2 * Math.PI); ctx.fill();
     }
-    const [ex, ey] = P(o[0], o[1]);
+    const eyePx = P(o[0], o[1]), eye = eyeOnMap(eyePx, w, h), [ex, ey] = eye.at;
     ctx.strokeStyle = "rgba(0,0,0,.35)"; ctx.beginPath(); ctx.moveTo(ex, ey); ctx.lineTo(...P(0, 0)); ctx.stroke();
-    ctx.fillStyle = "#000"; ctx.beginPath(); ctx.arc(ex, ey, 6, 0, 2 * Math.PI); ctx.fill();
     if (path) drawPath(ctx, { p: (q) => P(q[0], q[1]) }, { labels: false, size: 0.8 });
+    drawEye(ctx, eye, eyePx, Math.hypot(o[0], o[1]));
     topCanvas.mapInverse = (x, y) => [(x - w / 2) / k, (h / 2 - y) / k];
-    topCanvas.eyeAt = [ex, ey];
+    topCanvas.eyeAt = eye.at; topCanvas.eyeFar = eye.far;
     topCanvas.strawAt = lines ? null : P(sx, sy);
   }
 }
@@ -240,7 +275,7 @@ function drawHandles(ctx, handles) {
   ctx.lineWidth = 1;
 }
 
-let dragging = null;
+let dragging = null, eyeFarAtStart = false;
 onDrag(topCanvas, {
   pinch: pinchEye,
   start: (e) => {
@@ -248,6 +283,7 @@ onDrag(topCanvas, {
     const near = (p) => p && Math.hypot(p[0] - x, p[1] - y) < 14;
     const h = near(topCanvas.eyeAt) ? null : handleAt(topCanvas.handles, x, y, 14);
     dragging = h || (near(topCanvas.strawAt) && !near(topCanvas.eyeAt) ? "straw" : "eye");
+    eyeFarAtStart = topCanvas.eyeFar;
     if (h) startGesture();
   },
   move: (dx, dy, e) => {
@@ -258,6 +294,10 @@ onDrag(topCanvas, {
       // Kept inside the glass, so that a drag never stops at the rule's edge.
       const lim = GLASS_R - STRAW_R - 1e-4, d = Math.hypot(x, y), f = d > lim ? lim / d : 1;
       state.straw = [x * f, y * f].map((v) => Math.round(v * 1e5) / 1e5);
+    } else if (eyeFarAtStart) {
+      // An eye beyond the map turns round the axis towards the pointer, at its distance.
+      const o = state.observer, d = Math.hypot(o[0], o[1]), a = Math.atan2(y, x);
+      state.observer = outside([d * Math.cos(a), d * Math.sin(a), o[2]]);
     } else {
       state.observer = outside([x, y, state.observer[2]]);
     }
@@ -271,6 +311,7 @@ onDrag(sideCanvas, {
     const r = sideCanvas.getBoundingClientRect(), x = e.clientX - r.left, y = e.clientY - r.top;
     const eye = sideCanvas.eyeAt && Math.hypot(sideCanvas.eyeAt[0] - x, sideCanvas.eyeAt[1] - y) < 14;
     draggingSide = eye ? null : handleAt(sideCanvas.handles, x, y, 14);
+    eyeFarAtStart = sideCanvas.eyeFar;
     if (draggingSide) startGesture();
   },
   move: (dx, dy, e) => {
@@ -278,8 +319,13 @@ onDrag(sideCanvas, {
     const [s, z] = sideCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
     if (draggingSide) { dragHandle(draggingSide, [s, z], true); return; }
     const o = state.observer, az = Math.atan2(o[1], o[0]);
-    const d = Math.max(0.001, s);
-    state.observer = outside([d * Math.cos(az), d * Math.sin(az), z]);
+    let [d, zz] = [Math.max(0.001, s), z];
+    if (eyeFarAtStart) {
+      // An eye beyond the map turns up or down round the map's centre towards the pointer, at its distance.
+      const [, zc] = sideCanvas.centre, r = Math.hypot(Math.hypot(o[0], o[1]), o[2] - zc), a = Math.atan2(z - zc, Math.max(1e-6, s));
+      [d, zz] = [Math.max(0.001, r * Math.cos(a)), zc + r * Math.sin(a)];
+    }
+    state.observer = outside([d * Math.cos(az), d * Math.sin(az), zz]);
     changed();
   },
 });

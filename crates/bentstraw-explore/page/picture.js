@@ -4,9 +4,13 @@ import { state, GLASS_R, GLASS_H } from "./state.js";
 import { sub, dot, orbitOf, fromOrbit } from "./geometry.js";
 import { pictureCanvas, sideCanvas, topCanvas } from "./dom.js";
 import { drawPath } from "./draw.js";
+import { drawLightPath } from "./lightpath.js";
 import { onDrag } from "./pointer.js";
 import { frame, path, changed, pick } from "./frames.js";
 import { sceneLines } from "./sketch.js";
+
+/** Where the clicked ray's drawing is on the picture (arrows, event boxes), null without one. */
+export let pathMarks = null;
 
 /** The frame's picture, and over it the clicked ray when it is this eye's. */
 export function drawPicture() {
@@ -20,8 +24,10 @@ export function drawPicture() {
   const c = frame.header.camera;
   if (path && c && dot(sub(path.observer, c.eye), sub(path.observer, c.eye)) < 1e-18) {
     const scaleUp = width / Math.max(1, pictureCanvas.getBoundingClientRect().width);
-    drawPath(ctx, pictureProjection(), { labels: false, size: scaleUp });
-  }
+    const pr = pictureProjection();
+    drawPath(ctx, pr, { labels: false, size: scaleUp });
+    pathMarks = drawLightPath(ctx, pr, width, scaleUp);
+  } else pathMarks = null;
 }
 
 /** The picture's projection (its camera's, as the engine's): a 3D point to the frame's pixels,

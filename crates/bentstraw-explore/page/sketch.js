@@ -5,6 +5,7 @@ import { engineFetch } from "./engine.js";
 import { drawCloud } from "./cloud.js";
 import { drawMaps } from "./maps.js";
 import { syncControls } from "./controls.js";
+import { showLesson } from "./lesson.js";
 
 /** What the page draws of each scene file (wireframe, outlines, box), asked once per scene. */
 const sketches = {};
@@ -20,9 +21,15 @@ function fetchSketch(name) {
     const wire = [];
     for (let i = 0; i + 5 < sc.wireframe.length; i += 6) wire.push([pt(sc.wireframe, i), pt(sc.wireframe, i + 3)]);
     const outlines = sc.outlines.map((l) => Array.from({ length: l.length / 3 }, (_, i) => pt(l, 3 * i)));
-    sketches[name] = { wire, outlines, bounds: sc.bounds, liquids: sc.liquids || [], container: sc.container || null };
-    if (sceneKey(state) === name) { drawMaps(); drawCloud(); syncControls(); }
+    sketches[name] = { wire, outlines, bounds: sc.bounds, liquids: sc.liquids || [], container: sc.container || null, lesson: sc.lesson || null };
+    if (sceneKey(state) === name) { drawMaps(); drawCloud(); syncControls(); showLesson(); }
   });
+}
+
+/** The current scene's own sketch once it has come (never another scene's standing in), else null. */
+export function currentSketch() {
+  const sc = sketches[sceneKey(state)];
+  return sc && sc !== "pending" ? sc : null;
 }
 
 /** The middle and size of what the views show: the glass and straw, or a gallery scene's box. */

@@ -11,6 +11,8 @@ const ENGINE = JSON.parse(document.getElementById("bentstraw-defaults").textCont
 // The scene's fixed sizes (the glass and the straw), for drawing outlines only.
 export const GLASS_R = ENGINE.glass.radius, GLASS_H = ENGINE.glass.height;
 export const STRAW_R = ENGINE.straw.radius, STRAW_H = ENGINE.straw.height;
+// What the assignment's glass teaches, in English and French (a gallery scene's come with its sketch).
+export const ASSIGNMENT_LESSON = ENGINE.lesson;
 // A new coin's radius when the file gives none (a one-euro coin, the engine's default).
 export const COIN_R = ENGINE.coin.radius;
 // Colour codes 1..5 a straw's sections; in the gallery's scenes also 6 a coin, 7 a card, 8 its arrow.

@@ -21,7 +21,9 @@ use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::rule::{Param, Rule};
 use bentstraw_optics::sampling::{sample_image_until, ImageCloud};
 use bentstraw_optics::scene::{DEFAULT_MAX_EVENTS, WATER_INDEX};
-use bentstraw_optics::scene_file::{Container, Observer, SceneForm, DEFAULT_COIN_RADIUS};
+use bentstraw_optics::scene_file::{
+    Container, Lesson, LessonText, Observer, SceneForm, DEFAULT_COIN_RADIUS,
+};
 use bentstraw_optics::shading::{RgbPicture, ShadingOptions};
 use bentstraw_optics::text::clip_text;
 use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
@@ -257,7 +259,21 @@ pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, Refused> {
         "container": container_json(&description.container),
         // Every key of the file with its value (defaults written out), for the page's controls.
         "form": serde_json::to_value(description.form()).expect("a scene form is plain data"),
+        "lesson": lesson_json(description.lesson.as_ref()),
     })))
+}
+
+/// A scene's lesson for the page, in each language it is written in (`{"en": {title, text,
+/// questions}, "fr": …}`), or null.
+pub fn lesson_json(lesson: Option<&Lesson>) -> Value {
+    let Some(l) = lesson else { return Value::Null };
+    let text = |t: &Option<LessonText>| {
+        t.as_ref().map_or(
+            Value::Null,
+            |t| json!({"title": t.title, "text": t.text, "questions": t.questions}),
+        )
+    };
+    json!({"en": text(&l.en), "fr": text(&l.fr)})
 }
 
 /// `GET /api/scene-text?form=JSON`: a scene file's text from its keys and values (the `form` of
@@ -305,17 +321,43 @@ fn container_json(container: &Container) -> Value {
     }
 }
 
+/// The most characters a link's QR code holds (version 40, low error correction, bytes): a
+/// longer link is refused, with what fits.
+pub const QR_MAX_LINK: usize = 2953;
+
+/// `GET /api/qr?text=LINK`: the link as a QR code, an SVG picture (black on white, its quiet zone
+/// round it), for a class to scan from a projector.
+pub fn qr_reply(q: &HashMap<String, String>) -> Result<Reply, String> {
+    let text = required(q, "text")?;
+    let n = text.chars().count();
+    let code = (n <= QR_MAX_LINK)
+        .then(|| qrcode::QrCode::with_error_correction_level(text.as_bytes(), qrcode::EcLevel::L).ok())
+        .flatten()
+        .ok_or_else(|| {
+            format!(
+                "the link is {n} characters: a QR code holds at most {QR_MAX_LINK}; a gallery scene's link fits, or save the scene file and share it"
+            )
+        })?;
+    let svg = code
+        .render::<qrcode::render::svg::Color>()
+        .min_dimensions(256, 256)
+        .build();
+    Ok(Reply::bytes("image/svg+xml", svg.into_bytes()))
+}
+
 /// `GET /api/scenes`: the gallery's scenes: name, what it shows, its own observer.
 pub fn scenes_reply() -> Reply {
     let list: Vec<Value> = GALLERY
         .iter()
         .filter_map(|(stem, text)| {
             let w = gallery_setup(stem, text, DEFAULT_MAX_EVENTS).ok()?;
+            let lesson = parse_scene_text(stem, text).ok()?.lesson;
             Some(json!({
                 "name": stem,
                 "title": stem.replace('-', " "),
                 "shows": opening_comment(text),
                 "observer": vec_json(w.observer),
+                "lesson": lesson_json(lesson.as_ref()),
             }))
         })
         .collect();
@@ -361,6 +403,13 @@ pub fn defaults_reply() -> Reply {
         "glass": {"radius": GLASS_RADIUS, "height": GLASS_HEIGHT},
         "straw": {"radius": STRAW_RADIUS, "height": STRAW_HEIGHT},
         "coin": {"radius": DEFAULT_COIN_RADIUS},
+        // What the assignment's glass teaches, as a gallery scene's lesson.
+        "lesson": lesson_json(
+            parse_scene_text(bentstraw_io::gallery::SPEC.0, bentstraw_io::gallery::SPEC.1)
+                .ok()
+                .and_then(|d| d.lesson)
+                .as_ref()
+        ),
     }))
 }
 
@@ -822,6 +871,11 @@ pub fn ray_json(world: &World, eye: Vec3, u0: Vec3) -> Value {
             "outgoing_deg": libm::acos(cos_out).to_degrees(),
             "n1": e.n1,
             "n2": e.n2,
+            // The geometry of the event, for drawing it: the ray's direction before and after
+            // (from the eye), and the surface's unit normal on the side the ray comes from.
+            "incoming": vec_json(e.incoming),
+            "outgoing": vec_json(e.outgoing),
+            "normal": vec_json(if e.incoming.dot(e.normal) > 0.0 { -e.normal } else { e.normal }),
         }));
         last = (e.point, e.outgoing);
     });
@@ -1007,6 +1061,9 @@ pub fn handle(path: &str, query: &str, frame: &mut Frame, memory: &Memory) -> Re
     }
     if path == "/api/scene-text" {
         return scene_text_reply(&q).unwrap_or_else(|e| Reply::text(400, e));
+    }
+    if path == "/api/qr" {
+        return qr_reply(&q).unwrap_or_else(|e| Reply::text(422, e));
     }
     let view = match View::checked(&q) {
         Ok(v) => v,
@@ -1295,6 +1352,87 @@ mod tests {
         assert_eq!(v["events"].as_array().unwrap().len(), p.events as usize);
         assert!(ray_reply(&view, &query("point=99999999"), &AtomicBool::new(false)).is_err());
         assert!(ray_reply(&view, &query("row=-1&col=3"), &AtomicBool::new(false)).is_err());
+    }
+
+    /// A link's QR code is an SVG picture whose size grows with the link, up to the longest a
+    /// QR code holds; a longer link is refused with what fits.
+    #[test]
+    fn a_link_becomes_a_qr_code_or_is_refused_when_too_long() {
+        let svg = |n: usize| {
+            let text = format!("https://example.org/bentstraw/#{}", "a".repeat(n));
+            let r = handle(
+                "/api/qr",
+                &format!("text={text}"),
+                &mut Frame::default(),
+                &Memory::default(),
+            );
+            (r.status, String::from_utf8(r.body).unwrap())
+        };
+        let (short, long) = (svg(10), svg(2000));
+        assert_eq!((short.0, long.0), (200, 200));
+        assert!(short.1.contains("<svg") && long.1.contains("<svg"));
+        // More modules for more text: the picture's view box counts them.
+        let width = |s: &str| {
+            s.split("viewBox=\"0 0 ")
+                .nth(1)
+                .and_then(|v| v.split(' ').next())
+                .and_then(|v| v.parse::<u32>().ok())
+                .unwrap()
+        };
+        assert!(width(&long.1) > width(&short.1));
+        let (status, message) = svg(QR_MAX_LINK);
+        assert_eq!(status, 422);
+        assert!(message.contains("at most 2953"), "{message}");
+    }
+
+    /// Each event's drawing geometry obeys the laws it illustrates, over many rays of a layered
+    /// scene: the normal is a unit vector facing the ray; the three directions lie in one plane
+    /// (the plane of incidence); a refraction keeps n sin θ (Snell–Descartes) and a total
+    /// reflection mirrors the ray; and the angles given agree with the vectors.
+    #[test]
+    fn ray_events_carry_their_plane_of_incidence() {
+        let view = View::from_query(&query(
+            "scene=oil-on-water&observer=0.3,0.05,0.12&points=400",
+        ))
+        .unwrap();
+        let world = &view.scene.world;
+        let pts = sample_image(world, view.observer, 400, &|_| {}).points;
+        let v3 = |x: &Value| {
+            Vec3::new(
+                x[0].as_f64().unwrap(),
+                x[1].as_f64().unwrap(),
+                x[2].as_f64().unwrap(),
+            )
+        };
+        let (mut refractions, mut reflections) = (0, 0);
+        for p in pts.iter().step_by(7) {
+            let u0 = (p.position - view.observer).normalize();
+            let r = ray_json(world, view.observer, u0);
+            for e in r["events"].as_array().unwrap() {
+                let (n, din, dout) = (v3(&e["normal"]), v3(&e["incoming"]), v3(&e["outgoing"]));
+                let (n1, n2) = (e["n1"].as_f64().unwrap(), e["n2"].as_f64().unwrap());
+                assert!((n.length() - 1.0).abs() < 1e-12 && din.dot(n) < 0.0, "{e}");
+                assert!(din.cross(n).dot(dout).abs() < 1e-9, "not in one plane: {e}");
+                let (sin_in, sin_out) = (din.cross(n).length(), dout.cross(n).length());
+                let deg = |s: f64| s.asin().to_degrees();
+                assert!((deg(sin_in) - e["incidence_deg"].as_f64().unwrap()).abs() < 1e-6);
+                assert!((deg(sin_out) - e["outgoing_deg"].as_f64().unwrap()).abs() < 1e-6);
+                if e["event"] == "refraction" {
+                    refractions += 1;
+                    assert!((n1 * sin_in - n2 * sin_out).abs() < 1e-9, "Snell: {e}");
+                    assert!(dout.dot(n) < 0.0, "goes on across: {e}");
+                } else {
+                    reflections += 1;
+                    let mirrored = din - 2.0 * din.dot(n) * n;
+                    assert!((dout - mirrored).length() < 1e-12, "mirror: {e}");
+                    assert!(n1 * sin_in > n2, "beyond the critical angle: {e}");
+                }
+            }
+        }
+        assert!(
+            refractions > 50 && reflections > 0,
+            "{refractions} {reflections}"
+        );
     }
 
     /// A gallery scene: its frame holds the objects' points (codes up to 8) and what the page draws

@@ -31,7 +31,7 @@ const INDEX: &str = include_str!("../page/index.html");
 const JS: &str = "text/javascript; charset=utf-8";
 
 /// The page's files other than its HTML ([`index_html`]).
-pub const PAGE_FILES: [PageFile; 23] = [
+pub const PAGE_FILES: [PageFile; 25] = [
     // The page's entry module (index.html loads it; it imports the others, each one concept).
     PageFile {
         name: "main.js",
@@ -93,6 +93,16 @@ pub const PAGE_FILES: [PageFile; 23] = [
         name: "picture.js",
         content_type: JS,
         text: include_str!("../page/picture.js"),
+    },
+    PageFile {
+        name: "lightpath.js",
+        content_type: JS,
+        text: include_str!("../page/lightpath.js"),
+    },
+    PageFile {
+        name: "lesson.js",
+        content_type: JS,
+        text: include_str!("../page/lesson.js"),
     },
     PageFile {
         name: "cloud.js",
