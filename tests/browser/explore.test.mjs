@@ -463,6 +463,32 @@ test("a clicked ray's geometry is read on the picture: the light's arrows, each 
   }
 });
 
+test("\"Where it really is\" draws the objects' outline over the picture, and takes it away again", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, { width: 1366, height: 768 });
+  /** Pixels of the picture's canvas that differ from the frame the engine sent. */
+  const drawnOver = () => page.evaluate(() => {
+    const c = document.getElementById("picture"), d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data, f = window.bentstraw.frame.rgba;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - f[i]) + Math.abs(d[i + 1] - f[i + 1]) + Math.abs(d[i + 2] - f[i + 2]) > 30) n++;
+    return n;
+  });
+  for (const hash of ["", "#scene=leaning-straw"]) {
+    await page.goto(server.url + hash);
+    await waitReady(page);
+    assert.equal(await drawnOver(), 0);
+    await page.click("#outline");
+    assert.equal(await page.getAttribute("#outline", "aria-pressed"), "true");
+    await page.waitForFunction(() => window.bentstraw.outlinePoints > 0);
+    // The straw's rings and lines: hundreds of pixels over the picture.
+    assert.ok(await drawnOver() > 300, hash);
+    await page.click("#outline");
+    assert.equal(await page.evaluate(() => window.bentstraw.outlinePoints), 0);
+    assert.equal(await drawnOver(), 0);
+  }
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("the scene chooser shows a gallery scene whose points and paths are simulate's", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);
@@ -823,6 +849,41 @@ test("a French browser gets the page in French; EN switches it to English, remem
   await context.close();
 });
 
+test("a French phone user sees no English: the lesson, the menu, a ray's words, the objects, a broken file's reader words", async () => {
+  const { page, context, problems } = await openPage(browser, server.url, { width: 390, height: 844 }, { ...PHONE, locale: "fr-FR" });
+  await page.goto(server.url + "#scene=oil-on-water&observer=0.3,0.05,0.12");
+  await waitReady(page);
+  await page.waitForFunction(() => !document.getElementById("lesson").hidden);
+  assert.equal(await page.textContent("#lesson-title"), "De l'huile sur de l'eau");
+  await page.click("#menu");
+  assert.equal(await page.getAttribute("#menu", "aria-expanded"), "true");
+  await page.evaluate(() => window.bentstraw.pickPoint(100));
+  await page.waitForFunction(() => document.body.dataset.picked);
+  await page.click("#scene-objects summary");
+  await page.waitForFunction(() => document.querySelectorAll("#objects fieldset").length >= 3);
+  // Everything written on the page, its tooltips and its menus' entries too (the scene file's
+  // keys, file names and commands are the file's and the command line's own words).
+  const words = () => page.evaluate(() => {
+    const parts = [document.body.innerText];
+    for (const el of document.querySelectorAll("[title]")) parts.push(el.title);
+    for (const el of document.querySelectorAll("option")) parts.push(el.textContent);
+    return parts.join("\n").replace(/bentstraw [a-z]+( --[a-z-]+)*|scene\.toml|\b[a-z_]+(\[\d+\])?\.[a-z_]+\b|`[^`]*`/g, "");
+  });
+  const english = /\b(the|and|of|is|are|water|straw|glass|click|drag|wall|bottom|picture|rays|view|missing|unknown|expected|invalid|lesson|light|path|from|with|oil|coin|card|save|open|undo|redo|copy|link|side|above|top|model|colour|color|events|through|reflection|refraction|outcome|length|string|key|duplicate|unclosed)\b/i;
+  const left = (text) => text.split("\n").filter((l) => english.test(l));
+  assert.deepEqual(left(await words()), []);
+  // A scene file typed with a wrong value: the reader's own message, in French too.
+  await page.click("#scene-edit summary");
+  const text = await boxText(page);
+  await page.fill("#scene-text", text.replace(/^index = 1\.47$/m, 'index = "heavy"'));
+  await page.waitForFunction(() => !document.getElementById("scene-errors").hidden);
+  assert.match(await page.textContent("#scene-errors"), /type invalide : chaîne "heavy", attendu : un nombre/);
+  assert.deepEqual(left(await words()), []);
+  await page.screenshot({ path: shot("explorer-phone-fr.png") });
+  assert.deepEqual(problems.filter((p) => !/status of 400/.test(p)), []);
+  await context.close();
+});
+
 test("the English and French tables have the same keys, and hold every text the page asks for", async () => {
   const { page, context } = await openPage(browser, server.url);
   await page.goto(server.url);
@@ -863,12 +924,21 @@ test("on a phone: no sideways scrolling, controls a finger can hit, a swipe scro
   await waitReady(page);
   assert.ok(await page.evaluate(() => window.matchMedia("(pointer: coarse)").matches));
   assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
-  // Every visible control at least 44x44 px (a checkbox by its label, which a tap on toggles it).
-  const small = await page.evaluate(() => [...document.querySelectorAll("button, select, input[type=range], input[type=text], label:has(input[type=checkbox]), summary")]
+  // Every visible control at least 44x44 px (a checkbox by its label, which a tap on toggles it),
+  // with the header's menu folded (a short header) and unfolded.
+  const tooSmall = () => page.evaluate(() => [...document.querySelectorAll("button, select, input[type=range], input[type=text], label:has(input[type=checkbox]), summary")]
     .filter((el) => el.getClientRects().length && getComputedStyle(el).visibility !== "hidden")
     .map((el) => { const r = el.getBoundingClientRect(); return [el.id || el.textContent.trim().slice(0, 20), Math.round(r.width), Math.round(r.height)]; })
     .filter(([, w, h]) => w < 44 || h < 44));
-  assert.deepEqual(small, []);
+  assert.deepEqual(await tooSmall(), []);
+  const header = await page.locator("header").boundingBox();
+  assert.ok(header.height <= 130, `the folded header is ${header.height} px tall`);
+  assert.ok(await page.isHidden("#n"));
+  await page.click("#menu");
+  assert.ok(await page.isVisible("#n") && await page.isVisible("#export-png") && await page.isVisible("#lang"));
+  assert.deepEqual(await tooSmall(), []);
+  assert.ok(await page.evaluate(() => document.scrollingElement.scrollWidth) <= 390);
+  await page.click("#menu");
   // The hints name the touch gestures.
   assert.match(await page.textContent('[data-i18n="eye.hint"]'), /drag sideways .* pinch/);
   // The picture at the screen's resolution: its box times the density (3 here, capped at 2).
@@ -1273,6 +1343,19 @@ test("a decimal comma is read in French, refused with its message in English; th
       await page.keyboard.press("ArrowUp");
       file = await nextFile(page, file);
       assert.equal(fileValue(file, "liquid", 0, "index"), "1.501");
+      // An index out of its range: its control marked, the allowed range written under it.
+      await page.fill(index, "7");
+      await page.press(index, "Enter");
+      await page.waitForFunction((sel) => document.querySelector(sel).getAttribute("aria-invalid") === "true", index);
+      const note = await page.evaluate((sel) => { const el = document.querySelector(sel); return document.getElementById(el.getAttribute("aria-describedby")).textContent; }, index);
+      assert.match(note, /doit être compris entre 1 et 5/);
+      // A good value again: the mark and its words go.
+      await page.fill(index, "1,4");
+      await page.press(index, "Enter");
+      file = await nextFile(page, file);
+      assert.equal(await page.locator("#objects .field-rule").count(), 0);
+      // (The refused text's answer, 400, is the browser's only complaint.)
+      problems.splice(0, problems.length, ...problems.filter((p) => !/status of 400/.test(p)));
     } else {
       await page.waitForFunction(() => !document.getElementById("objects-errors").hidden);
       assert.equal(await page.getAttribute(index, "aria-invalid"), "true");

@@ -8,7 +8,7 @@ import { state, STRAW_R, STRAW_H, COIN_R, sceneKey } from "./state.js";
 import { $ } from "./dom.js";
 import { profileAt, widest } from "./geometry.js";
 import { engineFetch, answerText } from "./engine.js";
-import { errorText } from "./errors.js";
+import { errorText, ruleWords } from "./errors.js";
 import { changed } from "./frames.js";
 import { drawMaps } from "./maps.js";
 import { showSceneErrors, applySceneText, checkScene, useScene, cancelTyping, sceneText } from "./scenetext.js";
@@ -657,6 +657,20 @@ objectsEl.addEventListener("change", (e) => {
 /** Marks the controls whose keys a refusal names, and lists its rules under them. */
 export function markObjects(error) {
   for (const el of objectsEl.querySelectorAll("[aria-invalid]")) el.removeAttribute("aria-invalid");
+  for (const el of objectsEl.querySelectorAll(".field-rule")) el.remove();
+  for (const el of objectsEl.querySelectorAll("[aria-describedby^='rule-']")) el.removeAttribute("aria-describedby");
+  // Under each control a rule names, the rule's own words: what the value must be (its range).
+  for (const r of error && error.refusal ? error.refusal.rules : []) {
+    const key = (r.key || "").replace(/^(\w+(?:\[\d+\])?\.\w+)\[\d+\]$/, "$1");
+    const el = key && objectsEl.querySelector(`[data-key="${CSS.escape(key)}"]`);
+    const label = el && el.closest("label");
+    if (!label || label.querySelector(".field-rule")) continue;
+    const note = document.createElement("small");
+    note.className = "field-rule"; note.id = "rule-" + key.replace(/[^\w]/g, "-");
+    note.textContent = ruleWords(r);
+    label.appendChild(note);
+    el.setAttribute("aria-describedby", note.id);
+  }
   // A rule about one point of a list (`container.inner[2]`) marks the list's control.
   const keys = (error && error.refusal ? error.refusal.rules.map((r) => r.key) : error && error.params && error.params.key ? [error.params.key] : [])
     .map((key) => key.replace(/^(\w+(?:\[\d+\])?\.\w+)\[\d+\]$/, "$1"));

@@ -1,14 +1,20 @@
 // Errors in the page's language: the banner under the header, and the text of the engine's
 // refusals (its broken rules, a line each, as the command line writes them in English).
-import { t, localNumber } from "./i18n.js";
+import { t, localNumber, tomlWords } from "./i18n.js";
 import { $ } from "./dom.js";
+
+/** One broken rule's words alone (its range or its limit), in the page's language. */
+export function ruleWords(r) {
+  const params = {};
+  for (const [k, v] of Object.entries(r.params || {})) params[k] = typeof v === "string" ? localNumber(v) : v.text;
+  if (r.code === "toml.syntax" && params.what) params.what = tomlWords(params.what);
+  return t("rule." + r.code, params);
+}
 
 /** One broken rule's line in the page's language: `key = value: rule`, its numbers written as
  * the language writes them, words from the file as they are. */
-function ruleLine(r) {
-  const params = {};
-  for (const [k, v] of Object.entries(r.params || {})) params[k] = typeof v === "string" ? localNumber(v) : v.text;
-  const rule = t("rule." + r.code, params);
+export function ruleLine(r) {
+  const rule = ruleWords(r);
   let line = !r.key ? rule : r.value !== null ? t("refusal.value", { key: r.key, value: localNumber(r.value), rule }) : t("refusal.key", { key: r.key, rule });
   if (r.line) line = t("refusal.line", { line: r.line, rule: line });
   return line;

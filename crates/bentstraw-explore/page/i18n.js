@@ -44,6 +44,8 @@ export const I18N = {
     "predict": "Predict, then look",
     "menu": "Menu",
     "menu.title": "The view's settings, links and exports",
+    "outline": "Where it really is",
+    "outline.title": "Draw the objects' outlines where they really are, as if there were no water or glass",
     "qr.heading": "Scan to open this view",
     "qr.title": "This view's link as a QR code",
     "qr.close": "Close",
@@ -375,6 +377,8 @@ export const I18N = {
     "predict": "Prédire, puis regarder",
     "menu": "Menu",
     "menu.title": "Les réglages de la vue, les liens et les exports",
+    "outline": "Où il est vraiment",
+    "outline.title": "Dessiner le contour des objets là où ils sont vraiment, comme s'il n'y avait ni eau ni verre",
     "qr.heading": "Scannez pour ouvrir cette vue",
     "qr.title": "Le lien de cette vue en code QR",
     "qr.close": "Fermer",
@@ -702,6 +706,35 @@ export function t(key, params) {
 
 /** `key`'s touch-screen variant (`key.touch`) on a touch screen, if there is one. */
 export const touchKey = (key) => (TOUCH && (key + ".touch") in I18N.en ? key + ".touch" : key);
+
+/** The TOML reader's words (English) in French: its messages, phrase by phrase; what it quotes
+ * from the file (keys, values) stays as written. */
+const TOML_FR = [
+  [/^unknown field (`[^`]*`), expected one of (.*)$/, "clé inconnue $1, les clés possibles : $2"],
+  [/^unknown field (`[^`]*`), there are no fields$/, "clé inconnue $1 : cette table n'en a aucune"],
+  [/^unknown field (`[^`]*`), expected (.*)$/, "clé inconnue $1, la clé possible : $2"],
+  [/^invalid length (\d+), expected an array of length (\d+)$/, "longueur $1 invalide, attendu : une liste de $2 valeurs"],
+  [/invalid type: /, "type invalide : "],
+  [/\bstring "/g, "chaîne \""], [/\binteger `/g, "entier `"], [/\bfloating point `/g, "nombre `"], [/\bboolean `/g, "booléen `"],
+  [/: sequence,/, ": liste,"], [/: map,/, ": table,"],
+  [/expected f64$/, "attendu : un nombre"], [/expected a string$/, "attendu : une chaîne"], [/expected a sequence$/, "attendu : une liste"],
+  [/expected an array of length (\d+)$/, "attendu : une liste de $1 valeurs"], [/expected a boolean$/, "attendu : un booléen"],
+  [/^duplicate key$/, "clé en double"],
+  [/^unexpected key or value/, "clé ou valeur inattendue"],
+  [/^invalid basic string/, "chaîne invalide"], [/^invalid literal string/, "chaîne invalide"],
+  [/^unclosed array table/, "tableau de tables non fermé"], [/^unclosed array/, "liste non fermée"], [/^unclosed table/, "table non fermée"], [/^unclosed inline table/, "table en ligne non fermée"],
+  [/^invalid float/, "nombre décimal invalide"], [/^invalid integer/, "nombre entier invalide"], [/^invalid number/, "nombre invalide"],
+  [/^unquoted keys cannot be empty/, "une clé sans guillemets ne peut pas être vide"],
+  [/^floating-point number overflowed$/, "nombre trop grand"],
+  [/, expected nothing$/, ""],
+  [/expected newline/, "attendu : fin de ligne"], [/letters, numbers/, "lettres, chiffres"],
+  [/, expected /g, ", attendu : "],
+];
+/** A message of the TOML reader in the page's language. */
+export function tomlWords(what) {
+  if (LANG !== "fr") return what;
+  return TOML_FR.reduce((s, [from, to]) => s.replace(from, to), String(what));
+}
 
 /** Liquids' usual names in French (a scene file names its liquids in its own words: a name
  * not in this list is shown as written). */

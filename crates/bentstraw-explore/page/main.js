@@ -8,7 +8,7 @@ import { errorShown, showError, errorText, linkRefusal, refuseLink } from "./err
 import { hook, frame, path, changed, requestFrame, sendFrame, settled, pick, forgetFrame, resized } from "./frames.js";
 import { drawCloud, drawLegend, screenOfPoint } from "./cloud.js";
 import { drawMaps } from "./maps.js";
-import { pathMarks } from "./picture.js";
+import { pathMarks, outlinePoints } from "./picture.js";
 import { showHint, showReadout, showStatus, showCommands } from "./readout.js";
 import { syncControls, fullscreenLabel, galleryReady, relabelGallery } from "./controls.js";
 import { sceneErrorShown, showSceneErrors, checkScene, useScene, refused } from "./scenetext.js";
@@ -116,6 +116,8 @@ window.bentstraw = Object.assign(hook, {
  * event's box [x, y, w, h], the texts written, the object's real point; null without one. (A
  * getter: Object.assign would copy its value once.) */
 Object.defineProperty(window.bentstraw, "pathMarks", { get: () => pathMarks });
+/** How many points of the objects' real outline the picture shows (0 when it is off). */
+Object.defineProperty(window.bentstraw, "outlinePoints", { get: () => outlinePoints });
 
 // The start: the address's state, else the command line's.
 (async () => {

@@ -5,9 +5,14 @@ import { sub, dot, orbitOf, fromOrbit } from "./geometry.js";
 import { pictureCanvas, sideCanvas, topCanvas } from "./dom.js";
 import { drawPath } from "./draw.js";
 import { drawLightPath } from "./lightpath.js";
+import { drawOutline } from "./outline.js";
 import { onDrag } from "./pointer.js";
 import { frame, path, changed, pick } from "./frames.js";
 import { sceneLines } from "./sketch.js";
+
+/** How many points of the objects' real outline the picture shows (0 when it is off). */
+export let outlinePoints = 0;
+document.addEventListener("bentstraw-outline", () => drawPicture());
 
 /** Where the clicked ray's drawing is on the picture (arrows, event boxes), null without one. */
 export let pathMarks = null;
@@ -19,6 +24,8 @@ export function drawPicture() {
   pictureCanvas.width = width; pictureCanvas.height = height;
   const ctx = pictureCanvas.getContext("2d");
   ctx.putImageData(new ImageData(frame.rgba, width, height), 0, 0);
+  const scale = width / Math.max(1, pictureCanvas.getBoundingClientRect().width);
+  outlinePoints = frame.header.camera ? drawOutline(ctx, pictureProjection(), scale) : 0;
   // The clicked ray where the eye sees it: its first stretch is the eye's line of sight (a point
   // here), the rest bends inside the liquid. Only over the picture of the same eye.
   const c = frame.header.camera;

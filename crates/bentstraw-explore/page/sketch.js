@@ -6,6 +6,7 @@ import { drawCloud } from "./cloud.js";
 import { drawMaps } from "./maps.js";
 import { syncControls } from "./controls.js";
 import { showLesson } from "./lesson.js";
+import { drawPicture } from "./picture.js";
 
 /** What the page draws of each scene file (wireframe, outlines, box), asked once per scene. */
 const sketches = {};
@@ -22,7 +23,7 @@ function fetchSketch(name) {
     for (let i = 0; i + 5 < sc.wireframe.length; i += 6) wire.push([pt(sc.wireframe, i), pt(sc.wireframe, i + 3)]);
     const outlines = sc.outlines.map((l) => Array.from({ length: l.length / 3 }, (_, i) => pt(l, 3 * i)));
     sketches[name] = { wire, outlines, bounds: sc.bounds, liquids: sc.liquids || [], container: sc.container || null, lesson: sc.lesson || null };
-    if (sceneKey(state) === name) { drawMaps(); drawCloud(); syncControls(); showLesson(); }
+    if (sceneKey(state) === name) { drawMaps(); drawCloud(); syncControls(); showLesson(); drawPicture(); }
   });
 }
 

@@ -31,7 +31,7 @@ const INDEX: &str = include_str!("../page/index.html");
 const JS: &str = "text/javascript; charset=utf-8";
 
 /// The page's files other than its HTML ([`index_html`]).
-pub const PAGE_FILES: [PageFile; 25] = [
+pub const PAGE_FILES: [PageFile; 26] = [
     // The page's entry module (index.html loads it; it imports the others, each one concept).
     PageFile {
         name: "main.js",
@@ -103,6 +103,11 @@ pub const PAGE_FILES: [PageFile; 25] = [
         name: "lesson.js",
         content_type: JS,
         text: include_str!("../page/lesson.js"),
+    },
+    PageFile {
+        name: "outline.js",
+        content_type: JS,
+        text: include_str!("../page/outline.js"),
     },
     PageFile {
         name: "cloud.js",
