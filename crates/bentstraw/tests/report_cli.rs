@@ -149,6 +149,9 @@ fn pdf_text(pdftotext: &Path, pdf: &Path) -> String {
 /// [`the_scene_report_prints_on_few_pages`]).
 pub fn the_scene_report_has_its_observers_and_validation(folder: &Path) {
     let index = fs::read_to_string(folder.join("index.html")).unwrap();
+    // What the scene teaches: its lesson's title, text and questions, in English.
+    assert!(index.contains("The broken straw"), "no lesson");
+    assert!(index.contains("Question 1: "), "no lesson question");
     let headings = headings(&index);
     for heading in [
         "The scene",
@@ -267,6 +270,12 @@ pub fn the_french_scene_report_is_in_french(folder: &Path) {
     }
     assert!(index.contains("carte") && index.contains("flèche"));
     assert!(index.contains("reversing-arrow"));
+    // The scene's lesson, in French: its title and its questions to the class.
+    assert!(
+        index.contains("La flèche qui s&#39;inverse"),
+        "no lesson title"
+    );
+    assert!(index.contains("Question 1 : "), "no lesson question");
 }
 
 /// The texts of the page's `<h1>` to `<h4>` headings, as read (entities decoded).
