@@ -2,6 +2,8 @@
 //! cloud seen through the same camera, side by side.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use bentstraw_optics::camera::{framing_fov, framing_target, Camera};
 use bentstraw_optics::frame::{draw_frame, Frame, FrameRequest};
@@ -74,14 +76,26 @@ pub fn checked_shading(spec: &PictureSpec) -> Result<ShadingOptions> {
 /// The picture `camera` takes of `world` with `shading`, drawn by the explorer's frame call
 /// (picture only): what `render` writes, the page shows and the Python package returns.
 pub fn picture(world: &World, camera: Camera, shading: ShadingOptions) -> RgbPicture {
-    let mut frame = Frame::default();
+    picture_until(world, camera, shading, &Arc::new(AtomicBool::new(false)))
+        .expect("a picture nobody stops is whole")
+}
+
+/// [`picture`], given up row by row once `stop` is set (another thread's: a Python caller's
+/// Ctrl-C): `None` then.
+pub fn picture_until(
+    world: &World,
+    camera: Camera,
+    shading: ShadingOptions,
+    stop: &Arc<AtomicBool>,
+) -> Option<RgbPicture> {
+    let mut frame = Frame::with_stop_flag(Arc::clone(stop));
     let request = FrameRequest {
         camera,
         shading,
         min_points: 0,
     };
     draw_frame(world, &request, &mut frame);
-    std::mem::take(&mut frame.picture)
+    (!stop.load(Ordering::Relaxed)).then(|| std::mem::take(&mut frame.picture))
 }
 
 /// The report's camera at `observer`: [`REPORT_SIZE`], aimed at the glass (not at its box's

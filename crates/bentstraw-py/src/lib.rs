@@ -9,11 +9,14 @@
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{mpsc, Arc};
+use std::time::Duration;
 
 use bentstraw_io::camera::{scene_camera, CameraSpec};
 use bentstraw_io::gallery::GALLERY;
 use bentstraw_io::grade as grading;
-use bentstraw_io::pictures::{checked_shading, picture};
+use bentstraw_io::pictures::{checked_shading, picture_until};
 use bentstraw_io::scene_input::{parse_scene_text, read_scene_text, SceneFile};
 use bentstraw_io::solution::{json_report, solution_of_points, CheckOptions, Solution};
 use bentstraw_io::words::Lang;
@@ -24,7 +27,7 @@ use bentstraw_optics::check::{check_solution, CheckReport};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
-use bentstraw_optics::sampling::{light_path_types, sample_image};
+use bentstraw_optics::sampling::{light_path_types, sample_image_until};
 use bentstraw_optics::setup::{SceneValues, Setup};
 use bentstraw_optics::text::number_text;
 use bentstraw_optics::text::refuse_choice;
@@ -46,6 +49,53 @@ fn python_error(e: Error) -> PyErr {
         Error::Io { .. } => PyOSError::new_err(e.to_string()),
         _ => PyValueError::new_err(e.to_string()),
     }
+}
+
+/// How often a computation's wait looks at the interpreter's signals (Ctrl-C, Jupyter's
+/// interrupt): well within the 0.2 s a person notices.
+const SIGNALS_EVERY: Duration = Duration::from_millis(40);
+
+/// Runs `work` on a thread of its own while the interpreter's other threads run, and looks at
+/// the interpreter's signals every [`SIGNALS_EVERY`]: on Ctrl-C (or Jupyter's "Interrupt
+/// kernel") it sets the stop flag `work` is given, waits for `work` to give up (the engine looks
+/// at the flag between rays and rows) and raises the signal's exception, `KeyboardInterrupt`, with
+/// nothing left running. `work`'s result is `None` when it stopped.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&Arc<AtomicBool>) -> Option<T> + Send,
+) -> PyResult<T> {
+    let stop = Arc::new(AtomicBool::new(false));
+    std::thread::scope(|s| {
+        let (done, mut finished) = mpsc::channel();
+        let flag = Arc::clone(&stop);
+        let worker = s.spawn(move || {
+            let out = work(&flag);
+            // (The waiting side may have gone: a signal's exception is being raised.)
+            let _ = done.send(());
+            out
+        });
+        loop {
+            // (The receiver goes to the waiting side and back: it may not be shared.)
+            let over;
+            (over, finished) =
+                py.detach(move || (finished.recv_timeout(SIGNALS_EVERY).is_ok(), finished));
+            if over {
+                break;
+            }
+            if let Err(signal) = py.check_signals() {
+                stop.store(true, Ordering::Relaxed);
+                // It gives up at once; a panic in it is its own bug, said as such.
+                let _ = py.detach(|| worker.join());
+                return Err(signal);
+            }
+        }
+        match worker.join() {
+            Ok(Some(out)) => Ok(out),
+            // Stopped without a signal to raise: cannot happen, the flag is only set above.
+            Ok(None) => Err(PyValueError::new_err("the computation was stopped")),
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
+    })
 }
 
 /// A scene loaded and checked, with its observer: what every call traces.
@@ -185,8 +235,8 @@ fn simulate<'py>(
     // The traced points, one row per point the model writes: for the course and the eye model
     // every image point; for the stereo model, those both eyes see. The columns are made while
     // other Python threads run; numpy then takes them over as they are.
-    let (stats, columns, extra) = py.detach(|| {
-        let mut cloud = sample_image(world, observer, points, &|_| {});
+    let (stats, columns, extra) = interruptible(py, |stop| {
+        let mut cloud = sample_image_until(world, observer, points, &|_| {}, stop)?;
         let stats = (
             cloud.rays_traced,
             cloud.spacing,
@@ -233,8 +283,8 @@ fn simulate<'py>(
                     ModelColumns::Course,
                 ),
             };
-        (stats, Columns::of(placed.as_deref(), &images), extra)
-    });
+        Some((stats, Columns::of(placed.as_deref(), &images), extra))
+    })?;
 
     let out = PyDict::new(py);
     let n = columns.color.len();
@@ -312,7 +362,7 @@ fn light_paths<'py>(
         .map(|r| Vec3::new(r[0], r[1], r[2]))
         .collect();
     let loaded = &scene.loaded;
-    let paths = py.detach(|| {
+    let paths = interruptible(py, |stop| {
         let mut paths = Vec::new();
         light_path_types(
             &loaded.world,
@@ -320,10 +370,10 @@ fn light_paths<'py>(
             &directions,
             |d| *d,
             &mut paths,
-            &std::sync::atomic::AtomicBool::new(false),
+            stop,
         );
-        paths
-    });
+        (!stop.load(Ordering::Relaxed)).then_some(paths)
+    })?;
     let out = PyDict::new(py);
     // The kinds of light path as small integers into a list of their names (sorted: direct
     // first, then by entry face and number of total reflections).
@@ -469,15 +519,15 @@ fn render<'py>(
     let fresnel = spec.fresnel;
     let shading = checked_shading(&spec).map_err(python_error)?;
     let world = &loaded.world;
-    let (image, codes, weights) = py.detach(|| {
-        let image = picture(world, camera, shading);
+    let (image, codes, weights) = interruptible(py, |stop| {
+        let image = picture_until(world, camera, shading, stop)?;
         let (codes, weights) = match (raw, fresnel) {
             (false, _) => (None, None),
             (true, false) => (Some(course_picture_exact(world, &camera)), None),
             (true, true) => (None, Some(fresnel_picture_exact(world, &camera, prune))),
         };
-        (image, codes, weights)
-    });
+        Some((image, codes, weights))
+    })?;
     let (w, h) = (image.width as usize, image.height as usize);
     let out = PyDict::new(py);
     out.set_item(

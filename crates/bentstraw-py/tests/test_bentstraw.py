@@ -10,6 +10,7 @@ import math
 import os
 import struct
 import subprocess
+import sys
 import threading
 import zlib
 from pathlib import Path
@@ -364,6 +365,43 @@ def test_the_engine_lets_other_python_threads_run_while_it_works():
         t.join()
     for r in results:
         assert same_bits(r.xyz, alone.xyz) and np.array_equal(r.color, alone.color)
+
+
+# A long call interrupted by Ctrl-C (SIGINT, as the terminal and Jupyter's "Interrupt kernel"
+# send it) as the process's first call: how long after the signal KeyboardInterrupt came, and the
+# processor time the process used in the 0.3 s after it (none: nothing left running).
+INTERRUPTED = r"""
+import os, signal, sys, threading, time
+import bentstraw
+fired = []
+def fire():
+    time.sleep(0.5)
+    fired.append(time.perf_counter())
+    os.kill(os.getpid(), signal.SIGINT)
+threading.Thread(target=fire, daemon=True).start()
+view = dict(observer=(0.1, 0, 0.1), straw=(0.02, 0.01), water_height=0.15)
+try:
+    if sys.argv[1] == "simulate":
+        bentstraw.simulate(**view, points=5_000_000)
+    else:
+        bentstraw.render(**view, size=(3840, 2160), mode="fresnel")
+    print("finished")
+except KeyboardInterrupt:
+    after = time.perf_counter() - fired[0]
+    cpu = time.process_time()
+    time.sleep(0.3)
+    print("interrupted", after, time.process_time() - cpu)
+"""
+
+
+@pytest.mark.parametrize("call", ["simulate", "render"])
+def test_ctrl_c_stops_a_long_call_at_once_with_keyboard_interrupt(call):
+    p = subprocess.run([sys.executable, "-c", INTERRUPTED, call], capture_output=True, text=True, timeout=120)
+    words = p.stdout.split()
+    assert words and words[0] == "interrupted", p.stdout + p.stderr
+    after, cpu = float(words[1]), float(words[2])
+    assert after < 0.2, f"KeyboardInterrupt came {after:.3f} s after the signal"
+    assert cpu < 0.02, f"{cpu:.3f} s of processor time after it: something still runs"
 
 
 def test_arrays_are_the_engines_buffers_not_copies():
