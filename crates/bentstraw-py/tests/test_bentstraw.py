@@ -314,6 +314,43 @@ def test_a_broken_rule_raises_value_error_naming_the_value(call, words):
     assert words in str(e.value)
 
 
+@pytest.mark.parametrize(
+    "call, words",
+    [
+        (lambda: bentstraw.simulate(**dict(REF2, observer="123")), "observer must be a sequence or array of 3 numbers, not str"),
+        (lambda: bentstraw.simulate(**dict(REF2, observer={0.1, 0.0, 0.2})), "observer must be a sequence or array of 3 numbers, not set"),
+        (lambda: bentstraw.simulate(**dict(REF2, straw={"x": 0, "y": 0.02})), "straw must be a sequence or array of 2 numbers, not dict"),
+        (lambda: bentstraw.simulate(**dict(REF2, straw=(0, "0.02"))), "straw must be a number, not str"),
+        (lambda: bentstraw.simulate(**dict(REF2, observer=(0.1, True, 0.1))), "observer must be a number, not bool"),
+        (lambda: bentstraw.simulate(**dict(REF2, water_height="0.15")), "water_height must be a number, not str"),
+        (lambda: bentstraw.simulate(**REF2, points=1000.0), "points must be a whole number, not float"),
+        (lambda: bentstraw.simulate(**REF2, max_events=True), "max_events must be a whole number, not bool"),
+        (lambda: bentstraw.render(**REF2, weights="no"), "weights must be True or False, not str"),
+        (lambda: bentstraw.render(**REF2, fov="wide"), "fov must be a number, not str"),
+        (lambda: bentstraw.render(**REF2, prune="0.01"), "prune must be a number, not str"),
+    ],
+)
+def test_a_value_of_the_wrong_type_raises_type_error_naming_its_keyword(call, words):
+    with pytest.raises(TypeError) as e:
+        call()
+    assert words in str(e.value)
+
+
+def test_numbers_beyond_the_engines_integers_are_value_errors_naming_their_keyword():
+    for call, words in [
+        (lambda: bentstraw.render(**REF2, samples=2**40), "samples must be a whole number from 0 to"),
+        (lambda: bentstraw.simulate(**REF2, points=2**70), "points must be a whole number from 0 to"),
+    ]:
+        with pytest.raises(ValueError, match=words):
+            call()
+    # numpy's numbers and arrays are numbers and vectors: the same points as plain ones.
+    plain = bentstraw.simulate(**REF2, points=500)
+    arrays = bentstraw.simulate(
+        observer=np.array([0.1, 0.0, 0.1]), straw=np.array([0, 0.02]), water_height=np.float64(0.1), points=np.int64(500)
+    )
+    assert np.array_equal(plain.xyz, arrays.xyz)
+
+
 def test_the_command_lines_messages_and_every_broken_rule_at_once(tmp_path):
     p = run("simulate", *REF2_FLAGS[:4], "--water-height", "-1", "--output", tmp_path / "x.csv", ok=False)
     with pytest.raises(ValueError) as e:

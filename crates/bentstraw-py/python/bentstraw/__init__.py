@@ -26,6 +26,7 @@ from __future__ import annotations
 import json
 import os
 import warnings
+from collections import abc
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -206,14 +207,23 @@ def _load(
     return loaded
 
 
+def _real(x: Any, name: str) -> float:
+    """One number given for ``name``: an int, a float or a numpy number (a bool or a string is
+    not one: ``True`` or ``"0.15"`` are refused, not read as 1.0 or 0.15), else a TypeError
+    naming it."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a number, not {type(x).__name__} {x!r}")
+    return float(x)
+
+
 def _vector(v: Optional[Sequence[float]], n: int, name: str) -> Optional[Tuple[float, ...]]:
-    """``v`` as ``n`` floats (or None), or a ValueError naming it."""
+    """``v`` as ``n`` floats (or None): a sequence or array of numbers. A string, a set (no
+    order) or a dict is a TypeError naming ``name``; the wrong count a ValueError."""
     if v is None:
         return None
-    try:
-        values = tuple(float(x) for x in v)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be {n} numbers, not {v!r}") from None
+    if isinstance(v, (str, bytes, set, frozenset, dict)) or not isinstance(v, (abc.Sequence, np.ndarray)):
+        raise TypeError(f"{name} must be a sequence or array of {n} numbers, not {type(v).__name__} {v!r}")
+    values = tuple(_real(x, name) for x in v)
     if len(values) != n:
         raise ValueError(f"{name} must be {n} numbers, not {len(values)}: {v!r}")
     return values
@@ -231,18 +241,27 @@ def _size(size: Sequence[int]) -> Tuple[int, int]:
 
 
 def _number(v: Optional[float], name: str) -> Optional[float]:
+    """``v`` as a float (or None); a string or a bool is a TypeError naming ``name``."""
     if v is None:
         return None
-    try:
-        return float(v)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, not {v!r}") from None
+    return _real(v, name)
 
 
-def _count(v: int, name: str) -> int:
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
-        raise ValueError(f"{name} must be a whole number >= 0, not {v!r}")
+def _count(v: int, name: str, most: int = 2**31 - 1) -> int:
+    """``v`` as a whole number from 0 to ``most`` (the engine's own rules then apply): another
+    type is a TypeError, a number out of that range a ValueError, both naming ``name``."""
+    if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer)):
+        raise TypeError(f"{name} must be a whole number, not {type(v).__name__} {v!r}")
+    if not 0 <= v <= most:
+        raise ValueError(f"{name} must be a whole number from 0 to {most}, not {v!r}")
     return int(v)
+
+
+def _flag(v: bool, name: str) -> bool:
+    """``v`` as True or False; anything else (``"no"``, 0) is a TypeError naming ``name``."""
+    if not isinstance(v, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, not {type(v).__name__} {v!r}")
+    return bool(v)
 
 
 class Simulation:
@@ -386,7 +405,7 @@ def simulate(
     >>> _ = ax.scatter(*sim.xyz.T, c=sim.color, cmap="rainbow", s=1)
     """
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
-    fields = _engine.simulate(loaded, _count(points, "points"), image_model)
+    fields = _engine.simulate(loaded, _count(points, "points", 2**63 - 1), image_model)
     return Simulation(fields, loaded, image_model)
 
 
@@ -429,7 +448,7 @@ def render(
     size_ = None if size is None else _size(size)
     out = _engine.render(
         loaded, size_, _vector(target, 3, "target"), _number(fov, "fov"), mode,
-        float(prune), backdrop, _count(samples, "samples"), bool(weights),
+        _real(prune, "prune"), backdrop, _count(samples, "samples"), _flag(weights, "weights"),
     )
     if not weights:
         return out["pixels"]
