@@ -288,19 +288,19 @@ def test_assert_solution_passes_the_image_and_fails_the_rest_with_its_partial_sc
     [
         (lambda: bentstraw.simulate(**dict(REF2, water_height=-1)), "water height -1 m"),
         (lambda: bentstraw.simulate(observer=(0, 0, 0.1), straw=(0, 0.02), water_height=0.1), "observer"),
-        (lambda: bentstraw.simulate(**REF2, points=0), "--points 0"),
-        (lambda: bentstraw.simulate(**REF2, points=3_000_000, image_model="eye"), "--points 3000000"),
+        (lambda: bentstraw.simulate(**REF2, points=0), "points=0 is not allowed"),
+        (lambda: bentstraw.simulate(**REF2, points=3_000_000, image_model="eye"), "points=3000000 is too many"),
         (lambda: bentstraw.simulate(**REF2, image_model="retina"), "'retina' for 'image_model'"),
         (lambda: bentstraw.simulate(**dict(REF2, max_events=0)), "0"),
-        (lambda: bentstraw.simulate(observer=(0.1, 0, 0.1)), "--water-height"),
+        (lambda: bentstraw.simulate(observer=(0.1, 0, 0.1)), "straw and water_height, or a scene file"),
         (lambda: bentstraw.render(**REF2, mode="photon"), "'photon' for 'mode'"),
-        (lambda: bentstraw.render(**REF2, samples=17, prune=2), "--prune 2"),
+        (lambda: bentstraw.render(**REF2, samples=17, prune=2), "prune=2 is not allowed"),
         (lambda: bentstraw.render(**REF2, size=(0, 10)), "0"),
         (lambda: bentstraw.check([[0, 0, 0]], [9], **REF2), "point 0: colour 9"),
         (lambda: bentstraw.check([[0, 0, math.nan]], [1], **REF2), "point 0: z = NaN"),
         (lambda: bentstraw.check([[0, 0, 0]], [1, 2], **REF2), "1 points but 2 colours"),
         (lambda: bentstraw.check([[0, 0]], [1], **REF2), "(N, 3)"),
-        (lambda: bentstraw.check([[0, 0, 0]], [1], **REF2, tolerance=-1, min_coverage=2), "--tolerance -1"),
+        (lambda: bentstraw.check([[0, 0, 0]], [1], **REF2, tolerance=-1, min_coverage=2), "tolerance=-1"),
         (lambda: bentstraw.trace(**REF2, direction=(0, 0, 0)), "direction (0, 0, 0)"),
         (lambda: bentstraw.trace(**REF2, direction=(1, 0, 0), toward=(0, 0, 0)), "not both"),
         (lambda: bentstraw.Scene.from_toml('[container]\nshape = "glass"\nradius = -1\nheight = 0.2\n'), "radius"),
@@ -356,9 +356,16 @@ def test_the_command_lines_messages_and_every_broken_rule_at_once(tmp_path):
     with pytest.raises(ValueError) as e:
         bentstraw.simulate(**dict(REF2, water_height=-1))
     assert str(e.value) in p.stderr
+    # The command line's words, its flags written as the keywords the call was given.
+    p = run("simulate", *REF2_FLAGS, "--points", "0", "--output", tmp_path / "x.csv", ok=False)
+    with pytest.raises(ValueError) as e:
+        bentstraw.simulate(**REF2, points=0)
+    assert "--points 0 is not allowed" in p.stderr
+    assert str(e.value) in p.stderr.replace("--points 0", "points=0")
+    assert "--" not in str(e.value)
     with pytest.raises(ValueError) as e:
         bentstraw.check([[0, 0, 0]], [1], **REF2, tolerance=-1, min_coverage=2)
-    assert "--tolerance -1" in str(e.value) and "--min-coverage 2" in str(e.value)
+    assert "tolerance=-1" in str(e.value) and "min_coverage=2" in str(e.value)
     with pytest.raises(FileNotFoundError):
         bentstraw.Scene.load(tmp_path / "absent.toml")
     with pytest.raises(FileNotFoundError, match="no-such-scene"):

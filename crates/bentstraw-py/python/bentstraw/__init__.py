@@ -23,15 +23,49 @@ explained in the project's ``docs/physics.md``.
 
 from __future__ import annotations
 
+import functools
 import json
 import os
+import re
 import warnings
 from collections import abc
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, TypeVar, Union
 
 import numpy as np
 
 from . import _engine
+
+# The engine words its refusals as the command line does, naming its flags (`--points 0`); a
+# Python caller reads them with the keywords it wrote (`points=0`).
+_FLAG = re.compile(r"--([a-z][a-z0-9-]*)(?:[ =](?=[-+\d.(\"']))?")
+_KEYWORD = {"raw": "weights"}
+
+
+def _keywords(message: str) -> str:
+    """``message`` with each command-line flag written as the Python keyword it stands for:
+    ``--points 0`` as ``points=0``, a flag named without its value as the keyword alone."""
+
+    def keyword(m: "re.Match[str]") -> str:
+        name = _KEYWORD.get(m.group(1), m.group(1).replace("-", "_"))
+        return name + "=" if m.group(0)[-1] in " =" else name
+
+    return _FLAG.sub(keyword, message)
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _keyworded(f: _F) -> _F:
+    """``f``, its ``ValueError``s naming Python's keywords rather than the command line's flags."""
+
+    @functools.wraps(f)
+    def call(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return f(*args, **kwargs)
+        except ValueError as e:
+            raise ValueError(_keywords(str(e))) from None
+
+    return call  # type: ignore[return-value]
 
 __all__ = [
     "Scene",
@@ -105,6 +139,7 @@ class Scene:
 
     __slots__ = ("_name", "_text")
 
+    @_keyworded
     def __init__(self, text: str, name: str = "scene.toml") -> None:
         """The scene file ``text`` (TOML), named ``name`` in messages; refused with a
         ``ValueError`` listing every broken rule."""
@@ -113,6 +148,7 @@ class Scene:
         self._text = text
 
     @classmethod
+    @_keyworded
     def load(cls, path: Union[str, "os.PathLike[str]"]) -> "Scene":
         """The scene file at ``path`` (at most 1 MB of UTF-8 TOML), read and checked.
 
@@ -124,6 +160,7 @@ class Scene:
         return scene
 
     @classmethod
+    @_keyworded
     def from_toml(cls, text: str, name: str = "scene.toml") -> "Scene":
         """The scene file whose text is ``text``, checked (``name`` names it in messages).
 
@@ -134,6 +171,7 @@ class Scene:
         return cls(text, name)
 
     @classmethod
+    @_keyworded
     def gallery(cls, name: str) -> "Scene":
         """The gallery's demonstration ``name`` (see :func:`gallery` for the names).
 
@@ -339,6 +377,7 @@ class Simulation:
         #: The scene file's name, or None for the assignment's glass given by its numbers.
         self.scene_name = scene_name
 
+    @_keyworded
     def _light_paths(self) -> Dict[str, Any]:
         # Each point's ray traced once more, on first use (it costs about as much as the points).
         if self._paths is None:
@@ -377,6 +416,7 @@ class Simulation:
                 f"{self.image_model} model>")
 
 
+@_keyworded
 def simulate(
     scene: SceneLike = None,
     *,
@@ -409,6 +449,7 @@ def simulate(
     return Simulation(fields, loaded, image_model)
 
 
+@_keyworded
 def render(
     scene: SceneLike = None,
     *,
@@ -455,6 +496,7 @@ def render(
     return out["pixels"], out["codes"] if "codes" in out else out["weights"]
 
 
+@_keyworded
 def check(
     xyz: Any,
     color: Any,
@@ -487,6 +529,7 @@ def check(
     return json.loads(report)
 
 
+@_keyworded
 def grade(
     class_dir: Union[str, "os.PathLike[str]"],
     out: Union[str, "os.PathLike[str]"],
@@ -524,6 +567,7 @@ class SolutionError(AssertionError):
         self.max_score: float = row["max_score"]
 
 
+@_keyworded
 def assert_solution(
     xyz: Any,
     color: Any,
@@ -586,6 +630,7 @@ def _points(xyz: Any, color: Any) -> Tuple[np.ndarray, np.ndarray]:
     return points, codes
 
 
+@_keyworded
 def trace(
     scene: SceneLike = None,
     *,
