@@ -464,6 +464,26 @@ def test_the_gallery_and_its_scenes():
     assert len(names) >= 16 and "leaning-straw" in names and "reversing-arrow" in names
     for name in names:
         assert bentstraw.Scene.gallery(name).name == name
+    # A typo gets the nearest names first.
+    with pytest.raises(ValueError, match="did you mean 'leaning-straw'"):
+        bentstraw.Scene.gallery("leaning-staw")
+
+
+@pytest.mark.parametrize("image_model", ["course", "eye", "stereo"])
+def test_results_pickle_and_are_read_only(image_model):
+    import pickle
+
+    sim = bentstraw.simulate(**REF2, points=2000, image_model=image_model)
+    again = pickle.loads(pickle.dumps(sim))
+    for name in ["xyz", "image_xyz", "color", "direction", "path_length", "object_point", "events"]:
+        assert same_bits(getattr(again, name), getattr(sim, name)), name
+        # Results: none may be edited in place (the course's xyz is its image_xyz).
+        with pytest.raises(ValueError):
+            getattr(sim, name)[0] = 0
+        with pytest.raises(ValueError):
+            getattr(again, name)[0] = 0
+    assert list(again.path) == list(sim.path) and again.observer == sim.observer
+    assert repr(again) == repr(sim)
 
 
 def test_the_docstrings_examples_run_as_written(monkeypatch):

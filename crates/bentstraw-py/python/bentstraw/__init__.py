@@ -23,6 +23,7 @@ explained in the project's ``docs/physics.md``.
 
 from __future__ import annotations
 
+import difflib
 import functools
 import json
 import os
@@ -183,8 +184,12 @@ class Scene:
                 scene = cls.__new__(cls)
                 scene._name, scene._text = stem, text
                 return scene
-        names = ", ".join(stem for stem, _ in _engine.gallery())
-        raise ValueError(f"no gallery scene is called {name!r}: the gallery has {names}")
+        stems = [stem for stem, _ in _engine.gallery()]
+        near = difflib.get_close_matches(name, stems, n=3, cutoff=0.6)
+        hint = f"did you mean {' or '.join(repr(n) for n in near)}? " if near else ""
+        raise ValueError(
+            f"no gallery scene is called {name!r}: {hint}the gallery has {', '.join(stems)}"
+        )
 
     @property
     def name(self) -> str:
@@ -366,6 +371,7 @@ class Simulation:
 
     def __init__(self, fields: Dict[str, Any], scene: Any, image_model: str) -> None:
         self.__dict__.update(fields)
+        self._read_only()
         self._scene = scene
         self._paths: Optional[Dict[str, Any]] = None
         observer = tuple(scene.observer)
@@ -376,6 +382,24 @@ class Simulation:
         self.image_model = image_model
         #: The scene file's name, or None for the assignment's glass given by its numbers.
         self.scene_name = scene_name
+
+    def _read_only(self) -> None:
+        # The columns are results: read-only, so that editing one (the course's ``xyz`` is its
+        # ``image_xyz``) cannot change another behind one's back. ``.copy()`` gives one to edit.
+        for v in self.__dict__.values():
+            if isinstance(v, np.ndarray):
+                v.setflags(write=False)
+
+    def __getstate__(self) -> Dict[str, Any]:
+        # Pickled (multiprocessing, joblib, a cache) with its light paths, found now: the engine's
+        # loaded scene they need does not travel.
+        self._light_paths()
+        return {k: v for k, v in self.__dict__.items() if k != "_scene"}
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self._scene = None
+        self._read_only()
 
     @_keyworded
     def _light_paths(self) -> Dict[str, Any]:
