@@ -400,7 +400,13 @@ fn refused_clients_make_room_at_once() {
         s.write_all(b"\x01\x02 nonsense\r\n\r\n").unwrap();
     }
     for s in &mut refused {
-        assert_eq!(read_answer(s).status, 400);
+        // A 400, or the connection closed to make room before this side read its answer (the
+        // reset then drops the answer waiting here): refused either way, never served.
+        let mut line = String::new();
+        match BufReader::new(s).read_line(&mut line) {
+            Ok(_) => assert!(line.starts_with("HTTP/1.1 400"), "{line:?}"),
+            Err(e) => assert_eq!(e.kind(), std::io::ErrorKind::ConnectionReset, "{e}"),
+        }
     }
     let asked = Instant::now();
     assert_eq!(server.get("/api/scenes", "").status, 200);
