@@ -1753,7 +1753,7 @@ test("a glass of revolution: its profiles in the Objects panel and on both maps,
 });
 
 test("the maps are framed on the glass: handles a finger apart, a far eye at the edge, a straw leaned by its handle from above", async () => {
-  const { page, context, problems } = await openPage(browser, server.url, { width: 1366, height: 768 });
+  const { page, context, problems } = await openPage(browser, server.url, { width: 1400, height: 900 });
   await page.goto(server.url + "#scene=two-straws&observer=0.25,0,0.17");
   await waitReady(page);
   await page.waitForFunction(() => document.getElementById("map-top").handles.some((h) => h.kind === "lean"));
