@@ -15,6 +15,19 @@ export function fit(canvas) {
 }
 
 
+/** Adds the 3D polyline `points` to the current path through the projection `pr`, broken where a
+ * point cannot be drawn; how many points it drew. */
+export function tracePolyline(ctx, pr, points) {
+  let open = false, n = 0;
+  for (const q of points) {
+    const at = pr.p(q);
+    if (!at) { open = false; continue; }
+    if (open) ctx.lineTo(...at); else ctx.moveTo(...at);
+    open = true; n++;
+  }
+  return n;
+}
+
 /** The clicked ray through the projection `pr` (a 3D point to the canvas, or null where it
  * cannot be drawn): its broken path, each event marked (a disk for a refraction, a square for a
  * total reflection), and with `labels` the image points of the three models, named without
@@ -23,17 +36,7 @@ export function drawPath(ctx, pr, { labels = true, size = 1 } = {}) {
   const pts = [path.observer, ...path.events.map((e) => e.point)];
   if (path.outcome === "straw") pts.push(path.straw_point);
   else if (path.leaves) pts.push(add(path.leaves.from, scale(path.leaves.direction, 0.15)));
-  const polyline = (points) => {
-    ctx.beginPath();
-    let open = false;
-    for (const q of points) {
-      const at = pr.p(q);
-      if (!at) { open = false; continue; }
-      if (open) ctx.lineTo(...at); else ctx.moveTo(...at);
-      open = true;
-    }
-    ctx.stroke();
-  };
+  const polyline = (points) => { ctx.beginPath(); tracePolyline(ctx, pr, points); ctx.stroke(); };
   // A light halo under the line, so that it reads on a dark or busy picture too.
   ctx.lineCap = "round";
   ctx.lineWidth = 5 * size; ctx.strokeStyle = "rgba(255,255,255,0.7)"; polyline(pts);

@@ -659,24 +659,24 @@ export function markObjects(error) {
   for (const el of objectsEl.querySelectorAll("[aria-invalid]")) el.removeAttribute("aria-invalid");
   for (const el of objectsEl.querySelectorAll(".field-rule")) el.remove();
   for (const el of objectsEl.querySelectorAll("[aria-describedby^='rule-']")) el.removeAttribute("aria-describedby");
-  // Under each control a rule names, the rule's own words: what the value must be (its range).
-  for (const r of error && error.refusal ? error.refusal.rules : []) {
-    const key = (r.key || "").replace(/^(\w+(?:\[\d+\])?\.\w+)\[\d+\]$/, "$1");
-    const el = key && objectsEl.querySelector(`[data-key="${CSS.escape(key)}"]`);
-    const label = el && el.closest("label");
-    if (!label || label.querySelector(".field-rule")) continue;
-    const note = document.createElement("small");
-    note.className = "field-rule"; note.id = "rule-" + key.replace(/[^\w]/g, "-");
-    note.textContent = ruleWords(r);
-    label.appendChild(note);
-    el.setAttribute("aria-describedby", note.id);
-  }
   // A rule about one point of a list (`container.inner[2]`) marks the list's control.
-  const keys = (error && error.refusal ? error.refusal.rules.map((r) => r.key) : error && error.params && error.params.key ? [error.params.key] : [])
-    .map((key) => key.replace(/^(\w+(?:\[\d+\])?\.\w+)\[\d+\]$/, "$1"));
+  const control = (key) => (key || "").replace(/^(\w+(?:\[\d+\])?\.\w+)\[\d+\]$/, "$1");
+  const rules = error && error.refusal ? error.refusal.rules : [];
+  const keys = (rules.length ? rules.map((r) => r.key) : error && error.params && error.params.key ? [error.params.key] : []).map(control);
   for (const key of keys) {
     for (const el of objectsEl.querySelectorAll(`[data-key="${CSS.escape(key)}"], [data-object="${CSS.escape(key)}"]`)) el.setAttribute("aria-invalid", "true");
   }
+  // Under each control a rule names, the rule's own words: what the value must be (its range).
+  rules.forEach((r, i) => {
+    const el = keys[i] && objectsEl.querySelector(`[data-key="${CSS.escape(keys[i])}"]`);
+    const label = el && el.closest("label");
+    if (!label || label.querySelector(".field-rule")) return;
+    const note = document.createElement("small");
+    note.className = "field-rule"; note.id = "rule-" + keys[i].replace(/[^\w]/g, "-");
+    note.textContent = ruleWords(r);
+    label.appendChild(note);
+    el.setAttribute("aria-describedby", note.id);
+  });
   const text = errorText(error);
   objectsErrorsEl.replaceChildren(...text.split("\n").filter((l) => l.trim()).map((l) => { const li = document.createElement("li"); li.textContent = l; return li; }));
   objectsErrorsEl.hidden = !text;

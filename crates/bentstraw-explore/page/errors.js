@@ -13,7 +13,7 @@ export function ruleWords(r) {
 
 /** One broken rule's line in the page's language: `key = value: rule`, its numbers written as
  * the language writes them, words from the file as they are. */
-export function ruleLine(r) {
+function ruleLine(r) {
   const rule = ruleWords(r);
   let line = !r.key ? rule : r.value !== null ? t("refusal.value", { key: r.key, value: localNumber(r.value), rule }) : t("refusal.key", { key: r.key, rule });
   if (r.line) line = t("refusal.line", { line: r.line, rule: line });

@@ -5,6 +5,7 @@
 import { state, STRAW_R, STRAW_H } from "./state.js";
 import { $ } from "./dom.js";
 import { currentSketch } from "./sketch.js";
+import { tracePolyline } from "./draw.js";
 
 /** Whether the outline is shown (the "Where it really is" button). */
 export let outlineShown = false;
@@ -38,15 +39,8 @@ export function drawOutline(ctx, pr, size) {
   const stroke = (width, colour, dash) => {
     ctx.lineWidth = width * size; ctx.strokeStyle = colour; ctx.setLineDash(dash.map((d) => d * size));
     ctx.beginPath();
-    for (const line of outlines()) {
-      let open = false;
-      for (const q of line) {
-        const at = pr.p(q);
-        if (!at) { open = false; continue; }
-        if (open) ctx.lineTo(...at); else ctx.moveTo(...at);
-        open = true; n++;
-      }
-    }
+    n = 0;
+    for (const line of outlines()) n += tracePolyline(ctx, pr, line);
     ctx.stroke();
   };
   stroke(3, "rgba(20,20,20,0.55)", []);

@@ -24,14 +24,13 @@ export function drawPicture() {
   pictureCanvas.width = width; pictureCanvas.height = height;
   const ctx = pictureCanvas.getContext("2d");
   ctx.putImageData(new ImageData(frame.rgba, width, height), 0, 0);
-  const scale = width / Math.max(1, pictureCanvas.getBoundingClientRect().width);
-  outlinePoints = frame.header.camera ? drawOutline(ctx, pictureProjection(), scale) : 0;
+  // Lines and marks drawn over it keep their size on screen: the frame's pixels per CSS pixel.
+  const scaleUp = width / Math.max(1, pictureCanvas.getBoundingClientRect().width);
+  const c = frame.header.camera, pr = c ? pictureProjection() : null;
+  outlinePoints = pr ? drawOutline(ctx, pr, scaleUp) : 0;
   // The clicked ray where the eye sees it: its first stretch is the eye's line of sight (a point
   // here), the rest bends inside the liquid. Only over the picture of the same eye.
-  const c = frame.header.camera;
   if (path && c && dot(sub(path.observer, c.eye), sub(path.observer, c.eye)) < 1e-18) {
-    const scaleUp = width / Math.max(1, pictureCanvas.getBoundingClientRect().width);
-    const pr = pictureProjection();
     drawPath(ctx, pr, { labels: false, size: scaleUp });
     pathMarks = drawLightPath(ctx, pr, width, scaleUp);
   } else pathMarks = null;

@@ -351,13 +351,12 @@ pub fn scenes_reply() -> Reply {
         .iter()
         .filter_map(|(stem, text)| {
             let w = gallery_setup(stem, text, DEFAULT_MAX_EVENTS).ok()?;
-            let lesson = parse_scene_text(stem, text).ok()?.lesson;
             Some(json!({
                 "name": stem,
                 "title": stem.replace('-', " "),
                 "shows": opening_comment(text),
                 "observer": vec_json(w.observer),
-                "lesson": lesson_json(lesson.as_ref()),
+                "lesson": lesson_json(w.description.lesson.as_ref()),
             }))
         })
         .collect();
