@@ -14,6 +14,7 @@ import { drawMaps } from "./maps.js";
 import { showSceneErrors, applySceneText, checkScene, useScene, cancelTyping, sceneText } from "./scenetext.js";
 
 /** Each kind of object's keys as the file names them, with their unit ("" a pure number, "text",
+ * "tint" a colour "#rrggbb" or nothing,
  * "m3" a point, "v3" a direction's three numbers, "xy" a list of pairs written "x, y; x, y; …",
  * a prism's corners or a profile's points r, z, or the words a value may be), and the key of
  * their words where the name's own are another's. */
@@ -21,7 +22,7 @@ const FORM_FIELDS = {
   glass: [["radius", "m"], ["height", "m"], ["wall", "m"], ["bottom", "m"], ["index", ""]],
   tank: [["half_x", "m"], ["half_y", "m"], ["height", "m"]],
   revolution: [["outer", "xy"], ["inner", "xy"], ["index", ""]],
-  liquid: [["name", "text"], ["index", ""], ["top", "m"]],
+  liquid: [["name", "text"], ["index", ""], ["top", "m"], ["tint", "tint"]],
   straw: [["x", "m"], ["y", "m"], ["tilt", "°"], ["azimuth", "°"], ["radius", "m"], ["length", "m"]],
   coin: [["x", "m"], ["y", "m"], ["radius", "m"], ["thickness", "m"]],
   card: [["center", "m3"], ["facing", "°"], ["width", "m"], ["height", "m"], ["picture", ["arrow", "none"]]],
@@ -469,7 +470,7 @@ function field(key, name, unit, value) {
   label.append(words);
   const input = (i, v) => {
     const el = document.createElement("input");
-    if (unit === "text") { el.type = "text"; el.value = v ?? ""; }
+    if (unit === "text" || unit === "tint") { el.type = "text"; el.value = v ?? ""; }
     else if (unit === "xy") { el.type = "text"; el.value = cornersText(v); el.spellcheck = false; }
     else {
       // Text, read as the page's language writes numbers (a decimal comma in French); the arrow
@@ -504,6 +505,16 @@ function field(key, name, unit, value) {
     const row = document.createElement("span");
     (value || [0, 0, 0]).forEach((v, i) => row.append(input(i, v)));
     if (unit === "m3") { const u = document.createElement("span"); u.className = "unit"; u.textContent = " m"; row.append(u); }
+    label.append(row);
+  } else if (unit === "tint") {
+    // The colour written as text (empty: a clear liquid), with a swatch that picks it.
+    const row = document.createElement("span"), text = input(null, value);
+    text.placeholder = "#rrggbb"; text.spellcheck = false; text.style.width = "6em";
+    const swatch = document.createElement("input");
+    swatch.type = "color"; swatch.className = "tint-swatch"; swatch.value = value || "#ffffff";
+    swatch.setAttribute("aria-label", t("field.tint"));
+    swatch.addEventListener("change", () => { text.value = swatch.value; text.dispatchEvent(new Event("change", { bubbles: true })); });
+    row.append(text, swatch);
     label.append(row);
   } else {
     const row = document.createElement("span");
@@ -567,7 +578,8 @@ function fillObjects(form) {
     const v = formValue(form, el.dataset.key);
     const part = el.dataset.part;
     const unit = el.dataset.unit;
-    el.value = part !== undefined ? shownNumber(v ? v[Number(part)] : "") : unit === "xy" ? cornersText(v) : unit === "text" || el.tagName === "SELECT" ? (v ?? "") : shownNumber(v);
+    el.value = part !== undefined ? shownNumber(v ? v[Number(part)] : "") : unit === "xy" ? cornersText(v) : unit === "text" || unit === "tint" || el.tagName === "SELECT" ? (v ?? "") : shownNumber(v);
+    if (unit === "tint" && el.nextElementSibling) el.nextElementSibling.value = /^#[0-9a-f]{6}$/i.test(v ?? "") ? v.toLowerCase() : "#ffffff";
     el.removeAttribute("aria-invalid");
   }
 }
@@ -636,6 +648,8 @@ objectsEl.addEventListener("change", (e) => {
       return;
     }
   } else if (el.tagName === "SELECT" || el.dataset.unit === "text") value = el.value;
+  // (An empty tint is none: the key is left out of the file.)
+  else if (el.dataset.unit === "tint") value = el.value.trim() || undefined;
   else {
     value = readNumber(el.value);
     if (!Number.isFinite(value)) {
@@ -760,7 +774,7 @@ export function handlesOf(form, P, side) {
       const s = along(o.center), at = P(s, o.center[2]);
       hs.push(sphereHandle(k, at, Math.abs(P(s + o.diameter / 2, o.center[2])[0] - at[0]), "lens"));
     });
-    return hs;
+    return spreadHandles(hs);
   }
   for (const kind of ["straw", "coin"]) (form[kind] || []).forEach((o, k) => hs.push({ kind, k, at: P(o.x, o.y) }));
   // A straw's lean: a handle where its top end is seen from above (LEAN_PX beyond its foot along
@@ -793,6 +807,51 @@ export function handlesOf(form, P, side) {
     const e = P(o.center[0] + (flat ? 1 : ax) * 1e-3, o.center[1] + (flat ? 0 : ay) * 1e-3), dx = e[0] - at[0], dy = e[1] - at[1], d = Math.hypot(dx, dy) || 1;
     hs.push({ kind: "axis", k, from: at, at: [at[0] + (AXIS_PX * dx) / d, at[1] + (AXIS_PX * dy) / d], ring: 3.5 });
   });
+  return spreadHandles(hs);
+}
+/** Least distance between the handles of two objects on a map (pixels): a fingertip's width. */
+const SPREAD_PX = 44;
+/**
+ * Objects' handles a fingertip apart: where two objects' handles come closer than SPREAD_PX
+ * (two straws a few millimetres apart, a coin under a straw), each object's handles are moved
+ * apart together, as a callout: `home` is where the handle belongs (drawn with a thin line to
+ * it) and `shift` the pixels a drag takes off the pointer, so the object still follows the
+ * finger. A prism's corners and a glass's profile points stay on the outline they shape.
+ */
+function spreadHandles(hs) {
+  const owner = { lean: "straw", axis: "lens" }, groups = new Map();
+  for (const h of hs) {
+    if (h.kind === "corner" || h.kind === "profile") continue;
+    const key = (owner[h.kind] || h.kind) + ":" + h.k;
+    if (!groups.has(key)) groups.set(key, { members: [], d: [0, 0] });
+    groups.get(key).members.push(h);
+  }
+  const list = [...groups.values()], at = (h, g) => [h.at[0] + g.d[0], h.at[1] + g.d[1]];
+  for (let pass = 0; pass < 16; pass++) {
+    let moved = false;
+    for (let a = 0; a < list.length; a++) for (let b = a + 1; b < list.length; b++) {
+      let near = null;
+      for (const p of list[a].members) for (const q of list[b].members) {
+        const [pa, pb] = [at(p, list[a]), at(q, list[b])], d = Math.hypot(pb[0] - pa[0], pb[1] - pa[1]);
+        // (Handles on one spot part along a direction of their own.)
+        if (!near || d < near.d) near = { d, u: d > 1e-6 ? [(pb[0] - pa[0]) / d, (pb[1] - pa[1]) / d] : [Math.cos(a + 2 * b), Math.sin(a + 2 * b)] };
+      }
+      if (near.d >= SPREAD_PX) continue;
+      const push = (SPREAD_PX - near.d) / 2 + 0.25;
+      list[a].d = [list[a].d[0] - push * near.u[0], list[a].d[1] - push * near.u[1]];
+      list[b].d = [list[b].d[0] + push * near.u[0], list[b].d[1] + push * near.u[1]];
+      moved = true;
+    }
+    if (!moved) break;
+  }
+  for (const g of list) {
+    if (!g.d[0] && !g.d[1]) continue;
+    for (const h of g.members) {
+      h.home = h.from ? null : h.at; h.shift = g.d;
+      h.at = [h.at[0] + g.d[0], h.at[1] + g.d[1]];
+      if (h.from) h.from = [h.from[0] + g.d[0], h.from[1] + g.d[1]];
+    }
+  }
   return hs;
 }
 /** How far from a lens's centre its axis's handle stands on the map from above (pixels). */

@@ -48,16 +48,18 @@ function drawEye(ctx, eye, [x, y], distance) {
 
 /** Each liquid layer's colour on the maps, bottom first (water blue, then amber, green, purple). */
 const LIQUID_RGB = [[74, 127, 193], [214, 160, 40], [60, 160, 90], [140, 90, 180]];
-/** The tint of layer `k` of index `n`: the more the liquid bends light, the deeper its colour. */
-function liquidTint(k, n) {
-  const [r, g, b] = LIQUID_RGB[k % LIQUID_RGB.length];
+/** The tint of layer `k` of index `n`: the more the liquid bends light, the deeper its colour;
+ * a liquid with a colour of its own (`tint`, "#rrggbb") takes that hue, as in the picture. */
+function liquidTint(k, n, tint) {
+  const own = /^#[0-9a-f]{6}$/i.test(tint ?? "") ? [1, 3, 5].map((i) => parseInt(tint.slice(i, i + 2), 16)) : null;
+  const [r, g, b] = own ?? LIQUID_RGB[k % LIQUID_RGB.length];
   const alpha = 0.15 + 0.25 * Math.min(1, Math.max(0, (n - 1) / 0.6));
   return `rgba(${r},${g},${b},${alpha.toFixed(3)})`;
 }
-/** A scene's liquid layers as `[bottom, top, index, name]`, bottom first, from its sketch. */
+/** A scene's liquid layers as `[bottom, top, index, name, tint]`, bottom first, from its sketch. */
 function liquidLayers(lines) {
   const floor = lines.container ? lines.container.floor : 0;
-  return lines.liquids.map((l, k) => [k ? lines.liquids[k - 1].top : floor, l.top, l.index, l.name]);
+  return lines.liquids.map((l, k) => [k ? lines.liquids[k - 1].top : floor, l.top, l.index, l.name, l.tint]);
 }
 /** The container's half width along the side map's horizontal `u`: a glass's inner radius, a
  * tank's half width in that direction, a glass of revolution's widest outer radius. */
@@ -72,9 +74,9 @@ function drawLiquidsSide(ctx, lines, u, P) {
   const c = lines.container;
   if (!c) return;
   const half = halfWidth(c, u);
-  liquidLayers(lines).forEach(([z0, z1, n, name], k) => {
+  liquidLayers(lines).forEach(([z0, z1, n, name, tint], k) => {
     const [x0, y0] = P(-half, z1), [x1, y1] = P(half, z0);
-    ctx.fillStyle = liquidTint(k, n);
+    ctx.fillStyle = liquidTint(k, n, tint);
     if (c.shape === "revolution") {
       const at = (z) => [profileAt(c.inner, z) ?? 0, z];
       const right = [at(z0), ...c.inner.filter(([, z]) => z > z0 && z < z1), at(z1)];
@@ -94,7 +96,7 @@ function drawLiquidsTop(ctx, lines, P, k) {
   const c = lines.container, layers = liquidLayers(lines);
   if (!c || !layers.length) return;
   const top = layers.length - 1;
-  ctx.fillStyle = liquidTint(top, layers[top][2]);
+  ctx.fillStyle = liquidTint(top, layers[top][2], layers[top][4]);
   ctx.beginPath();
   // (A glass of revolution's inside at the top liquid's surface.)
   if (c.shape === "glass") ctx.arc(...P(0, 0), c.radius * k, 0, 2 * Math.PI);
@@ -264,6 +266,12 @@ function drawHandles(ctx, handles) {
   for (const h of handles) {
     ctx.lineWidth = h.ring < 3 ? 1 : 1.5;
     ctx.strokeStyle = "#1d2330"; ctx.fillStyle = "rgba(255,255,255,.7)";
+    // (A handle moved a fingertip from another object's: a thin line from where it belongs.)
+    if (h.home) {
+      ctx.lineWidth = 1; ctx.setLineDash([3, 2]); ctx.beginPath(); ctx.moveTo(...h.home); ctx.lineTo(...h.at); ctx.stroke(); ctx.setLineDash([]);
+      ctx.fillStyle = "#1d2330"; ctx.beginPath(); ctx.arc(h.home[0], h.home[1], 1.5, 0, 2 * Math.PI); ctx.fill();
+      ctx.fillStyle = "rgba(255,255,255,.7)"; ctx.lineWidth = h.ring < 3 ? 1 : 1.5;
+    }
     // (A lens's axis handle: a thin line from its centre.)
     if (h.from) { ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(...h.from); ctx.lineTo(...h.at); ctx.stroke(); ctx.lineWidth = 1.5; }
     // (A prism's corner: a fine hollow ring, so that its outline shows through.)
@@ -288,7 +296,9 @@ onDrag(topCanvas, {
   },
   move: (dx, dy, e) => {
     const r = topCanvas.getBoundingClientRect();
-    const [x, y] = topCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
+    // (A handle drawn off its object, a fingertip from another's, moves it as if it were on it.)
+    const shift = (dragging && dragging.shift) || [0, 0];
+    const [x, y] = topCanvas.mapInverse(e.clientX - r.left - shift[0], e.clientY - r.top - shift[1]);
     if (dragging && dragging.kind) { dragHandle(dragging, [x, y]); return; }
     if (dragging === "straw") {
       // Kept inside the glass, so that a drag never stops at the rule's edge.
@@ -316,7 +326,8 @@ onDrag(sideCanvas, {
   },
   move: (dx, dy, e) => {
     const r = sideCanvas.getBoundingClientRect();
-    const [s, z] = sideCanvas.mapInverse(e.clientX - r.left, e.clientY - r.top);
+    const shift = (draggingSide && draggingSide.shift) || [0, 0];
+    const [s, z] = sideCanvas.mapInverse(e.clientX - r.left - shift[0], e.clientY - r.top - shift[1]);
     if (draggingSide) { dragHandle(draggingSide, [s, z], true); return; }
     const o = state.observer, az = Math.atan2(o[1], o[0]);
     let [d, zz] = [Math.max(0.001, s), z];

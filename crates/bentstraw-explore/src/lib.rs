@@ -254,7 +254,10 @@ pub fn sketch_reply(q: &HashMap<String, String>) -> Result<Reply, Refused> {
         "bounds": [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
         "observer": description.observer.map_or(Value::Null, |o| vec_json(o.position)),
         // The layers, bottom first, so that the page shows the scene's own liquid values.
-        "liquids": description.liquids.iter().map(|l| json!({"name": l.name, "index": l.index, "top": l.top})).collect::<Vec<_>>(),
+        "liquids": description.liquids.iter().map(|l| json!({
+            "name": l.name, "index": l.index, "top": l.top,
+            "tint": l.tint.map(|[r, g, b]| format!("#{r:02x}{g:02x}{b:02x}")),
+        })).collect::<Vec<_>>(),
         // The room the liquids fill, so that the maps can tint each layer.
         "container": container_json(&description.container),
         // Every key of the file with its value (defaults written out), for the page's controls.

@@ -134,6 +134,8 @@ pub enum BranchEnd {
         point: [f32; 3],
         /// The branch's weight.
         weight: f32,
+        /// The light it lost in tinted media, per channel (it keeps `exp(−absorbed)`).
+        absorbed: [f32; 3],
     },
     /// Out of the scene along its last straight piece.
     Escaped {
@@ -143,6 +145,8 @@ pub enum BranchEnd {
         direction: [f32; 3],
         /// The branch's weight.
         weight: f32,
+        /// The light it lost in tinted media, per channel (it keeps `exp(−absorbed)`).
+        absorbed: [f32; 3],
     },
     /// It would need more events than allowed, or more segments than its ray may follow.
     Dropped {
@@ -420,6 +424,7 @@ impl<'w> PacketTracer<'w> {
                             origin: eye,
                             direction,
                             weight: 1.0,
+                            absorbed: [0.0; 3],
                         },
                     );
                     continue;
@@ -468,7 +473,9 @@ impl<'w> PacketTracer<'w> {
             ends.part.to_array(),
         );
         let events = ends.events.to_array();
+        let density = ends.density.map(|c| c.to_array());
         for k in 0..n {
+            let absorbed = [density[0][k], density[1][k], density[2][k]];
             let end = if ends.reached.lane(k) {
                 BranchEnd::Object {
                     code: color[k] as u8,
@@ -476,6 +483,7 @@ impl<'w> PacketTracer<'w> {
                     part: part[k] as u8,
                     point: lane(&ends.point, k),
                     weight: 1.0,
+                    absorbed,
                 }
             } else if ends.dropped.lane(k) {
                 BranchEnd::Dropped { weight: 1.0 }
@@ -488,6 +496,7 @@ impl<'w> PacketTracer<'w> {
                     },
                     direction: lane(&ends.direction, k),
                     weight: 1.0,
+                    absorbed,
                 }
             };
             on_end(k, end);
@@ -588,6 +597,7 @@ impl<'w> PacketTracer<'w> {
                         origin: eye32,
                         direction: to_f32(d),
                         weight: 1.0,
+                        absorbed: [0.0; 3],
                     },
                 ),
             }
@@ -621,14 +631,24 @@ impl<'w> PacketTracer<'w> {
         let inf = P::splat(f64::INFINITY);
         let threshold = P::from_array([prune_threshold(prune_below); LANES]);
         let (cur, next) = (&mut wave.current, &mut wave.next);
+        let absorbs = world.absorbs();
+        if absorbs {
+            cur.clear_density();
+        }
         for event in 0..=world.max_events() {
             if cur.len() == 0 {
                 break;
             }
             next.clear();
             next.reserve_total(2 * cur.len());
-            for (block, n) in cur.packets() {
+            for (b, (block, n)) in cur.packets().enumerate() {
                 let alive = P::Mask::first(n);
+                // The light each branch has lost so far, and (below) on this piece too.
+                let mut density = if absorbs {
+                    cur.density[b].map(P::from_array)
+                } else {
+                    [P::splat(0.0); 3]
+                };
                 let r = &block.ray;
                 let o = V3::new(
                     P::from_array(r[0]),
@@ -641,6 +661,7 @@ impl<'w> PacketTracer<'w> {
                     P::from_array(r[5]),
                 );
                 let left = P::from_array(block.left);
+                let before = density.map(|c| c.to_array());
                 let escape = |k: usize, on_end: &mut E| {
                     // A branch that met nothing is the ray from the eye (a far eye's rays start
                     // on the bounding sphere, possibly past the backdrop's floor).
@@ -655,6 +676,7 @@ impl<'w> PacketTracer<'w> {
                             origin,
                             direction: lane(&d, k),
                             weight: block.w[k],
+                            absorbed: [before[0][k], before[1][k], before[2][k]],
                         },
                     )
                 };
@@ -667,6 +689,11 @@ impl<'w> PacketTracer<'w> {
                 let met = alive.and(hit.t.lt(inf));
                 let on_object = met.and(hit.code.ge(P::splat(first_object as f64)));
                 let on_boundary = met.and_not(on_object);
+                if absorbs {
+                    world.absorb_lanes(P::from_array(block.medium), hit.t, met, &mut density);
+                }
+                let absorbed = density.map(|c| c.to_array());
+                let absorbed = |k: usize| [absorbed[0][k], absorbed[1][k], absorbed[2][k]];
                 if on_object.any() {
                     let color = hit.color(world, on_object).to_array();
                     let (t, code, part) =
@@ -683,6 +710,7 @@ impl<'w> PacketTracer<'w> {
                                 part: part[k] as u8,
                                 point: [ox + t * dx, oy + t * dy, oz + t * dz],
                                 weight: block.w[k],
+                                absorbed: absorbed(k),
                             },
                         );
                     }
@@ -756,10 +784,14 @@ impl<'w> PacketTracer<'w> {
                                     origin: q,
                                     direction: dir,
                                     weight,
+                                    absorbed: absorbed(k),
                                 },
                             );
                         } else {
                             next.push(q, dir, weight, medium, pixel, face);
+                            if absorbs {
+                                next.set_last_density(absorbed(k));
+                            }
                         }
                     }
                 }
@@ -979,6 +1011,9 @@ impl Default for Block {
 struct Branches {
     blocks: Vec<Block>,
     len: usize,
+    /// The light each branch has lost in tinted media, per channel, block by block: kept beside
+    /// the blocks (and only written in a world that absorbs) so that other worlds load no more.
+    density: Vec<[[f32; LANES]; 3]>,
 }
 
 impl Branches {
@@ -996,6 +1031,22 @@ impl Branches {
         if self.blocks.len() < blocks {
             let blocks = blocks.max(2 * self.blocks.len());
             self.blocks.resize(blocks, Block::default());
+            self.density.resize(blocks, [[0.0; LANES]; 3]);
+        }
+    }
+
+    /// Sets every branch's lost light to none (the first branches, from the eye).
+    fn clear_density(&mut self) {
+        self.density.fill([[0.0; LANES]; 3]);
+    }
+
+    /// Sets the lost light of the branch pushed last.
+    #[inline(always)]
+    fn set_last_density(&mut self, absorbed: [f32; 3]) {
+        let n = self.len - 1;
+        let (b, k) = (&mut self.density[n / LANES], n % LANES);
+        for c in 0..3 {
+            b[c][k] = absorbed[c];
         }
     }
 
@@ -1036,6 +1087,76 @@ mod tests {
     use super::*;
     use crate::scene::{REFERENCES, SECTION_COUNT};
     use crate::Vec3;
+
+    /// In a tinted liquid each Fresnel branch loses light by the Beer–Lambert law: seen straight
+    /// down through a layer of depth `h`, a branch that crossed the layer `k` times has lost
+    /// `k·α·h` in each channel, leaves downwards after odd crossings and upwards after even ones,
+    /// and carries the weight the Fresnel reflectance at normal incidence gives it.
+    #[cfg(feature = "scene-file")]
+    #[test]
+    fn fresnel_branches_lose_light_along_their_path_in_a_tinted_liquid() {
+        use crate::scene_file::SceneDescription;
+        let (n, h) = (1.333f64, 0.16f64);
+        let text = format!(
+            "[container]\nshape = \"tank\"\nhalf_x = 0.10\nhalf_y = 0.05\nheight = 0.20\n\
+             [[liquid]]\nname = \"tea\"\nindex = {n}\ntop = {h}\ntint = \"#c08040\"\n"
+        );
+        let scene = SceneDescription::from_toml(&text).expect("a tinted tank");
+        let alpha = scene.liquids[0].absorption().expect("a tint");
+        // sRGB c0 is 192/255: 0.527 of the red light is kept through 10 cm.
+        assert!(
+            (alpha[0] - -(0.527_f64.ln()) / 0.1).abs() < 0.01,
+            "{alpha:?}"
+        );
+        let world = World::new(&scene, 12).expect("a valid scene");
+        assert!(world.absorbs());
+        let tracer = PacketTracer::new(&world);
+        let mut wave = FresnelWave::default();
+        let r = ((n - 1.0) / (n + 1.0)).powi(2);
+        let (mut seen, mut total) = (vec![0.0f64; 8], 0.0);
+        let eye = Vec3::new(0.013, -0.007, 0.4);
+        let down = [Vec3::new(0.0, 0.0, -1.0)];
+        tracer.branch_ends(eye, &down, true, 1e-9, 4096, &mut wave, &mut |_, end| {
+            let BranchEnd::Escaped {
+                direction,
+                weight,
+                absorbed,
+                ..
+            } = end
+            else {
+                return;
+            };
+            let k = absorbed[0] as f64 / (alpha[0] * h);
+            let crossings = k.round();
+            for c in 0..3 {
+                let kc = absorbed[c] as f64 / (alpha[c] * h);
+                assert!((kc - crossings).abs() < 1e-4, "channel {c}: {kc} crossings");
+            }
+            let odd = crossings as u32 % 2 == 1;
+            assert_eq!(
+                odd,
+                direction[2] < 0.0,
+                "{crossings} crossings, {direction:?}"
+            );
+            // Weight: R off the top (no crossing); else in through the top (1 − R), k − 1
+            // reflections inside (R each), out (1 − R).
+            let expected = if crossings == 0.0 {
+                r
+            } else {
+                (1.0 - r).powi(2) * r.powi(crossings as i32 - 1)
+            };
+            assert!(
+                (weight as f64 - expected).abs() < 1e-5 * expected.max(1e-3),
+                "{crossings} crossings: weight {weight}, expected {expected}"
+            );
+            if (crossings as usize) < seen.len() {
+                seen[crossings as usize] += weight as f64;
+            }
+            total += weight as f64;
+        });
+        assert!(seen[..4].iter().all(|&w| w > 0.0), "{seen:?}");
+        assert!((total - 1.0).abs() < 1e-5, "{total}");
+    }
 
     /// Every branch end of a Fresnel picture's rows is told, pruned and dropped light included:
     /// each pixel's weights add up to its ray's, 1 (the same policy as the double-precision

@@ -167,6 +167,8 @@ rules! {
     TargetAtEye = "observer.target-at-eye", "({x}, {y}, {z}) is the observer's own position: it must look somewhere else";
     /// A lesson's texts are empty or too long for the page.
     LessonLength = "lesson.length", "a lesson's title must have 1 to {title} characters, its text at most {text}, and it asks at most {questions} questions of at most {question} characters each";
+    /// A liquid's tint is not a colour.
+    TintFormat = "liquid.tint", "{tint} is no colour: a tint is written \"#RRGGBB\" (three hexadecimal pairs), the colour white light takes through 10 cm of the liquid";
     /// A required key is missing.
     Required = "required", "is missing: it is required";
     /// The file has no `[container]`.

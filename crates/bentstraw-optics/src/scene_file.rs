@@ -543,6 +543,26 @@ pub struct Liquid {
     pub index: f64,
     /// Height of its free surface above `z = 0` (m).
     pub top: f64,
+    /// The colour white light takes through [`TINT_DEPTH`] of it (sRGB), or `None` for a clear
+    /// liquid: light is absorbed along its path inside by the Beer–Lambert law.
+    pub tint: Option<[u8; 3]>,
+}
+
+/// The depth of liquid through which white light takes a liquid's tint (m).
+pub const TINT_DEPTH: f64 = 0.10;
+
+impl Liquid {
+    /// Its absorption coefficient per metre in each of the red, green and blue channels (linear
+    /// light): white light through a depth `L` keeps `exp(−α·L)` of each channel, so that
+    /// [`TINT_DEPTH`] gives its tint. A channel written 0 absorbs all but a millionth per tint depth.
+    pub fn absorption(&self) -> Option<[f64; 3]> {
+        self.tint.map(|rgb| {
+            rgb.map(|c| {
+                let kept = crate::shading::srgb_to_linear(c as f64 / 255.0).max(1e-6);
+                -kept.ln() / TINT_DEPTH
+            })
+        })
+    }
 }
 
 /// A five-colour straw resting on the floor, possibly leaning.
@@ -2110,6 +2130,7 @@ impl SceneDescription {
                     name: "water".to_string(),
                     index: scene.n_water(),
                     top: scene.water_height(),
+                    tint: None,
                 }]
             } else {
                 vec![]

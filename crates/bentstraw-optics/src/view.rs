@@ -25,10 +25,12 @@ pub const DEFAULT_SIZE: (u32, u32) = (800, 600);
 
 /// The first view of the explorer and the page: the classic broken straw seen from 30 cm, the
 /// eye a little above the water.
-pub const CLASSIC_OBSERVER: [f64; 3] = [0.3, 0.0, 0.25];
+pub const CLASSIC_OBSERVER: [f64; 3] = [0.3, 0.0, 0.22];
 
-/// The straw's axis `(xp, yp)` in the classic view.
-pub const CLASSIC_STRAW: [f64; 2] = [0.0, 0.03];
+/// The straw's axis `(xp, yp)` in the classic view: behind the glass's axis and to one side, so
+/// that the water's surface visibly breaks it (below, the glass's curve shifts it sideways and
+/// doubles its width).
+pub const CLASSIC_STRAW: [f64; 2] = [-0.02, 0.02];
 
 /// The water's height in the classic view (m).
 pub const CLASSIC_WATER_HEIGHT: f64 = 0.15;

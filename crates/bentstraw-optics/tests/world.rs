@@ -260,6 +260,9 @@ fn without_refraction(mut d: SceneDescription) -> SceneDescription {
     }
     for l in &mut d.liquids {
         l.index = 1.0;
+        // (A tinted liquid keeps its faces whatever its index: light must know where it is
+        // absorbed.)
+        l.tint = None;
     }
     for s in &mut d.spheres {
         s.index = 1.0;
@@ -1138,6 +1141,7 @@ mod random_scenes {
                                 name: format!("liquid {k}"),
                                 index: n,
                                 top,
+                                tint: None,
                             }
                         })
                         .collect();

@@ -105,6 +105,8 @@ struct FileLiquid {
     index: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     top: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    tint: Option<String>,
 }
 
 #[derive(Deserialize, Serialize)]
@@ -403,10 +405,22 @@ impl SceneDescription {
                 if l.name.is_none() {
                     broken.push(*need(key("name")));
                 }
+                let tint = l.tint.as_deref().and_then(|text| {
+                    let colour = tint_colour(text);
+                    if colour.is_none() {
+                        broken.push(*refuse_key(
+                            &key("tint"),
+                            Rule::TintFormat,
+                            vec![("tint", words(clip_text(text, QUOTED_MAX)))],
+                        ));
+                    }
+                    colour
+                });
                 Liquid {
                     name: l.name.unwrap_or_default(),
                     index: get(key("index"), l.index, &mut broken),
                     top: get(key("top"), l.top, &mut broken),
+                    tint,
                 }
             })
             .collect();
@@ -616,6 +630,7 @@ impl SceneDescription {
                     name: Some(l.name.clone()),
                     index: Some(l.index),
                     top: Some(l.top),
+                    tint: l.tint.map(|[r, g, b]| format!("#{r:02x}{g:02x}{b:02x}")),
                 })
                 .collect(),
             straw: self
@@ -703,4 +718,13 @@ impl SceneDescription {
         };
         SceneForm(file)
     }
+}
+
+/// The colour `"#RRGGBB"` (hexadecimal, either case) names.
+fn tint_colour(text: &str) -> Option<[u8; 3]> {
+    let hex = text
+        .strip_prefix('#')
+        .filter(|h| h.len() == 6 && h.bytes().all(|b| b.is_ascii_hexdigit()))?;
+    let pair = |k: usize| u8::from_str_radix(&hex[2 * k..2 * k + 2], 16).ok();
+    Some([pair(0)?, pair(1)?, pair(2)?])
 }

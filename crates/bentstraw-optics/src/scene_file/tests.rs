@@ -763,7 +763,7 @@ fn the_assignment_scene_is_recognised_and_anything_else_is_named() {
 #[test]
 fn writing_a_description_and_reading_it_back_gives_it_again() {
     let text = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.12\nwall = 0.003\nbottom = 0.008\nindex = 1.52\n\
-        [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.06\n[[liquid]]\nname = \"oil \\\"extra\\\"\"\nindex = 1.47\ntop = 0.0900000000000001\n\
+        [[liquid]]\nname = \"water\"\nindex = 1.333\ntop = 0.06\n[[liquid]]\nname = \"oil \\\"extra\\\"\"\nindex = 1.47\ntop = 0.0900000000000001\ntint = \"#E0b020\"\n\
         [[straw]]\nx = -0.012\ny = 0.003\ntilt = 12.5\nazimuth = -33\nradius = 0.004\nlength = 0.2\n\
         [[coin]]\nx = 0.02\ny = 0.0\n\
         [[card]]\ncenter = [-0.15, 0.01, 0.08]\nfacing = 10\nwidth = 0.12\nheight = 0.06\npicture = \"none\"\n\
@@ -772,6 +772,8 @@ fn writing_a_description_and_reading_it_back_gives_it_again() {
     let written = first.to_toml();
     let again = parsed(&written);
     assert_eq!(first, again, "{written}");
+    assert_eq!(first.liquids[1].tint, Some([0xe0, 0xb0, 0x20]));
+    assert_eq!(first.liquids[0].tint, None);
     // A tank too, and an empty one; a glass of revolution.
     let tank = parsed("[container]\nshape = \"tank\"\nhalf_x = 0.1\nhalf_y = 0.05\nheight = 0.2\n");
     assert_eq!(parsed(&tank.to_toml()), tank);
@@ -1012,6 +1014,9 @@ pub(crate) fn broken_samples() -> Vec<(&'static str, String)> {
         ("liquid.above-layer", glass("[[liquid]]\nname = \"oil\"\nindex = 1.47\ntop = 0.1\n")),
         ("liquid.below-rim", glass("").replace("top = 0.15", "top = 0.3")),
         ("liquid.too-many", glass_c("") + &layers),
+        ("liquid.tint", glass("").replace("top = 0.15", "top = 0.15\ntint = \"red\"")),
+        ("liquid.tint", glass("").replace("top = 0.15", "top = 0.15\ntint = \"#12345\"")),
+        ("liquid.tint", glass("").replace("top = 0.15", "top = 0.15\ntint = \"#+12345\"")),
         ("objects.too-many", tank("") + &coins),
         ("tilt.range", glass("[[straw]]\nx = 0\ny = 0\ntilt = 95\n")),
         ("tilt.tiny", glass("[[straw]]\nx = 0\ny = 0\ntilt = 1e-9\n")),

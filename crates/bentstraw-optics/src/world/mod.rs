@@ -21,6 +21,7 @@ mod trace;
 
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
+use crate::lanes::{Mask, Real};
 use crate::profile;
 use crate::scene::{Scene, SECTION_NAMES, SECTION_RGB};
 use crate::scene_file::{Container, SceneDescription, SceneFileError};
@@ -66,6 +67,9 @@ pub const COLOR_NAMES: [&str; COLOR_COUNT] = [
 pub struct World {
     /// Refractive index of each medium, by id.
     indices: Vec<f64>,
+    /// The media that absorb light (tinted liquids), each with its absorption coefficients
+    /// (per metre, red, green, blue).
+    tinted: Vec<(MediumId, [f64; 3])>,
     /// Every boundary where light can refract or be totally reflected: the container's and
     /// liquids' faces first, then the transparent solids' faces.
     boundaries: Vec<Boundary>,
@@ -731,10 +735,22 @@ impl World {
         // light cannot tell them apart, and a ray that crossed a dropped face must still know on
         // which side of the next face it is. Each medium takes the id of the first medium of its
         // index (air's, 0, for index 1). The assignment's water keeps its own id: its faces stay.
+        // A tinted liquid is a medium of its own whatever its index (light must know when it is
+        // inside to be absorbed), and its faces stay: each crossing is an event, unbent where
+        // the indices are equal.
+        let liquids = 2 + scene.liquids.len() as MediumId;
+        let is_liquid = |m: MediumId| (2..liquids).contains(&m);
+        let absorption = |m: MediumId| {
+            is_liquid(m)
+                .then(|| scene.liquids[m as usize - 2].absorption())
+                .flatten()
+        };
         if same_index == SameIndex::Dropped {
             let one_medium = |m: MediumId| {
-                let n = indices[m as usize];
-                indices.iter().position(|&k| k == n).unwrap_or(m as usize) as MediumId
+                let (n, a) = (indices[m as usize], absorption(m));
+                (0..indices.len())
+                    .position(|k| indices[k] == n && absorption(k as MediumId) == a)
+                    .unwrap_or(m as usize) as MediumId
             };
             for b in &mut boundaries {
                 b.outer = one_medium(b.outer);
@@ -743,11 +759,10 @@ impl World {
         }
         // Faces with the same medium on both sides are none; faces between media of the same
         // index are kept only as the rule says.
-        let liquids = 2 + scene.liquids.len() as MediumId;
-        let is_liquid = |m: MediumId| (2..liquids).contains(&m);
         boundaries.retain(|b| {
             b.outer != b.inner
                 && (indices[b.outer as usize] != indices[b.inner as usize]
+                    || absorption(b.outer) != absorption(b.inner)
                     || (same_index == SameIndex::LiquidFacesKept
                         && (is_liquid(b.outer) || is_liquid(b.inner))))
         });
@@ -890,8 +905,17 @@ impl World {
                 holes: b.holes,
             })
             .collect();
+        let mut tinted: Vec<(MediumId, [f64; 3])> = Vec::new();
+        for b in &boundaries {
+            for m in [b.outer, b.inner] {
+                if let Some(a) = absorption(m).filter(|_| !tinted.iter().any(|t| t.0 == m)) {
+                    tinted.push((m, a));
+                }
+            }
+        }
         World {
             indices,
+            tinted,
             boundaries,
             plain,
             plain_faces,
@@ -921,6 +945,7 @@ impl World {
     pub(crate) fn faces_only(&self) -> World {
         World {
             indices: self.indices.clone(),
+            tinted: self.tinted.clone(),
             boundaries: self.boundaries.clone(),
             plain_faces: self.plain_faces.clone(),
             lens_holes: self.lens_holes.clone(),
@@ -929,6 +954,31 @@ impl World {
             bodies: self.bodies.clone(),
             edges: self.edges.clone(),
             ..*self
+        }
+    }
+
+    /// Whether some medium absorbs light (a tinted liquid): pictures then follow how much.
+    pub fn absorbs(&self) -> bool {
+        !self.tinted.is_empty()
+    }
+
+    /// Adds to `density` (per channel) the light absorbed along a piece of length `t` in
+    /// `medium`, in the lanes of `mask`: a ray keeps `exp(−density)` of each channel.
+    #[inline(always)]
+    pub(crate) fn absorb_lanes<R: Real>(
+        &self,
+        medium: R,
+        t: R,
+        mask: R::Mask,
+        density: &mut [R; 3],
+    ) {
+        for &(m, alpha) in &self.tinted {
+            let here = mask.and(medium.eq(R::splat(m as f64)));
+            if here.any() {
+                for c in 0..3 {
+                    density[c] = R::select(here, density[c] + t * R::splat(alpha[c]), density[c]);
+                }
+            }
         }
     }
 

@@ -39,6 +39,9 @@ pub(crate) struct CourseEnds<R: Real> {
     pub length: R,
     /// Events each lane underwent.
     pub events: R,
+    /// The light each lane lost on its way in tinted media, per channel (it keeps
+    /// `exp(−density)`); zero in a world where nothing absorbs.
+    pub density: [R; 3],
     /// Each lane's last straight piece (for those that left the scene: what they see beyond).
     pub origin: V3<R>,
     pub direction: V3<R>,
@@ -100,9 +103,11 @@ impl World {
             part: zero,
             length,
             events: zero,
+            density: [zero; 3],
             origin: o,
             direction: d,
         };
+        let absorbs = self.absorbs();
         let mut medium = R::splat(AIR as f64);
         let mut left = R::splat(-1.0);
         let mut events = zero;
@@ -118,6 +123,9 @@ impl World {
             };
             let met = alive.and(hit.t.lt(inf));
             let on_object = met.and(hit.code.ge(first_object));
+            if absorbs {
+                self.absorb_lanes(medium, hit.t, met, &mut ends.density);
+            }
             if on_object.any() {
                 // What it met; where, and the colour there, once the loop is done (a lane that
                 // has stopped keeps its ray and its length).
