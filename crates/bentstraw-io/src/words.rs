@@ -285,11 +285,11 @@ pub const RAYS_NOTE: Text = t(
 );
 /// The realistic view.
 pub const VIEW_CAPTION: Text = t(
-    "What an eye 30 cm from the glass sees (bentstraw render --observer 0.3,0,0.25 --straw \
-     0,0.03 --water-height 0.15): below the water's surface the straw is shifted sideways and \
+    "What an eye 30 cm from the glass sees (bentstraw render --observer 0.3,0,0.22 --straw \
+     -0.02,0.02 --water-height 0.15): below the water's surface the straw is shifted sideways and \
      looks wider; above it, it is seen straight.",
-    "Ce que voit un œil à 30 cm du verre (bentstraw render --observer 0.3,0,0.25 --straw \
-     0,0.03 --water-height 0.15) : sous la surface de l'eau la paille est décalée de côté et \
+    "Ce que voit un œil à 30 cm du verre (bentstraw render --observer 0.3,0,0.22 --straw \
+     -0.02,0.02 --water-height 0.15) : sous la surface de l'eau la paille est décalée de côté et \
      paraît plus large ; au-dessus, on la voit droite.",
 );
 /// The method's ray diagram.

@@ -41,7 +41,7 @@ bentstraw table --lang fr --out rapport/"
     Table(TableArgs),
     /// Render the picture the observer's eye sees (pinhole camera).
     #[command(
-        after_help = "Examples:\n  # the classic broken straw, seen from 30 cm away\n  bentstraw render --observer 0.3,0,0.25 --straw 0,0.03 --water-height 0.15 --output view.png\n  bentstraw render --observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15 \\\n      --mode fresnel --output view.png --raw view.csv"
+        after_help = "Examples:\n  # the classic broken straw, seen from 30 cm away\n  bentstraw render --observer 0.3,0,0.22 --straw -0.02,0.02 --water-height 0.15 --output view.png\n  bentstraw render --observer 0.1,0,0.1 --straw 0.02,0.01 --water-height 0.15 \\\n      --mode fresnel --output view.png --raw view.csv"
     )]
     Render(RenderArgs),
     /// Measure the tracer's speed in rays per second.
