@@ -4,119 +4,119 @@
 pub const GALLERY: [(&str, &str); 30] = [
     (
         "leaning-straw",
-        include_str!("../../../scenes/leaning-straw.toml"),
+        include_str!("../scenes/leaning-straw.toml"),
     ),
     (
         "real-glass",
-        include_str!("../../../scenes/real-glass.toml"),
+        include_str!("../scenes/real-glass.toml"),
     ),
     (
         "oil-on-water",
-        include_str!("../../../scenes/oil-on-water.toml"),
+        include_str!("../scenes/oil-on-water.toml"),
     ),
     (
         "tank-pencil",
-        include_str!("../../../scenes/tank-pencil.toml"),
+        include_str!("../scenes/tank-pencil.toml"),
     ),
     (
         "coin-in-glass",
-        include_str!("../../../scenes/coin-in-glass.toml"),
+        include_str!("../scenes/coin-in-glass.toml"),
     ),
     (
         "reversing-arrow",
-        include_str!("../../../scenes/reversing-arrow.toml"),
+        include_str!("../scenes/reversing-arrow.toml"),
     ),
     (
         "vanishing-glass",
-        include_str!("../../../scenes/vanishing-glass.toml"),
+        include_str!("../scenes/vanishing-glass.toml"),
     ),
     (
         "two-straws",
-        include_str!("../../../scenes/two-straws.toml"),
+        include_str!("../scenes/two-straws.toml"),
     ),
     (
         "oil-on-water-above",
-        include_str!("../../../scenes/oil-on-water-above.toml"),
+        include_str!("../scenes/oil-on-water-above.toml"),
     ),
     (
         "appearing-coin",
-        include_str!("../../../scenes/appearing-coin.toml"),
+        include_str!("../scenes/appearing-coin.toml"),
     ),
     (
         "apparent-depth",
-        include_str!("../../../scenes/apparent-depth.toml"),
+        include_str!("../scenes/apparent-depth.toml"),
     ),
     (
         "mirror-surface",
-        include_str!("../../../scenes/mirror-surface.toml"),
+        include_str!("../scenes/mirror-surface.toml"),
     ),
     (
         "near-and-far-arrow",
-        include_str!("../../../scenes/near-and-far-arrow.toml"),
+        include_str!("../scenes/near-and-far-arrow.toml"),
     ),
     (
         "pencil-at-a-slant",
-        include_str!("../../../scenes/pencil-at-a-slant.toml"),
+        include_str!("../scenes/pencil-at-a-slant.toml"),
     ),
     (
         "leaning-straw-above",
-        include_str!("../../../scenes/leaning-straw-above.toml"),
+        include_str!("../scenes/leaning-straw-above.toml"),
     ),
     (
         "dense-liquid",
-        include_str!("../../../scenes/dense-liquid.toml"),
+        include_str!("../scenes/dense-liquid.toml"),
     ),
     (
         "marble-in-water",
-        include_str!("../../../scenes/marble-in-water.toml"),
+        include_str!("../scenes/marble-in-water.toml"),
     ),
-    ("fish-bowl", include_str!("../../../scenes/fish-bowl.toml")),
+    ("fish-bowl", include_str!("../scenes/fish-bowl.toml")),
     (
         "water-drop-magnifier",
-        include_str!("../../../scenes/water-drop-magnifier.toml"),
+        include_str!("../scenes/water-drop-magnifier.toml"),
     ),
     (
         "vanishing-ball",
-        include_str!("../../../scenes/vanishing-ball.toml"),
+        include_str!("../scenes/vanishing-ball.toml"),
     ),
-    ("ball-lens", include_str!("../../../scenes/ball-lens.toml")),
+    ("ball-lens", include_str!("../scenes/ball-lens.toml")),
     (
         "half-dipped-ball",
-        include_str!("../../../scenes/half-dipped-ball.toml"),
+        include_str!("../scenes/half-dipped-ball.toml"),
     ),
-    ("prism", include_str!("../../../scenes/prism.toml")),
+    ("prism", include_str!("../scenes/prism.toml")),
     (
         "glass-block-pencil",
-        include_str!("../../../scenes/glass-block-pencil.toml"),
+        include_str!("../scenes/glass-block-pencil.toml"),
     ),
     (
         "magnifying-glass",
-        include_str!("../../../scenes/magnifying-glass.toml"),
+        include_str!("../scenes/magnifying-glass.toml"),
     ),
     (
         "diverging-lens",
-        include_str!("../../../scenes/diverging-lens.toml"),
+        include_str!("../scenes/diverging-lens.toml"),
     ),
     (
         "lens-in-water",
-        include_str!("../../../scenes/lens-in-water.toml"),
+        include_str!("../scenes/lens-in-water.toml"),
     ),
     (
         "tapered-tumbler",
-        include_str!("../../../scenes/tapered-tumbler.toml"),
+        include_str!("../scenes/tapered-tumbler.toml"),
     ),
     (
         "wine-glass",
-        include_str!("../../../scenes/wine-glass.toml"),
+        include_str!("../scenes/wine-glass.toml"),
     ),
     (
         "cocktail-glass",
-        include_str!("../../../scenes/cocktail-glass.toml"),
+        include_str!("../scenes/cocktail-glass.toml"),
     ),
 ];
 
 /// The assignment's own scene as a scene file (`scenes/spec.toml`): name and text.
-pub const SPEC: (&str, &str) = ("spec", include_str!("../../../scenes/spec.toml"));
+pub const SPEC: (&str, &str) = ("spec", include_str!("../scenes/spec.toml"));
 
 /// Every scene known by name from any folder: the assignment's own and the gallery's.
 pub fn named_scenes() -> impl Iterator<Item = (&'static str, &'static str)> {

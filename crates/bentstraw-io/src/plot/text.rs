@@ -6,7 +6,7 @@ use std::sync::Once;
 use plotters::prelude::*;
 
 /// The font of every text in the figure, shipped with the program so pictures look the same anywhere.
-pub(crate) static FONT: &[u8] = include_bytes!("../../../../assets/DejaVuSans.ttf");
+pub(crate) static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 /// The family name the font is registered under.
 const FONT_FAMILY: &str = "sans-serif";
 static FONT_ONCE: Once = Once::new();
