@@ -8,6 +8,7 @@ import csv
 import json
 import math
 import os
+import pickle
 import struct
 import subprocess
 import sys
@@ -170,8 +171,8 @@ def decode_png(data):
 @pytest.mark.parametrize(
     "flags, kwargs",
     [
-        (["--observer", "0.3,0,0.25", "--straw", "0,0.03", "--water-height", "0.15"],
-         dict(observer=(0.3, 0, 0.25), straw=(0, 0.03), water_height=0.15)),
+        (["--observer", "0.3,0,0.22", "--straw", "-0.02,0.02", "--water-height", "0.15"],
+         dict(observer=(0.3, 0, 0.22), straw=(-0.02, 0.02), water_height=0.15)),
         (["--scene", "oil-on-water", "--mode", "course", "--backdrop", "none", "--samples", "1", "--fov", "30"],
          dict(scene="oil-on-water", mode="course", backdrop="none", samples=1, fov=30)),
         # A coin and no card: the raw file still gives a weight for every colour code.
@@ -192,6 +193,48 @@ def test_pictures_are_the_pngs_pixel_for_pixel_and_raw_weights_the_csvs(tmp_path
         assert np.array_equal(weights.reshape(-1), values[:, 0])
     else:
         assert same_bits(weights.reshape(len(rows), -1), values)
+
+
+def test_a_picture_knows_the_field_of_view_the_command_line_drew_it_with(tmp_path):
+    # Framed by default: the command line says the field of view it chose; the picture holds it,
+    # and drawing again with that field of view gives the same pixels.
+    p = run("render", "--scene", "leaning-straw", "--size", "64x48", "--output", tmp_path / "v.png")
+    said = float((p.stdout + p.stderr).split("fov ")[1].split("°")[0])
+    picture = bentstraw.render("leaning-straw", size=(64, 48))
+    assert isinstance(picture, bentstraw.Picture) and round(picture.fov, 2) == said
+    assert np.array_equal(bentstraw.render("leaning-straw", size=(64, 48), fov=picture.fov), picture)
+    again = pickle.loads(pickle.dumps(picture))
+    assert again.fov == picture.fov and np.array_equal(again, picture)
+    # A picture sliced or copied stays a picture of that view.
+    assert picture[10:20].fov == picture.fov and picture.copy().fov == picture.fov
+
+
+def test_plots_return_the_figure_and_axes_with_the_results_drawn():
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    sim = bentstraw.simulate(**REF2, points=2000)
+    fig, ax = sim.plot()
+    assert ax.figure is fig and ax.name == "3d"
+    # One set of points per colour, in that colour, named in the legend.
+    codes = np.unique(sim.color)
+    assert len(ax.collections) == len(codes)
+    for code, drawn in zip(codes, ax.collections):
+        assert np.array_equal(np.column_stack(drawn._offsets3d), sim.xyz[sim.color == code])
+        assert np.allclose(drawn.get_facecolor()[0][:3], bentstraw.COLOR_RGB[code - 1])
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == [bentstraw.COLOR_NAMES[c - 1] for c in codes]
+    # By light path: one set of points per kind, named in words in the legend.
+    fig2, ax2 = plt.subplots(subplot_kw={"projection": "3d"})
+    assert sim.plot(ax2, color_by="path") == (fig2, ax2)
+    assert [t.get_text() for t in ax2.get_legend().get_texts()] == sim.path_words
+    assert sum(len(c._offsets3d[0]) for c in ax2.collections) == len(sim)
+    with pytest.raises(ValueError, match="color_by"):
+        sim.plot(color_by="colour")
+    picture = bentstraw.render(**REF2, size=(40, 30))
+    fig3, ax3 = picture.plot()
+    assert np.array_equal(ax3.images[0].get_array(), picture)
+    assert f"{picture.fov:.1f}" in ax3.get_title()
+    plt.close("all")
 
 
 def test_check_gives_the_command_lines_verdicts(tmp_path):

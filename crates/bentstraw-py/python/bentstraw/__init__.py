@@ -30,9 +30,11 @@ import os
 import re
 import warnings
 from collections import abc
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, TypeVar, Union
+from typing import (TYPE_CHECKING, Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple,
+                    TypeVar, Union, cast, overload)
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _engine
 
@@ -71,6 +73,7 @@ def _keyworded(f: _F) -> _F:
 __all__ = [
     "Scene",
     "Simulation",
+    "Picture",
     "simulate",
     "render",
     "check",
@@ -91,6 +94,9 @@ __all__ = [
     "DEFAULT_BACKDROP",
     "COLOR_NAMES",
     "COLOR_RGB",
+    "ImageModel",
+    "Mode",
+    "Backdrop",
     "__version__",
 ]
 
@@ -110,9 +116,9 @@ DEFAULT_PRUNE: float = _engine.DEFAULT_PRUNE
 #: Samples per pixel side at a picture's edges, by default.
 DEFAULT_SAMPLES: int = _engine.DEFAULT_SAMPLES
 #: A picture's mode by default: ``"fresnel"`` (or ``"course"``).
-DEFAULT_MODE: str = _engine.DEFAULT_MODE
+DEFAULT_MODE: "Mode" = _engine.DEFAULT_MODE  # type: ignore[assignment]
 #: A picture's backdrop by default: ``"checker"`` (or ``"none"``).
-DEFAULT_BACKDROP: str = _engine.DEFAULT_BACKDROP
+DEFAULT_BACKDROP: "Backdrop" = _engine.DEFAULT_BACKDROP  # type: ignore[assignment]
 #: A picture's size ``(w, h)`` in pixels, by default.
 DEFAULT_SIZE: Tuple[int, int] = tuple(_engine.DEFAULT_SIZE)  # type: ignore[assignment]
 #: The names of the colour codes 1, 2, ...: a straw's five sections, then a coin, a card, an arrow.
@@ -121,8 +127,54 @@ COLOR_NAMES: Tuple[str, ...] = tuple(_engine.COLOR_NAMES)
 COLOR_RGB: np.ndarray = np.array(_engine.COLOR_RGB, dtype=np.float64)
 COLOR_RGB.flags.writeable = False
 
-Vector3 = Sequence[float]
-Vector2 = Sequence[float]
+#: A point or direction: three numbers, as a tuple, a list or a numpy array.
+Vector3 = Union[Sequence[float], "npt.NDArray[Any]"]
+#: A point on the floor: two numbers, as a tuple, a list or a numpy array.
+Vector2 = Union[Sequence[float], "npt.NDArray[Any]"]
+#: Where an image point is placed: the course's convention, a small eye's foci, or two eyes.
+ImageModel = Literal["course", "eye", "stereo"]
+#: How a picture's rays are followed: one ray each (the course's law), or Fresnel's branches.
+Mode = Literal["course", "fresnel"]
+#: What lies behind the scene in a picture: the checkerboard wall and floor, or plain light.
+Backdrop = Literal["checker", "none"]
+
+if TYPE_CHECKING:
+    _PictureArray = np.ndarray[Any, np.dtype[np.uint8]]
+else:
+    _PictureArray = np.ndarray
+
+
+class Picture(_PictureArray):
+    """A picture as :func:`render` returns it: an ``(h, w, 3)`` uint8 array of sRGB pixels that
+    also knows the vertical field of view it was drawn with (``fov``, degrees), so that a picture
+    framed by default can be drawn again, or compared, with the same one."""
+
+    #: The vertical field of view of the picture (degrees).
+    fov: float
+
+    def __array_finalize__(self, obj: Any) -> None:
+        self.fov = getattr(obj, "fov", float("nan"))
+
+    def __reduce__(self) -> Any:
+        # Pickled with its field of view (an array's own state does not hold it).
+        reduced: Any = super().__reduce__()
+        return reduced[0], reduced[1], (reduced[2], self.fov)
+
+    def __setstate__(self, state: Any) -> None:
+        array_state, self.fov = state
+        super().__setstate__(array_state)
+
+    def plot(self, ax: Any = None) -> Tuple[Any, Any]:
+        """The picture drawn with matplotlib, pixel for pixel, its field of view in the title:
+        ``(fig, ax)``, on ``ax`` if given (else a new figure).
+
+        >>> fig, ax = bentstraw.render("leaning-straw", size=(80, 60)).plot()
+        """
+        fig, ax = _axes(ax, None)
+        ax.imshow(np.asarray(self), interpolation="nearest")
+        ax.set_axis_off()
+        ax.set_title(f"what the eye sees (field of view {self.fov:.1f}°)")
+        return fig, ax
 
 
 class Scene:
@@ -259,7 +311,7 @@ def _real(x: Any, name: str) -> float:
     return float(x)
 
 
-def _vector(v: Optional[Sequence[float]], n: int, name: str) -> Optional[Tuple[float, ...]]:
+def _vector(v: Optional[Any], n: int, name: str) -> Optional[Tuple[float, ...]]:
     """``v`` as ``n`` floats (or None): a sequence or array of numbers. A string, a set (no
     order) or a dict is a TypeError naming ``name``; the wrong count a ValueError."""
     if v is None:
@@ -369,7 +421,7 @@ class Simulation:
     miss_distance: Optional[np.ndarray] = None
     skipped: Optional[int] = None
 
-    def __init__(self, fields: Dict[str, Any], scene: Any, image_model: str) -> None:
+    def __init__(self, fields: Dict[str, Any], scene: Any, image_model: ImageModel) -> None:
         self.__dict__.update(fields)
         self._read_only()
         self._scene = scene
@@ -411,28 +463,64 @@ class Simulation:
     @property
     def path_index(self) -> np.ndarray:
         """``(N,)`` int64: each point's kind of light path, an index into ``path_keys``."""
-        return self._light_paths()["path_index"]
+        return cast(np.ndarray, self._light_paths()["path_index"])
 
     @property
     def path_keys(self) -> List[str]:
         """The kinds of light path present, as short keys (``"direct"``, ``"wall+1"``, ...),
         sorted: direct first, then by entry face and number of total reflections."""
-        return self._light_paths()["path_keys"]
+        return cast(List[str], self._light_paths()["path_keys"])
 
     @property
     def path_words(self) -> List[str]:
         """The same kinds in words (``"through the side wall, 1 total reflection"``)."""
-        return self._light_paths()["path_words"]
+        return cast(List[str], self._light_paths()["path_words"])
 
     @property
     def path(self) -> np.ndarray:
         """``(N,)`` str: the kind of light path of each point, as its key."""
         if not self.path_keys:
             return np.empty(0, dtype=str)
-        return np.asarray(self.path_keys, dtype=str)[self.path_index]
+        return cast(np.ndarray, np.asarray(self.path_keys, dtype=str)[self.path_index])
 
     def __len__(self) -> int:
         return len(self.color)
+
+    def plot(self, ax: Any = None, *, color_by: Literal["section", "path"] = "section",
+             size: float = 1.0) -> Tuple[Any, Any]:
+        """The image points in 3D with matplotlib, each in its object's colour (or, with
+        ``color_by="path"``, coloured by kind of light path with a legend in words), on axes of
+        equal scale so that the image's shape is true: ``(fig, ax)``, on ``ax`` if given (a 3D
+        axes) else a new figure. Points the eye model places nowhere are left out.
+
+        >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+        >>> fig, ax = sim.plot(color_by="path")
+        """
+        if color_by not in ("section", "path"):
+            raise ValueError(f"color_by={color_by!r}: it must be \"section\" or \"path\"")
+        fig, ax = _axes(ax, "3d")
+        shown = np.isfinite(self.xyz).all(axis=1)
+        xyz = self.xyz[shown]
+        # One set of points per colour (or kind of path), named in the legend.
+        if color_by == "section":
+            groups = [(self.color[shown] == code, COLOR_RGB[code - 1], COLOR_NAMES[code - 1])
+                      for code in np.unique(self.color[shown])]
+        else:
+            import matplotlib
+            palette = matplotlib.colormaps["tab10"]
+            index = self.path_index[shown]
+            groups = [(index == k, palette(k % 10), words) for k, words in enumerate(self.path_words)]
+        for chosen, colour, words in groups:
+            ax.scatter(*xyz[chosen].T, color=colour, s=size, depthshade=False, label=words)
+        ax.legend(loc="upper left", fontsize="small", markerscale=4)
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_zlabel("z (m)")
+        if len(xyz):
+            lo, hi = xyz.min(axis=0), xyz.max(axis=0)
+            ax.set_box_aspect(np.maximum(hi - lo, 1e-3 * (hi - lo).max() + 1e-9))
+        ax.set_title(f"{len(xyz)} image points ({self.image_model} model)")
+        return fig, ax
 
     def __repr__(self) -> str:
         where = self.scene_name or "the glass"
@@ -450,7 +538,7 @@ def simulate(
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
     points: int = DEFAULT_POINTS,
-    image_model: str = "course",
+    image_model: ImageModel = "course",
 ) -> Simulation:
     """The straw's virtual image: at least ``points`` image points seen from ``observer``.
 
@@ -473,6 +561,66 @@ def simulate(
     return Simulation(fields, loaded, image_model)
 
 
+@overload
+def render(
+    scene: SceneLike = ...,
+    *,
+    observer: Optional[Vector3] = ...,
+    straw: Optional[Vector2] = ...,
+    water_height: Optional[float] = ...,
+    n_water: Optional[float] = ...,
+    max_events: int = ...,
+    size: Tuple[int, int] = ...,
+    target: Optional[Vector3] = ...,
+    fov: Optional[float] = ...,
+    mode: Mode = ...,
+    prune: float = ...,
+    backdrop: Backdrop = ...,
+    samples: int = ...,
+    weights: Literal[False] = ...,
+) -> Picture: ...
+
+
+@overload
+def render(
+    scene: SceneLike = ...,
+    *,
+    observer: Optional[Vector3] = ...,
+    straw: Optional[Vector2] = ...,
+    water_height: Optional[float] = ...,
+    n_water: Optional[float] = ...,
+    max_events: int = ...,
+    size: Tuple[int, int] = ...,
+    target: Optional[Vector3] = ...,
+    fov: Optional[float] = ...,
+    mode: Mode = ...,
+    prune: float = ...,
+    backdrop: Backdrop = ...,
+    samples: int = ...,
+    weights: Literal[True],
+) -> Tuple[Picture, np.ndarray]: ...
+
+
+@overload
+def render(
+    scene: SceneLike = ...,
+    *,
+    observer: Optional[Vector3] = ...,
+    straw: Optional[Vector2] = ...,
+    water_height: Optional[float] = ...,
+    n_water: Optional[float] = ...,
+    max_events: int = ...,
+    size: Tuple[int, int] = ...,
+    target: Optional[Vector3] = ...,
+    fov: Optional[float] = ...,
+    mode: Mode = ...,
+    prune: float = ...,
+    backdrop: Backdrop = ...,
+    samples: int = ...,
+    weights: bool = ...,
+) -> Union[Picture, Tuple[Picture, np.ndarray]]: ...
+
+
 @_keyworded
 def render(
     scene: SceneLike = None,
@@ -485,13 +633,14 @@ def render(
     size: Tuple[int, int] = DEFAULT_SIZE,
     target: Optional[Vector3] = None,
     fov: Optional[float] = None,
-    mode: str = DEFAULT_MODE,
+    mode: Mode = DEFAULT_MODE,
     prune: float = DEFAULT_PRUNE,
-    backdrop: str = DEFAULT_BACKDROP,
+    backdrop: Backdrop = DEFAULT_BACKDROP,
     samples: int = DEFAULT_SAMPLES,
     weights: bool = False,
-) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
-    """The picture the observer's eye gets: an ``(h, w, 3)`` uint8 array, the pixels of the PNG
+) -> Union[Picture, Tuple[Picture, np.ndarray]]:
+    """The picture the observer's eye gets: an ``(h, w, 3)`` uint8 array (a :class:`Picture`,
+    which also holds its field of view ``fov`` in degrees), the pixels of the PNG
     ``bentstraw render`` writes for the same inputs.
 
     ``size=(w, h)`` in pixels; ``target`` the point looked at and ``fov`` the vertical field of
@@ -503,10 +652,12 @@ def render(
     ``(h, w)`` array of colour codes (course) or an ``(h, w, k)`` array of each colour code's
     weight (Fresnel).
 
-    >>> picture = bentstraw.render(observer=(0.3, 0, 0.25), straw=(0, 0.03), water_height=0.15)
+    >>> picture = bentstraw.render(observer=(0.3, 0, 0.22), straw=(-0.02, 0.02), water_height=0.15)
     >>> import matplotlib.pyplot as plt
     >>> picture.shape
     (600, 800, 3)
+    >>> round(picture.fov, 2)
+    51.68
     >>> _ = plt.imshow(picture)
     """
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
@@ -515,9 +666,11 @@ def render(
         loaded, size_, _vector(target, 3, "target"), _number(fov, "fov"), mode,
         _real(prune, "prune"), backdrop, _count(samples, "samples"), _flag(weights, "weights"),
     )
+    picture: Picture = out["pixels"].view(Picture)
+    picture.fov = out["fov_deg"]
     if not weights:
-        return out["pixels"]
-    return out["pixels"], out["codes"] if "codes" in out else out["weights"]
+        return picture
+    return picture, out["codes"] if "codes" in out else out["weights"]
 
 
 @_keyworded
@@ -548,9 +701,9 @@ def check(
     """
     points, codes = _points(xyz, color)
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
-    report = _engine.check(loaded, points, codes, _number(tolerance, "tolerance"),
-                           _number(min_coverage, "min_coverage"), _count(worst, "worst"))
-    return json.loads(report)
+    report = _engine.check(loaded, points, codes, _real(tolerance, "tolerance"),
+                           _real(min_coverage, "min_coverage"), _count(worst, "worst"))
+    return cast(Dict[str, Any], json.loads(report))
 
 
 @_keyworded
@@ -575,8 +728,9 @@ def grade(
     the image the points miss, in words). A student's bad file is that case's verdict, with the
     reason; the rest of the class is graded.
     """
-    return json.loads(_engine.grade(os.fspath(class_dir), os.fspath(out),
-                                    None if assignment is None else os.fspath(assignment), lang))
+    rows = _engine.grade(os.fspath(class_dir), os.fspath(out),
+                         None if assignment is None else os.fspath(assignment), lang)
+    return cast(List[Dict[str, Any]], json.loads(rows))
 
 
 class SolutionError(AssertionError):
@@ -627,9 +781,9 @@ def assert_solution(
     """
     pts, codes = _points(xyz, color)
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
-    row = json.loads(_engine.grade_points(loaded, pts, codes, _number(tolerance, "tolerance"),
-                                          _number(min_coverage, "min_coverage"),
-                                          _number(points, "points"), lang))
+    row: Dict[str, Any] = json.loads(_engine.grade_points(loaded, pts, codes, _real(tolerance, "tolerance"),
+                                          _real(min_coverage, "min_coverage"),
+                                          _real(points, "points"), lang))
     if row["verdict"] != "pass":
         message = row["note"]
         if row["missing"]:
@@ -640,6 +794,15 @@ def assert_solution(
             message += f"\npartial score: {row['score']} of {row['max_score']}"
         raise SolutionError(message, row)
     return row
+
+
+def _axes(ax: Any, projection: Optional[str]) -> Tuple[Any, Any]:
+    """``ax`` and its figure, or a new figure's axes (``projection="3d"`` for points)."""
+    if ax is not None:
+        return ax.figure, ax
+    import matplotlib.pyplot as plt
+    fig = plt.figure()
+    return fig, fig.add_subplot(projection=projection)
 
 
 def _points(xyz: Any, color: Any) -> Tuple[np.ndarray, np.ndarray]:
@@ -682,5 +845,5 @@ def trace(
     True
     """
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
-    return json.loads(_engine.trace(loaded, _vector(direction, 3, "direction"),
-                                    _vector(toward, 3, "toward")))
+    ray = _engine.trace(loaded, _vector(direction, 3, "direction"), _vector(toward, 3, "toward"))
+    return cast(Dict[str, Any], json.loads(ray))

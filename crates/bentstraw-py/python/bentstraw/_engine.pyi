@@ -1,9 +1,17 @@
 """Type stubs of the compiled engine (``bentstraw._engine``); use the functions of ``bentstraw``."""
 
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple, final
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = [
+    "LoadedScene", "load", "read_scene", "check_scene", "gallery", "simulate", "light_paths",
+    "render", "check", "grade", "grade_points", "trace", "VERSION", "WATER_INDEX",
+    "DEFAULT_MAX_EVENTS", "DEFAULT_TOLERANCE", "DEFAULT_MIN_COVERAGE", "DEFAULT_POINTS",
+    "DEFAULT_PRUNE", "DEFAULT_SAMPLES", "DEFAULT_SIZE", "DEFAULT_MODE", "DEFAULT_BACKDROP",
+    "COLOR_NAMES", "COLOR_RGB",
+]
 
 VERSION: str
 WATER_INDEX: float
@@ -19,6 +27,7 @@ DEFAULT_BACKDROP: str
 COLOR_NAMES: List[str]
 COLOR_RGB: List[List[float]]
 
+@final
 class LoadedScene:
     """A scene loaded and checked, with its observer."""
 
@@ -36,8 +45,8 @@ class LoadedScene:
 def load(
     path: Optional[str],
     text: Optional[Tuple[str, str]],
-    observer: Optional[Tuple[float, float, float]],
-    straw: Optional[Tuple[float, float]],
+    observer: Optional[Tuple[float, ...]],
+    straw: Optional[Tuple[float, ...]],
     water_height: Optional[float],
     n_water: Optional[float],
     max_events: int,
@@ -50,7 +59,7 @@ def light_paths(scene: LoadedScene, direction: npt.NDArray[np.float64]) -> Dict[
 def render(
     scene: LoadedScene,
     size: Optional[Tuple[int, int]],
-    target: Optional[Tuple[float, float, float]],
+    target: Optional[Tuple[float, ...]],
     fov: Optional[float],
     mode: str,
     prune: float,
@@ -78,6 +87,6 @@ def grade_points(
 ) -> str: ...
 def trace(
     scene: LoadedScene,
-    direction: Optional[Tuple[float, float, float]],
-    toward: Optional[Tuple[float, float, float]],
+    direction: Optional[Tuple[float, ...]],
+    toward: Optional[Tuple[float, ...]],
 ) -> str: ...
