@@ -6,18 +6,9 @@ pub const GALLERY: [(&str, &str); 30] = [
         "leaning-straw",
         include_str!("../scenes/leaning-straw.toml"),
     ),
-    (
-        "real-glass",
-        include_str!("../scenes/real-glass.toml"),
-    ),
-    (
-        "oil-on-water",
-        include_str!("../scenes/oil-on-water.toml"),
-    ),
-    (
-        "tank-pencil",
-        include_str!("../scenes/tank-pencil.toml"),
-    ),
+    ("real-glass", include_str!("../scenes/real-glass.toml")),
+    ("oil-on-water", include_str!("../scenes/oil-on-water.toml")),
+    ("tank-pencil", include_str!("../scenes/tank-pencil.toml")),
     (
         "coin-in-glass",
         include_str!("../scenes/coin-in-glass.toml"),
@@ -30,10 +21,7 @@ pub const GALLERY: [(&str, &str); 30] = [
         "vanishing-glass",
         include_str!("../scenes/vanishing-glass.toml"),
     ),
-    (
-        "two-straws",
-        include_str!("../scenes/two-straws.toml"),
-    ),
+    ("two-straws", include_str!("../scenes/two-straws.toml")),
     (
         "oil-on-water-above",
         include_str!("../scenes/oil-on-water-above.toml"),
@@ -62,10 +50,7 @@ pub const GALLERY: [(&str, &str); 30] = [
         "leaning-straw-above",
         include_str!("../scenes/leaning-straw-above.toml"),
     ),
-    (
-        "dense-liquid",
-        include_str!("../scenes/dense-liquid.toml"),
-    ),
+    ("dense-liquid", include_str!("../scenes/dense-liquid.toml")),
     (
         "marble-in-water",
         include_str!("../scenes/marble-in-water.toml"),
@@ -105,10 +90,7 @@ pub const GALLERY: [(&str, &str); 30] = [
         "tapered-tumbler",
         include_str!("../scenes/tapered-tumbler.toml"),
     ),
-    (
-        "wine-glass",
-        include_str!("../scenes/wine-glass.toml"),
-    ),
+    ("wine-glass", include_str!("../scenes/wine-glass.toml")),
     (
         "cocktail-glass",
         include_str!("../scenes/cocktail-glass.toml"),

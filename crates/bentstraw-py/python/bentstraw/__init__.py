@@ -70,10 +70,13 @@ def _keyworded(f: _F) -> _F:
 
     return call  # type: ignore[return-value]
 
+# What `help(bentstraw)` shows and `import *` gives: the calls and what they return. The
+# defaults (`DEFAULT_*`, `WATER_INDEX`), the colours (`COLOR_NAMES`, `COLOR_RGB`), `Picture` and
+# the choices' types (`ImageModel`, `Mode`, `Backdrop`, `Vector3`, `Vector2`) are public too, each
+# with its own help; left out here, they would fill the page with numpy's own.
 __all__ = [
     "Scene",
     "Simulation",
-    "Picture",
     "simulate",
     "render",
     "check",
@@ -82,21 +85,6 @@ __all__ = [
     "SolutionError",
     "trace",
     "gallery",
-    "WATER_INDEX",
-    "DEFAULT_MAX_EVENTS",
-    "DEFAULT_TOLERANCE",
-    "DEFAULT_MIN_COVERAGE",
-    "DEFAULT_POINTS",
-    "DEFAULT_PRUNE",
-    "DEFAULT_SAMPLES",
-    "DEFAULT_SIZE",
-    "DEFAULT_MODE",
-    "DEFAULT_BACKDROP",
-    "COLOR_NAMES",
-    "COLOR_RGB",
-    "ImageModel",
-    "Mode",
-    "Backdrop",
     "__version__",
 ]
 
