@@ -545,14 +545,29 @@ def test_the_notebook_runs_top_to_bottom():
 
     path = ROOT / "crates" / "bentstraw-py" / "examples" / "bentstraw.ipynb"
     notebook = nbformat.read(path, as_version=4)
+
+    def words(nb):
+        # Each code cell's printed text and values, as a reader of the file sees them.
+        return [
+            "".join(o.get("text", "") + o.get("data", {}).get("text/plain", "") for o in c.get("outputs", []))
+            for c in nb.cells if c.cell_type == "code"
+        ]
+
+    def figures(nb):
+        return [sum("image/png" in o.get("data", {}) for o in c.get("outputs", []))
+                for c in nb.cells if c.cell_type == "code"]
+
+    committed, committed_figures = words(notebook), figures(notebook)
     client = nbclient.NotebookClient(
         notebook, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}
     )
     client.execute()  # raises on the first cell that fails
-    text = "".join(
-        o.get("text", "") for c in notebook.cells if c.cell_type == "code" for o in c.get("outputs", [])
-    )
+    text = "".join(words(notebook))
     assert "fail -" in text and "the reference's own points: pass" in text
+    # The file is kept with its outputs (a reader sees the figures without running it), and they
+    # are today's: the same words and the same figures as a run now.
+    assert committed == words(notebook)
+    assert committed_figures == figures(notebook) and sum(committed_figures) >= 3
 
 
 SOLIDS = """[container]

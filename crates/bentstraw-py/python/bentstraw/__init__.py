@@ -505,8 +505,15 @@ class Simulation:
         ax.set_ylabel("y (m)")
         ax.set_zlabel("z (m)")
         if len(xyz):
+            # One scale on the three axes (the image's true shape), each axis at least 0.4 of the
+            # longest so that a straw's tall, thin image stays readable.
             lo, hi = xyz.min(axis=0), xyz.max(axis=0)
-            ax.set_box_aspect(np.maximum(hi - lo, 1e-3 * (hi - lo).max() + 1e-9))
+            spans = np.maximum(hi - lo, 0.4 * (hi - lo).max() + 1e-9)
+            for centre, span, limits in zip((lo + hi) / 2, spans,
+                                            (ax.set_xlim, ax.set_ylim, ax.set_zlim)):
+                limits(centre - span / 2, centre + span / 2)
+            ax.set_box_aspect(spans)
+            ax.locator_params(nbins=4)
         ax.set_title(f"{len(xyz)} image points ({self.image_model} model)")
         return fig, ax
 
