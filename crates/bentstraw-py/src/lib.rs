@@ -547,6 +547,12 @@ fn render<'py>(
         out.set_item("weights", PyArray1::from_vec(py, flat).reshape([h, w, k])?)?;
     }
     out.set_item("fov_deg", 2.0 * camera.tan_half_fov.atan().to_degrees())?;
+    // The camera, so that a pixel maps to the direction its ray leaves the eye in.
+    out.set_item("eye", camera.eye.to_array())?;
+    out.set_item("forward", camera.forward.to_array())?;
+    out.set_item("right", camera.right.to_array())?;
+    out.set_item("up", camera.up.to_array())?;
+    out.set_item("tan_half_fov", camera.tan_half_fov)?;
     Ok(out)
 }
 

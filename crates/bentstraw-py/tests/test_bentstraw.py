@@ -209,6 +209,48 @@ def test_a_picture_knows_the_field_of_view_the_command_line_drew_it_with(tmp_pat
     assert picture[10:20].fov == picture.fov and picture.copy().fov == picture.fov
 
 
+def test_a_pixel_maps_to_the_direction_of_its_ray():
+    # Course mode with its colour codes: where a pixel and its eight neighbours all show one
+    # object's colour, the ray along the picture's direction for that pixel reaches it.
+    picture, codes = bentstraw.render("leaning-straw", size=(320, 240), mode="course", weights=True)
+    eye = bentstraw.Scene.gallery("leaning-straw")
+    inside = [(i, j) for i in range(1, 239) for j in range(1, 319)
+              if codes[i, j] > 0 and (codes[i - 1:i + 2, j - 1:j + 2] == codes[i, j]).all()]
+    checked = 0
+    for i, j in inside[::max(1, len(inside) // 40)]:
+        ray = bentstraw.trace(eye, direction=picture.direction(i, j))
+        assert ray["outcome"] != "escaped" and ray["color"] == codes[i, j], (i, j, ray)
+        checked += 1
+    assert checked >= 5
+    assert tuple(picture.eye) == tuple(bentstraw.simulate("leaning-straw", points=10).observer)
+    # The picture's middle (between its four central pixels) is the direction it looks along.
+    assert np.allclose(picture.direction(119.5, 159.5), picture.forward)
+    assert np.isclose(np.linalg.norm(picture.direction(0, 0)), 1.0)
+    assert "Picture 320x240" in repr(picture)
+
+
+def test_reports_and_rays_say_what_they_hold_and_pickle():
+    sim = bentstraw.simulate(**REF2, points=500)
+    report = bentstraw.check(sim.xyz, sim.color, **REF2)
+    assert isinstance(report, dict) and report["verdict"] == "pass"
+    assert repr(report).startswith("<CheckReport: pass, ") and "points correct" in repr(report)
+    ray = bentstraw.trace(**REF2, direction=sim.direction[0])
+    assert repr(ray).startswith(f"<Ray: {ray['path']}, {len(ray['events'])} events, reaches ")
+    for value in (report, ray):
+        again = pickle.loads(pickle.dumps(value))
+        assert type(again) is type(value) and again == value
+
+
+def test_a_simulation_as_a_dataframe_holds_its_columns():
+    import pandas  # noqa: F401  (CI installs it: the package itself does not need it)
+    sim = bentstraw.simulate(**REF2, points=800, image_model="eye")
+    df = sim.to_dataframe()
+    assert list(df.columns[:4]) == ["x", "y", "z", "color"] and len(df) == len(sim)
+    assert np.array_equal(df[["x", "y", "z"]].to_numpy(), sim.xyz, equal_nan=True)
+    assert (df["path"].to_numpy() == sim.path).all() and np.array_equal(df["s_h"], sim.s_h, equal_nan=True)
+    assert np.array_equal(df[["object_x", "object_y", "object_z"]].to_numpy(), sim.object_point)
+
+
 def test_plots_return_the_figure_and_axes_with_the_results_drawn():
     matplotlib = pytest.importorskip("matplotlib")
     matplotlib.use("Agg")

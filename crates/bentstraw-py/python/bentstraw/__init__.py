@@ -134,23 +134,59 @@ else:
 
 class Picture(_PictureArray):
     """A picture as :func:`render` returns it: an ``(h, w, 3)`` uint8 array of sRGB pixels that
-    also knows the vertical field of view it was drawn with (``fov``, degrees), so that a picture
-    framed by default can be drawn again, or compared, with the same one."""
+    also knows the camera it was drawn with: the ``eye``, the unit direction it looks along
+    (``forward``, towards the target), and the vertical field of view ``fov`` (degrees), so
+    that a picture framed by default can be drawn again with the same one, and
+    :meth:`direction` maps a pixel to the direction its ray leaves the eye in."""
 
     #: The vertical field of view of the picture (degrees).
     fov: float
+    #: The eye, where every ray of the picture starts (m).
+    eye: Tuple[float, float, float]
+    #: The unit direction the camera looks along (towards its target).
+    forward: Tuple[float, float, float]
+    _camera: Dict[str, Any]
 
     def __array_finalize__(self, obj: Any) -> None:
-        self.fov = getattr(obj, "fov", float("nan"))
+        self._set_camera(getattr(obj, "_camera", {}))
+
+    def _set_camera(self, camera: Dict[str, Any]) -> None:
+        self._camera = camera
+        self.fov = camera.get("fov_deg", float("nan"))
+        self.eye = tuple(camera.get("eye", (float("nan"),) * 3))
+        self.forward = tuple(camera.get("forward", (float("nan"),) * 3))
+
+    def direction(self, row: float, col: float) -> np.ndarray:
+        """The unit direction of the ray through the centre of pixel ``(row, col)`` (row 0 at the
+        top, column 0 at the left), as the picture was traced: ``f + sx·r + sy·u`` normalised,
+        with ``sx = (2(col + ½)/w − 1)·tan(fov/2)·w/h`` and ``sy = (1 − 2(row + ½)/h)·tan(fov/2)``.
+
+        >>> picture = bentstraw.render("leaning-straw", size=(80, 60))
+        >>> ray = bentstraw.trace("leaning-straw", direction=picture.direction(30, 40))
+        """
+        # (The whole picture's size: a slice of a picture keeps its camera.)
+        c = self._camera
+        w, h = c["size"]
+        t = c["tan_half_fov"]
+        sx = (2.0 * (col + 0.5) / w - 1.0) * t * (w / h)
+        sy = (1.0 - 2.0 * (row + 0.5) / h) * t
+        d = np.asarray(c["forward"]) + sx * np.asarray(c["right"]) + sy * np.asarray(c["up"])
+        return cast(np.ndarray, d / np.linalg.norm(d))
 
     def __reduce__(self) -> Any:
-        # Pickled with its field of view (an array's own state does not hold it).
+        # Pickled with its camera (an array's own state does not hold it).
         reduced: Any = super().__reduce__()
-        return reduced[0], reduced[1], (reduced[2], self.fov)
+        return reduced[0], reduced[1], (reduced[2], self._camera)
 
     def __setstate__(self, state: Any) -> None:
-        array_state, self.fov = state
+        array_state, camera = state
         super().__setstate__(array_state)
+        self._set_camera(camera)
+
+    def __repr__(self) -> str:
+        eye = ", ".join(f"{v:g}" for v in self.eye)
+        return (f"<Picture {self.shape[1]}x{self.shape[0]} seen from ({eye}), "
+                f"field of view {self.fov:.2f}°>")
 
     def plot(self, ax: Any = None) -> Tuple[Any, Any]:
         """The picture drawn with matplotlib, pixel for pixel, its field of view in the title:
@@ -474,6 +510,35 @@ class Simulation:
     def __len__(self) -> int:
         return len(self.color)
 
+    def to_dataframe(self) -> Any:
+        """The points as a pandas DataFrame, one row per point: ``x``, ``y``, ``z`` and
+        ``color`` (the columns ``bentstraw simulate`` writes), then ``path`` (the kind of light
+        path), ``path_length``, the object point ``object_x``, ``object_y``, ``object_z``, the
+        first direction ``u0_x``, ``u0_y``, ``u0_z``, ``events``, and the model's own columns.
+        Needs pandas (not required by the package otherwise).
+
+        >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+        >>> list(sim.to_dataframe().columns[:5])
+        ['x', 'y', 'z', 'color', 'path']
+        """
+        try:
+            import pandas as pd
+        except ImportError as e:
+            raise ImportError("to_dataframe needs pandas: pip install pandas") from e
+        columns: Dict[str, Any] = {"x": self.xyz[:, 0], "y": self.xyz[:, 1], "z": self.xyz[:, 2],
+                                   "color": self.color, "path": self.path,
+                                   "path_length": self.path_length}
+        for name, v in (("object", self.object_point), ("u0", self.direction)):
+            for k, axis in enumerate("xyz"):
+                columns[f"{name}_{axis}"] = v[:, k]
+        columns["events"] = self.events
+        for name in ("s_h", "s_v", "s_h_kind", "s_v_kind", "gap", "disparity",
+                     "vertical_disparity", "miss_distance"):
+            value = getattr(self, name)
+            if value is not None:
+                columns[name] = value
+        return pd.DataFrame(columns)
+
     def plot(self, ax: Any = None, *, color_by: Literal["section", "path"] = "section",
              size: float = 1.0) -> Tuple[Any, Any]:
         """The image points in 3D with matplotlib, each in its object's colour (or, with
@@ -662,7 +727,9 @@ def render(
         _real(prune, "prune"), backdrop, _count(samples, "samples"), _flag(weights, "weights"),
     )
     picture: Picture = out["pixels"].view(Picture)
-    picture.fov = out["fov_deg"]
+    camera = {k: out[k] for k in ("fov_deg", "eye", "forward", "right", "up", "tan_half_fov")}
+    camera["size"] = (picture.shape[1], picture.shape[0])
+    picture._set_camera(camera)
     if not weights:
         return picture
     return picture, out["codes"] if "codes" in out else out["weights"]
@@ -682,7 +749,7 @@ def check(
     tolerance: float = DEFAULT_TOLERANCE,
     min_coverage: float = DEFAULT_MIN_COVERAGE,
     worst: int = 10,
-) -> Dict[str, Any]:
+) -> CheckReport:
     """Judges image points ``xyz`` (``(N, 3)``, m) of colour codes ``color`` (``(N,)``) seen
     from ``observer``: a dict with the fields of ``bentstraw check --json`` and the same values
     (``"verdict"`` is ``"pass"`` or ``"fail"``; the counts per kind and per colour; the coverage
@@ -698,7 +765,7 @@ def check(
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
     report = _engine.check(loaded, points, codes, _real(tolerance, "tolerance"),
                            _real(min_coverage, "min_coverage"), _count(worst, "worst"))
-    return cast(Dict[str, Any], json.loads(report))
+    return CheckReport(json.loads(report))
 
 
 @_keyworded
@@ -791,6 +858,31 @@ def assert_solution(
     return row
 
 
+class CheckReport(Dict[str, Any]):
+    """What :func:`check` says of a solution: a dict with the fields of ``bentstraw check
+    --json`` (``report["verdict"]``, ``report["coverage"]``, ...), whose ``repr`` says the
+    verdict, the points judged correct and the coverage of the true image; it pickles."""
+
+    def __repr__(self) -> str:
+        coverage = self.get("coverage") or {}
+        least = min(coverage.values()) if coverage else float("nan")
+        return (f"<CheckReport: {self.get('verdict')}, {self.get('correct')} of "
+                f"{self.get('points')} points correct, least coverage of a colour {least:.0%}>")
+
+
+class Ray(Dict[str, Any]):
+    """One ray's light path, as :func:`trace` gives it: a dict (``ray["events"]``,
+    ``ray["path"]``, ``ray["path_length"]``, ...), whose ``repr`` says its path and where it
+    ends; it pickles."""
+
+    def __repr__(self) -> str:
+        events = len(self.get("events", []))
+        if self.get("outcome") == "escaped":
+            return f"<Ray: {self.get('path')}, {events} events, escapes>"
+        return (f"<Ray: {self.get('path')}, {events} events, reaches {self.get('color_name')} "
+                f"after L = {self.get('path_length', float('nan')):.4f} m>")
+
+
 def _axes(ax: Any, projection: Optional[str]) -> Tuple[Any, Any]:
     """``ax`` and its figure, or a new figure's axes (``projection="3d"`` for points)."""
     if ax is not None:
@@ -823,7 +915,7 @@ def trace(
     max_events: int = DEFAULT_MAX_EVENTS,
     direction: Optional[Vector3] = None,
     toward: Optional[Vector3] = None,
-) -> Dict[str, Any]:
+) -> Ray:
     """The light path of one ray from the observer, along ``direction`` or toward the point
     ``toward``, as the explorer shows a clicked ray: a dict with its ``"events"`` (each with its
     point, face, ``"refraction"`` or ``"total reflection"``, the angles of incidence and of the
@@ -841,4 +933,4 @@ def trace(
     """
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
     ray = _engine.trace(loaded, _vector(direction, 3, "direction"), _vector(toward, 3, "toward"))
-    return cast(Dict[str, Any], json.loads(ray))
+    return Ray(json.loads(ray))
