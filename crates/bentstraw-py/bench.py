@@ -4,8 +4,10 @@
 
 Each round runs `bentstraw simulate` (its own tracing time, as it reports it, and its whole
 run, CSV written) and `bentstraw.simulate` (the call, numpy arrays out), alternately, and prints
-the medians and the ratio Python / command line. The command line is $BENTSTRAW (default: the
-workspace's release build).
+the medians and the ratio Python / command line. Then the memory each needs per point: the
+peak resident memory of a fresh process for POINTS points less that for a hundredth of them,
+over the difference in points. The command line is $BENTSTRAW (default: the workspace's release
+build).
 """
 
 import os
@@ -46,3 +48,35 @@ print(f"  command line, tracing         {m(cli_tracing):.3f} s")
 print(f"  command line, whole run (CSV) {m(cli_total):.3f} s")
 print(f"  Python, bentstraw.simulate    {m(python):.3f} s")
 print(f"  ratio Python / command line's tracing: {m(python) / m(cli_tracing):.2f}")
+
+
+def peak(cmd):
+    """The peak resident memory (bytes) of `cmd` and what it wrote (stdout and stderr)."""
+    code = ("import resource, subprocess, sys\n"
+            "p = subprocess.run(sys.argv[1:], capture_output=True, text=True)\n"
+            "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
+            "print(p.stdout + p.stderr)")
+    out = subprocess.run([sys.executable, "-S", "-c", code, *cmd], capture_output=True, text=True,
+                         check=True).stdout
+    kb, _, said = out.partition("\n")
+    # ru_maxrss is in kilobytes on Linux.
+    return int(kb) * 1024, said
+
+
+def memory(points):
+    """Peak resident memory (bytes) and points made, command line and Python, for `points`."""
+    with tempfile.TemporaryDirectory() as tmp:
+        cli, said = peak([BENTSTRAW, "simulate", *FLAGS, "--points", str(points), "--output",
+                          f"{tmp}/points.csv"])
+        made = int(re.search(r"image points\s+(\d+)", said).group(1))
+    code = f"import bentstraw; sim = bentstraw.simulate(**{REF2!r}, points={points}); print(len(sim))"
+    py, said = peak([sys.executable, "-c", code])
+    return (cli, made), (py, int(said.split()[0]))
+
+
+if sys.platform.startswith("linux"):
+    (c_small, c_n0), (p_small, p_n0) = memory(POINTS // 100)
+    (c_big, c_n1), (p_big, p_n1) = memory(POINTS)
+    print("memory per image point (peak resident memory):")
+    print(f"  command line  {(c_big - c_small) / (c_n1 - c_n0):.0f} bytes")
+    print(f"  Python        {(p_big - p_small) / (p_n1 - p_n0):.0f} bytes")

@@ -283,7 +283,7 @@ fn simulate<'py>(
                     ModelColumns::Course,
                 ),
             };
-        Some((stats, Columns::of(placed.as_deref(), &images), extra))
+        Some((stats, Columns::of(placed.as_deref(), images), extra))
     })?;
 
     let out = PyDict::new(py);
@@ -416,31 +416,43 @@ struct Columns {
 
 impl Columns {
     /// The columns of `images`, placed at `placed` by a model (or where they are).
-    fn of(placed: Option<&[Option<Vec3>]>, images: &[ImagePoint]) -> Columns {
-        let flat = |v: &mut Vec<f64>, p: Vec3| v.extend_from_slice(&p.to_array());
+    ///
+    /// The points are taken from the last, each row written as its point is let go, and the
+    /// list of points is shrunk as it empties: the columns' pages are only used once written
+    /// (they start as untouched zero pages), so the points and their columns are never all held
+    /// at once, and a point costs in all about what its columns do.
+    fn of(placed: Option<&[Option<Vec3>]>, mut images: Vec<ImagePoint>) -> Columns {
         let n = images.len();
         let mut c = Columns {
             xyz: placed.map(|placed| {
                 let mut xyz = Vec::with_capacity(3 * n);
                 for p in placed {
-                    flat(&mut xyz, p.unwrap_or(Vec3::NAN));
+                    xyz.extend_from_slice(&p.unwrap_or(Vec3::NAN).to_array());
                 }
                 xyz
             }),
-            image_xyz: Vec::with_capacity(3 * n),
-            color: Vec::with_capacity(n),
-            direction: Vec::with_capacity(3 * n),
-            path_length: Vec::with_capacity(n),
-            object_point: Vec::with_capacity(3 * n),
-            events: Vec::with_capacity(n),
+            image_xyz: vec![0.0; 3 * n],
+            color: vec![0; n],
+            direction: vec![0.0; 3 * n],
+            path_length: vec![0.0; n],
+            object_point: vec![0.0; 3 * n],
+            events: vec![0; n],
         };
-        for p in images {
-            flat(&mut c.image_xyz, p.position);
-            c.color.push(i64::from(p.color));
-            flat(&mut c.direction, p.direction);
-            c.path_length.push(p.path_length);
-            flat(&mut c.object_point, p.straw_point);
-            c.events.push(i64::from(p.events));
+        let put =
+            |v: &mut [f64], k: usize, p: Vec3| v[3 * k..3 * k + 3].copy_from_slice(&p.to_array());
+        // Shrunk every sixteenth of the way (a shrink gives the freed pages back).
+        let step = (n / 16).max(1 << 16);
+        while let Some(p) = images.pop() {
+            let k = images.len();
+            put(&mut c.image_xyz, k, p.position);
+            c.color[k] = i64::from(p.color);
+            put(&mut c.direction, k, p.direction);
+            c.path_length[k] = p.path_length;
+            put(&mut c.object_point, k, p.straw_point);
+            c.events[k] = i64::from(p.events);
+            if k % step == 0 {
+                images.shrink_to_fit();
+            }
         }
         c
     }

@@ -507,8 +507,10 @@ fn slow_readers_are_sent_their_answers_without_holding_them_in_memory() {
         assert_eq!(read_answer(&mut s).status, 200);
     }
     let before = server.resident_kb().unwrap();
-    // Slow readers: a couple of kilobytes from each every 20 ms (so that no write of the server's
-    // waits long enough to be given up), the rest held by the server meanwhile.
+    // Slow readers: 8 KB from each every 10 ms (a frame takes some ten seconds to arrive, and no
+    // write of the server's waits long enough to be given up, even on a loaded machine: its
+    // socket takes more only once about half its buffer, a megabyte or so, has been read), the
+    // rest held by the server meanwhile.
     let trickled: Trickled = Default::default();
     let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     let reader = {
@@ -516,12 +518,12 @@ fn slow_readers_are_sent_their_answers_without_holding_them_in_memory() {
         std::thread::spawn(move || {
             while !stop.load(std::sync::atomic::Ordering::Relaxed) {
                 for (s, got) in trickled.lock().unwrap().iter_mut() {
-                    let mut buf = [0u8; 2048];
+                    let mut buf = [0u8; 8192];
                     if let Ok(n) = s.read(&mut buf) {
                         got.extend_from_slice(&buf[..n]);
                     }
                 }
-                std::thread::sleep(Duration::from_millis(20));
+                std::thread::sleep(Duration::from_millis(10));
             }
         })
     };
@@ -542,11 +544,22 @@ fn slow_readers_are_sent_their_answers_without_holding_them_in_memory() {
         grown_mb < 220,
         "the server grew by {grown_mb} MB with 60 frames waiting for their readers"
     );
-    // Every one arrives whole (its length as announced, a picture of the size asked).
+    // Every one arrives whole (its length as announced, a picture of the size asked). Each is
+    // read by a thread of its own: read one after the other, the last ones would wait on the
+    // others for longer than the server waits for a write to be taken on a loaded machine.
     let trickled = std::mem::take(&mut *trickled.lock().unwrap());
-    for (s, (_, got)) in slow.iter_mut().zip(trickled) {
-        s.set_nonblocking(false).unwrap();
-        let a = read_answer(&mut std::io::Cursor::new(got).chain(s));
+    let readers: Vec<_> = slow
+        .into_iter()
+        .zip(trickled)
+        .map(|(s, (_, got))| {
+            std::thread::spawn(move || {
+                s.set_nonblocking(false).unwrap();
+                read_answer(&mut std::io::Cursor::new(got).chain(s))
+            })
+        })
+        .collect();
+    for reader in readers {
+        let a = reader.join().unwrap();
         assert_eq!(a.status, 200);
         let header_len = u32::from_le_bytes(a.body[..4].try_into().unwrap()) as usize;
         let header: serde_json::Value = serde_json::from_slice(&a.body[4..4 + header_len]).unwrap();
