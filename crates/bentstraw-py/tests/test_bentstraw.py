@@ -272,6 +272,14 @@ def test_plots_return_the_figure_and_axes_with_the_results_drawn():
     assert sum(len(c._offsets3d[0]) for c in ax2.collections) == len(sim)
     with pytest.raises(ValueError, match="color_by"):
         sim.plot(color_by="colour")
+    # A ray: its broken path through each event to the object, and the line of sight to where
+    # the eye sees it.
+    ray = bentstraw.trace(**REF2, direction=sim.direction[5])
+    fig4, ax4 = bentstraw.ray_diagram(**REF2, direction=sim.direction[5])
+    path, sight = (np.column_stack(line.get_data_3d()) for line in ax4.lines)
+    expected = [ray["observer"]] + [e["point"] for e in ray["events"]] + [ray["straw_point"]]
+    assert np.allclose(path, expected) and np.allclose(sight, [ray["observer"], ray["image_point"]])
+    assert ax4.get_title() == ray["path"]
     picture = bentstraw.render(**REF2, size=(40, 30))
     fig3, ax3 = picture.plot()
     assert np.array_equal(ax3.images[0].get_array(), picture)

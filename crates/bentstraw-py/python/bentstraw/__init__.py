@@ -84,6 +84,7 @@ __all__ = [
     "assert_solution",
     "SolutionError",
     "trace",
+    "ray_diagram",
     "gallery",
     "__version__",
 ]
@@ -873,7 +874,54 @@ class CheckReport(Dict[str, Any]):
 class Ray(Dict[str, Any]):
     """One ray's light path, as :func:`trace` gives it: a dict (``ray["events"]``,
     ``ray["path"]``, ``ray["path_length"]``, ...), whose ``repr`` says its path and where it
-    ends; it pickles."""
+    ends; it pickles; :meth:`plot` draws it."""
+
+    def plot(self, ax: Any = None) -> Tuple[Any, Any]:
+        """The ray's broken path in 3D with matplotlib: from the eye to each event (numbered, as
+        in ``ray["events"]``) and on to the object it reaches ("really here"), or out of the
+        scene; and, dashed, the straight line of sight along which the eye looks, to the image
+        point where the object is seen ("seen here"). One scale on the three axes. Returns
+        ``(fig, ax)``, on ``ax`` if given (a 3D axes), else a new figure.
+
+        >>> ray = bentstraw.trace(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1,
+        ...                       toward=(0, 0.02, 0.05))
+        >>> fig, ax = ray.plot()
+        """
+        fig, ax = _axes(ax, "3d")
+        path = [self["observer"]] + [e["point"] for e in self["events"]]
+        if self.get("outcome") == "escaped":
+            leaves = self["leaves"]
+            reach = max(0.05, float(np.ptp(np.asarray(path), axis=0).max()) / 2)
+            path.append(list(np.asarray(leaves["from"]) + reach * np.asarray(leaves["direction"])))
+        else:
+            path.append(self["straw_point"])
+        line = np.asarray(path, dtype=float)
+        ax.plot(*line.T, color="tab:orange", lw=1.5, label="the light's path")
+        drawn = [line]
+        for k, e in enumerate(self["events"], start=1):
+            ax.text(*e["point"], f" {k}", color="tab:orange")
+        ax.scatter(*np.asarray(self["observer"]), color="black", s=20)
+        ax.text(*self["observer"], " eye")
+        if self.get("outcome") != "escaped":
+            seen = np.asarray([self["observer"], self["image_point"]], dtype=float)
+            ax.plot(*seen.T, color="0.4", ls="--", lw=1, label="line of sight")
+            ax.scatter(*seen[1], color="0.4", s=20)
+            ax.text(*seen[1], " seen here", color="0.3")
+            ax.scatter(*np.asarray(self["straw_point"]), color="tab:red", s=20)
+            ax.text(*self["straw_point"], " really here", color="tab:red")
+            drawn.append(seen)
+        points = np.concatenate(drawn)
+        lo, hi = points.min(axis=0), points.max(axis=0)
+        span = float((hi - lo).max()) or 1.0
+        for centre, limits in zip((lo + hi) / 2, (ax.set_xlim, ax.set_ylim, ax.set_zlim)):
+            limits(centre - span / 2, centre + span / 2)
+        ax.set_box_aspect((1, 1, 1))
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_zlabel("z (m)")
+        ax.set_title(str(self.get("path")))
+        ax.legend(loc="upper left", fontsize="small")
+        return fig, ax
 
     def __repr__(self) -> str:
         events = len(self.get("events", []))
@@ -934,3 +982,27 @@ def trace(
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
     ray = _engine.trace(loaded, _vector(direction, 3, "direction"), _vector(toward, 3, "toward"))
     return Ray(json.loads(ray))
+
+
+def ray_diagram(
+    scene: SceneLike = None,
+    *,
+    observer: Optional[Vector3] = None,
+    straw: Optional[Vector2] = None,
+    water_height: Optional[float] = None,
+    n_water: Optional[float] = None,
+    max_events: int = DEFAULT_MAX_EVENTS,
+    direction: Optional[Vector3] = None,
+    toward: Optional[Vector3] = None,
+    ax: Any = None,
+) -> Tuple[Any, Any]:
+    """The ray of :func:`trace` (the same keywords) drawn by :meth:`Ray.plot`: its broken path,
+    each event numbered, the object it reaches and, dashed, the line of sight to where the eye
+    sees it. Returns ``(fig, ax)``.
+
+    >>> fig, ax = bentstraw.ray_diagram(observer=(0.1, 0, 0.1), straw=(0, 0.02),
+    ...                                 water_height=0.1, toward=(0, 0.02, 0.05))
+    """
+    ray = trace(scene, observer=observer, straw=straw, water_height=water_height,
+                n_water=n_water, max_events=max_events, direction=direction, toward=toward)
+    return ray.plot(ax)
