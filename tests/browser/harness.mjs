@@ -76,7 +76,8 @@ export function runCli(args, cwd) {
     let stdout = "", stderr = "";
     child.stdout.on("data", (d) => { stdout += d; });
     child.stderr.on("data", (d) => { stderr += d; });
-    child.on("exit", (code) => resolve({ code, stdout, stderr }));
+    // "close", not "exit": the process may end before its output has all been read.
+    child.on("close", (code) => resolve({ code, stdout, stderr }));
   });
 }
 

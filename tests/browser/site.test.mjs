@@ -6,9 +6,8 @@ import assert from "node:assert/strict";
 import { existsSync, mkdtempSync, readFileSync, readdirSync, statSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
-import { spawn } from "node:child_process";
 import http from "node:http";
-import { launch, openPage, waitReady, BIN, SITE, startStaticServer } from "./harness.mjs";
+import { launch, openPage, waitReady, runCli, SITE, startStaticServer } from "./harness.mjs";
 
 let server, browser;
 before(async () => {
@@ -19,15 +18,7 @@ before(async () => {
 after(async () => { await browser?.close(); server?.stop(); });
 
 /** Runs the bentstraw command line in `dir`; resolves to { code, stdout, stderr }. */
-function cli(args, dir) {
-  return new Promise((resolve) => {
-    const child = spawn(BIN, args, { cwd: dir, stdio: ["ignore", "pipe", "pipe"] });
-    let stdout = "", stderr = "";
-    child.stdout.on("data", (d) => { stdout += d; });
-    child.stderr.on("data", (d) => { stderr += d; });
-    child.on("exit", (code) => resolve({ code, stdout, stderr }));
-  });
-}
+const cli = (args, dir) => runCli(args, dir);
 
 /** The page's points against the bytes `bentstraw simulate` writes for the page's own command
  * (its scene file, if any, written as scene.toml beside it). */

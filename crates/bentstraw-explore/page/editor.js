@@ -813,29 +813,30 @@ export function handlesOf(form, P, side) {
 const SPREAD_PX = 44;
 /**
  * Objects' handles a fingertip apart: where two objects' handles come closer than SPREAD_PX
- * (two straws a few millimetres apart, a coin under a straw), each object's handles are moved
+ * (two straws a few millimetres apart, a coin under a lens), each object's handles are moved
  * apart together, as a callout: `home` is where the handle belongs (drawn with a thin line to
  * it) and `shift` the pixels a drag takes off the pointer, so the object still follows the
- * finger. A prism's corners and a glass's profile points stay on the outline they shape.
+ * finger. How far they move depends on where the objects stand alone, so that leaning a straw or
+ * turning a lens's axis never moves the handles under the finger. A prism's corners and a
+ * glass's profile points stay on the outline they shape.
  */
 function spreadHandles(hs) {
   const owner = { lean: "straw", axis: "lens" }, groups = new Map();
   for (const h of hs) {
     if (h.kind === "corner" || h.kind === "profile") continue;
     const key = (owner[h.kind] || h.kind) + ":" + h.k;
-    if (!groups.has(key)) groups.set(key, { members: [], d: [0, 0] });
-    groups.get(key).members.push(h);
+    if (!groups.has(key)) groups.set(key, { anchor: null, members: [], d: [0, 0] });
+    const g = groups.get(key);
+    g.members.push(h);
+    if (!owner[h.kind]) g.anchor = h;
   }
-  const list = [...groups.values()], at = (h, g) => [h.at[0] + g.d[0], h.at[1] + g.d[1]];
+  const list = [...groups.values()].filter((g) => g.anchor), at = (g) => [g.anchor.at[0] + g.d[0], g.anchor.at[1] + g.d[1]];
   for (let pass = 0; pass < 16; pass++) {
     let moved = false;
     for (let a = 0; a < list.length; a++) for (let b = a + 1; b < list.length; b++) {
-      let near = null;
-      for (const p of list[a].members) for (const q of list[b].members) {
-        const [pa, pb] = [at(p, list[a]), at(q, list[b])], d = Math.hypot(pb[0] - pa[0], pb[1] - pa[1]);
-        // (Handles on one spot part along a direction of their own.)
-        if (!near || d < near.d) near = { d, u: d > 1e-6 ? [(pb[0] - pa[0]) / d, (pb[1] - pa[1]) / d] : [Math.cos(a + 2 * b), Math.sin(a + 2 * b)] };
-      }
+      const [pa, pb] = [at(list[a]), at(list[b])], d = Math.hypot(pb[0] - pa[0], pb[1] - pa[1]);
+      // (Handles on one spot part along a direction of their own.)
+      const near = { d, u: d > 1e-6 ? [(pb[0] - pa[0]) / d, (pb[1] - pa[1]) / d] : [Math.cos(a + 2 * b), Math.sin(a + 2 * b)] };
       if (near.d >= SPREAD_PX) continue;
       const push = (SPREAD_PX - near.d) / 2 + 0.25;
       list[a].d = [list[a].d[0] - push * near.u[0], list[a].d[1] - push * near.u[1]];
