@@ -20,7 +20,9 @@ use bentstraw_io::pictures::{checked_shading, picture_until};
 use bentstraw_io::scene_input::{parse_scene_text, read_scene_text, SceneFile};
 use bentstraw_io::solution::{json_report, solution_of_points, CheckOptions, Solution};
 use bentstraw_io::words::Lang;
-use bentstraw_io::writers::{check_points_asked, raw_weight_count};
+use bentstraw_io::writers::{
+    check_points_asked, raw_weight_count, write_points, ModelPoints, PointFormat, PointSet,
+};
 use bentstraw_io::{Error, ViewSpec};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
 use bentstraw_optics::check::{check_solution, CheckReport};
@@ -568,6 +570,43 @@ fn render<'py>(
     Ok(out)
 }
 
+/// Writes to `path` the points file `bentstraw simulate --output PATH` writes for the same scene,
+/// number of points and model (CSV, JSON or PLY by the name's extension), all or nothing: the
+/// points are traced again (tracing is deterministic: they are the simulation's own) and written
+/// by the command line's writers.
+#[pyfunction]
+fn save_points(
+    py: Python<'_>,
+    scene: &LoadedScene,
+    points: usize,
+    image_model: &str,
+    path: PathBuf,
+) -> PyResult<()> {
+    check_points_asked(points, image_model).map_err(python_error)?;
+    let format = PointFormat::from_path(&path).map_err(python_error)?;
+    let setup = &scene.loaded;
+    let (world, observer) = (&setup.world, setup.observer);
+    let written = interruptible(py, |stop| {
+        let cloud = sample_image_until(world, observer, points, &|_| {}, stop)?;
+        let eye = (image_model == "eye").then(|| eye_model_points(world, observer, &cloud.points));
+        let stereo =
+            (image_model == "stereo").then(|| stereo_points(world, observer, &cloud.points));
+        let model = match (&eye, &stereo) {
+            (Some(eye), _) => ModelPoints::Eye(eye),
+            (_, Some(stereo)) => ModelPoints::Stereo(stereo),
+            _ => ModelPoints::Course,
+        };
+        let set = PointSet {
+            scene: setup,
+            min_points: points,
+            model,
+            cloud: &cloud,
+        };
+        Some(write_points(&path, format, &set))
+    })?;
+    written.map_err(python_error)
+}
+
 /// Judges the points `xyz` (n × 3, m) of colour codes `color` (n) as `check --json` does a
 /// solution file, seen from the scene's observer: the report as JSON text.
 #[pyfunction]
@@ -745,6 +784,7 @@ fn _engine(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(gallery, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(light_paths, m)?)?;
+    m.add_function(wrap_pyfunction!(save_points, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(grade, m)?)?;

@@ -241,6 +241,21 @@ def test_reports_and_rays_say_what_they_hold_and_pickle():
         assert type(again) is type(value) and again == value
 
 
+@pytest.mark.parametrize("model, name", [("course", "p.csv"), ("eye", "p.csv"), ("course", "p.json"),
+                                         ("stereo", "p.json"), ("course", "p.ply"), ("eye", "p.ply")])
+def test_save_writes_the_command_lines_bytes(tmp_path, model, name):
+    run("simulate", *REF2_FLAGS, "--points", "1500", "--image-model", model, "--output", tmp_path / ("cli-" + name))
+    sim = bentstraw.simulate(**REF2, points=1500, image_model=model)
+    sim.save(tmp_path / name)
+    assert (tmp_path / name).read_bytes() == (tmp_path / ("cli-" + name)).read_bytes()
+    # A bad name is refused, nothing written; a pickled simulation says why it cannot save.
+    with pytest.raises(ValueError, match="txt"):
+        sim.save(tmp_path / "p.txt")
+    assert not (tmp_path / "p.txt").exists()
+    with pytest.raises(ValueError, match="pickle"):
+        pickle.loads(pickle.dumps(sim)).save(tmp_path / name)
+
+
 def test_a_simulation_as_a_dataframe_holds_its_columns():
     import pandas  # noqa: F401  (CI installs it: the package itself does not need it)
     sim = bentstraw.simulate(**REF2, points=800, image_model="eye")
@@ -579,13 +594,15 @@ def test_results_pickle_and_are_read_only(image_model):
     assert repr(again) == repr(sim)
 
 
-def test_the_docstrings_examples_run_as_written(monkeypatch):
+def test_the_docstrings_examples_run_as_written(monkeypatch, tmp_path):
     import doctest
 
     import matplotlib  # noqa: F401  (the examples draw: the tests need it, as the notebook does)
     monkeypatch.setenv("MPLBACKEND", "Agg")
     monkeypatch.chdir(ROOT)
-    result = doctest.testmod(bentstraw, extraglobs={"bentstraw": bentstraw}, optionflags=doctest.ELLIPSIS)
+    # (`tmp_path`: where the examples that write a file write it.)
+    result = doctest.testmod(bentstraw, extraglobs={"bentstraw": bentstraw, "tmp_path": tmp_path},
+                             optionflags=doctest.ELLIPSIS)
     assert result.failed == 0 and result.attempted >= 20, result
 
 

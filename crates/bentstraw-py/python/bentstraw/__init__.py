@@ -451,6 +451,7 @@ class Simulation:
         self._read_only()
         self._scene = scene
         self._paths: Optional[Dict[str, Any]] = None
+        self._points_asked = DEFAULT_POINTS
         observer = tuple(scene.observer)
         scene_name = scene.name
         #: The observer's eye (m).
@@ -510,6 +511,21 @@ class Simulation:
 
     def __len__(self) -> int:
         return len(self.color)
+
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes the points to ``path`` exactly as ``bentstraw simulate --output PATH`` does
+        for the same inputs: CSV, JSON (with the inputs) or PLY (a coloured point cloud) by the
+        name's extension, byte for byte, all or nothing (a file already there stays until the
+        new one is complete). The points are traced again to be written by the command line's
+        own writers: tracing is deterministic, so they are these points.
+
+        >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+        >>> sim.save(tmp_path / "points.csv")
+        """
+        if self._scene is None:
+            raise ValueError("a simulation read back from a pickle cannot be saved (its scene does "
+                             "not travel): run simulate again with the same inputs")
+        _engine.save_points(self._scene, self._points_asked, self.image_model, os.fspath(path))
 
     def to_dataframe(self) -> Any:
         """The points as a pandas DataFrame, one row per point: ``x``, ``y``, ``z`` and
@@ -619,7 +635,9 @@ def simulate(
     """
     loaded = _load(scene, observer, straw, water_height, n_water, max_events)
     fields = _engine.simulate(loaded, _count(points, "points", 2**63 - 1), image_model)
-    return Simulation(fields, loaded, image_model)
+    simulation = Simulation(fields, loaded, image_model)
+    simulation._points_asked = points
+    return simulation
 
 
 @overload
