@@ -256,6 +256,31 @@ def test_save_writes_the_command_lines_bytes(tmp_path, model, name):
         pickle.loads(pickle.dumps(sim)).save(tmp_path / name)
 
 
+def test_a_sweep_is_each_simulation_alone_with_a_progress_bar_when_asked(capfd):
+    values = [1.0, 1.25, 1.333, 1.5]
+    sims = bentstraw.sweep("n_water", np.array(values), **REF2, points=1500, progress=False)
+    for n, sim in zip(values, sims):
+        alone = bentstraw.simulate(**REF2, n_water=n, points=1500)
+        assert same_bits(sim.xyz, alone.xyz) and np.array_equal(sim.color, alone.color)
+    # Water of index 1 bends nothing: the image is the straw itself; denser water moves it.
+    assert np.allclose(sims[0].xyz, sims[0].object_point)
+    assert not np.allclose(sims[2].xyz, sims[2].object_point)
+    heights = bentstraw.sweep("water_height", [0.05, 0.1], observer=(0.1, 0, 0.1), straw=(0, 0.02), points=500)
+    assert [len(s) > 0 for s in heights] == [True, True]
+    # The bar (tqdm's) when asked; none for a sweep under a second.
+    capfd.readouterr()
+    bentstraw.sweep("n_water", [1.2, 1.3], **REF2, points=500, progress=True)
+    assert "bentstraw.sweep" in capfd.readouterr().err
+    bentstraw.sweep("n_water", [1.2, 1.3], **REF2, points=500)
+    assert "bentstraw.sweep" not in capfd.readouterr().err
+    with pytest.raises(TypeError, match="radius"):
+        bentstraw.sweep("radius", [1, 2], **REF2)
+    with pytest.raises(TypeError, match="both swept and shared"):
+        bentstraw.sweep("n_water", [1.2], n_water=1.3, observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
+    with pytest.raises(TypeError, match="sequence"):
+        bentstraw.sweep("n_water", {1.2, 1.3}, **REF2)
+
+
 def test_a_simulation_as_a_dataframe_holds_its_columns():
     import pandas  # noqa: F401  (CI installs it: the package itself does not need it)
     sim = bentstraw.simulate(**REF2, points=800, image_model="eye")

@@ -78,6 +78,7 @@ __all__ = [
     "Scene",
     "Simulation",
     "simulate",
+    "sweep",
     "render",
     "check",
     "grade",
@@ -638,6 +639,61 @@ def simulate(
     simulation = Simulation(fields, loaded, image_model)
     simulation._points_asked = points
     return simulation
+
+
+#: The keywords of :func:`simulate` a :func:`sweep` may vary.
+_SWEPT = ("observer", "straw", "water_height", "n_water", "max_events", "points", "image_model")
+
+
+def _progress_bar(total: int, show: Optional[bool]) -> Any:
+    """A progress bar for `total` steps that appears once a second has passed (tqdm's, a widget
+    in a notebook), or None: without tqdm installed, or with ``show=False``."""
+    if show is False:
+        return None
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        return None
+    return tqdm(total=total, delay=0.0 if show else 1.0, desc="bentstraw.sweep")
+
+
+def sweep(
+    keyword: str,
+    values: Sequence[Any],
+    scene: SceneLike = None,
+    *,
+    progress: Optional[bool] = None,
+    **shared: Any,
+) -> List[Simulation]:
+    """:func:`simulate` once for each of ``values`` of one of its keywords (``n_water``,
+    ``water_height``, ``straw``, ``observer``, ``max_events``, ``points``, ``image_model``), the
+    other keywords ``shared``: the simulations in the order of ``values``, each the one
+    :func:`simulate` gives alone. A sweep that runs over a second shows a progress bar when tqdm
+    is installed (a widget in a notebook); ``progress=True`` shows it at once, ``False`` never.
+    Each value costs the call of :func:`simulate` (under a millisecond besides the tracing).
+
+    >>> sims = bentstraw.sweep("n_water", [1.0, 1.2, 1.333], observer=(0.1, 0, 0.1),
+    ...                        straw=(0, 0.02), water_height=0.1, points=2000)
+    >>> len(sims), sims[0].image_model
+    (3, 'course')
+    """
+    if keyword not in _SWEPT:
+        raise TypeError(f"sweep cannot vary {keyword!r}: it varies one of {', '.join(_SWEPT)}")
+    if keyword in shared:
+        raise TypeError(f"{keyword} is both swept and shared: give it once, in values")
+    if isinstance(values, (str, bytes, set, frozenset, dict)) or not isinstance(values, (abc.Sequence, np.ndarray)):
+        raise TypeError(f"values must be a sequence or array, not {type(values).__name__} {values!r}")
+    bar = _progress_bar(len(values), progress)
+    out = []
+    try:
+        for v in values:
+            out.append(simulate(scene, **{keyword: v}, **shared))
+            if bar is not None:
+                bar.update(1)
+    finally:
+        if bar is not None:
+            bar.close()
+    return out
 
 
 @overload
