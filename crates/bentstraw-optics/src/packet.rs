@@ -643,12 +643,15 @@ impl<'w> PacketTracer<'w> {
             next.reserve_total(2 * cur.len());
             for (b, (block, n)) in cur.packets().enumerate() {
                 let alive = P::Mask::first(n);
-                // The light each branch has lost so far, and (below) on this piece too.
-                let mut density = if absorbs {
-                    cur.density[b].map(P::from_array)
+                // The light each branch has lost so far, and (below) on this piece too: none in a
+                // world without tints.
+                let mut lost = if absorbs {
+                    cur.density[b]
                 } else {
-                    [P::splat(0.0); 3]
+                    [[0.0; LANES]; 3]
                 };
+                let lost_by =
+                    |lost: &[[f32; LANES]; 3], k: usize| [lost[0][k], lost[1][k], lost[2][k]];
                 let r = &block.ray;
                 let o = V3::new(
                     P::from_array(r[0]),
@@ -661,8 +664,7 @@ impl<'w> PacketTracer<'w> {
                     P::from_array(r[5]),
                 );
                 let left = P::from_array(block.left);
-                let before = density.map(|c| c.to_array());
-                let escape = |k: usize, on_end: &mut E| {
+                let escape = |k: usize, absorbed: [f32; 3], on_end: &mut E| {
                     // A branch that met nothing is the ray from the eye (a far eye's rays start
                     // on the bounding sphere, possibly past the backdrop's floor).
                     let origin = if block.left[k] == NO_FACE {
@@ -676,24 +678,26 @@ impl<'w> PacketTracer<'w> {
                             origin,
                             direction: lane(&d, k),
                             weight: block.w[k],
-                            absorbed: [before[0][k], before[1][k], before[2][k]],
+                            absorbed,
                         },
                     )
                 };
                 let Some(hit) = world.nearest_lanes_in::<P, SOLIDS>(o, d, alive, left) else {
                     for k in alive.lanes() {
-                        escape(k, on_end);
+                        escape(k, lost_by(&lost, k), on_end);
                     }
                     continue;
                 };
                 let met = alive.and(hit.t.lt(inf));
                 let on_object = met.and(hit.code.ge(P::splat(first_object as f64)));
                 let on_boundary = met.and_not(on_object);
+                // (Only the lanes that met something travelled a piece: the others' stays.)
                 if absorbs {
+                    let mut density = lost.map(P::from_array);
                     world.absorb_lanes(P::from_array(block.medium), hit.t, met, &mut density);
+                    lost = density.map(|c| c.to_array());
                 }
-                let absorbed = density.map(|c| c.to_array());
-                let absorbed = |k: usize| [absorbed[0][k], absorbed[1][k], absorbed[2][k]];
+                let absorbed = |k: usize| lost_by(&lost, k);
                 if on_object.any() {
                     let color = hit.color(world, on_object).to_array();
                     let (t, code, part) =
@@ -716,7 +720,7 @@ impl<'w> PacketTracer<'w> {
                     }
                 }
                 for k in alive.and_not(met).lanes() {
-                    escape(k, on_end);
+                    escape(k, absorbed(k), on_end);
                 }
                 if event == world.max_events() {
                     for k in on_boundary.lanes() {

@@ -905,14 +905,10 @@ impl World {
                 holes: b.holes,
             })
             .collect();
-        let mut tinted: Vec<(MediumId, [f64; 3])> = Vec::new();
-        for b in &boundaries {
-            for m in [b.outer, b.inner] {
-                if let Some(a) = absorption(m).filter(|_| !tinted.iter().any(|t| t.0 == m)) {
-                    tinted.push((m, a));
-                }
-            }
-        }
+        // (A tinted liquid merged into an earlier one of its index and tint is met by no ray.)
+        let tinted = (2..liquids)
+            .filter_map(|m| absorption(m).map(|a| (m, a)))
+            .collect();
         World {
             indices,
             tinted,
