@@ -25,6 +25,7 @@ use bentstraw_io::writers::{
 };
 use bentstraw_io::{Error, ViewSpec};
 use bentstraw_optics::apparent::{eye_model_points, stereo_points};
+use bentstraw_optics::camera::Camera;
 use bentstraw_optics::check::{check_solution, CheckReport};
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::light_path_type::LightPathType;
@@ -607,6 +608,35 @@ fn save_points(
     written.map_err(python_error)
 }
 
+/// The unit direction of the ray through the centre of pixel `(row, col)` of a picture whose
+/// camera `render` gave (`forward`, `right`, `up`, `tan_half_fov`, `size` as `(w, h)`): the
+/// camera's own rule, so that the direction is the one the picture's pixel was traced along.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn pixel_direction(
+    forward: [f64; 3],
+    right: [f64; 3],
+    up: [f64; 3],
+    tan_half_fov: f64,
+    size: (u32, u32),
+    row: f64,
+    col: f64,
+) -> [f64; 3] {
+    let camera = Camera {
+        eye: Vec3::ZERO,
+        forward: Vec3::from_array(forward),
+        right: Vec3::from_array(right),
+        up: Vec3::from_array(up),
+        width: size.0,
+        height: size.1,
+        tan_half_fov,
+    };
+    camera
+        .direction_at(row + 0.5, col + 0.5)
+        .normalize()
+        .to_array()
+}
+
 /// Judges the points `xyz` (n × 3, m) of colour codes `color` (n) as `check --json` does a
 /// solution file, seen from the scene's observer: the report as JSON text.
 #[pyfunction]
@@ -786,6 +816,7 @@ fn _engine(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(light_paths, m)?)?;
     m.add_function(wrap_pyfunction!(save_points, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(pixel_direction, m)?)?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(grade, m)?)?;
     m.add_function(wrap_pyfunction!(grade_points, m)?)?;

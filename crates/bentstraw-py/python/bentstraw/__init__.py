@@ -141,39 +141,41 @@ class Picture(_PictureArray):
     that a picture framed by default can be drawn again with the same one, and
     :meth:`direction` maps a pixel to the direction its ray leaves the eye in."""
 
-    #: The vertical field of view of the picture (degrees).
-    fov: float
-    #: The eye, where every ray of the picture starts (m).
-    eye: Tuple[float, float, float]
-    #: The unit direction the camera looks along (towards its target).
-    forward: Tuple[float, float, float]
     _camera: Dict[str, Any]
 
     def __array_finalize__(self, obj: Any) -> None:
-        self._set_camera(getattr(obj, "_camera", {}))
+        # (A slice or a copy of a picture keeps its camera.)
+        self._camera = getattr(obj, "_camera", {})
 
-    def _set_camera(self, camera: Dict[str, Any]) -> None:
-        self._camera = camera
-        self.fov = camera.get("fov_deg", float("nan"))
-        self.eye = tuple(camera.get("eye", (float("nan"),) * 3))
-        self.forward = tuple(camera.get("forward", (float("nan"),) * 3))
+    @property
+    def fov(self) -> float:
+        """The vertical field of view of the picture (degrees)."""
+        return float(self._camera.get("fov_deg", float("nan")))
+
+    @property
+    def eye(self) -> Tuple[float, ...]:
+        """The eye, where every ray of the picture starts (m)."""
+        return tuple(self._camera.get("eye", (float("nan"),) * 3))
+
+    @property
+    def forward(self) -> Tuple[float, ...]:
+        """The unit direction the camera looks along (towards its target)."""
+        return tuple(self._camera.get("forward", (float("nan"),) * 3))
 
     def direction(self, row: float, col: float) -> np.ndarray:
         """The unit direction of the ray through the centre of pixel ``(row, col)`` (row 0 at the
-        top, column 0 at the left), as the picture was traced: ``f + sx·r + sy·u`` normalised,
-        with ``sx = (2(col + ½)/w − 1)·tan(fov/2)·w/h`` and ``sy = (1 − 2(row + ½)/h)·tan(fov/2)``.
+        top, column 0 at the left), the one the picture traced there: ``f + sx·r + sy·u``
+        normalised, with ``sx = (2(col + ½)/w − 1)·tan(fov/2)·w/h`` and
+        ``sy = (1 − 2(row + ½)/h)·tan(fov/2)``.
 
         >>> picture = bentstraw.render("leaning-straw", size=(80, 60))
         >>> ray = bentstraw.trace("leaning-straw", direction=picture.direction(30, 40))
         """
         # (The whole picture's size: a slice of a picture keeps its camera.)
         c = self._camera
-        w, h = c["size"]
-        t = c["tan_half_fov"]
-        sx = (2.0 * (col + 0.5) / w - 1.0) * t * (w / h)
-        sy = (1.0 - 2.0 * (row + 0.5) / h) * t
-        d = np.asarray(c["forward"]) + sx * np.asarray(c["right"]) + sy * np.asarray(c["up"])
-        return cast(np.ndarray, d / np.linalg.norm(d))
+        return np.asarray(_engine.pixel_direction(c["forward"], c["right"], c["up"],
+                                                  c["tan_half_fov"], c["size"],
+                                                  _real(row, "row"), _real(col, "col")))
 
     def __reduce__(self) -> Any:
         # Pickled with its camera (an array's own state does not hold it).
@@ -181,9 +183,8 @@ class Picture(_PictureArray):
         return reduced[0], reduced[1], (reduced[2], self._camera)
 
     def __setstate__(self, state: Any) -> None:
-        array_state, camera = state
+        array_state, self._camera = state
         super().__setstate__(array_state)
-        self._set_camera(camera)
 
     def __repr__(self) -> str:
         eye = ", ".join(f"{v:g}" for v in self.eye)
@@ -337,13 +338,19 @@ def _real(x: Any, name: str) -> float:
     return float(x)
 
 
+def _sequence(v: Any, name: str, of: str = "") -> None:
+    """A TypeError naming ``name`` unless ``v`` is a sequence or an array (of ``of``): a string,
+    a set (no order) or a dict is none."""
+    if isinstance(v, (str, bytes, set, frozenset, dict)) or not isinstance(v, (abc.Sequence, np.ndarray)):
+        raise TypeError(f"{name} must be a sequence or array{of}, not {type(v).__name__} {v!r}")
+
+
 def _vector(v: Optional[Any], n: int, name: str) -> Optional[Tuple[float, ...]]:
     """``v`` as ``n`` floats (or None): a sequence or array of numbers. A string, a set (no
     order) or a dict is a TypeError naming ``name``; the wrong count a ValueError."""
     if v is None:
         return None
-    if isinstance(v, (str, bytes, set, frozenset, dict)) or not isinstance(v, (abc.Sequence, np.ndarray)):
-        raise TypeError(f"{name} must be a sequence or array of {n} numbers, not {type(v).__name__} {v!r}")
+    _sequence(v, name, f" of {n} numbers")
     values = tuple(_real(x, name) for x in v)
     if len(values) != n:
         raise ValueError(f"{name} must be {n} numbers, not {len(values)}: {v!r}")
@@ -681,8 +688,7 @@ def sweep(
         raise TypeError(f"sweep cannot vary {keyword!r}: it varies one of {', '.join(_SWEPT)}")
     if keyword in shared:
         raise TypeError(f"{keyword} is both swept and shared: give it once, in values")
-    if isinstance(values, (str, bytes, set, frozenset, dict)) or not isinstance(values, (abc.Sequence, np.ndarray)):
-        raise TypeError(f"values must be a sequence or array, not {type(values).__name__} {values!r}")
+    _sequence(values, "values")
     bar = _progress_bar(len(values), progress)
     out = []
     try:
@@ -804,7 +810,7 @@ def render(
     picture: Picture = out["pixels"].view(Picture)
     camera = {k: out[k] for k in ("fov_deg", "eye", "forward", "right", "up", "tan_half_fov")}
     camera["size"] = (picture.shape[1], picture.shape[0])
-    picture._set_camera(camera)
+    picture._camera = camera
     if not weights:
         return picture
     return picture, out["codes"] if "codes" in out else out["weights"]

@@ -7,7 +7,7 @@ import numpy.typing as npt
 
 __all__ = [
     "LoadedScene", "load", "read_scene", "check_scene", "gallery", "simulate", "light_paths", "save_points",
-    "render", "check", "grade", "grade_points", "trace", "VERSION", "WATER_INDEX",
+    "render", "pixel_direction", "check", "grade", "grade_points", "trace", "VERSION", "WATER_INDEX",
     "DEFAULT_MAX_EVENTS", "DEFAULT_TOLERANCE", "DEFAULT_MIN_COVERAGE", "DEFAULT_POINTS",
     "DEFAULT_PRUNE", "DEFAULT_SAMPLES", "DEFAULT_SIZE", "DEFAULT_MODE", "DEFAULT_BACKDROP",
     "COLOR_NAMES", "COLOR_RGB",
@@ -32,7 +32,7 @@ class LoadedScene:
     """A scene loaded and checked, with its observer."""
 
     @property
-    def observer(self) -> Tuple[float, float, float]: ...
+    def observer(self) -> List[float]: ...
     @property
     def name(self) -> Optional[str]: ...
     @property
@@ -68,6 +68,10 @@ def render(
     samples: int,
     raw: bool,
 ) -> Dict[str, Any]: ...
+def pixel_direction(
+    forward: Any, right: Any, up: Any, tan_half_fov: float, size: Tuple[int, int], row: float,
+    col: float,
+) -> List[float]: ...
 def check(
     scene: LoadedScene,
     xyz: npt.NDArray[np.float64],
