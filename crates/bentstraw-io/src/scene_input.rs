@@ -6,6 +6,7 @@ use std::path::Path;
 
 use bentstraw_optics::scene_file::SceneDescription;
 use bentstraw_optics::setup::{self, SceneValues, Setup, MAX_SCENE_FILE_BYTES};
+use bentstraw_optics::text;
 
 use crate::error::{Error, Result};
 use crate::files::{read_input, shown, Unread};
@@ -43,11 +44,37 @@ impl SceneFile {
                 text: text.to_string(),
             });
         }
+        let near = path.to_str().filter(|name| {
+            !path.exists()
+                && path.components().count() == 1
+                && text::did_you_mean(name, named_scenes().map(|(stem, _)| stem)).is_some()
+        });
+        if let Some(name) = near {
+            return Err(Error::Refused(format!(
+                "there is no scene file {name}, and {}",
+                gallery_miss(name)
+            )));
+        }
         Ok(SceneFile {
             name: shown(path),
             text: read_scene_text(path)?,
         })
     }
+}
+
+/// Why `name` is no gallery scene: the names it may be a slip for, and the gallery's names.
+pub fn gallery_miss(name: &str) -> String {
+    let stems: Vec<&str> = named_scenes().map(|(stem, _)| stem).collect();
+    let hint = text::did_you_mean(
+        name.strip_suffix(".toml").unwrap_or(name),
+        stems.iter().copied(),
+    )
+    .map_or(String::new(), |h| h + " ");
+    format!(
+        "no gallery scene is called '{}': {hint}the gallery has {}",
+        text::clip_text(name, 60),
+        stems.join(", ")
+    )
 }
 
 /// The gallery's scene `name` (its file's text), seen from its own `[observer]`, with the event

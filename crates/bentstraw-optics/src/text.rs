@@ -33,3 +33,55 @@ pub fn refuse_choice(option: &str, value: &str, choices: &[&str]) -> String {
         choices.join(", ")
     )
 }
+
+/// The names among `names` that `word` may be a slip for, nearest first, at most three: those
+/// that an edit of at most about a third of their letters (swaps counted as one) turns into
+/// `word`, letter case aside.
+pub fn nearest_names<'a>(word: &str, names: impl IntoIterator<Item = &'a str>) -> Vec<&'a str> {
+    let word = word.to_lowercase();
+    let mut near: Vec<(f64, &str)> = names
+        .into_iter()
+        .map(|name| {
+            let likeness = strsim::normalized_damerau_levenshtein(&word, &name.to_lowercase());
+            (likeness, name)
+        })
+        .filter(|(likeness, _)| *likeness >= 0.6)
+        .collect();
+    near.sort_by(|a, b| b.0.total_cmp(&a.0));
+    near.into_iter().take(3).map(|(_, name)| name).collect()
+}
+
+/// The hint for a slip among `names`: `did you mean 'prism'?` (or `'a' or 'b'?`), or None when
+/// no name is near.
+pub fn did_you_mean<'a>(word: &str, names: impl IntoIterator<Item = &'a str>) -> Option<String> {
+    let near = nearest_names(word, names);
+    (!near.is_empty()).then(|| {
+        let quoted: Vec<String> = near.iter().map(|n| format!("'{n}'")).collect();
+        format!("did you mean {}?", quoted.join(" or "))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_slip_finds_the_names_it_may_stand_for_nearest_first() {
+        let names = [
+            "prism",
+            "prism-spectrum",
+            "ball-lens",
+            "leaning-straw",
+            "coin",
+        ];
+        assert_eq!(nearest_names("prysm", names), ["prism"]);
+        assert_eq!(nearest_names("Leaning_Straw", names), ["leaning-straw"]);
+        assert_eq!(nearest_names("coins", names), ["coin"]);
+        assert!(nearest_names("aquarium", names).is_empty());
+        assert_eq!(
+            did_you_mean("bal-lens", names).as_deref(),
+            Some("did you mean 'ball-lens'?")
+        );
+        assert_eq!(did_you_mean("wine", names), None);
+    }
+}

@@ -786,9 +786,32 @@ fn a_gallery_scene_is_named_from_any_folder() {
     // An unknown name is still a missing file.
     let o = run(
         dir.path(),
-        &["simulate", "--scene", "teapot", "--points", "10"],
+        &[
+            "simulate", "--scene", "teapot", "--points", "10", "--output", "t.csv",
+        ],
     );
     assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read the scene file teapot"));
+    // A slip in a gallery name gets the names it may stand for, and nothing is written.
+    let o = run(
+        dir.path(),
+        &[
+            "simulate",
+            "--scene",
+            "leanin-straw",
+            "--output",
+            "slip.csv",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("there is no scene file leanin-straw")
+            && err.contains("did you mean 'leaning-straw'")
+            && err.contains("the gallery has spec, "),
+        "{err}"
+    );
+    assert!(!dir.path().join("slip.csv").exists());
 }
 
 /// A file whose sizes read like centimetres is traced as written, with a hint on standard
