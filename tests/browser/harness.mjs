@@ -13,7 +13,8 @@ export const BIN = process.env.BENTSTRAW || path.join(ROOT, "target/release/bent
  * into a URL by `url`); resolves to { url, child, stop, stderr }. The process never outlives a
  * test run, even one cut short. */
 function startListening(command, args, pattern, url, what) {
-  const child = spawn(command, args, { stdio: ["ignore", "pipe", "pipe"] });
+  // Standard input stays open: a process that waits on it lives until it is stopped.
+  const child = spawn(command, args, { stdio: ["pipe", "pipe", "pipe"] });
   let stderr = "";
   child.stderr.on("data", (d) => { stderr += d; });
   process.on("exit", () => child.kill());
@@ -30,6 +31,16 @@ function startListening(command, args, pattern, url, what) {
 /** Starts `bentstraw explore --no-open --port 0 ...args`; resolves to { url, stop }. */
 export function startServer(args = []) {
   return startListening(BIN, ["explore", "--no-open", "--port", "0", ...args], /http:\/\/\S+\//, (m) => m[0], "explore");
+}
+
+/** The Python that has the bentstraw package installed: $PYTHON, else python3. */
+export const PYTHON = process.env.PYTHON || "python3";
+
+/** Runs `bentstraw.explore(ARGS)` (Python's keywords, as code) in a Python process that lives
+ * until `stop`; resolves to { url, stop } with the address the call gives. */
+export function startPythonExplore(args) {
+  const code = `import bentstraw, sys\nprint(bentstraw.explore(${args}).url, flush=True)\nsys.stdin.read()`;
+  return startListening(PYTHON, ["-c", code], /http:\/\/\S+/, (m) => m[0], "bentstraw.explore");
 }
 
 /** Headless Chromium as the project runs it. */

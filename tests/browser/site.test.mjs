@@ -7,7 +7,7 @@ import { existsSync, mkdtempSync, readFileSync, readdirSync, statSync, writeFile
 import { tmpdir } from "node:os";
 import path from "node:path";
 import http from "node:http";
-import { launch, openPage, waitReady, runCli, SITE, startStaticServer } from "./harness.mjs";
+import { launch, openPage, waitReady, runCli, SITE, startStaticServer, startPythonExplore } from "./harness.mjs";
 
 let server, browser;
 before(async () => {
@@ -331,6 +331,28 @@ test("a broken rule is refused with the command line's message, shown on the pag
   assert.equal(await page.evaluate(() => window.bentstraw.state.file), "");
   await page.screenshot({ path: path.join(tmpdir(), "bentstraw-site-refusal.png") });
   await context.close();
+});
+
+test("Python's explore() opens the page its package carries, on the view asked: simulate's points", async () => {
+  // The package installed in $PYTHON, its page built with it; nothing of the repository served.
+  const explorer = await startPythonExplore(`"leaning-straw", observer=(0.25, -0.06, 0.17), mode="course", lang="fr"`);
+  try {
+    const { page, context, problems } = await openPage(browser, explorer.url);
+    await page.goto(explorer.url);
+    await waitReady(page);
+    const state = await page.evaluate(() => window.bentstraw.state);
+    assert.equal(state.scene, "leaning-straw");
+    assert.deepEqual(state.observer, [0.25, -0.06, 0.17]);
+    assert.equal(state.mode, "course");
+    assert.equal(await page.evaluate(() => document.documentElement.lang), "fr");
+    const { args } = await assertPointsAreSimulates(page, "opened from Python");
+    assert.ok(args.join(" ").includes("--observer 0.25,-0.06,0.17"), args.join(" "));
+    await page.screenshot({ path: path.join(tmpdir(), "bentstraw-python-explore.png") });
+    assert.deepEqual(problems, []);
+    await context.close();
+  } finally {
+    explorer.stop();
+  }
 });
 
 test("a long drag down never puts the eye into the glass: it slides round it", async () => {

@@ -210,6 +210,12 @@ fn gallery() -> Vec<(&'static str, &'static str)> {
     GALLERY.to_vec()
 }
 
+/// Why `name` is no gallery scene, as the command line says it: the names it may be a slip for.
+#[pyfunction]
+fn gallery_miss(name: &str) -> String {
+    bentstraw_io::scene_input::gallery_miss(name)
+}
+
 /// A column of numbers as a numpy array that owns `values` (no copy).
 fn column<'py, T: numpy::Element>(py: Python<'py>, values: Vec<T>) -> Bound<'py, PyArray1<T>> {
     PyArray1::from_vec(py, values)
@@ -807,11 +813,15 @@ fn trace(
 /// The compiled part of the `bentstraw` package.
 #[pymodule]
 fn _engine(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // numpy's C interface is fetched now, not at the first array a call returns: fetching it runs
+    // Python code, where a Ctrl-C that came as the work ended would otherwise be a panic.
+    numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add_class::<LoadedScene>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(read_scene, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene, m)?)?;
     m.add_function(wrap_pyfunction!(gallery, m)?)?;
+    m.add_function(wrap_pyfunction!(gallery_miss, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(light_paths, m)?)?;
     m.add_function(wrap_pyfunction!(save_points, m)?)?;

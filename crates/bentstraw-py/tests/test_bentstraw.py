@@ -546,13 +546,14 @@ def test_the_engine_lets_other_python_threads_run_while_it_works():
 
 # A long call interrupted by Ctrl-C (SIGINT, as the terminal and Jupyter's "Interrupt kernel"
 # send it) as the process's first call: how long after the signal KeyboardInterrupt came, and the
-# processor time the process used in the 0.3 s after it (none: nothing left running).
+# processor time the process used in the 0.3 s after it (none: nothing left running). Each call
+# takes seconds, the signal comes at 0.3 s.
 INTERRUPTED = r"""
 import os, signal, sys, threading, time
 import bentstraw
 fired = []
 def fire():
-    time.sleep(0.5)
+    time.sleep(0.3)
     fired.append(time.perf_counter())
     os.kill(os.getpid(), signal.SIGINT)
 threading.Thread(target=fire, daemon=True).start()
@@ -561,7 +562,7 @@ try:
     if sys.argv[1] == "simulate":
         bentstraw.simulate(**view, points=5_000_000)
     else:
-        bentstraw.render(**view, size=(3840, 2160), mode="fresnel")
+        bentstraw.render(**view, size=(6000, 4000), mode="fresnel")
     print("finished")
 except KeyboardInterrupt:
     after = time.perf_counter() - fired[0]
@@ -724,3 +725,72 @@ def test_a_glass_of_revolution_gives_the_command_lines_points_and_its_rules(tmp_
     with pytest.raises(ValueError) as e:
         bentstraw.Scene.from_toml(text.replace("[0.0395, 0.12]", "[0.043, 0.12]"))
     assert "container.inner" in str(e.value) and "leaves the outer one" in str(e.value)
+
+
+def test_explore_serves_the_page_on_the_view_asked_and_nothing_else():
+    """The explorer's page and engine come with the package, served to this machine alone; its
+    address holds the view; the keywords are refused as everywhere else."""
+    import urllib.error
+    import urllib.parse
+    import urllib.request
+
+    from bentstraw import _explore
+
+    assert _explore.page_available(), (
+        "the package holds no page: `cargo xtask site crates/bentstraw-py/python/bentstraw/page` "
+        "before installing it"
+    )
+    page = bentstraw.explore("prism", observer=(0.3, 0.05, 0.2), mode="course", lang="fr")
+    base, fragment = page.url.split("#")
+    view = dict(urllib.parse.parse_qsl(fragment))
+    assert view["scene"] == "prism" and view["lang"] == "fr" and view["mode"] == "course"
+    assert [float(x) for x in view["observer"].split(",")] == [0.3, 0.05, 0.2]
+    assert urllib.parse.urlsplit(base).hostname == "127.0.0.1"
+    assert f'src="{page.url.replace("&", "&amp;")}"' in page._repr_html_()
+
+    def get(path):
+        with urllib.request.urlopen(urllib.parse.urljoin(base, path), timeout=10) as r:
+            return r.status, r.headers["Content-Type"], r.read()
+
+    status, kind, body = get("index.html")
+    assert status == 200 and kind.startswith("text/html") and b"<html" in body
+    status, kind, body = get("pkg/bentstraw_web_bg.wasm")
+    assert kind == "application/wasm" and body[:4] == b"\0asm"
+    for refused in ("pkg/", "../__init__.py", "%2e%2e/__init__.py"):
+        with pytest.raises(urllib.error.HTTPError) as e:
+            get(refused)
+        assert e.value.code == 404, refused
+    # Every call opens the same server.
+    again = bentstraw.explore(**REF2)
+    assert again.url.split("#")[0] == base
+    assert dict(urllib.parse.parse_qsl(again.url.split("#")[1]))["straw"] == "0.0,0.02"
+
+    # A scene file travels as its text.
+    text = bentstraw.Scene.gallery("leaning-straw").text
+    for scene in (bentstraw.Scene.from_toml(text), str(ROOT / "scenes" / "leaning-straw.toml")):
+        fragment = bentstraw.explore(scene).url.split("#")[1]
+        assert dict(urllib.parse.parse_qsl(fragment))["scene-file"] == text
+
+    with pytest.raises(ValueError, match="mode"):
+        bentstraw.explore(mode="colour", **REF2)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="lang"):
+        bentstraw.explore(lang="de", **REF2)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="observer"):
+        bentstraw.explore(observer="123", straw=(0, 0.02), water_height=0.1)
+    with pytest.raises(ValueError, match="did you mean 'prism'"):
+        bentstraw.explore("prysm")
+
+
+def test_help_lists_the_calls_without_burying_them():
+    """`help(bentstraw)` gives the calls and names what they return, without numpy's, dict's or
+    AssertionError's own methods."""
+    import pydoc
+
+    text = pydoc.render_doc(bentstraw, renderer=pydoc.plaintext)
+    assert len(text.splitlines()) < 250, len(text.splitlines())
+    for call in bentstraw.__all__:
+        assert f"\n    {call}(" in text, call
+    for name in ("Simulation", "Picture", "CheckReport", "Ray", "Explorer", "Scene"):
+        assert f":class:`{name}`" in text, name
+    assert "ndarray" not in text.split("FUNCTIONS")[0]
+    assert "with_traceback" not in text and "fromkeys" not in text

@@ -17,13 +17,22 @@ or a scene file (a path, a gallery name such as ``"leaning-straw"``, or a :class
 
     sim = bentstraw.simulate("leaning-straw")
 
+The calls: :func:`simulate` (image points), :func:`sweep` (one keyword varied), :func:`render`
+(the eye's picture), :func:`check` and :func:`assert_solution` (someone's image points judged),
+:func:`grade` (a class's solutions), :func:`trace` and :func:`ray_diagram` (one ray's light path),
+:func:`explore` (the live page in a notebook) and :func:`gallery` (the demonstrations' names).
+
+What they return, each with its own ``help``: :class:`Simulation`, :class:`Picture`,
+:class:`CheckReport`, :class:`Ray`, :class:`Explorer`; and :class:`Scene`, a scene file checked,
+:class:`SolutionError`, what :func:`assert_solution` raises. The defaults are ``DEFAULT_*`` and
+``WATER_INDEX``; the colour codes' names and colours ``COLOR_NAMES`` and ``COLOR_RGB``.
+
 The physics (how rays bend, what an image point is, the three apparent-position models) is
 explained in the project's ``docs/physics.md``.
 """
 
 from __future__ import annotations
 
-import difflib
 import functools
 import json
 import os
@@ -36,7 +45,8 @@ from typing import (TYPE_CHECKING, Any, Callable, Dict, List, Literal, Optional,
 import numpy as np
 import numpy.typing as npt
 
-from . import _engine
+from . import _engine, _explore
+from ._explore import Explorer
 
 # The engine words its refusals as the command line does, naming its flags (`--points 0`); a
 # Python caller reads them with the keywords it wrote (`points=0`).
@@ -70,24 +80,22 @@ def _keyworded(f: _F) -> _F:
 
     return call  # type: ignore[return-value]
 
-# What `help(bentstraw)` shows and `import *` gives: the calls and what they return. The
-# defaults (`DEFAULT_*`, `WATER_INDEX`), the colours (`COLOR_NAMES`, `COLOR_RGB`), `Picture` and
-# the choices' types (`ImageModel`, `Mode`, `Backdrop`, `Vector3`, `Vector2`) are public too, each
-# with its own help; left out here, they would fill the page with numpy's own.
+# What `help(bentstraw)` shows and `import *` gives: the calls. What they return and take
+# (`Simulation`, `Picture`, `CheckReport`, `Ray`, `Scene`, `Explorer`, `SolutionError`), the
+# defaults (`DEFAULT_*`, `WATER_INDEX`), the colours and the choices' types are public too, each
+# with its own help, and listed in the module's docstring: printed whole here, with every method
+# inherited from numpy, dict and AssertionError, they would bury the calls.
 __all__ = [
-    "Scene",
-    "Simulation",
     "simulate",
     "sweep",
     "render",
     "check",
     "grade",
     "assert_solution",
-    "SolutionError",
     "trace",
     "ray_diagram",
+    "explore",
     "gallery",
-    "__version__",
 ]
 
 __version__: str = _engine.VERSION
@@ -263,12 +271,7 @@ class Scene:
                 scene = cls.__new__(cls)
                 scene._name, scene._text = stem, text
                 return scene
-        stems = [stem for stem, _ in _engine.gallery()]
-        near = difflib.get_close_matches(name, stems, n=3, cutoff=0.6)
-        hint = f"did you mean {' or '.join(repr(n) for n in near)}? " if near else ""
-        raise ValueError(
-            f"no gallery scene is called {name!r}: {hint}the gallery has {', '.join(stems)}"
-        )
+        raise ValueError(_engine.gallery_miss(name))
 
     @property
     def name(self) -> str:
@@ -1086,3 +1089,61 @@ def ray_diagram(
     ray = trace(scene, observer=observer, straw=straw, water_height=water_height,
                 n_water=n_water, max_events=max_events, direction=direction, toward=toward)
     return ray.plot(ax)
+
+
+@_keyworded
+def explore(
+    scene: SceneLike = None,
+    *,
+    observer: Optional[Vector3] = None,
+    straw: Optional[Vector2] = None,
+    water_height: Optional[float] = None,
+    n_water: Optional[float] = None,
+    max_events: int = DEFAULT_MAX_EVENTS,
+    points: int = DEFAULT_POINTS,
+    mode: Mode = DEFAULT_MODE,
+    backdrop: Backdrop = DEFAULT_BACKDROP,
+    lang: Literal["en", "fr"] = "en",
+    height: int = 720,
+) -> Explorer:
+    """The live explorer's page opened on this view: in a notebook cell it shows itself (turn
+    the eye, drag the straw, click a ray); elsewhere ``.open()`` opens it in a browser.
+
+    The page and its engine (compiled to WebAssembly) come with the package and are served to
+    this machine alone; the browser computes everything, offline, with the same numbers as the
+    command line. The keywords are those of :func:`simulate` and :func:`render`, checked the
+    same way before the page opens; ``lang`` is the page's language and ``height`` the frame's
+    height in pixels in a notebook.
+
+    >>> bentstraw.explore("prism")  # doctest: +SKIP
+    """
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    query: Dict[str, str] = {}
+    if isinstance(scene, Scene):
+        query["scene-file"] = scene.text
+    elif scene is not None:
+        path = os.fspath(scene)
+        if os.path.exists(path):
+            query["scene-file"] = Scene.load(path).text
+        else:
+            query["scene"] = loaded.name or path
+
+    def numbers(v: Sequence[float]) -> str:
+        return ",".join(repr(float(x)) for x in v)
+
+    query["observer"] = numbers(loaded.observer)
+    if straw is not None:
+        query["straw"] = numbers(_vector(straw, 2, "straw") or ())
+    if water_height is not None:
+        query["water-height"] = repr(_real(water_height, "water_height"))
+    if n_water is not None:
+        query["n-water"] = repr(_real(n_water, "n_water"))
+    query["max-events"] = str(_count(max_events, "max_events"))
+    query["points"] = str(_count(points, "points"))
+    # The picture's choices checked by the engine's own rules: one pixel drawn with them.
+    _engine.render(loaded, (1, 1), None, None, mode, DEFAULT_PRUNE, backdrop, 1, False)
+    if lang not in ("en", "fr"):
+        raise ValueError(f"lang={lang!r} is not allowed: the page speaks \"en\" or \"fr\"")
+    query.update(mode=mode, backdrop=backdrop, lang=lang)
+    return Explorer(_explore.address(query), _count(height, "height", 10000))
+
