@@ -1040,12 +1040,12 @@ async function boxText(page) {
   return expected;
 }
 /** `simulate --scene FILE --points 20000` on `text` saved to a file: its CSV, or its refusal. */
-async function simulateText(text) {
+async function simulateText(text, extra = []) {
   const dir = mkdtempSync(path.join(tmpdir(), "bentstraw-edit-"));
   writeFileSync(path.join(dir, "scene.toml"), text);
   const csv = path.join(dir, "view.csv");
   // Run in its folder, so that its messages name the file scene.toml, as the page's do.
-  const r = await runCli(["simulate", "--scene", "scene.toml", "--points", "20000", "--output", csv], dir);
+  const r = await runCli(["simulate", "--scene", "scene.toml", "--points", "20000", "--output", csv, ...extra], dir);
   return r.code === 0 ? { csv: readFileSync(csv, "utf8") } : { code: r.code, message: r.stderr.trim().replace(/^error: /, "") };
 }
 
@@ -1141,6 +1141,55 @@ test("the scene file's box: the view follows a typed scene (simulate's points), 
   // (The refused text's answer, 400, is the browser's only complaint.)
   assert.deepEqual(problems.filter((p) => !/status of 400/.test(p)), []);
   await context.close();
+});
+
+test("the wavelength slider: a flint prism's points at 450 nm are simulate's, the link keeps the colour, a law's slip is refused in French", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  await page.waitForFunction(() => Number(document.body.dataset.scenes || 0) >= 6);
+  let frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.selectOption("#scene", "prism");
+  await waitReady(page, frames);
+  await page.click("#scene-edit summary");
+  const box = await boxText(page);
+  const at = box.indexOf("[[prism]]");
+  const flint = box.slice(0, at) + box.slice(at).replace(/index = 1\.5\b/, 'material = "f2"');
+  assert.match(flint, /material = "f2"/);
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.fill("#scene-text", flint);
+  await page.waitForFunction((t) => window.bentstraw.state.file === t, flint);
+  await waitReady(page, frames);
+  const yellow = await page.evaluate(() => window.bentstraw.points());
+  assert.equal(yellow, (await simulateText(flint)).csv, "the d line without a wavelength");
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.locator("#wavelength").fill("450");
+  await waitReady(page, frames);
+  assert.equal(await page.locator("#wavelength-out").textContent(), "450 nm");
+  const blue = await page.evaluate(() => window.bentstraw.points());
+  assert.notEqual(blue, yellow);
+  assert.equal(blue, (await simulateText(flint, ["--wavelength", "450"])).csv);
+  assert.ok((await page.evaluate(() => window.bentstraw.command())).join(" ").includes("--wavelength 450"));
+  const link = await page.evaluate(() => window.bentstraw.link());
+  assert.match(link, /wavelength=450/);
+  const again = await openPage(browser, server.url);
+  await again.page.goto(link);
+  await waitReady(again.page);
+  assert.equal(await again.page.evaluate(() => window.bentstraw.state.wavelength), 450);
+  assert.equal(await again.page.evaluate(() => window.bentstraw.points()), blue);
+  await again.context.close();
+  assert.deepEqual(problems, []);
+  await context.close();
+  // In French, a material's slip gets its rule and the nearest name.
+  const fr = await openPage(browser, server.url + "#lang=fr", { width: 1400, height: 900 }, { locale: "fr-FR" });
+  await fr.page.goto(server.url + "#lang=fr");
+  await waitReady(fr.page);
+  await fr.page.click("#scene-edit summary");
+  await fr.page.fill("#scene-text", flint.replace('"f2"', '"f3"'));
+  await fr.page.waitForFunction(() => !document.getElementById("scene-errors").hidden);
+  const said = (await fr.page.locator("#scene-errors li").allTextContents()).join(" ");
+  assert.match(said, /« f3 » n'est pas un matériau de la table : vouliez-vous dire 'f2' \?/);
+  await fr.context.close();
 });
 
 test("the scene file's box on a laptop and a phone, in English and French", async () => {

@@ -61,6 +61,10 @@ export const FIELDS = [
     control: { id: "he", event: "input", redoes: "frame", out: (v) => localNumber(num(v)) + " m", liquid: "top" } },
   { prop: "n", query: "n-water", initial: ENGINE.nWater, ...metres, engine: true, glass: true,
     control: { id: "n", event: "input", redoes: "frame", out: (v) => localNumber(num(v)), liquid: "index" } },
+  // The colour of the light, where an index depends on it (a scene file's laws); sent only when
+  // it is not the d line, as the command line writes it only when given.
+  { prop: "wavelength", query: "wavelength", initial: ENGINE.wavelength.d, ...metres, engine: true, optional: true,
+    control: { id: "wavelength", event: "input", redoes: "frame", out: (v) => localNumber(Math.round(num(v))) + " nm" } },
   { prop: "events", query: "max-events", initial: ENGINE.maxEvents, ...number, engine: true,
     control: { id: "events", event: "input", redoes: "frame", out: String } },
   { prop: "points", query: "points", initial: ENGINE.points, ...number, engine: true },
@@ -142,7 +146,7 @@ export function viewQuery(s, extra) {
   if (s.file) p.set("scene-file", s.file);
   else if (s.scene) p.set("scene", s.scene);
   for (const f of FIELDS) {
-    if (f.engine && !(f.glass && (s.scene || s.file))) p.set(f.query, f.format(s[f.prop]));
+    if (f.engine && !(f.glass && (s.scene || s.file)) && !(f.optional && s[f.prop] === f.initial)) p.set(f.query, f.format(s[f.prop]));
   }
   for (const [k, v] of Object.entries(extra || {})) p.set(k, String(v));
   return p.toString();

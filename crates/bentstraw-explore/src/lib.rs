@@ -396,6 +396,11 @@ pub fn defaults_reply() -> Reply {
         "size": DEFAULT_SIZE,
         "maxEvents": DEFAULT_MAX_EVENTS,
         "nWater": WATER_INDEX,
+        "wavelength": {
+            "d": bentstraw_optics::dispersion::D_LINE_NM,
+            "min": bentstraw_optics::dispersion::VISIBLE_MIN_NM,
+            "max": bentstraw_optics::dispersion::VISIBLE_MAX_NM,
+        },
         "classic": {
             "observer": CLASSIC_OBSERVER,
             "straw": CLASSIC_STRAW,

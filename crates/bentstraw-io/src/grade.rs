@@ -79,6 +79,7 @@ pub fn reference_assignment() -> Result<Vec<Case>> {
                 water_height: Some(r.water_height),
                 n_water: None,
                 max_events: DEFAULT_MAX_EVENTS,
+                wavelength: None,
             };
             Ok(Case {
                 name: format!("sim{}", r.number),
@@ -236,6 +237,7 @@ pub fn parse_assignment(name: &str, text: &str, folder: &Path) -> Result<Vec<Cas
                 water_height: c.water_height,
                 n_water: c.n_water,
                 max_events: c.max_events.unwrap_or(DEFAULT_MAX_EVENTS),
+                wavelength: None,
             },
             ..ViewSpec::default()
         };

@@ -158,10 +158,14 @@ impl ViewSpec {
             Some(t) => number(t, "max-events")?,
             None => SceneValues::default().max_events,
         };
+        let wavelength = get(q, "wavelength")
+            .map(|t| number(t, "wavelength"))
+            .transpose()?;
         let values = match scene {
             Some(_) => SceneValues {
                 observer: Some(observer),
                 max_events,
+                wavelength,
                 ..SceneValues::default()
             },
             None => SceneValues {
@@ -170,6 +174,7 @@ impl ViewSpec {
                 water_height,
                 n_water,
                 max_events,
+                wavelength,
             },
         };
         let camera = CameraSpec {
@@ -235,6 +240,9 @@ impl ViewSpec {
             }
         }
         p.push(("max-events", v.max_events.to_string()));
+        if let Some(nm) = v.wavelength {
+            p.push(("wavelength", nm.to_string()));
+        }
         p.push(("points", self.points.to_string()));
         p.push(("mode", self.picture.mode().to_string()));
         p.push(("backdrop", self.picture.backdrop().to_string()));
@@ -318,6 +326,9 @@ impl ViewSpec {
         }
         if v.max_events != SceneValues::default().max_events {
             s.extend(["--max-events".into(), v.max_events.to_string()]);
+        }
+        if let Some(nm) = v.wavelength {
+            s.extend(["--wavelength".into(), nm.to_string()]);
         }
         s
     }
@@ -451,6 +462,7 @@ mod tests {
                 water_height: Some(0.15),
                 n_water: Some(1.4),
                 max_events: 7,
+                wavelength: Some(486.13),
             },
             points: 1500,
             ..ViewSpec::default()

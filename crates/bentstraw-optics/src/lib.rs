@@ -26,6 +26,7 @@
 pub mod apparent;
 pub mod camera;
 pub mod check;
+pub mod dispersion;
 pub mod frame;
 pub mod geometry;
 pub mod image;

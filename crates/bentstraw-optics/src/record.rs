@@ -307,6 +307,7 @@ mod tests {
             water_height: Some(0.12),
             n_water: Some(1.4),
             max_events: 7,
+            wavelength: None,
         })
         .unwrap();
         assert_eq!(again.inputs(), setup.inputs());

@@ -105,6 +105,18 @@ rules! {
     BottomThinner = "bottom.thinner", "the bottom must be thinner than the glass's height {height}";
     /// A refractive index is outside the physical range.
     IndexRange = "index.range", "a refractive index must be between 1 and 5 (vacuum is 1; the most refractive materials known are about 4)";
+    /// More than one of `index`, `cauchy`, `sellmeier` and `material` for one medium.
+    IndexChoice = "index.choice", "give one of index, cauchy, sellmeier or material, not {keys}";
+    /// Cauchy's law with the wrong count of coefficients.
+    CauchyCount = "cauchy.count", "Cauchy's law takes [A, B] or [A, B, C] (n = A + B/λ² + C/λ⁴, λ in µm), not {count} numbers";
+    /// Sellmeier's law with the wrong count of coefficients.
+    SellmeierCount = "sellmeier.count", "Sellmeier's law takes pairs [B1, C1, B2, C2, …] (n² = 1 + Σ B·λ²/(λ² − C), λ in µm, C in µm²), 1 to {max} of them, not {count} numbers";
+    /// A law of dispersion gives no physical index somewhere in the visible.
+    DispersionRange = "dispersion.range", "the law gives n = {index} at {wavelength} nm: from 380 to 780 nm a refractive index must be between 1 and 5";
+    /// A material's name is not in the table.
+    MaterialUnknown = "material.unknown", "\"{material}\" is not a named material: they are {materials}";
+    /// A material's name is a slip for one in the table.
+    MaterialNear = "material.near", "\"{material}\" is not a named material: did you mean {nearest}? They are {materials}";
     /// The first liquid's top is not above the floor.
     LiquidAboveFloor = "liquid.above-floor", "the liquid's top must be above the floor at z = {floor}";
     /// A liquid's top is not above the layer below it.
@@ -227,6 +239,8 @@ rules! {
     GlassEyeFar = "glass.eye-far", "{name} = {value} m is too far: a position must be at most {max} m in size";
     /// The assignment's water index is outside the physical range.
     GlassWaterIndex = "glass.water-index", "water index {value} is not allowed: it must be a number between 1 and 5";
+    /// The wavelength asked is not visible light.
+    Wavelength = "wavelength.range", "wavelength {value} nm is not allowed: visible light is from {min} to {max} nm";
     /// The event limit is out of range.
     MaxEvents = "glass.max-events", "event limit {value} is not allowed: it must be between 1 and {max}";
 }

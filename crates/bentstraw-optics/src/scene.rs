@@ -82,6 +82,8 @@ pub enum SceneError {
     WaterIndex(f64),
     /// The event limit is 0 or larger than [`MAX_EVENTS_LIMIT`].
     MaxEvents(u32),
+    /// The wavelength asked is not visible light (nm).
+    Wavelength(f64),
 }
 
 impl SceneError {
@@ -137,6 +139,14 @@ impl SceneError {
                 vec![
                     ("value", Param::Number(m.to_string())),
                     ("max", Param::Number(MAX_EVENTS_LIMIT.to_string())),
+                ],
+            ),
+            SceneError::Wavelength(nm) => (
+                Rule::Wavelength,
+                vec![
+                    ("value", n(*nm)),
+                    ("min", bound(crate::dispersion::VISIBLE_MIN_NM)),
+                    ("max", bound(crate::dispersion::VISIBLE_MAX_NM)),
                 ],
             ),
         }

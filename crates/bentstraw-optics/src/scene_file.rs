@@ -9,6 +9,7 @@
 
 use std::fmt;
 
+use crate::dispersion::Dispersion;
 use crate::profile::{self, Piece};
 use crate::rule::{self, number, point, Param, Params, Rule};
 use crate::scene::{
@@ -1202,9 +1203,80 @@ pub struct SceneDescription {
     pub observer: Option<Observer>,
     /// What it teaches, if the file says.
     pub lesson: Option<Lesson>,
+    /// The media whose index depends on the wavelength, each with its law; every other medium
+    /// has its one index at all wavelengths. Each such medium's `index` is its law's value at
+    /// the wavelength the description is at ([`SceneDescription::at_wavelength`]).
+    pub dispersion: Vec<Dispersive>,
+}
+
+/// A medium of a scene, as a law of dispersion names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Medium {
+    /// The glass of the container.
+    Container,
+    /// The liquid layer of this number (from 0, bottom first).
+    Liquid(usize),
+    /// The transparent sphere of this number.
+    Sphere(usize),
+    /// The prism or block of this number.
+    Prism(usize),
+    /// The lens of this number.
+    Lens(usize),
+}
+
+/// A medium whose index depends on the wavelength, and its law.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dispersive {
+    /// Which medium.
+    pub medium: Medium,
+    /// Its law.
+    pub law: Dispersion,
 }
 
 impl SceneDescription {
+    /// The index of `medium`, to read or set (`None` for a medium the scene does not have, or a
+    /// tank, whose walls have no index).
+    pub fn index_mut(&mut self, medium: Medium) -> Option<&mut f64> {
+        match medium {
+            Medium::Container => match &mut self.container {
+                Container::Glass(g) => Some(&mut g.index),
+                Container::Revolution(v) => Some(&mut v.index),
+                Container::Tank(_) => None,
+            },
+            Medium::Liquid(i) => self.liquids.get_mut(i).map(|l| &mut l.index),
+            Medium::Sphere(i) => self.spheres.get_mut(i).map(|b| &mut b.index),
+            Medium::Prism(i) => self.prisms.get_mut(i).map(|p| &mut p.index),
+            Medium::Lens(i) => self.lenses.get_mut(i).map(|l| &mut l.index),
+        }
+    }
+
+    /// The law of `medium`, if its index depends on the wavelength.
+    pub fn law(&self, medium: Medium) -> Option<&Dispersion> {
+        self.dispersion
+            .iter()
+            .find(|d| d.medium == medium)
+            .map(|d| &d.law)
+    }
+
+    /// Whether some medium's index depends on the wavelength.
+    pub fn disperses(&self) -> bool {
+        !self.dispersion.is_empty()
+    }
+
+    /// The description at the wavelength `nm` (nanometres): each dispersive medium's index set
+    /// to its law's value there, every other value as it is. The law stays, so it can be
+    /// evaluated at another wavelength.
+    pub fn at_wavelength(mut self, nm: f64) -> SceneDescription {
+        let laws = std::mem::take(&mut self.dispersion);
+        for d in &laws {
+            if let Some(index) = self.index_mut(d.medium) {
+                *index = d.law.index_at(nm);
+            }
+        }
+        self.dispersion = laws;
+        self
+    }
+
     /// Checks every rule of a scene: finite numbers, positive sizes, liquids stacked inside the
     /// walls, straws and coins on the floor inside the walls and not overlapping, cards clear of
     /// the container, the observer outside the container and the objects.
@@ -2150,6 +2222,7 @@ impl SceneDescription {
             lenses: vec![],
             observer: None,
             lesson: None,
+            dispersion: vec![],
         }
     }
 

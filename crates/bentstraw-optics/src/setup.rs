@@ -11,6 +11,7 @@
 use std::fmt;
 
 use crate::camera::{framing_fov, framing_fov_box};
+use crate::dispersion::{is_visible, D_LINE_NM};
 use crate::scene::{
     Scene, SceneError, GLASS_HEIGHT, GLASS_RADIUS, MAX_EVENTS_LIMIT, SCENE_CENTRE, SECTION_NAMES,
     STRAW_HEIGHT, STRAW_RADIUS, WATER_INDEX,
@@ -41,6 +42,9 @@ pub struct SceneValues {
     pub n_water: Option<f64>,
     /// Most events (refractions and total reflections) a ray may undergo.
     pub max_events: u32,
+    /// The wavelength of the light traced (nm), where a medium's index depends on it; the d
+    /// line ([`D_LINE_NM`]) when none is given.
+    pub wavelength: Option<f64>,
 }
 
 impl Default for SceneValues {
@@ -51,6 +55,19 @@ impl Default for SceneValues {
             water_height: None,
             n_water: None,
             max_events: crate::scene::DEFAULT_MAX_EVENTS,
+            wavelength: None,
+        }
+    }
+}
+
+impl SceneValues {
+    /// The wavelength to trace at (nm): the one given, checked to be visible light, or the d
+    /// line.
+    pub fn wavelength_nm(&self) -> Result<f64, SceneError> {
+        match self.wavelength {
+            None => Ok(D_LINE_NM),
+            Some(nm) if is_visible(nm) => Ok(nm),
+            Some(nm) => Err(SceneError::Wavelength(nm)),
         }
     }
 }
@@ -144,6 +161,9 @@ impl Setup {
                     .to_string(),
             ));
         };
+        // The assignment's water has one index at every wavelength; the wavelength is still
+        // checked, as everywhere.
+        values.wavelength_nm()?;
         let scene = Scene::new(
             straw[0],
             straw[1],
@@ -170,9 +190,10 @@ impl Setup {
     /// each.
     pub fn from_description(
         name: &str,
-        mut description: SceneDescription,
+        description: SceneDescription,
         values: &SceneValues,
     ) -> Result<Setup, SetupError> {
+        let mut description = description.at_wavelength(values.wavelength_nm()?);
         let overrides: Vec<&str> = [
             (values.straw.is_some(), "--straw"),
             (values.water_height.is_some(), "--water-height"),
@@ -205,6 +226,7 @@ impl Setup {
                 water_height: Some(values.water_height.unwrap_or(spec.water_height())),
                 n_water: Some(values.n_water.unwrap_or(spec.n_water())),
                 max_events: values.max_events,
+                wavelength: values.wavelength,
             })?;
             return Ok(Setup {
                 target: description.observer.map(|o| o.target),
@@ -221,7 +243,11 @@ impl Setup {
             description.liquids[0].top = h;
         }
         if let Some(n) = values.n_water {
+            // One index at every wavelength, in place of the liquid's law.
             description.liquids[0].index = n;
+            description
+                .dispersion
+                .retain(|d| d.medium != crate::scene_file::Medium::Liquid(0));
         }
         if values.max_events == 0 || values.max_events > MAX_EVENTS_LIMIT {
             return Err(SceneError::MaxEvents(values.max_events).into());

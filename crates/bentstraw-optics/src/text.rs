@@ -35,19 +35,21 @@ pub fn refuse_choice(option: &str, value: &str, choices: &[&str]) -> String {
 }
 
 /// The names among `names` that `word` may be a slip for, nearest first, at most three: those
-/// that an edit of at most about a third of their letters (swaps counted as one) turns into
-/// `word`, letter case aside.
+/// that at most a third of their letters' edits (at least one; a swap of two letters counts as
+/// one) turn into `word`, letter case aside.
 pub fn nearest_names<'a>(word: &str, names: impl IntoIterator<Item = &'a str>) -> Vec<&'a str> {
     let word = word.to_lowercase();
-    let mut near: Vec<(f64, &str)> = names
+    let mut near: Vec<(usize, &str)> = names
         .into_iter()
         .map(|name| {
-            let likeness = strsim::normalized_damerau_levenshtein(&word, &name.to_lowercase());
-            (likeness, name)
+            (
+                strsim::damerau_levenshtein(&word, &name.to_lowercase()),
+                name,
+            )
         })
-        .filter(|(likeness, _)| *likeness >= 0.6)
+        .filter(|(edits, name)| *edits <= (name.chars().count() / 3).max(1))
         .collect();
-    near.sort_by(|a, b| b.0.total_cmp(&a.0));
+    near.sort_by_key(|(edits, _)| *edits);
     near.into_iter().take(3).map(|(_, name)| name).collect()
 }
 
@@ -78,6 +80,8 @@ mod tests {
         assert_eq!(nearest_names("Leaning_Straw", names), ["leaning-straw"]);
         assert_eq!(nearest_names("coins", names), ["coin"]);
         assert!(nearest_names("aquarium", names).is_empty());
+        assert_eq!(nearest_names("f3", ["f2", "sf10", "bk7"]), ["f2"]);
+        assert!(nearest_names("x", ["f2"]).is_empty());
         assert_eq!(
             did_you_mean("bal-lens", names).as_deref(),
             Some("did you mean 'ball-lens'?")

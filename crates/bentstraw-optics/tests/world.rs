@@ -1224,6 +1224,7 @@ mod random_scenes {
                             target: Vec3::new(0.0, 0.0, 0.08),
                         }),
                         lesson: None,
+                        dispersion: vec![],
                     }
                 },
             )

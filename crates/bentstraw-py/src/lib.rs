@@ -153,7 +153,8 @@ impl LoadedScene {
 /// (`path`), or a scene file's text (`text` = (name, text)), or the assignment's numbers; the
 /// other values override the file's where given.
 #[pyfunction]
-#[pyo3(signature = (path, text, observer, straw, water_height, n_water, max_events))]
+#[pyo3(signature = (path, text, observer, straw, water_height, n_water, max_events, wavelength))]
+#[allow(clippy::too_many_arguments)] // the command line's flags, one by one
 fn load(
     path: Option<PathBuf>,
     text: Option<(String, String)>,
@@ -162,6 +163,7 @@ fn load(
     water_height: Option<f64>,
     n_water: Option<f64>,
     max_events: u32,
+    wavelength: Option<f64>,
 ) -> PyResult<LoadedScene> {
     let scene = match text {
         Some((name, text)) => Some(SceneFile { name, text }),
@@ -179,6 +181,7 @@ fn load(
             water_height,
             n_water,
             max_events,
+            wavelength,
         },
         ..ViewSpec::default()
     };

@@ -794,3 +794,23 @@ def test_help_lists_the_calls_without_burying_them():
         assert f":class:`{name}`" in text, name
     assert "ndarray" not in text.split("FUNCTIONS")[0]
     assert "with_traceback" not in text and "fromkeys" not in text
+
+
+def test_a_wavelength_gives_the_command_lines_points_and_its_rule(tmp_path):
+    """A dispersive scene traced at a wavelength: the command line's points, bit for bit; a
+    wavelength outside the visible and a material not in the table are ValueErrors."""
+    text = bentstraw.Scene.gallery("prism").text
+    assert "index = 1.5\n" in text
+    text = text.replace("index = 1.5\n", 'material = "f2"\n', 1)
+    (tmp_path / "f2.toml").write_text(text)
+    for nm in (410.0, 650.0):
+        sim = bentstraw.simulate(bentstraw.Scene.from_toml(text), wavelength=nm, points=2000)
+        run("simulate", "--scene", tmp_path / "f2.toml", "--wavelength", nm, "--points", 2000,
+            "--output", tmp_path / "cli.csv")
+        assert_same_points(*read_points(tmp_path / "cli.csv"), sim)
+    with pytest.raises(ValueError, match="wavelength 300 nm is not allowed"):
+        bentstraw.simulate(bentstraw.Scene.from_toml(text), wavelength=300, points=100)
+    with pytest.raises(TypeError, match="wavelength"):
+        bentstraw.simulate(bentstraw.Scene.from_toml(text), wavelength="450")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="did you mean 'f2'"):
+        bentstraw.Scene.from_toml(text.replace('"f2"', '"f3"'))

@@ -103,6 +103,10 @@ pub struct SceneFlags {
     /// Refractive index of the water (>= 1) [default: 1.333, or the scene file's]
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub n_water: Option<f64>,
+    /// Wavelength of the light in nanometres, 380..=780, where an index depends on it (a scene
+    /// file's cauchy, sellmeier or material) [default: 587.56, the d line]
+    #[arg(long, value_name = "NM", allow_hyphen_values = true)]
+    pub wavelength: Option<f64>,
     /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
     #[arg(
         long,
@@ -135,6 +139,10 @@ pub struct OptionalSceneFlags {
     /// Refractive index of the water (>= 1) [default: 1.333, or the scene file's]
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub n_water: Option<f64>,
+    /// Wavelength of the light in nanometres, 380..=780, where an index depends on it (a scene
+    /// file's cauchy, sellmeier or material) [default: 587.56, the d line]
+    #[arg(long, value_name = "NM", allow_hyphen_values = true)]
+    pub wavelength: Option<f64>,
     /// Most events (refractions and total reflections) a ray may undergo, 1..=1000
     #[arg(
         long,
@@ -496,6 +504,7 @@ impl SceneFlags {
             water_height: self.water_height,
             n_water: self.n_water,
             max_events: self.max_events,
+            wavelength: self.wavelength,
         };
         scene_view(self.scene.as_deref(), values)
     }
@@ -510,6 +519,7 @@ impl OptionalSceneFlags {
             water_height: self.water_height,
             n_water: self.n_water,
             max_events: self.max_events,
+            wavelength: self.wavelength,
         };
         scene_view(self.scene.as_deref(), values)
     }
@@ -586,6 +596,7 @@ mod tests {
                 water_height: Some(0.15),
                 n_water: Some(1.4),
                 max_events: 7,
+                wavelength: Some(486.13),
             },
             points: 1500,
             ..ViewSpec::default()

@@ -857,3 +857,142 @@ fn centimetres_get_a_hint_and_broken_rules_come_together() {
     );
     assert!(!dir.path().join("b.csv").exists());
 }
+
+/// A prism of flint glass and water by its measured law, in a glass of crown glass.
+const DISPERSIVE: &str = "[container]\nshape = \"glass\"\nradius = 0.04\nheight = 0.2\nwall = 0.003\nbottom = 0.005\nmaterial = \"bk7\"\n\n[[liquid]]\nname = \"water\"\nmaterial = \"water\"\ntop = 0.12\n\n[[straw]]\nx = 0.01\ny = 0.01\n\n[[prism]]\ncorners = [[0.06, -0.03], [0.1, -0.03], [0.08, 0.0046]]\nbottom = 0\ntop = 0.09\nmaterial = \"f2\"\n\n[observer]\nposition = [0.3, -0.04, 0.15]\n";
+
+/// `--wavelength` traces a dispersive scene at that wavelength: the files are those of the same
+/// scene with every index written as its law's value there (the same bytes), they change with
+/// the wavelength, and `render`, `check` and `table` take it too.
+#[test]
+fn a_wavelength_traces_the_scene_with_its_indices_there() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("d.toml"), DISPERSIVE).unwrap();
+    let simulate = |scene: &str, extra: &[&str], out: &str| {
+        let mut args = vec![
+            "simulate", "--scene", scene, "--points", "2000", "--output", out,
+        ];
+        args.extend_from_slice(extra);
+        succeeded(&run(dir.path(), &args));
+        std::fs::read(dir.path().join(out)).unwrap()
+    };
+    // The indices at 450 nm, from the laws' sources (written with enough digits to be exact is
+    // not needed: the engine's own values are compared below, these only pick the file).
+    let d = bentstraw_optics::scene_file::SceneDescription::from_toml(DISPERSIVE).unwrap();
+    let at = |nm: f64| {
+        let mut text = DISPERSIVE.to_string();
+        for l in &d.dispersion {
+            let bentstraw_optics::dispersion::Dispersion::Material(m) = &l.law else {
+                unreachable!()
+            };
+            let n = l.law.index_at(nm);
+            text = text.replacen(
+                &format!("material = \"{}\"", m.name),
+                &format!("index = {n:?}"),
+                1,
+            );
+        }
+        text
+    };
+    std::fs::write(dir.path().join("p450.toml"), at(450.0)).unwrap();
+    let blue = simulate("d.toml", &["--wavelength", "450"], "blue.csv");
+    assert_eq!(blue, simulate("p450.toml", &[], "plain.csv"));
+    let red = simulate("d.toml", &["--wavelength", "700"], "red.csv");
+    assert_ne!(blue, red);
+    // Without a wavelength, the d line.
+    assert_eq!(
+        simulate("d.toml", &[], "d.csv"),
+        simulate("d.toml", &["--wavelength", "587.56"], "d2.csv")
+    );
+    for args in [
+        vec![
+            "render",
+            "--scene",
+            "d.toml",
+            "--wavelength",
+            "450",
+            "--size",
+            "64x48",
+            "--output",
+            "v.png",
+        ],
+        vec![
+            "check",
+            "blue.csv",
+            "--scene",
+            "d.toml",
+            "--wavelength",
+            "450",
+        ],
+    ] {
+        succeeded(&run(dir.path(), &args));
+    }
+    let check = run(
+        dir.path(),
+        &[
+            "check",
+            "blue.csv",
+            "--scene",
+            "d.toml",
+            "--wavelength",
+            "700",
+        ],
+    );
+    assert!(
+        !check.status.success(),
+        "the blue points are not the red image"
+    );
+}
+
+/// A wavelength outside the visible, a material not in the table and laws that break their rules
+/// are refused in one line each, naming the key, the value and the rule.
+#[test]
+fn bad_wavelengths_and_laws_are_refused_with_their_rules() {
+    let args = |extra: &'static str| {
+        let mut a = vec!["simulate", "--scene", "d.toml", "--output", "old.csv"];
+        if !extra.is_empty() {
+            a.extend(["--wavelength", extra]);
+        }
+        a
+    };
+    for nm in ["300", "800", "nan"] {
+        assert_refused(
+            &[("d.toml", DISPERSIVE)],
+            &args(nm),
+            &[
+                "wavelength",
+                "nm is not allowed: visible light is from 380 to 780 nm",
+            ],
+        );
+    }
+    for (from, to, names) in [
+        (
+            "material = \"f2\"",
+            "material = \"f3\"",
+            vec!["prism[1].material", "did you mean 'f2'", "sf10"],
+        ),
+        (
+            "material = \"f2\"",
+            "material = \"unobtainium\"",
+            vec!["\"unobtainium\" is not a named material"],
+        ),
+        (
+            "material = \"f2\"",
+            "cauchy = [1.6]",
+            vec!["prism[1].cauchy", "not 1 numbers"],
+        ),
+        (
+            "material = \"f2\"",
+            "sellmeier = [1.0, 0.25]",
+            vec!["prism[1].sellmeier", "at 500 nm"],
+        ),
+        (
+            "material = \"f2\"",
+            "index = 1.6\nmaterial = \"f2\"",
+            vec!["give one of index, cauchy, sellmeier or material, not index, material"],
+        ),
+    ] {
+        let text = DISPERSIVE.replace(from, to);
+        assert_refused(&[("d.toml", &text)], &args(""), &names);
+    }
+}

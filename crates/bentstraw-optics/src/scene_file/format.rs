@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::*;
+use crate::dispersion;
 use crate::text::clip_text;
 
 /// Longest user text (a name, a shape) quoted whole in a message, in characters.
@@ -91,6 +92,12 @@ struct FileContainer {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     index: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    cauchy: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    sellmeier: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    material: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     outer: Option<Vec<[f64; 2]>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     inner: Option<Vec<[f64; 2]>>,
@@ -103,6 +110,12 @@ struct FileLiquid {
     name: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     index: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    cauchy: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    sellmeier: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    material: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     top: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -163,6 +176,12 @@ struct FileSphere {
     radius: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     index: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    cauchy: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    sellmeier: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    material: Option<String>,
 }
 
 #[derive(Deserialize, Serialize)]
@@ -176,6 +195,12 @@ struct FilePrism {
     top: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     index: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    cauchy: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    sellmeier: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    material: Option<String>,
 }
 
 #[derive(Deserialize, Serialize)]
@@ -195,6 +220,12 @@ struct FileLens {
     diameter: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     index: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    cauchy: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    sellmeier: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    material: Option<String>,
 }
 
 #[derive(Deserialize, Serialize)]
@@ -273,6 +304,123 @@ fn syntax_error(text: &str, key: String, e: &toml::de::Error) -> Box<SceneFileEr
     e
 }
 
+/// The keys that give a medium's index: one number for every wavelength, or a law.
+struct IndexKeys<'a> {
+    index: Option<f64>,
+    cauchy: &'a Option<Vec<f64>>,
+    sellmeier: &'a Option<Vec<f64>>,
+    material: &'a Option<String>,
+}
+
+/// A stand-in index, valid, for a medium whose keys broke a rule (the rule is reported).
+const STAND_IN_INDEX: f64 = 1.5;
+
+/// A medium's index at the d line and its law, if any, from its keys (`key` names each in
+/// messages): at most one of the four may be given; `default` when none is (else it is
+/// required). A law must give a physical index everywhere in the visible.
+fn refractive(
+    k: IndexKeys<'_>,
+    key: &dyn Fn(&str) -> String,
+    default: Option<f64>,
+    broken: &mut Vec<SceneFileError>,
+) -> (f64, Option<Dispersion>) {
+    let given: Vec<&str> = [
+        ("index", k.index.is_some()),
+        ("cauchy", k.cauchy.is_some()),
+        ("sellmeier", k.sellmeier.is_some()),
+        ("material", k.material.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(name, is)| is.then_some(name))
+    .collect();
+    if given.len() > 1 {
+        broken.push(*refuse_key(
+            &key(given[1]),
+            Rule::IndexChoice,
+            vec![("keys", words(given.join(", ")))],
+        ));
+        return (STAND_IN_INDEX, None);
+    }
+    let count = |c: &Vec<f64>| bound(c.len() as f64);
+    let (name, law) = if let Some(c) = k.cauchy {
+        if !(2..=3).contains(&c.len()) {
+            broken.push(*refuse_key(
+                &key("cauchy"),
+                Rule::CauchyCount,
+                vec![("count", count(c))],
+            ));
+            return (STAND_IN_INDEX, None);
+        }
+        ("cauchy", Dispersion::Cauchy(c.clone()))
+    } else if let Some(c) = k.sellmeier {
+        if c.is_empty() || c.len() % 2 != 0 || c.len() > 2 * dispersion::MAX_SELLMEIER_TERMS {
+            broken.push(*refuse_key(
+                &key("sellmeier"),
+                Rule::SellmeierCount,
+                vec![
+                    ("max", bound(dispersion::MAX_SELLMEIER_TERMS as f64)),
+                    ("count", count(c)),
+                ],
+            ));
+            return (STAND_IN_INDEX, None);
+        }
+        ("sellmeier", Dispersion::Sellmeier(c.clone()))
+    } else if let Some(name) = k.material {
+        let Some(m) = dispersion::material(name) else {
+            let names: Vec<&str> = dispersion::MATERIALS.iter().map(|m| m.name).collect();
+            let near = crate::text::nearest_names(name, names.iter().copied());
+            let quoted: Vec<String> = near.iter().map(|n| format!("'{n}'")).collect();
+            let mut params = vec![
+                ("material", words(clip_text(name, QUOTED_MAX))),
+                ("materials", words(names.join(", "))),
+            ];
+            let rule = if near.is_empty() {
+                Rule::MaterialUnknown
+            } else {
+                params.push(("nearest", words(quoted.join(" or "))));
+                Rule::MaterialNear
+            };
+            broken.push(*refuse_key(&key("material"), rule, params));
+            return (STAND_IN_INDEX, None);
+        };
+        ("material", Dispersion::Material(m))
+    } else {
+        let index = k.index.or(default).unwrap_or_else(|| {
+            broken.push(*refuse_key(&key("index"), Rule::Required, vec![]));
+            0.0
+        });
+        return (index, None);
+    };
+    if let Some((nm, n)) = law.formula().unphysical_in_visible() {
+        broken.push(*refuse_key(
+            &key(name),
+            Rule::DispersionRange,
+            vec![("index", rule::number(n)), ("wavelength", rule::number(nm))],
+        ));
+        return (STAND_IN_INDEX, None);
+    }
+    (law.index_at(dispersion::D_LINE_NM), Some(law))
+}
+
+/// The keys a medium's index is written with, as the file holds them: `index`, `cauchy`,
+/// `sellmeier`, `material`.
+type WrittenIndex = (
+    Option<f64>,
+    Option<Vec<f64>>,
+    Option<Vec<f64>>,
+    Option<String>,
+);
+
+/// The keys a medium's index is written with: its law's, or its one index.
+fn index_keys(law: Option<&Dispersion>, index: f64) -> WrittenIndex {
+    match law {
+        None => (Some(index), None, None, None),
+        Some(Dispersion::Cauchy(c)) => (None, Some(c.clone()), None, None),
+        Some(Dispersion::Sellmeier(c)) => (None, None, Some(c.clone()), None),
+        Some(Dispersion::Material(m)) => (None, None, None, Some(m.name.to_string())),
+    }
+}
+
 impl SceneDescription {
     /// Reads a scene file's text: TOML of the scene-file format, defaults applied, every rule
     /// checked ([`SceneDescription::validate`]).
@@ -315,6 +463,14 @@ impl SceneDescription {
                 0.0
             })
         };
+        let mut laws: Vec<Dispersive> = Vec::new();
+        let container_key = |k: &str| format!("container.{k}");
+        let container_keys = IndexKeys {
+            index: c.index,
+            cauchy: &c.cauchy,
+            sellmeier: &c.sellmeier,
+            material: &c.material,
+        };
         let revolution = c.shape.as_deref() == Some("revolution");
         let height = if revolution {
             0.0
@@ -354,22 +510,44 @@ impl SceneDescription {
                         Vec::new()
                     })
                 };
+                let (outer, inner) = (profile("outer", &c.outer), profile("inner", &c.inner));
+                let (index, law) = refractive(
+                    container_keys,
+                    &container_key,
+                    Some(DEFAULT_CONTAINER_INDEX),
+                    &mut broken,
+                );
+                laws.extend(law.map(|law| Dispersive {
+                    medium: Medium::Container,
+                    law,
+                }));
                 Some(Container::Revolution(Revolution {
-                    outer: profile("outer", &c.outer),
-                    inner: profile("inner", &c.inner),
-                    index: c.index.unwrap_or(DEFAULT_CONTAINER_INDEX),
+                    outer,
+                    inner,
+                    index,
                 }))
             }
             Some("glass") => {
                 let not_glass = Rule::GlassNoHalfWidths;
                 given("half_x", c.half_x, not_glass, &mut broken);
                 given("half_y", c.half_y, not_glass, &mut broken);
+                let radius = shape_of("radius", c.radius, Rule::GlassNeeds, &mut broken);
+                let (index, law) = refractive(
+                    container_keys,
+                    &container_key,
+                    Some(DEFAULT_CONTAINER_INDEX),
+                    &mut broken,
+                );
+                laws.extend(law.map(|law| Dispersive {
+                    medium: Medium::Container,
+                    law,
+                }));
                 Some(Container::Glass(Glass {
-                    radius: shape_of("radius", c.radius, Rule::GlassNeeds, &mut broken),
+                    radius,
                     height,
                     wall: c.wall.unwrap_or(0.0),
                     bottom: c.bottom.unwrap_or(0.0),
-                    index: c.index.unwrap_or(DEFAULT_CONTAINER_INDEX),
+                    index,
                 }))
             }
             Some("tank") => {
@@ -377,6 +555,15 @@ impl SceneDescription {
                 given("wall", c.wall, Rule::TankThin, &mut broken);
                 given("bottom", c.bottom, Rule::TankThin, &mut broken);
                 given("index", c.index, Rule::TankIndex, &mut broken);
+                for (key, is) in [
+                    ("cauchy", c.cauchy.is_some()),
+                    ("sellmeier", c.sellmeier.is_some()),
+                    ("material", c.material.is_some()),
+                ] {
+                    if is {
+                        broken.push(*refuse_key(&container_key(key), Rule::TankIndex, vec![]));
+                    }
+                }
                 Some(Container::Tank(Tank {
                     half_x: shape_of("half_x", c.half_x, Rule::TankNeeds, &mut broken),
                     half_y: shape_of("half_y", c.half_y, Rule::TankNeeds, &mut broken),
@@ -416,9 +603,20 @@ impl SceneDescription {
                     }
                     colour
                 });
+                let keys = IndexKeys {
+                    index: l.index,
+                    cauchy: &l.cauchy,
+                    sellmeier: &l.sellmeier,
+                    material: &l.material,
+                };
+                let (index, law) = refractive(keys, &key, None, &mut broken);
+                laws.extend(law.map(|law| Dispersive {
+                    medium: Medium::Liquid(i),
+                    law,
+                }));
                 Liquid {
                     name: l.name.unwrap_or_default(),
-                    index: get(key("index"), l.index, &mut broken),
+                    index,
                     top: get(key("top"), l.top, &mut broken),
                     tint,
                 }
@@ -493,10 +691,21 @@ impl SceneDescription {
                 if b.center.is_none() {
                     broken.push(*need(key("center")));
                 }
+                let keys = IndexKeys {
+                    index: b.index,
+                    cauchy: &b.cauchy,
+                    sellmeier: &b.sellmeier,
+                    material: &b.material,
+                };
+                let (index, law) = refractive(keys, &key, None, &mut broken);
+                laws.extend(law.map(|law| Dispersive {
+                    medium: Medium::Sphere(i),
+                    law,
+                }));
                 Sphere {
                     center: Vec3::from_array(b.center.unwrap_or_default()),
                     radius: get(key("radius"), b.radius, &mut broken),
-                    index: get(key("index"), b.index, &mut broken),
+                    index,
                 }
             })
             .collect();
@@ -509,11 +718,22 @@ impl SceneDescription {
                 if p.corners.is_none() {
                     broken.push(*need(key("corners")));
                 }
+                let keys = IndexKeys {
+                    index: p.index,
+                    cauchy: &p.cauchy,
+                    sellmeier: &p.sellmeier,
+                    material: &p.material,
+                };
+                let (index, law) = refractive(keys, &key, None, &mut broken);
+                laws.extend(law.map(|law| Dispersive {
+                    medium: Medium::Prism(i),
+                    law,
+                }));
                 Prism {
                     corners: p.corners.clone().unwrap_or_default(),
                     bottom: get(key("bottom"), p.bottom, &mut broken),
                     top: get(key("top"), p.top, &mut broken),
-                    index: get(key("index"), p.index, &mut broken),
+                    index,
                 }
             })
             .collect();
@@ -528,6 +748,17 @@ impl SceneDescription {
                         broken.push(*need(key(name)));
                     }
                 }
+                let keys = IndexKeys {
+                    index: l.index,
+                    cauchy: &l.cauchy,
+                    sellmeier: &l.sellmeier,
+                    material: &l.material,
+                };
+                let (index, law) = refractive(keys, &key, None, &mut broken);
+                laws.extend(law.map(|law| Dispersive {
+                    medium: Medium::Lens(i),
+                    law,
+                }));
                 Lens {
                     center: Vec3::from_array(l.center.unwrap_or_default()),
                     axis: Vec3::from_array(l.axis.unwrap_or([0.0, 0.0, 1.0])),
@@ -535,7 +766,7 @@ impl SceneDescription {
                     radius2: get(key("radius2"), l.radius2, &mut broken),
                     thickness: get(key("thickness"), l.thickness, &mut broken),
                     diameter: get(key("diameter"), l.diameter, &mut broken),
-                    index: get(key("index"), l.index, &mut broken),
+                    index,
                 }
             })
             .collect();
@@ -585,6 +816,7 @@ impl SceneDescription {
                 target: target.map_or(middle, Vec3::from_array),
             }),
             lesson,
+            dispersion: laws,
         })
     }
 
@@ -596,23 +828,36 @@ impl SceneDescription {
 
     /// The description's form, every value written out (defaults too).
     pub fn form(&self) -> SceneForm {
+        let keys = |medium: Medium, index: f64| index_keys(self.law(medium), index);
         let container = match &self.container {
-            Container::Glass(g) => FileContainer {
-                shape: Some("glass".into()),
-                radius: Some(g.radius),
-                height: Some(g.height),
-                wall: Some(g.wall),
-                bottom: Some(g.bottom),
-                index: Some(g.index),
-                ..FileContainer::default()
-            },
-            Container::Revolution(v) => FileContainer {
-                shape: Some("revolution".into()),
-                outer: Some(v.outer.clone()),
-                inner: Some(v.inner.clone()),
-                index: Some(v.index),
-                ..FileContainer::default()
-            },
+            Container::Glass(g) => {
+                let (index, cauchy, sellmeier, material) = keys(Medium::Container, g.index);
+                FileContainer {
+                    shape: Some("glass".into()),
+                    radius: Some(g.radius),
+                    height: Some(g.height),
+                    wall: Some(g.wall),
+                    bottom: Some(g.bottom),
+                    index,
+                    cauchy,
+                    sellmeier,
+                    material,
+                    ..FileContainer::default()
+                }
+            }
+            Container::Revolution(v) => {
+                let (index, cauchy, sellmeier, material) = keys(Medium::Container, v.index);
+                FileContainer {
+                    shape: Some("revolution".into()),
+                    outer: Some(v.outer.clone()),
+                    inner: Some(v.inner.clone()),
+                    index,
+                    cauchy,
+                    sellmeier,
+                    material,
+                    ..FileContainer::default()
+                }
+            }
             Container::Tank(t) => FileContainer {
                 shape: Some("tank".into()),
                 half_x: Some(t.half_x),
@@ -626,11 +871,18 @@ impl SceneDescription {
             liquid: self
                 .liquids
                 .iter()
-                .map(|l| FileLiquid {
-                    name: Some(l.name.clone()),
-                    index: Some(l.index),
-                    top: Some(l.top),
-                    tint: l.tint.map(|[r, g, b]| format!("#{r:02x}{g:02x}{b:02x}")),
+                .enumerate()
+                .map(|(i, l)| {
+                    let (index, cauchy, sellmeier, material) = keys(Medium::Liquid(i), l.index);
+                    FileLiquid {
+                        name: Some(l.name.clone()),
+                        index,
+                        cauchy,
+                        sellmeier,
+                        material,
+                        top: Some(l.top),
+                        tint: l.tint.map(|[r, g, b]| format!("#{r:02x}{g:02x}{b:02x}")),
+                    }
                 })
                 .collect(),
             straw: self
@@ -669,33 +921,54 @@ impl SceneDescription {
             sphere: self
                 .spheres
                 .iter()
-                .map(|b| FileSphere {
-                    center: Some(b.center.to_array()),
-                    radius: Some(b.radius),
-                    index: Some(b.index),
+                .enumerate()
+                .map(|(i, b)| {
+                    let (index, cauchy, sellmeier, material) = keys(Medium::Sphere(i), b.index);
+                    FileSphere {
+                        center: Some(b.center.to_array()),
+                        radius: Some(b.radius),
+                        index,
+                        cauchy,
+                        sellmeier,
+                        material,
+                    }
                 })
                 .collect(),
             prism: self
                 .prisms
                 .iter()
-                .map(|p| FilePrism {
-                    corners: Some(p.corners.clone()),
-                    bottom: Some(p.bottom),
-                    top: Some(p.top),
-                    index: Some(p.index),
+                .enumerate()
+                .map(|(i, p)| {
+                    let (index, cauchy, sellmeier, material) = keys(Medium::Prism(i), p.index);
+                    FilePrism {
+                        corners: Some(p.corners.clone()),
+                        bottom: Some(p.bottom),
+                        top: Some(p.top),
+                        index,
+                        cauchy,
+                        sellmeier,
+                        material,
+                    }
                 })
                 .collect(),
             lens: self
                 .lenses
                 .iter()
-                .map(|l| FileLens {
-                    center: Some(l.center.to_array()),
-                    axis: Some(l.axis.to_array()),
-                    radius1: Some(l.radius1),
-                    radius2: Some(l.radius2),
-                    thickness: Some(l.thickness),
-                    diameter: Some(l.diameter),
-                    index: Some(l.index),
+                .enumerate()
+                .map(|(i, l)| {
+                    let (index, cauchy, sellmeier, material) = keys(Medium::Lens(i), l.index);
+                    FileLens {
+                        center: Some(l.center.to_array()),
+                        axis: Some(l.axis.to_array()),
+                        radius1: Some(l.radius1),
+                        radius2: Some(l.radius2),
+                        thickness: Some(l.thickness),
+                        diameter: Some(l.diameter),
+                        index,
+                        cauchy,
+                        sellmeier,
+                        material,
+                    }
                 })
                 .collect(),
             observer: self.observer.map(|o| FileObserver {

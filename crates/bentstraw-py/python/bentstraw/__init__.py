@@ -306,6 +306,7 @@ def _load(
     water_height: Optional[float],
     n_water: Optional[float],
     max_events: int,
+    wavelength: Optional[float] = None,
 ) -> Any:
     """The scene loaded by the engine as the command line's flags would give it; its hints
     (numbers that look like slips) as warnings."""
@@ -326,6 +327,7 @@ def _load(
         _number(water_height, "water_height"),
         _number(n_water, "n_water"),
         _count(max_events, "max_events"),
+        _number(wavelength, "wavelength"),
     )
     for hint in loaded.hints:
         warnings.warn(hint, UserWarning, stacklevel=3)
@@ -625,6 +627,7 @@ def simulate(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    wavelength: Optional[float] = None,
     points: int = DEFAULT_POINTS,
     image_model: ImageModel = "course",
 ) -> Simulation:
@@ -644,7 +647,7 @@ def simulate(
     >>> ax = plt.figure().add_subplot(projection="3d")
     >>> _ = ax.scatter(*sim.xyz.T, c=sim.color, cmap="rainbow", s=1)
     """
-    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events, wavelength)
     fields = _engine.simulate(loaded, _count(points, "points", 2**63 - 1), image_model)
     simulation = Simulation(fields, loaded, image_model)
     simulation._points_asked = points
@@ -652,7 +655,8 @@ def simulate(
 
 
 #: The keywords of :func:`simulate` a :func:`sweep` may vary.
-_SWEPT = ("observer", "straw", "water_height", "n_water", "max_events", "points", "image_model")
+_SWEPT = ("observer", "straw", "water_height", "n_water", "max_events", "wavelength", "points",
+          "image_model")
 
 
 def _progress_bar(total: int, show: Optional[bool]) -> Any:
@@ -676,7 +680,8 @@ def sweep(
     **shared: Any,
 ) -> List[Simulation]:
     """:func:`simulate` once for each of ``values`` of one of its keywords (``n_water``,
-    ``water_height``, ``straw``, ``observer``, ``max_events``, ``points``, ``image_model``), the
+    ``water_height``, ``straw``, ``observer``, ``max_events``, ``wavelength``, ``points``,
+    ``image_model``), the
     other keywords ``shared``: the simulations in the order of ``values``, each the one
     :func:`simulate` gives alone. A sweep that runs over a second shows a progress bar when tqdm
     is installed (a widget in a notebook); ``progress=True`` shows it at once, ``False`` never.
@@ -714,6 +719,7 @@ def render(
     water_height: Optional[float] = ...,
     n_water: Optional[float] = ...,
     max_events: int = ...,
+    wavelength: Optional[float] = ...,
     size: Tuple[int, int] = ...,
     target: Optional[Vector3] = ...,
     fov: Optional[float] = ...,
@@ -734,6 +740,7 @@ def render(
     water_height: Optional[float] = ...,
     n_water: Optional[float] = ...,
     max_events: int = ...,
+    wavelength: Optional[float] = ...,
     size: Tuple[int, int] = ...,
     target: Optional[Vector3] = ...,
     fov: Optional[float] = ...,
@@ -754,6 +761,7 @@ def render(
     water_height: Optional[float] = ...,
     n_water: Optional[float] = ...,
     max_events: int = ...,
+    wavelength: Optional[float] = ...,
     size: Tuple[int, int] = ...,
     target: Optional[Vector3] = ...,
     fov: Optional[float] = ...,
@@ -774,6 +782,7 @@ def render(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    wavelength: Optional[float] = None,
     size: Tuple[int, int] = DEFAULT_SIZE,
     target: Optional[Vector3] = None,
     fov: Optional[float] = None,
@@ -804,7 +813,7 @@ def render(
     51.68
     >>> _ = plt.imshow(picture)
     """
-    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events, wavelength)
     size_ = None if size is None else _size(size)
     out = _engine.render(
         loaded, size_, _vector(target, 3, "target"), _number(fov, "fov"), mode,
@@ -830,6 +839,7 @@ def check(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    wavelength: Optional[float] = None,
     tolerance: float = DEFAULT_TOLERANCE,
     min_coverage: float = DEFAULT_MIN_COVERAGE,
     worst: int = 10,
@@ -846,7 +856,7 @@ def check(
     'pass'
     """
     points, codes = _points(xyz, color)
-    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events, wavelength)
     report = _engine.check(loaded, points, codes, _real(tolerance, "tolerance"),
                            _real(min_coverage, "min_coverage"), _count(worst, "worst"))
     return CheckReport(json.loads(report))
@@ -902,6 +912,7 @@ def assert_solution(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    wavelength: Optional[float] = None,
     tolerance: float = DEFAULT_TOLERANCE,
     min_coverage: float = DEFAULT_MIN_COVERAGE,
     points: float = 25.0,
@@ -926,7 +937,7 @@ def assert_solution(
     True xyz
     """
     pts, codes = _points(xyz, color)
-    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events, wavelength)
     row: Dict[str, Any] = json.loads(_engine.grade_points(loaded, pts, codes, _real(tolerance, "tolerance"),
                                           _real(min_coverage, "min_coverage"),
                                           _real(points, "points"), lang))
@@ -1044,6 +1055,7 @@ def trace(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    wavelength: Optional[float] = None,
     direction: Optional[Vector3] = None,
     toward: Optional[Vector3] = None,
 ) -> Ray:
@@ -1062,7 +1074,7 @@ def trace(
     >>> bool(ray["path_length"] == sim.path_length[0])
     True
     """
-    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events, wavelength)
     ray = _engine.trace(loaded, _vector(direction, 3, "direction"), _vector(toward, 3, "toward"))
     return Ray(json.loads(ray))
 
@@ -1075,6 +1087,7 @@ def ray_diagram(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    wavelength: Optional[float] = None,
     direction: Optional[Vector3] = None,
     toward: Optional[Vector3] = None,
     ax: Any = None,
@@ -1087,7 +1100,8 @@ def ray_diagram(
     ...                                 water_height=0.1, toward=(0, 0.02, 0.05))
     """
     ray = trace(scene, observer=observer, straw=straw, water_height=water_height,
-                n_water=n_water, max_events=max_events, direction=direction, toward=toward)
+                n_water=n_water, max_events=max_events, wavelength=wavelength,
+                direction=direction, toward=toward)
     return ray.plot(ax)
 
 
@@ -1100,6 +1114,7 @@ def explore(
     water_height: Optional[float] = None,
     n_water: Optional[float] = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    wavelength: Optional[float] = None,
     points: int = DEFAULT_POINTS,
     mode: Mode = DEFAULT_MODE,
     backdrop: Backdrop = DEFAULT_BACKDROP,
@@ -1117,7 +1132,7 @@ def explore(
 
     >>> bentstraw.explore("prism")  # doctest: +SKIP
     """
-    loaded = _load(scene, observer, straw, water_height, n_water, max_events)
+    loaded = _load(scene, observer, straw, water_height, n_water, max_events, wavelength)
     query: Dict[str, str] = {}
     if isinstance(scene, Scene):
         query["scene-file"] = scene.text
@@ -1139,6 +1154,8 @@ def explore(
     if n_water is not None:
         query["n-water"] = repr(_real(n_water, "n_water"))
     query["max-events"] = str(_count(max_events, "max_events"))
+    if wavelength is not None:
+        query["wavelength"] = repr(_real(wavelength, "wavelength"))
     query["points"] = str(_count(points, "points"))
     # The picture's choices checked by the engine's own rules: one pixel drawn with them.
     _engine.render(loaded, (1, 1), None, None, mode, DEFAULT_PRUNE, backdrop, 1, False)

@@ -111,6 +111,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
             water_height: v.water_height.or(classic.water_height),
             n_water: v.n_water,
             max_events: v.max_events,
+            wavelength: v.wavelength,
         };
         return Ok(view.to_query());
     };
@@ -125,6 +126,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
             water_height: Some(v.water_height.unwrap_or(glass.water_height())),
             n_water: Some(v.n_water.unwrap_or(glass.n_water())),
             max_events: v.max_events,
+            wavelength: v.wavelength,
         };
         return Ok(view.to_query());
     }
@@ -132,6 +134,7 @@ fn initial_query(a: &ExploreArgs) -> CliResult<String> {
     view.values = SceneValues {
         observer,
         max_events: v.max_events,
+        wavelength: v.wavelength,
         ..SceneValues::default()
     };
     // A scene of the built-in gallery starts the page on it by name.
