@@ -1143,7 +1143,7 @@ test("the scene file's box: the view follows a typed scene (simulate's points), 
   await context.close();
 });
 
-test("the wavelength slider: a flint prism's points at 450 nm are simulate's, the link keeps the colour, a law's slip is refused in French", async () => {
+test("the wavelength slider and white light: a flint prism's points at 450 nm are simulate's, its picture in colour, the link keeps both, a law's slip is refused in French", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);
   await waitReady(page);
@@ -1170,12 +1170,20 @@ test("the wavelength slider: a flint prism's points at 450 nm are simulate's, th
   assert.notEqual(blue, yellow);
   assert.equal(blue, (await simulateText(flint, ["--wavelength", "450"])).csv);
   assert.ok((await page.evaluate(() => window.bentstraw.command())).join(" ").includes("--wavelength 450"));
+  // White light: the prism's edges in colour, the link keeping it.
+  const oneColour = await pictureDigest(page);
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  await page.selectOption("#light", "white");
+  await waitReady(page, frames);
+  assert.notEqual(await pictureDigest(page), oneColour);
   const link = await page.evaluate(() => window.bentstraw.link());
   assert.match(link, /wavelength=450/);
+  assert.match(link, /light=white/);
   const again = await openPage(browser, server.url);
   await again.page.goto(link);
   await waitReady(again.page);
   assert.equal(await again.page.evaluate(() => window.bentstraw.state.wavelength), 450);
+  assert.equal(await again.page.evaluate(() => window.bentstraw.state.light), "white");
   assert.equal(await again.page.evaluate(() => window.bentstraw.points()), blue);
   await again.context.close();
   assert.deepEqual(problems, []);

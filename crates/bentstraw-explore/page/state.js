@@ -70,6 +70,9 @@ export const FIELDS = [
   { prop: "points", query: "points", initial: ENGINE.points, ...number, engine: true },
   { prop: "mode", query: "mode", initial: ENGINE.mode, ...text, engine: true,
     control: { id: "mode", event: "change", redoes: "keep-path" } },
+  // White light costs a picture per band where some index depends on the wavelength.
+  { prop: "light", query: "light", initial: ENGINE.light, ...text, engine: true, optional: true,
+    control: { id: "light", event: "change", redoes: "keep-path" } },
   { prop: "backdrop", query: "backdrop", initial: ENGINE.backdrop, ...text, engine: true,
     control: { id: "backdrop", event: "change", redoes: "keep-path" } },
   { prop: "color", query: "color", initial: "section", ...text,

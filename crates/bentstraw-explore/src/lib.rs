@@ -390,6 +390,8 @@ pub fn defaults_reply() -> Reply {
         "modes": MODES,
         "backdrop": picture.backdrop(),
         "backdrops": BACKDROPS,
+        "light": picture.light(),
+        "lights": bentstraw_optics::view::LIGHTS,
         "samples": picture.samples,
         "maxSamples": MAX_SAMPLES,
         "prune": picture.prune,

@@ -1,7 +1,7 @@
 //! The gallery of classic demonstrations, built into the program: its scene files, by name.
 
 /// The gallery's scene files beyond the assignment's own (`scenes/`): name and text.
-pub const GALLERY: [(&str, &str); 30] = [
+pub const GALLERY: [(&str, &str); 33] = [
     (
         "leaning-straw",
         include_str!("../scenes/leaning-straw.toml"),
@@ -94,6 +94,15 @@ pub const GALLERY: [(&str, &str); 30] = [
     (
         "cocktail-glass",
         include_str!("../scenes/cocktail-glass.toml"),
+    ),
+    (
+        "prism-spectrum",
+        include_str!("../scenes/prism-spectrum.toml"),
+    ),
+    ("lens-colours", include_str!("../scenes/lens-colours.toml")),
+    (
+        "dispersive-liquid",
+        include_str!("../scenes/dispersive-liquid.toml"),
     ),
 ];
 

@@ -110,7 +110,8 @@ fn scene_section(out: &Path, lang: Lang, stem: &str, text: &str, world: &Setup) 
     }
 }
 
-/// The scene's picture from its own observer, 1000x750, Fresnel, as a PNG.
+/// The scene's picture from its own observer, 1000x750, Fresnel, as a PNG: in white light where
+/// an index depends on the wavelength (what such a scene is there to show).
 pub fn write_picture(path: &Path, world: &Setup) -> Result {
     let camera = scene_camera(
         world,
@@ -127,6 +128,7 @@ pub fn write_picture(path: &Path, world: &Setup) -> Result {
         backdrop: Backdrop::Checker,
         samples: 3,
         outline: false,
+        white: !world.world.white_light().is_empty(),
     };
     files::write_bytes(
         path,

@@ -117,6 +117,7 @@ fn seen_png(world: &World, camera: Camera) -> Result<Vec<u8>> {
         backdrop: Backdrop::Checker,
         samples: 3,
         outline: true,
+        white: false,
     };
     png_bytes(&picture(world, camera, options))
 }

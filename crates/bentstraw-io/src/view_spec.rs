@@ -193,6 +193,9 @@ impl ViewSpec {
         if let Some(backdrop) = get(q, "backdrop") {
             picture = picture.with_backdrop("--backdrop", backdrop)?;
         }
+        if let Some(light) = get(q, "light") {
+            picture = picture.with_light("--light", light)?;
+        }
         if let Some(samples) = get(q, "samples") {
             picture.samples = number(samples, "samples")?;
         }
@@ -246,6 +249,9 @@ impl ViewSpec {
         p.push(("points", self.points.to_string()));
         p.push(("mode", self.picture.mode().to_string()));
         p.push(("backdrop", self.picture.backdrop().to_string()));
+        if self.picture.white {
+            p.push(("light", self.picture.light().to_string()));
+        }
         if self.picture.samples != DEFAULT_SAMPLES {
             p.push(("samples", self.picture.samples.to_string()));
         }
@@ -488,6 +494,7 @@ mod tests {
                 checker: false,
                 prune: 1e-3,
                 samples: 5,
+                white: true,
             },
             points: 0,
             ..ViewSpec::default()

@@ -127,6 +127,7 @@ mod tests {
                 backdrop: Backdrop::Checker,
                 samples: 1,
                 outline: true,
+                white: false,
             },
             min_points,
         }
@@ -259,6 +260,7 @@ mod progress_tests {
                     backdrop: Backdrop::Checker,
                     samples,
                     outline: true,
+                    white: false,
                 },
                 min_points: 0,
             };

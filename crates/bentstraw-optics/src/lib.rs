@@ -46,6 +46,7 @@ pub mod scene_file;
 pub mod setup;
 pub mod shading;
 pub mod sketch;
+pub mod spectrum;
 pub mod text;
 pub mod view;
 pub mod world;

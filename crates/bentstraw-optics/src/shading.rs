@@ -77,6 +77,9 @@ pub struct ShadingOptions {
     pub samples: u32,
     /// Whether to draw the glass's outline.
     pub outline: bool,
+    /// White light (every band of the spectrum, each traced at its own wavelength) rather than
+    /// light of the one wavelength the scene is traced at.
+    pub white: bool,
 }
 
 /// An RGB picture, 8-bit sRGB, row-major, 3 bytes per pixel, row 0 at the top.
@@ -595,6 +598,94 @@ fn filtered(colour: [f64; 3], absorbed: [f32; 3]) -> [f64; 3] {
     out
 }
 
+/// The picture in white light of a world whose indices depend on the wavelength: each band's
+/// picture (its own world), in linear light, weighted by the band's colour and added up. Light
+/// that every band sees alike keeps its colour (the bands' colours add up to white); where the
+/// bands part, colour fringes appear.
+///
+/// The violet, a middle and the red band are drawn whole first. Where the three agree, and so
+/// do they around (two pixels each way), no ray met light that the wavelength bends (dispersion
+/// parts the spectrum's colours in order, its two ends most): the other bands are drawn only in
+/// the other pixels, and take the probes' colour in these.
+fn white_picture_into(
+    world: &World,
+    camera: &Camera,
+    options: &ShadingOptions,
+    buffers: &mut ShadingBuffers,
+    picture: &mut RgbPicture,
+) {
+    const AROUND: usize = 2;
+    let single = ShadingOptions {
+        white: false,
+        ..*options
+    };
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let bands = crate::spectrum::white_bands();
+    let worlds = world.white_light();
+    let (middle, last) = (bands.len() / 2, bands.len() - 1);
+    let probed = [0, middle, last];
+    buffers.needed.clear();
+    let mut probes = [
+        RgbPicture::default(),
+        RgbPicture::default(),
+        RgbPicture::default(),
+    ];
+    // The red one last: the buffers then hold its centres for the bands to come.
+    for (probe, &k) in probes.iter_mut().zip(&probed) {
+        shaded_picture_into(&worlds[k], camera, &single, buffers, probe);
+    }
+    if buffers.stop.load(Ordering::Relaxed) {
+        return;
+    }
+    let differs: Vec<bool> = (0..w * h)
+        .map(|p| {
+            let at = |q: &RgbPicture| [q.pixels[3 * p], q.pixels[3 * p + 1], q.pixels[3 * p + 2]];
+            at(&probes[0]) != at(&probes[1]) || at(&probes[1]) != at(&probes[2])
+        })
+        .collect();
+    buffers.needed.extend((0..w * h).map(|p| {
+        let (i, j) = (p / w, p % w);
+        (i.saturating_sub(AROUND)..(i + AROUND + 1).min(h)).any(|a| {
+            (j.saturating_sub(AROUND)..(j + AROUND + 1).min(w)).any(|b| differs[a * w + b])
+        })
+    }));
+    // The sRGB code of each byte, in linear light.
+    let linear: Vec<f32> = (0..=255)
+        .map(|c| srgb_to_linear(c as f64 / 255.0) as f32)
+        .collect();
+    let mut sum = vec![[0.0f32; 3]; w * h];
+    let mut add = |rgb: [f64; 3], p: &RgbPicture| {
+        let rgb = rgb.map(|c| c as f32);
+        for (px, bytes) in sum.iter_mut().zip(p.pixels.chunks_exact(3)) {
+            for c in 0..3 {
+                px[c] += rgb[c] * linear[bytes[c] as usize];
+            }
+        }
+    };
+    for (probe, &k) in probes.iter().zip(&probed) {
+        add(bands[k].rgb, probe);
+    }
+    let [_, _, mut band_picture] = probes;
+    for (k, (band, band_world)) in bands.iter().zip(worlds).enumerate() {
+        if probed.contains(&k) {
+            continue;
+        }
+        // The pixels not drawn keep the red probe's colour, which every probe has there.
+        shaded_picture_into(band_world, camera, &single, buffers, &mut band_picture);
+        if buffers.stop.load(Ordering::Relaxed) {
+            break;
+        }
+        add(band.rgb, &band_picture);
+    }
+    buffers.needed.clear();
+    picture.width = camera.width;
+    picture.height = camera.height;
+    picture.pixels.clear();
+    picture.pixels.extend(sum.iter().flat_map(|px| {
+        px.map(|c| (linear_to_srgb(c.clamp(0.0, 1.0) as f64) * 255.0).round() as u8)
+    }));
+}
+
 /// Work space of [`shaded_picture_into`], kept from one picture to the next.
 #[derive(Clone, Debug, Default)]
 pub struct ShadingBuffers {
@@ -608,6 +699,9 @@ pub struct ShadingBuffers {
     rows_done: Arc<AtomicU64>,
     /// Set by another thread to abandon the picture being drawn.
     stop: Arc<AtomicBool>,
+    /// The pixels to draw (all when empty); the others keep what the last picture drawn into
+    /// these buffers had there (white light's bands where they do not differ).
+    needed: Vec<bool>,
 }
 
 impl ShadingBuffers {
@@ -648,6 +742,10 @@ pub fn shaded_picture_into(
     buffers: &mut ShadingBuffers,
     picture: &mut RgbPicture,
 ) {
+    if options.white && !world.white_light().is_empty() {
+        white_picture_into(world, camera, options, buffers, picture);
+        return;
+    }
     let (w, h) = (camera.width as usize, camera.height as usize);
     let surroundings = Surroundings::new(options.backdrop, camera.eye);
     let light = light_direction(&surroundings);
@@ -657,8 +755,16 @@ pub fn shaded_picture_into(
     let stop = &*buffers.stop;
     let stopped = || stop.load(Ordering::Relaxed);
     let ShadingBuffers {
-        centre, seen, mask, ..
+        centre,
+        seen,
+        mask,
+        needed,
+        ..
     } = buffers;
+    let needed = &*needed;
+    // Which pixels of row `i` to draw: all (None), or those marked.
+    let needed_row = |i: usize| (!needed.is_empty()).then(|| &needed[i * w..(i + 1) * w]);
+    let skipped = |i: usize| needed_row(i).is_some_and(|r| !r.contains(&true));
     centre.resize(w * h, [0.0; 3]);
     seen.resize(w * h, Region::Scene);
     // Pixel centres: the single-precision packet tracer, eight rays at a time (most of a
@@ -692,17 +798,55 @@ pub fn shaded_picture_into(
             .for_each_init(
                 || (FresnelWave::pooled(), Vec::new(), Vec::new()),
                 |(wave, sum, ends), (i, (row, seen_row))| {
-                    if stopped() {
+                    if stopped() || skipped(i) {
                         return;
                     }
                     sum.clear();
                     sum.resize(w, [0.0f64; 3]);
-                    seen_row.fill(Region::Scene);
                     // The ends are kept and shaded after the row is traced: shading inside the
                     // tracer's loop would read each end back while it is still being written.
                     ends.clear();
-                    let mut on_end = |j: usize, end: BranchEnd| ends.push((j as u32, end));
-                    packets.branch_ends_row(camera, i as u32, split, prune, wave, &mut on_end);
+                    let some = needed_row(i).filter(|r| r.contains(&false));
+                    match some {
+                        None => {
+                            seen_row.fill(Region::Scene);
+                            let mut on_end = |j: usize, end: BranchEnd| ends.push((j as u32, end));
+                            packets.branch_ends_row(
+                                camera,
+                                i as u32,
+                                split,
+                                prune,
+                                wave,
+                                &mut on_end,
+                            );
+                        }
+                        Some(r) => {
+                            // Some pixels only: their centres' rays, as the edges' samples go.
+                            let columns: Vec<usize> = (0..w).filter(|&j| r[j]).collect();
+                            let dirs: Vec<Vec3> = columns
+                                .iter()
+                                .map(|&j| {
+                                    camera
+                                        .direction_at(i as f64 + 0.5, j as f64 + 0.5)
+                                        .normalize()
+                                })
+                                .collect();
+                            for &j in &columns {
+                                seen_row[j] = Region::Scene;
+                            }
+                            let mut on_end =
+                                |k: usize, end: BranchEnd| ends.push((columns[k] as u32, end));
+                            packets.branch_ends(
+                                camera.eye,
+                                &dirs,
+                                split,
+                                prune,
+                                FRESNEL_SEGMENTS_PER_PIXEL,
+                                wave,
+                                &mut on_end,
+                            );
+                        }
+                    }
                     for &(j, end) in ends.iter() {
                         if let Some((colour, weight, region)) = shader.shade(end) {
                             let px = &mut sum[j as usize];
@@ -714,8 +858,10 @@ pub fn shaded_picture_into(
                             }
                         }
                     }
-                    for (px, lin) in row.iter_mut().zip(sum.iter()) {
-                        *px = lin.map(|c| linear_to_srgb_fast(c) as f32);
+                    for (j, (px, lin)) in row.iter_mut().zip(sum.iter()).enumerate() {
+                        if some.is_none_or(|r| r[j]) {
+                            *px = lin.map(|c| linear_to_srgb_fast(c) as f32);
+                        }
                     }
                     rows_done.fetch_add(1, Ordering::Relaxed);
                 },
@@ -768,16 +914,17 @@ pub fn shaded_picture_into(
                 )
             },
             |(wave, line, edges, dirs, acc, ends), (i, out)| {
-                if stopped() {
+                if stopped() || skipped(i) {
                     return;
                 }
                 line.clear();
                 line.extend(centre[i * w..(i + 1) * w].iter().map(|c| c.map(f64::from)));
+                let drawn = |j: usize| needed_row(i).is_none_or(|r| r[j]);
                 if n > 1 {
                     edges.clear();
                     dirs.clear();
                     for (j, px) in line.iter_mut().enumerate() {
-                        if !edge(i, j) {
+                        if !edge(i, j) || !drawn(j) {
                             continue;
                         }
                         // Most edges of a picture are the backdrop's squares seen past the glass.
@@ -832,6 +979,9 @@ pub fn shaded_picture_into(
                     &mask[i * w..(i + 1) * w]
                 };
                 for (j, (o, px)) in out.chunks_exact_mut(3).zip(line.iter()).enumerate() {
+                    if !drawn(j) {
+                        continue;
+                    }
                     let px = match mask_row.get(j) {
                         Some(&m) if m > 0.0 => mix(*px, INK, m as f64),
                         _ => *px,
@@ -1056,6 +1206,7 @@ mod tests {
 
     fn options(mode: ShadingMode, samples: u32) -> ShadingOptions {
         ShadingOptions {
+            white: false,
             mode,
             backdrop: Backdrop::Checker,
             samples,

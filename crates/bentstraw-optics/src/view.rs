@@ -41,6 +41,9 @@ pub const MODES: [&str; 2] = ["course", "fresnel"];
 /// The backdrops by name: none (a plain background) or a checkerboard wall and floor.
 pub const BACKDROPS: [&str; 2] = ["none", "checker"];
 
+/// The picture's light by name: one wavelength (the scene's, `--wavelength`), or white light.
+pub const LIGHTS: [&str; 2] = ["mono", "white"];
+
 /// How the observer's picture is drawn, as asked for: its mode, backdrop, pruning weight and
 /// samples (the command line's `--mode`, `--backdrop`, `--prune`, `--samples`, the page's query
 /// and Python's keywords of the same names). Checked where it is turned into shading.
@@ -54,6 +57,8 @@ pub struct PictureSpec {
     pub prune: f64,
     /// Samples per pixel side at edges.
     pub samples: u32,
+    /// White light (true), or light of the scene's one wavelength.
+    pub white: bool,
 }
 
 impl Default for PictureSpec {
@@ -63,6 +68,7 @@ impl Default for PictureSpec {
             checker: true,
             prune: DEFAULT_PRUNE,
             samples: DEFAULT_SAMPLES,
+            white: false,
         }
     }
 }
@@ -100,6 +106,23 @@ impl PictureSpec {
         }
     }
 
+    /// This spec with the light named `name` (one of [`LIGHTS`]), or the refusal naming the
+    /// option as `option`.
+    pub fn with_light(self, option: &str, name: &str) -> Result<PictureSpec, String> {
+        match LIGHTS.iter().position(|l| *l == name) {
+            Some(k) => Ok(PictureSpec {
+                white: k == 1,
+                ..self
+            }),
+            None => Err(crate::text::refuse_choice(option, name, &LIGHTS)),
+        }
+    }
+
+    /// The light's name.
+    pub fn light(&self) -> &'static str {
+        LIGHTS[self.white as usize]
+    }
+
     /// The mode's name.
     pub fn mode(&self) -> &'static str {
         MODES[self.fresnel as usize]
@@ -128,6 +151,7 @@ impl PictureSpec {
             },
             samples: self.samples,
             outline: true,
+            white: self.white,
         }
     }
 
@@ -145,6 +169,9 @@ impl PictureSpec {
         }
         if self.prune != DEFAULT_PRUNE {
             args.extend(["--prune".to_string(), self.prune.to_string()]);
+        }
+        if self.white {
+            args.extend(["--light".to_string(), self.light().to_string()]);
         }
         args
     }

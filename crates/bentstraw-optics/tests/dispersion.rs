@@ -4,11 +4,16 @@
 //! wavelength by its closed form, `2·asin(n(λ)·sin(A/2)) − A` at minimum deviation, blue more
 //! than red.
 
+use bentstraw_optics::camera::Camera;
 use bentstraw_optics::dispersion::{material, Dispersion, Formula, MATERIALS};
 use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::sampling::sample_image;
 use bentstraw_optics::scene_file::{Medium, SceneDescription};
 use bentstraw_optics::setup::{SceneValues, Setup};
+use bentstraw_optics::shading::{
+    shaded_picture, Backdrop, RgbPicture, ShadingMode, ShadingOptions,
+};
+use bentstraw_optics::spectrum::WHITE_BANDS;
 use bentstraw_optics::world::{Event, Outcome, World};
 use bentstraw_optics::Vec3;
 use twofloat::TwoFloat as T;
@@ -287,4 +292,86 @@ fn a_wavelength_outside_the_visible_is_refused_with_its_rule() {
         };
         assert!(Setup::from_values(&glass).is_err());
     }
+}
+
+/// A prism of `law` on the table beside a tiny empty glass (which has no face), seen from the
+/// gallery prism's eye; the prism's corners are the gallery's.
+fn prism_scene(law: &str) -> String {
+    format!(
+        "[container]\nshape = \"glass\"\nradius = 0.01\nheight = 0.01\n\n\
+         [[prism]]\ncorners = [[0.06329, 0.07209], [0.054221, 0.033138], [0.092493, 0.044766]]\n\
+         bottom = 0.0\ntop = 0.05\n{law}\n\n\
+         [observer]\nposition = [0.42, 0.0396, 0.04]\ntarget = [0.07, 0.05, 0.025]\n"
+    )
+}
+
+fn pictures(text: &str) -> (RgbPicture, RgbPicture) {
+    let s = setup(text, None);
+    let camera = Camera::new(s.observer, s.target.unwrap(), 200, 150, 0.35);
+    let options = |white| ShadingOptions {
+        mode: ShadingMode::Fresnel { prune_below: 1e-4 },
+        backdrop: Backdrop::Checker,
+        samples: 3,
+        outline: true,
+        white,
+    };
+    (
+        shaded_picture(&s.world, &camera, &options(false)),
+        shaded_picture(&s.world, &camera, &options(true)),
+    )
+}
+
+/// Pixels of a colour the checkerboard has not (its blue has green between red and blue, its
+/// brown too, its white all three alike): green or magenta, green at least 6 levels above or
+/// below both others.
+fn spectral(p: &RgbPicture) -> usize {
+    p.pixels
+        .chunks_exact(3)
+        .filter(|c| {
+            let (r, g, b) = (c[0] as i32, c[1] as i32, c[2] as i32);
+            g >= r.max(b) + 6 || g + 6 <= r.min(b)
+        })
+        .count()
+}
+
+/// White light where every band sees the same indices is the ordinary picture: to the byte
+/// when no index depends on the wavelength, within 3 levels (of 255) through laws that give
+/// one index at every wavelength, where every band is traced and their colours added up.
+#[test]
+fn white_light_where_nothing_disperses_is_the_ordinary_picture() {
+    let (mono, white) = pictures(&prism_scene("index = 1.5"));
+    assert_eq!(mono, white);
+    let flat = prism_scene("cauchy = [1.5, 0.0]");
+    let s = setup(&flat, None);
+    assert_eq!(s.world.white_light().len(), WHITE_BANDS);
+    let (mono, white) = pictures(&flat);
+    let most = mono
+        .pixels
+        .iter()
+        .zip(&white.pixels)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap();
+    assert!(most <= 3, "{most} levels apart");
+}
+
+/// Through a prism of dense flint glass the checkerboard's edges are spread into spectra: in
+/// white light the prism shows greens and magentas that the checkerboard has not, and light of
+/// one colour shows none; outside the prism the picture is the same.
+#[test]
+fn white_light_through_a_flint_prism_shows_the_spectrum() {
+    let (mono, white) = pictures(&prism_scene("material = \"sf10\""));
+    let (plain, colour) = (spectral(&mono), spectral(&white));
+    assert!(
+        plain < 20 && colour > 300,
+        "spectral pixels: {plain} in one colour, {colour} in white"
+    );
+    // Outside the prism nothing changes: most of the picture is the same.
+    let same = mono
+        .pixels
+        .chunks_exact(3)
+        .zip(white.pixels.chunks_exact(3))
+        .filter(|(a, b)| a == b)
+        .count();
+    assert!(same * 2 > mono.pixels.len() / 3, "{same} pixels unchanged");
 }

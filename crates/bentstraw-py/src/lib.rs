@@ -503,7 +503,7 @@ fn nan_if_none(v: Option<f64>) -> f64 {
 /// pixels; with `raw`, also one ray per pixel centre as `render --raw` writes it: the colour code
 /// met (course mode) or the weight of each colour code (Fresnel mode).
 #[pyfunction]
-#[pyo3(signature = (scene, size, target, fov, mode, prune, backdrop, samples, raw))]
+#[pyo3(signature = (scene, size, target, fov, mode, prune, backdrop, samples, raw, light))]
 #[allow(clippy::too_many_arguments)]
 fn render<'py>(
     py: Python<'py>,
@@ -516,17 +516,19 @@ fn render<'py>(
     backdrop: &str,
     samples: u32,
     raw: bool,
+    light: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let asked = PictureSpec {
         prune,
         samples,
         ..PictureSpec::default()
     };
-    let (with_mode, with_backdrop) = (
+    let (with_mode, with_backdrop, with_light) = (
         asked.with_mode("mode", mode),
         asked.with_backdrop("backdrop", backdrop),
+        asked.with_light("light", light),
     );
-    let broken: Vec<String> = [&with_mode, &with_backdrop]
+    let broken: Vec<String> = [&with_mode, &with_backdrop, &with_light]
         .iter()
         .filter_map(|r| r.as_ref().err().cloned())
         .collect();
@@ -535,6 +537,7 @@ fn render<'py>(
     }
     let spec = PictureSpec {
         checker: with_backdrop.map_err(PyValueError::new_err)?.checker,
+        white: with_light.map_err(PyValueError::new_err)?.white,
         ..with_mode.map_err(PyValueError::new_err)?
     };
     let loaded = &scene.loaded;

@@ -276,6 +276,17 @@ impl ModeArg {
     }
 }
 
+/// The light a rendered picture is drawn in.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum LightArg {
+    /// Light of one wavelength, --wavelength's (the d line by default).
+    #[default]
+    Mono,
+    /// White light: eight bands of the spectrum, each traced at its own wavelength and seen in
+    /// its colour (where a scene's index depends on the wavelength, colour fringes appear).
+    White,
+}
+
 /// What lies behind the glass in a rendered picture.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BackdropArg {
@@ -325,6 +336,10 @@ pub struct RenderArgs {
     /// Backdrop behind the glass
     #[arg(long, value_enum, default_value_t = BackdropArg::default_picture())]
     pub backdrop: BackdropArg,
+    /// The light the picture is drawn in (white light costs a picture per band where an index
+    /// depends on the wavelength; --raw stays at the one wavelength)
+    #[arg(long, value_enum, default_value_t = LightArg::Mono)]
+    pub light: LightArg,
     /// Fresnel branches lighter than this are abandoned, 0 <= W < 1
     ///
     /// Pruning only takes weight away: a pixel loses at most the weight of the branches it
@@ -564,6 +579,7 @@ impl RenderArgs {
             checker: self.backdrop == BackdropArg::Checker,
             prune: self.prune,
             samples: self.samples,
+            white: self.light == LightArg::White,
         }
     }
 }
@@ -623,6 +639,7 @@ mod tests {
                 checker: true,
                 prune: 1e-3,
                 samples: 5,
+                white: true,
             },
             ..glass.clone()
         };

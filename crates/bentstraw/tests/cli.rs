@@ -407,8 +407,8 @@ pub fn table_writes_every_simulation_and_the_report(out: &Output, folder: &Path)
         .starts_with(b"\x89PNG"));
     let files = fs::read_dir(folder).unwrap().count();
     // 12 × (gzipped CSV, SVG figure), 4 × (3D view, 2 pictures, models, gap plot, ray diagram),
-    // the opening view and its ray diagram, the validation figure, the report, and 30 gallery
-    // scenes × (their picture, their points, their ray diagram).
+    // the opening view and its ray diagram, the validation figure, the report, and each gallery
+    // scene's picture, points and ray diagram.
     for f in [
         "classic_view.png",
         "classic_rays.svg",
@@ -423,7 +423,7 @@ pub fn table_writes_every_simulation_and_the_report(out: &Output, folder: &Path)
     }
     assert_eq!(
         files,
-        12 * 2 + 4 * 6 + 2 + 1 + 1 + 30 * 3,
+        12 * 2 + 4 * 6 + 2 + 1 + 1 + bentstraw_io::gallery::GALLERY.len() * 3,
         "unexpected files in the table's folder"
     );
     assert!(!err.contains("could not be written"), "{err}");

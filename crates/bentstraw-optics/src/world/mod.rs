@@ -110,6 +110,10 @@ pub struct World {
     thin_glass: Option<(f64, f64)>,
     /// Most events (refractions and total reflections) a ray may undergo.
     max_events: u32,
+    /// The same scene at the middle of each band of white light
+    /// ([`crate::spectrum::white_bands`]), when some index depends on the wavelength; empty
+    /// otherwise (every band sees this world).
+    white_light: Vec<World>,
 }
 
 /// Which faces between media of the same index are kept as events.
@@ -326,7 +330,26 @@ impl World {
     /// exactly like walls of no thickness.
     pub fn new(scene: &SceneDescription, max_events: u32) -> Result<World, Box<SceneFileError>> {
         scene.validate()?;
-        Ok(World::build(scene, max_events, SameIndex::Dropped))
+        let mut world = World::build(scene, max_events, SameIndex::Dropped);
+        if scene.disperses() {
+            // Each band's own world: media of one index at one wavelength may part at another,
+            // and their faces with them.
+            world.white_light = crate::spectrum::white_bands()
+                .iter()
+                .map(|band| {
+                    let at = scene.clone().at_wavelength(band.nm);
+                    World::build(&at, max_events, SameIndex::Dropped)
+                })
+                .collect();
+        }
+        Ok(world)
+    }
+
+    /// The scene at the middle of each band of white light, violet first, when some index
+    /// depends on the wavelength; empty when none does (white light then sees this world in
+    /// every band).
+    pub fn white_light(&self) -> &[World] {
+        &self.white_light
     }
 
     /// The assignment's scene as a world: the glass of radius 0.04 m with walls and bottom of no
@@ -933,6 +956,7 @@ impl World {
                 _ => None,
             },
             max_events,
+            white_light: Vec::new(),
         }
     }
 
@@ -949,6 +973,7 @@ impl World {
             clips: self.clips.clone(),
             bodies: self.bodies.clone(),
             edges: self.edges.clone(),
+            white_light: Vec::new(),
             ..*self
         }
     }

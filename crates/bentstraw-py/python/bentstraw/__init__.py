@@ -135,6 +135,8 @@ ImageModel = Literal["course", "eye", "stereo"]
 Mode = Literal["course", "fresnel"]
 #: What lies behind the scene in a picture: the checkerboard wall and floor, or plain light.
 Backdrop = Literal["checker", "none"]
+#: The light a picture is drawn in: one wavelength (``wavelength=``), or white light.
+Light = Literal["mono", "white"]
 
 if TYPE_CHECKING:
     _PictureArray = np.ndarray[Any, np.dtype[np.uint8]]
@@ -727,6 +729,7 @@ def render(
     prune: float = ...,
     backdrop: Backdrop = ...,
     samples: int = ...,
+    light: Light = ...,
     weights: Literal[False] = ...,
 ) -> Picture: ...
 
@@ -748,6 +751,7 @@ def render(
     prune: float = ...,
     backdrop: Backdrop = ...,
     samples: int = ...,
+    light: Light = ...,
     weights: Literal[True],
 ) -> Tuple[Picture, np.ndarray]: ...
 
@@ -769,6 +773,7 @@ def render(
     prune: float = ...,
     backdrop: Backdrop = ...,
     samples: int = ...,
+    light: Light = ...,
     weights: bool = ...,
 ) -> Union[Picture, Tuple[Picture, np.ndarray]]: ...
 
@@ -790,6 +795,7 @@ def render(
     prune: float = DEFAULT_PRUNE,
     backdrop: Backdrop = DEFAULT_BACKDROP,
     samples: int = DEFAULT_SAMPLES,
+    light: Light = "mono",
     weights: bool = False,
 ) -> Union[Picture, Tuple[Picture, np.ndarray]]:
     """The picture the observer's eye gets: an ``(h, w, 3)`` uint8 array (a :class:`Picture`,
@@ -800,7 +806,9 @@ def render(
     view in degrees (both framed from the scene by default); ``mode="fresnel"`` shares each
     ray's light between reflection and refraction by Fresnel's equations (branches lighter than
     ``prune`` abandoned), ``"course"`` follows one ray; ``backdrop`` is ``"checker"`` or
-    ``"none"``; ``samples`` per pixel side at edges. With ``weights=True`` returns
+    ``"none"``; ``samples`` per pixel side at edges; ``light="white"`` draws it in white light
+    (each band of the spectrum at its own wavelength, where an index depends on it). With
+    ``weights=True`` returns
     ``(picture, raw)``: one ray per pixel centre as ``render --raw`` writes it, ``raw`` an
     ``(h, w)`` array of colour codes (course) or an ``(h, w, k)`` array of each colour code's
     weight (Fresnel).
@@ -818,6 +826,7 @@ def render(
     out = _engine.render(
         loaded, size_, _vector(target, 3, "target"), _number(fov, "fov"), mode,
         _real(prune, "prune"), backdrop, _count(samples, "samples"), _flag(weights, "weights"),
+        light,
     )
     picture: Picture = out["pixels"].view(Picture)
     camera = {k: out[k] for k in ("fov_deg", "eye", "forward", "right", "up", "tan_half_fov")}

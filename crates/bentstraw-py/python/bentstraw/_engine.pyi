@@ -69,6 +69,7 @@ def render(
     backdrop: str,
     samples: int,
     raw: bool,
+    light: str,
 ) -> Dict[str, Any]: ...
 def pixel_direction(
     forward: Any, right: Any, up: Any, tan_half_fov: float, size: Tuple[int, int], row: float,

@@ -349,6 +349,7 @@ fn time_frame(view: &View, mode: ModeArg, repeat: usize) -> f64 {
             backdrop: Backdrop::Checker,
             samples: 3,
             outline: true,
+            white: false,
         },
         min_points: 0,
     };
