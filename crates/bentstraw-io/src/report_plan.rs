@@ -118,11 +118,13 @@ impl ReportPlan {
     }
 
     /// The report of the scene file `name` whose text is `text`, seen from its observer (or
-    /// `observer`) and three more turned about the vertical through its target.
+    /// `observer`) and three more turned about the vertical through its target, at `wavelength`
+    /// (nm; the d line when none) where an index depends on it.
     pub fn scene(
         name: String,
         text: &str,
         observer: Option<[f64; 3]>,
+        wavelength: Option<f64>,
         points: usize,
         lang: Lang,
     ) -> Result<ReportPlan> {
@@ -130,7 +132,7 @@ impl ReportPlan {
         Ok(ReportPlan {
             points,
             lang,
-            kind: Kind::Scene(ScenePlan::new(name, text, observer, lang)?),
+            kind: Kind::Scene(ScenePlan::new(name, text, observer, wavelength, lang)?),
         })
     }
 
@@ -384,12 +386,19 @@ struct ScenePlan {
 
 impl ScenePlan {
     /// The scene file `name` whose text is `text`, seen from its observer (or `observer`), and
-    /// the observers turned about the vertical through its target.
-    fn new(name: String, text: &str, observer: Option<[f64; 3]>, lang: Lang) -> Result<ScenePlan> {
+    /// the observers turned about the vertical through its target, at `wavelength`.
+    fn new(
+        name: String,
+        text: &str,
+        observer: Option<[f64; 3]>,
+        wavelength: Option<f64>,
+        lang: Lang,
+    ) -> Result<ScenePlan> {
         // Each observer's scene made from the one text.
         let load = |observer: Option<[f64; 3]>| {
             let values = SceneValues {
                 observer,
+                wavelength,
                 ..SceneValues::default()
             };
             Setup::from_text(&name, text, &values).map_err(crate::Error::from)

@@ -235,6 +235,15 @@ pub struct TableArgs {
     /// With --scene: the first observer X,Y,Z in metres, instead of the file's own observer
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, requires = "scene")]
     pub observer: Option<[f64; 3]>,
+    /// With --scene: the wavelength of the light in nanometres, 380..=780, where an index
+    /// depends on it [default: 587.56, the d line]
+    #[arg(
+        long,
+        value_name = "NM",
+        allow_hyphen_values = true,
+        requires = "scene"
+    )]
+    pub wavelength: Option<f64>,
 }
 
 /// The language of the report.

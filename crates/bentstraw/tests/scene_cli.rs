@@ -924,6 +924,17 @@ fn a_wavelength_traces_the_scene_with_its_indices_there() {
             "--wavelength",
             "450",
         ],
+        vec![
+            "table",
+            "--scene",
+            "d.toml",
+            "--wavelength",
+            "450",
+            "--points",
+            "300",
+            "--out",
+            "t",
+        ],
     ] {
         succeeded(&run(dir.path(), &args));
     }

@@ -22,8 +22,12 @@ pub const TITLE: f64 = 40.0;
 /// `s / 1.24`, and writes `font-size = s / 1.24` into an SVG).
 const PLOTTERS_SIZE_PER_EM: f64 = 1.24;
 
-/// The figures' font at `size` px (the em, as SVG's `font-size`), black.
+/// The figures' font at `size` px (the em, as SVG's `font-size`), black. The shipped font is
+/// registered first: text measured before it (to wrap a caption, to size a figure) would
+/// otherwise be measured in another font than the one drawn, and the first figure of a process
+/// would be laid out unlike the next.
 pub(crate) fn font(size: f64) -> TextStyle<'static> {
+    register_font();
     (FONT_FAMILY, size * PLOTTERS_SIZE_PER_EM)
         .into_font()
         .color(&BLACK)

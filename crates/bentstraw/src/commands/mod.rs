@@ -19,6 +19,7 @@ pub fn run(cli: Cli) -> CliResult {
             lang: Default::default(),
             scene: None,
             observer: None,
+            wavelength: None,
             pdf: None,
         }),
         Some(Command::Simulate(a)) => simulate::run(&a),

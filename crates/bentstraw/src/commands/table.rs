@@ -31,7 +31,14 @@ pub fn run(args: &TableArgs) -> CliResult {
     let plan = match &args.scene {
         Some(file) => {
             let SceneFile { name, text } = SceneFile::read(file)?;
-            ReportPlan::scene(name, &text, args.observer, args.points, lang)?
+            ReportPlan::scene(
+                name,
+                &text,
+                args.observer,
+                args.wavelength,
+                args.points,
+                lang,
+            )?
         }
         None if args.observer.is_some() => {
             return fail("--observer is for --scene: the reference simulations have their own")
