@@ -1167,7 +1167,7 @@ def explore(
         query["wavelength"] = repr(_real(wavelength, "wavelength"))
     query["points"] = str(_count(points, "points"))
     # The picture's choices checked by the engine's own rules: one pixel drawn with them.
-    _engine.render(loaded, (1, 1), None, None, mode, DEFAULT_PRUNE, backdrop, 1, False)
+    _engine.render(loaded, (1, 1), None, None, mode, DEFAULT_PRUNE, backdrop, 1, False, "mono")
     if lang not in ("en", "fr"):
         raise ValueError(f"lang={lang!r} is not allowed: the page speaks \"en\" or \"fr\"")
     query.update(mode=mode, backdrop=backdrop, lang=lang)
