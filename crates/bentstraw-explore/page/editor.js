@@ -837,7 +837,8 @@ function spreadHandles(hs) {
       const [pa, pb] = [at(list[a]), at(list[b])], d = Math.hypot(pb[0] - pa[0], pb[1] - pa[1]);
       // (Handles on one spot part along a direction of their own.)
       const near = { d, u: d > 1e-6 ? [(pb[0] - pa[0]) / d, (pb[1] - pa[1]) / d] : [Math.cos(a + 2 * b), Math.sin(a + 2 * b)] };
-      if (near.d >= SPREAD_PX) continue;
+      // (Half a pixel to spare: handles exactly a fingertip apart stay so once drawn.)
+      if (near.d >= SPREAD_PX + 0.5) continue;
       const push = (SPREAD_PX - near.d) / 2 + 0.25;
       list[a].d = [list[a].d[0] - push * near.u[0], list[a].d[1] - push * near.u[1]];
       list[b].d = [list[b].d[0] + push * near.u[0], list[b].d[1] + push * near.u[1]];
