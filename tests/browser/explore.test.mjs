@@ -1347,6 +1347,8 @@ test("the objects' controls and the maps' rings edit the scene: the box and the 
   await page.press('[data-key="coin[1].radius"]', "Enter");
   await page.waitForFunction(() => document.getElementById("objects-errors").hidden);
   // The coin dragged far out on the map from above: it stops inside the glass, touching its side.
+  // (The maps are drawn again once the scene's sketch comes back: wait for the coin's ring.)
+  await page.waitForFunction(() => document.getElementById("map-top").handles?.some((h) => h.kind === "coin"));
   const coin = await page.evaluate(() => document.getElementById("map-top").handles.find((h) => h.kind === "coin").at);
   await dragOnMap(page, "map-top", coin, [400, -120]);
   file = await nextFile(page, file);
@@ -1368,6 +1370,7 @@ test("the objects' controls and the maps' rings edit the scene: the box and the 
   await waitReady(page, frames2);
   assert.equal(await page.evaluate(() => window.bentstraw.state.file), file);
   // The water's surface dragged far up on the side map: it stops at the glass's rim.
+  await page.waitForFunction(() => document.getElementById("map-side").handles?.some((h) => h.kind === "liquid"));
   const surface = await page.evaluate(() => document.getElementById("map-side").handles.find((h) => h.kind === "liquid").at);
   await dragOnMap(page, "map-side", surface, [0, -300]);
   file = await nextFile(page, file);
