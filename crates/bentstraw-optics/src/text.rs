@@ -57,10 +57,13 @@ pub fn nearest_names<'a>(word: &str, names: impl IntoIterator<Item = &'a str>) -
 /// no name is near.
 pub fn did_you_mean<'a>(word: &str, names: impl IntoIterator<Item = &'a str>) -> Option<String> {
     let near = nearest_names(word, names);
-    (!near.is_empty()).then(|| {
-        let quoted: Vec<String> = near.iter().map(|n| format!("'{n}'")).collect();
-        format!("did you mean {}?", quoted.join(" or "))
-    })
+    (!near.is_empty()).then(|| format!("did you mean {}?", quoted_names(&near)))
+}
+
+/// Names as a hint lists them: `'f2'`, or `'a' or 'b'`.
+pub fn quoted_names(names: &[&str]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("'{n}'")).collect();
+    quoted.join(" or ")
 }
 
 #[cfg(test)]

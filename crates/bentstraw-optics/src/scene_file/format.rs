@@ -312,13 +312,38 @@ struct IndexKeys<'a> {
     material: &'a Option<String>,
 }
 
+/// The index keys of a file's table that has them (the container, a liquid, a solid).
+macro_rules! index_keys {
+    ($table:expr) => {
+        IndexKeys {
+            index: $table.index,
+            cauchy: &$table.cauchy,
+            sellmeier: &$table.sellmeier,
+            material: &$table.material,
+        }
+    };
+}
+
 /// A stand-in index, valid, for a medium whose keys broke a rule (the rule is reported).
 const STAND_IN_INDEX: f64 = 1.5;
 
-/// A medium's index at the d line and its law, if any, from its keys (`key` names each in
-/// messages): at most one of the four may be given; `default` when none is (else it is
-/// required). A law must give a physical index everywhere in the visible.
+/// The index at the d line of `medium` from its keys (`key` names each in messages), its law,
+/// if it has one, added to `laws`: at most one of the four keys may be given; `default` when
+/// none is (else it is required). A law must give a physical index everywhere in the visible.
 fn refractive(
+    k: IndexKeys<'_>,
+    key: &dyn Fn(&str) -> String,
+    default: Option<f64>,
+    (medium, laws): (Medium, &mut Vec<Dispersive>),
+    broken: &mut Vec<SceneFileError>,
+) -> f64 {
+    let (index, law) = index_and_law(k, key, default, broken);
+    laws.extend(law.map(|law| Dispersive { medium, law }));
+    index
+}
+
+/// [`refractive`]'s index and law.
+fn index_and_law(
     k: IndexKeys<'_>,
     key: &dyn Fn(&str) -> String,
     default: Option<f64>,
@@ -369,7 +394,6 @@ fn refractive(
         let Some(m) = dispersion::material(name) else {
             let names: Vec<&str> = dispersion::MATERIALS.iter().map(|m| m.name).collect();
             let near = crate::text::nearest_names(name, names.iter().copied());
-            let quoted: Vec<String> = near.iter().map(|n| format!("'{n}'")).collect();
             let mut params = vec![
                 ("material", words(clip_text(name, QUOTED_MAX))),
                 ("materials", words(names.join(", "))),
@@ -377,7 +401,7 @@ fn refractive(
             let rule = if near.is_empty() {
                 Rule::MaterialUnknown
             } else {
-                params.push(("nearest", words(quoted.join(" or "))));
+                params.push(("nearest", words(crate::text::quoted_names(&near))));
                 Rule::MaterialNear
             };
             broken.push(*refuse_key(&key("material"), rule, params));
@@ -465,12 +489,6 @@ impl SceneDescription {
         };
         let mut laws: Vec<Dispersive> = Vec::new();
         let container_key = |k: &str| format!("container.{k}");
-        let container_keys = IndexKeys {
-            index: c.index,
-            cauchy: &c.cauchy,
-            sellmeier: &c.sellmeier,
-            material: &c.material,
-        };
         let revolution = c.shape.as_deref() == Some("revolution");
         let height = if revolution {
             0.0
@@ -511,16 +529,13 @@ impl SceneDescription {
                     })
                 };
                 let (outer, inner) = (profile("outer", &c.outer), profile("inner", &c.inner));
-                let (index, law) = refractive(
-                    container_keys,
+                let index = refractive(
+                    index_keys!(c),
                     &container_key,
                     Some(DEFAULT_CONTAINER_INDEX),
+                    (Medium::Container, &mut laws),
                     &mut broken,
                 );
-                laws.extend(law.map(|law| Dispersive {
-                    medium: Medium::Container,
-                    law,
-                }));
                 Some(Container::Revolution(Revolution {
                     outer,
                     inner,
@@ -532,16 +547,13 @@ impl SceneDescription {
                 given("half_x", c.half_x, not_glass, &mut broken);
                 given("half_y", c.half_y, not_glass, &mut broken);
                 let radius = shape_of("radius", c.radius, Rule::GlassNeeds, &mut broken);
-                let (index, law) = refractive(
-                    container_keys,
+                let index = refractive(
+                    index_keys!(c),
                     &container_key,
                     Some(DEFAULT_CONTAINER_INDEX),
+                    (Medium::Container, &mut laws),
                     &mut broken,
                 );
-                laws.extend(law.map(|law| Dispersive {
-                    medium: Medium::Container,
-                    law,
-                }));
                 Some(Container::Glass(Glass {
                     radius,
                     height,
@@ -603,17 +615,13 @@ impl SceneDescription {
                     }
                     colour
                 });
-                let keys = IndexKeys {
-                    index: l.index,
-                    cauchy: &l.cauchy,
-                    sellmeier: &l.sellmeier,
-                    material: &l.material,
-                };
-                let (index, law) = refractive(keys, &key, None, &mut broken);
-                laws.extend(law.map(|law| Dispersive {
-                    medium: Medium::Liquid(i),
-                    law,
-                }));
+                let index = refractive(
+                    index_keys!(l),
+                    &key,
+                    None,
+                    (Medium::Liquid(i), &mut laws),
+                    &mut broken,
+                );
                 Liquid {
                     name: l.name.unwrap_or_default(),
                     index,
@@ -691,17 +699,13 @@ impl SceneDescription {
                 if b.center.is_none() {
                     broken.push(*need(key("center")));
                 }
-                let keys = IndexKeys {
-                    index: b.index,
-                    cauchy: &b.cauchy,
-                    sellmeier: &b.sellmeier,
-                    material: &b.material,
-                };
-                let (index, law) = refractive(keys, &key, None, &mut broken);
-                laws.extend(law.map(|law| Dispersive {
-                    medium: Medium::Sphere(i),
-                    law,
-                }));
+                let index = refractive(
+                    index_keys!(b),
+                    &key,
+                    None,
+                    (Medium::Sphere(i), &mut laws),
+                    &mut broken,
+                );
                 Sphere {
                     center: Vec3::from_array(b.center.unwrap_or_default()),
                     radius: get(key("radius"), b.radius, &mut broken),
@@ -718,17 +722,13 @@ impl SceneDescription {
                 if p.corners.is_none() {
                     broken.push(*need(key("corners")));
                 }
-                let keys = IndexKeys {
-                    index: p.index,
-                    cauchy: &p.cauchy,
-                    sellmeier: &p.sellmeier,
-                    material: &p.material,
-                };
-                let (index, law) = refractive(keys, &key, None, &mut broken);
-                laws.extend(law.map(|law| Dispersive {
-                    medium: Medium::Prism(i),
-                    law,
-                }));
+                let index = refractive(
+                    index_keys!(p),
+                    &key,
+                    None,
+                    (Medium::Prism(i), &mut laws),
+                    &mut broken,
+                );
                 Prism {
                     corners: p.corners.clone().unwrap_or_default(),
                     bottom: get(key("bottom"), p.bottom, &mut broken),
@@ -748,17 +748,13 @@ impl SceneDescription {
                         broken.push(*need(key(name)));
                     }
                 }
-                let keys = IndexKeys {
-                    index: l.index,
-                    cauchy: &l.cauchy,
-                    sellmeier: &l.sellmeier,
-                    material: &l.material,
-                };
-                let (index, law) = refractive(keys, &key, None, &mut broken);
-                laws.extend(law.map(|law| Dispersive {
-                    medium: Medium::Lens(i),
-                    law,
-                }));
+                let index = refractive(
+                    index_keys!(l),
+                    &key,
+                    None,
+                    (Medium::Lens(i), &mut laws),
+                    &mut broken,
+                );
                 Lens {
                     center: Vec3::from_array(l.center.unwrap_or_default()),
                     axis: Vec3::from_array(l.axis.unwrap_or([0.0, 0.0, 1.0])),
