@@ -796,8 +796,11 @@ pub fn shaded_picture_into(
             .zip(seen.par_chunks_mut(w))
             .enumerate()
             .for_each_init(
-                || (FresnelWave::pooled(), Vec::new(), Vec::new()),
-                |(wave, sum, ends), (i, (row, seen_row))| {
+                || {
+                    let wave = FresnelWave::pooled();
+                    (wave, Vec::new(), Vec::new(), Vec::new(), Vec::new())
+                },
+                |(wave, sum, ends, columns, dirs), (i, (row, seen_row))| {
                     if stopped() || skipped(i) {
                         return;
                     }
@@ -822,23 +825,22 @@ pub fn shaded_picture_into(
                         }
                         Some(r) => {
                             // Some pixels only: their centres' rays, as the edges' samples go.
-                            let columns: Vec<usize> = (0..w).filter(|&j| r[j]).collect();
-                            let dirs: Vec<Vec3> = columns
-                                .iter()
-                                .map(|&j| {
-                                    camera
-                                        .direction_at(i as f64 + 0.5, j as f64 + 0.5)
-                                        .normalize()
-                                })
-                                .collect();
-                            for &j in &columns {
+                            columns.clear();
+                            columns.extend((0..w).filter(|&j| r[j]));
+                            dirs.clear();
+                            dirs.extend(columns.iter().map(|&j| {
+                                camera
+                                    .direction_at(i as f64 + 0.5, j as f64 + 0.5)
+                                    .normalize()
+                            }));
+                            for &j in columns.iter() {
                                 seen_row[j] = Region::Scene;
                             }
                             let mut on_end =
                                 |k: usize, end: BranchEnd| ends.push((columns[k] as u32, end));
                             packets.branch_ends(
                                 camera.eye,
-                                &dirs,
+                                dirs,
                                 split,
                                 prune,
                                 FRESNEL_SEGMENTS_PER_PIXEL,
