@@ -37,6 +37,7 @@ pub mod packet;
 mod parallel;
 pub mod picture;
 pub mod profile;
+pub mod rainbow;
 pub mod ray_diagram;
 pub mod record;
 pub mod rule;

@@ -161,6 +161,8 @@ rules! {
     PrismTop = "prism.top", "the top must be above the bottom ({bottom})";
     /// A prism cuts the container's walls or floor.
     PrismContainer = "prism.container", "it cuts the container: a prism stands inside it, above the floor (through any liquid's surface), or wholly outside it";
+    /// The direction towards the sun is zero.
+    SunDirection = "sun.direction", "the direction towards the sun must be a direction: not (0, 0, 0)";
     /// A lens's axis is zero.
     LensAxis = "lens.axis", "the axis must be a direction: not (0, 0, 0)";
     /// A lens's face is more curved than its diameter allows.

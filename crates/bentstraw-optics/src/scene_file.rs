@@ -1098,6 +1098,18 @@ fn strictly_convex(c: &[[f64; 2]]) -> bool {
     (total.abs() - std::f64::consts::TAU).abs() < 1e-6
 }
 
+/// The sun's rule: its direction a direction.
+fn validate_sun(sun: &Sun) -> Result<(), Box<SceneFileError>> {
+    for v in sun.direction.to_array() {
+        finite("sun.direction", v)?;
+    }
+    let length = sun.direction.length();
+    if length == 0.0 || !length.is_finite() {
+        return Err(refuse_key("sun.direction", Rule::SunDirection, vec![]));
+    }
+    Ok(())
+}
+
 /// A lesson's lengths: a title of 1 to [`LESSON_TITLE_MAX`] characters, a text of at most
 /// [`LESSON_TEXT_MAX`], at most [`LESSON_QUESTIONS_MAX`] questions of at most
 /// [`LESSON_QUESTION_MAX`] each (what a page has room for).
@@ -1180,6 +1192,15 @@ pub struct Observer {
     pub target: Vec3,
 }
 
+/// The sun of a scene seen outdoors: a scene with a sun is seen against a dark sky (no wall, no
+/// floor) in which the sun is a bright disc of the sun's angular size, so that light that left
+/// the sun and came to the eye through the scene shows (a water drop's rainbow).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sun {
+    /// The direction towards the sun (any length but zero).
+    pub direction: Vec3,
+}
+
 /// A whole scene as a file describes it, defaults applied.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneDescription {
@@ -1201,6 +1222,8 @@ pub struct SceneDescription {
     pub lenses: Vec<Lens>,
     /// The view it is meant for, if the file gives one.
     pub observer: Option<Observer>,
+    /// The sun, for a scene seen outdoors against the sky.
+    pub sun: Option<Sun>,
     /// What it teaches, if the file says.
     pub lesson: Option<Lesson>,
     /// The media whose index depends on the wavelength, each with its law; every other medium
@@ -1331,6 +1354,9 @@ impl SceneDescription {
         }
         for (i, l) in self.lenses.iter().enumerate() {
             broken.check(self.validate_lens(i, l));
+        }
+        if let Some(sun) = &self.sun {
+            broken.check(validate_sun(sun));
         }
         if broken.0.is_empty() {
             broken.check(self.validate_sphere_overlaps());
@@ -2221,6 +2247,7 @@ impl SceneDescription {
             prisms: vec![],
             lenses: vec![],
             observer: None,
+            sun: None,
             lesson: None,
             dispersion: vec![],
         }

@@ -197,7 +197,21 @@ pub struct Surroundings {
     /// straight down and straight up.
     sky: [[f64; 3]; 2],
     plain: [f64; 2],
+    /// The unit direction towards the sun, outdoors: then only the dark sky and the sun.
+    sun: Option<Vec3>,
+    /// The cosine of the sun's angular radius.
+    sun_cos: f64,
 }
+
+/// The sun's angular radius (degrees): its disc is 0.533° across.
+pub const SUN_ANGULAR_RADIUS_DEG: f64 = 0.2665;
+/// The sun's radiance against a white surface's 1, in every channel. Far less than the true
+/// ratio (some 10⁵) but enough that light a water drop sends back after one or two partial
+/// reflections inside it (a few per cent of the sun's, then a few thousandths) shows against the
+/// dark sky, the first bow's colours about full and the second bow's dimmer.
+pub const SUN_RADIANCE: f64 = 60.0;
+/// The dark sky around the sun, in linear light (a dusk sky's deep blue).
+const DARK_SKY: [f64; 3] = [0.004, 0.006, 0.014];
 
 /// A checkerboard's two squares and their average, in linear light (worked out once per picture,
 /// not per ray).
@@ -268,6 +282,18 @@ impl Surroundings {
                 [0.97, 0.98, 1.0].map(srgb_to_linear),
             ],
             plain: [srgb_to_linear(0.80), srgb_to_linear(0.97)],
+            sun: None,
+            sun_cos: SUN_ANGULAR_RADIUS_DEG.to_radians().cos(),
+        }
+    }
+
+    /// These surroundings outdoors under the sun in the unit direction `sun`, if any: a dark sky
+    /// with the sun's disc in it, in place of the wall, the floor and the backdrop.
+    pub fn under_sun(self, sun: Option<Vec3>) -> Surroundings {
+        Surroundings {
+            sun,
+            floor: self.floor && sun.is_none(),
+            ..self
         }
     }
 
@@ -286,7 +312,7 @@ impl Surroundings {
     /// the sky (or the plain backdrop).
     #[inline(always)]
     fn meet(&self, o: Vec3, d: Vec3) -> (Region, f64) {
-        if self.backdrop == Backdrop::Plain {
+        if self.backdrop == Backdrop::Plain || self.sun.is_some() {
             return (Region::Sky, f64::INFINITY);
         }
         let mut best = (Region::Sky, f64::INFINITY);
@@ -377,7 +403,14 @@ impl Surroundings {
                 self.wall_squares.at(u, p.z, ha, hb, fade)
             }
             Region::Sky | Region::Scene => {
-                if self.backdrop == Backdrop::Plain {
+                if let Some(sun) = self.sun {
+                    let cos = sun.dot(d) / d.length();
+                    if cos >= self.sun_cos {
+                        [SUN_RADIANCE; 3]
+                    } else {
+                        DARK_SKY
+                    }
+                } else if self.backdrop == Backdrop::Plain {
                     // A gentle vertical gradient: flat enough to be "plain", enough for the water
                     // to show.
                     let [down, top] = self.plain;
@@ -603,10 +636,14 @@ fn filtered(colour: [f64; 3], absorbed: [f32; 3]) -> [f64; 3] {
 /// that every band sees alike keeps its colour (the bands' colours add up to white); where the
 /// bands part, colour fringes appear.
 ///
-/// The violet, a middle and the red band are drawn whole first. Where the three agree, and so
-/// do they around (two pixels each way), no ray met light that the wavelength bends (dispersion
-/// parts the spectrum's colours in order, its two ends most): the other bands are drawn only in
-/// the other pixels, and take the probes' colour in these.
+/// A middle band is drawn whole first, then the violet and the red band at every
+/// [`PROBE_STEP`]-th pixel of every [`PROBE_STEP`]-th row. Where the three centres agree, and
+/// within two pixels of such a place, no ray met light that the wavelength bends (dispersion
+/// parts the spectrum's colours in order, its two ends most): the middle band's colour stands for
+/// every band there. Elsewhere every band is drawn: at the middle band's edges the other bands
+/// take one sample in [`OTHER_BANDS_EVERY`] (stratified: neighbouring bands take neighbouring
+/// samples), each averaged over its own, and elsewhere their centres, sampled where their own
+/// centres differ. At an edge sampled 3x3 times that is 24 rays for the eight bands instead of 72.
 fn white_picture_into(
     world: &World,
     camera: &Camera,
@@ -623,67 +660,124 @@ fn white_picture_into(
     let bands = crate::spectrum::white_bands();
     let worlds = world.white_light();
     let (middle, last) = (bands.len() / 2, bands.len() - 1);
-    let probed = [0, middle, last];
     buffers.needed.clear();
-    let mut probes = [
-        RgbPicture::default(),
-        RgbPicture::default(),
-        RgbPicture::default(),
-    ];
-    // The red one last: the buffers then hold its centres for the bands to come.
-    for (probe, &k) in probes.iter_mut().zip(&probed) {
-        shaded_picture_into(&worlds[k], camera, &single, buffers, probe);
-    }
+    buffers.band_samples = None;
+    // The middle band whole, then the violet and the red band at every other pixel's centre
+    // (every other row), keeping the centres of each.
+    let mut band_picture = RgbPicture::default();
+    shaded_picture_into(&worlds[middle], camera, &single, buffers, picture);
+    let middle_centres = std::mem::take(&mut buffers.centre);
+    let middle_seen = buffers.seen.clone();
+    let probed =
+        |p: usize| (p / w).is_multiple_of(PROBE_STEP) && (p % w).is_multiple_of(PROBE_STEP);
+    buffers.needed.extend((0..w * h).map(probed));
+    let centres_only = ShadingOptions {
+        samples: 1,
+        ..single
+    };
+    shaded_picture_into(
+        &worlds[0],
+        camera,
+        &centres_only,
+        buffers,
+        &mut band_picture,
+    );
+    let violet_centres = std::mem::take(&mut buffers.centre);
+    shaded_picture_into(
+        &worlds[last],
+        camera,
+        &centres_only,
+        buffers,
+        &mut band_picture,
+    );
     if buffers.stop.load(Ordering::Relaxed) {
         return;
     }
+    // Half a level of the picture's bytes.
+    const ALIKE: f32 = 0.5 / 255.0;
     let differs: Vec<bool> = (0..w * h)
         .map(|p| {
-            let at = |q: &RgbPicture| [q.pixels[3 * p], q.pixels[3 * p + 1], q.pixels[3 * p + 2]];
-            at(&probes[0]) != at(&probes[1]) || at(&probes[1]) != at(&probes[2])
+            let (m, v, r) = (middle_centres[p], violet_centres[p], buffers.centre[p]);
+            probed(p) && (0..3).any(|c| (m[c] - v[c]).abs() > ALIKE || (m[c] - r[c]).abs() > ALIKE)
         })
         .collect();
+    buffers.needed.clear();
     buffers.needed.extend((0..w * h).map(|p| {
         let (i, j) = (p / w, p % w);
         (i.saturating_sub(AROUND)..(i + AROUND + 1).min(h)).any(|a| {
             (j.saturating_sub(AROUND)..(j + AROUND + 1).min(w)).any(|b| differs[a * w + b])
         })
     }));
+    // The other bands sample the middle band's edges, and are drawn over its centres: where no
+    // band differs, they are every band's.
+    buffers.edges.clear();
+    buffers.edges.extend(
+        (0..w * h)
+            .map(|p| buffers.needed[p] && on_edge(&middle_centres, w, h, p / w, p % w, |_| true)),
+    );
+    buffers.centre = middle_centres;
+    buffers.seen = middle_seen;
     // The sRGB code of each byte, in linear light.
     let linear: Vec<f32> = (0..=255)
         .map(|c| srgb_to_linear(c as f64 / 255.0) as f32)
         .collect();
     let mut sum = vec![[0.0f32; 3]; w * h];
-    let mut add = |rgb: [f64; 3], p: &RgbPicture| {
+    // Adds a band's picture, weighted by `rgb` where the bands differ and by `alike` elsewhere.
+    let mut add = |rgb: [f64; 3], alike: [f32; 3], p: &RgbPicture, needed: &[bool]| {
         let rgb = rgb.map(|c| c as f32);
-        for (px, bytes) in sum.iter_mut().zip(p.pixels.chunks_exact(3)) {
+        for ((px, bytes), &part) in sum.iter_mut().zip(p.pixels.chunks_exact(3)).zip(needed) {
+            let weight = if part { rgb } else { alike };
             for c in 0..3 {
-                px[c] += rgb[c] * linear[bytes[c] as usize];
+                px[c] += weight[c] * linear[bytes[c] as usize];
             }
         }
     };
-    for (probe, &k) in probes.iter().zip(&probed) {
-        add(bands[k].rgb, probe);
-    }
-    let [_, _, mut band_picture] = probes;
+    // Where no band differs the middle band's colour stands for all of them.
+    add(bands[middle].rgb, [1.0; 3], picture, &buffers.needed);
     for (k, (band, band_world)) in bands.iter().zip(worlds).enumerate() {
-        if probed.contains(&k) {
+        if k == middle || buffers.stop.load(Ordering::Relaxed) {
             continue;
         }
-        // The pixels not drawn keep the red probe's colour, which every probe has there.
+        buffers.band_samples = Some((k, OTHER_BANDS_EVERY));
         shaded_picture_into(band_world, camera, &single, buffers, &mut band_picture);
-        if buffers.stop.load(Ordering::Relaxed) {
-            break;
-        }
-        add(band.rgb, &band_picture);
+        add(band.rgb, [0.0; 3], &band_picture, &buffers.needed);
     }
     buffers.needed.clear();
+    buffers.edges.clear();
+    buffers.band_samples = None;
     picture.width = camera.width;
     picture.height = camera.height;
     picture.pixels.clear();
     picture.pixels.extend(sum.iter().flat_map(|px| {
-        px.map(|c| (linear_to_srgb(c.clamp(0.0, 1.0) as f64) * 255.0).round() as u8)
+        px.map(|c| (linear_to_srgb_fast(c.clamp(0.0, 1.0) as f64) * 255.0 + 0.5) as u8)
     }));
+}
+
+/// The pixels around pixel `(i, j)` of a `w × h` picture, itself included, as indices.
+#[inline(always)]
+fn neighbours(w: usize, h: usize, i: usize, j: usize) -> impl Iterator<Item = usize> {
+    let (i0, i1) = (i.saturating_sub(1), (i + 1).min(h - 1));
+    let (j0, j1) = (j.saturating_sub(1), (j + 1).min(w - 1));
+    (i0..=i1).flat_map(move |a| (j0..=j1).map(move |b| a * w + b))
+}
+
+/// Whether pixel `(i, j)` is on an edge: its centre's colour and a neighbour's (of those
+/// `counted`) differ by more than [`SMOOTH_CONTRAST`] in some channel. Edges are sampled.
+#[inline(always)]
+fn on_edge(
+    centre: &[[f32; 3]],
+    w: usize,
+    h: usize,
+    i: usize,
+    j: usize,
+    counted: impl Fn(usize) -> bool,
+) -> bool {
+    let contrast = SMOOTH_CONTRAST as f32;
+    let c = centre[i * w + j];
+    neighbours(w, h, i, j).any(|k| {
+        let d = centre[k];
+        counted(k) && (0..3).any(|k| (d[k] - c[k]).abs() > contrast)
+    })
 }
 
 /// Work space of [`shaded_picture_into`], kept from one picture to the next.
@@ -702,6 +796,12 @@ pub struct ShadingBuffers {
     /// The pixels to draw (all when empty); the others keep what the last picture drawn into
     /// these buffers had there (white light's bands where they do not differ).
     needed: Vec<bool>,
+    /// Which of an edge pixel's samples to trace: `Some((k, m))` those whose index `s` (row by
+    /// row in the pixel) has `(s + k) % m == 0` (white light's other bands), `None` all.
+    band_samples: Option<(usize, usize)>,
+    /// Pixels to sample as edges whatever their centres (white light's other bands take the
+    /// middle band's edges, and do not trace these pixels' centres); empty: none.
+    edges: Vec<bool>,
 }
 
 impl ShadingBuffers {
@@ -727,6 +827,13 @@ impl ShadingBuffers {
     }
 }
 
+/// White light's violet and red bands are compared with the middle one at one pixel in this many
+/// along each row and column: dispersion shows over regions wider than that.
+pub const PROBE_STEP: usize = 2;
+
+/// At an edge pixel in white light, each band but the middle one traces one sample in this many.
+pub const OTHER_BANDS_EVERY: usize = 4;
+
 /// The colour of the glass's outline (sRGB).
 const INK: [f64; 3] = [0.16, 0.18, 0.24];
 
@@ -747,7 +854,7 @@ pub fn shaded_picture_into(
         return;
     }
     let (w, h) = (camera.width as usize, camera.height as usize);
-    let surroundings = Surroundings::new(options.backdrop, camera.eye);
+    let surroundings = Surroundings::new(options.backdrop, camera.eye).under_sun(world.sun());
     let light = light_direction(&surroundings);
     let n = options.samples.max(1) as usize;
     let rows_done = &*buffers.rows_done;
@@ -759,12 +866,17 @@ pub fn shaded_picture_into(
         seen,
         mask,
         needed,
+        band_samples,
+        edges,
         ..
     } = buffers;
     let needed = &*needed;
     // Which pixels of row `i` to draw: all (None), or those marked.
     let needed_row = |i: usize| (!needed.is_empty()).then(|| &needed[i * w..(i + 1) * w]);
     let skipped = |i: usize| needed_row(i).is_some_and(|r| !r.contains(&true));
+    // The pixels given as edges, whose centres are not traced.
+    let given = (!edges.is_empty()).then_some(&**edges);
+    let traced_centre = |p: usize| given.is_none_or(|e| !e[p]);
     centre.resize(w * h, [0.0; 3]);
     seen.resize(w * h, Region::Scene);
     // Pixel centres: the single-precision packet tracer, eight rays at a time (most of a
@@ -809,7 +921,9 @@ pub fn shaded_picture_into(
                     // The ends are kept and shaded after the row is traced: shading inside the
                     // tracer's loop would read each end back while it is still being written.
                     ends.clear();
-                    let some = needed_row(i).filter(|r| r.contains(&false));
+                    let some = needed_row(i).filter(|r| {
+                        r.contains(&false) || (0..w).any(|j| !traced_centre(i * w + j))
+                    });
                     match some {
                         None => {
                             seen_row.fill(Region::Scene);
@@ -826,7 +940,7 @@ pub fn shaded_picture_into(
                         Some(r) => {
                             // Some pixels only: their centres' rays, as the edges' samples go.
                             columns.clear();
-                            columns.extend((0..w).filter(|&j| r[j]));
+                            columns.extend((0..w).filter(|&j| r[j] && traced_centre(i * w + j)));
                             dirs.clear();
                             dirs.extend(columns.iter().map(|&j| {
                                 camera
@@ -861,7 +975,7 @@ pub fn shaded_picture_into(
                         }
                     }
                     for (j, (px, lin)) in row.iter_mut().zip(sum.iter()).enumerate() {
-                        if some.is_none_or(|r| r[j]) {
+                        if some.is_none_or(|r| r[j] && traced_centre(i * w + j)) {
                             *px = lin.map(|c| linear_to_srgb_fast(c) as f32);
                         }
                     }
@@ -871,18 +985,11 @@ pub fn shaded_picture_into(
     };
     join(centres, draw_outline);
     let (centre, seen, mask) = (&*centre, &*seen, &*mask);
-    let contrast = SMOOTH_CONTRAST as f32;
-    let neighbours = |i: usize, j: usize| {
-        let (i0, i1) = (i.saturating_sub(1), (i + 1).min(h - 1));
-        let (j0, j1) = (j.saturating_sub(1), (j + 1).min(w - 1));
-        (i0..=i1).flat_map(move |a| (j0..=j1).map(move |b| a * w + b))
-    };
+    let neighbours = |i: usize, j: usize| neighbours(w, h, i, j);
+    // Given edges aside, a pixel is an edge where its centre and a neighbour's (one traced)
+    // differ.
     let edge = |i: usize, j: usize| {
-        let c = centre[i * w + j];
-        neighbours(i, j).any(|k| {
-            let d = centre[k];
-            (0..3).any(|k| (d[k] - c[k]).abs() > contrast)
-        })
+        !traced_centre(i * w + j) || on_edge(centre, w, h, i, j, traced_centre)
     };
     // Whether the whole neighbourhood of a pixel met one plane (or the sky) straight from the
     // eye: the pixel then sees only that, and its average is worked out without samples.
@@ -890,10 +997,13 @@ pub fn shaded_picture_into(
         let g = seen[i * w + j];
         g != Region::Scene && neighbours(i, j).all(|k| seen[k] == g)
     };
-    let per_pixel = n * n;
+    // The samples of an edge pixel traced, and how many.
+    let band_samples = *band_samples;
+    let traced = |s: usize| band_samples.is_none_or(|(k, m)| (s + k).is_multiple_of(m));
+    let per_pixel = (0..n * n).filter(|&s| traced(s)).count().max(1);
     // A pixel's samples share the pixel's bound on Fresnel work, but each may follow at least
     // 64 segments (ordinary rays need a few dozen).
-    let max_segments = (FRESNEL_SEGMENTS_PER_PIXEL / per_pixel as u32).max(64);
+    let max_segments = (FRESNEL_SEGMENTS_PER_PIXEL / (n * n) as u32).max(64);
     // One column's and one row's change of a pixel's direction (the camera is linear in both).
     let dc = camera.direction_at(0.0, 1.0) - camera.direction_at(0.0, 0.0);
     let dr = camera.direction_at(1.0, 0.0) - camera.direction_at(0.0, 0.0);
@@ -939,7 +1049,7 @@ pub fn shaded_picture_into(
                         }
                         edges.push(j);
                         for a in 0..n {
-                            for b in 0..n {
+                            for b in (0..n).filter(|&b| traced(a * n + b)) {
                                 let key =
                                     (((i * w + j) as u64) << 16) ^ (((a * n + b) as u64) << 1);
                                 let r = i as f64 + (a as f64 + jitter(key)) / n as f64;

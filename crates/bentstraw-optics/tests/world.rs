@@ -1223,6 +1223,7 @@ mod random_scenes {
                             position: eye,
                             target: Vec3::new(0.0, 0.0, 0.08),
                         }),
+                        sun: None,
                         lesson: None,
                         dispersion: vec![],
                     }

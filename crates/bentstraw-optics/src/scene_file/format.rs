@@ -49,7 +49,16 @@ struct FileScene {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     observer: Option<FileObserver>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    sun: Option<FileSun>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     lesson: Option<FileLesson>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct FileSun {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    direction: Option<[f64; 3]>,
 }
 
 #[derive(Deserialize, Serialize)]
@@ -772,6 +781,14 @@ impl SceneDescription {
             }
             (o.position.unwrap_or_default(), o.target)
         });
+        let sun = file.sun.as_ref().map(|s| {
+            if s.direction.is_none() {
+                broken.push(*need("sun.direction".into()));
+            }
+            Sun {
+                direction: Vec3::from_array(s.direction.unwrap_or_default()),
+            }
+        });
         let lesson = file.lesson.as_ref().map(|l| {
             let mut text = |lang: &str, t: &Option<FileLessonText>| {
                 t.as_ref().map(|t| {
@@ -811,6 +828,7 @@ impl SceneDescription {
                 position: Vec3::from_array(position),
                 target: target.map_or(middle, Vec3::from_array),
             }),
+            sun,
             lesson,
             dispersion: laws,
         })
@@ -970,6 +988,9 @@ impl SceneDescription {
             observer: self.observer.map(|o| FileObserver {
                 position: Some(o.position.to_array()),
                 target: Some(o.target.to_array()),
+            }),
+            sun: self.sun.map(|s| FileSun {
+                direction: Some(s.direction.to_array()),
             }),
             lesson: self.lesson.as_ref().map(|l| {
                 let text = |t: &Option<LessonText>| {

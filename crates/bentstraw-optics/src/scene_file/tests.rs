@@ -1050,6 +1050,7 @@ pub(crate) fn broken_samples() -> Vec<(&'static str, String)> {
         ("prism.convex", glass("[[prism]]\ncorners = [[0.3, 0], [0.4, 0]]\nbottom = 0\ntop = 0.1\nindex = 1.5\n")),
         ("prism.top", glass("[[prism]]\ncorners = [[0.3, 0], [0.4, 0], [0.35, 0.08]]\nbottom = 0.1\ntop = 0.1\nindex = 1.5\n")),
         ("prism.container", glass("[[prism]]\ncorners = [[0.03, 0], [0.06, 0], [0.05, 0.02]]\nbottom = 0\ntop = 0.1\nindex = 1.5\n")),
+        ("sun.direction", glass("[sun]\ndirection = [0, 0, 0]\n")),
         ("lens.axis", glass("[[lens]]\ncenter = [0.3, 0, 0.1]\naxis = [0, 0, 0]\nradius1 = 0.05\nradius2 = -0.05\nthickness = 0.01\ndiameter = 0.04\nindex = 1.5\n")),
         ("lens.radius", glass("[[lens]]\ncenter = [0.3, 0, 0.1]\naxis = [1, 0, 0]\nradius1 = 0.015\nradius2 = -0.05\nthickness = 0.01\ndiameter = 0.04\nindex = 1.5\n")),
         ("lens.faces", glass("[[lens]]\ncenter = [0.3, 0, 0.1]\naxis = [1, 0, 0]\nradius1 = 0.025\nradius2 = -0.025\nthickness = 0.004\ndiameter = 0.04\nindex = 1.5\n")),

@@ -114,6 +114,8 @@ pub struct World {
     /// ([`crate::spectrum::white_bands`]), when some index depends on the wavelength; empty
     /// otherwise (every band sees this world).
     white_light: Vec<World>,
+    /// The unit direction towards the sun, for a scene seen outdoors.
+    sun: Option<Vec3>,
 }
 
 /// Which faces between media of the same index are kept as events.
@@ -350,6 +352,12 @@ impl World {
     /// every band).
     pub fn white_light(&self) -> &[World] {
         &self.white_light
+    }
+
+    /// The unit direction towards the sun, when the scene is seen outdoors (against a dark sky
+    /// with the sun in it).
+    pub fn sun(&self) -> Option<Vec3> {
+        self.sun
     }
 
     /// The assignment's scene as a world: the glass of radius 0.04 m with walls and bottom of no
@@ -957,6 +965,7 @@ impl World {
             },
             max_events,
             white_light: Vec::new(),
+            sun: scene.sun.map(|s| s.direction.normalize()),
         }
     }
 
