@@ -1,7 +1,7 @@
 //! The gallery of classic demonstrations, built into the program: its scene files, by name.
 
 /// The gallery's scene files beyond the assignment's own (`scenes/`): name and text.
-pub const GALLERY: [(&str, &str); 33] = [
+pub const GALLERY: [(&str, &str); 34] = [
     (
         "leaning-straw",
         include_str!("../scenes/leaning-straw.toml"),
@@ -104,6 +104,7 @@ pub const GALLERY: [(&str, &str); 33] = [
         "dispersive-liquid",
         include_str!("../scenes/dispersive-liquid.toml"),
     ),
+    ("rainbow", include_str!("../scenes/rainbow.toml")),
 ];
 
 /// The assignment's own scene as a scene file (`scenes/spec.toml`): name and text.

@@ -28,6 +28,8 @@ pub mod pictures;
 #[cfg(feature = "figures")]
 pub mod plot;
 #[cfg(feature = "figures")]
+pub mod rainbow_plot;
+#[cfg(feature = "figures")]
 pub mod ray_diagram;
 #[cfg(feature = "figures")]
 pub mod report;

@@ -162,6 +162,7 @@ impl ReportPlan {
                     .flat_map(|job| job.outputs())
                     .chain(sweep_files())
                     .chain([SCENE_PICTURE_FILE.to_string(), REPORT_FILE.to_string()])
+                    .chain(plan.has_rainbow().then(|| RAINBOW_FILE.to_string()))
                     .chain(validated.then(|| VALIDATION_FILE.to_string()))
                     .collect()
             }
@@ -224,6 +225,9 @@ impl ReportPlan {
                 progress.step();
                 let mut closing = closing?;
                 closing.insert(0, sweep_section(plan, out, lang));
+                if plan.has_rainbow() {
+                    closing.insert(0, rainbow_section(plan, out, lang));
+                }
                 Report {
                     title: lang.fill(words::SCENE_TITLE, &[&plan.name]),
                     subtitle: lang.fill(words::SCENE_SUBTITLE, &[&plan.comment, &points]),
@@ -362,6 +366,8 @@ const TURNS: [f64; 7] = [45.0, -45.0, 90.0, -90.0, 135.0, -135.0, 180.0];
 const SCENE_OBSERVERS: usize = 4;
 /// The scene's picture, from the file's observer.
 const SCENE_PICTURE_FILE: &str = "scene_view.png";
+/// The rainbow's figure, for a scene with a sun and a drop.
+const RAINBOW_FILE: &str = "rainbow.svg";
 
 /// `table --scene`: the scene read and checked, its observers chosen, before anything is written.
 struct ScenePlan {
@@ -385,6 +391,13 @@ struct ScenePlan {
 }
 
 impl ScenePlan {
+    /// Whether the scene has a sun and a sphere: its report then draws the first sphere's
+    /// rainbow.
+    fn has_rainbow(&self) -> bool {
+        let d = &self.jobs[0].loaded.description;
+        d.sun.is_some() && !d.spheres.is_empty()
+    }
+
     /// The scene file `name` whose text is `text`, seen from its observer (or `observer`), and
     /// the observers turned about the vertical through its target, at `wavelength`.
     fn new(
@@ -638,6 +651,51 @@ fn sweep_section(plan: &ScenePlan, out: &Path, lang: Lang) -> Section {
         side_by_side: false,
         printed: true,
         table: Vec::new(),
+    }
+}
+
+/// The rainbow of the scene's first sphere in the sun: Descartes' construction traced at each
+/// band of white light, as a figure and a table of the bows' angles.
+fn rainbow_section(plan: &ScenePlan, out: &Path, lang: Lang) -> Section {
+    let description = &plan.jobs[0].loaded.description;
+    let nms = bentstraw_optics::spectrum::white_bands().map(|b| b.nm);
+    let curves: Vec<_> = [1, 2]
+        .iter()
+        .flat_map(|&k| {
+            bentstraw_optics::rainbow::deviation_curves(description, 0, k, &nms).unwrap_or_default()
+        })
+        .collect();
+    let caption = lang.of(words::RAINBOW_CAPTION);
+    let mut figure = Figure::image(RAINBOW_FILE, caption);
+    figure.error = crate::rainbow_plot::write_rainbow_plot(
+        &out.join(RAINBOW_FILE),
+        &curves,
+        lang.of(words::RAINBOW),
+        lang,
+    )
+    .err()
+    .map(|e| e.to_string());
+    let degrees = |a: f64| format!("{}°", number_text((a * 100.0).round() / 100.0));
+    let mut table = vec![words::RAINBOW_HEAD
+        .iter()
+        .map(|&h| lang.of(h).to_string())
+        .collect::<Vec<_>>()];
+    let (first, second) = curves.split_at(curves.len() / 2);
+    for (a, b) in first.iter().zip(second) {
+        table.push(vec![
+            number_text(a.nm),
+            number_text((a.index * 1e5).round() / 1e5),
+            degrees(a.bow[1]),
+            degrees(b.bow[1]),
+        ]);
+    }
+    Section {
+        title: lang.of(words::RAINBOW).into(),
+        figures: vec![figure],
+        notes: vec![lang.of(words::RAINBOW_NOTE).to_string()],
+        side_by_side: false,
+        printed: true,
+        table,
     }
 }
 

@@ -693,6 +693,48 @@ pub const GAP_AXIS: Text = t(
     "gap to the course's point (mm) →",
     "écart au point du cours (mm) →",
 );
+/// The rainbow section's heading (scenes with a sun and a drop).
+pub const RAINBOW: Text = t(
+    "The rainbow: Descartes' construction",
+    "L'arc-en-ciel : la construction de Descartes",
+);
+/// The rainbow figure's horizontal axis.
+pub const RAINBOW_X_AXIS: Text = t(
+    "impact parameter b (distance from the centre / radius) →",
+    "paramètre d'impact b (distance au centre / rayon) →",
+);
+/// The rainbow figure's vertical axis.
+pub const RAINBOW_Y_AXIS: Text = t(
+    "angle from the antisolar point →",
+    "angle depuis le point antisolaire →",
+);
+/// The first bow's angles: violet's and red's.
+pub const RAINBOW_FIRST_LABEL: Text = t(
+    "first bow: {}° (violet) to {}° (red)",
+    "premier arc : {}° (violet) à {}° (rouge)",
+);
+/// The second bow's angles: violet's and red's.
+pub const RAINBOW_SECOND_LABEL: Text = t(
+    "second bow: {}° (violet) to {}° (red)",
+    "second arc : {}° (violet) à {}° (rouge)",
+);
+/// The rainbow figure's caption.
+pub const RAINBOW_CAPTION: Text = t(
+    "Sunlight leaving the drop after one reflection inside it (lower curves) and after two (upper curves), traced at each band of white light in its colour, against where it entered. Where a curve turns, rays of many impact parameters leave together: the dots are the bows.",
+    "La lumière du soleil qui ressort de la goutte après une réflexion à l'intérieur (courbes du bas) et après deux (courbes du haut), tracée pour chaque bande de la lumière blanche dans sa couleur, selon l'endroit où elle est entrée. Là où une courbe tourne, des rayons de nombreux paramètres d'impact ressortent ensemble : les points sont les arcs.",
+);
+/// How the rainbow figure is made, under it.
+pub const RAINBOW_NOTE: Text = t(
+    "Each ray is traced through the scene's first sphere, alone in air, by the same tracer as the pictures, splitting at each face by Fresnel's law; the bow is where the angle is largest (one reflection) or smallest (two), found to a billionth of the radius. Descartes' closed form gives the same angles: the stationary ray enters at i with cos² i = (n² − 1)/((k + 1)² − 1) for k reflections. The sky is bright inside the first bow and outside the second, dark between them: Alexander's band.",
+    "Chaque rayon est tracé à travers la première sphère de la scène, seule dans l'air, par le même traceur que les images, partagé à chaque face selon la loi de Fresnel ; l'arc est là où l'angle est le plus grand (une réflexion) ou le plus petit (deux), trouvé au milliardième du rayon près. La formule de Descartes donne les mêmes angles : le rayon stationnaire entre sous l'incidence i avec cos² i = (n² − 1)/((k + 1)² − 1) pour k réflexions. Le ciel est clair à l'intérieur du premier arc et à l'extérieur du second, sombre entre les deux : la bande d'Alexandre.",
+);
+/// The rainbow table's header: wavelength, index, the two bows' angles.
+pub const RAINBOW_HEAD: [Text; 4] = [
+    t("wavelength (nm)", "longueur d'onde (nm)"),
+    t("index", "indice"),
+    t("first bow", "premier arc"),
+    t("second bow", "second arc"),
+];
 /// The sweep section's heading: apparent depth against the viewing angle.
 pub const SWEEP: Text = t(
     "Apparent depth from every seat",

@@ -210,8 +210,9 @@ pub const SUN_ANGULAR_RADIUS_DEG: f64 = 0.2665;
 /// reflections inside it (a few per cent of the sun's, then a few thousandths) shows against the
 /// dark sky, the first bow's colours about full and the second bow's dimmer.
 pub const SUN_RADIANCE: f64 = 60.0;
-/// The dark sky around the sun, in linear light (a dusk sky's deep blue).
-const DARK_SKY: [f64; 3] = [0.004, 0.006, 0.014];
+/// The dark sky around the sun, in linear light, at the horizon and straight up (a dusk sky's
+/// deep blue, lighter low down so that a drop shows by what it refracts).
+const DARK_SKY: [[f64; 3]; 2] = [[0.018, 0.022, 0.036], [0.002, 0.003, 0.008]];
 
 /// A checkerboard's two squares and their average, in linear light (worked out once per picture,
 /// not per ray).
@@ -408,7 +409,7 @@ impl Surroundings {
                     if cos >= self.sun_cos {
                         [SUN_RADIANCE; 3]
                     } else {
-                        DARK_SKY
+                        mix(DARK_SKY[0], DARK_SKY[1], up.abs().min(1.0))
                     }
                 } else if self.backdrop == Backdrop::Plain {
                     // A gentle vertical gradient: flat enough to be "plain", enough for the water
@@ -896,7 +897,9 @@ pub fn shaded_picture_into(
         eye64: eye,
     };
     let draw_outline = || {
-        if let Some(glass) = world.thin_glass().filter(|_| options.outline) {
+        // Outdoors, under the sun, the container is not drawn: it only holds the scene.
+        let outlined = options.outline && world.sun().is_none();
+        if let Some(glass) = world.thin_glass().filter(|_| outlined) {
             outline_mask(mask, camera, glass);
         } else {
             mask.clear();

@@ -107,3 +107,81 @@ fn every_ray_turns_as_snell_and_reflection_say() {
         }
     }
 }
+
+/// The gallery's drop, seen level with the sun 42° high behind the eye, in white light: a white
+/// glint high on the drop (the sun reflected by its front), and near its bottom the first bow's
+/// glint, red above violet, then the second bow's, violet above red; in one colour neither glint
+/// has both ends of the spectrum.
+#[test]
+fn the_drop_glints_with_both_bows_their_colours_reversed() {
+    use bentstraw_optics::camera::Camera;
+    use bentstraw_optics::setup::{SceneValues, Setup};
+    use bentstraw_optics::shading::{shaded_picture, Backdrop, ShadingMode, ShadingOptions};
+    let text = include_str!("../../bentstraw-io/scenes/rainbow.toml");
+    let s = Setup::from_text("rainbow", text, &SceneValues::default()).unwrap();
+    let (w, h) = (1024, 768);
+    let target = s.target.unwrap();
+    let fov = s.framing_fov(s.observer, target, w as f64 / h as f64);
+    let camera = Camera::new(s.observer, target, w, h, fov);
+    let picture = |white| {
+        let options = ShadingOptions {
+            mode: ShadingMode::Fresnel { prune_below: 1e-4 },
+            backdrop: Backdrop::Checker,
+            samples: 3,
+            outline: true,
+            white,
+        };
+        let p = shaded_picture(&s.world, &camera, &options);
+        // Bright pixels: (row, [r, g, b]).
+        let bright: Vec<(usize, [u8; 3])> = p
+            .pixels
+            .chunks_exact(3)
+            .enumerate()
+            .filter(|(_, c)| *c.iter().max().unwrap() > 90)
+            .map(|(k, c)| (k / w as usize, [c[0], c[1], c[2]]))
+            .collect();
+        bright
+    };
+    let red =
+        |c: &[u8; 3]| c[0] as u32 > 2 * c[1].max(c[2]) as u32 && c[0] > c[2].saturating_add(100);
+    let violet = |c: &[u8; 3]| c[2] > c[0].saturating_add(60) && c[2] > c[1].saturating_add(60);
+    // The mean row of the pixels of `kind` among `glint`.
+    let row = |glint: &[(usize, [u8; 3])], kind: &dyn Fn(&[u8; 3]) -> bool| {
+        let rows: Vec<usize> = glint
+            .iter()
+            .filter(|(_, c)| kind(c))
+            .map(|(r, _)| *r)
+            .collect();
+        assert!(!rows.is_empty(), "no such pixel in {glint:?}");
+        rows.iter().sum::<usize>() as f64 / rows.len() as f64
+    };
+    let white = picture(true);
+    // The sun's reflection, white, in the drop's upper half.
+    assert!(white
+        .iter()
+        .any(|(r, c)| *r < h as usize / 2 && c.iter().all(|&v| v > 200)));
+    // The glints near the bottom, parted where no pixel is bright.
+    let low: Vec<_> = white
+        .iter()
+        .copied()
+        .filter(|(r, _)| *r > h as usize / 2)
+        .collect();
+    let gap = low
+        .windows(2)
+        .find(|p| p[1].0 > p[0].0 + 10)
+        .map(|p| p[1].0)
+        .expect("two glints");
+    let (first, second): (Vec<_>, Vec<_>) = low.iter().partition(|(r, _)| *r < gap);
+    assert!(
+        row(&first, &red) < row(&first, &violet),
+        "first bow: red above violet"
+    );
+    assert!(
+        row(&second, &violet) < row(&second, &red),
+        "second bow: violet above red"
+    );
+    // In one colour (the d line, yellow) no pixel is red or violet.
+    let one = picture(false);
+    assert!(!one.is_empty());
+    assert!(!one.iter().any(|(_, c)| red(c) || violet(c)), "{one:?}");
+}
