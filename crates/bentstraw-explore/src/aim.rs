@@ -333,9 +333,10 @@ mod tests {
         assert!(found[0].direction.angle_between(straight) < 1e-9);
     }
 
-    /// Every gallery scene names a target (a straw's bottom, a coin's centre, an arrow's tip),
-    /// and its eye sees it in its picture in all but the marble's scene, where the marble hides
-    /// the straw's bottom; the search stays within its bound of rays.
+    /// Every gallery scene with an object names a target (a straw's bottom, a coin's centre, an
+    /// arrow's tip), and its eye sees it in its picture in all but the marble's scene, where the
+    /// marble hides the straw's bottom; the search stays within its bound of rays. The rainbow's
+    /// drop alone in the sky has none.
     #[test]
     fn the_gallery_s_targets_are_found_from_their_own_eyes() {
         let mut hidden = Vec::new();
@@ -348,6 +349,10 @@ mod tests {
                 o.x, o.y, o.z
             ));
             let world = &v.scene.world;
+            if stem == "rainbow" {
+                assert!(scene_target(world, v.observer).is_none());
+                continue;
+            }
             let target = scene_target(world, v.observer).unwrap();
             let want = match stem {
                 "coin-in-glass" | "appearing-coin" | "apparent-depth" => TargetKind::CoinCentre,

@@ -146,7 +146,10 @@ mod tests {
         let path = dir.path().join("rainbow.svg");
         write_rainbow_plot(&path, &curves, "The rainbow", Lang::En).unwrap();
         let svg = std::fs::read_to_string(&path).unwrap();
-        assert!(svg.contains("first bow: 40.7° (violet) to 42.7° (red)"), "{svg}");
+        assert!(
+            svg.contains("first bow: 40.7° (violet) to 42.7° (red)"),
+            "{svg}"
+        );
         assert!(svg.contains("second bow: 53.4° (violet) to 49.8° (red)"));
     }
 }
