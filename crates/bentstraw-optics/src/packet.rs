@@ -160,6 +160,12 @@ pub enum BranchEnd {
     },
 }
 
+/// Every lane of `v`, component by component.
+#[inline(always)]
+fn block_lanes<P: Packet>(v: &V3<P>) -> [[f32; LANES]; 3] {
+    [v.x.to_array(), v.y.to_array(), v.z.to_array()]
+}
+
 /// The components of lane `k`.
 #[inline(always)]
 fn lane<P: Packet>(v: &V3<P>, k: usize) -> [f32; 3] {
@@ -664,19 +670,22 @@ impl<'w> PacketTracer<'w> {
                     P::from_array(r[5]),
                 );
                 let left = P::from_array(block.left);
+                // The block's rays as arrays, taken out of the registers here: a closure does not
+                // inherit this function's vector instructions, and would call out for each store.
+                let (oa, da) = (block_lanes(&o), block_lanes(&d));
                 let escape = |k: usize, absorbed: [f32; 3], on_end: &mut E| {
                     // A branch that met nothing is the ray from the eye (a far eye's rays start
                     // on the bounding sphere, possibly past the backdrop's floor).
                     let origin = if block.left[k] == NO_FACE {
                         eye
                     } else {
-                        lane(&o, k)
+                        [oa[0][k], oa[1][k], oa[2][k]]
                     };
                     on_end(
                         block.pixel[k] as usize,
                         BranchEnd::Escaped {
                             origin,
-                            direction: lane(&d, k),
+                            direction: [da[0][k], da[1][k], da[2][k]],
                             weight: block.w[k],
                             absorbed,
                         },
