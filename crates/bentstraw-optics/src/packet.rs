@@ -713,8 +713,8 @@ impl<'w> PacketTracer<'w> {
                         (hit.t.to_array(), hit.code.to_array(), hit.part.to_array());
                     for k in on_object.lanes() {
                         let t = t[k];
-                        let [ox, oy, oz] = lane(&o, k);
-                        let [dx, dy, dz] = lane(&d, k);
+                        let [ox, oy, oz] = [oa[0][k], oa[1][k], oa[2][k]];
+                        let [dx, dy, dz] = [da[0][k], da[1][k], da[2][k]];
                         on_end(
                             block.pixel[k] as usize,
                             BranchEnd::Object {
@@ -755,9 +755,11 @@ impl<'w> PacketTracer<'w> {
                 // Each lane's numbers, taken out of the registers once.
                 let (wr, wt) = (wr.to_array(), wt.to_array());
                 let (surface, beyond) = (b.surface.to_array(), b.beyond.to_array());
-                let arrays = |v: &V3<P>| [v.x.to_array(), v.y.to_array(), v.z.to_array()];
-                let (q, reflected, refracted) =
-                    (arrays(&q), arrays(&b.reflected), arrays(&b.refracted));
+                let (q, reflected, refracted) = (
+                    block_lanes(&q),
+                    block_lanes(&b.reflected),
+                    block_lanes(&b.refracted),
+                );
                 for k in on_boundary.lanes() {
                     let pixel = block.pixel[k];
                     let q = [q[0][k], q[1][k], q[2][k]];
