@@ -659,29 +659,26 @@ fn sweep_section(plan: &ScenePlan, out: &Path, lang: Lang) -> Section {
 fn rainbow_section(plan: &ScenePlan, out: &Path, lang: Lang) -> Section {
     let description = &plan.jobs[0].loaded.description;
     let nms = bentstraw_optics::spectrum::white_bands().map(|b| b.nm);
-    let curves: Vec<_> = [1, 2]
-        .iter()
-        .flat_map(|&k| {
-            bentstraw_optics::rainbow::deviation_curves(description, 0, k, &nms).unwrap_or_default()
-        })
-        .collect();
+    let bow = |k| bentstraw_optics::rainbow::deviation_curves(description, 0, k, &nms);
+    let (traced, (first, second)) = match bow(1).and_then(|first| Ok((first, bow(2)?))) {
+        Ok(bows) => (None, bows),
+        Err(e) => (Some(e.to_string()), Default::default()),
+    };
     let caption = lang.of(words::RAINBOW_CAPTION);
     let mut figure = Figure::image(RAINBOW_FILE, caption);
-    figure.error = crate::rainbow_plot::write_rainbow_plot(
+    let drawn = crate::rainbow_plot::write_rainbow_plot(
         &out.join(RAINBOW_FILE),
-        &curves,
+        &[first.as_slice(), second.as_slice()].concat(),
         lang.of(words::RAINBOW),
         lang,
-    )
-    .err()
-    .map(|e| e.to_string());
+    );
+    figure.error = traced.or(drawn.err().map(|e| e.to_string()));
     let degrees = |a: f64| format!("{}°", number_text((a * 100.0).round() / 100.0));
     let mut table = vec![words::RAINBOW_HEAD
         .iter()
         .map(|&h| lang.of(h).to_string())
         .collect::<Vec<_>>()];
-    let (first, second) = curves.split_at(curves.len() / 2);
-    for (a, b) in first.iter().zip(second) {
+    for (a, b) in first.iter().zip(&second) {
         table.push(vec![
             number_text(a.nm),
             number_text((a.index * 1e5).round() / 1e5),

@@ -16,6 +16,7 @@
 //! reflections, out). Traced from the eye, a ray's path is the sunlight's path reversed.
 
 use crate::geometry::Ray;
+use crate::scene::DEFAULT_MAX_EVENTS;
 use crate::scene_file::{Container, Dispersive, Glass, Medium, SceneDescription, SceneFileError};
 use crate::world::{FresnelStep, World};
 use crate::Vec3;
@@ -72,13 +73,24 @@ pub fn bow_angle(
     angle
 }
 
-/// A world holding only `sphere` of `description` (its index, or its law at `nm`), alone in
-/// air: the drop of Descartes' construction. Its centre and radius.
+/// The drop of Descartes' construction: one sphere alone in air, at one wavelength.
+pub struct Drop {
+    /// The world holding only the sphere.
+    pub world: World,
+    /// Its centre (m).
+    pub centre: Vec3,
+    /// Its radius (m).
+    pub radius: f64,
+    /// Its index at the wavelength.
+    pub index: f64,
+}
+
+/// Sphere `sphere` of `description` (its index, or its law at `nm`) alone in air.
 pub fn drop_world(
     description: &SceneDescription,
     sphere: usize,
     nm: f64,
-) -> Result<(World, Vec3, f64), Box<SceneFileError>> {
+) -> Result<Drop, Box<SceneFileError>> {
     let mut s = description.spheres[sphere];
     let law = description.law(Medium::Sphere(sphere)).cloned();
     // Far above a glass too small to meet any ray.
@@ -110,8 +122,12 @@ pub fn drop_world(
             .collect(),
     }
     .at_wavelength(nm);
-    let world = World::new(&alone, 2 + 2 * 4)?;
-    Ok((world, s.center, s.radius))
+    Ok(Drop {
+        world: World::new(&alone, DEFAULT_MAX_EVENTS)?,
+        centre: s.center,
+        radius: s.radius,
+        index: alone.spheres[0].index,
+    })
 }
 
 /// Descartes' construction for sphere `sphere` of `description` at each wavelength of `nms`:
@@ -124,8 +140,8 @@ pub fn deviation_curves(
 ) -> Result<Vec<DeviationCurve>, Box<SceneFileError>> {
     nms.iter()
         .map(|&nm| {
-            let (world, centre, radius) = drop_world(description, sphere, nm)?;
-            let at = |b: f64| bow_angle(&world, centre, radius, b, reflections);
+            let drop = drop_world(description, sphere, nm)?;
+            let at = |b: f64| bow_angle(&drop.world, drop.centre, drop.radius, b, reflections);
             let points: Vec<[f64; 2]> = (0..CURVE_SAMPLES)
                 .filter_map(|k| {
                     let b = (k as f64 + 0.5) / CURVE_SAMPLES as f64;
@@ -145,20 +161,13 @@ pub fn deviation_curves(
             let bow = [b, sign * f(b)];
             Ok(DeviationCurve {
                 nm,
-                index: world_index(description, sphere, nm),
+                index: drop.index,
                 reflections,
                 points,
                 bow,
             })
         })
         .collect()
-}
-
-/// The sphere's index at `nm`.
-fn world_index(description: &SceneDescription, sphere: usize, nm: f64) -> f64 {
-    description
-        .law(Medium::Sphere(sphere))
-        .map_or(description.spheres[sphere].index, |law| law.index_at(nm))
 }
 
 /// The point of `[a, b]` where `f`, single-peaked there, is largest (to 1e-12).

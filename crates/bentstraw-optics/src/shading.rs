@@ -668,7 +668,7 @@ fn white_picture_into(
     let mut band_picture = RgbPicture::default();
     shaded_picture_into(&worlds[middle], camera, &single, buffers, picture);
     let middle_centres = std::mem::take(&mut buffers.centre);
-    let middle_seen = buffers.seen.clone();
+    let middle_seen = std::mem::take(&mut buffers.seen);
     let probed =
         |p: usize| (p / w).is_multiple_of(PROBE_STEP) && (p % w).is_multiple_of(PROBE_STEP);
     buffers.needed.extend((0..w * h).map(probed));

@@ -87,7 +87,7 @@ fn each_wavelength_bows_where_descartes_says() {
 #[test]
 fn every_ray_turns_as_snell_and_reflection_say() {
     let d = SceneDescription::from_toml(DROP).unwrap();
-    let (world, centre, radius) = drop_world(&d, 0, 656.3).unwrap();
+    let drop = drop_world(&d, 0, 656.3).unwrap();
     let n = d
         .law(bentstraw_optics::scene_file::Medium::Sphere(0))
         .unwrap()
@@ -99,7 +99,7 @@ fn every_ray_turns_as_snell_and_reflection_say() {
             let turned = (2.0 * (i - r) + k as f64 * (std::f64::consts::PI - 2.0 * r)).to_degrees();
             let between = turned.rem_euclid(360.0);
             let want = 180.0 - between.min(360.0 - between);
-            let got = bow_angle(&world, centre, radius, b, k).unwrap();
+            let got = bow_angle(&drop.world, drop.centre, drop.radius, b, k).unwrap();
             assert!(
                 (got - want).abs() < 1e-7,
                 "k = {k}, b = {b}: {got} against {want}"
