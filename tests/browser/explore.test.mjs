@@ -1143,7 +1143,7 @@ test("the scene file's box: the view follows a typed scene (simulate's points), 
   await context.close();
 });
 
-test("the wavelength slider and white light: a flint prism's points at 450 nm are simulate's, its picture in colour, the link keeps both, a law's slip is refused in French", async () => {
+test("the wavelength slider and white light: a flint prism's points at 450 nm are simulate's, its picture in colour and its points in white light simulate's with their wavelengths, the link keeps both, a law's slip is refused in French", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url);
   await waitReady(page);
@@ -1170,12 +1170,19 @@ test("the wavelength slider and white light: a flint prism's points at 450 nm ar
   assert.notEqual(blue, yellow);
   assert.equal(blue, (await simulateText(flint, ["--wavelength", "450"])).csv);
   assert.ok((await page.evaluate(() => window.bentstraw.command())).join(" ").includes("--wavelength 450"));
-  // White light: the prism's edges in colour, the link keeping it.
+  // White light: the prism's edges in colour, the points simulate's in white light (each with its
+  // band's wavelength, the legend a line per band), the link keeping it.
   const oneColour = await pictureDigest(page);
   frames = await page.evaluate(() => window.bentstraw.frames);
   await page.selectOption("#light", "white");
   await waitReady(page, frames);
   assert.notEqual(await pictureDigest(page), oneColour);
+  const white = await page.evaluate(() => window.bentstraw.points());
+  assert.match(white, /^x,y,z,color,wavelength\n/);
+  assert.equal(white, (await simulateText(flint, ["--wavelength", "450", "--light", "white"])).csv);
+  const legend = await page.locator("#legend li").allTextContents();
+  for (const nm of [405, 455, 505, 555, 605, 655, 705, 755]) assert.ok(legend.some((l) => l.startsWith(`${nm} nm`)), `${nm} nm in ${legend}`);
+  await page.locator("#cloud").screenshot({ path: path.join(tmpdir(), (ON_SITE ? "bentstraw-site-" : "bentstraw-") + "white-light-cloud.png") });
   const link = await page.evaluate(() => window.bentstraw.link());
   assert.match(link, /wavelength=450/);
   assert.match(link, /light=white/);
@@ -1184,7 +1191,7 @@ test("the wavelength slider and white light: a flint prism's points at 450 nm ar
   await waitReady(again.page);
   assert.equal(await again.page.evaluate(() => window.bentstraw.state.wavelength), 450);
   assert.equal(await again.page.evaluate(() => window.bentstraw.state.light), "white");
-  assert.equal(await again.page.evaluate(() => window.bentstraw.points()), blue);
+  assert.equal(await again.page.evaluate(() => window.bentstraw.points()), white);
   await again.context.close();
   assert.deepEqual(problems, []);
   await context.close();

@@ -77,22 +77,26 @@ export function drawCloud() {
   if (!layer || layer.width !== W || layer.height !== H) { layer = new OffscreenCanvas(W, H); layerPixels = new ImageData(W, H); }
   const px = new Uint32Array(layerPixels.data.buffer);
   px.fill(0);
-  const drawSet = (xyz, color, kind, alpha) => {
-    // A kind of light path has one colour everywhere (the engine's): each point's kind indexes
-    // the frame's list of kinds.
-    const palette = (state.color === "path" && kind ? frame.header.paths.map((p) => p.rgb) : SECTION_RGB).map((c) => rgba32(c, alpha));
+  // Each point in its section's colour, or (`index` given) in the colour of entry `index[i]` of
+  // `list`: its kind of light path (one colour everywhere, the engine's) or in white light its
+  // band of the spectrum (its wavelength's colour).
+  const drawSet = (xyz, color, index, list, alpha) => {
+    const palette = (index ? list.map((p) => p.rgb) : SECTION_RGB).map((c) => rgba32(c, alpha));
     const r = Math.max(1, Math.round(1.2 * d));
     for (let i = 0; i < color.length; i++) {
       const [x, y] = pr.p([xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]]);
       const cx = Math.round(x * d), cy = Math.round(y * d);
       if (cx < r || cy < r || cx >= W - r || cy >= H - r) continue;
-      const c = palette[kind ? kind[i] : color[i] - 1];
+      const c = palette[index ? index[i] : color[i] - 1];
       for (let a = -r; a < r; a++) px.fill(c, (cy + a) * W + cx - r, (cy + a) * W + cx + r);
     }
   };
-  if (frame && state.models.includes("course")) drawSet(frame.xyz, frame.color, state.color === "path" ? frame.kind : null, 255);
-  if (models.eye && state.models.includes("eye")) drawSet(models.eye.xyz, models.eye.color, null, 110);
-  if (models.stereo && state.models.includes("stereo")) drawSet(models.stereo.xyz, models.stereo.color, null, 110);
+  if (frame && state.models.includes("course")) {
+    if (state.color === "path") drawSet(frame.xyz, frame.color, frame.kind, frame.header.paths, 255);
+    else drawSet(frame.xyz, frame.color, frame.band, frame.header.bands, 255);
+  }
+  if (models.eye && state.models.includes("eye")) drawSet(models.eye.xyz, models.eye.color, null, null, 110);
+  if (models.stereo && state.models.includes("stereo")) drawSet(models.stereo.xyz, models.stereo.color, null, null, 110);
   layer.getContext("2d").putImageData(layerPixels, 0, 0);
   ctx.setTransform(1, 0, 0, 1, 0, 0);
   ctx.drawImage(layer, 0, 0);
@@ -120,7 +124,8 @@ function drawAxes(ctx, pr) {
     ctx.fillStyle = c; ctx.font = "bold 12px sans-serif"; ctx.fillText(name, x1 + 3, y1 - 3);
   }
 }
-/** The cloud's legend: a line per colour (a section, or a light path) with its count, and the models'. */
+/** The cloud's legend: a line per colour (a section, a light path, or in white light a band of
+ * the spectrum) with its count, and the models'. */
 export function drawLegend() {
   const ul = $("legend");
   ul.textContent = "";
@@ -133,6 +138,7 @@ export function drawLegend() {
   };
   if (!frame) return;
   if (state.color === "path") frame.header.paths.forEach((p) => item(p.rgb, pathWords(p.key, p.words), p.count));
+  else if (frame.header.bands) frame.header.bands.forEach((b) => item(b.rgb, `${b.nm} nm`, b.count));
   else frame.header.points_per_color.forEach((c, i) => { if ((i < 5 && !state.scene && !state.file) || c > 0) item(SECTION_RGB[i], `${i + 1} ${colourName(i + 1)}`, c); });
   const modelCount = (m) => (!m || m.pending ? "…" : m.all ? m.color.length : t("legend.more", { n: m.color.length }));
   if (state.models.includes("eye")) item("rgba(0,0,0,.3)", t("legend.eye"), modelCount(models.eye));

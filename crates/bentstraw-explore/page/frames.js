@@ -139,7 +139,7 @@ export async function sendFrame(quick) {
   }
 }
 
-/** The server's binary frame: header, RGBA picture, points. */
+/** The server's binary frame: header, RGBA picture, points (and in white light their bands). */
 function decodeFrame(buffer, quick) {
   const view = new DataView(buffer);
   const len = view.getUint32(0, true);
@@ -150,8 +150,10 @@ function decodeFrame(buffer, quick) {
   const n = header.n;
   const xyz = new Float32Array(buffer.slice(at, at + 12 * n)); at += 12 * n;
   const color = new Uint8Array(buffer, at, n); at += n;
-  const kind = new Uint8Array(buffer, at, n);
-  return { header, rgba, xyz, color, kind, quick };
+  const kind = new Uint8Array(buffer, at, n); at += n;
+  // In white light, each point's band of the spectrum (an index into the header's bands).
+  const band = header.bands ? new Uint8Array(buffer, at, n) : null;
+  return { header, rgba, xyz, color, kind, band, quick };
 }
 
 /** Asks for the eye and stereo models switched on and not yet shown for this view, both at once

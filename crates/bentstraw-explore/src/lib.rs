@@ -25,7 +25,8 @@ use bentstraw_optics::scene_file::{
     Container, Lesson, LessonText, Observer, SceneForm, DEFAULT_COIN_RADIUS,
 };
 use bentstraw_optics::shading::{RgbPicture, ShadingOptions};
-use bentstraw_optics::text::clip_text;
+use bentstraw_optics::spectrum::{wavelength_rgb8, white_bands, WHITE_BANDS};
+use bentstraw_optics::text::{clip_text, css_hex};
 use bentstraw_optics::world::{Outcome, World, COLOR_NAMES};
 use bentstraw_optics::Vec3;
 use serde_json::{json, Value};
@@ -504,7 +505,15 @@ impl View {
     /// At least `points` image points of the view's scene, as `simulate` traces them; none if
     /// `stop` is set meanwhile.
     fn sample(&self, points: usize, stop: &AtomicBool) -> Option<ImageCloud> {
-        sample_image_until(&self.scene.world, self.observer, points, &|_| {}, stop)
+        let white = self.spec.picture.white;
+        sample_image_until(
+            &self.scene.world,
+            self.observer,
+            points,
+            white,
+            &|_| {},
+            stop,
+        )
     }
 
     fn shading(&self) -> ShadingOptions {
@@ -546,7 +555,8 @@ fn color_name(code: u8) -> &'static str {
 /// `GET /api/frame`: the picture (RGBA) and the points (f32 xyz, colour codes, path kinds) in one
 /// binary answer: `u32` length of a JSON header, the header (padded with spaces to 4 bytes), then
 /// `width × height × 4` bytes, `3n` little-endian `f32`, `n` colour bytes, `n` path-kind bytes
-/// (indices into the header's `paths`).
+/// (indices into the header's `paths`), and in white light `n` band bytes (indices into the
+/// header's `bands`).
 pub fn frame_reply(view: &View, frame: &mut Frame, memory: &Memory) -> Reply {
     let request = FrameRequest {
         camera: view.camera,
@@ -572,9 +582,14 @@ pub fn frame_reply(view: &View, frame: &mut Frame, memory: &Memory) -> Reply {
     let counts = frame.path_counts();
     let kinds: Vec<LightPathType> = counts.iter().map(|c| c.0).collect();
     let mut per_color = vec![0usize; codes];
+    let mut per_band = [0usize; WHITE_BANDS];
     for p in &frame.points {
         per_color[p.color as usize - 1] += 1;
+        if let Some(k) = p.band {
+            per_band[k as usize] += 1;
+        }
     }
+    let white = view.spec.picture.white;
     let header = json!({
         "width": view.camera.width,
         "height": view.camera.height,
@@ -602,20 +617,28 @@ pub fn frame_reply(view: &View, frame: &mut Frame, memory: &Memory) -> Reply {
             "metres": number_text(*v / 100.0),
         })).collect::<Vec<_>>(),
         "render": view.render_command(),
+        // White light: the bands the points' rays carried, violet first, each in its colour.
+        "bands": white.then(|| white_bands().iter().zip(per_band).map(|(b, n)| json!({
+            "nm": b.nm,
+            "rgb": css_hex(wavelength_rgb8(b.nm)),
+            "count": n,
+        })).collect::<Vec<_>>()),
     });
     let kind_of = frame
         .paths
         .iter()
         .map(|k| kinds.binary_search(k).unwrap_or(0) as u8);
-    frame_body(&header, &frame.picture, &frame.points, kind_of)
+    frame_body(&header, &frame.picture, &frame.points, kind_of, white)
 }
 
-/// A frame's binary answer: the header, the picture as RGBA, the points, their path kinds.
+/// A frame's binary answer: the header, the picture as RGBA, the points, their path kinds, and
+/// their bands if the light is `white`.
 fn frame_body(
     header: &Value,
     picture: &RgbPicture,
     points: &[ImagePoint],
     kinds: impl Iterator<Item = u8>,
+    white: bool,
 ) -> Reply {
     let mut head = header.to_string().into_bytes();
     while head.len() & 3 != 0 {
@@ -636,6 +659,9 @@ fn frame_body(
     }
     body.extend(points.iter().map(|p| p.color));
     body.extend(kinds);
+    if white {
+        body.extend(points.iter().map(|p| p.band.unwrap_or(0)));
+    }
     Reply::bytes("application/octet-stream", body)
 }
 
@@ -1008,7 +1034,7 @@ pub fn export_reply(
     let mut body = Vec::new();
     let (kind, name) = match format {
         "csv" if model == "course" => (
-            write_csv(&mut body, &cloud.points).map(|_| "text/csv"),
+            write_csv(&mut body, &cloud.points, cloud.white).map(|_| "text/csv"),
             "view.csv",
         ),
         "csv" => (

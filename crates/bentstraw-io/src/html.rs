@@ -2,14 +2,14 @@
 //!
 //! The page embeds its script and style (from `assets/viewer.js` and `assets/viewer.css`) and its data
 //! as JSON: the points as base64 little-endian `f32` offsets from the centre of the axis box (compact,
-//! and exact to about 1e-8 m at these sizes) and their colour codes as base64 bytes.
+//! and exact to about 1e-8 m at these sizes) and their colour codes as base64 bytes (in white
+//! light, their bands: each point is shown in its wavelength's colour).
 
 use std::path::Path;
 
 use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::record::InputValue;
 use bentstraw_optics::scene::{GLASS_RADIUS, SECTION_HEIGHT, STRAW_HEIGHT, STRAW_RADIUS};
-use bentstraw_optics::world::COLOR_COUNT;
 use bentstraw_optics::Vec3;
 use serde_json::json;
 
@@ -17,7 +17,8 @@ use crate::error::Result;
 use crate::escape::escape_html;
 use crate::files;
 use crate::plot::{
-    axis_box, degrees, figure_views, observer_direction, section_rgb8, whole, AxisBox,
+    axis_box, degrees, figure_views, legend_entries, legend_key, observer_direction, whole,
+    AxisBox, LegendEntry,
 };
 use bentstraw_optics::setup::Setup;
 use bentstraw_optics::sketch::WIRE_VERTICALS;
@@ -54,29 +55,19 @@ fn viewer_page(
     file_stem: &str,
 ) -> String {
     let bx = axis_box(scene, observer, points);
-    let mut n = [0usize; COLOR_COUNT];
-    for p in points {
-        n[p.color as usize - 1] += 1;
-    }
-    // The colours listed: every section of the straw; a scene file's where seen.
-    let codes: Vec<usize> = (0..scene.colour_names().len())
-        .filter(|&k| n[k] > 0 || scene.lists_unseen_colours())
-        .collect();
-    let data = viewer_data(scene, &bx, observer, points, &codes, &n, title, file_stem);
+    let entries = legend_entries(scene, points);
+    let data = viewer_data(scene, &bx, observer, points, &entries, title, file_stem);
     // In a <script> element only "</" could end the element early; JSON allows "<" as \u003c.
     let data = data.to_string().replace('<', "\\u003c");
     let mut legend = String::new();
-    for &k in &codes {
-        let [r, g, b] = section_rgb8(k as u8 + 1);
-        // A section of the straw says which heights it spans.
-        let span = scene
-            .code_heights(k as u8 + 1)
-            .map_or(String::new(), |(lo, hi)| format!(", z {lo:.2}–{hi:.2} m"));
+    for e in &entries {
+        let [r, g, b] = e.rgb;
         legend.push_str(&format!(
-            "<li data-code=\"{code}\" title=\"click to hide or show\"><span class=\"swatch\" style=\"background:rgb({r},{g},{b})\"></span>{code} {name}{span}<span class=\"count\">{count}</span></li>\n",
-            code = k + 1,
-            name = scene.colour_names()[k],
-            count = n[k],
+            "<li data-code=\"{code}\" title=\"click to hide or show\"><span class=\"swatch\" style=\"background:rgb({r},{g},{b})\"></span>{name}{span}<span class=\"count\">{count}</span></li>\n",
+            code = e.code,
+            name = e.name,
+            span = e.span,
+            count = e.count,
         ));
     }
     let observer_note = if bx.observer_inside {
@@ -94,6 +85,9 @@ fn viewer_page(
         }
     }
     tally.push(format!("{} image points", points.len()));
+    if points.iter().any(|p| p.band.is_some()) {
+        tally.push("white light".to_string());
+    }
     let pictured = scene.subject().map_or("the image points".to_string(), |s| {
         format!("{s}'s image points")
     });
@@ -159,14 +153,12 @@ fn viewer_page(
 /// The data the script draws: the box, the views, the points compactly encoded, the colours
 /// listed, and what to draw of the scene: its lines, or the glass's water and straw from their
 /// values.
-#[allow(clippy::too_many_arguments)]
 fn viewer_data(
     scene: &Setup,
     bx: &AxisBox,
     observer: Vec3,
     points: &[ImagePoint],
-    codes: &[usize],
-    n: &[usize; COLOR_COUNT],
+    entries: &[LegendEntry],
     title: &str,
     file_stem: &str,
 ) -> serde_json::Value {
@@ -185,11 +177,11 @@ fn viewer_data(
         "sceneCentre": v3(scene.frame().2),
         "observerInside": bx.observer_inside,
         "arrow": bx.observer_arrow.map(|(a, b)| [v3(a), v3(b)]),
-        "sections": codes.iter().map(|&k| json!({
-            "code": k + 1,
-            "name": scene.colour_names()[k],
-            "rgb": section_rgb8(k as u8 + 1),
-            "count": n[k],
+        "sections": entries.iter().map(|e| json!({
+            "code": e.code,
+            "name": e.label,
+            "rgb": e.rgb,
+            "count": e.count,
         })).collect::<Vec<_>>(),
         "views": views_json(observer),
     });
@@ -273,7 +265,7 @@ fn views_json(observer: Vec3) -> Vec<serde_json::Value> {
         .collect()
 }
 
-/// The points as little-endian `f32` offsets from `origin`, and their colour codes.
+/// The points as little-endian `f32` offsets from `origin`, and their legend keys.
 fn encoded_points(points: &[ImagePoint], origin: Vec3) -> (Vec<u8>, Vec<u8>) {
     let mut xyz = Vec::with_capacity(points.len() * 12);
     let mut colors = Vec::with_capacity(points.len());
@@ -282,7 +274,7 @@ fn encoded_points(points: &[ImagePoint], origin: Vec3) -> (Vec<u8>, Vec<u8>) {
         for v in [d.x, d.y, d.z] {
             xyz.extend_from_slice(&(v as f32).to_le_bytes());
         }
-        colors.push(p.color);
+        colors.push(legend_key(p));
     }
     (xyz, colors)
 }
@@ -312,7 +304,7 @@ pub(crate) fn base64(bytes: &[u8]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plot::counts;
+    use crate::plot::{counts, section_rgb8};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::{Scene, REFERENCES};
     use bentstraw_optics::sketch::{object_outlines, world_wireframe};

@@ -46,7 +46,10 @@ pub(crate) use figure::{figure_bytes, AreaOn, DrawResultOn};
 pub(crate) use heading::Heading;
 #[cfg(test)]
 pub(crate) use legend::counts;
-pub(crate) use legend::{common_legend, draw_legend_cell, section_words, LegendMark, LEGEND_LINE};
+pub(crate) use legend::{
+    common_legend, draw_legend_cell, legend_entries, legend_key, section_words, LegendEntry,
+    LegendMark, LEGEND_LINE,
+};
 pub(crate) use numbers::{degrees, triple, whole};
 pub(crate) use observer::draw_observer;
 pub(crate) use panel::{grid, Panel, CAPTION_LINE};

@@ -5,6 +5,7 @@
 use std::fmt::Write as _;
 use std::time::Duration;
 
+use bentstraw_optics::spectrum::{white_bands, WHITE_BANDS};
 use bentstraw_optics::world::COLOR_NAMES;
 
 use crate::writers::{ModelPoints, PointSet};
@@ -31,6 +32,22 @@ pub fn summary(set: &PointSet, traced: Duration, total: Duration, written: &[Str
         let _ = writeln!(t, "  scene           {}", values.join(", "));
     }
     let _ = writeln!(t, "  event limit     {}", scene.world.max_events());
+    if cloud.white {
+        // Where nothing disperses every band's rays bend alike: say so, as the points show no
+        // colour apart.
+        let parted = if scene.world.white_light().is_empty() {
+            "nothing in the scene disperses: every band is bent alike"
+        } else {
+            "each ray traced at its band's wavelength"
+        };
+        let bands = white_bands();
+        let _ = writeln!(
+            t,
+            "  light           white: {WHITE_BANDS} bands in turn, {} to {} nm; {parted}",
+            bands[0].nm,
+            bands[WHITE_BANDS - 1].nm
+        );
+    }
     // The colours the scene's objects can show; a scene file's only where seen (a card has no red).
     let counts: Vec<(usize, usize)> = cloud.counts_per_code()[..scene.colour_names().len()]
         .iter()

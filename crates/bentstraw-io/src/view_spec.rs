@@ -275,8 +275,8 @@ impl ViewSpec {
     }
 
     /// The command line's arguments (after the program's name, before `--output`) of `verb` for
-    /// this view: the verb, the scene's flags, then `simulate`'s points (at least one) and image
-    /// model (unless the course's), or `render`'s camera (its size always) and picture.
+    /// this view: the verb, the scene's flags, then `simulate`'s points (at least one), image
+    /// model (unless the course's) and light (when white), or `render`'s camera (its size always) and picture.
     pub fn args(&self, verb: Verb) -> Vec<String> {
         let mut s = vec![match verb {
             Verb::Simulate(_) => "simulate".to_string(),
@@ -288,6 +288,9 @@ impl ViewSpec {
                 s.extend(["--points".into(), self.points.max(1).to_string()]);
                 if model != ImageModel::Course {
                     s.extend(["--image-model".into(), model.name().to_string()]);
+                }
+                if self.picture.white {
+                    s.extend(["--light".into(), self.picture.light().to_string()]);
                 }
             }
             Verb::Render => {

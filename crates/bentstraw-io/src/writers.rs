@@ -5,7 +5,8 @@
 //! same inputs give byte-identical files.
 //!
 //! - **CSV**: header `x,y,z,color`, then one point a row; `color` is the straw section's code
-//!   (1 = red … 5 = blue).
+//!   (1 = red … 5 = blue). In white light a `wavelength` column follows `color`: the wavelength
+//!   (nm) of the band of the spectrum the point's ray carried.
 //! - **JSON**: one object, schema `bentstraw-image-points/1`:
 //!   ```text
 //!   {
@@ -17,13 +18,14 @@
 //!     "stats": {"rays_traced": R, "points": P, "hit_ratio": P / R, "grid_spacing": h,
 //!               "points_per_color": {"red": .., "orange": .., "magenta": .., "green": .., "blue": ..}},
 //!     "colors": [{"code": 1, "name": "red", "rgb": [1.0, 0.0, 0.0]}, ...],
-//!     "point_fields": ["x", "y", "z", "color"],
+//!     "point_fields": ["x", "y", "z", "color"],   (white light: "wavelength" after "color")
 //!     "points": [[x, y, z, color], ...]
 //!   }
 //!   ```
 //! - **PLY**: `binary_little_endian 1.0`, one `vertex` element with `double x, y, z`, `uchar red,
-//!   green, blue` (the section's display colour) and `uchar color` (the section code); the inputs
-//!   are in `comment` lines. Opens in MeshLab, CloudCompare and Blender.
+//!   green, blue` (the section's display colour) and `uchar color` (the section code); in white
+//!   light `red, green, blue` are the wavelength's colour and `float wavelength` follows; the
+//!   inputs are in `comment` lines. Opens in MeshLab, CloudCompare and Blender.
 
 use std::io::{self, Write};
 use std::path::Path;
@@ -44,6 +46,7 @@ use crate::files::{shown, write_atomically};
 use crate::parse::QUOTED_MAX;
 use bentstraw_optics::record::InputValue;
 use bentstraw_optics::setup::Setup;
+use bentstraw_optics::spectrum::{wavelength_rgb8, white_bands};
 
 /// A file format for image points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -151,7 +154,8 @@ impl ModelPoints<'_> {
         }
     }
 
-    /// Names of the columns of one point, in the order the CSV and JSON write them.
+    /// Names of the columns of one point in light of one wavelength, in the order the CSV and
+    /// JSON write them (white light adds `wavelength` after `color`: [`PointSet::fields`]).
     pub fn fields(&self) -> &'static [&'static str] {
         match self {
             ModelPoints::Course => &["x", "y", "z", "color"],
@@ -178,6 +182,16 @@ impl PointSet<'_> {
         self.model.name()
     }
 
+    /// Names of the columns of one point, in the order the CSV and JSON write them: the model's,
+    /// with `wavelength` after `color` in white light.
+    pub fn fields(&self) -> Vec<&'static str> {
+        let mut fields = self.model.fields().to_vec();
+        if self.cloud.white {
+            fields.insert(4, "wavelength");
+        }
+        fields
+    }
+
     /// The points that have a position in this model, as image points at that position (for the
     /// figures), in order.
     pub fn placed_points(&self) -> Vec<ImagePoint> {
@@ -198,8 +212,29 @@ impl PointSet<'_> {
         }
     }
 
-    /// One row of values per point: each a number, a word, or missing (`None`).
+    /// One row of values per point ([`PointSet::fields`]): each a number, a word, or missing.
     fn rows(&self) -> Vec<Vec<Value>> {
+        let mut rows = self.model_rows();
+        if self.cloud.white {
+            let nms = white_bands().map(|b| b.nm);
+            let images: Vec<&ImagePoint> = match self.model {
+                ModelPoints::Course => self.cloud.points.iter().collect(),
+                ModelPoints::Eye(points) => points.iter().map(|p| &p.image).collect(),
+                ModelPoints::Stereo(s) => s.points.iter().map(|p| &p.image).collect(),
+            };
+            for (row, p) in rows.iter_mut().zip(images) {
+                row.insert(
+                    4,
+                    p.band
+                        .map_or(Value::Missing, |k| Value::Num(nms[k as usize])),
+                );
+            }
+        }
+        rows
+    }
+
+    /// One row of the model's values per point, in light of one wavelength.
+    fn model_rows(&self) -> Vec<Vec<Value>> {
         let xyz = |p: Option<Vec3>| match p {
             Some(q) => [Value::Num(q.x), Value::Num(q.y), Value::Num(q.z)],
             None => [Value::Missing, Value::Missing, Value::Missing],
@@ -288,7 +323,7 @@ impl Value {
 pub fn write_points(path: &Path, format: PointFormat, set: &PointSet) -> Result {
     write_atomically(path, |w| match format {
         PointFormat::Csv if matches!(set.model, ModelPoints::Course) => {
-            write_csv(w, &set.cloud.points)
+            write_csv(w, &set.cloud.points, set.cloud.white)
         }
         PointFormat::Csv => write_model_csv(w, set),
         PointFormat::Json => write_json(w, set),
@@ -296,23 +331,31 @@ pub fn write_points(path: &Path, format: PointFormat, set: &PointSet) -> Result 
     })
 }
 
-/// The CSV of [`write_csv`], gzip-compressed, to `path` (all-or-nothing): the same rows in about
-/// 40 % of the bytes, read as they are by pandas, numpy, R and `zcat`.
+/// The CSV of [`write_csv`] (light of one wavelength), gzip-compressed, to `path`
+/// (all-or-nothing): the same rows in about 40 % of the bytes, read as they are by pandas, numpy,
+/// R and `zcat`.
 pub fn write_csv_gz(path: &Path, points: &[ImagePoint]) -> Result {
     write_atomically(path, |w| {
         let mut gz = flate2::write::GzEncoder::new(w, flate2::Compression::default());
-        write_csv(&mut gz, points)?;
+        write_csv(&mut gz, points, false)?;
         gz.finish().map(|_| ())
     })
 }
 
-/// CSV: header `x,y,z,color`, coordinates in the shortest form that reads back exactly.
+/// CSV: header `x,y,z,color` (`x,y,z,color,wavelength` for points of `white` light, the
+/// wavelength of each point's band in nm), coordinates in the shortest form that reads back
+/// exactly.
 ///
 /// Rows are formatted with `ryu` (the shortest round-trip digits, as `{}` prints them, several times
 /// faster) into blocks of bytes built in parallel and written in order: a million points in a
 /// fraction of a second.
-pub fn write_csv(w: &mut dyn Write, points: &[ImagePoint]) -> io::Result<()> {
-    w.write_all(b"x,y,z,color\n")?;
+pub fn write_csv(w: &mut dyn Write, points: &[ImagePoint], white: bool) -> io::Result<()> {
+    w.write_all(if white {
+        b"x,y,z,color,wavelength\n"
+    } else {
+        b"x,y,z,color\n"
+    })?;
+    let nms = white_bands().map(|b| b.nm);
     const ROWS_PER_BLOCK: usize = 16_384;
     let blocks: Vec<Vec<u8>> = points
         .par_chunks(ROWS_PER_BLOCK)
@@ -325,6 +368,12 @@ pub fn write_csv(w: &mut dyn Write, points: &[ImagePoint]) -> io::Result<()> {
                     out.push(b',');
                 }
                 out.push(b'0' + p.color);
+                if white {
+                    out.push(b',');
+                    if let Some(k) = p.band {
+                        out.extend_from_slice(shortest(&mut digits, nms[k as usize]).as_bytes());
+                    }
+                }
                 out.push(b'\n');
             }
             out
@@ -352,7 +401,7 @@ fn shortest(digits: &mut ryu::Buffer, v: f64) -> &str {
 
 /// CSV of a model's points: header from [`ModelPoints::fields`], missing values left empty.
 pub fn write_model_csv(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
-    writeln!(w, "{}", set.model.fields().join(","))?;
+    writeln!(w, "{}", set.fields().join(","))?;
     for row in set.rows() {
         let cells: Vec<String> = row.iter().map(Value::csv).collect();
         writeln!(w, "{}", cells.join(","))?;
@@ -436,7 +485,7 @@ fn write_json_object(
     writeln!(w, "  \"inputs\": {inputs},")?;
     writeln!(w, "  \"stats\": {stats},")?;
     writeln!(w, "  \"colors\": {colors},")?;
-    writeln!(w, "  \"point_fields\": {},", json(set.model.fields()))?;
+    writeln!(w, "  \"point_fields\": {},", json(&set.fields()))?;
     writeln!(w, "  \"points\": [")?;
     let rows = set.rows();
     let n = rows.len();
@@ -502,12 +551,14 @@ pub fn write_ply(w: &mut dyn Write, set: &PointSet) -> io::Result<()> {
         scene.code_legend(),
         legend.join(", ")
     )?;
-    write_ply_vertices(w, &set.placed_points())
+    write_ply_vertices(w, &set.placed_points(), set.cloud.white)
 }
 
 /// The PLY header's vertex element and the end of the header, then the points' binary records:
-/// `double x, y, z`, `uchar red, green, blue` (the colour code's display colour), `uchar color`.
-fn write_ply_vertices(w: &mut dyn Write, points: &[ImagePoint]) -> io::Result<()> {
+/// `double x, y, z`, `uchar red, green, blue` (the colour code's display colour), `uchar color`;
+/// for points of `white` light, the colour of each point's wavelength and `float wavelength`
+/// (nm) after them.
+fn write_ply_vertices(w: &mut dyn Write, points: &[ImagePoint], white: bool) -> io::Result<()> {
     writeln!(w, "element vertex {}", points.len())?;
     for axis in ["x", "y", "z"] {
         writeln!(w, "property double {axis}")?;
@@ -515,16 +566,23 @@ fn write_ply_vertices(w: &mut dyn Write, points: &[ImagePoint]) -> io::Result<()
     for channel in ["red", "green", "blue", "color"] {
         writeln!(w, "property uchar {channel}")?;
     }
+    if white {
+        writeln!(w, "property float wavelength")?;
+    }
     writeln!(w, "end_header")?;
-    let mut record = [0u8; 28];
+    let bands = white_bands();
+    let mut record = [0u8; 32];
+    let size = if white { 32 } else { 28 };
     for p in points {
         let q = p.position;
         record[0..8].copy_from_slice(&q.x.to_le_bytes());
         record[8..16].copy_from_slice(&q.y.to_le_bytes());
         record[16..24].copy_from_slice(&q.z.to_le_bytes());
-        record[24..27].copy_from_slice(&section_rgb8(p.color));
+        let nm = p.band.map(|k| bands[k as usize].nm);
+        record[24..27].copy_from_slice(&nm.map_or(section_rgb8(p.color), wavelength_rgb8));
         record[27] = p.color;
-        w.write_all(&record)?;
+        record[28..32].copy_from_slice(&(nm.unwrap_or(f64::NAN) as f32).to_le_bytes());
+        w.write_all(&record[..size])?;
     }
     Ok(())
 }
@@ -585,6 +643,7 @@ pub fn write_raw_weights<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use serde_json::json;
 
     fn point(x: f64, y: f64, z: f64, color: u8) -> ImagePoint {
         ImagePoint {
@@ -594,6 +653,7 @@ mod tests {
             path_length: 1.0,
             straw_point: Vec3::ZERO,
             events: 0,
+            band: None,
         }
     }
 
@@ -607,6 +667,7 @@ mod tests {
             ],
             rays_traced: 12,
             spacing: 0.001,
+            white: false,
         };
         (Setup::assignment(scene, Vec3::new(0.0, 0.1, 0.1)), cloud)
     }
@@ -617,6 +678,60 @@ mod tests {
             min_points: 3,
             model: ModelPoints::Course,
             cloud,
+        }
+    }
+
+    /// White light's points: the same columns with each point's wavelength after its colour code
+    /// (the middle of its band), in the CSV (both writers), the JSON and the PLY, whose colour
+    /// is the wavelength's.
+    #[test]
+    fn white_light_points_carry_their_wavelength() {
+        let (scene, mut cloud) = sample();
+        cloud.white = true;
+        for (p, band) in cloud.points.iter_mut().zip([0u8, 3, 7]) {
+            p.band = Some(band);
+        }
+        let nms = [405.0, 555.0, 755.0];
+        let set = set(&scene, &cloud);
+        let mut fast = Vec::new();
+        write_csv(&mut fast, &cloud.points, true).unwrap();
+        let mut rows = Vec::new();
+        write_model_csv(&mut rows, &set).unwrap();
+        for csv in [fast, rows] {
+            let text = String::from_utf8(csv).unwrap();
+            let mut lines = text.lines();
+            assert_eq!(lines.next(), Some("x,y,z,color,wavelength"));
+            for (line, nm) in lines.zip(nms) {
+                let f: Vec<&str> = line.split(',').collect();
+                assert_eq!(f.len(), 5, "{line}");
+                assert_eq!(f[4].parse::<f64>().unwrap(), nm, "{line}");
+            }
+        }
+        let mut out = Vec::new();
+        write_json(&mut out, &set).unwrap();
+        let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(
+            v["point_fields"],
+            json!(["x", "y", "z", "color", "wavelength"])
+        );
+        for (row, nm) in v["points"].as_array().unwrap().iter().zip(nms) {
+            assert_eq!(row[4].as_f64(), Some(nm));
+        }
+        let mut out = Vec::new();
+        write_ply(&mut out, &set).unwrap();
+        let end = b"end_header\n";
+        let at = out.windows(end.len()).position(|w| w == end).unwrap() + end.len();
+        let header = std::str::from_utf8(&out[..at]).unwrap();
+        assert!(header.contains("property uchar color\nproperty float wavelength\nend_header"));
+        let body = &out[at..];
+        assert_eq!(body.len(), 32 * cloud.points.len());
+        for ((rec, p), nm) in body.chunks(32).zip(&cloud.points).zip(nms) {
+            assert_eq!(rec[24..27], wavelength_rgb8(nm));
+            assert_eq!(rec[27], p.color);
+            assert_eq!(
+                f32::from_le_bytes(rec[28..32].try_into().unwrap()),
+                nm as f32
+            );
         }
     }
 
@@ -645,7 +760,7 @@ mod tests {
     fn csv_reads_back_bit_exactly() {
         let (scene, cloud) = sample();
         let mut out = Vec::new();
-        write_csv(&mut out, &set(&scene, &cloud).cloud.points).unwrap();
+        write_csv(&mut out, &set(&scene, &cloud).cloud.points, false).unwrap();
         let text = String::from_utf8(out).unwrap();
         let mut lines = text.lines();
         assert_eq!(lines.next(), Some("x,y,z,color"));

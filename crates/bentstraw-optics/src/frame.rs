@@ -100,14 +100,16 @@ pub fn draw_frame(world: &World, request: &FrameRequest, frame: &mut Frame) {
             if request.min_points == 0 {
                 return;
             }
+            let white = request.shading.white;
             let Some(cloud) =
-                sample_image_until(world, observer, request.min_points, &|_| {}, &stop)
+                sample_image_until(world, observer, request.min_points, white, &|_| {}, &stop)
             else {
                 return;
             };
             *points = cloud.points;
             *rays_traced = cloud.rays_traced;
-            light_path_types(world, observer, points, |p| p.direction, paths, &stop);
+            let ray = |p: &ImagePoint| (p.direction, p.band);
+            light_path_types(world, observer, points, ray, paths, &stop);
         },
     );
 }

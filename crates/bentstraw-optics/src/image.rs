@@ -18,6 +18,10 @@ pub struct ImagePoint {
     pub straw_point: Vec3,
     /// Events (refractions and total reflections) on the way.
     pub events: u32,
+    /// The band of white light the ray carried (an index into
+    /// [`crate::spectrum::white_bands`], violet first), or `None` for light of the scene's one
+    /// wavelength.
+    pub band: Option<u8>,
 }
 
 impl ImagePoint {
@@ -40,6 +44,7 @@ impl ImagePoint {
             path_length,
             straw_point: point,
             events,
+            band: None,
         }
     }
 }

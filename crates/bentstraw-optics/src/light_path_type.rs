@@ -90,8 +90,7 @@ impl LightPathType {
 
     /// [`LightPathType::rgb`] as CSS and SVG write it: `#rrggbb`.
     pub fn hex(&self) -> String {
-        let [r, g, b] = self.rgb();
-        format!("#{r:02x}{g:02x}{b:02x}")
+        crate::text::css_hex(self.rgb())
     }
 }
 

@@ -53,6 +53,13 @@ pub fn diagram_ray(world: &World, observer: Vec3, u0: Vec3) -> Option<DiagramRay
     })
 }
 
+/// The ray of image point `p` seen from `observer`, traced again in the world it was traced in.
+fn point_ray(world: &World, observer: Vec3, p: &ImagePoint) -> Option<DiagramRay> {
+    let mut ray = diagram_ray(world.of_point(p), observer, p.direction)?;
+    ray.image.band = p.band;
+    Some(ray)
+}
+
 /// Image points per kind of light path, most common first (ties by kind).
 pub fn path_type_counts(
     world: &World,
@@ -61,7 +68,7 @@ pub fn path_type_counts(
 ) -> Vec<(LightPathType, usize)> {
     let mut counts: BTreeMap<LightPathType, usize> = BTreeMap::new();
     for p in points {
-        if let Some(r) = diagram_ray(world, observer, p.direction) {
+        if let Some(r) = point_ray(world, observer, p) {
             *counts.entry(r.kind).or_default() += 1;
         }
     }
@@ -82,7 +89,7 @@ pub fn diagram_rays(
 ) -> Vec<DiagramRay> {
     let mut groups: BTreeMap<(u8, LightPathType), Vec<DiagramRay>> = BTreeMap::new();
     for p in points {
-        if let Some(r) = diagram_ray(world, observer, p.direction) {
+        if let Some(r) = point_ray(world, observer, p) {
             groups.entry((p.color, r.kind)).or_default().push(r);
         }
     }

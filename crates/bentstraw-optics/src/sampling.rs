@@ -24,6 +24,7 @@ use crate::camera::view_basis;
 use crate::geometry::Ray;
 use crate::image::ImagePoint;
 use crate::light_path_type::LightPathType;
+use crate::spectrum::WHITE_BANDS;
 use crate::world::World;
 use crate::Vec3;
 
@@ -129,6 +130,9 @@ pub struct ImageCloud {
     pub rays_traced: u64,
     /// Angular spacing of the final grid, on the image plane (dimensionless, ≈ radians near the centre).
     pub spacing: f64,
+    /// Whether the rays carried white light (each point's `band` says which band), or light of
+    /// the scene's one wavelength.
+    pub white: bool,
 }
 
 impl ImageCloud {
@@ -171,14 +175,15 @@ const COARSE_CELLS: f64 = 128.0;
 const BLIND_LEVELS: u32 = 2;
 
 /// The kind of light path that makes each of `points` (image points seen from `observer`, or
-/// anything `direction` gives a ray's first direction `u0` of), in order, into `paths`: the ray
-/// of each traced again, its entry face and total reflections noted. Once `stop` is set the rays
-/// left are not traced (their kinds are then meaningless, and the caller throws them away).
+/// anything `ray` gives a ray's first direction `u0` and band of white light of), in order, into
+/// `paths`: the ray of each traced again in its band's world, its entry face and total
+/// reflections noted. Once `stop` is set the rays left are not traced (their kinds are then
+/// meaningless, and the caller throws them away).
 pub fn light_path_types<P: Sync>(
     world: &World,
     observer: Vec3,
     points: &[P],
-    direction: impl Fn(&P) -> Vec3 + Sync + Send,
+    ray: impl Fn(&P) -> (Vec3, Option<u8>) + Sync + Send,
     paths: &mut Vec<LightPathType>,
     stop: &AtomicBool,
 ) {
@@ -188,11 +193,14 @@ pub fn light_path_types<P: Sync>(
             if stop.load(Ordering::Relaxed) {
                 return LightPathType::DIRECT;
             }
-            let ray = Ray {
-                origin: observer,
-                direction: direction(p),
-            };
-            world.trace_path_type(ray).1
+            let (direction, band) = ray(p);
+            let world = band.map_or(world, |k| world.in_band(k as usize));
+            world
+                .trace_path_type(Ray {
+                    origin: observer,
+                    direction,
+                })
+                .1
         })
         .collect_into_vec(paths);
 }
@@ -207,20 +215,42 @@ pub fn sample_image(
     progress: &(dyn Fn(u64) + Sync),
 ) -> ImageCloud {
     let never = AtomicBool::new(false);
-    sample_image_until(world, observer, min_points, progress, &never)
+    sample_image_until(world, observer, min_points, false, progress, &never)
         .expect("a stop flag never set does not stop the sampling")
 }
 
-/// [`sample_image`], abandoned (`None`) soon after `stop` is set: every ray looks at the flag
-/// first, so a client that hangs up frees its worker within a ray's time.
+/// [`sample_image`], in white light if `white`, abandoned (`None`) soon after `stop` is set:
+/// every ray looks at the flag first, so a client that hangs up frees its worker within a ray's
+/// time.
+///
+/// In white light each ray of the final grid carries one band of the spectrum, the bands taking
+/// turns along the grid's rows and columns (so that every band covers the image evenly, with an
+/// eighth of the points): the same rays, as many points, each traced in its band's world and
+/// marked with its band. Where nothing disperses these are the points of one wavelength.
 pub fn sample_image_until(
     world: &World,
     observer: Vec3,
     min_points: usize,
+    white: bool,
     progress: &(dyn Fn(u64) + Sync),
     stop: &AtomicBool,
 ) -> Option<ImageCloud> {
     let stopped = || stop.load(Ordering::Relaxed);
+    // The world each band's rays are traced in (the scene's alone in light of one wavelength).
+    let bands: Vec<&World> = if white {
+        (0..WHITE_BANDS).map(|k| world.in_band(k)).collect()
+    } else {
+        vec![world]
+    };
+    // Where the coarse levels look for the objects: in the spectrum's two ends, as the bands
+    // between are bent between them (the dilation of the cells seen gives a margin); in one
+    // world when the ends are one.
+    let ends = [bands[0], bands[bands.len() - 1]];
+    let ends = if std::ptr::eq(ends[0], ends[1]) {
+        &ends[..1]
+    } else {
+        &ends[..]
+    };
     let frame = DirectionMap::of_box(observer, world.bounds());
     let longest = frame.width.max(frame.height);
     let mut spacing = longest / COARSE_CELLS;
@@ -240,13 +270,11 @@ pub fn sample_image_until(
                 }
                 let a = frame.a_min + (i as f64 + 0.5) * spacing;
                 let b = frame.b_min + (j as f64 + 0.5) * spacing;
-                world
-                    .trace(Ray {
-                        origin: observer,
-                        direction: frame.direction(a, b),
-                    })
-                    .color()
-                    > 0
+                let ray = Ray {
+                    origin: observer,
+                    direction: frame.direction(a, b),
+                };
+                ends.iter().any(|w| w.trace(ray).color() > 0)
             })
             .collect()
     };
@@ -271,6 +299,7 @@ pub fn sample_image_until(
                     points: Vec::new(),
                     rays_traced: rays,
                     spacing,
+                    white,
                 });
             }
             blind += 1;
@@ -290,7 +319,7 @@ pub fn sample_image_until(
         let mut h = target.min(spacing);
         loop {
             let points = final_level(
-                world, observer, &frame, &active, spacing, h, &mut rays, stop,
+                &bands, white, observer, &frame, &active, spacing, h, &mut rays, stop,
             );
             if stopped() {
                 return None;
@@ -301,6 +330,7 @@ pub fn sample_image_until(
                     points,
                     rays_traced: rays,
                     spacing: h,
+                    white,
                 });
             }
             h /= (min_points as f64 / points.len().max(1) as f64).sqrt() * 1.02;
@@ -358,9 +388,12 @@ fn dilate(hits: &[Cell], frame: &DirectionMap, spacing: f64) -> Vec<Cell> {
 
 /// Traces the points of the uniform grid of spacing `h` whose centres lie in `active` cells (of
 /// size `spacing`), and returns the image points, in cell order (cut short once `stop` is set).
+/// The ray of grid point `(i, j)` is traced in world `bands[(i + 3j) mod bands.len()]`, its
+/// point marked with that band if the light is `white`.
 #[allow(clippy::too_many_arguments)]
 fn final_level(
-    world: &World,
+    bands: &[&World],
+    white: bool,
     observer: Vec3,
     frame: &DirectionMap,
     active: &[Cell],
@@ -400,7 +433,12 @@ fn final_level(
                             continue;
                         }
                         n += 1;
-                        if let Some(p) = world.image_point(observer, frame.direction(a, b)) {
+                        // Neighbouring rays carry different bands: three apart along a column,
+                        // one apart along a row.
+                        let band = (ii + 3 * jj) as usize % bands.len();
+                        let u0 = frame.direction(a, b);
+                        if let Some(mut p) = bands[band].image_point(observer, u0) {
+                            p.band = white.then_some(band as u8);
                             pts.push(p);
                         }
                     }

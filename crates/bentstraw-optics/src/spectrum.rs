@@ -79,6 +79,27 @@ pub fn white_bands() -> [Band; WHITE_BANDS] {
     bands
 }
 
+/// The colour a figure shows light of wavelength `nm` in, as sRGB display values (0..1): the
+/// eye's response to it made as bright as a screen allows, each channel a screen cannot give
+/// (pure spectral colours lie outside its gamut) left out. The hue of a spectral colour hardly
+/// changes beyond 410 and 650 nm, where the fit of the eye's response is least faithful: there
+/// the hue of those ends is shown.
+pub fn wavelength_rgb(nm: f64) -> [f64; 3] {
+    let rgb = xyz_to_linear_srgb(cie_1931(nm.clamp(HUE_MIN_NM, HUE_MAX_NM))).map(|c| c.max(0.0));
+    let most = rgb.iter().copied().fold(0.0, f64::max);
+    rgb.map(|c| crate::shading::linear_to_srgb(c / most))
+}
+
+/// Below this wavelength (nm) a figure shows light in the hue of this one.
+const HUE_MIN_NM: f64 = 410.0;
+/// Above this wavelength (nm) a figure shows light in the hue of this one.
+const HUE_MAX_NM: f64 = 650.0;
+
+/// [`wavelength_rgb`] in 8 bits a channel.
+pub fn wavelength_rgb8(nm: f64) -> [u8; 3] {
+    wavelength_rgb(nm).map(|c| (c * 255.0).round() as u8)
+}
+
 /// The sum of two colours, channel by channel.
 fn add3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
@@ -118,6 +139,34 @@ mod tests {
         }
         for a in area {
             assert!((a - 106.86).abs() < 2.0, "{a}");
+        }
+    }
+
+    /// A figure's colour of a wavelength: the hue the eye sees there (blue, green, yellow, red
+    /// as the CIE's observer has them), as bright as a screen allows.
+    #[test]
+    fn each_wavelength_is_shown_in_its_hue() {
+        let hue = |nm: f64| {
+            let [r, g, b] = wavelength_rgb(nm);
+            assert!([r, g, b].iter().all(|c| (0.0..=1.0).contains(c)), "{nm}");
+            assert!((r.max(g).max(b) - 1.0).abs() < 1e-12, "{nm}: {r} {g} {b}");
+            (r, g, b)
+        };
+        let (r, g, b) = hue(450.0);
+        assert!(b > 0.99 && r < b && g < b, "450 nm: {r} {g} {b}");
+        let (r, g, b) = hue(530.0);
+        assert!(g > 0.99 && r < g && b < g, "530 nm: {r} {g} {b}");
+        // Yellow: red and green alike, little blue.
+        let (r, g, b) = hue(578.0);
+        assert!(r > 0.7 && g > 0.7 && b < 0.5, "578 nm: {r} {g} {b}");
+        let (r, g, b) = hue(650.0);
+        assert!(r > 0.99 && g < 0.5 && b < 0.5, "650 nm: {r} {g} {b}");
+        // Violet: blue with some red; the far red, red.
+        let (r, g, b) = hue(405.0);
+        assert!(b > 0.99 && r > 0.3 && r > g, "405 nm: {r} {g} {b}");
+        for nm in [700.0, 755.0] {
+            let (r, g, b) = hue(nm);
+            assert!(r > 0.99 && g < 0.1 && b < 0.1, "{nm} nm: {r} {g} {b}");
         }
     }
 

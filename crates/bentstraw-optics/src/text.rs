@@ -2,6 +2,11 @@
 //! user input clipped to a length. A module of its own so that the rules' messages
 //! ([`crate::rule`]) need nothing from [`crate::scene`], which uses the rules.
 
+/// An 8-bit colour as CSS and SVG write it: `#rrggbb`.
+pub fn css_hex([r, g, b]: [u8; 3]) -> String {
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
 /// A number as a message quotes it: the shortest digits that read back to the same value (so a
 /// value just past a limit shows why it fails), in scientific notation when that is shorter
 /// (`-1e-320`, not 320 zeros), and at most 24 characters (longer ones are clipped with `…`).

@@ -57,7 +57,8 @@ pub struct PictureSpec {
     pub prune: f64,
     /// Samples per pixel side at edges.
     pub samples: u32,
-    /// White light (true), or light of the scene's one wavelength.
+    /// White light (true), or light of the scene's one wavelength: the picture's, and the image
+    /// points' beside it.
     pub white: bool,
 }
 

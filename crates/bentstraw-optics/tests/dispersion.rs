@@ -455,3 +455,77 @@ fn white_light_keeps_the_picture_of_every_band_traced_everywhere() {
         );
     }
 }
+
+/// White light's image points: every point is the one its ray gives in the scene whose indices
+/// are its band's (re-traced there, to the bit), the bands take turns so that each has about an
+/// eighth of the points, and where nothing disperses they are the points of one wavelength,
+/// marked with their bands.
+#[test]
+fn white_light_points_are_each_bands_own() {
+    use bentstraw_optics::sampling::sample_image_until;
+    use std::sync::atomic::AtomicBool;
+    let never = AtomicBool::new(false);
+    let white = |world: &World, eye: Vec3, n: usize| {
+        sample_image_until(world, eye, n, true, &|_| {}, &never).unwrap()
+    };
+    let per_band = |points: &[bentstraw_optics::image::ImagePoint]| {
+        let mut counts = [0usize; WHITE_BANDS];
+        for p in points {
+            counts[p.band.expect("a band") as usize] += 1;
+        }
+        counts
+    };
+    let s = setup(DISPERSIVE, None);
+    let cloud = white(&s.world, s.observer, 4000);
+    assert!(cloud.white && cloud.points.len() >= 4000);
+    let plain: Vec<Setup> = white_bands()
+        .iter()
+        .map(|b| setup(&with_indices_at(DISPERSIVE, b.nm), None))
+        .collect();
+    for p in &cloud.points {
+        let k = p.band.unwrap() as usize;
+        let again = plain[k].world.image_point(s.observer, p.direction);
+        assert_eq!(
+            again,
+            Some(bentstraw_optics::image::ImagePoint { band: None, ..*p })
+        );
+    }
+    let counts = per_band(&cloud.points);
+    let n = cloud.points.len();
+    assert!(
+        counts
+            .iter()
+            .all(|&c| c * 8 > n * 3 / 4 && c * 8 < n * 5 / 4),
+        "{counts:?}"
+    );
+    // The violet and the red rays of a direction reach different points.
+    let (violet, red) = (&plain[0].world, &plain[WHITE_BANDS - 1].world);
+    let parted = cloud
+        .points
+        .iter()
+        .filter(|p| {
+            violet
+                .image_point(s.observer, p.direction)
+                .map(|q| q.position)
+                != red.image_point(s.observer, p.direction).map(|q| q.position)
+        })
+        .count();
+    assert!(parted * 2 > n, "{parted} of {n}");
+
+    // Nothing disperses: the same rays and points as in light of one wavelength.
+    let plain = setup(&with_indices_at(DISPERSIVE, 587.56), None);
+    let mono = sample_image(&plain.world, plain.observer, 4000, &|_| {});
+    let cloud = white(&plain.world, plain.observer, 4000);
+    assert_eq!(cloud.rays_traced, mono.rays_traced);
+    assert_eq!(cloud.points.len(), mono.points.len());
+    for (w, m) in cloud.points.iter().zip(&mono.points) {
+        assert_eq!(bentstraw_optics::image::ImagePoint { band: None, ..*w }, *m);
+    }
+    let (counts, n) = (per_band(&cloud.points), cloud.points.len());
+    assert!(
+        counts
+            .iter()
+            .all(|&c| c * 8 > n * 3 / 4 && c * 8 < n * 5 / 4),
+        "{counts:?}"
+    );
+}

@@ -3,10 +3,20 @@
 //! reflections inside a sphere of index `n`, the stationary ray enters at `i` with
 //! `cos² i = (n² − 1) / ((k + 1)² − 1)`, is refracted to `r = asin(sin i / n)`, and is turned by
 //! `D = 2(i − r) + k(180° − 2r)`: 42.3° from the antisolar point in red and 40.6° in violet for
-//! the first bow, 50° to 54° for the second, Alexander's dark band between.
+//! the first bow, 50° to 54° for the second, Alexander's dark band between. The same rays are
+//! traced again by the double-double tracer of the tests (nothing shared but the drop's
+//! numbers), every branch leaving the drop compared.
 
+#[path = "support/spheres.rs"]
+mod spheres;
+
+use bentstraw_optics::geometry::Ray;
 use bentstraw_optics::rainbow::{bow_angle, deviation_curves, drop_world};
+use bentstraw_optics::scene::DEFAULT_MAX_EVENTS;
 use bentstraw_optics::scene_file::SceneDescription;
+use bentstraw_optics::spectrum::white_bands;
+use bentstraw_optics::Vec3;
+use spheres::{Ball, Balls};
 
 const DROP: &str = r#"
 [container]
@@ -184,4 +194,86 @@ fn the_drop_glints_with_both_bows_their_colours_reversed() {
     let one = picture(false);
     assert!(!one.is_empty());
     assert!(!one.iter().any(|(_, c)| red(c) || violet(c)), "{one:?}");
+}
+
+/// The drop in the double-double tracer: at each band's wavelength, for impact parameters across
+/// the drop, the light leaving after one and two reflections leaves at the library's angle from
+/// the antisolar point (within 1e-9°, where the ray is far from grazing), and the bows found on
+/// the reference's own angles are the library's: the same angle (1e-9°), near the same impact
+/// parameter (the angle is flat there, so `b` is known to about the square root of the
+/// precision).
+#[test]
+fn the_drop_agrees_with_the_double_double_tracer() {
+    let d = SceneDescription::from_toml(DROP).unwrap();
+    for band in white_bands() {
+        let drop = drop_world(&d, 0, band.nm).unwrap();
+        let reference = Balls::new(
+            &[Ball {
+                centre: drop.centre,
+                radius: drop.radius,
+                index: drop.index,
+            }],
+            &[],
+            DEFAULT_MAX_EVENTS,
+        );
+        // The library's rays: parallel to x, `b` radii from the line through the centre.
+        let angle = |b: f64, k: u32| -> Option<(f64, f64)> {
+            let ray = Ray {
+                origin: drop.centre - 2.0 * drop.radius * Vec3::X + b * drop.radius * Vec3::Y,
+                direction: Vec3::X,
+            };
+            let (escapes, margin) = reference.escapes(ray, 0.0);
+            let (_, leaving, _) = escapes.into_iter().find(|e| e.0 == k + 2)?;
+            Some(((-leaving.x).clamp(-1.0, 1.0).acos().to_degrees(), margin))
+        };
+        for k in [1, 2] {
+            let mut compared = 0;
+            for j in 1..60 {
+                let b = j as f64 / 60.0;
+                let (want, margin) = angle(b, k).expect("the reference follows the branch");
+                let got = bow_angle(&drop.world, drop.centre, drop.radius, b, k).unwrap();
+                if margin > 1e-9 {
+                    compared += 1;
+                    assert!(
+                        (got - want).abs() < 1e-9,
+                        "{} nm, k = {k}, b = {b}: {got} against {want}",
+                        band.nm
+                    );
+                }
+            }
+            assert!(
+                compared > 50,
+                "{} nm, k = {k}: {compared} rays well posed",
+                band.nm
+            );
+            // The reference's own bow, by golden section on its angles.
+            let sign = if k == 1 { 1.0 } else { -1.0 };
+            let f = |b: f64| sign * angle(b, k).unwrap().0;
+            let (mut lo, mut hi) = (0.5, 0.99);
+            let g = (5f64.sqrt() - 1.0) / 2.0;
+            while hi - lo > 1e-12 {
+                let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+                if f(x1) < f(x2) {
+                    lo = x1;
+                } else {
+                    hi = x2;
+                }
+            }
+            let b = 0.5 * (lo + hi);
+            let bow = deviation_curves(&d, 0, k, &[band.nm]).unwrap()[0].bow;
+            assert!(
+                (bow[1] - sign * f(b)).abs() < 1e-9,
+                "{} nm, k = {k}: bow at {}° against {}°",
+                band.nm,
+                bow[1],
+                sign * f(b)
+            );
+            assert!(
+                (bow[0] - b).abs() < 1e-5,
+                "{} nm, k = {k}: b {} against {b}",
+                band.nm,
+                bow[0]
+            );
+        }
+    }
 }

@@ -163,7 +163,7 @@ fn a_stopped_sampling_gives_up() {
     let r = REFERENCES[1];
     let world = World::assignment(&r.scene(1.333));
     let stop = AtomicBool::new(true);
-    assert!(sample_image_until(&world, r.observer, 20_000, &|_| {}, &stop).is_none());
+    assert!(sample_image_until(&world, r.observer, 20_000, false, &|_| {}, &stop).is_none());
     // Set by the progress of its first level: the levels after it are not traced.
     let stop = AtomicBool::new(false);
     let told = AtomicU64::new(0);
@@ -171,6 +171,7 @@ fn a_stopped_sampling_gives_up() {
         &world,
         r.observer,
         200_000,
+        false,
         &|rays| {
             told.store(rays, Ordering::Relaxed);
             stop.store(true, Ordering::Relaxed);
@@ -181,7 +182,7 @@ fn a_stopped_sampling_gives_up() {
     let whole = sample_image(&world, r.observer, 200_000, &|_| {});
     assert!(told.load(Ordering::Relaxed) < whole.rays_traced / 4);
     let never = AtomicBool::new(false);
-    let same = sample_image_until(&world, r.observer, 200_000, &|_| {}, &never).unwrap();
+    let same = sample_image_until(&world, r.observer, 200_000, false, &|_| {}, &never).unwrap();
     assert_eq!(same.points, whole.points);
     assert_eq!(same.rays_traced, whole.rays_traced);
 }

@@ -32,6 +32,7 @@ use bentstraw_optics::light_path_type::LightPathType;
 use bentstraw_optics::picture::{course_picture_exact, fresnel_picture_exact};
 use bentstraw_optics::sampling::{light_path_types, sample_image_until};
 use bentstraw_optics::setup::{SceneValues, Setup};
+use bentstraw_optics::spectrum::{white_bands, WHITE_BANDS};
 use bentstraw_optics::text::number_text;
 use bentstraw_optics::text::refuse_choice;
 use bentstraw_optics::view::PictureSpec;
@@ -224,15 +225,24 @@ fn column<'py, T: numpy::Element>(py: Python<'py>, values: Vec<T>) -> Bound<'py,
     PyArray1::from_vec(py, values)
 }
 
-/// Traces the image points of `scene` as `simulate` does: at least `points` of them, placed by
-/// `image_model` (`course`, `eye` or `stereo`), with each one's ray (see [`light_paths`] for
-/// the kind of light path of each).
+/// Whether `light` (one of the picture's lights, as Python names it) is white light, or the
+/// refusal naming it.
+fn white_light(light: &str) -> PyResult<bool> {
+    let spec = PictureSpec::default().with_light("light", light);
+    Ok(spec.map_err(PyValueError::new_err)?.white)
+}
+
+/// Traces the image points of `scene` as `simulate` does: at least `points` of them in `light`
+/// (`mono` or `white`), placed by `image_model` (`course`, `eye` or `stereo`), with each one's
+/// ray (see [`light_paths`] for the kind of light path of each) and, in white light, its
+/// band's wavelength.
 #[pyfunction]
 fn simulate<'py>(
     py: Python<'py>,
     scene: &LoadedScene,
     points: usize,
     image_model: &str,
+    light: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     if !matches!(image_model, "course" | "eye" | "stereo") {
         return Err(PyValueError::new_err(refuse_choice(
@@ -241,6 +251,7 @@ fn simulate<'py>(
             &["course", "eye", "stereo"],
         )));
     }
+    let white = white_light(light)?;
     check_points_asked(points, image_model).map_err(python_error)?;
     let loaded = &scene.loaded;
     let (world, observer) = (&loaded.world, loaded.observer);
@@ -248,7 +259,7 @@ fn simulate<'py>(
     // every image point; for the stereo model, those both eyes see. The columns are made while
     // other Python threads run; numpy then takes them over as they are.
     let (stats, columns, extra) = interruptible(py, |stop| {
-        let mut cloud = sample_image_until(world, observer, points, &|_| {}, stop)?;
+        let mut cloud = sample_image_until(world, observer, points, white, &|_| {}, stop)?;
         let stats = (
             cloud.rays_traced,
             cloud.spacing,
@@ -295,8 +306,14 @@ fn simulate<'py>(
                     ModelColumns::Course,
                 ),
             };
-        Some((stats, Columns::of(placed.as_deref(), images), extra))
+        let bands: Vec<Option<u8>> = images.iter().map(|p| p.band).collect();
+        Some((
+            stats,
+            Columns::of(placed.as_deref(), images),
+            (extra, bands),
+        ))
     })?;
+    let (extra, bands) = extra;
 
     let out = PyDict::new(py);
     let n = columns.color.len();
@@ -315,6 +332,13 @@ fn simulate<'py>(
     out.set_item("path_length", column(py, columns.path_length))?;
     out.set_item("object_point", rows(columns.object_point)?)?;
     out.set_item("events", column(py, columns.events))?;
+    if white {
+        let nms = white_bands().map(|b| b.nm);
+        let nm = |b: &Option<u8>| b.map_or(f64::NAN, |k| nms[k as usize]);
+        out.set_item("wavelength", column(py, bands.iter().map(nm).collect()))?;
+        let band = |b: &Option<u8>| b.map_or(-1, |k| k as i64);
+        out.set_item("_band", column(py, bands.iter().map(band).collect()))?;
+    }
     match extra {
         ModelColumns::Course => {}
         ModelColumns::Eye {
@@ -356,10 +380,12 @@ fn simulate<'py>(
 /// vectors such as a simulation's `u0`): `path_index` (n) into `path_keys` and `path_words`,
 /// the kinds present, sorted (direct first, then by entry face and total reflections).
 #[pyfunction]
+#[pyo3(signature = (scene, direction, band=None))]
 fn light_paths<'py>(
     py: Python<'py>,
     scene: &LoadedScene,
     direction: PyReadonlyArray2<'_, f64>,
+    band: Option<PyReadonlyArray1<'_, i64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let direction = direction.as_array();
     if direction.ncols() != 3 {
@@ -368,10 +394,28 @@ fn light_paths<'py>(
             direction.ncols()
         )));
     }
-    let directions: Vec<Vec3> = direction
+    // Each ray's band of white light (from 0, violet), or none.
+    let bands: Vec<Option<u8>> = match &band {
+        None => vec![None; direction.nrows()],
+        Some(b) => {
+            let b = b.as_array();
+            if b.len() != direction.nrows()
+                || b.iter().any(|&k| !(0..WHITE_BANDS as i64).contains(&k))
+            {
+                return Err(PyValueError::new_err(format!(
+                    "band must give each of the {} rays a band of white light, 0 to {}",
+                    direction.nrows(),
+                    WHITE_BANDS - 1
+                )));
+            }
+            b.iter().map(|&k| Some(k as u8)).collect()
+        }
+    };
+    let directions: Vec<(Vec3, Option<u8>)> = direction
         .rows()
         .into_iter()
-        .map(|r| Vec3::new(r[0], r[1], r[2]))
+        .zip(bands)
+        .map(|(r, b)| (Vec3::new(r[0], r[1], r[2]), b))
         .collect();
     let loaded = &scene.loaded;
     let paths = interruptible(py, |stop| {
@@ -583,8 +627,14 @@ fn render<'py>(
     Ok(out)
 }
 
+/// The colour the figures show light of wavelength `nm` in: sRGB display values, 0 to 1.
+#[pyfunction]
+fn wavelength_rgb(nm: f64) -> [f64; 3] {
+    bentstraw_optics::spectrum::wavelength_rgb(nm)
+}
+
 /// Writes to `path` the points file `bentstraw simulate --output PATH` writes for the same scene,
-/// number of points and model (CSV, JSON or PLY by the name's extension), all or nothing: the
+/// number of points, light and model (CSV, JSON or PLY by the name's extension), all or nothing: the
 /// points are traced again (tracing is deterministic: they are the simulation's own) and written
 /// by the command line's writers.
 #[pyfunction]
@@ -593,14 +643,16 @@ fn save_points(
     scene: &LoadedScene,
     points: usize,
     image_model: &str,
+    light: &str,
     path: PathBuf,
 ) -> PyResult<()> {
+    let white = white_light(light)?;
     check_points_asked(points, image_model).map_err(python_error)?;
     let format = PointFormat::from_path(&path).map_err(python_error)?;
     let setup = &scene.loaded;
     let (world, observer) = (&setup.world, setup.observer);
     let written = interruptible(py, |stop| {
-        let cloud = sample_image_until(world, observer, points, &|_| {}, stop)?;
+        let cloud = sample_image_until(world, observer, points, white, &|_| {}, stop)?;
         let eye = (image_model == "eye").then(|| eye_model_points(world, observer, &cloud.points));
         let stereo =
             (image_model == "stereo").then(|| stereo_points(world, observer, &cloud.points));
@@ -831,6 +883,7 @@ fn _engine(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(light_paths, m)?)?;
     m.add_function(wrap_pyfunction!(save_points, m)?)?;
+    m.add_function(wrap_pyfunction!(wavelength_rgb, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(pixel_direction, m)?)?;
     m.add_function(wrap_pyfunction!(check, m)?)?;

@@ -814,3 +814,33 @@ def test_a_wavelength_gives_the_command_lines_points_and_its_rule(tmp_path):
         bentstraw.simulate(bentstraw.Scene.from_toml(text), wavelength="450")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="did you mean 'f2'"):
         bentstraw.Scene.from_toml(text.replace('"f2"', '"f3"'))
+
+
+def test_white_light_gives_the_command_lines_points_with_their_wavelengths(tmp_path):
+    """White light through a flint prism: the command line's points and wavelengths, bit for
+    bit, for the course's and the eye's points, saved alike; each point's light path is the
+    one its ray takes at its own wavelength; a light not known is a ValueError."""
+    text = bentstraw.Scene.gallery("prism").text.replace("index = 1.5\n", 'material = "f2"\n', 1)
+    (tmp_path / "f2.toml").write_text(text)
+    scene = bentstraw.Scene.from_toml(text)
+    bands = {405.0, 455.0, 505.0, 555.0, 605.0, 655.0, 705.0, 755.0}
+    for model in ("course", "eye"):
+        sim = bentstraw.simulate(scene, points=2000, light="white", image_model=model)
+        run("simulate", "--scene", tmp_path / "f2.toml", "--light", "white", "--points", 2000,
+            "--image-model", model, "--output", tmp_path / "cli.csv")
+        header, rows = read_points(tmp_path / "cli.csv")
+        assert header[:5] == ["x", "y", "z", "color", "wavelength"]
+        assert_same_points(header, rows, sim)
+        assert set(np.unique(sim.wavelength)) == bands
+        sim.save(tmp_path / "py.csv")
+        assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+    assert list(sim.to_dataframe().columns[:6]) == ["x", "y", "z", "color", "wavelength", "path"]
+    # Each point's kind of light path, traced again in the scene at its band's wavelength.
+    for nm in (405.0, 755.0):
+        mono = bentstraw.simulate(scene, wavelength=nm, points=10)
+        chosen = sim.wavelength == nm
+        again = bentstraw._engine.light_paths(mono._scene, np.ascontiguousarray(sim.direction[chosen]))
+        keys = np.asarray(again["path_keys"], dtype=str)[again["path_index"]]
+        assert list(keys) == list(sim.path[chosen])
+    with pytest.raises(ValueError, match="light"):
+        bentstraw.simulate(scene, points=100, light="blue")  # type: ignore[arg-type]

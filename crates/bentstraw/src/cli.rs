@@ -204,6 +204,11 @@ pub struct SimulateArgs {
     /// the straw point's height, into this file: .png, .svg or .pdf (runs both models)
     #[arg(long, value_name = "FILE.png|.svg|.pdf")]
     pub gap_plot: Option<PathBuf>,
+    /// The light the rays carry: white gives each ray one band of the spectrum in turn (as many
+    /// points, an eighth in each band), writes each point's wavelength in a `wavelength` column
+    /// and colours the figures by it
+    #[arg(long, value_enum, default_value_t = LightArg::Mono)]
+    pub light: LightArg,
 }
 
 /// Arguments of `table`.
@@ -285,7 +290,7 @@ impl ModeArg {
     }
 }
 
-/// The light a rendered picture is drawn in.
+/// The light a picture is drawn in, or image points are traced in.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum LightArg {
     /// Light of one wavelength, --wavelength's (the d line by default).
@@ -565,6 +570,10 @@ impl SimulateArgs {
     pub fn view(&self) -> bentstraw_io::Result<ViewSpec> {
         Ok(ViewSpec {
             points: self.points,
+            picture: PictureSpec {
+                white: self.light == LightArg::White,
+                ..PictureSpec::default()
+            },
             ..self.scene.view()?
         })
     }
@@ -711,7 +720,10 @@ mod tests {
                 };
                 let expected = ViewSpec {
                     camera: CameraSpec::default(),
-                    picture: PictureSpec::default(),
+                    picture: PictureSpec {
+                        white: view.picture.white,
+                        ..PictureSpec::default()
+                    },
                     points: view.points.max(1),
                     ..view.clone()
                 };

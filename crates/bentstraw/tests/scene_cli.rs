@@ -1007,3 +1007,73 @@ fn bad_wavelengths_and_laws_are_refused_with_their_rules() {
         assert_refused(&[("d.toml", &text)], &args(""), &names);
     }
 }
+
+/// `simulate --light white`: each point carries its band's wavelength, about an eighth of the
+/// points in each band; every point of each band is correct by the checker against the scene at
+/// that wavelength (its ray traced again there), and the violet points are not against the red
+/// end; the figures are drawn. (An eighth of the points covers a band's image too thinly for
+/// the checker's test of completeness.)
+#[test]
+fn white_light_points_are_each_at_their_bands_wavelength() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("d.toml"), DISPERSIVE).unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "simulate", "--scene", "d.toml", "--points", "4000", "--light", "white", "--output",
+            "w.csv", "--html", "w.html", "--plot", "w.png",
+        ],
+    );
+    succeeded(&out);
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("light           white: 8 bands"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.path().join("w.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("x,y,z,color,wavelength"));
+    let mut bands: std::collections::BTreeMap<String, Vec<String>> = Default::default();
+    for line in lines {
+        let (point, nm) = line.rsplit_once(',').unwrap();
+        bands
+            .entry(nm.to_string())
+            .or_default()
+            .push(point.to_string());
+    }
+    let names: Vec<&str> = bands.keys().map(String::as_str).collect();
+    assert_eq!(
+        names,
+        ["405.0", "455.0", "505.0", "555.0", "605.0", "655.0", "705.0", "755.0"]
+    );
+    let total: usize = bands.values().map(Vec::len).sum();
+    for (nm, points) in &bands {
+        assert!(
+            points.len() * 8 > total * 3 / 4,
+            "{nm} nm: {}",
+            points.len()
+        );
+        let file = format!("{nm}.csv");
+        let csv = format!("x,y,z,color\n{}\n", points.join("\n"));
+        std::fs::write(dir.path().join(&file), csv).unwrap();
+        let nm = nm.trim_end_matches(".0");
+        let args = ["check", &file, "--scene", "d.toml", "--wavelength", nm];
+        let report = String::from_utf8_lossy(&run(dir.path(), &args).stdout).to_string();
+        assert!(report.contains("every point correct"), "{nm} nm: {report}");
+    }
+    let violet = [
+        "check",
+        "405.0.csv",
+        "--scene",
+        "d.toml",
+        "--wavelength",
+        "755",
+    ];
+    let report = String::from_utf8_lossy(&run(dir.path(), &violet).stdout).to_string();
+    assert!(!report.contains("every point correct"), "{report}");
+    for figure in ["w.html", "w.png"] {
+        assert!(dir.path().join(figure).is_file(), "{figure}");
+    }
+    let page = std::fs::read_to_string(dir.path().join("w.html")).unwrap();
+    assert!(page.contains("405 nm") && page.contains("white light"));
+}

@@ -6,15 +6,14 @@ use std::path::Path;
 use bentstraw_optics::image::ImagePoint;
 
 use bentstraw_optics::setup::Setup;
-use bentstraw_optics::world::COLOR_COUNT;
 use bentstraw_optics::Vec3;
 use plotters::prelude::*;
 
 use super::axis_box::{axis_box, AxisBox};
-use super::colours::section_rgb8;
 use super::dots::{draw_dots, visible_dots};
 use super::figure::{figure_bytes, AreaOn, FigureFormat, FIGURE_WIDTH};
 use super::heading::Heading;
+use super::legend::legend_entries;
 use super::legend::{common_legend, draw_legend_cell, LegendMark};
 use super::numbers::{degrees, whole};
 use super::observer::draw_observer;
@@ -118,26 +117,20 @@ fn draw_cloud_figure<DB: DrawingBackend>(
         draw_axis_labels(root, p, &bx).map_err(e)?;
         draw_observer(root, p, &bx, observer, &dots).map_err(e)?;
     }
-    // The codes the scene's objects show: a straw's sections, coins, cards, pictures.
-    let mut n = [0usize; COLOR_COUNT];
-    for p in points {
-        n[p.color as usize - 1] += 1;
-    }
-    let mut items = vec![(
-        LegendMark::None,
-        format!("image points by {}:", scene.code_word()),
-    )];
-    let names = scene.colour_names();
-    items.extend(
-        (0..names.len())
-            .filter(|&k| n[k] > 0 || scene.lists_unseen_colours())
-            .map(|k| {
-                (
-                    LegendMark::Swatch(section_rgb8(k as u8 + 1)),
-                    format!("{} {}: {}", k + 1, names[k], n[k]),
-                )
-            }),
-    );
+    // The codes the scene's objects show (a straw's sections, coins, cards, pictures), or the
+    // bands of white light.
+    let by = if points.iter().any(|p| p.band.is_some()) {
+        "wavelength"
+    } else {
+        scene.code_word()
+    };
+    let mut items = vec![(LegendMark::None, format!("image points by {by}:"))];
+    items.extend(legend_entries(scene, points).into_iter().map(|e| {
+        (
+            LegendMark::Swatch(e.rgb),
+            format!("{}: {}", e.name, e.count),
+        )
+    }));
     items.extend(common_legend(scene, bx.observer_inside));
     draw_legend_cell(root, legend_cell(heading.height()), &items).map_err(e)?;
     Ok(())
@@ -146,8 +139,8 @@ fn draw_cloud_figure<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plot::counts;
     use crate::plot::tests::{decode, panels_have, panels_of, png_of, point};
+    use crate::plot::{counts, section_rgb8};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::{Scene, REFERENCES, SECTION_HEIGHT, STRAW_RADIUS};
     use bentstraw_optics::sketch::CIRCLE_SEGMENTS;

@@ -5,7 +5,7 @@ use bentstraw_optics::image::ImagePoint;
 use plotters::prelude::*;
 use rayon::slice::ParallelSliceMut;
 
-use super::colours::section_rgb8;
+use super::colours::point_rgb8;
 use super::figure::{AreaOn, DrawResultOn};
 use super::panel::Panel;
 
@@ -60,7 +60,7 @@ pub(crate) fn visible_dots(
         .chain(
             order
                 .iter()
-                .map(|&(_, i)| place(&points[i], section_rgb8(points[i].color))),
+                .map(|&(_, i)| place(&points[i], point_rgb8(&points[i]))),
         )
         .collect();
     // From the last drawn back: a dot shows if one of its pixels is not yet covered.
@@ -181,6 +181,7 @@ pub(crate) fn draw_dots<DB: DrawingBackend>(root: &AreaOn<DB>, dots: &[Dot]) -> 
 mod tests {
     use super::*;
     use crate::plot::figure::FIGURE_WIDTH;
+    use crate::plot::section_rgb8;
     use crate::plot::tests::{panels_of, point};
     use bentstraw_optics::sampling::sample_image;
     use bentstraw_optics::scene::REFERENCES;

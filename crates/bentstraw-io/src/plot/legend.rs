@@ -1,16 +1,92 @@
 //! Legends: the mark before each entry, the words for the straw's sections and the entries
 //! every figure of the scene has, and a column of entries wrapped to its cell.
 
+use bentstraw_optics::image::ImagePoint;
 use bentstraw_optics::scene::{SECTION_HEIGHT, SECTION_NAMES};
 use bentstraw_optics::setup::Setup;
+use bentstraw_optics::spectrum::{wavelength_rgb8, white_bands, WHITE_BANDS};
+use bentstraw_optics::world::COLOR_COUNT;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::colours::{rgb, STRAW_OUTLINE_RGB, WATER_RGB};
+use super::colours::{rgb, section_rgb8, STRAW_OUTLINE_RGB, WATER_RGB};
 use super::figure::{AreaOn, DrawResultOn};
 use super::panel::CAPTION_LINE;
 use super::text::{font, wrap, TEXT};
 use super::wireframe::dashed;
+
+/// One line of a legend of image points: what a colour of points stands for.
+pub(crate) struct LegendEntry {
+    /// The key the points of this colour carry ([`legend_key`]).
+    pub(crate) code: u8,
+    /// Its short name (the colour's, or the band's wavelength).
+    pub(crate) label: String,
+    /// Its name in a legend: the colour code and name, or the band's wavelength.
+    pub(crate) name: String,
+    /// The heights of the straw a section spans (`, z 0.00–0.05 m`), or nothing.
+    pub(crate) span: String,
+    /// Its colour.
+    pub(crate) rgb: [u8; 3],
+    /// The points of this colour.
+    pub(crate) count: usize,
+}
+
+/// Legend keys, 0 unused: colour codes 1..=8, or white light's bands 1..=8.
+const LEGEND_KEYS: usize = 1 + if COLOR_COUNT > WHITE_BANDS {
+    COLOR_COUNT
+} else {
+    WHITE_BANDS
+};
+// The 3D view's script keeps a colour per key, 0..=8.
+const _: () = assert!(LEGEND_KEYS <= 9);
+
+/// The key a point is coloured by: its colour code in light of one wavelength, its band (from 1,
+/// violet) in white light, where each point is seen in its wavelength's colour.
+pub(crate) fn legend_key(p: &ImagePoint) -> u8 {
+    p.band.map_or(p.color, |k| k + 1)
+}
+
+/// The legend's lines: every colour code the scene lists (every section of the straw; a scene
+/// file's where seen), or in white light every band of the spectrum seen.
+pub(crate) fn legend_entries(scene: &Setup, points: &[ImagePoint]) -> Vec<LegendEntry> {
+    let mut n = [0usize; LEGEND_KEYS];
+    for p in points {
+        n[legend_key(p) as usize] += 1;
+    }
+    if points.iter().any(|p| p.band.is_some()) {
+        return white_bands()
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| n[k + 1] > 0)
+            .map(|(k, band)| LegendEntry {
+                code: k as u8 + 1,
+                label: format!("{} nm", band.nm),
+                name: format!("{} nm", band.nm),
+                span: String::new(),
+                rgb: wavelength_rgb8(band.nm),
+                count: n[k + 1],
+            })
+            .collect();
+    }
+    (1..=scene.colour_names().len() as u8)
+        .filter(|&c| n[c as usize] > 0 || scene.lists_unseen_colours())
+        .map(|c| {
+            let name = scene.colour_names()[c as usize - 1];
+            // A section of the straw says which heights it spans.
+            let span = scene
+                .code_heights(c)
+                .map_or(String::new(), |(lo, hi)| format!(", z {lo:.2}–{hi:.2} m"));
+            LegendEntry {
+                code: c,
+                label: name.to_string(),
+                name: format!("{c} {name}"),
+                span,
+                rgb: section_rgb8(c),
+                count: n[c as usize],
+            }
+        })
+        .collect()
+}
 
 /// Counts of points per section code 1..=5.
 #[cfg(test)]

@@ -21,6 +21,7 @@ pub(crate) fn point(position: Vec3, color: u8) -> ImagePoint {
         path_length: 0.1,
         straw_point: position,
         events: 0,
+        band: None,
     }
 }
 

@@ -396,7 +396,7 @@ pub fn eye_model_points_until(
             if stop.load(Ordering::Relaxed) {
                 ApparentPoint::unresolved(p)
             } else {
-                world.apparent_point(observer, p)
+                world.of_point(p).apparent_point(observer, p)
             }
         })
         .collect();

@@ -239,7 +239,9 @@ pub fn stereo_point_each_until(
             if stop.load(Ordering::Relaxed) {
                 None
             } else {
-                world.stereo_point_with(Some(&faces), &eyes, observer, p)
+                world
+                    .of_point(p)
+                    .stereo_point_with(Some(faces.of_point(p)), &eyes, observer, p)
             }
         })
         .collect();

@@ -354,6 +354,17 @@ impl World {
         &self.white_light
     }
 
+    /// The world band `band` of white light sees ([`World::white_light`]'s, violet first): this
+    /// one where nothing disperses.
+    pub fn in_band(&self, band: usize) -> &World {
+        self.white_light.get(band).unwrap_or(self)
+    }
+
+    /// The world `point`'s ray was traced in: its band's of white light, or this one.
+    pub fn of_point(&self, point: &ImagePoint) -> &World {
+        point.band.map_or(self, |k| self.in_band(k as usize))
+    }
+
     /// The unit direction towards the sun, when the scene is seen outdoors (against a dark sky
     /// with the sun in it).
     pub fn sun(&self) -> Option<Vec3> {
@@ -982,7 +993,7 @@ impl World {
             clips: self.clips.clone(),
             bodies: self.bodies.clone(),
             edges: self.edges.clone(),
-            white_light: Vec::new(),
+            white_light: self.white_light.iter().map(World::faces_only).collect(),
             ..*self
         }
     }

@@ -544,13 +544,39 @@ impl Balls {
             events: 0,
             weight: t(1.0),
         };
-        self.branch(start, prune, &mut shares, &mut margin);
+        self.branch(start, prune, &mut shares, &mut margin, &mut |_, _, _| {});
         (shares, margin)
     }
 
-    fn branch(&self, b: Branch, prune: f64, shares: &mut Shares, margin: &mut f64) {
+    /// Fresnel mode: every branch of `ray` that leaves the scene, as its events, its unit
+    /// direction and its weight (branches lighter than `prune` abandoned), and the smallest
+    /// margin over all branches.
+    pub fn escapes(&self, ray: Ray, prune: f64) -> (Vec<(u32, Vec3, f64)>, f64) {
+        let (mut shares, mut margin, mut out) = (Shares::default(), f64::INFINITY, Vec::new());
+        let start = Branch {
+            o: V::of(ray.origin),
+            d: V::of(ray.direction).unit(),
+            inside: None,
+            left: None,
+            events: 0,
+            weight: t(1.0),
+        };
+        let mut record = |events: u32, d: V, w: T| out.push((events, d.unit().f64(), f64::from(w)));
+        self.branch(start, prune, &mut shares, &mut margin, &mut record);
+        (out, margin)
+    }
+
+    fn branch(
+        &self,
+        b: Branch,
+        prune: f64,
+        shares: &mut Shares,
+        margin: &mut f64,
+        escaped: &mut dyn FnMut(u32, V, T),
+    ) {
         let Some(met) = self.nearest(b.o, b.d, b.inside, b.left, margin) else {
             shares.escaped += f64::from(b.weight);
+            escaped(b.events, b.d, b.weight);
             return;
         };
         let (k, s) = match met {
@@ -578,7 +604,13 @@ impl Balls {
             weight,
         };
         if !refracted {
-            self.branch(next(mirrored, b.inside, b.weight), prune, shares, margin);
+            self.branch(
+                next(mirrored, b.inside, b.weight),
+                prune,
+                shares,
+                margin,
+                escaped,
+            );
             return;
         }
         let beyond = if was_inside { None } else { Some(k) };
@@ -590,7 +622,7 @@ impl Balls {
                 *margin = margin.min(SCALE * (f64::from(w) - prune).abs());
             }
             if f64::from(w) >= prune && w > 0.0 {
-                self.branch(next(d, inside, w), prune, shares, margin);
+                self.branch(next(d, inside, w), prune, shares, margin, escaped);
             } else {
                 shares.pruned += f64::from(w);
             }

@@ -413,6 +413,8 @@ class Simulation:
       ``"bottom"``, with ``"+k"`` for k total reflections); ``path_index`` indexes
       ``path_keys`` and ``path_words`` (the same in words). Found on first use: each point's
       ray traced once more.
+    - ``wavelength`` — ``(N,)`` float64, in white light only: the wavelength (nm) of the band of
+      the spectrum each point's ray carried (the middle of its band).
     - ``image_xyz``, ``direction``, ``path_length``, ``object_point``, ``events``: the course's
       image point (for the course model the very array ``xyz``, not a copy), the ray's first direction ``u0``, its broken length ``L``, the point of the
       object it reached and how many events it underwent.
@@ -439,6 +441,8 @@ class Simulation:
     object_point: np.ndarray
     #: ``(N,)`` int64: the events (refractions and total reflections) on each ray's way.
     events: np.ndarray
+    #: White light: ``(N,)`` float64, the wavelength (nm) each point's ray carried; else None.
+    wavelength: Optional[np.ndarray] = None
     #: Rays traced in all, to find the points.
     rays_traced: int
     #: Angular spacing of the rays (≈ rad).
@@ -461,7 +465,8 @@ class Simulation:
     miss_distance: Optional[np.ndarray] = None
     skipped: Optional[int] = None
 
-    def __init__(self, fields: Dict[str, Any], scene: Any, image_model: ImageModel) -> None:
+    def __init__(self, fields: Dict[str, Any], scene: Any, image_model: ImageModel,
+                 light: Light = "mono") -> None:
         self.__dict__.update(fields)
         self._read_only()
         self._scene = scene
@@ -473,6 +478,8 @@ class Simulation:
         self.observer = observer
         #: The apparent-position model: ``"course"``, ``"eye"`` or ``"stereo"``.
         self.image_model = image_model
+        #: The light the rays carried: ``"mono"`` (one wavelength) or ``"white"``.
+        self.light = light
         #: The scene file's name, or None for the assignment's glass given by its numbers.
         self.scene_name = scene_name
 
@@ -498,7 +505,8 @@ class Simulation:
     def _light_paths(self) -> Dict[str, Any]:
         # Each point's ray traced once more, on first use (it costs about as much as the points).
         if self._paths is None:
-            self._paths = _engine.light_paths(self._scene, self.direction)
+            self._paths = _engine.light_paths(self._scene, self.direction,
+                                              self.__dict__.get("_band"))
         return self._paths
 
     @property
@@ -540,7 +548,8 @@ class Simulation:
         if self._scene is None:
             raise ValueError("a simulation read back from a pickle cannot be saved (its scene does "
                              "not travel): run simulate again with the same inputs")
-        _engine.save_points(self._scene, self._points_asked, self.image_model, os.fspath(path))
+        _engine.save_points(self._scene, self._points_asked, self.image_model, self.light,
+                            os.fspath(path))
 
     def to_dataframe(self) -> Any:
         """The points as a pandas DataFrame, one row per point: ``x``, ``y``, ``z`` and
@@ -558,8 +567,10 @@ class Simulation:
         except ImportError as e:
             raise ImportError("to_dataframe needs pandas: pip install pandas") from e
         columns: Dict[str, Any] = {"x": self.xyz[:, 0], "y": self.xyz[:, 1], "z": self.xyz[:, 2],
-                                   "color": self.color, "path": self.path,
-                                   "path_length": self.path_length}
+                                   "color": self.color}
+        if self.wavelength is not None:
+            columns["wavelength"] = self.wavelength
+        columns.update({"path": self.path, "path_length": self.path_length})
         for name, v in (("object", self.object_point), ("u0", self.direction)):
             for k, axis in enumerate("xyz"):
                 columns[f"{name}_{axis}"] = v[:, k]
@@ -571,18 +582,26 @@ class Simulation:
                 columns[name] = value
         return pd.DataFrame(columns)
 
-    def plot(self, ax: Any = None, *, color_by: Literal["section", "path"] = "section",
+    def plot(self, ax: Any = None, *,
+             color_by: Optional[Literal["section", "path", "wavelength"]] = None,
              size: float = 1.0) -> Tuple[Any, Any]:
         """The image points in 3D with matplotlib, each in its object's colour (or, with
-        ``color_by="path"``, coloured by kind of light path with a legend in words), on axes of
-        equal scale so that the image's shape is true: ``(fig, ax)``, on ``ax`` if given (a 3D
-        axes) else a new figure. Points the eye model places nowhere are left out.
+        ``color_by="path"``, coloured by kind of light path with a legend in words; with
+        ``color_by="wavelength"``, the default in white light, in its wavelength's colour), on
+        axes of equal scale so that the image's shape is true: ``(fig, ax)``, on ``ax`` if given
+        (a 3D axes) else a new figure. Points the eye model places nowhere are left out.
 
         >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
         >>> fig, ax = sim.plot(color_by="path")
         """
-        if color_by not in ("section", "path"):
-            raise ValueError(f"color_by={color_by!r}: it must be \"section\" or \"path\"")
+        if color_by is None:
+            color_by = "section" if self.wavelength is None else "wavelength"
+        if color_by not in ("section", "path", "wavelength"):
+            raise ValueError(f"color_by={color_by!r}: it must be \"section\", \"path\" or "
+                             "\"wavelength\"")
+        if color_by == "wavelength" and self.wavelength is None:
+            raise ValueError("color_by=\"wavelength\" needs a simulation in white light: "
+                             "simulate(..., light=\"white\")")
         fig, ax = _axes(ax, "3d")
         shown = np.isfinite(self.xyz).all(axis=1)
         xyz = self.xyz[shown]
@@ -590,6 +609,10 @@ class Simulation:
         if color_by == "section":
             groups = [(self.color[shown] == code, COLOR_RGB[code - 1], COLOR_NAMES[code - 1])
                       for code in np.unique(self.color[shown])]
+        elif color_by == "wavelength":
+            nm = cast(np.ndarray, self.wavelength)[shown]
+            groups = [(nm == w, _engine.wavelength_rgb(float(w)), f"{w:g} nm")
+                      for w in np.unique(nm)]
         else:
             import matplotlib
             palette = matplotlib.colormaps["tab10"]
@@ -616,8 +639,9 @@ class Simulation:
 
     def __repr__(self) -> str:
         where = self.scene_name or "the glass"
+        light = ", white light" if self.light == "white" else ""
         return (f"<Simulation of {where} from {self.observer}: {len(self)} points, "
-                f"{self.image_model} model>")
+                f"{self.image_model} model{light}>")
 
 
 @_keyworded
@@ -632,6 +656,7 @@ def simulate(
     wavelength: Optional[float] = None,
     points: int = DEFAULT_POINTS,
     image_model: ImageModel = "course",
+    light: Light = "mono",
 ) -> Simulation:
     """The straw's virtual image: at least ``points`` image points seen from ``observer``.
 
@@ -641,8 +666,10 @@ def simulate(
     ``water_height`` and ``n_water`` change its one straw and liquid). ``image_model`` places
     each point by the course's convention (``"course"``: along the first ray, as far as the
     light travelled), by a small eye's astigmatic foci (``"eye"``) or by two eyes 65 mm apart
-    (``"stereo"``). The points are those ``bentstraw simulate`` writes for the same inputs, bit
-    for bit. A broken rule raises ``ValueError`` with the command line's message.
+    (``"stereo"``). With ``light="white"`` each ray carries one band of the spectrum in turn (as
+    many points, an eighth in each band, each traced at its band's wavelength) and the points
+    have a ``wavelength``. The points are those ``bentstraw simulate`` writes for the same
+    inputs, bit for bit. A broken rule raises ``ValueError`` with the command line's message.
 
     >>> sim = bentstraw.simulate(observer=(0.1, 0, 0.1), straw=(0, 0.02), water_height=0.1)
     >>> import matplotlib.pyplot as plt
@@ -650,15 +677,15 @@ def simulate(
     >>> _ = ax.scatter(*sim.xyz.T, c=sim.color, cmap="rainbow", s=1)
     """
     loaded = _load(scene, observer, straw, water_height, n_water, max_events, wavelength)
-    fields = _engine.simulate(loaded, _count(points, "points", 2**63 - 1), image_model)
-    simulation = Simulation(fields, loaded, image_model)
+    fields = _engine.simulate(loaded, _count(points, "points", 2**63 - 1), image_model, light)
+    simulation = Simulation(fields, loaded, image_model, light)
     simulation._points_asked = points
     return simulation
 
 
 #: The keywords of :func:`simulate` a :func:`sweep` may vary.
 _SWEPT = ("observer", "straw", "water_height", "n_water", "max_events", "wavelength", "points",
-          "image_model")
+          "image_model", "light")
 
 
 def _progress_bar(total: int, show: Optional[bool]) -> Any:

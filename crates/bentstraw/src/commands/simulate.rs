@@ -6,7 +6,8 @@
 use std::time::Instant;
 
 use bentstraw_optics::apparent::{eye_model_points, stereo_points, ApparentPoint, StereoImage};
-use bentstraw_optics::sampling::{sample_image, ImageCloud};
+use bentstraw_optics::sampling::{sample_image_until, ImageCloud};
+use std::sync::atomic::AtomicBool;
 
 use crate::cli::{ImageModelArg, SimulateArgs};
 use crate::error::CliResult;
@@ -70,7 +71,7 @@ pub fn run(args: &SimulateArgs) -> CliResult {
 
     // 2. Trace.
     let started = Instant::now();
-    let cloud = trace_with_spinner(scene, view.points);
+    let cloud = trace_with_spinner(scene, view.points, view.picture.white);
     let traced = started.elapsed();
 
     // 3. The apparent-position model, if not the course's.
@@ -193,14 +194,24 @@ fn with_spinner<T>(what: &str, work: impl FnOnce() -> T) -> T {
     })
 }
 
-/// Samples the image of the scene's objects, with a spinner counting rays when it takes a while.
-fn trace_with_spinner(scene: &Setup, min_points: usize) -> ImageCloud {
+/// Samples the image of the scene's objects (in white light if `white`), with a spinner counting
+/// rays when it takes a while.
+fn trace_with_spinner(scene: &Setup, min_points: usize, white: bool) -> ImageCloud {
     progress::with_progress(
         None,
         "{spinner} tracing rays: {human_pos} so far  [{elapsed}]",
         |bar| {
             let progress = |rays| bar.set_position(rays);
-            sample_image(&scene.world, scene.observer, min_points, &progress)
+            let never = AtomicBool::new(false);
+            sample_image_until(
+                &scene.world,
+                scene.observer,
+                min_points,
+                white,
+                &progress,
+                &never,
+            )
+            .expect("a stop flag never set does not stop the sampling")
         },
     )
 }
