@@ -127,6 +127,7 @@ pub fn write_picture(path: &Path, world: &Setup) -> Result {
         },
         backdrop: Backdrop::Checker,
         samples: 3,
+        adaptive: true,
         outline: false,
         white: !world.world.white_light().is_empty(),
     };

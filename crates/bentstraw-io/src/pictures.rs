@@ -116,6 +116,7 @@ fn seen_png(world: &World, camera: Camera) -> Result<Vec<u8>> {
         },
         backdrop: Backdrop::Checker,
         samples: 3,
+        adaptive: true,
         outline: true,
         white: false,
     };

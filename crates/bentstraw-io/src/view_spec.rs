@@ -199,6 +199,9 @@ impl ViewSpec {
         if let Some(samples) = get(q, "samples") {
             picture.samples = number(samples, "samples")?;
         }
+        if let Some(sampling) = get(q, "sampling") {
+            picture = picture.with_sampling("--sampling", sampling)?;
+        }
         if let Some(prune) = get(q, "prune") {
             picture.prune = number(prune, "prune")?;
         }
@@ -254,6 +257,9 @@ impl ViewSpec {
         }
         if self.picture.samples != DEFAULT_SAMPLES {
             p.push(("samples", self.picture.samples.to_string()));
+        }
+        if !self.picture.adaptive {
+            p.push(("sampling", self.picture.sampling().to_string()));
         }
         if self.picture.prune != DEFAULT_PRUNE {
             p.push(("prune", self.picture.prune.to_string()));
@@ -497,6 +503,7 @@ mod tests {
                 checker: false,
                 prune: 1e-3,
                 samples: 5,
+                adaptive: false,
                 white: true,
             },
             points: 0,

@@ -75,6 +75,10 @@ pub struct ShadingOptions {
     pub backdrop: Backdrop,
     /// Samples per pixel side (`samples²` rays per pixel); 1 traces the pixel centre only.
     pub samples: u32,
+    /// Adaptive sampling (true): every pixel's centre first, then `samples²` rays only where a
+    /// pixel's centre and a neighbour's differ (an edge); or (false) `samples²` rays at every
+    /// pixel.
+    pub adaptive: bool,
     /// Whether to draw the glass's outline.
     pub outline: bool,
     /// White light (every band of the spectrum, each traced at its own wavelength) rather than
@@ -990,9 +994,9 @@ pub fn shaded_picture_into(
     let (centre, seen, mask) = (&*centre, &*seen, &*mask);
     let neighbours = |i: usize, j: usize| neighbours(w, h, i, j);
     // Given edges aside, a pixel is an edge where its centre and a neighbour's (one traced)
-    // differ.
+    // differ; every pixel is one without adaptive sampling.
     let edge = |i: usize, j: usize| {
-        !traced_centre(i * w + j) || on_edge(centre, w, h, i, j, traced_centre)
+        !options.adaptive || !traced_centre(i * w + j) || on_edge(centre, w, h, i, j, traced_centre)
     };
     // Whether the whole neighbourhood of a pixel met one plane (or the sky) straight from the
     // eye: the pixel then sees only that, and its average is worked out without samples.
@@ -1325,6 +1329,7 @@ mod tests {
             mode,
             backdrop: Backdrop::Checker,
             samples,
+            adaptive: true,
             outline: false,
         }
     }

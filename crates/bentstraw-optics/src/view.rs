@@ -44,6 +44,10 @@ pub const BACKDROPS: [&str; 2] = ["none", "checker"];
 /// The picture's light by name: one wavelength (the scene's, `--wavelength`), or white light.
 pub const LIGHTS: [&str; 2] = ["mono", "white"];
 
+/// The picture's sampling by name: every pixel's centre, then the samples only where pixels
+/// differ (adaptive), or the samples at every pixel (full).
+pub const SAMPLINGS: [&str; 2] = ["adaptive", "full"];
+
 /// How the observer's picture is drawn, as asked for: its mode, backdrop, pruning weight and
 /// samples (the command line's `--mode`, `--backdrop`, `--prune`, `--samples`, the page's query
 /// and Python's keywords of the same names). Checked where it is turned into shading.
@@ -57,6 +61,8 @@ pub struct PictureSpec {
     pub prune: f64,
     /// Samples per pixel side at edges.
     pub samples: u32,
+    /// Samples only at edges (true), or at every pixel.
+    pub adaptive: bool,
     /// White light (true), or light of the scene's one wavelength: the picture's, and the image
     /// points' beside it.
     pub white: bool,
@@ -69,6 +75,7 @@ impl Default for PictureSpec {
             checker: true,
             prune: DEFAULT_PRUNE,
             samples: DEFAULT_SAMPLES,
+            adaptive: true,
             white: false,
         }
     }
@@ -119,6 +126,23 @@ impl PictureSpec {
         }
     }
 
+    /// This spec with the sampling named `name` (one of [`SAMPLINGS`]), or the refusal naming
+    /// the option as `option`.
+    pub fn with_sampling(self, option: &str, name: &str) -> Result<PictureSpec, String> {
+        match SAMPLINGS.iter().position(|s| *s == name) {
+            Some(k) => Ok(PictureSpec {
+                adaptive: k == 0,
+                ..self
+            }),
+            None => Err(crate::text::refuse_choice(option, name, &SAMPLINGS)),
+        }
+    }
+
+    /// The sampling's name.
+    pub fn sampling(&self) -> &'static str {
+        SAMPLINGS[!self.adaptive as usize]
+    }
+
     /// The light's name.
     pub fn light(&self) -> &'static str {
         LIGHTS[self.white as usize]
@@ -151,13 +175,15 @@ impl PictureSpec {
                 Backdrop::Plain
             },
             samples: self.samples,
+            adaptive: self.adaptive,
             outline: true,
             white: self.white,
         }
     }
 
     /// The command line's arguments that draw this picture: the mode and the backdrop always,
-    /// the samples and the pruning weight when they are not the defaults.
+    /// the samples, the sampling, the pruning weight and the light when they are not the
+    /// defaults.
     pub fn args(&self) -> Vec<String> {
         let mut args = vec![
             "--mode".to_string(),
@@ -167,6 +193,9 @@ impl PictureSpec {
         ];
         if self.samples != DEFAULT_SAMPLES {
             args.extend(["--samples".to_string(), self.samples.to_string()]);
+        }
+        if !self.adaptive {
+            args.extend(["--sampling".to_string(), self.sampling().to_string()]);
         }
         if self.prune != DEFAULT_PRUNE {
             args.extend(["--prune".to_string(), self.prune.to_string()]);

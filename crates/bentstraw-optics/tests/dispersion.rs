@@ -313,6 +313,7 @@ fn pictures(text: &str) -> (RgbPicture, RgbPicture) {
         mode: ShadingMode::Fresnel { prune_below: 1e-4 },
         backdrop: Backdrop::Checker,
         samples: 3,
+        adaptive: true,
         outline: true,
         white,
     };
@@ -431,6 +432,7 @@ fn white_light_keeps_the_picture_of_every_band_traced_everywhere() {
             mode: ShadingMode::Fresnel { prune_below: 1e-4 },
             backdrop: Backdrop::Checker,
             samples: 3,
+            adaptive: true,
             outline: true,
             white: true,
         };

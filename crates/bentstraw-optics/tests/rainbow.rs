@@ -138,6 +138,7 @@ fn the_drop_glints_with_both_bows_their_colours_reversed() {
             mode: ShadingMode::Fresnel { prune_below: 1e-4 },
             backdrop: Backdrop::Checker,
             samples: 3,
+            adaptive: true,
             outline: true,
             white,
         };

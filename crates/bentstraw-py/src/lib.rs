@@ -547,7 +547,7 @@ fn nan_if_none(v: Option<f64>) -> f64 {
 /// pixels; with `raw`, also one ray per pixel centre as `render --raw` writes it: the colour code
 /// met (course mode) or the weight of each colour code (Fresnel mode).
 #[pyfunction]
-#[pyo3(signature = (scene, size, target, fov, mode, prune, backdrop, samples, raw, light))]
+#[pyo3(signature = (scene, size, target, fov, mode, prune, backdrop, samples, raw, light, sampling))]
 #[allow(clippy::too_many_arguments)]
 fn render<'py>(
     py: Python<'py>,
@@ -561,18 +561,20 @@ fn render<'py>(
     samples: u32,
     raw: bool,
     light: &str,
+    sampling: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let asked = PictureSpec {
         prune,
         samples,
         ..PictureSpec::default()
     };
-    let (with_mode, with_backdrop, with_light) = (
+    let (with_mode, with_backdrop, with_light, with_sampling) = (
         asked.with_mode("mode", mode),
         asked.with_backdrop("backdrop", backdrop),
         asked.with_light("light", light),
+        asked.with_sampling("sampling", sampling),
     );
-    let broken: Vec<String> = [&with_mode, &with_backdrop, &with_light]
+    let broken: Vec<String> = [&with_mode, &with_backdrop, &with_light, &with_sampling]
         .iter()
         .filter_map(|r| r.as_ref().err().cloned())
         .collect();
@@ -582,6 +584,7 @@ fn render<'py>(
     let spec = PictureSpec {
         checker: with_backdrop.map_err(PyValueError::new_err)?.checker,
         white: with_light.map_err(PyValueError::new_err)?.white,
+        adaptive: with_sampling.map_err(PyValueError::new_err)?.adaptive,
         ..with_mode.map_err(PyValueError::new_err)?
     };
     let loaded = &scene.loaded;

@@ -177,6 +177,8 @@ def decode_png(data):
          dict(scene="oil-on-water", mode="course", backdrop="none", samples=1, fov=30)),
         # A coin and no card: the raw file still gives a weight for every colour code.
         (["--scene", "coin-in-glass", "--samples", "1"], dict(scene="coin-in-glass", samples=1)),
+        # Every pixel sampled 3x3.
+        (["--scene", "prism", "--sampling", "full"], dict(scene="prism", sampling="full")),
     ],
 )
 def test_pictures_are_the_pngs_pixel_for_pixel_and_raw_weights_the_csvs(tmp_path, flags, kwargs):
@@ -844,3 +846,15 @@ def test_white_light_gives_the_command_lines_points_with_their_wavelengths(tmp_p
         assert list(keys) == list(sim.path[chosen])
     with pytest.raises(ValueError, match="light"):
         bentstraw.simulate(scene, points=100, light="blue")  # type: ignore[arg-type]
+
+
+def test_full_sampling_is_the_command_lines_and_a_slip_is_refused(tmp_path):
+    """``sampling="full"`` takes the samples at every pixel, as ``render --sampling full`` does
+    (another picture than the adaptive one); a sampling not known is a ValueError naming it."""
+    run("render", "--scene", "marble-in-water", "--sampling", "full", "--size", "96x72",
+        "--output", tmp_path / "full.png")
+    full = bentstraw.render("marble-in-water", sampling="full", size=(96, 72))
+    assert np.array_equal(full, decode_png((tmp_path / "full.png").read_bytes()))
+    assert not np.array_equal(full, bentstraw.render("marble-in-water", size=(96, 72)))
+    with pytest.raises(ValueError, match="sampling"):
+        bentstraw.render("marble-in-water", sampling="every", size=(8, 6))  # type: ignore[arg-type]

@@ -301,6 +301,18 @@ pub enum LightArg {
     White,
 }
 
+/// Where a rendered picture takes its samples.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SamplingArg {
+    /// Every pixel's centre, then the samples only where a pixel's centre and a neighbour's
+    /// differ (an edge): the same picture within a few levels where nothing is finer than a
+    /// pixel (see docs/physics.md).
+    #[default]
+    Adaptive,
+    /// The samples at every pixel.
+    Full,
+}
+
 /// What lies behind the glass in a rendered picture.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BackdropArg {
@@ -369,6 +381,9 @@ pub struct RenderArgs {
     /// Samples per pixel side for anti-aliasing (N×N rays in pixels at an edge), 1..=16
     #[arg(long, value_name = "N", default_value_t = DEFAULT_SAMPLES)]
     pub samples: u32,
+    /// Where the N×N samples are taken: at edges only, or at every pixel
+    #[arg(long, value_enum, default_value_t = SamplingArg::Adaptive)]
+    pub sampling: SamplingArg,
     /// The picture (PNG)
     #[arg(long, value_name = "FILE.png")]
     pub output: PathBuf,
@@ -597,6 +612,7 @@ impl RenderArgs {
             checker: self.backdrop == BackdropArg::Checker,
             prune: self.prune,
             samples: self.samples,
+            adaptive: self.sampling == SamplingArg::Adaptive,
             white: self.light == LightArg::White,
         }
     }
@@ -657,6 +673,7 @@ mod tests {
                 checker: true,
                 prune: 1e-3,
                 samples: 5,
+                adaptive: false,
                 white: true,
             },
             ..glass.clone()

@@ -137,6 +137,9 @@ Mode = Literal["course", "fresnel"]
 Backdrop = Literal["checker", "none"]
 #: The light a picture is drawn in: one wavelength (``wavelength=``), or white light.
 Light = Literal["mono", "white"]
+#: Where a picture takes its samples: at edges only (where neighbouring pixels differ), or at
+#: every pixel.
+Sampling = Literal["adaptive", "full"]
 
 if TYPE_CHECKING:
     _PictureArray = np.ndarray[Any, np.dtype[np.uint8]]
@@ -757,6 +760,7 @@ def render(
     backdrop: Backdrop = ...,
     samples: int = ...,
     light: Light = ...,
+    sampling: Sampling = ...,
     weights: Literal[False] = ...,
 ) -> Picture: ...
 
@@ -779,6 +783,7 @@ def render(
     backdrop: Backdrop = ...,
     samples: int = ...,
     light: Light = ...,
+    sampling: Sampling = ...,
     weights: Literal[True],
 ) -> Tuple[Picture, np.ndarray]: ...
 
@@ -801,6 +806,7 @@ def render(
     backdrop: Backdrop = ...,
     samples: int = ...,
     light: Light = ...,
+    sampling: Sampling = ...,
     weights: bool = ...,
 ) -> Union[Picture, Tuple[Picture, np.ndarray]]: ...
 
@@ -823,6 +829,7 @@ def render(
     backdrop: Backdrop = DEFAULT_BACKDROP,
     samples: int = DEFAULT_SAMPLES,
     light: Light = "mono",
+    sampling: Sampling = "adaptive",
     weights: bool = False,
 ) -> Union[Picture, Tuple[Picture, np.ndarray]]:
     """The picture the observer's eye gets: an ``(h, w, 3)`` uint8 array (a :class:`Picture`,
@@ -833,8 +840,9 @@ def render(
     view in degrees (both framed from the scene by default); ``mode="fresnel"`` shares each
     ray's light between reflection and refraction by Fresnel's equations (branches lighter than
     ``prune`` abandoned), ``"course"`` follows one ray; ``backdrop`` is ``"checker"`` or
-    ``"none"``; ``samples`` per pixel side at edges; ``light="white"`` draws it in white light
-    (each band of the spectrum at its own wavelength, where an index depends on it). With
+    ``"none"``; ``samples`` per pixel side at edges (``sampling="full"``: at every pixel);
+    ``light="white"`` draws it in white light (each band of the spectrum at its own wavelength,
+    where an index depends on it). With
     ``weights=True`` returns
     ``(picture, raw)``: one ray per pixel centre as ``render --raw`` writes it, ``raw`` an
     ``(h, w)`` array of colour codes (course) or an ``(h, w, k)`` array of each colour code's
@@ -853,7 +861,7 @@ def render(
     out = _engine.render(
         loaded, size_, _vector(target, 3, "target"), _number(fov, "fov"), mode,
         _real(prune, "prune"), backdrop, _count(samples, "samples"), _flag(weights, "weights"),
-        light,
+        light, sampling,
     )
     picture: Picture = out["pixels"].view(Picture)
     camera = {k: out[k] for k in ("fov_deg", "eye", "forward", "right", "up", "tan_half_fov")}
@@ -1194,7 +1202,8 @@ def explore(
         query["wavelength"] = repr(_real(wavelength, "wavelength"))
     query["points"] = str(_count(points, "points"))
     # The picture's choices checked by the engine's own rules: one pixel drawn with them.
-    _engine.render(loaded, (1, 1), None, None, mode, DEFAULT_PRUNE, backdrop, 1, False, "mono")
+    _engine.render(loaded, (1, 1), None, None, mode, DEFAULT_PRUNE, backdrop, 1, False, "mono",
+                   "adaptive")
     if lang not in ("en", "fr"):
         raise ValueError(f"lang={lang!r} is not allowed: the page speaks \"en\" or \"fr\"")
     query.update(mode=mode, backdrop=backdrop, lang=lang)

@@ -72,6 +72,7 @@ def render(
     samples: int,
     raw: bool,
     light: str,
+    sampling: str,
 ) -> Dict[str, Any]: ...
 def pixel_direction(
     forward: Any, right: Any, up: Any, tan_half_fov: float, size: Tuple[int, int], row: float,

@@ -348,6 +348,7 @@ fn time_frame(view: &View, mode: ModeArg, repeat: usize) -> f64 {
             },
             backdrop: Backdrop::Checker,
             samples: 3,
+            adaptive: true,
             outline: true,
             white: false,
         },
