@@ -259,14 +259,15 @@ pub fn sample_image_until(
     // Level 0: every cell.
     let (nx, ny) = grid_size(&frame, spacing);
     let mut cells: Vec<Cell> = (0..ny).flat_map(|j| (0..nx).map(move |i| (i, j))).collect();
-    // Whether the ray through each cell's centre reaches the straw (no image point is built).
-    let trace_cells = |cells: &[Cell], spacing: f64| -> Vec<bool> {
+    // Whether the ray through each cell's centre reaches an object (no image point is built),
+    // and how many rays that took (one per end of the spectrum looked in, until one reaches).
+    let trace_cells = |cells: &[Cell], spacing: f64| -> Vec<(bool, u8)> {
         cells
             .par_iter()
             .with_min_len(256)
             .map(|&(i, j)| {
                 if stopped() {
-                    return false;
+                    return (false, 0);
                 }
                 let a = frame.a_min + (i as f64 + 0.5) * spacing;
                 let b = frame.b_min + (j as f64 + 0.5) * spacing;
@@ -274,7 +275,12 @@ pub fn sample_image_until(
                     origin: observer,
                     direction: frame.direction(a, b),
                 };
-                ends.iter().any(|w| w.trace(ray).color() > 0)
+                let mut traced = 0;
+                let hit = ends.iter().any(|w| {
+                    traced += 1;
+                    w.trace(ray).color() > 0
+                });
+                (hit, traced)
             })
             .collect()
     };
@@ -285,12 +291,12 @@ pub fn sample_image_until(
         if stopped() {
             return None;
         }
-        rays += cells.len() as u64;
+        rays += hit.iter().map(|&(_, traced)| traced as u64).sum::<u64>();
         progress(rays);
         let hits: Vec<Cell> = cells
             .iter()
             .zip(&hit)
-            .filter(|(_, h)| **h)
+            .filter(|(_, h)| h.0)
             .map(|(c, _)| *c)
             .collect();
         if hits.is_empty() {
