@@ -446,10 +446,26 @@ impl<'w> PacketTracer<'w> {
             }
         }
         let segments = FRESNEL_SEGMENTS_PER_RAY;
-        if self.world.plain_only() {
-            self.follow_branches::<P, _, false>(prune_below, segments, width, wave, on_end);
-        } else {
-            self.follow_branches::<P, _, true>(prune_below, segments, width, wave, on_end);
+        self.follow_in_world::<P, _>(prune_below, segments, width, wave, on_end);
+    }
+
+    /// [`Self::follow_branches`] compiled for this world: with or without solids, and with or
+    /// without media that absorb (a world without tints then carries no lost light at all).
+    #[inline(always)]
+    fn follow_in_world<P: Packet, E: FnMut(usize, BranchEnd)>(
+        &self,
+        prune_below: f64,
+        max_segments: u32,
+        pixels: usize,
+        wave: &mut FresnelWave,
+        on_end: &mut E,
+    ) {
+        let (p, m) = (prune_below, max_segments);
+        match (self.world.plain_only(), self.world.absorbs()) {
+            (true, false) => self.follow_branches::<P, E, false, false>(p, m, pixels, wave, on_end),
+            (true, true) => self.follow_branches::<P, E, false, true>(p, m, pixels, wave, on_end),
+            (false, false) => self.follow_branches::<P, E, true, false>(p, m, pixels, wave, on_end),
+            (false, true) => self.follow_branches::<P, E, true, true>(p, m, pixels, wave, on_end),
         }
     }
 
@@ -609,18 +625,19 @@ impl<'w> PacketTracer<'w> {
             }
         }
         let pixels = directions.len();
-        if self.world.plain_only() {
-            self.follow_branches::<P, _, false>(prune_below, max_segments, pixels, wave, on_end);
-        } else {
-            self.follow_branches::<P, _, true>(prune_below, max_segments, pixels, wave, on_end);
-        }
+        self.follow_in_world::<P, _>(prune_below, max_segments, pixels, wave, on_end);
     }
 
     /// Follows the Fresnel branches in `wave.current` to their ends, breadth first (see
     /// [`Self::branch_ends_row`]), at most `max_segments` segments for each of the `pixels`
     /// pixels (what still travels then is dropped).
     #[inline(always)]
-    fn follow_branches<P: Packet, E: FnMut(usize, BranchEnd), const SOLIDS: bool>(
+    fn follow_branches<
+        P: Packet,
+        E: FnMut(usize, BranchEnd),
+        const SOLIDS: bool,
+        const ABSORBS: bool,
+    >(
         &self,
         prune_below: f64,
         max_segments: u32,
@@ -637,7 +654,8 @@ impl<'w> PacketTracer<'w> {
         let inf = P::splat(f64::INFINITY);
         let threshold = P::from_array([prune_threshold(prune_below); LANES]);
         let (cur, next) = (&mut wave.current, &mut wave.next);
-        let absorbs = world.absorbs();
+        // Known when compiled: a world without tints traces no lost light.
+        let absorbs = ABSORBS;
         if absorbs {
             cur.clear_density();
         }

@@ -107,8 +107,13 @@ impl SolidCylinder {
         if self.upright() {
             v
         } else {
-            let dot = |e: Vec3| v.dot(V3::splat(e));
-            V3::new(dot(self.e1), dot(self.e2), dot(self.axis))
+            // Written out: a closure would not inherit the vector instructions of the tracer
+            // that inlines this, and would call out for each product.
+            V3::new(
+                v.dot(V3::splat(self.e1)),
+                v.dot(V3::splat(self.e2)),
+                v.dot(V3::splat(self.axis)),
+            )
         }
     }
 
