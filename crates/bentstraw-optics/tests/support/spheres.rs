@@ -536,14 +536,7 @@ impl Balls {
     pub fn fresnel(&self, ray: Ray, prune: f64) -> (Shares, f64) {
         let mut shares = Shares::default();
         let mut margin = f64::INFINITY;
-        let start = Branch {
-            o: V::of(ray.origin),
-            d: V::of(ray.direction).unit(),
-            inside: None,
-            left: None,
-            events: 0,
-            weight: t(1.0),
-        };
+        let start = Branch::from_eye(ray);
         self.branch(start, prune, &mut shares, &mut margin, &mut |_, _, _| {});
         (shares, margin)
     }
@@ -553,15 +546,8 @@ impl Balls {
     /// margin over all branches.
     pub fn escapes(&self, ray: Ray, prune: f64) -> (Vec<(u32, Vec3, f64)>, f64) {
         let (mut shares, mut margin, mut out) = (Shares::default(), f64::INFINITY, Vec::new());
-        let start = Branch {
-            o: V::of(ray.origin),
-            d: V::of(ray.direction).unit(),
-            inside: None,
-            left: None,
-            events: 0,
-            weight: t(1.0),
-        };
         let mut record = |events: u32, d: V, w: T| out.push((events, d.unit().f64(), f64::from(w)));
+        let start = Branch::from_eye(ray);
         self.branch(start, prune, &mut shares, &mut margin, &mut record);
         (out, margin)
     }
@@ -638,6 +624,20 @@ struct Branch {
     left: Option<usize>,
     events: u32,
     weight: T,
+}
+
+impl Branch {
+    /// The whole of `ray`, from air: no event yet, all its weight.
+    fn from_eye(ray: Ray) -> Branch {
+        Branch {
+            o: V::of(ray.origin),
+            d: V::of(ray.direction).unit(),
+            inside: None,
+            left: None,
+            events: 0,
+            weight: t(1.0),
+        }
+    }
 }
 
 /// What the tests compare: a reference's answer for one ray by the course's law and in Fresnel
