@@ -1,6 +1,7 @@
 // End-to-end tests of the explorer in headless Chromium (run: npm test): the page served by
 // `bentstraw explore`, or with EXPLORE_ON=site the same page from the static site (cargo xtask
-// site) served by a plain static server, every answer computed by the engine in WebAssembly.
+// site) served by a plain static server, every answer computed by the engine in WebAssembly on
+// as many threads as the machine has cores.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { mkdirSync, mkdtempSync, readdirSync, readFileSync, writeFileSync } from "node:fs";
@@ -17,7 +18,9 @@ const SERVER_ONLY = { skip: ON_SITE && "the static site has no server" };
 const shot = (name) => (ON_SITE ? path.join(tmpdir(), "bentstraw-site-" + name) : path.join(ROOT, "docs", name));
 
 let server, browser;
-before(async () => { server = ON_SITE ? await startStaticServer() : await startServer(); browser = await launch(); });
+// The site from a host that makes it cross-origin isolated, so that its engine runs on threads
+// from the first load (site.test.mjs covers the first load's one thread).
+before(async () => { server = ON_SITE ? await startStaticServer(undefined, { isolated: true }) : await startServer(); browser = await launch(); });
 after(async () => { await browser?.close(); server?.stop(); });
 
 const REF2 = { observer: "0.1,0,0.1", straw: "0.02,0.01", he: "0.15" };

@@ -34,13 +34,13 @@ async function assertPointsAreSimulates(page, label) {
   return { csv, args };
 }
 
-/** Drags the mouse across the eye's picture in `steps` moves. */
-async function drag(page, steps, dx, dy) {
+/** Drags the mouse across the eye's picture in `steps` moves, `pause` ms apart. */
+async function drag(page, steps, dx, dy, pause = 16) {
   const box = await page.locator("#picture").boundingBox();
   let x = box.x + box.width / 2, y = box.y + box.height / 2;
   await page.mouse.move(x, y);
   await page.mouse.down();
-  for (let i = 0; i < steps; i++) { x += dx; y += dy; await page.mouse.move(x, y); await page.waitForTimeout(16); }
+  for (let i = 0; i < steps; i++) { x += dx; y += dy; await page.mouse.move(x, y); await page.waitForTimeout(pause); }
   await page.mouse.up();
 }
 
@@ -122,6 +122,66 @@ test("a page opened once opens again without a network", async () => {
   await waitReady(page);
   assert.ok((await page.evaluate(() => window.bentstraw.points())).startsWith("x,y,z,color\n"));
   assert.deepEqual(problems, []);
+  await context.close();
+});
+
+test("from its second load the site is cross-origin isolated and its engine splits frames over every core, with the same bytes; before, one thread, and the page says why", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  const view = "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&mode=fresnel&points=20000";
+  const q = "observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&mode=fresnel&size=400x300&points=20000";
+  /** The page's frame for `q`, as bytes' digest, and what the page says of its engine. */
+  const look = () => page.evaluate(async (q) => {
+    const r = await window.bentstraw.request("/api/frame", q);
+    const f = window.bentstraw.frame;
+    let h = 2166136261;
+    for (let i = 0; i < f.rgba.length; i++) h = Math.imul(h ^ f.rgba[i], 16777619);
+    const points = await window.bentstraw.points();
+    return { isolated: self.crossOriginIsolated, threads: window.bentstraw.engineThreads, inUse: await window.bentstraw.engineThreads.inUse(),
+      status: document.getElementById("status").textContent, status200: r.status, picture: `${f.header.width}x${f.header.height}:${h >>> 0}`, points };
+  }, q);
+  // The first load: the service worker is not yet in charge, so the page is not isolated.
+  await page.goto(server.url + view);
+  await waitReady(page);
+  const first = await look();
+  assert.equal(first.isolated, false);
+  assert.deepEqual([first.threads.threads, first.threads.why, first.inUse], [1, "engine.first-load", 1]);
+  assert.match(first.status, /WebAssembly on one thread: every core is used from the page's next load/);
+  await page.evaluate(() => navigator.serviceWorker.ready);
+  // The second: every answer now carries the isolation's headers.
+  const workers = [];
+  page.on("worker", (w) => workers.push(w.url()));
+  await page.reload();
+  await waitReady(page);
+  const second = await look();
+  assert.equal(second.isolated, true);
+  assert.equal(second.threads.why, null);
+  assert.ok(second.threads.threads > 1 && second.inUse === second.threads.threads, JSON.stringify(second));
+  assert.match(second.status, new RegExp(`WebAssembly on ${second.inUse} threads`));
+  assert.equal(second.status200, 200);
+  // The same picture and the same points, to the bit, on one thread and on several.
+  assert.equal(second.picture, first.picture);
+  assert.ok(second.points === first.points && second.points.length > 100000);
+  await assertPointsAreSimulates(page, "isolated");
+  // A drag abandons frame after frame: each stops in place (its flag in the shared memory) and
+  // its worker goes on; no worker is started afresh, as one is without threads. (The first drag
+  // starts the quick frames' worker.)
+  const engines = () => workers.filter((u) => u.endsWith("/worker.js")).length;
+  let frames = await page.evaluate(() => window.bentstraw.frames);
+  await drag(page, 5, 5, -1);
+  await waitReady(page, frames);
+  const before = engines(), stopped = await page.evaluate(() => ({ ...window.bentstraw.engineStops }));
+  frames = await page.evaluate(() => window.bentstraw.frames);
+  // Pauses longer than the page waits before it asks for a full frame, shorter than the frame
+  // takes: each full frame is abandoned while it runs.
+  await drag(page, 12, 5, -1, 130);
+  await waitReady(page, frames);
+  const stops = await page.evaluate(() => ({ ...window.bentstraw.engineStops }));
+  assert.ok(stops.inPlace > stopped.inPlace, JSON.stringify(stops));
+  assert.equal(stops.restarts, 0);
+  assert.equal(engines(), before, `workers started: ${workers.join(" ")}`);
+  await assertPointsAreSimulates(page, "after a drag, isolated");
+  assert.deepEqual(problems, []);
+  await page.screenshot({ path: path.join(tmpdir(), "bentstraw-site-isolated.png") });
   await context.close();
 });
 

@@ -29,24 +29,75 @@ fn main() -> ExitCode {
     }
 }
 
+/// One of the site's two builds of the engine.
+struct WasmEngine {
+    /// Its folder in the site.
+    pkg: &'static str,
+    /// Its own cargo target folder.
+    target_dir: &'static str,
+    /// The WebAssembly features it is compiled with (SIMD in both: the packets are their own code).
+    rustflags: &'static str,
+    /// Whether it is built with threads (shared memory, the standard library rebuilt).
+    threads: bool,
+}
+
+impl WasmEngine {
+    const ALL: [WasmEngine; 2] = [
+        WasmEngine {
+            pkg: "pkg",
+            target_dir: "target/site-build",
+            rustflags: "-C target-feature=+simd128",
+            threads: false,
+        },
+        WasmEngine {
+            pkg: "pkg-threads",
+            target_dir: "target/site-build-threads",
+            // Shared memory, imported so that every thread's instance has the same one (at most
+            // 1 GiB, reserved by the browser from the start), and the thread-local storage that
+            // wasm-bindgen sets up for each thread.
+            rustflags: "-C target-feature=+simd128,+atomics,+bulk-memory,+mutable-globals \
+                -C link-arg=--shared-memory -C link-arg=--import-memory -C link-arg=--max-memory=1073741824 \
+                -C link-arg=--export=__wasm_init_tls -C link-arg=--export=__tls_size \
+                -C link-arg=--export=__tls_align -C link-arg=--export=__tls_base",
+            threads: true,
+        },
+    ];
+}
+
 /// Builds the site into `dir`: written into a fresh folder beside it, then renamed into place,
 /// so `dir` is either the old site or the whole new one.
 fn site(dir: &Path) -> Result<(), String> {
     let root = workspace_root();
-    let build = root.join("target/site-build");
-    // Its own target folder: the WebAssembly build's settings never rebuild the native one's.
-    run(
-        Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+    // Two engines: one thread per worker, which any browser runs, and one whose frames are split
+    // over the cores, which needs shared memory (a cross-origin isolated page) and the standard
+    // library rebuilt with atomics (`build-std`: rustc's own sources, unstable, so enabled for
+    // this build alone with RUSTC_BOOTSTRAP rather than a second, nightly, toolchain). Each has
+    // its own target folder: their settings never rebuild the native build or each other.
+    for engine in WasmEngine::ALL {
+        let mut cargo = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+        cargo
             .current_dir(&root)
             .args(["build", "--release", "--locked", "-p", "bentstraw-web"])
             .args(["--target", "wasm32-unknown-unknown", "--target-dir"])
-            .arg(&build)
+            .arg(root.join(engine.target_dir))
             .env(
                 "CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS",
-                "-C target-feature=+simd128",
+                engine.rustflags,
             )
-            .env("CARGO_PROFILE_RELEASE_DEBUG", "0"),
-    )?;
+            .env("CARGO_PROFILE_RELEASE_DEBUG", "0");
+        if engine.threads {
+            cargo
+                .args(["-Z", "build-std=panic_abort,std"])
+                .env("RUSTC_BOOTSTRAP", "1");
+        }
+        run(&mut cargo).map_err(|e| {
+            if engine.threads {
+                format!("{e}\n(the threaded engine rebuilds the standard library: `rustup component add rust-src`)")
+            } else {
+                e
+            }
+        })?;
+    }
     let version = Command::new("wasm-bindgen")
         .arg("--version")
         .output()
@@ -70,10 +121,15 @@ fn site(dir: &Path) -> Result<(), String> {
             .map_or("site".into(), |n| n.to_string_lossy())
     ));
     let _ = std::fs::remove_dir_all(&fresh);
-    run(Command::new("wasm-bindgen")
-        .args(["--target", "no-modules", "--no-typescript", "--out-dir"])
-        .arg(fresh.join("pkg"))
-        .arg(build.join("wasm32-unknown-unknown/release/bentstraw_web.wasm")))?;
+    for engine in WasmEngine::ALL {
+        run(Command::new("wasm-bindgen")
+            .args(["--target", "web", "--no-typescript", "--out-dir"])
+            .arg(fresh.join(engine.pkg))
+            .arg(
+                root.join(engine.target_dir)
+                    .join("wasm32-unknown-unknown/release/bentstraw_web.wasm"),
+            ))?;
+    }
     let write = |name: &str, text: &str| {
         std::fs::write(fresh.join(name), text).map_err(|e| format!("cannot write {name}: {e}"))
     };

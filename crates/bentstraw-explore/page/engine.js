@@ -4,6 +4,22 @@
 import { t, localNumber } from "./i18n.js";
 
 export const ENGINE = document.body.dataset.engine === "wasm" ? "wasm" : "server";
+/** How the page's engine runs: on `threads` threads sharing one memory, when the page is
+ * cross-origin isolated (the site's service worker makes it so from its second load on), else on
+ * one thread per worker, with `why` (a key of the page's words) it cannot share memory. */
+export const ENGINE_THREADS = (() => {
+  const cores = Math.max(1, Math.min(navigator.hardwareConcurrency || 1, 8));
+  if (self.crossOriginIsolated && typeof SharedArrayBuffer === "function" && cores > 1) return { threads: cores, why: null };
+  const firstLoad = "serviceWorker" in navigator && !navigator.serviceWorker.controller;
+  return { threads: 1, why: cores === 1 ? "engine.one-core" : firstLoad ? "engine.first-load" : "engine.not-isolated" };
+})();
+
+/** Requests stopped while they ran: in place (with threads) and by starting their worker afresh. */
+export const stops = { inPlace: 0, restarts: 0 };
+let threadsStarted;
+/** How many threads the engine's first worker splits its frames over, once it has started. */
+export const threadsInUse = new Promise((resolve) => { threadsStarted = resolve; });
+
 export const wasm = ENGINE === "wasm" ? wasmEngine() : null;
 // The site keeps a copy of itself, to open again without a network; once every file is kept
 // (and checked), the page says it is ready offline.
@@ -18,25 +34,35 @@ if (wasm && "serviceWorker" in navigator) {
  * channel): quick frames have a worker of their own, so a drag never waits for the rest; full
  * frames and the models share the one that holds the frame's points, which the models start from
  * (each worker's engine remembers only what it computed itself). Everything it needs is fetched
- * once, at the start: afterwards the page needs no network. A request superseded while it runs
- * stops its worker at once, and a fresh one, remembering nothing, takes over; one superseded
- * while it waits is only taken out of its worker's queue. */
+ * once, at the start: afterwards the page needs no network. A request superseded while it waits
+ * is only taken out of its worker's queue; one superseded while it runs stops: with threads, by
+ * its stop flag in the engine's shared memory (every thread stops at its next row, and the worker
+ * goes on with what it remembers); without, by stopping its worker, a fresh one taking over. */
 function wasmEngine() {
-  const files = Promise.all([
-    // Compiled while it downloads, its progress shown; a host that does not call it
-    // application/wasm gets it compiled after.
-    WebAssembly.compileStreaming(counted(fetch("pkg/bentstraw_web_bg.wasm"))).catch(() =>
-      fetch("pkg/bentstraw_web_bg.wasm").then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b))),
-    fetch("pkg/bentstraw_web.js").then((r) => r.text()),
-    fetch("worker.js").then((r) => r.text()),
-  ]).then(([module, glue, worker]) => ({ module, url: URL.createObjectURL(new Blob([glue, "\n", worker], { type: "text/javascript" })) }));
+  const threaded = ENGINE_THREADS.threads > 1;
+  const pkg = threaded ? "pkg-threads" : "pkg";
+  const wasmFile = `${pkg}/bentstraw_web_bg.wasm`;
+  // Compiled while it downloads, its progress shown; a host that does not call it
+  // application/wasm gets it compiled after.
+  const files = WebAssembly.compileStreaming(counted(fetch(wasmFile))).catch(() =>
+    fetch(wasmFile).then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b)));
   const workers = {};
   let nextId = 1;
-  function spawn(name, f) {
-    const w = { worker: new Worker(f.url), current: null, queue: [] };
-    w.worker.postMessage({ module: f.module });
+  function spawn(name, module) {
+    // With threads, shared with the worker: [the id of the request running (0: none, -1: the
+    // page is stopping it), the id of the last request given up], so that a stop meant for one
+    // request never reaches the next, and one given up just before it begins never runs.
+    const running = threaded ? new Int32Array(new SharedArrayBuffer(8)) : null;
+    const w = { worker: new Worker("worker.js", { type: "module" }), current: null, queue: [], running, stopFlag: null };
+    w.worker.postMessage({ module, pkg, threads: ENGINE_THREADS.threads, running });
     w.worker.onmessage = (e) => {
-      const m = e.data, job = w.current;
+      const m = e.data;
+      if (m.started) {
+        if (m.started.memory) w.stopFlag = new Uint8Array(m.started.memory.buffer, m.started.stopFlag, 1);
+        threadsStarted(m.started.threads);
+        return;
+      }
+      const job = w.current;
       if (!job || job.id !== m.id) return;
       w.current = null;
       const headers = { "Content-Type": m.contentType };
@@ -46,27 +72,38 @@ function wasmEngine() {
       // A crash's message is the page's own, in the page's language.
       const r = new Response(m.broken ? t("error.engine-broken") : m.body, { status: m.status, headers });
       r.engineMs = m.ms;
-      if (m.broken) restart(name, f);
+      if (m.broken) restart(name, module);
       job.resolve(r);
-      pump(name, f);
+      pump(name, module);
     };
     w.worker.onerror = (e) => {
       const job = w.current;
       w.current = null;
-      restart(name, f);
+      restart(name, module);
       if (job) job.reject(new Error(e.message || t("error.engine-stopped")));
     };
     return w;
   }
-  function restart(name, f) {
+  function restart(name, module) {
     const old = workers[name];
     if (old) old.worker.terminate();
-    const w = spawn(name, f);
+    const w = spawn(name, module);
     if (old) w.queue = old.queue;
     workers[name] = w;
-    pump(name, f);
+    pump(name, module);
   }
-  function pump(name, f) {
+  /** Gives up worker `w`'s current request `job` in place: true if the worker shares its memory
+   * (then `job` stops where it is, or never begins). */
+  function stopInPlace(w, job) {
+    if (!w.stopFlag) return false;
+    Atomics.store(w.running, 1, job.id);
+    if (Atomics.compareExchange(w.running, 0, job.id, -1) === job.id) {
+      Atomics.store(w.stopFlag, 0, 1);
+      Atomics.store(w.running, 0, 0);
+    }
+    return true;
+  }
+  function pump(name, module) {
     const w = workers[name];
     if (!w || w.current || !w.queue.length) return;
     w.current = w.queue.shift();
@@ -75,24 +112,29 @@ function wasmEngine() {
   return {
     ready: files.then(() => true),
     async request(name, path, query, signal) {
-      const f = await files;
-      if (!workers[name]) workers[name] = spawn(name, f);
+      const module = await files;
+      if (!workers[name]) workers[name] = spawn(name, module);
       return new Promise((resolve, reject) => {
         const job = { id: nextId++, path, query, resolve, reject };
         if (signal) {
           signal.addEventListener("abort", () => {
             const w = workers[name];
-            if (w.current === job) { w.current = null; restart(name, f); }
-            else w.queue = w.queue.filter((j) => j !== job);
+            if (w.current === job) {
+              w.current = null;
+              // Its answer, stale, is then ignored: the worker goes on to the next request.
+              if (stopInPlace(w, job)) { stops.inPlace++; pump(name, module); }
+              else { stops.restarts++; restart(name, module); }
+            } else w.queue = w.queue.filter((j) => j !== job);
             resolve(null);
           });
         }
         workers[name].queue.push(job);
-        pump(name, f);
+        pump(name, module);
       });
     },
   };
 }
+
 
 /** The engine's download as it comes, its progress shown under the picture's heading until the
  * first picture is drawn (a phone on a slow network waits seconds for it). */

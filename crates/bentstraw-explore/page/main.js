@@ -3,7 +3,7 @@
 import { LANG, setLang, applyI18n } from "./i18n.js";
 import { state, viewQuery, stateHash, readParams } from "./state.js";
 import { $ } from "./dom.js";
-import { ENGINE, wasm, engineFetch, answerText } from "./engine.js";
+import { ENGINE, ENGINE_THREADS, threadsInUse, stops, wasm, engineFetch, answerText } from "./engine.js";
 import { errorShown, showError, errorText, linkRefusal, refuseLink } from "./errors.js";
 import { hook, frame, path, changed, requestFrame, sendFrame, settled, pick, forgetFrame, resized } from "./frames.js";
 import { drawCloud, drawLegend, screenOfPoint } from "./cloud.js";
@@ -108,6 +108,11 @@ window.bentstraw = Object.assign(hook, {
   /** The address that restores this view, its scene included. */
   link() { return location.origin + location.pathname + stateHash(state); },
   engine: ENGINE,
+  /** The page's engine's threads: how many it meant to use and why not more ({ threads, why }),
+   * and `inUse()`, the number its first worker's pool really has once it has started. */
+  engineThreads: { ...ENGINE_THREADS, inUse: () => threadsInUse },
+  /** Requests stopped while they ran: { inPlace, restarts } (see engine.js). */
+  engineStops: stops,
   /** "Predict, then look": its phase, the engine's answer, the distances (predict.js). */
   predict: predictHook,
 });

@@ -3,7 +3,7 @@
 import { I18N, LANG, t, localNumber, applyI18n } from "./i18n.js";
 import { SECTION_RGB } from "./state.js";
 import { $ } from "./dom.js";
-import { wasm } from "./engine.js";
+import { wasm, ENGINE_THREADS } from "./engine.js";
 import { frame, path } from "./frames.js";
 import { syncSweep } from "./sweep.js";
 
@@ -65,7 +65,9 @@ export function showReadout() {
 export function showStatus() {
   if (!frame) return;
   const h = frame.header;
-  const where = wasm ? t("status.wasm", { ms: frame.engineMs.toFixed(0) }) : t("status.server", { ms: h.ms.toFixed(0) });
+  const where = !wasm ? t("status.server", { ms: h.ms.toFixed(0) })
+    : ENGINE_THREADS.why ? t("status.wasm-one", { ms: frame.engineMs.toFixed(0), why: t(ENGINE_THREADS.why) })
+      : t("status.wasm", { ms: frame.engineMs.toFixed(0), threads: ENGINE_THREADS.threads });
   $("status").textContent = t("status.frame", { w: h.width, h: h.height, n: h.n, rays: h.rays_traced, fov: localNumber(h.fov_deg.toFixed(1)), where });
   // Sizes that look like centimetres written as metres: said, as the command line says them.
   const hints = h.hints || [];

@@ -6,6 +6,11 @@
 // served first; a new build of the site (a new list, so a new worker) is fetched and checked in
 // the background and takes over at the next visit. Anything else goes to the network, given
 // NETWORK_MS before the copy (if any) answers instead.
+// Every answer it gives carries the headers that make the page cross-origin isolated, which a
+// static host such as GitHub Pages cannot send: an isolated page may share memory between
+// threads, and its engine then splits each frame over the cores. A page is isolated from the
+// first load this worker controls, so from the second visit on; until then the engine runs on
+// one thread per worker, and the page says so.
 "use strict";
 const MANIFEST = null; // { version, files: { "index.html": "<sha-256, hex>", … } }: the site's build fills it in
 const CACHE = "bentstraw-site-" + (MANIFEST ? MANIFEST.version : "unbuilt");
@@ -56,18 +61,32 @@ function network(request) {
   return fetch(request, { signal: controller.signal }).catch(() => null).finally(() => clearTimeout(timer));
 }
 
+/** `r` with the isolation's headers: the page opens no other site's window and embeds nothing
+ * that has not agreed to be embedded (the site embeds only its own files). */
+function isolated(r) {
+  if (!r || r.type === "error" || r.type === "opaque" || r.type === "opaqueredirect") return r;
+  const headers = new Headers(r.headers);
+  headers.set("Cross-Origin-Opener-Policy", "same-origin");
+  headers.set("Cross-Origin-Embedder-Policy", "require-corp");
+  headers.set("Cross-Origin-Resource-Policy", "same-origin");
+  return new Response(r.body, { status: r.status, statusText: r.statusText, headers });
+}
+
 self.addEventListener("fetch", (e) => {
   if (e.request.method !== "GET") return;
   const name = fileOf(e.request);
   if (name === null) return;
-  e.respondWith((async () => {
-    const cache = await caches.open(CACHE);
-    // The site's own files: the checked copy first.
-    if (MANIFEST && name in MANIFEST.files) {
-      const kept = await cache.match(name);
-      if (kept) return kept;
-    }
-    const r = await network(e.request);
-    return r || (await cache.match(name)) || Response.error();
-  })());
+  e.respondWith((async () => isolated(await answer(e.request, name)))());
 });
+
+/** The answer to `request`, for the site's file `name`. */
+async function answer(request, name) {
+  const cache = await caches.open(CACHE);
+  // The site's own files: the checked copy first.
+  if (MANIFEST && name in MANIFEST.files) {
+    const kept = await cache.match(name);
+    if (kept) return kept;
+  }
+  const r = await network(request);
+  return r || (await cache.match(name)) || Response.error();
+}

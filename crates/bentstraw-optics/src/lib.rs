@@ -34,7 +34,7 @@ pub mod interface;
 pub mod lanes;
 pub mod light_path_type;
 pub mod packet;
-mod parallel;
+pub mod parallel;
 pub mod picture;
 pub mod profile;
 pub mod rainbow;

@@ -11,6 +11,14 @@ pub(crate) use rayon::prelude::*;
 #[cfg(not(feature = "parallel"))]
 pub(crate) use sequential::*;
 
+/// How many threads the parallel loops are spread over: rayon's pool, or 1 without it.
+pub fn current_num_threads() -> usize {
+    #[cfg(feature = "parallel")]
+    return rayon::current_num_threads();
+    #[cfg(not(feature = "parallel"))]
+    return 1;
+}
+
 #[cfg(not(feature = "parallel"))]
 mod sequential {
     /// Runs `a`, then `b`.

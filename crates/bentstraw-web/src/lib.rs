@@ -10,6 +10,11 @@ use std::cell::RefCell;
 use bentstraw_optics::frame::Frame;
 use wasm_bindgen::prelude::*;
 
+// Built with threads: `initThreadPool(n)` starts rayon's pool of `n` Web Workers sharing this
+// instance's memory, over which each frame's rows are split as on the native program's cores.
+#[cfg(target_feature = "atomics")]
+pub use wasm_bindgen_rayon::init_thread_pool;
+
 thread_local! {
     /// The worker's picture buffers, kept from one frame to the next (a worker is one thread).
     static FRAME: RefCell<Frame> = RefCell::new(Frame::default());
@@ -59,6 +64,20 @@ impl Reply {
     pub fn reused_points(&self) -> bool {
         self.reused_points
     }
+}
+
+/// How many threads this engine splits a frame over (rayon's pool: 1 without threads).
+#[wasm_bindgen]
+pub fn threads() -> usize {
+    bentstraw_optics::parallel::current_num_threads()
+}
+
+/// Where this worker's stop flag lies in the engine's memory (a byte: 0 go on, 1 stop). With
+/// threads the memory is shared, so the page abandons a frame by setting it, and every thread
+/// stops at its next row; the worker clears it before each request.
+#[wasm_bindgen(js_name = stopFlag)]
+pub fn stop_flag() -> usize {
+    FRAME.with(|frame| std::sync::Arc::as_ptr(&frame.borrow().stop_flag()) as usize)
 }
 
 /// The answer to the API request `path?query` (for example `/api/frame`, `observer=0.1,0,0.1&…`).
