@@ -758,12 +758,21 @@ fn white_picture_into(
     }));
 }
 
-/// The pixels around pixel `(i, j)` of a `w × h` picture, itself included, as indices.
+/// Whether some pixel around pixel `(i, j)` of a `w × h` picture, itself included, has
+/// `found(k)` for its index `k`. Written as two plain loops: it runs for every pixel of a picture,
+/// and an iterator of iterators cost more than the comparisons it makes.
 #[inline(always)]
-fn neighbours(w: usize, h: usize, i: usize, j: usize) -> impl Iterator<Item = usize> {
+fn any_neighbour(w: usize, h: usize, i: usize, j: usize, found: impl Fn(usize) -> bool) -> bool {
     let (i0, i1) = (i.saturating_sub(1), (i + 1).min(h - 1));
     let (j0, j1) = (j.saturating_sub(1), (j + 1).min(w - 1));
-    (i0..=i1).flat_map(move |a| (j0..=j1).map(move |b| a * w + b))
+    for a in i0..=i1 {
+        for k in a * w + j0..=a * w + j1 {
+            if found(k) {
+                return true;
+            }
+        }
+    }
+    false
 }
 
 /// Whether pixel `(i, j)` is on an edge: its centre's colour and a neighbour's (of those
@@ -779,9 +788,12 @@ fn on_edge(
 ) -> bool {
     let contrast = SMOOTH_CONTRAST as f32;
     let c = centre[i * w + j];
-    neighbours(w, h, i, j).any(|k| {
+    any_neighbour(w, h, i, j, |k| {
         let d = centre[k];
-        counted(k) && (0..3).any(|k| (d[k] - c[k]).abs() > contrast)
+        let differs = ((d[0] - c[0]).abs() > contrast)
+            | ((d[1] - c[1]).abs() > contrast)
+            | ((d[2] - c[2]).abs() > contrast);
+        differs && counted(k)
     })
 }
 
@@ -992,7 +1004,6 @@ pub fn shaded_picture_into(
     };
     join(centres, draw_outline);
     let (centre, seen, mask) = (&*centre, &*seen, &*mask);
-    let neighbours = |i: usize, j: usize| neighbours(w, h, i, j);
     // Given edges aside, a pixel is an edge where its centre and a neighbour's (one traced)
     // differ; every pixel is one without adaptive sampling.
     let edge = |i: usize, j: usize| {
@@ -1002,7 +1013,7 @@ pub fn shaded_picture_into(
     // eye: the pixel then sees only that, and its average is worked out without samples.
     let uniform_backdrop = |i: usize, j: usize| {
         let g = seen[i * w + j];
-        g != Region::Scene && neighbours(i, j).all(|k| seen[k] == g)
+        g != Region::Scene && !any_neighbour(w, h, i, j, |k| seen[k] != g)
     };
     // The samples of an edge pixel traced, and how many.
     let band_samples = *band_samples;
