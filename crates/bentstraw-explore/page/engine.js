@@ -17,7 +17,7 @@ export const ENGINE_THREADS = (() => {
 /** Requests stopped while they ran: in place (with threads) and by starting their worker afresh. */
 export const stops = { inPlace: 0, restarts: 0 };
 let threadsStarted;
-/** How many threads the engine's first worker splits its frames over, once it has started. */
+/** How many threads the engine splits its full frames over, once their worker has started. */
 export const threadsInUse = new Promise((resolve) => { threadsStarted = resolve; });
 
 export const wasm = ENGINE === "wasm" ? wasmEngine() : null;
@@ -47,6 +47,8 @@ function wasmEngine() {
   const files = WebAssembly.compileStreaming(counted(fetch(wasmFile))).catch(() =>
     fetch(wasmFile).then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b)));
   const workers = {};
+  // Workers whose requests are small enough for one thread (then no pool to start).
+  const oneThread = new Set();
   let nextId = 1;
   function spawn(name, module) {
     // With threads, shared with the worker: [the id of the request running (0: none, -1: the
@@ -54,12 +56,12 @@ function wasmEngine() {
     // request never reaches the next, and one given up just before it begins never runs.
     const running = threaded ? new Int32Array(new SharedArrayBuffer(8)) : null;
     const w = { worker: new Worker("worker.js", { type: "module" }), current: null, queue: [], running, stopFlag: null };
-    w.worker.postMessage({ module, pkg, threads: ENGINE_THREADS.threads, running });
+    w.worker.postMessage({ module, pkg, threads: oneThread.has(name) ? 1 : ENGINE_THREADS.threads, running });
     w.worker.onmessage = (e) => {
       const m = e.data;
       if (m.started) {
         if (m.started.memory) w.stopFlag = new Uint8Array(m.started.memory.buffer, m.started.stopFlag, 1);
-        threadsStarted(m.started.threads);
+        if (m.started.threads === ENGINE_THREADS.threads) threadsStarted(m.started.threads);
         return;
       }
       const job = w.current;
@@ -111,6 +113,13 @@ function wasmEngine() {
   }
   return {
     ready: files.then(() => true),
+    /** Starts the workers `names` now rather than at their first request (a worker with
+     * threads takes a moment to start its pool); those named in `oneThread` have none. */
+    async start(names, { oneThread: single = [] } = {}) {
+      for (const name of single) oneThread.add(name);
+      const module = await files;
+      for (const name of names) if (!workers[name]) workers[name] = spawn(name, module);
+    },
     async request(name, path, query, signal) {
       const module = await files;
       if (!workers[name]) workers[name] = spawn(name, module);

@@ -109,7 +109,7 @@ window.bentstraw = Object.assign(hook, {
   link() { return location.origin + location.pathname + stateHash(state); },
   engine: ENGINE,
   /** The page's engine's threads: how many it meant to use and why not more ({ threads, why }),
-   * and `inUse()`, the number its first worker's pool really has once it has started. */
+   * and `inUse()`, the number its full frames' pool really has once it has started. */
   engineThreads: { ...ENGINE_THREADS, inUse: () => threadsInUse },
   /** Requests stopped while they ran: { inPlace, restarts } (see engine.js). */
   engineStops: stops,
@@ -132,5 +132,9 @@ Object.defineProperty(window.bentstraw, "outlinePoints", { get: () => outlinePoi
   syncControls();
   drawMaps();
   syncPredict();
-  sendFrame(false);
+  // The page's own engine: both frames' workers start at once, and the first picture is a quick
+  // one (its engine's code is not yet optimised by the browser), the full one following. Quick
+  // frames are small: one thread each (no pool to start), while full frames take every core.
+  wasm?.start(["frame", "frame-full"], { oneThread: ["frame"] });
+  sendFrame(wasm !== null);
 })();

@@ -79,9 +79,16 @@ self.addEventListener("fetch", (e) => {
   e.respondWith((async () => isolated(await answer(e.request, name)))());
 });
 
+let opened = null;
+/** The site's copy (opened once: a page's start asks for every file at once). */
+function kept() {
+  if (!opened) opened = caches.open(CACHE);
+  return opened;
+}
+
 /** The answer to `request`, for the site's file `name`. */
 async function answer(request, name) {
-  const cache = await caches.open(CACHE);
+  const cache = await kept();
   // The site's own files: the checked copy first.
   if (MANIFEST && name in MANIFEST.files) {
     const kept = await cache.match(name);

@@ -9,7 +9,8 @@ async function start(m) {
   const exports = await engine.default({ module_or_path: m.module });
   const started = { threads: 1, memory: null, stopFlag: 0 };
   if (m.running) {
-    await engine.initThreadPool(m.threads);
+    // One thread: no pool (rayon then runs everything on this worker).
+    if (m.threads > 1) await engine.initThreadPool(m.threads);
     running = m.running;
     stopFlag = new Uint8Array(exports.memory.buffer, engine.stopFlag(), 1);
     Object.assign(started, { memory: exports.memory, stopFlag: engine.stopFlag() });

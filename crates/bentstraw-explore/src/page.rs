@@ -30,6 +30,9 @@ const INDEX: &str = include_str!("../page/index.html");
 /// The `Content-Type` of the page's scripts: module scripts must be served as JavaScript.
 const JS: &str = "text/javascript; charset=utf-8";
 
+/// The page's scripts that are workers, each started by a script (not modules of the page).
+const WORKER_SCRIPTS: [&str; 2] = ["worker.js", "sw.js"];
+
 /// The page's files other than its HTML ([`index_html`]).
 pub const PAGE_FILES: [PageFile; 26] = [
     // The page's entry module (index.html loads it; it imports the others, each one concept).
@@ -180,7 +183,14 @@ pub fn index_html(initial: &str, engine: Engine) -> String {
     let defaults = String::from_utf8(crate::defaults_reply().body)
         .expect("JSON is UTF-8")
         .replace('<', "\\u003c");
+    // Every module of the page fetched at once, not one level of imports after another.
+    let modules: String = PAGE_FILES
+        .iter()
+        .filter(|f| f.content_type == JS && !WORKER_SCRIPTS.contains(&f.name))
+        .map(|f| format!("<link rel=\"modulepreload\" href=\"{}\">\n", f.name))
+        .collect();
     INDEX
+        .replace("__MODULES__", &modules)
         .replace("__INITIAL_VIEW__", &escape_html(initial))
         .replace("__ENGINE__", engine)
         .replace("__DEFAULTS__", &defaults)
@@ -204,13 +214,26 @@ mod tests {
         let json = &json[..json.find("</script>").unwrap()];
         let defaults: serde_json::Value = serde_json::from_str(json).unwrap();
         assert_eq!(defaults["points"], bentstraw_optics::view::DEFAULT_POINTS);
+        // Every file is used: named by the page (its fetches aside) or imported by a module.
+        let named: String = html
+            .lines()
+            .filter(|l| !l.contains("modulepreload"))
+            .collect();
         for f in PAGE_FILES {
-            let loaded_by_script = ["worker.js", "sw.js"].contains(&f.name);
+            let loaded_by_script = WORKER_SCRIPTS.contains(&f.name);
             let imported = PAGE_FILES
                 .iter()
                 .any(|g| g.text.contains(&format!("from \"./{}\"", f.name)));
             assert!(
-                html.contains(f.name) || loaded_by_script || imported,
+                named.contains(f.name) || loaded_by_script || imported,
+                "{}",
+                f.name
+            );
+            // And each module is fetched at once.
+            let preload = format!("<link rel=\"modulepreload\" href=\"{}\">", f.name);
+            assert_eq!(
+                html.contains(&preload),
+                f.content_type == JS && !loaded_by_script,
                 "{}",
                 f.name
             );
