@@ -185,6 +185,26 @@ test("from its second load the site is cross-origin isolated and its engine spli
   await context.close();
 });
 
+test("where the engine with threads cannot start, the page starts it again on one thread and says so", async () => {
+  const isolated = await startStaticServer(undefined, { isolated: true });
+  try {
+    const { page, context, problems } = await openPage(browser, isolated.url);
+    // As on a device that cannot reserve the memory threads share: the threaded build fails.
+    await context.route("**/pkg-threads/bentstraw_web.js", (route) => route.fulfill({ contentType: "text/javascript", body: "throw new Error('no shared memory here');" }));
+    await page.goto(isolated.url + "#observer=0.1,0,0.1&straw=0.02,0.01&water-height=0.15&mode=fresnel&points=20000");
+    await waitReady(page);
+    const seen = await page.evaluate(async () => ({ isolated: self.crossOriginIsolated, threads: { ...window.bentstraw.engineThreads }, inUse: await window.bentstraw.engineThreads.inUse(), status: document.getElementById("status").textContent }));
+    assert.equal(seen.isolated, true);
+    assert.deepEqual([seen.threads.threads, seen.threads.why, seen.inUse], [1, "engine.threads-failed", 1]);
+    assert.match(seen.status, /WebAssembly on one thread: the engine with threads could not start here/);
+    await assertPointsAreSimulates(page, "one thread after all");
+    assert.deepEqual(problems, []);
+    await context.close();
+  } finally {
+    isolated.stop();
+  }
+});
+
 test("while the engine downloads its progress is shown, in the page's language; it goes with the first picture", async () => {
   for (const locale of ["en-GB", "fr-FR"]) {
     const { page, context, problems } = await openPage(browser, server.url, undefined, { locale });

@@ -39,26 +39,61 @@ if (wasm && "serviceWorker" in navigator) {
  * its stop flag in the engine's shared memory (every thread stops at its next row, and the worker
  * goes on with what it remembers); without, by stopping its worker, a fresh one taking over. */
 function wasmEngine() {
-  const threaded = ENGINE_THREADS.threads > 1;
-  const pkg = threaded ? "pkg-threads" : "pkg";
-  const wasmFile = `${pkg}/bentstraw_web_bg.wasm`;
-  // Compiled while it downloads, its progress shown; a host that does not call it
-  // application/wasm gets it compiled after.
-  const files = WebAssembly.compileStreaming(counted(fetch(wasmFile))).catch(() =>
-    fetch(wasmFile).then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b)));
+  let threaded = ENGINE_THREADS.threads > 1;
+  let pkg = threaded ? "pkg-threads" : "pkg";
+  /** The engine of build `pkg`, compiled while it downloads, its progress shown; a host that
+   * does not call it application/wasm gets it compiled after. */
+  const compile = (pkg) => {
+    const wasmFile = `${pkg}/bentstraw_web_bg.wasm`;
+    return WebAssembly.compileStreaming(counted(fetch(wasmFile))).catch(() =>
+      fetch(wasmFile).then((r) => r.arrayBuffer()).then((b) => WebAssembly.compile(b)));
+  };
+  let files = compile(pkg);
+  // The compiled engine the workers start from (the one-thread build's after a fallback).
+  let module = null;
+  const compiled = () => files.then((m) => { module = m; });
+  /** Waits for the engine the workers start from (the new one, if a fallback replaced it). */
+  async function engineReady() {
+    let f;
+    do { f = files; await compiled(); } while (f !== files);
+  }
+  /** The engine with threads could not start (`why`: the browser's words; a device short of
+   * memory cannot reserve what it shares): every worker starts again on one thread. */
+  async function oneThreadAfterAll(why) {
+    threaded = false;
+    pkg = "pkg";
+    Object.assign(ENGINE_THREADS, { threads: 1, why: "engine.threads-failed", detail: why });
+    files = compile(pkg);
+    await engineReady();
+    for (const name of Object.keys(workers)) {
+      const w = workers[name];
+      if (w.current) w.queue.unshift(w.current);
+      w.current = null;
+      restart(name);
+    }
+  }
   const workers = {};
   // Workers whose requests are small enough for one thread (then no pool to start).
   const oneThread = new Set();
   let nextId = 1;
-  function spawn(name, module) {
+  function spawn(name) {
     // With threads, shared with the worker: [the id of the request running (0: none, -1: the
     // page is stopping it), the id of the last request given up], so that a stop meant for one
     // request never reaches the next, and one given up just before it begins never runs.
     const running = threaded ? new Int32Array(new SharedArrayBuffer(8)) : null;
-    const w = { worker: new Worker("worker.js", { type: "module" }), current: null, queue: [], running, stopFlag: null };
+    const w = { worker: new Worker("worker.js", { type: "module" }), current: null, queue: [], running, stopFlag: null, threaded };
     w.worker.postMessage({ module, pkg, threads: oneThread.has(name) ? 1 : ENGINE_THREADS.threads, running });
     w.worker.onmessage = (e) => {
       const m = e.data;
+      if (m.failed) {
+        // The first worker with threads to fail starts the fallback, which restarts the others.
+        if (w.threaded) { if (threaded) oneThreadAfterAll(m.failed); return; }
+        // Not even on one thread: each request says so.
+        for (const job of [w.current, ...w.queue]) if (job) job.reject(new Error(m.failed));
+        w.current = null;
+        w.queue = [];
+        return;
+      }
       if (m.started) {
         if (m.started.memory) w.stopFlag = new Uint8Array(m.started.memory.buffer, m.started.stopFlag, 1);
         if (m.started.threads === ENGINE_THREADS.threads) threadsStarted(m.started.threads);
@@ -74,25 +109,25 @@ function wasmEngine() {
       // A crash's message is the page's own, in the page's language.
       const r = new Response(m.broken ? t("error.engine-broken") : m.body, { status: m.status, headers });
       r.engineMs = m.ms;
-      if (m.broken) restart(name, module);
+      if (m.broken) restart(name);
       job.resolve(r);
-      pump(name, module);
+      pump(name);
     };
     w.worker.onerror = (e) => {
       const job = w.current;
       w.current = null;
-      restart(name, module);
+      restart(name);
       if (job) job.reject(new Error(e.message || t("error.engine-stopped")));
     };
     return w;
   }
-  function restart(name, module) {
+  function restart(name) {
     const old = workers[name];
     if (old) old.worker.terminate();
-    const w = spawn(name, module);
+    const w = spawn(name);
     if (old) w.queue = old.queue;
     workers[name] = w;
-    pump(name, module);
+    pump(name);
   }
   /** Gives up worker `w`'s current request `job` in place: true if the worker shares its memory
    * (then `job` stops where it is, or never begins). */
@@ -105,7 +140,7 @@ function wasmEngine() {
     }
     return true;
   }
-  function pump(name, module) {
+  function pump(name) {
     const w = workers[name];
     if (!w || w.current || !w.queue.length) return;
     w.current = w.queue.shift();
@@ -117,12 +152,12 @@ function wasmEngine() {
      * threads takes a moment to start its pool); those named in `oneThread` have none. */
     async start(names, { oneThread: single = [] } = {}) {
       for (const name of single) oneThread.add(name);
-      const module = await files;
-      for (const name of names) if (!workers[name]) workers[name] = spawn(name, module);
+      await engineReady();
+      for (const name of names) if (!workers[name]) workers[name] = spawn(name);
     },
     async request(name, path, query, signal) {
-      const module = await files;
-      if (!workers[name]) workers[name] = spawn(name, module);
+      await engineReady();
+      if (!workers[name]) workers[name] = spawn(name);
       return new Promise((resolve, reject) => {
         const job = { id: nextId++, path, query, resolve, reject };
         if (signal) {
@@ -131,14 +166,14 @@ function wasmEngine() {
             if (w.current === job) {
               w.current = null;
               // Its answer, stale, is then ignored: the worker goes on to the next request.
-              if (stopInPlace(w, job)) { stops.inPlace++; pump(name, module); }
-              else { stops.restarts++; restart(name, module); }
+              if (stopInPlace(w, job)) { stops.inPlace++; pump(name); }
+              else { stops.restarts++; restart(name); }
             } else w.queue = w.queue.filter((j) => j !== job);
             resolve(null);
           });
         }
         workers[name].queue.push(job);
-        pump(name, module);
+        pump(name);
       });
     },
   };

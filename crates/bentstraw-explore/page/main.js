@@ -110,7 +110,7 @@ window.bentstraw = Object.assign(hook, {
   engine: ENGINE,
   /** The page's engine's threads: how many it meant to use and why not more ({ threads, why }),
    * and `inUse()`, the number its full frames' pool really has once it has started. */
-  engineThreads: { ...ENGINE_THREADS, inUse: () => threadsInUse },
+  engineThreads: { get threads() { return ENGINE_THREADS.threads; }, get why() { return ENGINE_THREADS.why; }, inUse: () => threadsInUse },
   /** Requests stopped while they ran: { inPlace, restarts } (see engine.js). */
   engineStops: stops,
   /** "Predict, then look": its phase, the engine's answer, the distances (predict.js). */

@@ -4,7 +4,17 @@
 // `threads` workers sharing its memory), then one request at a time: { id, path, query }.
 "use strict";
 let ready = null, engine = null, running = null, stopFlag = null;
+/** Starts the engine; if it cannot (a device that cannot reserve the memory threads share),
+ * tells the page, which starts its workers again on one thread. */
 async function start(m) {
+  try {
+    await startEngine(m);
+  } catch (e) {
+    self.postMessage({ failed: String(e && e.message ? e.message : e) });
+    await new Promise(() => {}); // the page stops this worker
+  }
+}
+async function startEngine(m) {
   engine = await import(`./${m.pkg}/bentstraw_web.js`);
   const exports = await engine.default({ module_or_path: m.module });
   const started = { threads: 1, memory: null, stopFlag: 0 };
