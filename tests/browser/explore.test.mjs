@@ -1203,6 +1203,9 @@ test("the wavelength slider and white light: a flint prism's points at 450 nm ar
   await fr.page.goto(server.url + "#lang=fr");
   await waitReady(fr.page);
   await fr.page.click("#scene-edit summary");
+  // The box shows the view's scene first: a text the page writes into it during the fill would
+  // be mixed with the one typed.
+  await boxText(fr.page);
   await fr.page.fill("#scene-text", flint.replace('"f2"', '"f3"'));
   await fr.page.waitForFunction(() => !document.getElementById("scene-errors").hidden);
   const said = (await fr.page.locator("#scene-errors li").allTextContents()).join(" ");

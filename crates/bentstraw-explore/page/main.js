@@ -132,9 +132,10 @@ Object.defineProperty(window.bentstraw, "outlinePoints", { get: () => outlinePoi
   syncControls();
   drawMaps();
   syncPredict();
-  // The page's own engine: both frames' workers start at once, and the first picture is a quick
-  // one (its engine's code is not yet optimised by the browser), the full one following. Quick
-  // frames are small: one thread each (no pool to start), while full frames take every core.
-  wasm?.start(["frame", "frame-full"], { oneThread: ["frame"] });
+  // The page's own engine: the frames' workers and the one for the page's small requests (the
+  // scene's text, sketches, checks) start at once, and the first picture is a quick one (its
+  // engine's code is not yet optimised by the browser), the full one following. Quick frames and
+  // small requests: one thread each (no pool to start), while full frames take every core.
+  wasm?.start(["frame", "frame-full", "hook"], { oneThread: ["frame", "hook"] });
   sendFrame(wasm !== null);
 })();
