@@ -34,13 +34,13 @@ async function assertPointsAreSimulates(page, label) {
   return { csv, args };
 }
 
-/** Drags the mouse across the eye's picture in `steps` moves, `pause` ms apart. */
-async function drag(page, steps, dx, dy, pause = 16) {
+/** Drags the mouse across the eye's picture in `steps` moves. */
+async function drag(page, steps, dx, dy) {
   const box = await page.locator("#picture").boundingBox();
   let x = box.x + box.width / 2, y = box.y + box.height / 2;
   await page.mouse.move(x, y);
   await page.mouse.down();
-  for (let i = 0; i < steps; i++) { x += dx; y += dy; await page.mouse.move(x, y); await page.waitForTimeout(pause); }
+  for (let i = 0; i < steps; i++) { x += dx; y += dy; await page.mouse.move(x, y); await page.waitForTimeout(16); }
   await page.mouse.up();
 }
 
@@ -171,9 +171,18 @@ test("from its second load the site is cross-origin isolated and its engine spli
   await waitReady(page, frames);
   const before = engines(), stopped = await page.evaluate(() => ({ ...window.bentstraw.engineStops }));
   frames = await page.evaluate(() => window.bentstraw.frames);
-  // Pauses longer than the page waits before it asks for a full frame, shorter than the frame
-  // takes: each full frame is abandoned while it runs.
-  await drag(page, 12, 5, -1, 130);
+  // Each move comes once the page is computing a full frame: the move abandons it while it runs.
+  const box = await page.locator("#picture").boundingBox();
+  let x = box.x + box.width / 2;
+  const y = box.y + box.height / 2;
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let i = 0; i < 6; i++) {
+    x += 5;
+    await page.mouse.move(x, y);
+    await page.waitForFunction(() => window.bentstraw.computing === "full");
+  }
+  await page.mouse.up();
   await waitReady(page, frames);
   const stops = await page.evaluate(() => ({ ...window.bentstraw.engineStops }));
   assert.ok(stops.inPlace > stopped.inPlace, JSON.stringify(stops));

@@ -35,6 +35,8 @@ let fullPending = false;
 export const hook = {
   state, latencies, frames: 0,
   get frame() { return frame; }, get path() { return path; }, get models() { return models; },
+  /** The frame being computed now: "quick", "full", or null. */
+  get computing() { return inFlight ? (inFlight.quick ? "quick" : "full") : null; },
   /** Whether a frame is being computed or the full-quality frame is still to come. */
   busy: () => inFlight !== null || fullPending || dirty || (frame !== null && frame.quick),
 };
