@@ -106,16 +106,13 @@ export const SITE = process.env.SITE || path.join(ROOT, "target/site");
  * `isolated`: it sends the headers that make a page cross-origin isolated, as a host that can
  * send them does (the page's engine then has threads from the first load on). */
 export function startStaticServer(dir = SITE, { isolated = false } = {}) {
-  const args = ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"];
-  if (isolated) {
-    const code = `import functools, http.server, sys
+  const code = `import functools, http.server, sys
 class Isolated(http.server.SimpleHTTPRequestHandler):
     def end_headers(self):
         self.send_header("Cross-Origin-Opener-Policy", "same-origin")
         self.send_header("Cross-Origin-Embedder-Policy", "require-corp")
         super().end_headers()
 http.server.test(HandlerClass=functools.partial(Isolated, directory=sys.argv[1]), bind="127.0.0.1", port=0)`;
-    args.splice(0, args.length, "-u", "-c", code, dir);
-  }
+  const args = isolated ? ["-u", "-c", code, dir] : ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"];
   return startListening("python3", args, /port (\d+)/, (m) => `http://127.0.0.1:${m[1]}/`, "the static server");
 }

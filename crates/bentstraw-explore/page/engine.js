@@ -57,12 +57,12 @@ function wasmEngine() {
     let f;
     do { f = files; await compiled(); } while (f !== files);
   }
-  /** The engine with threads could not start (`why`: the browser's words; a device short of
-   * memory cannot reserve what it shares): every worker starts again on one thread. */
-  async function oneThreadAfterAll(why) {
+  /** The engine with threads could not start (a device short of memory cannot reserve what it
+   * shares): every worker starts again on one thread. */
+  async function oneThreadAfterAll() {
     threaded = false;
     pkg = "pkg";
-    Object.assign(ENGINE_THREADS, { threads: 1, why: "engine.threads-failed", detail: why });
+    Object.assign(ENGINE_THREADS, { threads: 1, why: "engine.threads-failed" });
     files = compile(pkg);
     await engineReady();
     for (const name of Object.keys(workers)) {
@@ -87,7 +87,7 @@ function wasmEngine() {
       const m = e.data;
       if (m.failed) {
         // The first worker with threads to fail starts the fallback, which restarts the others.
-        if (w.threaded) { if (threaded) oneThreadAfterAll(m.failed); return; }
+        if (w.threaded) { if (threaded) oneThreadAfterAll(); return; }
         // Not even on one thread: each request says so.
         for (const job of [w.current, ...w.queue]) if (job) job.reject(new Error(m.failed));
         w.current = null;
@@ -178,7 +178,6 @@ function wasmEngine() {
     },
   };
 }
-
 
 /** The engine's download as it comes, its progress shown under the picture's heading until the
  * first picture is drawn (a phone on a slow network waits seconds for it). */

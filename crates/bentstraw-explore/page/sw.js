@@ -81,14 +81,14 @@ self.addEventListener("fetch", (e) => {
 
 let opened = null;
 /** The site's copy (opened once: a page's start asks for every file at once). */
-function kept() {
+function siteCopy() {
   if (!opened) opened = caches.open(CACHE);
   return opened;
 }
 
 /** The answer to `request`, for the site's file `name`. */
 async function answer(request, name) {
-  const cache = await kept();
+  const cache = await siteCopy();
   // The site's own files: the checked copy first.
   if (MANIFEST && name in MANIFEST.files) {
     const kept = await cache.match(name);

@@ -22,8 +22,9 @@ async function startEngine(m) {
     // One thread: no pool (rayon then runs everything on this worker).
     if (m.threads > 1) await engine.initThreadPool(m.threads);
     running = m.running;
-    stopFlag = new Uint8Array(exports.memory.buffer, engine.stopFlag(), 1);
-    Object.assign(started, { memory: exports.memory, stopFlag: engine.stopFlag() });
+    const at = engine.stopFlag();
+    stopFlag = new Uint8Array(exports.memory.buffer, at, 1);
+    Object.assign(started, { memory: exports.memory, stopFlag: at });
   }
   started.threads = engine.threads();
   self.postMessage({ started });
