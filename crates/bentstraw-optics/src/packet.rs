@@ -688,9 +688,9 @@ impl<'w> PacketTracer<'w> {
                     P::from_array(r[5]),
                 );
                 let left = P::from_array(block.left);
-                // The block's rays as arrays, taken out of the registers here: a closure does not
-                // inherit this function's vector instructions, and would call out for each store.
-                let (oa, da) = (block_lanes(&o), block_lanes(&d));
+                // The block's rays as the arrays they were loaded from (a closure does not inherit
+                // this function's vector instructions: it reads them, it does not make them).
+                let (oa, da) = (&r[..3], &r[3..]);
                 let escape = |k: usize, absorbed: [f32; 3], on_end: &mut E| {
                     // A branch that met nothing is the ray from the eye (a far eye's rays start
                     // on the bounding sphere, possibly past the backdrop's floor).
