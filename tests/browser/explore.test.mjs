@@ -235,6 +235,39 @@ test("dragging in the picture moves the observer and changes the picture", async
   await context.close();
 });
 
+test("quick frames are as fine as the engine draws them in time: full resolution when fast enough, coarser when not", async () => {
+  const { page, context, problems } = await openPage(browser, server.url);
+  await page.goto(server.url);
+  await waitReady(page);
+  // The rule, as the page runs it, on made-up times.
+  const chosen = await page.evaluate(async () => {
+    const { QuickScale, QUICK_BUDGET_MS: budget } = await import("./quickscale.js");
+    const fast = new QuickScale(), slow = new QuickScale(), seen = [fast.next()];
+    // Each quick frame timed, then the scale of the next.
+    for (const [scale, share] of [[4, 1 / 8], [2, 1 / 5], [1, 1.5], [2, 1 / 5]]) { fast.timed(scale, share * budget); seen.push(fast.next()); }
+    slow.timed(4, budget / 2);
+    seen.push(slow.next());
+    return seen;
+  });
+  // Coarsest before any time is known; finer while four times the time fits; back to coarser
+  // when too slow, and finer again when the coarser frames bound the finer ones within budget
+  // (the slow one a moment's delay); a slow engine stays coarse.
+  assert.deepEqual(chosen, [4, 2, 1, 2, 1, 4]);
+  // A drag: its quick frames are painted at the scales the rule chose.
+  await page.evaluate(() => { window.bentstraw.latencies.length = 0; });
+  const frames = await page.evaluate(() => window.bentstraw.frames);
+  const box = await page.locator("#picture").boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; i++) { await page.mouse.move(box.x + box.width / 2 + 8 * i, box.y + box.height / 2); await page.waitForTimeout(16); }
+  await page.mouse.up();
+  await waitReady(page, frames);
+  const scales = await page.evaluate(() => window.bentstraw.latencies.filter((l) => l.quick).map((l) => l.scale));
+  assert.ok(scales.length > 0 && scales.every((s) => [1, 2, 4].includes(s)), JSON.stringify(scales));
+  assert.deepEqual(problems, []);
+  await context.close();
+});
+
 test("a preset loads a reference simulation whose points are simulate's", async () => {
   const { page, context, problems } = await openPage(browser, server.url);
   await page.goto(server.url + "#observer=0.3,0,0.05&straw=0,0&water-height=0.1");

@@ -20,7 +20,8 @@ const browser = await launch();
 console.log(`machine: ${os.cpus()[0].model}, ${os.cpus().length} cores, load ${os.loadavg().map((x) => x.toFixed(1)).join(" ")}`);
 console.log("mode     picture  points  frames  p50 ms  p95 ms  max ms  fps   (quick frames while dragging)");
 for (const mode of ["course", "fresnel"]) {
-  // 1000x750 CSS pixels for the picture's panel: quick frames of about 500x375, full ones about 1000x750.
+  // 1000x750 CSS pixels for the picture's panel: full frames about 1000x750, quick frames that or
+  // two or four times coarser along each side, as fine as the engine draws them in time.
   const { page, context } = await openPage(browser, server.url, VIEWPORT);
   const scene = process.env.SCENE ? `scene=${process.env.SCENE}&observer=${await sceneEye(page, process.env.SCENE)}` : "observer=0.1,0,0.1";
   await page.goto(server.url + `#${scene}&straw=0.02,0.01&water-height=0.15&mode=${mode}&points=20000`);

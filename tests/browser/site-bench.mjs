@@ -4,7 +4,8 @@
 // - the engine's time for the same frames (the four reference views, about 800x600 pictures,
 //   course and Fresnel, 20 000 points), native on one thread (RAYON_NUM_THREADS=1), and the ratio;
 // - the same for the eye and stereo models' apparent positions of those 20 000 points;
-// - input-to-paint latency while dragging (p50/p95), the full-quality frame after the input stops,
+// - input-to-paint latency while dragging (p50/p95) and the quick frames' scales (1: the picture's
+//   full resolution), the full-quality frame after the input stops,
 //   the first picture after the page starts loading; and the quick frames with the processor
 //   slowed four times (Chromium's throttling: about a phone's speed);
 // - the first picture of the site opened again once its service worker keeps it.
@@ -74,10 +75,13 @@ async function latencies(url, mode, slower = 1) {
   await waitReady(page);
   const painted = await page.evaluate(() => window.bentstraw.fullPaintedAt);
   const threads = await page.evaluate(() => window.bentstraw.engine === "wasm" ? window.bentstraw.engineThreads.inUse() : null);
-  const quick = await page.evaluate(() => window.bentstraw.latencies.filter((l) => l.quick).map((l) => l.ms));
+  const drawn = await page.evaluate(() => window.bentstraw.latencies.filter((l) => l.quick));
+  const quick = drawn.map((l) => l.ms);
+  // How many quick frames were drawn at each scale (1: full resolution).
+  const scales = [1, 2, 4].map((s) => `${s}:${drawn.filter((l) => l.scale === s).length}`).join(" ");
   const size = await page.evaluate(() => `${window.bentstraw.frame.header.width}x${window.bentstraw.frame.header.height}`);
   await context.close();
-  return { first, p50: percentile(quick, 50), p95: percentile(quick, 95), full: painted - stop, frames: quick.length, size, threads };
+  return { first, p50: percentile(quick, 50), p95: percentile(quick, 95), full: painted - stop, frames: quick.length, size, threads, scales };
 }
 
 /** The first picture of the site at `url` opened again, its files kept by its service worker
@@ -108,13 +112,13 @@ console.log(`view               WebAssembly 1 thread ms   WebAssembly ${cores} t
 for (const k of Object.keys(a)) console.log(`${k.padEnd(18)} ${a[k].toFixed(1).padStart(23)} ${t[k].toFixed(1).padStart(23)} ${b[k].toFixed(1).padStart(20)} ${(a[k] / t[k]).toFixed(2).padStart(25)} ${(b[k] / a[k] * 100).toFixed(0).padStart(36)} %`);
 if (process.env.ONLY === "engine") { await browser.close(); site.stop(); siteThreads.stop(); native.stop(); native1.stop(); process.exit(0); }
 console.log("\nthe page, dragging in the picture (120 moves at 60 Hz)");
-console.log("engine                   mode      processor  picture   first picture ms  quick frames  p50 ms  p95 ms  full frame after the input stops ms");
+console.log("engine                   mode      processor  picture   first picture ms  quick frames  p50 ms  p95 ms  full frame after the input stops ms  quick frames per scale");
 const engines = [["WebAssembly 1 thread", site.url], [`WebAssembly ${cores} threads`, siteThreads.url], ["native (2 threads)", native.url]];
 for (const slower of [1, 4]) {
   for (const mode of ["course", "fresnel"]) {
     for (const [name, url] of engines.filter(([n]) => slower === 1 || n.startsWith("WebAssembly"))) {
       const r = await latencies(url, mode, slower);
-      console.log(`${name.padEnd(24)} ${mode.padEnd(9)} ${(slower === 1 ? "as is" : slower + "x slower").padEnd(10)} ${r.size.padEnd(9)} ${String(r.first).padStart(16)} ${String(r.frames).padStart(13)} ${r.p50.toFixed(0).padStart(7)} ${r.p95.toFixed(0).padStart(7)} ${r.full.toFixed(0).padStart(8)}`);
+      console.log(`${name.padEnd(24)} ${mode.padEnd(9)} ${(slower === 1 ? "as is" : slower + "x slower").padEnd(10)} ${r.size.padEnd(9)} ${String(r.first).padStart(16)} ${String(r.frames).padStart(13)} ${r.p50.toFixed(0).padStart(7)} ${r.p95.toFixed(0).padStart(7)} ${r.full.toFixed(0).padStart(8)}                              ${r.scales}`);
     }
   }
 }

@@ -12,11 +12,14 @@ import { syncControls } from "./controls.js";
 import { showHint, showReadout, showStatus, showCommands } from "./readout.js";
 import { syncSceneText } from "./scenetext.js";
 import { showLesson } from "./lesson.js";
+import { QuickScale } from "./quickscale.js";
 
-// Quick frames (while dragging) have this many times fewer pixels along each side, and this many
-// times fewer image points (the full frame, when the input stops, has them all).
-const QUICK = 4;
+// Quick frames (while the input moves) take one sample per pixel and this many times fewer image
+// points (the full frame, when the input stops, has them all and samples the edges); they are as
+// fine as the engine draws them in time (quickscale.js): at full resolution on a laptop's cores,
+// coarser on a slow phone.
 const QUICK_POINTS = 6;
+const quickScale = new QuickScale();
 // The full frame is asked for this long after the last quick one: soon, in the page's own engine
 // (a full frame superseded by new input is stopped at once); later from the server, whose two
 // threads every open page shares.
@@ -37,6 +40,8 @@ export const hook = {
   get frame() { return frame; }, get path() { return path; }, get models() { return models; },
   /** The frame being computed now: "quick", "full", or null. */
   get computing() { return inFlight ? (inFlight.quick ? "quick" : "full") : null; },
+  /** The scale the next quick frame will be drawn at (1: the box's full resolution). */
+  get quickScale() { return quickScale.next(); },
   /** Whether a frame is being computed or the full-quality frame is still to come. */
   busy: () => inFlight !== null || fullPending || dirty || (frame !== null && frame.quick),
 };
@@ -84,21 +89,22 @@ export async function sendFrame(quick) {
   // A refused link: nothing in its place.
   if (linkRefusal) return;
   const [w, h, d] = pictureSize();
-  // Quick frames are QUICK times coarser than the box in CSS pixels, whatever the screen's density.
-  const size = quick ? [Math.max(40, Math.round(w / (QUICK * d))), Math.max(30, Math.round(h / (QUICK * d)))] : [w, h];
+  // Quick frames are measured in the box's CSS pixels, whatever the screen's density.
+  const scale = quick ? quickScale.next() : null;
+  const size = quick ? [Math.max(40, Math.round(w / (scale * d))), Math.max(30, Math.round(h / (scale * d)))] : [w, h];
   const extra = { size: `${size[0]}x${size[1]}`, samples: quick ? 1 : 3 };
   if (quick) extra.points = Math.max(1000, Math.round(state.points / QUICK_POINTS));
   const query = viewQuery(state, extra);
   // This request is the first to show the inputs since `since`: its paint ends their wait.
   const since = inputSince;
   inputSince = null;
-  inFlight = { quick, since };
+  inFlight = { quick, since, scale };
   dirty = false;
   const sent = performance.now();
   let r;
   // In the page's engine, full frames have a worker apart from the quick ones' (shared with the
   // models, which start from its points): one superseded by a drag is stopped without holding up
-  // the quick frames, which the other core computes meanwhile.
+  // the quick frames.
   try { r = await ask("frame", "/api/frame", query, quick ? "frame" : "frame-full"); } catch (e) { showError({ key: "error.no-answer", params: { message: e.message } }); inFlight = null; return; }
   // Not painted: its inputs still wait (for the request that replaced it, or the retry).
   const unpainted = () => { if (since !== null && (inputSince === null || since < inputSince)) inputSince = since; };
@@ -118,6 +124,9 @@ export async function sendFrame(quick) {
   frame = decodeFrame(bytes, quick);
   frame.query = query;
   frame.engineMs = r.engineMs || 0;
+  // The engine's own time: the page's worker's, or the server's.
+  if (quick) quickScale.timed(scale, frame.engineMs || frame.header.ms);
+  frame.scale = scale;
   showError("");
   // The first picture is here: the engine's download is over.
   $("loading").hidden = true;
@@ -126,7 +135,7 @@ export async function sendFrame(quick) {
   const paintMs = performance.now() - t;
   requestAnimationFrame(() => {
     // Where the time went: waiting to be sent, the request (server included), the body, painting.
-    if (since !== null) latencies.push({ ms: performance.now() - since, quick, mode: state.mode, server: frame.header.ms, paint: paintMs, wait: sent - since, request: answered - sent, body: received - answered });
+    if (since !== null) latencies.push({ ms: performance.now() - since, quick, scale, mode: state.mode, server: frame.header.ms, paint: paintMs, wait: sent - since, request: answered - sent, body: received - answered });
     hook.frames += 1;
     document.body.dataset.frames = String(hook.frames);
   });

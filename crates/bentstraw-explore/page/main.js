@@ -134,8 +134,9 @@ Object.defineProperty(window.bentstraw, "outlinePoints", { get: () => outlinePoi
   syncPredict();
   // The page's own engine: the frames' workers and the one for the page's small requests (the
   // scene's text, sketches, checks) start at once, and the first picture is a quick one (its
-  // engine's code is not yet optimised by the browser), the full one following. Quick frames and
-  // small requests: one thread each (no pool to start), while full frames take every core.
-  wasm?.start(["frame", "frame-full", "hook"], { oneThread: ["frame", "hook"] });
+  // engine's code is not yet optimised by the browser), the full one following. Frames, quick and
+  // full, take every core (a drag's quick frames at full resolution where that is fast enough);
+  // small requests: one thread (no pool to start).
+  wasm?.start(["frame", "frame-full", "hook"], { oneThread: ["hook"] });
   sendFrame(wasm !== null);
 })();

@@ -34,7 +34,7 @@ const JS: &str = "text/javascript; charset=utf-8";
 const WORKER_SCRIPTS: [&str; 2] = ["worker.js", "sw.js"];
 
 /// The page's files other than its HTML ([`index_html`]).
-pub const PAGE_FILES: [PageFile; 26] = [
+pub const PAGE_FILES: [PageFile; 27] = [
     // The page's entry module (index.html loads it; it imports the others, each one concept).
     PageFile {
         name: "main.js",
@@ -71,6 +71,11 @@ pub const PAGE_FILES: [PageFile; 26] = [
         name: "errors.js",
         content_type: JS,
         text: include_str!("../page/errors.js"),
+    },
+    PageFile {
+        name: "quickscale.js",
+        content_type: JS,
+        text: include_str!("../page/quickscale.js"),
     },
     PageFile {
         name: "frames.js",
