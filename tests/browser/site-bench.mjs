@@ -75,10 +75,13 @@ async function latencies(url, mode, slower = 1) {
   await waitReady(page);
   const painted = await page.evaluate(() => window.bentstraw.fullPaintedAt);
   const threads = await page.evaluate(() => window.bentstraw.engine === "wasm" ? window.bentstraw.engineThreads.inUse() : null);
-  const drawn = await page.evaluate(() => window.bentstraw.latencies.filter((l) => l.quick));
+  const { drawn, allowed } = await page.evaluate(async () => ({
+    drawn: window.bentstraw.latencies.filter((l) => l.quick),
+    allowed: (await import("./quickscale.js")).QUICK_SCALES,
+  }));
   const quick = drawn.map((l) => l.ms);
-  // How many quick frames were drawn at each scale (1: full resolution).
-  const scales = [1, 2, 4].map((s) => `${s}:${drawn.filter((l) => l.scale === s).length}`).join(" ");
+  // How many quick frames were drawn at each of the page's scales (1: full resolution).
+  const scales = allowed.map((s) => `${s}:${drawn.filter((l) => l.scale === s).length}`).join(" ");
   const size = await page.evaluate(() => `${window.bentstraw.frame.header.width}x${window.bentstraw.frame.header.height}`);
   await context.close();
   return { first, p50: percentile(quick, 50), p95: percentile(quick, 95), full: painted - stop, frames: quick.length, size, threads, scales };

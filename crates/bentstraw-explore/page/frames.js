@@ -98,7 +98,7 @@ export async function sendFrame(quick) {
   // This request is the first to show the inputs since `since`: its paint ends their wait.
   const since = inputSince;
   inputSince = null;
-  inFlight = { quick, since, scale };
+  inFlight = { quick, since };
   dirty = false;
   const sent = performance.now();
   let r;
@@ -126,7 +126,6 @@ export async function sendFrame(quick) {
   frame.engineMs = r.engineMs || 0;
   // The engine's own time: the page's worker's, or the server's.
   if (quick) quickScale.timed(scale, frame.engineMs || frame.header.ms);
-  frame.scale = scale;
   showError("");
   // The first picture is here: the engine's download is over.
   $("loading").hidden = true;
