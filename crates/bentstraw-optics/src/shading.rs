@@ -140,7 +140,9 @@ fn curve_table(f: fn(f64) -> f64) -> CurveTable {
 #[inline]
 fn lookup(table: &[f64; CURVE_STEPS + 1], c: f64) -> f64 {
     let x = c.clamp(0.0, 1.0) * CURVE_STEPS as f64;
-    let k = (x as usize).min(CURVE_STEPS - 1);
+    // Through `i32`: one instruction on x86-64, where `as usize` takes a branch and several (the
+    // same entry: `x` is in `[0, CURVE_STEPS]`, or NaN, which both make 0).
+    let k = (x as i32).min(CURVE_STEPS as i32 - 1) as usize;
     let t = x - k as f64;
     table[k] + t * (table[k + 1] - table[k])
 }
@@ -158,7 +160,14 @@ fn srgb_to_linear_fast(c: f64) -> f64 {
 /// [`linear_to_srgb`] by table, for the inner loops.
 #[inline]
 fn linear_to_srgb_fast(c: f64) -> f64 {
-    lookup(TO_SRGB.get_or_init(|| curve_table(linear_to_srgb)), c)
+    lookup(to_srgb_table(), c)
+}
+
+/// The table of [`linear_to_srgb_fast`], for a loop that converts many colours to look up once
+/// (each look-up is an atomic load).
+#[inline]
+fn to_srgb_table() -> &'static [f64; CURVE_STEPS + 1] {
+    TO_SRGB.get_or_init(|| curve_table(linear_to_srgb))
 }
 
 fn linear(rgb: [f64; 3]) -> [f64; 3] {
@@ -615,7 +624,9 @@ impl EndShader<'_> {
                 let (o, d) = (v(origin), v(direction));
                 let (region, t) = self.surroundings.meet(o, d);
                 let colour = self.surroundings.colour_at(region, o, d, t, 0.0, 0.0, d.z);
-                let direct = origin == self.eye && weight == 1.0;
+                // Compared number by number (an array's `==` is a loop over a slice).
+                let [x, y, z] = self.eye;
+                let direct = weight == 1.0 && origin[0] == x && origin[1] == y && origin[2] == z;
                 let seen = if direct { region } else { Region::Scene };
                 Some((filtered(colour, absorbed), weight as f64, seen))
             }
@@ -633,7 +644,7 @@ impl EndShader<'_> {
 /// `exp(−absorbed)` of each channel).
 #[inline(always)]
 fn filtered(colour: [f64; 3], absorbed: [f32; 3]) -> [f64; 3] {
-    if absorbed == [0.0; 3] {
+    if absorbed[0] == 0.0 && absorbed[1] == 0.0 && absorbed[2] == 0.0 {
         return colour;
     }
     let mut out = colour;
@@ -1070,9 +1081,10 @@ pub fn shaded_picture_into(
                             }
                         }
                     }
+                    let to_srgb = to_srgb_table();
                     for (j, (px, lin)) in row.iter_mut().zip(sum.iter()).enumerate() {
                         if some.is_none_or(|r| r[j] && traced_centre(i * w + j)) {
-                            *px = lin.map(|c| linear_to_srgb_fast(c) as f32);
+                            *px = lin.map(|c| lookup(to_srgb, c) as f32);
                         }
                     }
                     rows_done.fetch_add(1, Ordering::Relaxed);
@@ -1136,6 +1148,7 @@ pub fn shaded_picture_into(
                 if n > 1 {
                     edges.clear();
                     dirs.clear();
+                    let to_srgb = to_srgb_table();
                     for (j, px) in line.iter_mut().enumerate() {
                         if !edge(i, j) || !drawn(j) {
                             continue;
@@ -1145,7 +1158,7 @@ pub fn shaded_picture_into(
                             let d = camera.direction_at(i as f64 + 0.5, j as f64 + 0.5);
                             *px = surroundings
                                 .radiance_over_pixel(eye, d, dc, dr)
-                                .map(linear_to_srgb_fast);
+                                .map(|c| lookup(to_srgb, c));
                             continue;
                         }
                         edges.push(j);
@@ -1182,7 +1195,7 @@ pub fn shaded_picture_into(
                         }
                         let inv = 1.0 / per_pixel as f64;
                         for (&j, sum) in edges.iter().zip(acc.iter()) {
-                            line[j] = sum.map(|c| linear_to_srgb_fast(c * inv));
+                            line[j] = sum.map(|c| lookup(to_srgb, c * inv));
                         }
                     }
                 }

@@ -12,6 +12,10 @@
 //! centres`: finding them, the closed-form backdrop, their samples traced and shaded). One line
 //! per case: `MODE VIEW TRACED_MS CENTRES_MS PICTURE_MS SHADING_MS EDGES_MS BRANCH_ENDS`.
 //!
+//! Build it on its own (`cargo build --release -p bentstraw-bench --bin picture-parts`): built in
+//! one command with the program, the library's features are unified, and its pictures then take
+//! every core.
+//!
 //! Built for WebAssembly (`wasm32-wasip1` with SIMD, as `bench/wasm_native.mjs` builds
 //! `picture-speed`) it gives the same parts for the page's engine.
 
