@@ -20,8 +20,8 @@
 //! `picture-speed`) it gives the same parts for the page's engine.
 
 use std::hint::black_box;
-use std::time::Instant;
 
+use bentstraw_bench::median_seconds;
 use bentstraw_optics::camera::{framing_fov, framing_target, Camera};
 use bentstraw_optics::packet::{FresnelWave, PacketTracer};
 use bentstraw_optics::scene::{REFERENCES, WATER_INDEX};
@@ -99,15 +99,6 @@ fn main() {
 }
 
 /// Median time (ms) of [`REPEAT`] runs of `work`, after one.
-fn median_ms(mut work: impl FnMut()) -> f64 {
-    work();
-    let mut t: Vec<f64> = (0..REPEAT)
-        .map(|_| {
-            let start = Instant::now();
-            work();
-            start.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[REPEAT / 2]
+fn median_ms(work: impl FnMut()) -> f64 {
+    median_seconds(REPEAT, work) * 1e3
 }

@@ -7,8 +7,7 @@
 //! it times the page's engine on the same work: `bench/wasm_native.mjs` runs both and prints the
 //! ratio. One line per case: `INSTRUCTIONS MODE VIEW MRAYS_PER_S`.
 
-use std::time::Instant;
-
+use bentstraw_bench::median_seconds;
 use bentstraw_optics::camera::Camera;
 use bentstraw_optics::packet::{FresnelWave, Instructions, PacketTracer};
 use bentstraw_optics::scene::{REFERENCES, SECTION_COUNT, WATER_INDEX};
@@ -40,12 +39,12 @@ fn main() {
             let Some(tracer) = PacketTracer::new(&world).with_instructions(instructions) else {
                 continue;
             };
-            let course = median_seconds(|| {
+            let course = median_seconds(REPEAT, || {
                 for (row, codes) in codes.chunks_mut(w as usize).enumerate() {
                     tracer.course_row(&camera, row as u32, codes);
                 }
             });
-            let fresnel = median_seconds(|| {
+            let fresnel = median_seconds(REPEAT, || {
                 for (row, weights) in weights.chunks_mut(w as usize).enumerate() {
                     tracer.fresnel_row(&camera, row as u32, PRUNE, &mut wave, weights);
                 }
@@ -55,18 +54,4 @@ fn main() {
             std::hint::black_box((&codes, &weights));
         }
     }
-}
-
-/// Median time (s) of [`REPEAT`] runs of `work`, after one.
-fn median_seconds(mut work: impl FnMut()) -> f64 {
-    work();
-    let mut t: Vec<f64> = (0..REPEAT)
-        .map(|_| {
-            let start = Instant::now();
-            work();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[REPEAT / 2]
 }
